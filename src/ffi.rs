@@ -1,0 +1,229 @@
+//! The only `#[cxx::bridge]` of the crate: what `cpp/vtkHybridOctreeBridge.cxx`
+//! may call. No other module knows C++ exists.
+//!
+//! Every function body runs under [`std::panic::catch_unwind`] and returns
+//! `Result`, so a Rust panic becomes a `rust::Error` exception on the C++ side
+//! (reported with `vtkErrorMacro`) instead of aborting ParaView.
+//!
+//! Volume data crosses borrowed: `bytes` is the VTK array's storage
+//! (`GetVoidPointer(0)`, `GetDataSize() * GetDataTypeSize()` bytes); nothing is
+//! copied.
+
+use crate::error::Error;
+use crate::grid::{Grid, GridShape, Samples, ScalarType as GridScalarType};
+use crate::octree::{BuildOptions, VolumeOctree};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+#[cxx::bridge(namespace = "hybrid_octree")]
+mod bridge {
+    // ---- Shared structs -------------------------------------------------
+
+    /// The scalar type of the VTK array (VTK_UNSIGNED_CHAR -> U8, ...).
+    #[derive(Debug)]
+    enum ScalarType {
+        U8,
+        I8,
+        U16,
+        I16,
+        U32,
+        I32,
+        F32,
+        F64,
+    }
+
+    /// Layout of the borrowed image: dims, spacing, origin, components and
+    /// the chosen component (-1: none chosen, allowed for 1-component arrays).
+    #[derive(Debug)]
+    struct GridDesc {
+        scalar_type: ScalarType,
+        dims: [usize; 3],
+        spacing: [f64; 3],
+        origin: [f64; 3],
+        components: usize,
+        component: i32,
+    }
+
+    /// Summary of a built Volume Octree.
+    #[derive(Debug)]
+    struct OctreeSummary {
+        /// Nodes reachable from the root (terminal nodes are not refined).
+        node_count: usize,
+        /// Terminal nodes: homogeneous nodes plus leaf bricks.
+        terminal_count: usize,
+        /// Nodes whose e_0 is 0 (trilinear over their box).
+        homogeneous_count: usize,
+        /// Number of levels: the root is level 0, leaves are level `levels - 1`.
+        levels: u32,
+        /// Cells per axis of a leaf brick.
+        leaf_size: u32,
+        /// Cells per axis of the (virtually padded) root.
+        root_size: u32,
+        /// Bytes the octree owns (the borrowed samples not included).
+        octree_bytes: usize,
+        /// Bytes of the input samples of the chosen component.
+        input_bytes: usize,
+        /// Wall-clock build time.
+        build_ms: f64,
+        /// Data range, used to normalise nodal errors.
+        value_min: f64,
+        value_max: f64,
+    }
+
+    /// The boxes of an octree cut, one entry per node, world coordinates.
+    #[derive(Debug)]
+    struct CutBoxes {
+        /// 6 values per node: xmin, xmax, ymin, ymax, zmin, zmax (VTK bounds order).
+        bounds: Vec<f64>,
+        level: Vec<u32>,
+        /// e_0 of the node normalised by the data range.
+        nodal_error: Vec<f32>,
+        min: Vec<f64>,
+        max: Vec<f64>,
+    }
+
+    // ---- Rust types and functions for C++ --------------------------------
+
+    extern "Rust" {
+        /// A built Volume Octree, owned by the C++ filter.
+        type VolumeOctreeHandle;
+
+        /// Builds the Volume Octree of the borrowed image.
+        fn build_volume_octree(bytes: &[u8], desc: &GridDesc, leaf_size: u32) -> Result<Box<VolumeOctreeHandle>>;
+        /// Node counts, levels, memory and build time.
+        fn summary(self: &VolumeOctreeHandle) -> Result<OctreeSummary>;
+        /// The cut at normalised tolerance `tolerance` (the first nodes from the
+        /// root whose e_0 <= tolerance, or leaf bricks).
+        fn cut_boxes(self: &VolumeOctreeHandle, tolerance: f64) -> Result<CutBoxes>;
+    }
+}
+
+pub use bridge::{CutBoxes, GridDesc, OctreeSummary, ScalarType};
+
+/// A Volume Octree together with the geometry needed to place its boxes.
+#[derive(Debug)]
+pub struct VolumeOctreeHandle {
+    octree: VolumeOctree,
+    shape: GridShape,
+    input_bytes: usize,
+}
+
+/// Runs `f`, turning a panic into [`Error::Internal`] so it never crosses the bridge.
+fn guarded<T>(f: impl FnOnce() -> crate::error::Result<T>) -> Result<T, String> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(Ok(value)) => Ok(value),
+        Ok(Err(e)) => Err(e.to_string()),
+        Err(payload) => {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".to_string());
+            Err(Error::Internal(what).to_string())
+        }
+    }
+}
+
+fn scalar_type(t: ScalarType) -> crate::error::Result<GridScalarType> {
+    Ok(match t {
+        ScalarType::U8 => GridScalarType::U8,
+        ScalarType::I8 => GridScalarType::I8,
+        ScalarType::U16 => GridScalarType::U16,
+        ScalarType::I16 => GridScalarType::I16,
+        ScalarType::U32 => GridScalarType::U32,
+        ScalarType::I32 => GridScalarType::I32,
+        ScalarType::F32 => GridScalarType::F32,
+        ScalarType::F64 => GridScalarType::F64,
+        _ => return Err(Error::InvalidArgument("unknown scalar type code from C++".into())),
+    })
+}
+
+fn build_volume_octree(bytes: &[u8], desc: &GridDesc, leaf_size: u32) -> Result<Box<VolumeOctreeHandle>, String> {
+    guarded(|| {
+        let samples = Samples::from_bytes(bytes, scalar_type(desc.scalar_type)?)?;
+        let shape = GridShape { dims: desc.dims, spacing: desc.spacing, origin: desc.origin };
+        let component = usize::try_from(desc.component).ok();
+        let grid = Grid::new(samples, shape, desc.components, component)?;
+        let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: leaf_size as usize })?;
+        Ok(Box::new(VolumeOctreeHandle { octree, shape, input_bytes: grid.input_bytes() }))
+    })
+}
+
+impl VolumeOctreeHandle {
+    fn summary(&self) -> Result<OctreeSummary, String> {
+        guarded(|| {
+            let s = self.octree.stats();
+            Ok(OctreeSummary {
+                node_count: s.node_count,
+                terminal_count: s.terminal_count,
+                homogeneous_count: s.homogeneous_count,
+                levels: s.levels as u32,
+                leaf_size: s.leaf_size as u32,
+                root_size: s.root_size as u32,
+                octree_bytes: s.octree_bytes,
+                input_bytes: self.input_bytes,
+                build_ms: s.build_ms,
+                value_min: s.value_range.0,
+                value_max: s.value_range.1,
+            })
+        })
+    }
+
+    fn cut_boxes(&self, tolerance: f64) -> Result<CutBoxes, String> {
+        guarded(|| {
+            let cut = self.octree.cut(tolerance)?;
+            let mut out = CutBoxes {
+                bounds: Vec::with_capacity(cut.len() * 6),
+                level: Vec::with_capacity(cut.len()),
+                nodal_error: Vec::with_capacity(cut.len()),
+                min: Vec::with_capacity(cut.len()),
+                max: Vec::with_capacity(cut.len()),
+            };
+            for id in cut {
+                let node = self.octree.node(id);
+                let lo = self.shape.world(node.lo.map(|v| v as f64));
+                let hi = self.shape.world(node.hi.map(|v| v as f64));
+                out.bounds.extend_from_slice(&[lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]]);
+                out.level.push(node.level as u32);
+                out.nodal_error.push(node.errors.first().copied().unwrap_or(0.0));
+                out.min.push(node.min);
+                out.max.push(node.max);
+            }
+            Ok(out)
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_becomes_an_error_not_an_abort() {
+        let r: Result<(), String> = guarded(|| panic!("boom"));
+        let e = r.unwrap_err();
+        assert!(e.contains("internal error") && e.contains("boom"), "{e}");
+    }
+
+    #[test]
+    fn bridge_builds_and_cuts() {
+        let data: Vec<f32> = (0..27).map(|i| (i * i) as f32).collect();
+        // SAFETY: f32 has no padding; the byte view covers exactly the vector's storage.
+        let bytes = unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, data.len() * 4) };
+        let desc = GridDesc {
+            scalar_type: ScalarType::F32,
+            dims: [3, 3, 3],
+            spacing: [1.0, 2.0, 3.0],
+            origin: [0.0; 3],
+            components: 1,
+            component: -1,
+        };
+        let h = build_volume_octree(bytes, &desc, 2).unwrap();
+        let s = h.summary().unwrap();
+        assert_eq!(s.input_bytes, 27 * 4);
+        let cut = h.cut_boxes(0.0).unwrap();
+        assert_eq!(cut.bounds.len(), cut.level.len() * 6);
+        assert_eq!(cut.bounds[..6], [0.0, 2.0, 0.0, 4.0, 0.0, 6.0]);
+        let bad = GridDesc { component: 3, ..desc };
+        assert!(build_volume_octree(bytes, &bad, 2).unwrap_err().contains("component 3"));
+    }
+}

@@ -1,0 +1,45 @@
+//! The reference: nodal errors of one node computed straight from the
+//! definition, sample by sample, with no sharing between nodes or strides.
+//! Slow (O(samples x levels) per node); for tests and for checking a build.
+
+use super::build::normalise;
+use super::trilinear::eval;
+use super::volume_octree::VolumeOctree;
+use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use super::layout::NodeId;
+
+/// E_p(n), p = 0 .. L-k-1, of node `id`, from the definition
+/// `max over q >= p of max over v in n of |f(v) - T_(2^(L-k-q))(v)| / range`.
+pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f32> {
+    struct Brute<'o> {
+        octree: &'o VolumeOctree,
+        id: NodeId,
+    }
+    impl GridVisitor for Brute<'_> {
+        type Output = Vec<f32>;
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f32> {
+            let node = self.octree.node(self.id);
+            let (vmin, vmax) = self.octree.value_range();
+            let n = self.octree.layout().error_count(node.level);
+            let mut raw = vec![0.0f64; n];
+            for (p, r) in raw.iter_mut().enumerate() {
+                let s = 1usize << (n - p);
+                for z in node.lo[2]..=node.hi[2] {
+                    for y in node.lo[1]..=node.hi[1] {
+                        for x in node.lo[0]..=node.hi[0] {
+                            *r = r.max((g.at(x, y, z) - eval(&g, s, x, y, z)).abs());
+                        }
+                    }
+                }
+            }
+            let mut out = vec![0.0f32; n];
+            let mut envelope = 0.0f64;
+            for p in (0..n).rev() {
+                envelope = envelope.max(raw[p]);
+                out[p] = normalise(envelope, vmax - vmin);
+            }
+            out
+        }
+    }
+    grid.visit(Brute { octree, id })
+}

@@ -1,0 +1,21 @@
+//! The Volume Octree (paper 1, section 2.1): min/max and the nodal error list
+//! of every node, over a grid padded virtually to a power of two.
+//!
+//! One operation per file: [`layout`] fixes levels and node boxes,
+//! [`trilinear`] defines T_p, [`leaf_stats`] is the per-brick kernel,
+//! [`build`] runs it in parallel and reduces up the tree, [`cut`] walks the
+//! tree, [`validate`] checks a built tree, [`brute_force`] is the slow reference
+//! the tests compare against.
+
+pub mod brute_force;
+pub mod build;
+pub mod cut;
+pub mod layout;
+pub mod leaf_stats;
+pub mod trilinear;
+pub mod validate;
+pub mod volume_octree;
+
+pub use build::{BuildOptions, DEFAULT_LEAF_SIZE};
+pub use layout::{Layout, NodeId};
+pub use volume_octree::{NodeRef, OctreeStats, VolumeOctree};

@@ -1,0 +1,104 @@
+//! T_p: the trilinear approximation of a node from its samples taken every
+//! `s = 2^(L-k-p)` cells (paper 1, section 2.1).
+//!
+//! Because node boxes at every level start at multiples of their size, the
+//! same stride gives the same approximation in every node: T_s is one field
+//! over the whole grid. For a sample `v = (x, y, z)`:
+//!
+//! ```text
+//! x0 = floor(x / s) * s,  x1 = min(x0 + s, nx - 1),  tx = (x - x0) / s     (same for y, z)
+//! v(xa, yb) = f(xa, yb, z0) + (f(xa, yb, z1) - f(xa, yb, z0)) * tz
+//! w(xa)     = v(xa, y0) + (v(xa, y1) - v(xa, y0)) * ty
+//! T_s(v)    = w(x0) + (w(x1) - w(x0)) * tx
+//! ```
+//!
+//! The clamp `min(x0 + s, n - 1)` is the virtual padding: samples beyond the
+//! grid repeat the last one (as `GL_CLAMP_TO_EDGE` does for a texture brick
+//! that sticks out of the volume). The evaluation order above is part of the
+//! definition: the fast kernel and the brute-force reference both call the
+//! functions of this file, so their results are equal bit for bit.
+
+use crate::grid::{Sample, TypedGrid};
+
+/// `a + (b - a) * t`, the one interpolation formula used everywhere.
+#[inline(always)]
+pub fn lerp(a: f64, b: f64, t: f64) -> f64 {
+    a + (b - a) * t
+}
+
+/// The bracketing coarse coordinates of `x` for stride `s` on an axis of `n`
+/// samples: `(x0, x1, t)`.
+#[inline(always)]
+pub fn bracket(x: usize, s: usize, n: usize) -> (usize, usize, f64) {
+    let x0 = x / s * s;
+    (x0, (x0 + s).min(n - 1), (x - x0) as f64 / s as f64)
+}
+
+/// The y, z bracket of a row: `(y0, y1, ty, z0, z1, tz)`.
+#[derive(Debug, Clone, Copy)]
+#[allow(missing_docs)] // variants and fields are named by what they hold
+pub struct RowBracket {
+    pub y0: usize,
+    pub y1: usize,
+    pub ty: f64,
+    pub z0: usize,
+    pub z1: usize,
+    pub tz: f64,
+}
+
+impl RowBracket {
+    /// The bracket of row `(y, z)` for stride `s`.
+    #[inline(always)]
+    pub fn new(y: usize, z: usize, s: usize, dims: [usize; 3]) -> RowBracket {
+        let (y0, y1, ty) = bracket(y, s, dims[1]);
+        let (z0, z1, tz) = bracket(z, s, dims[2]);
+        RowBracket { y0, y1, ty, z0, z1, tz }
+    }
+
+    /// `w(xa)`: the bilinear interpolation in y and z at coarse x position `xa`.
+    #[inline(always)]
+    pub fn w<T: Sample>(&self, g: &TypedGrid<'_, T>, xa: usize) -> f64 {
+        let v0 = lerp(g.at(xa, self.y0, self.z0), g.at(xa, self.y0, self.z1), self.tz);
+        let v1 = lerp(g.at(xa, self.y1, self.z0), g.at(xa, self.y1, self.z1), self.tz);
+        lerp(v0, v1, self.ty)
+    }
+}
+
+/// T_s at sample `(x, y, z)`, straight from the definition (the reference path).
+pub fn eval<T: Sample>(g: &TypedGrid<'_, T>, s: usize, x: usize, y: usize, z: usize) -> f64 {
+    let (x0, x1, tx) = bracket(x, s, g.dims[0]);
+    let row = RowBracket::new(y, z, s, g.dims);
+    lerp(row.w(g, x0), row.w(g, x1), tx)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::{Grid, GridVisitor, Samples};
+
+    struct At(usize, [usize; 3]);
+    impl GridVisitor for At {
+        type Output = f64;
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> f64 {
+            eval(&g, self.0, self.1[0], self.1[1], self.1[2])
+        }
+    }
+
+    #[test]
+    fn reproduces_corners_and_is_linear_between() {
+        // f = x + 10 y + 100 z on 5^3: trilinear, so every stride reproduces it.
+        let data: Vec<f64> = (0..125).map(|i| (i % 5 + 10 * ((i / 5) % 5) + 100 * (i / 25)) as f64).collect();
+        let g = Grid::scalar(Samples::F64(&data), [5, 5, 5]).unwrap();
+        for s in [1, 2, 4] {
+            assert_eq!(g.visit(At(s, [3, 1, 2])), 213.0);
+        }
+    }
+
+    #[test]
+    fn padding_repeats_the_last_sample() {
+        // 1D ramp 0..=5 along x, stride 4: the cell [4, 8] is clamped to [4, 5].
+        let data: Vec<f32> = (0..6 * 2 * 2).map(|i| (i % 6) as f32).collect();
+        let g = Grid::scalar(Samples::F32(&data), [6, 2, 2]).unwrap();
+        assert_eq!(g.visit(At(4, [5, 0, 0])), 4.0 + (5.0 - 4.0) * 0.25);
+    }
+}

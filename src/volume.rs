@@ -1,0 +1,97 @@
+//! An owned volume: what the built-in datasets generate and the file readers
+//! load. A [`Volume`] lends itself out as a borrowed [`Grid`].
+
+use crate::error::Result;
+use crate::grid::{Grid, GridShape, Samples, ScalarType};
+
+/// Owned samples of one of the supported scalar types.
+#[derive(Debug, Clone, PartialEq)]
+#[allow(missing_docs)] // variants and fields are named by what they hold
+pub enum SampleBuf {
+    U8(Vec<u8>),
+    I8(Vec<i8>),
+    U16(Vec<u16>),
+    I16(Vec<i16>),
+    U32(Vec<u32>),
+    I32(Vec<i32>),
+    F32(Vec<f32>),
+    F64(Vec<f64>),
+}
+
+impl SampleBuf {
+    /// Borrows the buffer.
+    pub fn as_samples(&self) -> Samples<'_> {
+        match self {
+            SampleBuf::U8(v) => Samples::U8(v),
+            SampleBuf::I8(v) => Samples::I8(v),
+            SampleBuf::U16(v) => Samples::U16(v),
+            SampleBuf::I16(v) => Samples::I16(v),
+            SampleBuf::U32(v) => Samples::U32(v),
+            SampleBuf::I32(v) => Samples::I32(v),
+            SampleBuf::F32(v) => Samples::F32(v),
+            SampleBuf::F64(v) => Samples::F64(v),
+        }
+    }
+    /// The scalar type.
+    pub fn scalar_type(&self) -> ScalarType {
+        self.as_samples().scalar_type()
+    }
+    /// Number of values.
+    pub fn len(&self) -> usize {
+        self.as_samples().len()
+    }
+    /// True when empty.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Converts `f64` values to `scalar_type`, rounding and saturating for
+    /// integer types (used by the dataset generators' `--type`).
+    pub fn from_f64(values: &[f64], scalar_type: ScalarType) -> SampleBuf {
+        fn conv<T>(values: &[f64], f: impl Fn(f64) -> T) -> Vec<T> {
+            values.iter().map(|&v| f(v)).collect()
+        }
+        // `as` from f64 to an integer saturates and maps NaN to 0 (Rust semantics).
+        match scalar_type {
+            ScalarType::U8 => SampleBuf::U8(conv(values, |v| v.round() as u8)),
+            ScalarType::I8 => SampleBuf::I8(conv(values, |v| v.round() as i8)),
+            ScalarType::U16 => SampleBuf::U16(conv(values, |v| v.round() as u16)),
+            ScalarType::I16 => SampleBuf::I16(conv(values, |v| v.round() as i16)),
+            ScalarType::U32 => SampleBuf::U32(conv(values, |v| v.round() as u32)),
+            ScalarType::I32 => SampleBuf::I32(conv(values, |v| v.round() as i32)),
+            ScalarType::F32 => SampleBuf::F32(conv(values, |v| v as f32)),
+            ScalarType::F64 => SampleBuf::F64(values.to_vec()),
+        }
+    }
+}
+
+/// An owned scalar volume with its geometry.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Volume {
+    /// Samples, x fastest, `components` values per point.
+    pub samples: SampleBuf,
+    /// Dimensions, spacing, origin.
+    pub shape: GridShape,
+    /// Values per point.
+    pub components: usize,
+    /// Name of the array (file readers keep the file's name).
+    pub name: String,
+}
+
+impl Volume {
+    /// A single-component volume with unit spacing and zero origin.
+    pub fn new(samples: SampleBuf, dims: [usize; 3], name: impl Into<String>) -> Volume {
+        Volume {
+            samples,
+            shape: GridShape { dims, spacing: [1.0; 3], origin: [0.0; 3] },
+            components: 1,
+            name: name.into(),
+        }
+    }
+
+    /// Borrows the volume as a checked grid of component `component`
+    /// (`None` for single-component volumes).
+    pub fn grid(&self, component: Option<usize>) -> Result<Grid<'_>> {
+        Grid::new(self.samples.as_samples(), self.shape, self.components, component)
+    }
+}
