@@ -5,7 +5,9 @@ use super::layout::{Layout, NodeId};
 /// A Volume Octree: per node min, max and the nodal error envelope
 /// `E_p`, `p = 0 .. L-k-1` (see [`super::build`]), stored in flat arrays
 /// indexed by [`NodeId`]. The samples stay with the caller.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// Equality compares the tree (layout, ranges, errors), not the build time.
+#[derive(Debug, Clone)]
 pub struct VolumeOctree {
     pub(crate) layout: Layout,
     pub(crate) min: Vec<f64>,
@@ -13,6 +15,16 @@ pub struct VolumeOctree {
     pub(crate) errors: Vec<f32>,
     pub(crate) error_offset: Vec<usize>,
     pub(crate) build_ms: f64,
+}
+
+impl PartialEq for VolumeOctree {
+    fn eq(&self, other: &Self) -> bool {
+        self.layout == other.layout
+            && self.min == other.min
+            && self.max == other.max
+            && self.errors == other.errors
+            && self.error_offset == other.error_offset
+    }
 }
 
 /// One node, borrowed from the octree.
