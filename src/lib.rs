@@ -21,12 +21,12 @@
 #![warn(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn)]
 
-
+pub mod datasets;
 pub mod error;
 #[allow(missing_docs)]
 pub mod ffi;
 pub mod grid;
-
+pub mod io;
 pub mod octree;
 pub mod volume;
 

@@ -1,0 +1,105 @@
+//! The input arguments every subcommand shares: a built-in dataset or a file.
+
+use clap::Args;
+use hybrid_octree::datasets::{generate, Dataset};
+use hybrid_octree::grid::{Grid, ScalarType};
+use hybrid_octree::io::{read_volume, RawOptions, ReadOptions};
+use hybrid_octree::volume::Volume;
+use hybrid_octree::{Error, Result};
+use std::path::PathBuf;
+
+/// Where the volume comes from.
+#[derive(Args, Debug, Clone)]
+pub struct InputArgs {
+    /// Built-in dataset: shepp-logan, marschner-lobb, sphere, ramp, constant.
+    #[arg(long, conflicts_with = "file", required_unless_present = "file")]
+    pub dataset: Option<String>,
+    /// Samples per axis of the built-in dataset.
+    #[arg(long, default_value_t = 128)]
+    pub size: usize,
+    /// Scalar type: of the generated dataset, or of a raw file (u8, i8, u16, i16, u32, i32, f32, f64).
+    #[arg(long = "type")]
+    pub scalar_type: Option<String>,
+    /// Volume file: .vti, .vtk, .nii, .nii.gz, or raw (.raw/.bin, with --dims and --type).
+    #[arg(long)]
+    pub file: Option<PathBuf>,
+    /// Raw file dimensions X,Y,Z (makes the file be read as raw).
+    #[arg(long, value_parser = triple::<usize>, requires = "file")]
+    pub dims: Option<[usize; 3]>,
+    /// Raw file spacing X,Y,Z.
+    #[arg(long, value_parser = triple::<f64>, requires = "dims", allow_hyphen_values = true)]
+    pub spacing: Option<[f64; 3]>,
+    /// Raw file origin X,Y,Z.
+    #[arg(long, value_parser = triple::<f64>, requires = "dims", allow_hyphen_values = true)]
+    pub origin: Option<[f64; 3]>,
+    /// Raw file values per point.
+    #[arg(long, default_value_t = 1, requires = "dims")]
+    pub components: usize,
+    /// Raw file multi-byte values are big endian.
+    #[arg(long, requires = "dims")]
+    pub big_endian: bool,
+    /// Component of a multi-component array to use.
+    #[arg(long)]
+    pub component: Option<usize>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+/// Parses `X,Y,Z` (clap value parser).
+fn triple<T: std::str::FromStr + Copy + Default>(s: &str) -> std::result::Result<[T; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!("expected three comma-separated values X,Y,Z, got '{s}'"));
+    }
+    let mut out = [T::default(); 3];
+    for (o, p) in out.iter_mut().zip(&parts) {
+        *o = p.parse().map_err(|_| format!("'{p}' is not a valid number in '{s}'"))?;
+    }
+    Ok(out)
+}
+
+impl InputArgs {
+    /// The scalar type given with `--type`, or `default`.
+    pub fn scalar_type_or(&self, default: ScalarType) -> Result<ScalarType> {
+        self.scalar_type.as_deref().map_or(Ok(default), ScalarType::parse)
+    }
+
+    /// Generates or reads the volume.
+    pub fn load(&self) -> Result<Volume> {
+        if let Some(path) = &self.file {
+            let raw = match &self.dims {
+                Some(dims) => {
+                    let scalar_type =
+                        self.scalar_type.as_deref().map(ScalarType::parse).transpose()?.ok_or_else(|| {
+                            Error::InvalidArgument(
+                                "a raw file needs its scalar type: add --type (e.g. --type u8)".into(),
+                            )
+                        })?;
+                    let mut raw = RawOptions::new(*dims, scalar_type);
+                    raw.spacing = self.spacing.unwrap_or([1.0; 3]);
+                    raw.origin = self.origin.unwrap_or([0.0; 3]);
+                    raw.components = self.components;
+                    raw.big_endian = self.big_endian;
+                    Some(raw)
+                }
+                None => None,
+            };
+            return read_volume(path, &ReadOptions { raw });
+        }
+        let name = self
+            .dataset
+            .as_deref()
+            .ok_or_else(|| Error::InvalidArgument("give an input: --dataset NAME --size N, or --file PATH".into()))?;
+        let dataset = Dataset::parse(name)?;
+        if self.size < 2 {
+            return Err(Error::InvalidArgument(format!("--size {} is too small: use at least 2", self.size)));
+        }
+        Ok(generate(dataset, self.size, self.scalar_type_or(ScalarType::F32)?))
+    }
+
+    /// The grid of the chosen component.
+    pub fn grid<'v>(&self, volume: &'v Volume) -> Result<Grid<'v>> {
+        volume.grid(self.component)
+    }
+}

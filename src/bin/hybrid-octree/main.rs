@@ -1,0 +1,60 @@
+//! `hybrid-octree`: build, describe, generate and benchmark Hybrid Octree
+//! volumes from the command line.
+//!
+//! ```text
+//! hybrid-octree info     (--dataset NAME --size N | --file PATH) [--type T] [--component C]
+//! hybrid-octree build    (--dataset NAME --size N | --file PATH) [--leaf-size B] [--tolerance T] [--json]
+//! hybrid-octree generate --dataset NAME --size N [--type T] --output FILE.vti
+//! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--repeats 3] [--json]
+//! ```
+//!
+//! Library errors print `error: <message>` on stderr and exit with status 2.
+
+mod bench;
+mod build;
+mod generate;
+mod info;
+mod input;
+mod pool;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "hybrid-octree", version, about = "Build, describe and benchmark Hybrid Octree volumes")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Describe the input volume (dims, type, geometry, value range) without building.
+    Info(info::InfoArgs),
+    /// Build the Volume Octree and report its size, shape and build time.
+    Build(build::BuildArgs),
+    /// Write a built-in dataset to a VTK XML image file (.vti).
+    Generate(generate::GenerateArgs),
+    /// Benchmarks that print a table.
+    Bench {
+        #[command(subcommand)]
+        bench: bench::BenchCommand,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Info(args) => info::run(&args),
+        Command::Build(args) => build::run(&args),
+        Command::Generate(args) => generate::run(&args),
+        Command::Bench { bench } => bench::run(&bench),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

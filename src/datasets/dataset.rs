@@ -1,0 +1,80 @@
+//! The names of the built-in datasets.
+
+use crate::error::{Error, Result};
+
+/// A built-in dataset; see the module of each for its formula.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Dataset {
+    /// 3D Shepp-Logan head phantom: 10 ellipsoids ([`super::shepp_logan`]).
+    SheppLogan,
+    /// Marschner-Lobb test signal, f_M = 6, alpha = 0.25 ([`super::marschner_lobb`]).
+    MarschnerLobb,
+    /// Signed distance to a sphere, offset so the surface is the 0.5 isosurface ([`super::sphere`]).
+    Sphere,
+    /// A linear ramp, exactly trilinear ([`super::ramp`]).
+    Ramp,
+    /// The constant 0.5 ([`super::constant`]).
+    Constant,
+}
+
+impl Dataset {
+    /// Every dataset, in the order the CLI lists them.
+    pub const ALL: [Dataset; 5] =
+        [Dataset::SheppLogan, Dataset::MarschnerLobb, Dataset::Sphere, Dataset::Ramp, Dataset::Constant];
+
+    /// The name used by `--dataset` and as the array name of the generated volume.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dataset::SheppLogan => "shepp-logan",
+            Dataset::MarschnerLobb => "marschner-lobb",
+            Dataset::Sphere => "sphere",
+            Dataset::Ramp => "ramp",
+            Dataset::Constant => "constant",
+        }
+    }
+
+    /// Parses a dataset name (case-insensitive; `_` may stand for `-`).
+    pub fn parse(s: &str) -> Result<Dataset> {
+        let wanted = s.trim().to_ascii_lowercase().replace('_', "-");
+        Dataset::ALL.into_iter().find(|d| d.name() == wanted).ok_or_else(|| {
+            let names: Vec<&str> = Dataset::ALL.iter().map(|d| d.name()).collect();
+            Error::InvalidArgument(format!("unknown dataset '{s}': use one of {}", names.join(", ")))
+        })
+    }
+
+    /// The field value at box-normalised position `t` in `[0, 1]^3`, in `[0, 1]`.
+    pub fn value(self, t: [f64; 3]) -> f64 {
+        match self {
+            Dataset::SheppLogan => super::shepp_logan::value(t),
+            Dataset::MarschnerLobb => super::marschner_lobb::value(t),
+            Dataset::Sphere => super::sphere::value(t),
+            Dataset::Ramp => super::ramp::value(t),
+            Dataset::Constant => super::constant::value(t),
+        }
+    }
+}
+
+impl std::fmt::Display for Dataset {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip() {
+        for d in Dataset::ALL {
+            assert_eq!(Dataset::parse(d.name()), Ok(d));
+        }
+        assert_eq!(Dataset::parse("Shepp_Logan"), Ok(Dataset::SheppLogan));
+    }
+
+    #[test]
+    fn unknown_name_lists_the_choices() {
+        let e = Dataset::parse("bunny").unwrap_err().to_string();
+        assert!(e.contains("'bunny'") && e.contains("shepp-logan") && e.contains("constant"), "{e}");
+    }
+}

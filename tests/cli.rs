@@ -1,0 +1,208 @@
+//! The `hybrid-octree` command line tool, run as a process.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+const KEYS: [&str; 16] = [
+    "dims",
+    "scalar_type",
+    "node_count",
+    "terminal_count",
+    "homogeneous_count",
+    "nodes_per_level",
+    "levels",
+    "leaf_size",
+    "root_size",
+    "octree_bytes",
+    "input_bytes",
+    "build_ms",
+    "value_min",
+    "value_max",
+    "tolerance",
+    "cut_count",
+];
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hybrid-octree")).args(args).output().expect("the CLI starts")
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn temp(name: &str) -> PathBuf {
+    static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    std::env::temp_dir().join(format!("hybrid-octree-cli-{}-{n}-{name}", std::process::id()))
+}
+
+fn build_json(args: &[&str]) -> Value {
+    let mut all = vec!["build", "--json"];
+    all.extend_from_slice(args);
+    let out = run(&all);
+    assert!(out.status.success(), "{}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).expect("one JSON object on stdout")
+}
+
+/// The command failed with status 2, a one-line `error:` message containing
+/// `needle`, and no panic.
+fn assert_clean_failure(out: &Output, needle: &str) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    assert!(err.starts_with("error: "), "{err}");
+    assert!(err.contains(needle), "expected '{needle}' in: {err}");
+    assert!(!err.contains("panicked") && !err.contains("RUST_BACKTRACE"), "{err}");
+}
+
+#[test]
+fn info_describes_a_dataset() {
+    let out = run(&["info", "--dataset", "sphere", "--size", "12", "--type", "u16"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("12 x 12 x 12 (1728 points)"), "{text}");
+    assert!(text.contains("type:        u16") && text.contains("bytes:       3456"), "{text}");
+    assert!(text.contains("value range:"), "{text}");
+}
+
+#[test]
+fn build_prints_a_text_report() {
+    let out = run(&["build", "--dataset", "shepp-logan", "--size", "33", "--leaf-size", "8"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("nodes per level:   [1, 8, 64]"), "{text}");
+    assert!(text.contains("root size:         32 cells"), "{text}");
+}
+
+#[test]
+fn build_json_has_every_key_and_consistent_values() {
+    let j = build_json(&["--dataset", "shepp-logan", "--size", "41", "--type", "u8", "--leaf-size", "8"]);
+    for key in KEYS {
+        assert!(j.get(key).is_some(), "missing key {key} in {j}");
+    }
+    assert_eq!(j["dims"], serde_json::json!([41, 41, 41]));
+    assert_eq!(j["scalar_type"], "u8");
+    assert_eq!(j["input_bytes"], 41 * 41 * 41);
+    assert_eq!(j["leaf_size"], 8);
+    assert_eq!(j["root_size"], 64);
+    assert_eq!((j["value_min"].as_f64(), j["value_max"].as_f64()), (Some(0.0), Some(255.0)));
+    let node_count = j["node_count"].as_u64().unwrap();
+    let per_level: u64 = j["nodes_per_level"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap()).sum();
+    assert_eq!(per_level, node_count);
+    assert_eq!(j["nodes_per_level"].as_array().unwrap().len() as u64, j["levels"].as_u64().unwrap());
+    assert!(node_count >= j["terminal_count"].as_u64().unwrap());
+    assert!(j["terminal_count"].as_u64().unwrap() >= j["homogeneous_count"].as_u64().unwrap());
+    let cut = j["cut_count"].as_u64().unwrap();
+    assert!(cut >= 1 && cut <= j["terminal_count"].as_u64().unwrap());
+    assert!(j["octree_bytes"].as_u64().unwrap() > 0 && j["build_ms"].as_f64().unwrap() >= 0.0);
+    assert_eq!(j["tolerance"].as_f64(), Some(0.01));
+}
+
+#[test]
+fn thread_count_does_not_change_the_result() {
+    let args = ["--dataset", "marschner-lobb", "--size", "49", "--leaf-size", "4"];
+    let mut one = build_json(&[&args[..], &["--threads", "1"]].concat());
+    let mut two = build_json(&[&args[..], &["--threads", "2"]].concat());
+    one.as_object_mut().unwrap().remove("build_ms");
+    two.as_object_mut().unwrap().remove("build_ms");
+    assert_eq!(one, two);
+}
+
+#[test]
+fn generated_vti_builds_like_the_dataset() {
+    let path = temp("phantom.vti");
+    let file = path.to_str().unwrap();
+    let out = run(&["generate", "--dataset", "shepp-logan", "--size", "37", "--type", "i16", "--output", file]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let from_file = build_json(&["--file", file, "--leaf-size", "8"]);
+    std::fs::remove_file(&path).unwrap();
+    let from_dataset = build_json(&["--dataset", "shepp-logan", "--size", "37", "--type", "i16", "--leaf-size", "8"]);
+    for key in [
+        "dims",
+        "scalar_type",
+        "node_count",
+        "terminal_count",
+        "homogeneous_count",
+        "nodes_per_level",
+        "cut_count",
+        "value_min",
+        "value_max",
+    ] {
+        assert_eq!(from_file[key], from_dataset[key], "{key}");
+    }
+}
+
+#[test]
+fn unknown_dataset_lists_the_names() {
+    let out = run(&["build", "--dataset", "teapot", "--size", "9"]);
+    assert_clean_failure(&out, "shepp-logan, marschner-lobb, sphere, ramp, constant");
+}
+
+#[test]
+fn missing_file_is_reported() {
+    let path = temp("nowhere.vti");
+    let out = run(&["build", "--file", path.to_str().unwrap()]);
+    assert_clean_failure(&out, "does not exist");
+}
+
+#[test]
+fn raw_size_mismatch_gives_both_sizes() {
+    let path = temp("short.raw");
+    std::fs::write(&path, vec![0u8; 100]).unwrap();
+    let out = run(&["info", "--file", path.to_str().unwrap(), "--dims", "5,5,5", "--type", "u8"]);
+    std::fs::remove_file(&path).unwrap();
+    assert_clean_failure(&out, "has 100 bytes");
+    assert!(stderr(&out).contains("need 125 bytes"));
+}
+
+#[test]
+fn multi_component_needs_a_component() {
+    let path = temp("rgb.raw");
+    std::fs::write(&path, vec![7u8; 4 * 4 * 4 * 3]).unwrap();
+    let file = path.to_str().unwrap();
+    let base = ["build", "--file", file, "--dims", "4,4,4", "--type", "u8", "--components", "3", "--leaf-size", "2"];
+    let out = run(&base);
+    assert_clean_failure(&out, "--component");
+    let ok = run(&[&base[..], &["--component", "1", "--json"]].concat());
+    std::fs::remove_file(&path).unwrap();
+    assert!(ok.status.success(), "{}", stderr(&ok));
+}
+
+#[test]
+fn nan_samples_are_reported_as_non_finite() {
+    let path = temp("nan.raw");
+    let mut values = [1.0f32; 27];
+    values[13] = f32::NAN;
+    std::fs::write(&path, values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>()).unwrap();
+    let out = run(&["build", "--file", path.to_str().unwrap(), "--dims", "3,3,3", "--type", "f32"]);
+    std::fs::remove_file(&path).unwrap();
+    assert_clean_failure(&out, "non-finite");
+    assert!(stderr(&out).contains("i=1, j=1, k=1"));
+}
+
+#[test]
+fn bench_prints_a_row_per_combination_and_the_ratio() {
+    let out = run(&[
+        "bench",
+        "build",
+        "--sizes",
+        "17,33",
+        "--types",
+        "u8",
+        "--threads",
+        "1",
+        "--leaf-sizes",
+        "8",
+        "--repeats",
+        "1",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    let rows = text.lines().filter(|l| l.trim_start().starts_with("17 ") || l.trim_start().starts_with("33 ")).count();
+    assert_eq!(rows, 2, "{text}");
+    assert!(text.contains("ns/voxel ratio u8, 1 thread(s), leaf 8: size 33 / size 17"), "{text}");
+}
