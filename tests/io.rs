@@ -226,3 +226,22 @@ fn missing_file_and_unknown_extension_are_explained() {
     std::fs::remove_file(&path).unwrap();
     assert!(e.contains(".vti") && e.contains(".nii.gz") && e.contains("--dims"), "{e}");
 }
+
+#[test]
+fn legacy_structured_points_are_read() {
+    let path = temp("legacy.vtk");
+    std::fs::write(
+        &path,
+        "# vtk DataFile Version 3.0\nlegacy test\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n\
+         ORIGIN 1 2 3\nSPACING 0.5 0.5 2\nPOINT_DATA 8\nSCALARS density float 1\nLOOKUP_TABLE default\n\
+         0 1 2 3 4 5 6 7\n",
+    )
+    .unwrap();
+    let v = read_volume(&path, &ReadOptions::default()).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!(v.name, "density");
+    assert_eq!(v.shape.dims, [2, 2, 2]);
+    assert_eq!(v.shape.origin, [1.0, 2.0, 3.0]);
+    assert_eq!(v.shape.spacing, [0.5, 0.5, 2.0]);
+    assert_eq!(v.samples, SampleBuf::F32((0..8).map(|i| i as f32).collect()));
+}
