@@ -1,0 +1,40 @@
+# CTest script (cmake -P): proves that a VTK application can
+# find_package(HybridOctree) from an installed tree and use the filter.
+#   -DBUILD_DIR=<this build> -DSOURCE_DIR=<tests/consumer> -DWORK_DIR=<scratch>
+#   -DVTK_DIR=<VTK package dir> [-DBUILD_TYPE=Release]
+foreach (var IN ITEMS BUILD_DIR SOURCE_DIR WORK_DIR VTK_DIR)
+  if (NOT DEFINED ${var})
+    message(FATAL_ERROR "${var} is required")
+  endif ()
+endforeach ()
+if (NOT BUILD_TYPE)
+  set(BUILD_TYPE Release)
+endif ()
+
+function (run_step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif ()
+  message(STATUS "${what}: ok")
+  set(step_output "${out}" PARENT_SCOPE)
+endfunction ()
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+run_step("install into ${prefix}"
+  "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}" --config "${BUILD_TYPE}")
+if (NOT EXISTS "${prefix}/lib/cmake/HybridOctree/HybridOctreeConfig.cmake")
+  message(FATAL_ERROR "the install has no lib/cmake/HybridOctree/HybridOctreeConfig.cmake")
+endif ()
+run_step("configure the consumer"
+  "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${WORK_DIR}/build"
+  "-DCMAKE_BUILD_TYPE=${BUILD_TYPE}"
+  "-DCMAKE_PREFIX_PATH=${prefix}"
+  "-DVTK_DIR=${VTK_DIR}")
+run_step("build the consumer"
+  "${CMAKE_COMMAND}" --build "${WORK_DIR}/build" --config "${BUILD_TYPE}")
+find_program(consumer hybrid_octree_consumer
+  PATHS "${WORK_DIR}/build" "${WORK_DIR}/build/${BUILD_TYPE}" NO_DEFAULT_PATH)
+run_step("run the consumer" "${consumer}")
+message(STATUS "${step_output}")

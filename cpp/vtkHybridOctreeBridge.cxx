@@ -1,0 +1,143 @@
+/**
+ * @file   vtkHybridOctreeBridge.cxx
+ * @brief  The C++ half of the bridge: the only includer of the cxx header.
+ *
+ * Every call into Rust is wrapped in try/catch: the Rust side turns errors
+ * and panics into `rust::Error`, which derives from std::exception.
+ */
+#include "vtkHybridOctreeBridge.h"
+
+#include "hybrid-octree/src/ffi.rs.h"
+
+#include <exception>
+#include <utility>
+
+namespace vtkHybridOctreeBridge
+{
+
+namespace
+{
+hybrid_octree::ScalarType ToRust(ScalarType type)
+{
+  switch (type)
+  {
+    case ScalarType::U8:
+      return hybrid_octree::ScalarType::U8;
+    case ScalarType::I8:
+      return hybrid_octree::ScalarType::I8;
+    case ScalarType::U16:
+      return hybrid_octree::ScalarType::U16;
+    case ScalarType::I16:
+      return hybrid_octree::ScalarType::I16;
+    case ScalarType::U32:
+      return hybrid_octree::ScalarType::U32;
+    case ScalarType::I32:
+      return hybrid_octree::ScalarType::I32;
+    case ScalarType::F32:
+      return hybrid_octree::ScalarType::F32;
+    case ScalarType::F64:
+      return hybrid_octree::ScalarType::F64;
+  }
+  return hybrid_octree::ScalarType::F64; // unreachable: every enumerator is handled
+}
+
+template <typename T>
+void CopyInto(const rust::Vec<T>& from, std::vector<T>& to)
+{
+  to.assign(from.begin(), from.end());
+}
+} // namespace
+
+struct VolumeOctree::Internals
+{
+  explicit Internals(rust::Box<hybrid_octree::VolumeOctreeHandle> handle)
+    : Handle(std::move(handle))
+  {
+  }
+  rust::Box<hybrid_octree::VolumeOctreeHandle> Handle;
+};
+
+VolumeOctree::VolumeOctree(std::unique_ptr<Internals> internals)
+  : Impl(std::move(internals))
+{
+}
+
+VolumeOctree::~VolumeOctree() = default;
+
+std::unique_ptr<VolumeOctree> VolumeOctree::Build(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, unsigned int leafSize, std::string& error)
+{
+  hybrid_octree::GridDesc desc;
+  desc.scalar_type = ToRust(grid.Type);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    desc.dims[axis] = grid.Dims[axis];
+    desc.spacing[axis] = grid.Spacing[axis];
+    desc.origin[axis] = grid.Origin[axis];
+  }
+  desc.components = grid.Components;
+  desc.component = grid.Component;
+
+  try
+  {
+    // A null pointer is only legal for an empty buffer; cxx maps it to a
+    // dangling, well-aligned empty slice.
+    rust::Slice<const std::uint8_t> samples(
+      static_cast<const std::uint8_t*>(bytes), bytes ? byteCount : 0);
+    rust::Box<hybrid_octree::VolumeOctreeHandle> handle =
+      hybrid_octree::build_volume_octree(samples, desc, leafSize);
+    return std::unique_ptr<VolumeOctree>(
+      new VolumeOctree(std::unique_ptr<Internals>(new Internals(std::move(handle)))));
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return nullptr;
+}
+
+bool VolumeOctree::GetSummary(OctreeSummary& summary, std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::OctreeSummary s = this->Impl->Handle->summary();
+    summary.NodeCount = s.node_count;
+    summary.TerminalCount = s.terminal_count;
+    summary.HomogeneousCount = s.homogeneous_count;
+    summary.Levels = s.levels;
+    summary.LeafSize = s.leaf_size;
+    summary.RootSize = s.root_size;
+    summary.OctreeBytes = s.octree_bytes;
+    summary.InputBytes = s.input_bytes;
+    summary.BuildMilliseconds = s.build_ms;
+    summary.ValueMin = s.value_min;
+    summary.ValueMax = s.value_max;
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+bool VolumeOctree::GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::CutBoxes cut = this->Impl->Handle->cut_boxes(tolerance);
+    CopyInto(cut.bounds, boxes.Bounds);
+    CopyInto(cut.level, boxes.Level);
+    CopyInto(cut.nodal_error, boxes.NodalError);
+    CopyInto(cut.min, boxes.Min);
+    CopyInto(cut.max, boxes.Max);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+} // namespace vtkHybridOctreeBridge

@@ -1,0 +1,189 @@
+"""pvbatch test of the HybridOctree ParaView plugin.
+
+    pvbatch test_plugin.py --cli <hybrid-octree> --workdir <dir> (--plugin <HybridOctree.so> | --autoload)
+
+With --plugin the script loads the plugin with LoadPlugin; with --autoload it
+expects ParaView to have loaded it already (PV_PLUGIN_CONFIG_FILE naming the
+auto-load plugins XML). It then checks, against the command line tool's JSON
+on the same files, the field data of the filter on Wavelet() and on a sphere
+volume the CLI generates; that changing only the tolerance does not rebuild;
+that a NaN volume fails with the core's message while pvbatch keeps running;
+and that the input domain refuses an unstructured grid. Exits non-zero on
+the first failed check.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+from paraview import servermanager
+from paraview.simple import *  # noqa: F401,F403 (pvbatch scripting API)
+from paraview.vtk.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonCore import vtkFileOutputWindow, vtkOutputWindow
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--cli", required=True)
+parser.add_argument("--workdir", required=True)
+parser.add_argument("--plugin")
+parser.add_argument("--autoload", action="store_true")
+args = parser.parse_args()
+os.makedirs(args.workdir, exist_ok=True)
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        report("FAILED: " + what)
+
+
+def report(text):
+    """Writes to the process's stdout: pvbatch routes sys.stderr (and Python
+    tracebacks) through vtkOutputWindow, which this script redirects."""
+    os.write(1, (text + "\n").encode())
+
+
+def finish():
+    if failures:
+        report("%d check(s) failed" % len(failures))
+        sys.exit(1)
+    report("HybridOctree plugin test passed")
+    sys.exit(0)
+
+
+def on_exception(kind, value, tb):
+    import traceback
+    report("".join(traceback.format_exception(kind, value, tb)))
+    report("VTK output window log:\n" + logged_errors()[-2000:])
+    os._exit(1)
+
+
+sys.excepthook = on_exception
+
+
+# ---- Loading ------------------------------------------------------------------
+if args.autoload:
+    check("HybridOctree" in globals(), "HybridOctree auto-loaded through PV_PLUGIN_CONFIG_FILE")
+    if "HybridOctree" not in globals():
+        finish()
+else:
+    LoadPlugin(args.plugin, remote=False, ns=globals())
+    check("HybridOctree" in globals(), "LoadPlugin defines HybridOctree")
+
+# Errors of the filters go to this file, so the script can read them.
+error_log = os.path.join(args.workdir, "vtk-errors.txt")
+if os.path.exists(error_log):
+    os.remove(error_log)
+log_window = vtkFileOutputWindow()
+log_window.SetFileName(error_log)
+log_window.SetFlush(1)
+vtkOutputWindow.SetInstance(log_window)
+
+
+def logged_errors():
+    if not os.path.exists(error_log):
+        return ""
+    with open(error_log) as f:
+        return f.read()
+
+
+def field_data(proxy):
+    data = servermanager.Fetch(proxy)
+    fd = data.GetFieldData()
+    return data, {fd.GetArrayName(i): fd.GetArray(i).GetTuple1(0) for i in range(fd.GetNumberOfArrays())}
+
+
+def cli_json(path, leaf, tolerance):
+    out = subprocess.run(
+        [args.cli, "build", "--file", path, "--leaf-size", str(leaf), "--tolerance", repr(tolerance), "--json"],
+        check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+EXACT = ["node_count", "terminal_count", "homogeneous_count", "levels", "leaf_size", "root_size",
+         "octree_bytes", "input_bytes", "value_min", "value_max", "cut_count"]
+
+
+def compare_with_cli(name, source, path, leaf, tolerance):
+    source.UpdatePipeline()
+    octree = HybridOctree(Input=source)
+    octree.LeafSize = leaf
+    octree.ErrorTolerance = tolerance
+    octree.UpdatePipeline()
+    data, fd = field_data(octree)
+    expected = cli_json(path, leaf, tolerance)
+    for key in EXACT:
+        check(key in fd and fd[key] == expected[key],
+              "%s: %s = %s, CLI says %s" % (name, key, fd.get(key), expected[key]))
+    check(data.GetNumberOfPoints() == 8 * expected["cut_count"], name + ": 8 points per box")
+    check(data.GetNumberOfLines() == 12 * expected["cut_count"], name + ": 12 lines per box")
+    return octree, fd
+
+
+# ---- Wavelet, saved for the CLI ------------------------------------------------
+wavelet = Wavelet()
+wavelet.WholeExtent = [-12, 12, -12, 12, -12, 12]
+wavelet_vti = os.path.join(args.workdir, "wavelet.vti")
+# Inline base64, uncompressed: what the CLI's .vti reader reads.
+SaveData(wavelet_vti, proxy=wavelet, DataMode="Binary", CompressorType="None")
+octree, fd = compare_with_cli("wavelet", wavelet, wavelet_vti, 4, 0.02)
+check(octree.Scalars == ["POINTS", "RTData"], "the Scalars domain picks RTData: %s" % (octree.Scalars,))
+
+# Only the tolerance changes: the cached octree is re-cut, not rebuilt.
+octree.ErrorTolerance = 0.2
+octree.UpdatePipeline()
+_, coarse = field_data(octree)
+check(coarse["build_ms"] == fd["build_ms"], "a tolerance change keeps the octree (same build_ms)")
+check(coarse["cut_count"] == cli_json(wavelet_vti, 4, 0.2)["cut_count"], "cut at 0.2 matches the CLI")
+check(coarse["cut_count"] < fd["cut_count"], "a larger tolerance gives a coarser cut")
+Delete(octree)
+
+# ---- A sphere volume written by the CLI --------------------------------------
+sphere_vti = os.path.join(args.workdir, "sphere.vti")
+subprocess.run([args.cli, "generate", "--dataset", "sphere", "--size", "40", "--type", "f32",
+                "--output", sphere_vti], check=True, capture_output=True)
+sphere = XMLImageDataReader(FileName=[sphere_vti])
+for leaf, tolerance in [(8, 0.01), (4, 0.0), (16, 0.05)]:
+    o, _ = compare_with_cli("sphere leaf %d tol %g" % (leaf, tolerance), sphere, sphere_vti, leaf, tolerance)
+    Delete(o)
+
+# ---- Bad input: NaN samples ----------------------------------------------------
+import numpy as np  # noqa: E402  (pvbatch ships numpy)
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+values = np.linspace(0.0, 1.0, 6 * 6 * 6).astype(np.float32)
+values[10] = np.nan
+nan_image = vtkImageData()
+nan_image.SetDimensions(6, 6, 6)
+array = numpy_to_vtk(values, deep=1)
+array.SetName("f")
+nan_image.GetPointData().SetScalars(array)
+nan_source = TrivialProducer()
+nan_source.GetClientSideObject().SetOutput(nan_image)
+nan_source.UpdatePipeline()
+bad = HybridOctree(Input=nan_source)
+bad.UpdatePipeline()
+bad_data = servermanager.Fetch(bad)
+check(bad_data.GetNumberOfPoints() == 0 and bad_data.GetFieldData().GetNumberOfArrays() == 0,
+      "a NaN volume gives an empty output")
+check("1 non-finite sample(s) (NaN or infinity), the first at point index 10" in logged_errors(),
+      "the NaN error reaches the output window: %r" % logged_errors()[-400:])
+Delete(bad)
+
+# pvbatch keeps running, and the plugin still works after the failure.
+again, fd_again = compare_with_cli("sphere after a failure", sphere, sphere_vti, 8, 0.01)
+Delete(again)
+
+# ---- An unstructured grid is refused by the input domain ------------------------
+unstructured = Clip(Input=wavelet)
+unstructured.UpdatePipeline()
+probe = HybridOctree(Input=wavelet)
+domain = probe.GetProperty("Input").SMProperty.GetDomain("input_type")
+check(domain.IsInDomain(wavelet.SMProxy, 0) == 1, "the input domain accepts image data")
+check(domain.IsInDomain(unstructured.SMProxy, 0) == 0, "the input domain refuses an unstructured grid")
+Delete(probe)
+
+finish()
