@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs everything HybridOctree needs on Debian 12, from Debian's packages.
+# Safe to re-run: it skips apt when every package is already installed.
+set -euo pipefail
+
+# libopenmpi-dev and libdouble-conversion-dev: ParaView's CMake package needs them but paraview-dev does not pull them in.
+PACKAGES=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev liblzma-dev xvfb xauth cmake make g++ pkg-config python3)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  if [[ $(id -u) -ne 0 ]]; then
+    echo "install-deps: missing Debian packages: ${missing[*]}; run this script as root (or with sudo)" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# Rust: the crate needs rustc >= 1.82 (Debian 12's own rustc is 1.63, too old).
+if ! command -v cargo >/dev/null 2>&1 && [[ -x "$HOME/.cargo/bin/cargo" ]]; then
+  export PATH="$HOME/.cargo/bin:$PATH"
+fi
+if ! command -v cargo >/dev/null 2>&1; then
+  echo "install-deps: cargo not found; install a Rust toolchain >= 1.82 (rustup) and re-run" >&2
+  exit 1
+fi
+rustc_minor=$(rustc --version | sed -E 's/^rustc 1\.([0-9]+).*/\1/')
+if ((rustc_minor < 82)); then
+  echo "install-deps: $(rustc --version) is too old; HybridOctree needs rustc >= 1.82 (rustup update)" >&2
+  exit 1
+fi
+echo "install-deps: Debian packages and $(cargo --version) ready"

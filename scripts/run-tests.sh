@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds everything, and runs every test:
+# the Rust unit, integration and doc tests, then CTest (C++ filter tests, the
+# find_package consumer, pvbatch plugin tests) under Xvfb.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+export PATH="$HOME/.cargo/bin:$PATH"
+
+echo "== cargo test (release) =="
+cargo test --release --locked
+
+echo "== CMake build (crate, VTK module, ParaView plugin) =="
+bash scripts/build.sh
+
+echo "== CTest (under Xvfb) =="
+cd build
+xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure
