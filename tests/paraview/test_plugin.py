@@ -150,28 +150,52 @@ for leaf, tolerance in [(8, 0.01), (4, 0.0), (16, 0.05)]:
     o, _ = compare_with_cli("sphere leaf %d tol %g" % (leaf, tolerance), sphere, sphere_vti, leaf, tolerance)
     Delete(o)
 
-# ---- Bad input: NaN samples ----------------------------------------------------
+# ---- Bad input: each fails the request with the core's or the filter's message --
 import numpy as np  # noqa: E402  (pvbatch ships numpy)
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 
-values = np.linspace(0.0, 1.0, 6 * 6 * 6).astype(np.float32)
-values[10] = np.nan
-nan_image = vtkImageData()
-nan_image.SetDimensions(6, 6, 6)
-array = numpy_to_vtk(values, deep=1)
-array.SetName("f")
-nan_image.GetPointData().SetScalars(array)
-nan_source = TrivialProducer()
-nan_source.GetClientSideObject().SetOutput(nan_image)
-nan_source.UpdatePipeline()
-bad = HybridOctree(Input=nan_source)
-bad.UpdatePipeline()
-bad_data = servermanager.Fetch(bad)
-check(bad_data.GetNumberOfPoints() == 0 and bad_data.GetFieldData().GetNumberOfArrays() == 0,
-      "a NaN volume gives an empty output")
-check("1 non-finite sample(s) (NaN or infinity), the first at point index 10" in logged_errors(),
-      "the NaN error reaches the output window: %r" % logged_errors()[-400:])
-Delete(bad)
+
+def image(dims, point_values=None, cell_values=None, components=1):
+    """A vtkImageData of `dims` with optional point and cell arrays."""
+    img = vtkImageData()
+    img.SetDimensions(*dims)
+    for values, data in ((point_values, img.GetPointData()), (cell_values, img.GetCellData())):
+        if values is not None:
+            arr = numpy_to_vtk(values.reshape(-1, components) if components > 1 else values, deep=1)
+            arr.SetName("f")
+            data.SetScalars(arr)
+    return img
+
+
+def expect_failure(name, img, message):
+    """The filter on `img` gives an empty output and `message` in the error log."""
+    before = len(logged_errors())
+    source = TrivialProducer()
+    source.GetClientSideObject().SetOutput(img)
+    source.UpdatePipeline()
+    bad = HybridOctree(Input=source)
+    bad.UpdatePipeline()
+    out = servermanager.Fetch(bad)
+    check(out.GetNumberOfPoints() == 0 and out.GetFieldData().GetNumberOfArrays() == 0,
+          name + ": empty output")
+    new_errors = logged_errors()[before:]
+    check(message in new_errors, "%s: error %r not in %r" % (name, message, new_errors[-400:]))
+    Delete(bad)
+    Delete(source)
+
+
+nan_values = np.linspace(0.0, 1.0, 6 * 6 * 6).astype(np.float32)
+nan_values[10] = np.nan
+expect_failure("NaN volume", image((6, 6, 6), nan_values),
+               "1 non-finite sample(s) (NaN or infinity), the first at point index 10")
+expect_failure("no scalars", image((6, 6, 6)), "no point scalars")
+expect_failure("cell scalars only", image((6, 6, 6), cell_values=np.ones(125, np.float32)),
+               "cell data only: point scalars required")
+expect_failure("multi-component without a component",
+               image((5, 5, 5), np.arange(375, dtype=np.float32), components=3),
+               "has 3 components; choose one with the component option")
+expect_failure("1-wide axis", image((8, 8, 1), np.arange(64, dtype=np.float32)),
+               "at least 2 samples on every axis")
 
 # pvbatch keeps running, and the plugin still works after the failure.
 again, fd_again = compare_with_cli("sphere after a failure", sphere, sphere_vti, 8, 0.01)
