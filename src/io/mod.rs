@@ -3,7 +3,7 @@
 //!
 //! | extension          | format                                   | module   |
 //! |--------------------|------------------------------------------|----------|
-//! | `.vti`             | VTK XML ImageData (one piece)            | [`vtk`]  |
+//! | `.vti`             | VTK XML ImageData (one piece; appended raw or base64, binary, ascii; ZLib, LZ4, LZMA) | [`vti`] |
 //! | `.vtk`             | legacy VTK STRUCTURED_POINTS             | [`vtk`]  |
 //! | `.nii`, `.nii.gz`  | NIfTI-1 (3D, one volume)                 | [`nii`]  |
 //! | `.raw`, `.bin`, or any file with [`RawOptions`] | headerless samples | [`raw`] |
@@ -14,7 +14,10 @@ pub mod nii;
 pub mod options;
 pub mod raw;
 pub mod read;
+pub mod vti;
+pub mod vti_data;
 pub mod vti_write;
+pub mod vti_xml;
 pub mod vtk;
 
 pub use options::{RawOptions, ReadOptions};

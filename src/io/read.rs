@@ -30,7 +30,9 @@ pub fn read_volume(path: &Path, options: &ReadOptions) -> Result<Volume> {
         return super::raw::read_raw(path, raw);
     }
     let name = path.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    if name.ends_with(".vti") || name.ends_with(".vtk") {
+    if name.ends_with(".vti") {
+        super::vti::read_vti(path)
+    } else if name.ends_with(".vtk") {
         super::vtk::read_vtk(path)
     } else if name.ends_with(".nii") || name.ends_with(".nii.gz") {
         super::nii::read_nifti(path)

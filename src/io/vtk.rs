@@ -1,10 +1,10 @@
-//! VTK image data: XML `.vti` (one piece, inline or appended, raw, base64 or
-//! compressed, as vtkio reads them) and legacy `.vtk` STRUCTURED_POINTS.
+//! Legacy VTK `.vtk` STRUCTURED_POINTS, read through vtkio. (`.vti` files go
+//! through [`super::vti`], which reads every encoding VTK writes; vtkio cannot
+//! read ParaView's default raw appended data.)
 //!
-//! The volume takes the active point scalars (the `Scalars` attribute of
-//! `PointData`) or, without one, the first point data array; its name and
-//! component count are kept. Origin and spacing come from the file
-//! (vtkio stores them as `f32`).
+//! The volume takes the active point scalars (the `SCALARS` attribute) or,
+//! without one, the first point data array; its name and component count are
+//! kept. Origin and spacing come from the file (vtkio stores them as `f32`).
 
 use super::read::format_error;
 use crate::error::Result;
@@ -13,7 +13,7 @@ use crate::volume::{SampleBuf, Volume};
 use std::path::Path;
 use vtkio::model::{Attribute, DataArray, DataSet, ElementType, IOBuffer, ImageDataPiece, Piece};
 
-/// Reads a `.vti` or legacy `.vtk` image.
+/// Reads a legacy `.vtk` STRUCTURED_POINTS image.
 pub fn read_vtk(path: &Path) -> Result<Volume> {
     let vtk = vtkio::Vtk::import(path).map_err(|e| {
         format_error(path, format!("not a readable VTK image file ({e}); the file may be truncated or corrupt"))

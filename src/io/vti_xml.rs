@@ -1,0 +1,364 @@
+//! The XML header of a VTK XML ImageData file (`.vti`), as written by VTK's
+//! `vtkXMLImageDataWriter` (ParaView's "Save Data" to `.vti`):
+//!
+//! ```text
+//! <VTKFile type="ImageData" version="1.0" byte_order="LittleEndian"
+//!          header_type="UInt64" compressor="vtkZLibDataCompressor">
+//!   <ImageData WholeExtent="x0 x1 y0 y1 z0 z1" Origin="ox oy oz" Spacing="sx sy sz"
+//!              Direction="1 0 0 0 1 0 0 0 1">
+//!     <Piece Extent="x0 x1 y0 y1 z0 z1">
+//!       <PointData Scalars="name">
+//!         <DataArray type="Float32" Name="name" NumberOfComponents="1"
+//!                    format="appended" offset="0"/>
+//!       </PointData>
+//!       <CellData>...</CellData>
+//!     </Piece>
+//!   </ImageData>
+//!   <AppendedData encoding="raw">
+//!    _<binary bytes, or base64 text when encoding="base64">
+//!   </AppendedData>
+//! </VTKFile>
+//! ```
+//!
+//! * `byte_order` defaults to `LittleEndian`, `header_type` to `UInt32`
+//!   (files of version 0.1 have none), `compressor` to none,
+//!   `NumberOfComponents` to 1.
+//! * A `DataArray` is `format="ascii"` (numbers in its text), `"binary"`
+//!   (base64 in its text) or `"appended"` (at `offset` after the `_` marker of
+//!   `AppendedData`; bytes for `encoding="raw"`, characters for `"base64"`).
+//!   Its text is only the text directly inside it: VTK may nest
+//!   `<InformationKey>` elements in a `DataArray`.
+//! * `Direction` (VTK 9) is the row-major 3x3 orientation matrix.
+//!
+//! Parsing stops at the `AppendedData` start tag: what follows the `_` may be
+//! raw binary, which is not XML. How array bytes are laid out is described in
+//! [`super::vti_data`].
+
+use quick_xml::events::{BytesStart, Event};
+use quick_xml::Reader;
+
+/// Byte order of binary words (header words and values).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ByteOrder {
+    /// `byte_order="LittleEndian"` (the default).
+    Little,
+    /// `byte_order="BigEndian"`.
+    Big,
+}
+
+/// The block compressor of binary data (`compressor` on `VTKFile`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Compressor {
+    /// `vtkZLibDataCompressor`: each block is a zlib stream.
+    ZLib,
+    /// `vtkLZ4DataCompressor`: each block is a raw LZ4 block (no frame).
+    Lz4,
+    /// `vtkLZMADataCompressor`: each block is an `.xz` stream.
+    Lzma,
+}
+
+/// How the `AppendedData` section is encoded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AppendedEncoding {
+    /// `encoding="raw"`: bytes, VTK's default.
+    Raw,
+    /// `encoding="base64"`: base64 text.
+    Base64,
+}
+
+/// Where an array's values are.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ArrayData {
+    /// `format="ascii"`: the text holds whitespace-separated numbers.
+    Ascii(String),
+    /// `format="binary"`: the text is base64 of header and (compressed) bytes.
+    Binary(String),
+    /// `format="appended"`: at this offset after the `_` of `AppendedData`.
+    Appended(u64),
+}
+
+/// One `DataArray` of `PointData` or `CellData`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArrayHeader {
+    /// `Name` (may be empty).
+    pub name: String,
+    /// `type`, e.g. `Float32`.
+    pub type_name: String,
+    /// `NumberOfComponents`.
+    pub components: usize,
+    /// The values' location and format.
+    pub data: ArrayData,
+}
+
+/// One `Piece` of the image.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PieceHeader {
+    /// `Extent` (`x0 x1 y0 y1 z0 z1`, inclusive point indices).
+    pub extent: Option<[i64; 6]>,
+    /// The `Scalars` attribute of `PointData`: the active point scalars.
+    pub active_scalars: Option<String>,
+    /// The point data arrays, in file order.
+    pub point_arrays: Vec<ArrayHeader>,
+    /// The number of cell data arrays.
+    pub cell_arrays: usize,
+    /// `Source` attribute: the piece is in another file (parallel `.pvti`).
+    pub source: Option<String>,
+}
+
+/// Everything the reader needs from the XML part of a `.vti` file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VtiHeader {
+    /// `type` of `VTKFile`, e.g. `ImageData`.
+    pub file_type: String,
+    /// Byte order of binary words.
+    pub byte_order: ByteOrder,
+    /// True for `header_type="UInt64"`, false for `UInt32`.
+    pub header_u64: bool,
+    /// The block compressor, if any.
+    pub compressor: Option<Compressor>,
+    /// `WholeExtent` of `ImageData`.
+    pub whole_extent: Option<[i64; 6]>,
+    /// `Origin`: world position of point index (0, 0, 0) (not of the extent's first point).
+    pub origin: [f64; 3],
+    /// `Spacing`.
+    pub spacing: [f64; 3],
+    /// `Direction`, row-major, if given.
+    pub direction: Option<[f64; 9]>,
+    /// The pieces.
+    pub pieces: Vec<PieceHeader>,
+    /// Encoding and file offset of the first byte after the `_` marker of `AppendedData`.
+    pub appended: Option<(AppendedEncoding, usize)>,
+}
+
+/// Parses the XML header of `bytes` (a whole `.vti` file). Errors are
+/// messages for [`crate::Error::Format`].
+pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
+    let mut reader = Reader::from_reader(bytes);
+    let mut header: Option<VtiHeader> = None;
+    // Open elements, innermost last.
+    let mut stack: Vec<Vec<u8>> = Vec::new();
+    let mut array: Option<(ArrayHeader, String)> = None;
+    loop {
+        let event = reader.read_event().map_err(|e| {
+            format!(
+                "the XML header is malformed near byte {} ({e}); the file is truncated or corrupt",
+                reader.buffer_position()
+            )
+        })?;
+        match event {
+            Event::Start(e) | Event::Empty(e) if header.is_none() && e.local_name().as_ref() != b"VTKFile" => {
+                return Err(format!(
+                    "this is not a VTK XML file: the first element is <{}>, not <VTKFile>",
+                    String::from_utf8_lossy(e.name().as_ref())
+                ));
+            }
+            Event::Start(ref e) | Event::Empty(ref e) => {
+                let empty = matches!(event, Event::Empty(_));
+                let name = e.local_name().as_ref().to_vec();
+                let parent = stack.last().map(Vec::as_slice);
+                match (name.as_slice(), parent) {
+                    (b"VTKFile", None) => {
+                        let h = vtk_file(e)?;
+                        if h.file_type != "ImageData" {
+                            return Ok(h); // the caller explains what the file is instead
+                        }
+                        header = Some(h);
+                    }
+                    (b"ImageData", Some(b"VTKFile")) => {
+                        let h = header.as_mut().expect("set by VTKFile");
+                        h.whole_extent = attr(e, "WholeExtent")?.map(|v| numbers(&v, "WholeExtent")).transpose()?;
+                        h.origin = attr(e, "Origin")?.map(|v| numbers(&v, "Origin")).transpose()?.unwrap_or([0.0; 3]);
+                        h.spacing =
+                            attr(e, "Spacing")?.map(|v| numbers(&v, "Spacing")).transpose()?.unwrap_or([1.0; 3]);
+                        h.direction = attr(e, "Direction")?.map(|v| numbers(&v, "Direction")).transpose()?;
+                    }
+                    (b"Piece", Some(b"ImageData")) => {
+                        let extent = attr(e, "Extent")?.map(|v| numbers(&v, "Extent")).transpose()?;
+                        let source = attr(e, "Source")?;
+                        let piece = PieceHeader { extent, source, ..PieceHeader::default() };
+                        header.as_mut().expect("set by VTKFile").pieces.push(piece);
+                    }
+                    (b"PointData", Some(b"Piece")) => {
+                        if let Some(p) = header.as_mut().and_then(|h| h.pieces.last_mut()) {
+                            p.active_scalars = attr(e, "Scalars")?;
+                        }
+                    }
+                    (b"DataArray", Some(b"CellData")) => {
+                        if let Some(p) = header.as_mut().and_then(|h| h.pieces.last_mut()) {
+                            p.cell_arrays += 1;
+                        }
+                    }
+                    (b"DataArray", Some(b"PointData")) => {
+                        let a = data_array(e)?;
+                        if empty {
+                            push_array(&mut header, a, String::new())?;
+                        } else {
+                            array = Some((a, String::new()));
+                        }
+                    }
+                    (b"AppendedData", Some(b"VTKFile")) => {
+                        let encoding = match attr(e, "encoding")?.as_deref() {
+                            Some("raw") | None => AppendedEncoding::Raw,
+                            Some("base64") => AppendedEncoding::Base64,
+                            Some(other) => {
+                                return Err(format!(
+                                    "unknown AppendedData encoding '{other}' (VTK writes 'raw' or 'base64')"
+                                ))
+                            }
+                        };
+                        // The data start after optional whitespace and the '_' marker.
+                        let after_tag = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX);
+                        let rest = bytes.get(after_tag..).unwrap_or_default();
+                        let marker = rest.iter().position(|b| !b.is_ascii_whitespace());
+                        if empty || marker.map(|m| rest[m]) != Some(b'_') {
+                            return Err("the AppendedData section lacks its '_' marker before the data; \
+                                        the file is truncated or corrupt"
+                                .into());
+                        }
+                        let start = after_tag + marker.unwrap_or(0) + 1;
+                        header.as_mut().expect("set by VTKFile").appended = Some((encoding, start));
+                        break;
+                    }
+                    _ => {}
+                }
+                if !empty {
+                    stack.push(name);
+                }
+            }
+            Event::Text(t) => {
+                if let Some((_, text)) =
+                    array.as_mut().filter(|_| stack.last().map(Vec::as_slice) == Some(b"DataArray"))
+                {
+                    let t = t.unescape().map_err(|e| format!("bad text in a DataArray ({e}); the file is corrupt"))?;
+                    text.push_str(&t);
+                }
+            }
+            Event::CData(t) => {
+                if let Some((_, text)) =
+                    array.as_mut().filter(|_| stack.last().map(Vec::as_slice) == Some(b"DataArray"))
+                {
+                    text.push_str(&String::from_utf8_lossy(&t));
+                }
+            }
+            Event::End(e) => {
+                stack.pop();
+                if e.local_name().as_ref() == b"DataArray" && stack.last().map(Vec::as_slice) == Some(b"PointData") {
+                    if let Some((a, text)) = array.take() {
+                        push_array(&mut header, a, text)?;
+                    }
+                }
+            }
+            Event::Eof => break,
+            _ => {}
+        }
+    }
+    let header = header.ok_or("this is not a VTK XML file: it has no <VTKFile> element")?;
+    if !stack.is_empty() && header.appended.is_none() {
+        return Err(format!(
+            "the XML ends inside <{}>; the file is truncated or corrupt",
+            String::from_utf8_lossy(stack.last().map(Vec::as_slice).unwrap_or_default())
+        ));
+    }
+    Ok(header)
+}
+
+fn vtk_file(e: &BytesStart) -> Result<VtiHeader, String> {
+    let byte_order = match attr(e, "byte_order")?.as_deref() {
+        Some("LittleEndian") | None => ByteOrder::Little,
+        Some("BigEndian") => ByteOrder::Big,
+        Some(other) => return Err(format!("unknown byte_order '{other}' (expected LittleEndian or BigEndian)")),
+    };
+    let header_u64 = match attr(e, "header_type")?.as_deref() {
+        Some("UInt32") | None => false,
+        Some("UInt64") => true,
+        Some(other) => return Err(format!("unknown header_type '{other}' (expected UInt32 or UInt64)")),
+    };
+    let compressor = match attr(e, "compressor")?.as_deref() {
+        None | Some("") => None,
+        Some("vtkZLibDataCompressor") => Some(Compressor::ZLib),
+        Some("vtkLZ4DataCompressor") => Some(Compressor::Lz4),
+        Some("vtkLZMADataCompressor") => Some(Compressor::Lzma),
+        Some(other) => {
+            return Err(format!(
+                "the data are compressed with '{other}', which is not supported (supported: \
+                 vtkZLibDataCompressor, vtkLZ4DataCompressor, vtkLZMADataCompressor); \
+                 save the file again uncompressed or with ZLib"
+            ))
+        }
+    };
+    Ok(VtiHeader {
+        file_type: attr(e, "type")?.unwrap_or_default(),
+        byte_order,
+        header_u64,
+        compressor,
+        whole_extent: None,
+        origin: [0.0; 3],
+        spacing: [1.0; 3],
+        direction: None,
+        pieces: Vec::new(),
+        appended: None,
+    })
+}
+
+fn data_array(e: &BytesStart) -> Result<ArrayHeader, String> {
+    let name = attr(e, "Name")?.unwrap_or_default();
+    let type_name = attr(e, "type")?.ok_or_else(|| format!("the DataArray '{name}' has no type attribute"))?;
+    let components = match attr(e, "NumberOfComponents")? {
+        None => 1,
+        Some(v) => v
+            .trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|&c| c > 0)
+            .ok_or_else(|| format!("the DataArray '{name}' has a bad NumberOfComponents '{v}'"))?,
+    };
+    let data = match attr(e, "format")?.as_deref() {
+        Some("ascii") => ArrayData::Ascii(String::new()),
+        Some("binary") => ArrayData::Binary(String::new()),
+        Some("appended") => {
+            let offset = attr(e, "offset")?.ok_or_else(|| format!("the appended DataArray '{name}' has no offset"))?;
+            ArrayData::Appended(
+                offset.trim().parse().map_err(|_| format!("the DataArray '{name}' has a bad offset '{offset}'"))?,
+            )
+        }
+        other => {
+            return Err(format!(
+                "the DataArray '{name}' has format {other:?}; expected 'ascii', 'binary' or 'appended'"
+            ))
+        }
+    };
+    Ok(ArrayHeader { name, type_name, components, data })
+}
+
+/// Stores a point array with its text (for `ascii` and `binary` arrays).
+fn push_array(header: &mut Option<VtiHeader>, mut array: ArrayHeader, text: String) -> Result<(), String> {
+    match &mut array.data {
+        ArrayData::Ascii(t) | ArrayData::Binary(t) => *t = text,
+        ArrayData::Appended(_) => {}
+    }
+    let piece = header.as_mut().and_then(|h| h.pieces.last_mut()).ok_or("a DataArray lies outside any Piece")?;
+    piece.point_arrays.push(array);
+    Ok(())
+}
+
+/// The unescaped value of attribute `key`, if present.
+fn attr(e: &BytesStart, key: &str) -> Result<Option<String>, String> {
+    for a in e.attributes() {
+        let a = a.map_err(|err| {
+            format!("a malformed attribute in <{}> ({err})", String::from_utf8_lossy(e.name().as_ref()))
+        })?;
+        if a.key.as_ref() == key.as_bytes() {
+            let v = a.unescape_value().map_err(|err| format!("a malformed value of attribute {key} ({err})"))?;
+            return Ok(Some(v.into_owned()));
+        }
+    }
+    Ok(None)
+}
+
+/// Exactly `N` whitespace-separated numbers.
+fn numbers<T: std::str::FromStr, const N: usize>(text: &str, what: &str) -> Result<[T; N], String> {
+    let bad = || format!("the attribute {what}=\"{text}\" must hold {N} numbers");
+    let values: Vec<T> =
+        text.split_ascii_whitespace().map(|s| s.parse().map_err(|_| bad())).collect::<Result<_, _>>()?;
+    values.try_into().map_err(|_| bad())
+}
