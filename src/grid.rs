@@ -183,7 +183,7 @@ impl<'a> Samples<'a> {
     /// without copying. Fails if the length is not a multiple of the value size
     /// or the pointer is not aligned for the type.
     pub fn from_bytes(bytes: &'a [u8], scalar_type: ScalarType) -> Result<Samples<'a>> {
-        fn cast<'b, T: Sample>(bytes: &'b [u8]) -> Result<&'b [T]> {
+        fn cast<T: Sample>(bytes: &[u8]) -> Result<&[T]> {
             let size = std::mem::size_of::<T>();
             if bytes.len() % size != 0 {
                 return Err(Error::InvalidArgument(format!(
@@ -531,7 +531,7 @@ mod tests {
 
     #[test]
     fn bytes_are_borrowed_not_copied() {
-        let data = vec![1.5f32, 2.5];
+        let data = [1.5f32, 2.5];
         let bytes: &[u8] =
             // SAFETY: f32 has no padding; the byte view covers exactly the vector's storage.
             unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, 8) };
