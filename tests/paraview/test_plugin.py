@@ -127,8 +127,8 @@ def compare_with_cli(name, source, path, leaf, tolerance):
 wavelet = Wavelet()
 wavelet.WholeExtent = [-12, 12, -12, 12, -12, 12]
 wavelet_vti = os.path.join(args.workdir, "wavelet.vti")
-# Inline base64, uncompressed: what the CLI's .vti reader reads.
-SaveData(wavelet_vti, proxy=wavelet, DataMode="Binary", CompressorType="None")
+# ParaView's default encoding (appended raw), which the CLI reads as users' files.
+SaveData(wavelet_vti, proxy=wavelet)
 octree, fd = compare_with_cli("wavelet", wavelet, wavelet_vti, 4, 0.02)
 check(octree.Scalars == ["POINTS", "RTData"], "the Scalars domain picks RTData: %s" % (octree.Scalars,))
 
