@@ -7,11 +7,11 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 export PATH="$HOME/.cargo/bin:$PATH"
 
-echo "== cargo test (release) =="
-cargo test --release --locked
-
 echo "== CMake build (crate, VTK module, ParaView plugin) =="
 bash scripts/build.sh
+
+echo "== cargo test (release, sharing the CMake build's cargo target folder) =="
+CARGO_TARGET_DIR="$PWD/build/cargo" cargo test --release --locked
 
 echo "== CTest (under Xvfb) =="
 cd build
