@@ -218,6 +218,7 @@ mod tests {
             component: -1,
         };
         let h = build_volume_octree(bytes, &desc, 2).unwrap();
+        h.octree.validate().unwrap();
         let s = h.summary().unwrap();
         assert_eq!(s.input_bytes, 27 * 4);
         let cut = h.cut_boxes(0.0).unwrap();

@@ -181,12 +181,14 @@ mod tests {
         for ty in [ScalarType::F32, ScalarType::F64] {
             let v = generate(Dataset::Ramp, 65, ty);
             let octree = VolumeOctree::build(&v.grid(None).unwrap(), &BuildOptions { leaf_size: 8 }).unwrap();
+            octree.validate().unwrap();
             let stats = octree.stats();
             assert_eq!((stats.node_count, stats.homogeneous_count), (1, 1), "{ty:?}");
         }
         // Marschner-Lobb is the opposite: refined down to the leaves.
         let v = generate(Dataset::MarschnerLobb, 65, ScalarType::F32);
         let octree = VolumeOctree::build(&v.grid(None).unwrap(), &BuildOptions { leaf_size: 8 }).unwrap();
+        octree.validate().unwrap();
         assert_eq!(octree.stats().terminal_count, 512);
     }
 

@@ -84,6 +84,8 @@ pub fn run(args: &BuildArgs) -> Result<()> {
         let volume = args.input.load()?;
         let grid = args.input.grid(&volume)?;
         let octree = build_octree(&grid, &BuildOptions { leaf_size: args.leaf_size })?;
+        // Cheap next to the build (O(nodes)); a broken invariant is a bug to report.
+        octree.validate().map_err(|e| Error::Internal(format!("octree failed validation: {e}")))?;
         report(&grid, &octree, args.tolerance)
     })?;
     if args.json {
