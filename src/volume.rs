@@ -45,6 +45,40 @@ impl SampleBuf {
         self.len() == 0
     }
 
+    /// Decodes `bytes` (whole values; a trailing partial value is ignored) as
+    /// values of `scalar_type` in little- or big-endian byte order.
+    pub fn from_bytes(bytes: &[u8], scalar_type: ScalarType, big_endian: bool) -> SampleBuf {
+        macro_rules! conv {
+            ($t:ty, $variant:ident) => {{
+                const N: usize = std::mem::size_of::<$t>();
+                SampleBuf::$variant(
+                    bytes
+                        .chunks_exact(N)
+                        .map(|c| {
+                            let mut a = [0u8; N];
+                            a.copy_from_slice(c);
+                            if big_endian {
+                                <$t>::from_be_bytes(a)
+                            } else {
+                                <$t>::from_le_bytes(a)
+                            }
+                        })
+                        .collect(),
+                )
+            }};
+        }
+        match scalar_type {
+            ScalarType::U8 => SampleBuf::U8(bytes.to_vec()),
+            ScalarType::I8 => SampleBuf::I8(bytes.iter().map(|&b| b as i8).collect()),
+            ScalarType::U16 => conv!(u16, U16),
+            ScalarType::I16 => conv!(i16, I16),
+            ScalarType::U32 => conv!(u32, U32),
+            ScalarType::I32 => conv!(i32, I32),
+            ScalarType::F32 => conv!(f32, F32),
+            ScalarType::F64 => conv!(f64, F64),
+        }
+    }
+
     /// Converts `f64` values to `scalar_type`, rounding and saturating for
     /// integer types (used by the dataset generators' `--type`).
     pub fn from_f64(values: &[f64], scalar_type: ScalarType) -> SampleBuf {
@@ -93,5 +127,19 @@ impl Volume {
     /// (`None` for single-component volumes).
     pub fn grid(&self, component: Option<usize>) -> Result<Grid<'_>> {
         Grid::new(self.samples.as_samples(), self.shape, self.components, component)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn byte_order_is_honoured() {
+        let bytes = [0x01, 0x02, 0x03, 0x04];
+        assert_eq!(SampleBuf::from_bytes(&bytes, ScalarType::U16, false), SampleBuf::U16(vec![0x0201, 0x0403]));
+        assert_eq!(SampleBuf::from_bytes(&bytes, ScalarType::U16, true), SampleBuf::U16(vec![0x0102, 0x0304]));
+        assert_eq!(SampleBuf::from_bytes(&1.5f32.to_be_bytes(), ScalarType::F32, true), SampleBuf::F32(vec![1.5]));
+        assert_eq!(SampleBuf::from_bytes(&[0xff], ScalarType::I8, false), SampleBuf::I8(vec![-1]));
     }
 }

@@ -31,13 +31,14 @@
 //! is allocated or sliced; errors are messages for [`crate::Error::Format`].
 
 use super::vti_xml::{AppendedEncoding, ArrayData, ArrayHeader, ByteOrder, Compressor, VtiHeader};
+use crate::grid::ScalarType;
 use crate::volume::SampleBuf;
 use std::io::Read;
 
 /// Decodes `array` of the file `bytes` (whose header is `header`), which must
 /// hold exactly `count` values (points times components).
 pub fn decode_array(bytes: &[u8], header: &VtiHeader, array: &ArrayHeader, count: usize) -> Result<SampleBuf, String> {
-    let ty = ValueType::parse(&array.type_name, &array.name)?;
+    let ty = value_type(&array.type_name, &array.name)?;
     let mut stream = match &array.data {
         ArrayData::Ascii(text) => return parse_ascii(text, ty, count, &array.name),
         ArrayData::Binary(text) => Stream::Base64 { text: text.as_bytes(), pos: 0, pending: Vec::new() },
@@ -73,7 +74,7 @@ pub fn decode_array(bytes: &[u8], header: &VtiHeader, array: &ArrayHeader, count
         }
         Some(compressor) => read_compressed(&mut stream, words, compressor, need, count, &array.name)?,
     };
-    Ok(ty.decode(&data, header.byte_order))
+    Ok(SampleBuf::from_bytes(&data, ty, header.byte_order == ByteOrder::Big))
 }
 
 fn size_mismatch(name: &str, found: u64, need: usize, count: usize) -> String {
@@ -267,82 +268,29 @@ fn next_group(text: &[u8], pos: &mut usize) -> Result<Option<Vec<u8>>, String> {
 }
 
 /// The value types of the Hybrid Octree, by their VTK XML names.
-#[derive(Clone, Copy, Debug)]
-enum ValueType {
-    I8,
-    U8,
-    I16,
-    U16,
-    I32,
-    U32,
-    F32,
-    F64,
-}
-
-impl ValueType {
-    fn parse(type_name: &str, name: &str) -> Result<ValueType, String> {
-        Ok(match type_name {
-            "Int8" | "Char" => ValueType::I8,
-            "UInt8" | "UChar" => ValueType::U8,
-            "Int16" => ValueType::I16,
-            "UInt16" => ValueType::U16,
-            "Int32" => ValueType::I32,
-            "UInt32" => ValueType::U32,
-            "Float32" => ValueType::F32,
-            "Float64" => ValueType::F64,
-            "Int64" | "UInt64" => {
-                return Err(format!(
-                    "the point array '{name}' holds {type_name} values, which the Hybrid Octree does not take; \
-                     convert them to float, double or a 32-bit integer type (ParaView: Calculator with result type)"
-                ))
-            }
-            other => return Err(format!("the point array '{name}' has the unsupported type '{other}'")),
-        })
-    }
-
-    fn size(self) -> usize {
-        match self {
-            ValueType::I8 | ValueType::U8 => 1,
-            ValueType::I16 | ValueType::U16 => 2,
-            ValueType::I32 | ValueType::U32 | ValueType::F32 => 4,
-            ValueType::F64 => 8,
+/// The scalar type of a VTK XML `type` name.
+fn value_type(type_name: &str, name: &str) -> Result<ScalarType, String> {
+    Ok(match type_name {
+        "Int8" | "Char" => ScalarType::I8,
+        "UInt8" | "UChar" => ScalarType::U8,
+        "Int16" => ScalarType::I16,
+        "UInt16" => ScalarType::U16,
+        "Int32" => ScalarType::I32,
+        "UInt32" => ScalarType::U32,
+        "Float32" => ScalarType::F32,
+        "Float64" => ScalarType::F64,
+        "Int64" | "UInt64" => {
+            return Err(format!(
+                "the point array '{name}' holds {type_name} values, which the Hybrid Octree does not take; \
+                 convert them to float, double or a 32-bit integer type (ParaView: Calculator with result type)"
+            ))
         }
-    }
-
-    /// Values from `bytes` (a whole number of values) in byte order `order`.
-    fn decode(self, bytes: &[u8], order: ByteOrder) -> SampleBuf {
-        macro_rules! conv {
-            ($t:ty, $variant:ident) => {{
-                const N: usize = std::mem::size_of::<$t>();
-                SampleBuf::$variant(
-                    bytes
-                        .chunks_exact(N)
-                        .map(|c| {
-                            let c: [u8; N] = c.try_into().expect("chunks_exact");
-                            match order {
-                                ByteOrder::Little => <$t>::from_le_bytes(c),
-                                ByteOrder::Big => <$t>::from_be_bytes(c),
-                            }
-                        })
-                        .collect(),
-                )
-            }};
-        }
-        match self {
-            ValueType::I8 => conv!(i8, I8),
-            ValueType::U8 => conv!(u8, U8),
-            ValueType::I16 => conv!(i16, I16),
-            ValueType::U16 => conv!(u16, U16),
-            ValueType::I32 => conv!(i32, I32),
-            ValueType::U32 => conv!(u32, U32),
-            ValueType::F32 => conv!(f32, F32),
-            ValueType::F64 => conv!(f64, F64),
-        }
-    }
+        other => return Err(format!("the point array '{name}' has the unsupported type '{other}'")),
+    })
 }
 
 /// `count` whitespace-separated numbers of type `ty`.
-fn parse_ascii(text: &str, ty: ValueType, count: usize, name: &str) -> Result<SampleBuf, String> {
+fn parse_ascii(text: &str, ty: ScalarType, count: usize, name: &str) -> Result<SampleBuf, String> {
     fn parse<T: std::str::FromStr>(text: &str, count: usize, name: &str) -> Result<Vec<T>, String> {
         let values = text
             .split_ascii_whitespace()
@@ -361,13 +309,13 @@ fn parse_ascii(text: &str, ty: ValueType, count: usize, name: &str) -> Result<Sa
         Ok(values)
     }
     Ok(match ty {
-        ValueType::I8 => SampleBuf::I8(parse(text, count, name)?),
-        ValueType::U8 => SampleBuf::U8(parse(text, count, name)?),
-        ValueType::I16 => SampleBuf::I16(parse(text, count, name)?),
-        ValueType::U16 => SampleBuf::U16(parse(text, count, name)?),
-        ValueType::I32 => SampleBuf::I32(parse(text, count, name)?),
-        ValueType::U32 => SampleBuf::U32(parse(text, count, name)?),
-        ValueType::F32 => SampleBuf::F32(parse(text, count, name)?),
-        ValueType::F64 => SampleBuf::F64(parse(text, count, name)?),
+        ScalarType::I8 => SampleBuf::I8(parse(text, count, name)?),
+        ScalarType::U8 => SampleBuf::U8(parse(text, count, name)?),
+        ScalarType::I16 => SampleBuf::I16(parse(text, count, name)?),
+        ScalarType::U16 => SampleBuf::U16(parse(text, count, name)?),
+        ScalarType::I32 => SampleBuf::I32(parse(text, count, name)?),
+        ScalarType::U32 => SampleBuf::U32(parse(text, count, name)?),
+        ScalarType::F32 => SampleBuf::F32(parse(text, count, name)?),
+        ScalarType::F64 => SampleBuf::F64(parse(text, count, name)?),
     })
 }
