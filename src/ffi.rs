@@ -12,6 +12,7 @@
 use crate::error::Error;
 use crate::grid::{Grid, GridShape, Samples, ScalarType as GridScalarType};
 use crate::octree::{BuildOptions, VolumeOctree};
+use crate::surface::{distance, Surface, SurfaceOptions};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 #[cxx::bridge(namespace = "hybrid_octree")]
@@ -74,11 +75,50 @@ mod bridge {
     struct CutBoxes {
         /// 6 values per node: xmin, xmax, ymin, ymax, zmin, zmax (VTK bounds order).
         bounds: Vec<f64>,
+        /// The node's id in the level-by-level numbering (what SurfaceOutput::polygon_node names).
+        node_id: Vec<u32>,
         level: Vec<u32>,
         /// e_0 of the node normalised by the data range.
         nodal_error: Vec<f32>,
         min: Vec<f64>,
         max: Vec<f64>,
+    }
+
+    /// Which isosurface the Hybrid Octree keeps.
+    #[derive(Debug)]
+    enum SurfaceMode {
+        /// Discretized Marching Cubes, coplanar facets merged (lossless).
+        Discretized,
+        /// Classic Marching Cubes, vertices interpolated along edges.
+        Interpolated,
+    }
+
+    /// An extracted isosurface, ready for a vtkPolyData.
+    #[derive(Debug)]
+    struct SurfaceOutput {
+        /// 3 per point, world coordinates.
+        points: Vec<f64>,
+        /// 3 per point: unit outward normals (from values >= isovalue towards values below it).
+        normals: Vec<f32>,
+        /// Polygon i uses connectivity[offsets[i] .. offsets[i + 1]]; offsets.len() = polygons + 1.
+        offsets: Vec<i64>,
+        connectivity: Vec<i64>,
+        /// Per polygon: the terminal octree node holding it and its level.
+        polygon_node: Vec<u32>,
+        polygon_level: Vec<u32>,
+        polygons: u64,
+        /// Triangles when every (convex) polygon is fan-triangulated.
+        triangles: u64,
+        /// Triangles before face compression.
+        uncompressed_triangles: u64,
+        vertices: u64,
+        /// Polygon edges on the volume's faces (0 for a closed surface).
+        boundary_edges: u64,
+        extract_ms: f64,
+        compress_ms: f64,
+        /// DiscMC vs interpolated distance in voxel units (sampled, symmetric); -1 when not measured.
+        distance_mean: f64,
+        distance_max: f64,
     }
 
     // ---- Rust types and functions for C++ --------------------------------
@@ -94,10 +134,21 @@ mod bridge {
         /// The cut at normalised tolerance `tolerance` (the first nodes from the
         /// root whose e_0 <= tolerance, or leaf bricks).
         fn cut_boxes(self: &VolumeOctreeHandle, tolerance: f64) -> Result<CutBoxes>;
+        /// Extracts the isosurface of the image the handle was built from (the
+        /// same bytes and description). An isovalue outside the data range gives
+        /// an empty surface; a non-finite one is an error.
+        fn extract_surface(
+            self: &VolumeOctreeHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            isovalue: f64,
+            mode: SurfaceMode,
+            measure_distance: bool,
+        ) -> Result<SurfaceOutput>;
     }
 }
 
-pub use bridge::{CutBoxes, GridDesc, OctreeSummary, ScalarType};
+pub use bridge::{CutBoxes, GridDesc, OctreeSummary, ScalarType, SurfaceMode, SurfaceOutput};
 
 /// A Volume Octree together with the geometry needed to place its boxes.
 #[derive(Debug)]
@@ -137,18 +188,71 @@ fn scalar_type(t: ScalarType) -> crate::error::Result<GridScalarType> {
     })
 }
 
+/// The checked grid over the borrowed bytes.
+fn grid_of<'a>(bytes: &'a [u8], desc: &GridDesc) -> crate::error::Result<Grid<'a>> {
+    let samples = Samples::from_bytes(bytes, scalar_type(desc.scalar_type)?)?;
+    let shape = GridShape { dims: desc.dims, spacing: desc.spacing, origin: desc.origin };
+    let component = usize::try_from(desc.component).ok();
+    Grid::new(samples, shape, desc.components, component)
+}
+
 fn build_volume_octree(bytes: &[u8], desc: &GridDesc, leaf_size: u32) -> Result<Box<VolumeOctreeHandle>, String> {
     guarded(|| {
-        let samples = Samples::from_bytes(bytes, scalar_type(desc.scalar_type)?)?;
-        let shape = GridShape { dims: desc.dims, spacing: desc.spacing, origin: desc.origin };
-        let component = usize::try_from(desc.component).ok();
-        let grid = Grid::new(samples, shape, desc.components, component)?;
+        let grid = grid_of(bytes, desc)?;
         let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: leaf_size as usize })?;
-        Ok(Box::new(VolumeOctreeHandle { octree, shape, input_bytes: grid.input_bytes() }))
+        Ok(Box::new(VolumeOctreeHandle { octree, shape: *grid.shape(), input_bytes: grid.input_bytes() }))
     })
 }
 
 impl VolumeOctreeHandle {
+    fn extract_surface(
+        &self,
+        bytes: &[u8],
+        desc: &GridDesc,
+        isovalue: f64,
+        mode: SurfaceMode,
+        measure_distance: bool,
+    ) -> Result<SurfaceOutput, String> {
+        guarded(|| {
+            let grid = grid_of(bytes, desc)?;
+            if grid.shape() != &self.shape {
+                return Err(Error::InvalidArgument(
+                    "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
+                ));
+            }
+            let options = match mode {
+                SurfaceMode::Discretized => SurfaceOptions::discretized(isovalue),
+                SurfaceMode::Interpolated => SurfaceOptions::interpolated(isovalue),
+                _ => return Err(Error::InvalidArgument("unknown surface mode code from C++".into())),
+            };
+            let surface = Surface::extract(&grid, &self.octree, &options)?;
+            let (distance_mean, distance_max) = if measure_distance {
+                let d = distance::discretized_to_interpolated(&grid, &self.octree, isovalue)?;
+                (d.mean, d.max)
+            } else {
+                (-1.0, -1.0)
+            };
+            let st = &surface.stats;
+            Ok(SurfaceOutput {
+                points: surface.points.iter().flat_map(|p| self.shape.world(*p)).collect(),
+                normals: surface.normals.iter().flatten().copied().collect(),
+                offsets: surface.offsets.iter().map(|&o| o as i64).collect(),
+                connectivity: surface.connectivity.iter().map(|&c| c as i64).collect(),
+                polygon_node: surface.polygon_node.iter().map(|n| n.0).collect(),
+                polygon_level: surface.polygon_node.iter().map(|&n| self.octree.node(n).level as u32).collect(),
+                polygons: st.polygons as u64,
+                triangles: st.triangles as u64,
+                uncompressed_triangles: st.uncompressed_triangles as u64,
+                vertices: st.vertices as u64,
+                boundary_edges: st.boundary_edges as u64,
+                extract_ms: st.extract_ms,
+                compress_ms: st.compress_ms,
+                distance_mean,
+                distance_max,
+            })
+        })
+    }
+
     fn summary(&self) -> Result<OctreeSummary, String> {
         guarded(|| {
             let s = self.octree.stats();
@@ -173,6 +277,7 @@ impl VolumeOctreeHandle {
             let cut = self.octree.cut(tolerance)?;
             let mut out = CutBoxes {
                 bounds: Vec::with_capacity(cut.len() * 6),
+                node_id: Vec::with_capacity(cut.len()),
                 level: Vec::with_capacity(cut.len()),
                 nodal_error: Vec::with_capacity(cut.len()),
                 min: Vec::with_capacity(cut.len()),
@@ -183,6 +288,7 @@ impl VolumeOctreeHandle {
                 let lo = self.shape.world(node.lo.map(|v| v as f64));
                 let hi = self.shape.world(node.hi.map(|v| v as f64));
                 out.bounds.extend_from_slice(&[lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]]);
+                out.node_id.push(id.0);
                 out.level.push(node.level as u32);
                 out.nodal_error.push(node.errors.first().copied().unwrap_or(0.0));
                 out.min.push(node.min);

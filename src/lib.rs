@@ -26,8 +26,10 @@ pub mod error;
 #[allow(missing_docs)]
 pub mod ffi;
 pub mod grid;
+pub mod hybrid;
 pub mod io;
 pub mod octree;
+pub mod surface;
 pub mod volume;
 
 pub use error::{Error, Result};

@@ -4,6 +4,7 @@
 //! ```text
 //! hybrid-octree info     (--dataset NAME --size N | --file PATH) [--type T] [--component C]
 //! hybrid-octree build    (--dataset NAME --size N | --file PATH) [--leaf-size B] [--tolerance T] [--json]
+//! hybrid-octree surface  (--dataset NAME --size N | --file PATH) --isovalue V [--mode discretized|interpolated] [--distance] [--output F.vtk] [--json]
 //! hybrid-octree generate --dataset NAME --size N [--type T] --output FILE.vti
 //! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--repeats 3] [--json]
 //! ```
@@ -16,6 +17,7 @@ mod generate;
 mod info;
 mod input;
 mod pool;
+mod surface;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -33,6 +35,8 @@ enum Command {
     Info(info::InfoArgs),
     /// Build the Volume Octree and report its size, shape and build time.
     Build(build::BuildArgs),
+    /// Extract the Hybrid Octree's isosurface (DiscMC + face compression, or interpolated MC).
+    Surface(surface::SurfaceArgs),
     /// Write a built-in dataset to a VTK XML image file (.vti).
     Generate(generate::GenerateArgs),
     /// Benchmarks that print a table.
@@ -47,6 +51,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Info(args) => info::run(&args),
         Command::Build(args) => build::run(&args),
+        Command::Surface(args) => surface::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     };

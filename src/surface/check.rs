@@ -1,0 +1,130 @@
+//! Measuring a surface: how its edges are shared (watertightness), its area
+//! and the volume it encloses.
+//!
+//! On a closed surface every edge is used by exactly two polygons, once in
+//! each direction. An edge used once lies where the surface leaves the volume
+//! (a boundary edge); more than twice, or twice in the same direction, is a
+//! defect.
+
+use super::build::Surface;
+
+/// How the edges of a surface are used.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct EdgeUse {
+    /// Undirected edges.
+    pub edges: usize,
+    /// Used by one polygon.
+    pub boundary: usize,
+    /// Used by more than two polygons, or twice in the same direction.
+    pub nonmanifold: usize,
+}
+
+/// Counts the edges of `s` by use.
+pub fn edge_use(s: &Surface) -> EdgeUse {
+    // (min, max, +1 for min->max / -1 for max->min)
+    let mut edges: Vec<(u32, u32, i8)> = Vec::with_capacity(s.connectivity.len());
+    for i in 0..s.polygon_count() {
+        let p = s.polygon(i);
+        for k in 0..p.len() {
+            let (a, b) = (p[k], p[(k + 1) % p.len()]);
+            edges.push(if a < b { (a, b, 1) } else { (b, a, -1) });
+        }
+    }
+    edges.sort_unstable();
+    let mut out = EdgeUse::default();
+    let mut i = 0;
+    while i < edges.len() {
+        let mut j = i;
+        while j < edges.len() && (edges[j].0, edges[j].1) == (edges[i].0, edges[i].1) {
+            j += 1;
+        }
+        out.edges += 1;
+        match j - i {
+            1 => out.boundary += 1,
+            2 if edges[i].2 != edges[i + 1].2 => {}
+            _ => out.nonmanifold += 1,
+        }
+        i = j;
+    }
+    out
+}
+
+/// Polygon edges whose two ends lie on the same face plane of the volume
+/// (`x = 0`, `x = nx - 1`, ...): there is no cell beyond that face, so exactly
+/// one polygon uses such an edge. Counted in parallel; [`edge_use`] is the
+/// slower, independent check the tests compare it with.
+pub fn boundary_edges(s: &Surface, dims: [usize; 3]) -> usize {
+    use rayon::prelude::*;
+    (0..s.polygon_count())
+        .into_par_iter()
+        .map(|i| {
+            let p = s.polygon(i);
+            (0..p.len())
+                .filter(|&k| {
+                    let (a, b) = (s.points[p[k] as usize], s.points[p[(k + 1) % p.len()] as usize]);
+                    (0..3).any(|ax| {
+                        let top = (dims[ax] - 1) as f64;
+                        (a[ax] == 0.0 && b[ax] == 0.0) || (a[ax] == top && b[ax] == top)
+                    })
+                })
+                .count()
+        })
+        .sum()
+}
+
+/// Twice the area vector of a planar polygon in index space:
+/// `sum over edges of p_k x p_(k+1)` (its length is twice the area).
+pub fn polygon_normal(s: &Surface, polygon: &[u32]) -> [f64; 3] {
+    let mut n = [0.0; 3];
+    let o = s.points[polygon[0] as usize];
+    for k in 1..polygon.len().saturating_sub(1) {
+        let a = s.points[polygon[k] as usize];
+        let b = s.points[polygon[k + 1] as usize];
+        let (u, v) = ([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]]);
+        n[0] += u[1] * v[2] - u[2] * v[1];
+        n[1] += u[2] * v[0] - u[0] * v[2];
+        n[2] += u[0] * v[1] - u[1] * v[0];
+    }
+    n
+}
+
+/// Surface area in index units (fan triangulation from the first vertex,
+/// exact for the convex polygons this crate makes).
+pub fn area(s: &Surface) -> f64 {
+    (0..s.polygon_count())
+        .map(|i| {
+            let p = s.polygon(i);
+            let o = s.points[p[0] as usize];
+            (1..p.len() - 1)
+                .map(|k| {
+                    let a = s.points[p[k] as usize];
+                    let b = s.points[p[k + 1] as usize];
+                    let (u, v) = ([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]]);
+                    let c = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+                    0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+                })
+                .sum::<f64>()
+        })
+        .sum()
+}
+
+/// Signed volume enclosed, in cubic index units (divergence theorem:
+/// `sum of p0 . (p1 x p2) / 6` over fan triangles). Normals point from the
+/// inside (values at or above the isovalue) out, so a closed surface around an
+/// inside region encloses a positive volume.
+pub fn volume(s: &Surface) -> f64 {
+    (0..s.polygon_count())
+        .map(|i| {
+            let p = s.polygon(i);
+            let o = s.points[p[0] as usize];
+            (1..p.len() - 1)
+                .map(|k| {
+                    let a = s.points[p[k] as usize];
+                    let b = s.points[p[k + 1] as usize];
+                    let c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+                    (o[0] * c[0] + o[1] * c[1] + o[2] * c[2]) / 6.0
+                })
+                .sum::<f64>()
+        })
+        .sum()
+}

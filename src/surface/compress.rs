@@ -1,0 +1,249 @@
+//! Face compression (the Surface Octree's planar terminal nodes, paper 1
+//! section 2.2): coplanar DiscMC facets of one terminal node merged into
+//! convex polygons, with no point of the surface moved.
+//!
+//! DiscMC vertices are edge midpoints, so in doubled index coordinates every
+//! vertex is an integer point and every facet plane is `n . x = d` with a
+//! small integer normal `n` (divided by the gcd of its components) and integer
+//! `d`: coplanarity is tested exactly.
+//!
+//! Region growing, per node and plane: a polygon starts as one triangle and
+//! takes a neighbouring triangle of the same plane across one of its edges
+//! `u -> v` (the triangle holds `v -> u`) when the union stays convex:
+//!
+//! ```text
+//! third vertex c new:        ... u v ...  ->  ... u c v ...
+//! c == prev(u) (a notch):    ... c u v ... ->  ... c v ...
+//! c == next(v) (a notch):    ... u v c ... ->  ... u c ...
+//! c elsewhere on the polygon: refused (it would enclose a hole)
+//! ```
+//!
+//! and the turn `((w - p) x (n - w)) . normal` stays >= 0 at every vertex whose
+//! neighbours changed (collinear vertices stay, for now; see
+//! [`super::collinear`]). A locally convex polygon grown from a convex one by
+//! triangles outside it is convex, so renderers may fan-triangulate it; the
+//! union of its triangles is exactly the polygon, so the merged surface covers
+//! the same point set as the facets.
+
+use super::extract::midpoint2;
+
+/// Polygons of a node: `vertices[offsets[i] .. offsets[i + 1]]`, counter-clockwise
+/// from outside, vertices named by edge key.
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
+pub struct Polygons {
+    /// Start of each polygon in `vertices`, plus the end.
+    pub offsets: Vec<u32>,
+    /// Edge keys.
+    pub vertices: Vec<u64>,
+}
+
+impl Polygons {
+    /// Number of polygons.
+    pub fn len(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+    /// True when there is no polygon.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Polygon `i`.
+    pub fn get(&self, i: usize) -> &[u64] {
+        &self.vertices[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+    /// Appends a polygon.
+    pub fn push(&mut self, polygon: &[u64]) {
+        if self.offsets.is_empty() {
+            self.offsets.push(0);
+        }
+        self.vertices.extend_from_slice(polygon);
+        self.offsets.push(self.vertices.len() as u32);
+    }
+    /// Triangles as polygons (no merging).
+    pub fn from_triangles(triangles: &[[u64; 3]]) -> Polygons {
+        let mut p = Polygons::default();
+        for t in triangles {
+            p.push(t);
+        }
+        p
+    }
+}
+
+pub(crate) fn sub(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+pub(crate) fn cross(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+pub(crate) fn dot(a: [i64; 3], b: [i64; 3]) -> i64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn gcd(a: i64, b: i64) -> i64 {
+    if b == 0 {
+        a.abs()
+    } else {
+        gcd(b, a % b)
+    }
+}
+
+/// The plane `(n, d)` of a triangle in doubled coordinates, `n` reduced by its gcd.
+fn plane(p: [[i64; 3]; 3]) -> [i64; 4] {
+    let n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+    let g = gcd(gcd(n[0], n[1]), n[2]).max(1);
+    let n = [n[0] / g, n[1] / g, n[2] / g];
+    [n[0], n[1], n[2], dot(n, p[0])]
+}
+
+/// The turn at `w` (from `p`, to `n`) against `normal`: > 0 convex, 0 straight
+/// (or a spike, told apart by [`straight`]), < 0 reflex.
+pub(crate) fn turn(p: [i64; 3], w: [i64; 3], n: [i64; 3], normal: [i64; 3]) -> i64 {
+    dot(cross(sub(w, p), sub(n, w)), normal)
+}
+
+/// True when `p -> w -> n` continues straight on (not a 180-degree spike).
+fn straight(p: [i64; 3], w: [i64; 3], n: [i64; 3]) -> bool {
+    dot(sub(w, p), sub(n, w)) > 0
+}
+
+/// Merges the triangles of one node into convex coplanar polygons.
+pub fn compress(triangles: &[[u64; 3]], dims: [usize; 3]) -> Polygons {
+    // Local vertex numbering: the node's sorted unique keys.
+    let mut keys: Vec<u64> = triangles.iter().flatten().copied().collect();
+    keys.sort_unstable();
+    keys.dedup();
+    let local = |k: u64| keys.binary_search(&k).unwrap_or(0) as u32;
+    let tris: Vec<[u32; 3]> = triangles.iter().map(|t| t.map(local)).collect();
+    let points: Vec<[i64; 3]> = keys.iter().map(|&k| midpoint2(k, dims)).collect();
+    let planes: Vec<[i64; 4]> = tris.iter().map(|t| plane(t.map(|v| points[v as usize]))).collect();
+    // Outgoing directed edges per vertex (compressed rows): (to, triangle).
+    let mut start = vec![0u32; keys.len() + 1];
+    for t in &tris {
+        for &v in t {
+            start[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..keys.len() {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut outgoing = vec![(0u32, 0u32); 3 * tris.len()];
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let from = t[k] as usize;
+            outgoing[fill[from] as usize] = (t[(k + 1) % 3], i as u32);
+            fill[from] += 1;
+        }
+    }
+    let across = |from: u32, to: u32| -> Option<usize> {
+        let row = &outgoing[start[from as usize] as usize..start[from as usize + 1] as usize];
+        row.iter().find(|e| e.0 == to).map(|e| e.1 as usize)
+    };
+    // Seeds in plane order, then triangle order (deterministic).
+    let mut order: Vec<u32> = (0..tris.len() as u32).collect();
+    order.sort_by_key(|&i| (planes[i as usize], i));
+    let mut used = vec![false; tris.len()];
+    let mut on_polygon = vec![false; keys.len()];
+    let mut out = Polygons::default();
+    let mut polygon: Vec<u32> = Vec::new();
+    let mut as_keys: Vec<u64> = Vec::new();
+    for &seed in &order {
+        let seed = seed as usize;
+        if used[seed] {
+            continue;
+        }
+        used[seed] = true;
+        let key = planes[seed];
+        let normal = [key[0], key[1], key[2]];
+        polygon.clear();
+        polygon.extend_from_slice(&tris[seed]);
+        for &v in &polygon {
+            on_polygon[v as usize] = true;
+        }
+        let mut i = 0;
+        let mut since_change = 0;
+        // Walk the boundary until a full lap adds nothing.
+        while since_change < polygon.len() {
+            let n = polygon.len();
+            let at = i % n;
+            let (u, v) = (polygon[at], polygon[(at + 1) % n]);
+            let grown = match across(v, u) {
+                Some(t) if !used[t] && planes[t] == key => {
+                    let tri = tris[t];
+                    let k = tri.iter().position(|&x| x == v).unwrap_or(0);
+                    let c = tri[(k + 2) % 3];
+                    try_add(&mut polygon, at, c, normal, &points, &mut on_polygon).then_some(t)
+                }
+                _ => None,
+            };
+            if let Some(t) = grown {
+                used[t] = true;
+                since_change = 0;
+                i = at.min(polygon.len() - 1); // revisit the new edges from u
+            } else {
+                since_change += 1;
+                i = (at + 1) % polygon.len();
+            }
+        }
+        for &v in &polygon {
+            on_polygon[v as usize] = false;
+        }
+        as_keys.clear();
+        as_keys.extend(polygon.iter().map(|&v| keys[v as usize]));
+        out.push(&as_keys);
+    }
+    out
+}
+
+/// Adds the triangle `(v, u, c)` across edge `polygon[at] -> polygon[at + 1]`
+/// when the result stays convex (checked at the vertices whose neighbours
+/// change; the others keep their turns). Returns whether it was added.
+fn try_add(
+    polygon: &mut Vec<u32>,
+    at: usize,
+    c: u32,
+    normal: [i64; 3],
+    points: &[[i64; 3]],
+    on_polygon: &mut [bool],
+) -> bool {
+    let n = polygon.len();
+    let (iu, iv) = (at, (at + 1) % n);
+    let prev_u = polygon[(iu + n - 1) % n];
+    let next_v = polygon[(iv + 1) % n];
+    let p = |v: u32| points[v as usize];
+    let ok = |a: u32, w: u32, b: u32| {
+        let t = turn(p(a), p(w), p(b), normal);
+        t > 0 || (t == 0 && straight(p(a), p(w), p(b)))
+    };
+    let u = polygon[iu];
+    let v = polygon[iv];
+    if n == 3 && c == prev_u && c == next_v {
+        return false;
+    }
+    if c == prev_u {
+        // The notch at u is filled: ... c u v ... -> ... c v ...
+        let prev_c = polygon[(iu + n - 2) % n];
+        if n <= 3 || !(ok(prev_c, c, v) && ok(c, v, next_v)) {
+            return false;
+        }
+        polygon.remove(iu);
+        on_polygon[u as usize] = false;
+        true
+    } else if c == next_v {
+        // The notch at v is filled: ... u v c ... -> ... u c ...
+        let next_c = polygon[(iv + 2) % n];
+        if n <= 3 || !(ok(prev_u, u, c) && ok(u, c, next_c)) {
+            return false;
+        }
+        polygon.remove(iv);
+        on_polygon[v as usize] = false;
+        true
+    } else if on_polygon[c as usize] {
+        false
+    } else {
+        if !(ok(prev_u, u, c) && ok(u, c, v) && ok(c, v, next_v)) {
+            return false;
+        }
+        polygon.insert(iu + 1, c);
+        on_polygon[c as usize] = true;
+        true
+    }
+}

@@ -1,0 +1,82 @@
+//! Marching the cells of one terminal node: the DiscMC / MC triangles of the
+//! node, with vertices named by the grid edge they lie on.
+//!
+//! A vertex is identified by its grid edge: `key = 3 * (x + nx * (y + ny * z)) + axis`
+//! for the edge from point `(x, y, z)` along `axis`. Cubes sharing an edge
+//! name its vertex the same way, so vertices are shared without a search, and
+//! the same key gives the DiscMC midpoint or the interpolated point.
+//!
+//! Only nodes whose `[min, max]` brackets the isovalue (`min < iso <= max`:
+//! some sample inside, some outside) have cells to visit.
+
+use super::table::{cases, edge_corners};
+use crate::grid::{Sample, TypedGrid};
+
+/// The edge key of the edge from point `p` along `axis` in a grid of `dims`.
+#[inline]
+pub fn edge_key(p: [usize; 3], axis: usize, dims: [usize; 3]) -> u64 {
+    3 * (p[0] + dims[0] * (p[1] + dims[1] * p[2])) as u64 + axis as u64
+}
+
+/// The low end point and the axis of edge `key`.
+#[inline]
+pub fn edge_of_key(key: u64, dims: [usize; 3]) -> ([usize; 3], usize) {
+    let axis = (key % 3) as usize;
+    let p = (key / 3) as usize;
+    ([p % dims[0], (p / dims[0]) % dims[1], p / (dims[0] * dims[1])], axis)
+}
+
+/// The edge midpoint of `key` in doubled index coordinates (exact integers).
+#[inline]
+pub fn midpoint2(key: u64, dims: [usize; 3]) -> [i64; 3] {
+    let (p, axis) = edge_of_key(key, dims);
+    let mut m = [2 * p[0] as i64, 2 * p[1] as i64, 2 * p[2] as i64];
+    m[axis] += 1;
+    m
+}
+
+/// Triangles of one node, counter-clockwise seen from outside (below the isovalue).
+#[derive(Debug, Default, Clone)]
+pub struct NodeTriangles {
+    /// Vertex edge keys of each triangle.
+    pub triangles: Vec<[u64; 3]>,
+    /// Linear index `x + nx * (y + ny * z)` of the cell each triangle came from.
+    pub cells: Vec<u64>,
+}
+
+/// Marches the cells `[lo, hi)` (point box `[lo, hi]`) at `isovalue`.
+pub fn march<T: Sample>(g: &TypedGrid<'_, T>, lo: [usize; 3], hi: [usize; 3], isovalue: f64) -> NodeTriangles {
+    let table = cases();
+    let dims = g.dims;
+    let mut out = NodeTriangles::default();
+    let mut corner_values = [0.0f64; 8];
+    for z in lo[2]..hi[2] {
+        for y in lo[1]..hi[1] {
+            for x in lo[0]..hi[0] {
+                let mut index = 0usize;
+                for (c, v) in corner_values.iter_mut().enumerate() {
+                    *v = g.at(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
+                    if *v >= isovalue {
+                        index |= 1 << c;
+                    }
+                }
+                if index == 0 || index == 255 {
+                    continue;
+                }
+                let cell = (x + dims[0] * (y + dims[1] * z)) as u64;
+                for cycle in &table[index].cycles {
+                    let key = |e: u8| {
+                        let (a, _, axis) = edge_corners(e as usize);
+                        edge_key([x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)], axis, dims)
+                    };
+                    let first = key(cycle[0]);
+                    for w in cycle[1..].windows(2) {
+                        out.triangles.push([first, key(w[0]), key(w[1])]);
+                        out.cells.push(cell);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
