@@ -41,8 +41,43 @@ hybrid_octree::ScalarType ToRust(ScalarType type)
   return hybrid_octree::ScalarType::F64; // unreachable: every enumerator is handled
 }
 
-template <typename T>
-void CopyInto(const rust::Vec<T>& from, std::vector<T>& to)
+hybrid_octree::GridDesc ToRust(const GridDescription& grid)
+{
+  hybrid_octree::GridDesc desc;
+  desc.scalar_type = ToRust(grid.Type);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    desc.dims[axis] = grid.Dims[axis];
+    desc.spacing[axis] = grid.Spacing[axis];
+    desc.origin[axis] = grid.Origin[axis];
+  }
+  desc.components = grid.Components;
+  desc.component = grid.Component;
+  return desc;
+}
+
+hybrid_octree::SurfaceMode ToRust(SurfaceMode mode)
+{
+  switch (mode)
+  {
+    case SurfaceMode::Discretized:
+      return hybrid_octree::SurfaceMode::Discretized;
+    case SurfaceMode::Interpolated:
+      return hybrid_octree::SurfaceMode::Interpolated;
+  }
+  return hybrid_octree::SurfaceMode::Discretized; // unreachable: every enumerator is handled
+}
+
+/// The borrowed samples as a byte slice. A null pointer is only legal for an
+/// empty buffer; cxx maps it to a dangling, well-aligned empty slice.
+rust::Slice<const std::uint8_t> ToSlice(const void* bytes, std::size_t byteCount)
+{
+  return rust::Slice<const std::uint8_t>(
+    static_cast<const std::uint8_t*>(bytes), bytes ? byteCount : 0);
+}
+
+template <typename From, typename To>
+void CopyInto(const rust::Vec<From>& from, std::vector<To>& to)
 {
   to.assign(from.begin(), from.end());
 }
@@ -67,25 +102,11 @@ VolumeOctree::~VolumeOctree() = default;
 std::unique_ptr<VolumeOctree> VolumeOctree::Build(const void* bytes, std::size_t byteCount,
   const GridDescription& grid, unsigned int leafSize, std::string& error)
 {
-  hybrid_octree::GridDesc desc;
-  desc.scalar_type = ToRust(grid.Type);
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    desc.dims[axis] = grid.Dims[axis];
-    desc.spacing[axis] = grid.Spacing[axis];
-    desc.origin[axis] = grid.Origin[axis];
-  }
-  desc.components = grid.Components;
-  desc.component = grid.Component;
-
   try
   {
-    // A null pointer is only legal for an empty buffer; cxx maps it to a
-    // dangling, well-aligned empty slice.
-    rust::Slice<const std::uint8_t> samples(
-      static_cast<const std::uint8_t*>(bytes), bytes ? byteCount : 0);
+    const hybrid_octree::GridDesc desc = ToRust(grid);
     rust::Box<hybrid_octree::VolumeOctreeHandle> handle =
-      hybrid_octree::build_volume_octree(samples, desc, leafSize);
+      hybrid_octree::build_volume_octree(ToSlice(bytes, byteCount), desc, leafSize);
     return std::unique_ptr<VolumeOctree>(
       new VolumeOctree(std::unique_ptr<Internals>(new Internals(std::move(handle)))));
   }
@@ -127,10 +148,44 @@ bool VolumeOctree::GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& e
   {
     const hybrid_octree::CutBoxes cut = this->Impl->Handle->cut_boxes(tolerance);
     CopyInto(cut.bounds, boxes.Bounds);
+    CopyInto(cut.node_id, boxes.NodeId);
     CopyInto(cut.level, boxes.Level);
     CopyInto(cut.nodal_error, boxes.NodalError);
     CopyInto(cut.min, boxes.Min);
     CopyInto(cut.max, boxes.Max);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+bool VolumeOctree::ExtractSurface(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, double isovalue, SurfaceMode mode, bool measureDistance,
+  SurfaceMesh& surface, std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::GridDesc desc = ToRust(grid);
+    const hybrid_octree::SurfaceOutput s = this->Impl->Handle->extract_surface(
+      ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode), measureDistance);
+    CopyInto(s.points, surface.Points);
+    CopyInto(s.normals, surface.Normals);
+    CopyInto(s.offsets, surface.Offsets);
+    CopyInto(s.connectivity, surface.Connectivity);
+    CopyInto(s.polygon_node, surface.PolygonNode);
+    CopyInto(s.polygon_level, surface.PolygonLevel);
+    surface.Polygons = s.polygons;
+    surface.Triangles = s.triangles;
+    surface.UncompressedTriangles = s.uncompressed_triangles;
+    surface.Vertices = s.vertices;
+    surface.BoundaryEdges = s.boundary_edges;
+    surface.ExtractMilliseconds = s.extract_ms;
+    surface.CompressMilliseconds = s.compress_ms;
+    surface.DistanceMean = s.distance_mean;
+    surface.DistanceMax = s.distance_max;
     return true;
   }
   catch (const std::exception& e)

@@ -9,8 +9,8 @@
  * (a `std::exception`) into an error string the caller reports with
  * vtkErrorMacro.
  *
- * Volume samples cross borrowed: Build() reads the caller's buffer while it
- * runs and keeps no pointer to it.
+ * Volume samples cross borrowed: Build() and ExtractSurface() read the
+ * caller's buffer while they run and keep no pointer to it.
  */
 #ifndef vtkHybridOctreeBridge_h
 #define vtkHybridOctreeBridge_h
@@ -72,12 +72,49 @@ struct OctreeSummary
 struct CutBoxes
 {
   std::vector<double> Bounds;
+  std::vector<std::uint32_t> NodeId; ///< id in the level-by-level numbering
   std::vector<std::uint32_t> Level;
   std::vector<float> NodalError; ///< E_0 normalised by the data range
   std::vector<double> Min;
   std::vector<double> Max;
 
   std::size_t GetNumberOfBoxes() const { return this->Level.size(); }
+};
+
+/// Which isosurface the Hybrid Octree keeps (see SurfaceMode in src/ffi.rs).
+enum class SurfaceMode
+{
+  /// Discretized Marching Cubes: vertices at edge midpoints, coplanar facets
+  /// merged into convex polygons (lossless).
+  Discretized,
+  /// Classic Marching Cubes: vertices linearly interpolated along edges.
+  Interpolated
+};
+
+/// An isosurface extracted from a Volume Octree (see SurfaceOutput in
+/// src/ffi.rs), world coordinates.
+///
+/// Sizes: `Points` and `Normals` hold 3 values per vertex; polygon `i` uses
+/// `Connectivity[Offsets[i] .. Offsets[i + 1]]`, so `Offsets` holds
+/// `Polygons + 1` values starting at 0; `PolygonNode` and `PolygonLevel` hold
+/// one value per polygon.
+struct SurfaceMesh
+{
+  std::vector<double> Points;
+  std::vector<float> Normals; ///< unit, from values >= isovalue towards values below
+  std::vector<std::int64_t> Offsets;
+  std::vector<std::int64_t> Connectivity;
+  std::vector<std::uint32_t> PolygonNode;  ///< terminal node holding the polygon (level-by-level id)
+  std::vector<std::uint32_t> PolygonLevel; ///< level of that node (0 = root)
+  std::uint64_t Polygons = 0;
+  std::uint64_t Triangles = 0;             ///< after fan-triangulating every polygon
+  std::uint64_t UncompressedTriangles = 0; ///< before coplanar facets are merged
+  std::uint64_t Vertices = 0;
+  std::uint64_t BoundaryEdges = 0; ///< edges of one polygon only (0: closed surface)
+  double ExtractMilliseconds = 0.0;
+  double CompressMilliseconds = 0.0;
+  double DistanceMean = -1.0; ///< DiscMC to interpolated surface, voxels; -1: not measured
+  double DistanceMax = -1.0;
 };
 
 /// A Volume Octree owned on the C++ side (it owns the Rust handle).
@@ -102,6 +139,19 @@ public:
   /// The cut at normalised error tolerance `tolerance` (0..1), replacing the
   /// contents of `boxes`. False and `error` on failure.
   bool GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& error) const;
+
+  /**
+   * Extracts the isosurface at `isovalue` of the image the octree was built
+   * from: `bytes`, `byteCount` and `grid` must describe the same samples as
+   * in Build(). `measureDistance` also measures the distance between the
+   * discretized and the interpolated surface. Replaces the contents of
+   * `surface`. An isovalue outside the data range gives an empty surface;
+   * a non-finite isovalue or a grid that does not match the octree's returns
+   * false and sets `error`.
+   */
+  bool ExtractSurface(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    double isovalue, SurfaceMode mode, bool measureDistance, SurfaceMesh& surface,
+    std::string& error) const;
 
 private:
   struct Internals;

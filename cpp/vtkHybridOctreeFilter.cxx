@@ -20,11 +20,13 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 #include "vtkTypeInt64Array.h"
 
+#include <algorithm>
 #include <cstdint>
-#include <sstream>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkHybridOctreeFilter);
 
@@ -39,6 +41,23 @@ struct vtkHybridOctreeFilter::vtkInternals
   vtkMTimeType ArrayMTime = 0;
   vtkHybridOctreeBridge::GridDescription Grid;
   int LeafSize = 0;
+
+  /// The cached surface and what it was extracted with: the octree (by its
+  /// build number, OctreeBuildCount at extraction) and the surface settings.
+  vtkSmartPointer<vtkPolyData> Surface;
+  vtkIdType SurfaceOctreeBuild = -1;
+  double SurfaceIsovalue = 0.0;
+  int SurfaceMode = -1;
+  vtkTypeBool SurfaceMeasured = 0;
+
+  bool IsSurfaceExtractedWith(
+    vtkIdType octreeBuild, double isovalue, int mode, vtkTypeBool measured) const
+  {
+    // A NaN isovalue never compares equal: it is passed on to fail again.
+    return this->Surface && this->SurfaceOctreeBuild == octreeBuild &&
+      this->SurfaceIsovalue == isovalue && this->SurfaceMode == mode &&
+      this->SurfaceMeasured == measured;
+  }
 
   bool IsBuiltFrom(const vtkDataArray* array, vtkMTimeType arrayMTime,
     const vtkHybridOctreeBridge::GridDescription& grid, int leafSize) const
@@ -100,6 +119,31 @@ bool ToBridgeType(int vtkType, vtkHybridOctreeBridge::ScalarType& type)
   }
 }
 
+/// The bytes of the chosen array that the core reads (all components).
+std::size_t ByteCount(vtkDataArray* scalars)
+{
+  return static_cast<std::size_t>(scalars->GetNumberOfTuples()) *
+    static_cast<std::size_t>(scalars->GetNumberOfComponents()) *
+    static_cast<std::size_t>(scalars->GetDataTypeSize());
+}
+
+/// The array's storage, or nullptr when it is empty.
+const void* Bytes(vtkDataArray* scalars)
+{
+  return ByteCount(scalars) > 0 ? scalars->GetVoidPointer(0) : nullptr;
+}
+
+/// True when every octree node id fits the int cell array "node".
+bool FitsInt(const std::vector<std::uint32_t>& ids)
+{
+  return std::all_of(ids.begin(), ids.end(),
+    [](std::uint32_t id) { return id <= static_cast<std::uint32_t>(VTK_INT_MAX); });
+}
+
+constexpr const char* NodeIdTooLarge =
+  "the octree has more than 2^31 nodes, whose ids do not fit the int cell array 'node'; use a "
+  "larger LeafSize";
+
 /// Adds a one-value array named `name` to `fieldData`.
 template <typename ArrayT, typename ValueT>
 void AddFieldValue(vtkFieldData* fieldData, const char* name, ValueT value)
@@ -122,7 +166,7 @@ vtkHybridOctreeFilter::vtkHybridOctreeFilter()
   : Internals(new vtkInternals)
 {
   this->SetNumberOfInputPorts(1);
-  this->SetNumberOfOutputPorts(1);
+  this->SetNumberOfOutputPorts(2);
   // Default input array: the point scalars of the image.
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
@@ -207,18 +251,15 @@ bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scal
     return true;
   }
   cache.Octree.reset();
+  cache.Surface = nullptr;
   if (!image->GetDirectionMatrix()->IsIdentity())
   {
     vtkWarningMacro("the image's direction matrix is ignored: boxes are axis-aligned");
   }
 
-  const std::size_t byteCount = static_cast<std::size_t>(scalars->GetNumberOfTuples()) *
-    grid.Components * static_cast<std::size_t>(scalars->GetDataTypeSize());
-  const void* bytes = byteCount > 0 ? scalars->GetVoidPointer(0) : nullptr;
-
   std::string error;
-  cache.Octree = vtkHybridOctreeBridge::VolumeOctree::Build(
-    bytes, byteCount, grid, static_cast<unsigned int>(this->LeafSize), error);
+  cache.Octree = vtkHybridOctreeBridge::VolumeOctree::Build(Bytes(scalars), ByteCount(scalars),
+    grid, static_cast<unsigned int>(this->LeafSize), error);
   if (!cache.Octree)
   {
     vtkErrorMacro(<< error);
@@ -233,28 +274,155 @@ bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scal
 }
 
 //------------------------------------------------------------------------------
+const char* vtkHybridOctreeFilter::GetSurfaceModeAsString() const
+{
+  return this->SurfaceMode == SURFACE_MODE_INTERPOLATED ? "interpolated" : "discretized";
+}
+
+//------------------------------------------------------------------------------
+bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
+{
+  vtkInternals& cache = *this->Internals;
+  if (cache.IsSurfaceExtractedWith(
+        this->OctreeBuildCount, this->Isovalue, this->SurfaceMode, this->MeasureSurfaceDistance))
+  {
+    return true;
+  }
+  cache.Surface = nullptr;
+
+  vtkHybridOctreeBridge::SurfaceMesh mesh;
+  std::string error;
+  const auto mode = this->SurfaceMode == SURFACE_MODE_INTERPOLATED
+    ? vtkHybridOctreeBridge::SurfaceMode::Interpolated
+    : vtkHybridOctreeBridge::SurfaceMode::Discretized;
+  if (!cache.Octree->ExtractSurface(Bytes(scalars), ByteCount(scalars), cache.Grid,
+        this->Isovalue, mode, this->MeasureSurfaceDistance != 0, mesh, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  ++this->SurfaceExtractCount;
+
+  // The sizes the bridge promises; a mismatch is a bug in the core, reported
+  // instead of read out of bounds.
+  const std::size_t polygons = mesh.PolygonNode.size();
+  const std::size_t vertices = mesh.Points.size() / 3;
+  if (mesh.Points.size() != 3 * mesh.Vertices || mesh.Normals.size() != mesh.Points.size() ||
+    polygons != mesh.Polygons || mesh.PolygonLevel.size() != polygons ||
+    mesh.Offsets.size() != polygons + 1 || mesh.Offsets.front() != 0 ||
+    mesh.Offsets.back() != static_cast<std::int64_t>(mesh.Connectivity.size()))
+  {
+    vtkErrorMacro("internal error: the Hybrid Octree core returned a surface with inconsistent "
+                  "array sizes ("
+      << mesh.Vertices << " vertices, " << mesh.Points.size() << " point coordinates, "
+      << mesh.Normals.size() << " normal components, " << mesh.Polygons << " polygons, "
+      << mesh.Offsets.size() << " offsets, " << mesh.Connectivity.size()
+      << " connectivity entries); please report it");
+    return false;
+  }
+  if (!FitsInt(mesh.PolygonNode))
+  {
+    vtkErrorMacro(<< NodeIdTooLarge);
+    return false;
+  }
+
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(vertices));
+  std::copy(mesh.Points.begin(), mesh.Points.end(), coordinates->GetPointer(0));
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(static_cast<vtkIdType>(vertices));
+  std::copy(mesh.Normals.begin(), mesh.Normals.end(), normals->GetPointer(0));
+
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(mesh.Offsets.size()));
+  std::copy(mesh.Offsets.begin(), mesh.Offsets.end(), offsets->GetPointer(0));
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(mesh.Connectivity.size()));
+  std::copy(mesh.Connectivity.begin(), mesh.Connectivity.end(), connectivity->GetPointer(0));
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+
+  vtkNew<vtkIntArray> node;
+  node->SetName("node");
+  node->SetNumberOfValues(static_cast<vtkIdType>(polygons));
+  vtkNew<vtkIntArray> level;
+  level->SetName("level");
+  level->SetNumberOfValues(static_cast<vtkIdType>(polygons));
+  std::copy(mesh.PolygonNode.begin(), mesh.PolygonNode.end(), node->GetPointer(0));
+  std::copy(mesh.PolygonLevel.begin(), mesh.PolygonLevel.end(), level->GetPointer(0));
+
+  auto surface = vtkSmartPointer<vtkPolyData>::New();
+  surface->SetPoints(points);
+  surface->SetPolys(polys);
+  surface->GetPointData()->SetNormals(normals);
+  surface->GetCellData()->AddArray(node);
+  surface->GetCellData()->AddArray(level);
+
+  vtkNew<vtkFieldData> fieldData;
+  AddFieldValue<vtkDoubleArray>(fieldData, "isovalue", this->Isovalue);
+  vtkNew<vtkStringArray> modeName;
+  modeName->SetName("surface_mode");
+  modeName->InsertNextValue(this->GetSurfaceModeAsString());
+  fieldData->AddArray(modeName);
+  AddFieldValue<vtkTypeInt64Array>(fieldData, "polygons", mesh.Polygons);
+  AddFieldValue<vtkTypeInt64Array>(fieldData, "triangles", mesh.Triangles);
+  AddFieldValue<vtkTypeInt64Array>(
+    fieldData, "uncompressed_triangles", mesh.UncompressedTriangles);
+  AddFieldValue<vtkTypeInt64Array>(fieldData, "vertices", mesh.Vertices);
+  AddFieldValue<vtkTypeInt64Array>(fieldData, "boundary_edges", mesh.BoundaryEdges);
+  AddFieldValue<vtkDoubleArray>(fieldData, "extract_ms", mesh.ExtractMilliseconds);
+  AddFieldValue<vtkDoubleArray>(fieldData, "compress_ms", mesh.CompressMilliseconds);
+  AddFieldValue<vtkDoubleArray>(fieldData, "distance_mean", mesh.DistanceMean);
+  AddFieldValue<vtkDoubleArray>(fieldData, "distance_max", mesh.DistanceMax);
+  surface->SetFieldData(fieldData);
+
+  cache.Surface = surface;
+  cache.SurfaceOctreeBuild = this->OctreeBuildCount;
+  cache.SurfaceIsovalue = this->Isovalue;
+  cache.SurfaceMode = this->SurfaceMode;
+  cache.SurfaceMeasured = this->MeasureSurfaceDistance;
+  return true;
+}
+
+//------------------------------------------------------------------------------
 int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (!output)
+  vtkPolyData* boxes = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* surface = vtkPolyData::GetData(outputVector, 1);
+  if (!boxes || !surface)
   {
-    vtkErrorMacro("the output is not a vtkPolyData");
+    vtkErrorMacro("the outputs are not vtkPolyData");
     return 0;
   }
-  output->Initialize();
+  boxes->Initialize();
+  surface->Initialize();
   if (!input)
   {
     vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
     return 0;
   }
   vtkDataArray* scalars = this->GetScalars(input, inputVector);
-  if (!scalars || !this->UpdateOctree(input, scalars))
+  if (!scalars || !this->UpdateOctree(input, scalars) || !this->UpdateSurface(scalars) ||
+    !this->FillBoxes(boxes))
   {
+    boxes->Initialize();
     return 0;
   }
+  surface->ShallowCopy(this->Internals->Surface);
+  return 1;
+}
 
+//------------------------------------------------------------------------------
+bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
+{
   const vtkHybridOctreeBridge::VolumeOctree& octree = *this->Internals->Octree;
   vtkHybridOctreeBridge::OctreeSummary summary;
   vtkHybridOctreeBridge::CutBoxes cut;
@@ -263,7 +431,12 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
     !octree.GetCutBoxes(this->ErrorTolerance, cut, error))
   {
     vtkErrorMacro(<< error);
-    return 0;
+    return false;
+  }
+  if (!FitsInt(cut.NodeId))
+  {
+    vtkErrorMacro(<< NodeIdTooLarge);
+    return false;
   }
 
   // Geometry: 8 corners and 12 outline edges per box.
@@ -308,7 +481,7 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
       offsets->SetValue(cell, 2 * cell);
       connectivity->SetValue(2 * cell, 8 * b + BoxEdges[e][0]);
       connectivity->SetValue(2 * cell + 1, 8 * b + BoxEdges[e][1]);
-      node->SetValue(cell, static_cast<int>(b));
+      node->SetValue(cell, static_cast<int>(cut.NodeId[b]));
       level->SetValue(cell, static_cast<int>(cut.Level[b]));
       nodalError->SetValue(cell, cut.NodalError[b]);
       minimum->SetValue(cell, cut.Min[b]);
@@ -343,7 +516,7 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
   AddFieldValue<vtkDoubleArray>(fieldData, "value_max", summary.ValueMax);
   AddFieldValue<vtkTypeInt64Array>(fieldData, "cut_count", boxCount);
   output->SetFieldData(fieldData);
-  return 1;
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -353,6 +526,13 @@ void vtkHybridOctreeFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LeafSize: " << this->LeafSize << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "Component: " << this->Component << "\n";
+  os << indent << "Isovalue: " << this->Isovalue << "\n";
+  os << indent << "SurfaceMode: " << this->SurfaceMode << " (" << this->GetSurfaceModeAsString()
+     << ")\n";
+  os << indent << "MeasureSurfaceDistance: " << (this->MeasureSurfaceDistance ? "on" : "off")
+     << "\n";
   os << indent << "OctreeBuildCount: " << this->OctreeBuildCount << "\n";
+  os << indent << "SurfaceExtractCount: " << this->SurfaceExtractCount << "\n";
   os << indent << "Cached octree: " << (this->Internals->Octree ? "yes" : "no") << "\n";
+  os << indent << "Cached surface: " << (this->Internals->Surface ? "yes" : "no") << "\n";
 }

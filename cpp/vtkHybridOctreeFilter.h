@@ -1,7 +1,7 @@
 /**
  * @class   vtkHybridOctreeFilter
  * @brief   Builds the Volume Octree of an image and outputs the boxes of its
- *          cut at an error tolerance.
+ *          cut at an error tolerance and the isosurface the octree keeps.
  *
  * vtkHybridOctreeFilter takes a vtkImageData with point scalars, hands the
  * scalar array (borrowed, not copied) to the Rust Hybrid Octree core, which
@@ -11,14 +11,35 @@
  * tolerance, or that are terminal (homogeneous nodes and leaf bricks). The
  * boxes of a cut tile the image exactly once.
  *
- * Output: a vtkPolyData with, for box `b` of the cut, the 8 corner points
+ * Output port 0 ("Boxes"): a vtkPolyData with, for box `b` of the cut, the 8 corner points
  * `8b .. 8b+7` (corner `c` at x[c & 1], y[(c >> 1) & 1], z[(c >> 2) & 1]) and
  * the 12 line cells `12b .. 12b+11` of its outline. Cell arrays, repeated on
- * the 12 lines of a box: "node" (index of the box in the cut), "level"
+ * the 12 lines of a box: "node" (id of the octree node in the level-by-level
+ * numbering, as on the surface output), "level"
  * (0 = root), "nodal_error" (E_0 / data range), "min", "max" (scalar range of
  * the node). Field data: "node_count", "terminal_count", "homogeneous_count",
  * "levels", "leaf_size", "root_size", "octree_bytes", "input_bytes",
  * "build_ms", "value_min", "value_max", "cut_count".
+ *
+ * Output port 1 ("Surface"): the isosurface at Isovalue that the Hybrid
+ * Octree keeps, extracted per terminal node (The Hybrid Octree, section 2.2).
+ * SurfaceMode chooses it: Discretized (default) is the Discretized Marching
+ * Cubes surface (vertices at edge midpoints) with coplanar facets merged into
+ * convex polygons, losslessly: fewer, larger polygons; Interpolated is the
+ * classic Marching Cubes surface with vertices interpolated along the edges
+ * (the vertices vtkFlyingEdges3D produces), triangles only. Points are
+ * doubles; point data "Normals" (float, 3 components, unit length, pointing
+ * from values >= Isovalue towards values below it) is the active normals
+ * array; polygons are convex. Cell arrays: "node" (id of the terminal octree
+ * node holding the polygon, in the level-by-level numbering) and "level".
+ * Field data: "isovalue", "surface_mode" (string: "discretized" or
+ * "interpolated"), "polygons", "triangles" (after fan triangulation),
+ * "uncompressed_triangles" (before facets are merged), "vertices",
+ * "boundary_edges" (edges of one polygon only: 0 for a closed surface),
+ * "extract_ms", "compress_ms", "distance_mean", "distance_max" (sampled
+ * symmetric distance between the discretized and the interpolated surface in
+ * voxels, -1 when MeasureSurfaceDistance is off). An Isovalue outside the data
+ * range gives an empty surface, not an error.
  *
  * The input array is chosen with SetInputArrayToProcess (default: the point
  * scalars). Supported types: (un)signed char, short, int, float, double.
@@ -27,11 +48,14 @@
  * The built octree is cached: changing only ErrorTolerance re-cuts the cached
  * octree without rebuilding it (see GetOctreeBuildCount()). It is rebuilt when
  * the input array (object or values), the image geometry, LeafSize or
- * Component change.
+ * Component change. The surface is cached too: it is extracted again only
+ * when the octree was rebuilt or Isovalue, SurfaceMode or
+ * MeasureSurfaceDistance changed (see GetSurfaceExtractCount()), not when
+ * only ErrorTolerance changed.
  *
  * Errors (no image, no point scalars, unsupported type, NaN samples, a 1-wide
- * axis, ...) are reported with vtkErrorMacro and fail the request with an
- * empty output.
+ * axis, a non-finite Isovalue, ...) are reported with vtkErrorMacro and fail
+ * the request with both outputs empty.
  */
 #ifndef vtkHybridOctreeFilter_h
 #define vtkHybridOctreeFilter_h
@@ -43,6 +67,7 @@
 
 class vtkDataArray;
 class vtkImageData;
+class vtkPolyData;
 
 class HYBRIDOCTREEFILTERS_EXPORT vtkHybridOctreeFilter : public vtkPolyDataAlgorithm
 {
@@ -79,12 +104,66 @@ public:
   vtkGetMacro(Component, int);
   ///@}
 
+  /// Values of SurfaceMode.
+  enum SurfaceModes
+  {
+    /// Discretized Marching Cubes, coplanar facets merged (lossless).
+    SURFACE_MODE_DISCRETIZED = 0,
+    /// Classic Marching Cubes with interpolated vertices.
+    SURFACE_MODE_INTERPOLATED = 1
+  };
+
+  ///@{
+  /**
+   * Isovalue of the surface on output port 1 (default 0). A value outside the
+   * data range gives an empty surface; NaN or infinity makes RequestData fail.
+   */
+  vtkSetMacro(Isovalue, double);
+  vtkGetMacro(Isovalue, double);
+  ///@}
+
+  ///@{
+  /**
+   * Which isosurface output port 1 holds: SURFACE_MODE_DISCRETIZED (0,
+   * default) is the Discretized Marching Cubes surface the Hybrid Octree keeps:
+   * vertices at edge midpoints, so within about half a voxel of the
+   * interpolated surface, with coplanar facets merged into convex polygons,
+   * which leaves far fewer triangles to draw. SURFACE_MODE_INTERPOLATED (1) is
+   * the classic Marching Cubes surface: exact vertices, more triangles.
+   */
+  vtkSetClampMacro(SurfaceMode, int, SURFACE_MODE_DISCRETIZED, SURFACE_MODE_INTERPOLATED);
+  vtkGetMacro(SurfaceMode, int);
+  void SetSurfaceModeToDiscretized() { this->SetSurfaceMode(SURFACE_MODE_DISCRETIZED); }
+  void SetSurfaceModeToInterpolated() { this->SetSurfaceMode(SURFACE_MODE_INTERPOLATED); }
+  /// "discretized" or "interpolated".
+  const char* GetSurfaceModeAsString() const;
+  ///@}
+
+  ///@{
+  /**
+   * Whether to measure the distance between the discretized and the
+   * interpolated surface (field data "distance_mean", "distance_max", in
+   * voxels; default on). Measuring extracts both surfaces, which costs extra
+   * time; off, both values are -1.
+   */
+  vtkSetMacro(MeasureSurfaceDistance, vtkTypeBool);
+  vtkGetMacro(MeasureSurfaceDistance, vtkTypeBool);
+  vtkBooleanMacro(MeasureSurfaceDistance, vtkTypeBool);
+  ///@}
+
   /**
    * Number of times this filter has built a Volume Octree. A request that
    * reuses the cached octree (for example after only ErrorTolerance changed)
    * does not increase it.
    */
   vtkGetMacro(OctreeBuildCount, vtkIdType);
+
+  /**
+   * Number of times this filter has extracted an isosurface. A request that
+   * reuses the cached surface (for example after only ErrorTolerance
+   * changed) does not increase it.
+   */
+  vtkGetMacro(SurfaceExtractCount, vtkIdType);
 
 protected:
   vtkHybridOctreeFilter();
@@ -97,7 +176,11 @@ protected:
   int LeafSize = 16;
   double ErrorTolerance = 0.01;
   int Component = -1;
+  double Isovalue = 0.0;
+  int SurfaceMode = SURFACE_MODE_DISCRETIZED;
+  vtkTypeBool MeasureSurfaceDistance = 1;
   vtkIdType OctreeBuildCount = 0;
+  vtkIdType SurfaceExtractCount = 0;
 
 private:
   vtkHybridOctreeFilter(const vtkHybridOctreeFilter&) = delete;
@@ -107,6 +190,10 @@ private:
   vtkDataArray* GetScalars(vtkImageData* image, vtkInformationVector** inputVector);
   /// Builds the octree unless the cached one was built from the same inputs.
   bool UpdateOctree(vtkImageData* image, vtkDataArray* scalars);
+  /// Extracts the surface unless the cached one has the same octree and settings.
+  bool UpdateSurface(vtkDataArray* scalars);
+  /// Fills `output` with the boxes of the cut at ErrorTolerance.
+  bool FillBoxes(vtkPolyData* output);
 
   struct vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

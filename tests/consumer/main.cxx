@@ -1,5 +1,5 @@
 // Builds the Volume Octree of a small image through the installed package and
-// checks the cut; exits non-zero on any mismatch.
+// checks the cut and the isosurface; exits non-zero on any mismatch.
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -48,6 +48,20 @@ int main()
               << cut->GetTuple1(0) << "\n";
     return 1;
   }
-  std::cout << "consumer OK: " << cut->GetTuple1(0) << " boxes\n";
+
+  // The isosurface x^2 + y^2 + z^2 = 40: a closed sphere of radius 6.3.
+  filter->SetIsovalue(40.0);
+  filter->Update();
+  vtkPolyData* surface = filter->GetOutput(1);
+  vtkDataArray* polygons = surface->GetFieldData()->GetArray("polygons");
+  vtkDataArray* boundary = surface->GetFieldData()->GetArray("boundary_edges");
+  if (!polygons || !boundary || polygons->GetTuple1(0) <= 0 ||
+    surface->GetNumberOfPolys() != polygons->GetTuple1(0) || boundary->GetTuple1(0) != 0)
+  {
+    std::cerr << "unexpected surface: " << surface->GetNumberOfPolys() << " polygons\n";
+    return 1;
+  }
+  std::cout << "consumer OK: " << cut->GetTuple1(0) << " boxes, " << polygons->GetTuple1(0)
+            << " surface polygons\n";
   return 0;
 }

@@ -1,6 +1,6 @@
 // vtkHybridOctreeFilter on bad input: every request fails with a message that
-// says what is wrong, the output is empty, nothing crashes, and the filter
-// works again on good input afterwards. Usage:
+// says what is wrong, both outputs (boxes and surface) are empty, nothing
+// crashes, and the filter works again on good input afterwards. Usage:
 //   HybridOctreeCxxTests TestHybridOctreeFilterBadInput <scenario>
 #include "HybridOctreeTestUtilities.h"
 
@@ -43,6 +43,9 @@ vtkSmartPointer<vtkImageData> MakeImage(int nx, int ny, int nz, int components =
   image->GetPointData()->SetScalars(f);
   return image;
 }
+
+/// What the core says about a NaN or infinite isovalue.
+const char* const ISOVALUE_ERROR = "must be a finite number (inside the data range";
 
 struct Scenario
 {
@@ -128,6 +131,26 @@ std::map<std::string, Scenario> Scenarios()
                               image->GetPointData()->GetScalars()->Modified();
                             },
     "non-finite sample(s)" };
+  s["nan_isovalue"] = { [](vtkHybridOctreeFilter* f) {
+                         f->SetInputData(MakeImage(9, 9, 9));
+                         f->SetIsovalue(std::numeric_limits<double>::quiet_NaN());
+                       },
+    std::string("isovalue NaN ") + ISOVALUE_ERROR };
+  s["infinite_isovalue"] = { [](vtkHybridOctreeFilter* f) {
+                              f->SetInputData(MakeImage(9, 9, 9));
+                              f->SetSurfaceModeToInterpolated();
+                              f->SetIsovalue(-std::numeric_limits<double>::infinity());
+                            },
+    std::string("isovalue -inf ") + ISOVALUE_ERROR };
+  // The octree is cached and fine, only the surface fails: the boxes of the
+  // previous request must not survive on port 0.
+  s["nan_isovalue_after_success"] = { [](vtkHybridOctreeFilter* f) {
+                                       f->SetInputData(MakeImage(9, 9, 9));
+                                       f->SetIsovalue(20.0);
+                                       f->Update();
+                                       f->SetIsovalue(std::numeric_limits<double>::quiet_NaN());
+                                     },
+    ISOVALUE_ERROR };
   return s;
 }
 } // namespace
@@ -160,20 +183,26 @@ int TestHybridOctreeFilterBadInput(int argc, char* argv[])
   t.Check(errors->HasError(found->second.Expected),
     "expected an error containing \"" + found->second.Expected + "\"; got:\n" +
       errors->AllErrors());
-  vtkPolyData* out = filter->GetOutput();
-  t.Check(out->GetNumberOfPoints() == 0 && out->GetNumberOfCells() == 0, "empty output");
-  t.Check(out->GetFieldData()->GetNumberOfArrays() == 0, "no field data on failure");
+  for (int port = 0; port < 2; ++port)
+  {
+    vtkPolyData* out = filter->GetOutput(port);
+    const std::string what = "port " + std::to_string(port) + ": ";
+    t.Check(out->GetNumberOfPoints() == 0 && out->GetNumberOfCells() == 0, what + "empty output");
+    t.Check(out->GetFieldData()->GetNumberOfArrays() == 0, what + "no field data on failure");
+  }
 
   // The filter recovers: good input and settings work on the same instance.
   errors->Clear();
   filter->SetLeafSize(4);
   filter->SetComponent(-1);
+  filter->SetIsovalue(20.0);
   filter->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
   filter->SetInputData(MakeImage(9, 9, 9));
   filter->Update();
   t.Check(errors->Errors.empty(), "good input after a failure works:\n" + errors->AllErrors());
-  t.Check(filter->GetOutput()->GetNumberOfPoints() > 0, "output after recovery");
+  t.Check(filter->GetOutput(0)->GetNumberOfPoints() > 0, "boxes after recovery");
+  t.Check(filter->GetOutput(1)->GetNumberOfPolys() > 0, "surface after recovery");
   std::cout << "scenario " << name << ": " << (t.Failures ? "failed" : "passed") << "\n";
   return t.Result();
 }

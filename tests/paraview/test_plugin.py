@@ -7,9 +7,11 @@ expects ParaView to have loaded it already (PV_PLUGIN_CONFIG_FILE naming the
 auto-load plugins XML). It then checks, against the command line tool's JSON
 on the same files, the field data of the filter on Wavelet() and on a sphere
 volume the CLI generates; that changing only the tolerance does not rebuild;
-that a NaN volume fails with the core's message while pvbatch keeps running;
-and that the input domain refuses an unstructured grid. Exits non-zero on
-the first failed check.
+the isosurface on output port 1 in both surface modes against
+`hybrid-octree surface --json`, and that ParaView defaults the Isovalue to the
+middle of the data range; that a NaN volume fails with the core's message
+while pvbatch keeps running; and that the input domain refuses an
+unstructured grid. Exits non-zero after all checks if any failed.
 """
 import argparse
 import json
@@ -90,10 +92,15 @@ def logged_errors():
         return f.read()
 
 
-def field_data(proxy):
-    data = servermanager.Fetch(proxy)
+def field_data(proxy, port=0):
+    """The data on output `port` and its field data: numbers, and strings for string arrays."""
+    data = servermanager.Fetch(proxy, idx=port)
     fd = data.GetFieldData()
-    return data, {fd.GetArrayName(i): fd.GetArray(i).GetTuple1(0) for i in range(fd.GetNumberOfArrays())}
+    values = {}
+    for i in range(fd.GetNumberOfArrays()):
+        array = fd.GetAbstractArray(i)
+        values[array.GetName()] = array.GetValue(0) if array.IsA("vtkStringArray") else array.GetTuple1(0)
+    return data, values
 
 
 def cli_json(path, leaf, tolerance):
@@ -150,6 +157,83 @@ for leaf, tolerance in [(8, 0.01), (4, 0.0), (16, 0.05)]:
     o, _ = compare_with_cli("sphere leaf %d tol %g" % (leaf, tolerance), sphere, sphere_vti, leaf, tolerance)
     Delete(o)
 
+# ---- The isosurface on output port 1 -------------------------------------------
+SURFACE_EXACT = ["polygons", "triangles", "uncompressed_triangles", "vertices", "boundary_edges"]
+
+
+def cli_surface_json(path, isovalue, mode, leaf):
+    out = subprocess.run(
+        [args.cli, "surface", "--file", path, "--isovalue", repr(isovalue), "--mode", mode,
+         "--leaf-size", str(leaf), "--distance", "--json"],
+        check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+surface_octree = HybridOctree(Input=sphere)
+check(surface_octree.SMProxy.GetOutputPortName(0) == "Boxes", "output port 0 is named Boxes")
+check(surface_octree.SMProxy.GetOutputPortName(1) == "Surface", "output port 1 is named Surface")
+# ParaView sets the Isovalue from the ArrayRangeDomain: the middle of the range.
+sphere_range = sphere.PointData[sphere.PointData.keys()[0]].GetRange()
+check(abs(surface_octree.Isovalue - 0.5 * (sphere_range[0] + sphere_range[1])) <= 1e-12 * sphere_range[1],
+      "default Isovalue %r is the middle of the range %r" % (surface_octree.Isovalue, sphere_range))
+check(surface_octree.SurfaceMode == "Discretized", "default Surface Mode is Discretized")
+check(surface_octree.MeasureSurfaceDistance == 1, "the distance is measured by default")
+surface_octree.LeafSize = 8
+triangles = {}
+for isovalue in (0.5, surface_octree.Isovalue):
+    for mode in ("Discretized", "Interpolated"):
+        name = "sphere surface %s at %g" % (mode, isovalue)
+        surface_octree.Isovalue = isovalue
+        surface_octree.SurfaceMode = mode
+        surface_octree.UpdatePipeline()
+        surface, fd = field_data(surface_octree, 1)
+        expected = cli_surface_json(sphere_vti, isovalue, mode.lower(), 8)
+        check(fd.get("polygons", 0) > 0, name + ": has polygons")
+        check(fd.get("boundary_edges") == 0, name + ": closed (boundary_edges 0)")
+        for key in SURFACE_EXACT:
+            check(key in fd and fd[key] == expected[key],
+                  "%s: %s = %s, CLI says %s" % (name, key, fd.get(key), expected[key]))
+        check(surface.GetNumberOfPolys() == fd.get("polygons"), name + ": one cell per polygon")
+        check(surface.GetNumberOfPoints() == fd.get("vertices"), name + ": one point per vertex")
+        normals = surface.GetPointData().GetNormals()
+        check(normals is not None and normals.GetName() == "Normals" and normals.GetNumberOfComponents() == 3,
+              name + ": point normals 'Normals'")
+        for array in ("node", "level"):
+            a = surface.GetCellData().GetArray(array)
+            check(a is not None and a.GetNumberOfTuples() == surface.GetNumberOfPolys(),
+                  name + ": cell array " + array)
+        check(fd.get("surface_mode") == mode.lower(), name + ": surface_mode %r" % fd.get("surface_mode"))
+        check(fd.get("isovalue") == isovalue, name + ": field isovalue")
+        check(0 < fd.get("distance_max", -1) <= 0.5 * math.sqrt(3) and
+              0 < fd.get("distance_mean", -1) <= fd.get("distance_max", -1),
+              name + ": distance mean %r, max %r voxels" % (fd.get("distance_mean"), fd.get("distance_max")))
+        for key in ("distance_mean", "distance_max"):
+            check(abs(fd.get(key, -1) - expected[key]) <= 1e-9 * abs(expected[key]),
+                  "%s: %s = %r, CLI says %r" % (name, key, fd.get(key), expected[key]))
+        triangles[mode] = fd.get("triangles")
+    check(triangles["Discretized"] < triangles["Interpolated"],
+          "isovalue %g: DiscMC has fewer triangles (%r) than the interpolated surface (%r)"
+          % (isovalue, triangles["Discretized"], triangles["Interpolated"]))
+    report("sphere at %g: triangles %r" % (isovalue, triangles))
+
+# The boxes on port 0 are unchanged by the surface, and a tolerance change
+# reuses the cached surface (same extract_ms).
+_, before = field_data(surface_octree, 1)
+surface_octree.ErrorTolerance = 0.2
+surface_octree.UpdatePipeline()
+_, after = field_data(surface_octree, 1)
+_, boxes = field_data(surface_octree, 0)
+check(after["extract_ms"] == before["extract_ms"], "a tolerance change keeps the surface (same extract_ms)")
+check(boxes["cut_count"] == cli_json(sphere_vti, 8, 0.2)["cut_count"], "port 0 still matches the CLI")
+# An isovalue outside the data range: an empty surface, no error.
+errors_before = len(logged_errors())
+surface_octree.Isovalue = sphere_range[1] + 1.0
+surface_octree.UpdatePipeline()
+empty, fd = field_data(surface_octree, 1)
+check(empty.GetNumberOfPoints() == 0 and fd.get("polygons") == 0, "isovalue above the range: empty surface")
+check(len(logged_errors()) == errors_before, "isovalue above the range: no error")
+Delete(surface_octree)
+
 # ---- Bad input: each fails the request with the core's or the filter's message --
 import numpy as np  # noqa: E402  (pvbatch ships numpy)
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
@@ -175,9 +259,10 @@ def expect_failure(name, img, message):
     source.UpdatePipeline()
     bad = HybridOctree(Input=source)
     bad.UpdatePipeline()
-    out = servermanager.Fetch(bad)
-    check(out.GetNumberOfPoints() == 0 and out.GetFieldData().GetNumberOfArrays() == 0,
-          name + ": empty output")
+    for port in (0, 1):
+        out = servermanager.Fetch(bad, idx=port)
+        check(out.GetNumberOfPoints() == 0 and out.GetFieldData().GetNumberOfArrays() == 0,
+              "%s: empty output on port %d" % (name, port))
     new_errors = logged_errors()[before:]
     check(message in new_errors, "%s: error %r not in %r" % (name, message, new_errors[-400:]))
     Delete(bad)
