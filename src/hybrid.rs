@@ -12,7 +12,7 @@
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::octree::{BuildOptions, NodeId, VolumeOctree};
-use crate::surface::{Surface, SurfaceOptions};
+use crate::surface::{Surface, SurfaceMode, SurfaceOptions};
 
 /// A Volume Octree and the isosurface it holds, node by node.
 #[derive(Debug, Clone)]
@@ -42,7 +42,7 @@ impl HybridOctree {
     /// Checks the Volume Octree, then that every polygon belongs to exactly one
     /// terminal node (the node ranges partition the polygons, each range's
     /// polygons name its node), that every polygon lies inside its node's box,
-    /// has at least 3 points and a non-zero area, and that no edge is used by
+    /// has at least 3 points and (DiscMC) a non-zero area, and that no edge is used by
     /// more than two polygons or twice in the same direction.
     pub fn validate(&self) -> std::result::Result<(), String> {
         self.volume.validate()?;
@@ -78,8 +78,11 @@ impl HybridOctree {
                         return Err(format!("polygon {i}: point {p:?} outside node {id:?} box {:?}..{:?}", node.lo, node.hi));
                     }
                 }
+                // DiscMC vertices are distinct edge midpoints, no three collinear: never
+                // a zero-area facet. Interpolated vertices on samples equal to the
+                // isovalue may coincide (as in every Marching Cubes), so only DiscMC is held to it.
                 let n = crate::surface::check::polygon_normal(s, poly);
-                if n.iter().all(|&c| c == 0.0) {
+                if s.mode == SurfaceMode::Discretized && n.iter().all(|&c| c == 0.0) {
                     return Err(format!("polygon {i} has zero area"));
                 }
             }

@@ -7,6 +7,7 @@
 //! defect.
 
 use super::build::Surface;
+use super::extract::midpoint2;
 
 /// How the edges of a surface are used.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -49,10 +50,14 @@ pub fn edge_use(s: &Surface) -> EdgeUse {
     out
 }
 
-/// Polygon edges whose two ends lie on the same face plane of the volume
-/// (`x = 0`, `x = nx - 1`, ...): there is no cell beyond that face, so exactly
-/// one polygon uses such an edge. Counted in parallel; [`edge_use`] is the
-/// slower, independent check the tests compare it with.
+/// Polygon edges lying on a face of the volume (`x = 0`, `x = nx - 1`, ...):
+/// no cell lies beyond such a face, so exactly one polygon uses the edge.
+/// Tested on the vertices' edge midpoints (exact, and the same in both modes:
+/// an interpolated vertex may sit on a sample, but its grid edge does not
+/// move). A surface segment joins two different edges of one cube face, and
+/// two edges of a face share a volume face plane only when the cube face lies
+/// in it. Counted in parallel; [`edge_use`] is the slower, independent check
+/// the tests compare it with.
 pub fn boundary_edges(s: &Surface, dims: [usize; 3]) -> usize {
     use rayon::prelude::*;
     (0..s.polygon_count())
@@ -61,10 +66,11 @@ pub fn boundary_edges(s: &Surface, dims: [usize; 3]) -> usize {
             let p = s.polygon(i);
             (0..p.len())
                 .filter(|&k| {
-                    let (a, b) = (s.points[p[k] as usize], s.points[p[(k + 1) % p.len()] as usize]);
+                    let a = midpoint2(s.keys[p[k] as usize], dims);
+                    let b = midpoint2(s.keys[p[(k + 1) % p.len()] as usize], dims);
                     (0..3).any(|ax| {
-                        let top = (dims[ax] - 1) as f64;
-                        (a[ax] == 0.0 && b[ax] == 0.0) || (a[ax] == top && b[ax] == top)
+                        let top = 2 * (dims[ax] as i64 - 1);
+                        (a[ax] == 0 && b[ax] == 0) || (a[ax] == top && b[ax] == top)
                     })
                 })
                 .count()

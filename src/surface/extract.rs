@@ -64,16 +64,13 @@ pub fn march<T: Sample>(g: &TypedGrid<'_, T>, lo: [usize; 3], hi: [usize; 3], is
                     continue;
                 }
                 let cell = (x + dims[0] * (y + dims[1] * z)) as u64;
-                for cycle in &table[index].cycles {
-                    let key = |e: u8| {
-                        let (a, _, axis) = edge_corners(e as usize);
-                        edge_key([x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)], axis, dims)
-                    };
-                    let first = key(cycle[0]);
-                    for w in cycle[1..].windows(2) {
-                        out.triangles.push([first, key(w[0]), key(w[1])]);
-                        out.cells.push(cell);
-                    }
+                let key = |e: u8| {
+                    let (a, _, axis) = edge_corners(e as usize);
+                    edge_key([x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)], axis, dims)
+                };
+                for t in &table[index].triangles {
+                    out.triangles.push([key(t[0]), key(t[1]), key(t[2])]);
+                    out.cells.push(cell);
                 }
             }
         }

@@ -57,11 +57,35 @@ pub fn edge_midpoint2(e: usize) -> [i64; 3] {
     [ca[0] + cb[0], ca[1] + cb[1], ca[2] + cb[2]]
 }
 
-/// One case: its polygons as cycles of edge ids (counter-clockwise from outside).
+/// One case: its polygons as cycles of edge ids (counter-clockwise from
+/// outside), and their triangles.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Case {
     /// The cycles, each a list of edge ids.
     pub cycles: Vec<Vec<u8>>,
+    /// Each cycle fan-triangulated from a start vertex chosen so that no
+    /// triangle lies in a cube face: a cycle through three crossing edges of
+    /// an ambiguous face would otherwise put a triangle in that face, and the
+    /// cube across the face the same triangle reversed (a zero-volume fin).
+    pub triangles: Vec<[u8; 3]>,
+}
+
+/// True when the midpoints of edges `a`, `b`, `c` lie in one face of the cube.
+fn on_one_face(a: u8, b: u8, c: u8) -> bool {
+    let (pa, pb, pc) = (edge_midpoint2(a as usize), edge_midpoint2(b as usize), edge_midpoint2(c as usize));
+    (0..3).any(|k| pa[k] == pb[k] && pb[k] == pc[k] && pa[k] != 1)
+}
+
+/// Fan triangles of `cycle` from the first start vertex that puts no triangle in a cube face.
+fn triangulate(cycle: &[u8]) -> Vec<[u8; 3]> {
+    let n = cycle.len();
+    let fan = |s: usize| -> Vec<[u8; 3]> {
+        (1..n - 1).map(|i| [cycle[s], cycle[(s + i) % n], cycle[(s + i + 1) % n]]).collect()
+    };
+    (0..n)
+        .map(fan)
+        .find(|tris| tris.iter().all(|t| !on_one_face(t[0], t[1], t[2])))
+        .unwrap_or_else(|| fan(0))
 }
 
 /// The 256 cases, indexed by `sum over inside corners c of 2^c`.
@@ -142,7 +166,8 @@ fn build_case(index: usize) -> Case {
         }
         cycles.push(cycle);
     }
-    Case { cycles }
+    let triangles = cycles.iter().flat_map(|c| triangulate(c)).collect();
+    Case { cycles, triangles }
 }
 
 #[cfg(test)]
@@ -170,6 +195,9 @@ mod tests {
             });
             assert_eq!(used, crossing.count(), "case {i}: every crossing edge is used once");
             assert!(case.cycles.iter().all(|c| c.len() >= 3), "case {i}");
+            assert!(case.triangles.iter().all(|t| !on_one_face(t[0], t[1], t[2])), "case {i}: a triangle lies in a face");
+            let expected: usize = case.cycles.iter().map(|c| c.len() - 2).sum();
+            assert_eq!(case.triangles.len(), expected, "case {i}");
         }
         assert!(cases()[0].cycles.is_empty() && cases()[255].cycles.is_empty());
     }
