@@ -206,3 +206,52 @@ fn bench_prints_a_row_per_combination_and_the_ratio() {
     assert_eq!(rows, 2, "{text}");
     assert!(text.contains("shepp-logan u8, 1 thread(s), leaf 8: ns/voxel size 33 / size 17 = "), "{text}");
 }
+
+fn surface_json(args: &[&str]) -> Value {
+    let mut all = vec!["surface", "--json"];
+    all.extend_from_slice(args);
+    let out = run(&all);
+    assert!(out.status.success(), "{}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).expect("one JSON object on stdout")
+}
+
+#[test]
+fn surface_reports_both_modes_and_what_compression_saves() {
+    let common = ["--dataset", "sphere", "--size", "33", "--isovalue", "0.5", "--distance"];
+    let disc = surface_json(&common);
+    let plain = surface_json(&[&common[..], &["--no-compress"]].concat());
+    let interp = surface_json(&[&common[..], &["--mode", "interpolated"]].concat());
+    for r in [&disc, &plain, &interp] {
+        for key in ["polygons", "triangles", "uncompressed_triangles", "vertices", "boundary_edges", "extract_ms", "compress_ms"] {
+            assert!(r.get(key).is_some(), "missing {key} in {r}");
+        }
+        assert_eq!(r["boundary_edges"], 0, "a closed sphere: {r}");
+        assert_eq!(r["nonmanifold_edges"], 0, "{r}");
+        let max = r["distance_max"].as_f64().unwrap();
+        assert!(max > 0.0 && max <= 0.5, "{r}");
+    }
+    assert_eq!(disc["mode"], "discretized");
+    assert_eq!(interp["mode"], "interpolated");
+    // Compression keeps the surface (area, volume) and saves polygons.
+    assert_eq!(disc["uncompressed_triangles"], plain["triangles"]);
+    assert!(disc["polygons"].as_u64() < plain["polygons"].as_u64());
+    let rel = |a: &Value, b: &Value, k: &str| (a[k].as_f64().unwrap() - b[k].as_f64().unwrap()).abs() / b[k].as_f64().unwrap().abs();
+    assert!(rel(&disc, &plain, "area") < 1e-9 && rel(&disc, &plain, "volume") < 1e-9);
+    // Same topology: interpolated triangles are the DiscMC facets, moved.
+    assert_eq!(interp["triangles"], plain["triangles"]);
+}
+
+#[test]
+fn surface_writes_a_vtk_file_and_refuses_bad_options() {
+    let path = temp("surface.vtk");
+    let out = run(&["surface", "--dataset", "sphere", "--size", "17", "--isovalue", "0.5", "--output", path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.starts_with("# vtk DataFile") && text.contains("POLYGONS") && text.contains("NORMALS"));
+    std::fs::remove_file(&path).ok();
+    assert_clean_failure(&run(&["surface", "--dataset", "sphere", "--size", "9", "--isovalue", "0.5", "--mode", "smooth"]), "unknown surface mode 'smooth'");
+    assert_clean_failure(&run(&["surface", "--dataset", "sphere", "--size", "9", "--isovalue", "NaN"]), "must be a finite number");
+    // Outside the data range: an empty surface, not an error.
+    let empty = surface_json(&["--dataset", "sphere", "--size", "9", "--isovalue", "7"]);
+    assert_eq!(empty["polygons"], 0);
+}
