@@ -21,7 +21,7 @@
 //! either per node (collected in node order) or a sort.
 
 use super::collinear::keep_flags;
-use super::compress::{compress, Polygons};
+use super::compress::{compress, NodeMesh};
 use super::extract::{edge_of_key, march, midpoint2, NodeTriangles};
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
@@ -202,37 +202,48 @@ impl GridVisitor for Extraction<'_> {
 
         let started = Instant::now();
         let merge = options.compress && options.mode == SurfaceMode::Discretized;
-        let node_polygons: Vec<Polygons> = marched
+        let meshes: Vec<NodeMesh> = marched
             .par_iter()
-            .map(|m| if merge { compress(&m.triangles, dims) } else { Polygons::from_triangles(&m.triangles) })
+            .map(|m| if merge { compress(&m.triangles, dims) } else { NodeMesh::from_triangles(&m.triangles) })
             .collect();
         let uncompressed_triangles = marched.iter().map(|m| m.triangles.len()).sum();
         drop(marched);
 
-        // One name per vertex for the whole mesh.
-        let mut keys: Vec<u64> = node_polygons.iter().flat_map(|p| p.vertices.iter().copied()).collect();
+        // One name per vertex for the whole mesh: the sorted union of the nodes' keys.
+        let mut keys: Vec<u64> = meshes.iter().flat_map(|m| m.keys.iter().copied()).collect();
         keys.par_sort_unstable();
         keys.dedup();
-        let keep = if merge {
-            keep_flags(&node_polygons, &keys, dims)
-        } else {
-            vec![true; keys.len()]
-        };
-        let kept: Vec<u64> = keys.iter().zip(&keep).filter(|(_, &k)| k).map(|(&key, _)| key).collect();
-
-        // Connectivity, node by node in parallel, then concatenated in node order.
-        let per_node: Vec<(Vec<u32>, Vec<u32>)> = node_polygons
+        let node_global: Vec<Vec<u32>> = meshes
             .par_iter()
-            .map(|polys| {
-                let mut ends = Vec::with_capacity(polys.len());
-                let mut ids = Vec::with_capacity(polys.vertices.len());
-                for i in 0..polys.len() {
-                    ids.extend(polys.get(i).iter().filter_map(|k| kept.binary_search(k).ok().map(|at| at as u32)));
+            .map(|m| m.keys.iter().map(|k| keys.binary_search(k).unwrap_or(0) as u32).collect())
+            .collect();
+        let keep = if merge { keep_flags(&meshes, &node_global, keys.len(), dims) } else { vec![true; keys.len()] };
+        // New index of every kept vertex (prefix count).
+        let mut new_index = vec![u32::MAX; keys.len()];
+        let mut kept = Vec::with_capacity(keys.len());
+        for (g, (&key, &k)) in keys.iter().zip(&keep).enumerate() {
+            if k {
+                new_index[g] = kept.len() as u32;
+                kept.push(key);
+            }
+        }
+        // Connectivity, node by node in parallel, then concatenated in node order.
+        let per_node: Vec<(Vec<u32>, Vec<u32>)> = meshes
+            .par_iter()
+            .zip(&node_global)
+            .map(|(mesh, global)| {
+                let mut ends = Vec::with_capacity(mesh.len());
+                let mut ids = Vec::with_capacity(mesh.vertices.len());
+                for i in 0..mesh.len() {
+                    ids.extend(
+                        mesh.get(i).iter().map(|&l| new_index[global[l as usize] as usize]).filter(|&v| v != u32::MAX),
+                    );
                     ends.push(ids.len() as u32);
                 }
                 (ends, ids)
             })
             .collect();
+        drop((meshes, node_global, new_index));
         let mut offsets = vec![0u32];
         let mut connectivity = Vec::with_capacity(per_node.iter().map(|n| n.1.len()).sum());
         let mut polygon_node = Vec::new();

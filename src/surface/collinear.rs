@@ -13,38 +13,39 @@
 //! (p, n the neighbours of v in that polygon). Removing a straight vertex does
 //! not change a polygon's point set.
 
-use super::compress::{cross, dot, sub, Polygons};
+use super::compress::{cross, dot, sub, NodeMesh};
 use super::extract::midpoint2;
+use rayon::prelude::*;
 
-/// For each vertex of `sorted_keys`, whether it must stay: true when some
-/// polygon turns at it. Parallel over the nodes' polygon sets.
-pub fn keep_flags(polygons: &[Polygons], sorted_keys: &[u64], dims: [usize; 3]) -> Vec<bool> {
-    use rayon::prelude::*;
-    let turning: Vec<Vec<u32>> = polygons
+/// For each of `global_count` vertices, whether it must stay: true when some
+/// polygon turns at it. `node_global[n][local]` is the global index of node
+/// `n`'s local vertex. Parallel over nodes.
+pub fn keep_flags(meshes: &[NodeMesh], node_global: &[Vec<u32>], global_count: usize, dims: [usize; 3]) -> Vec<bool> {
+    let turning: Vec<Vec<u32>> = meshes
         .par_iter()
-        .map(|polys| {
+        .zip(node_global)
+        .map(|(mesh, global)| {
+            let points: Vec<[i64; 3]> = mesh.keys.iter().map(|&k| midpoint2(k, dims)).collect();
             let mut out = Vec::new();
-            for i in 0..polys.len() {
-                let poly = polys.get(i);
+            for i in 0..mesh.len() {
+                let poly = mesh.get(i);
                 let n = poly.len();
                 for k in 0..n {
-                    let p = midpoint2(poly[(k + n - 1) % n], dims);
-                    let w = midpoint2(poly[k], dims);
-                    let q = midpoint2(poly[(k + 1) % n], dims);
+                    let p = points[poly[(k + n - 1) % n] as usize];
+                    let w = points[poly[k] as usize];
+                    let q = points[poly[(k + 1) % n] as usize];
                     let (a, b) = (sub(w, p), sub(q, w));
                     if !(cross(a, b) == [0, 0, 0] && dot(a, b) > 0) {
-                        if let Ok(at) = sorted_keys.binary_search(&poly[k]) {
-                            out.push(at as u32);
-                        }
+                        out.push(global[poly[k] as usize]);
                     }
                 }
             }
             out
         })
         .collect();
-    let mut keep = vec![false; sorted_keys.len()];
-    for at in turning.iter().flatten() {
-        keep[*at as usize] = true;
+    let mut keep = vec![false; global_count];
+    for g in turning.iter().flatten() {
+        keep[*g as usize] = true;
     }
     keep
 }

@@ -27,17 +27,19 @@
 
 use super::extract::midpoint2;
 
-/// Polygons of a node: `vertices[offsets[i] .. offsets[i + 1]]`, counter-clockwise
-/// from outside, vertices named by edge key.
+/// Polygons of a node: `vertices[offsets[i] .. offsets[i + 1]]` index the
+/// node's sorted vertex keys `keys`; counter-clockwise from outside.
 #[derive(Debug, Default, Clone, PartialEq, Eq)]
-pub struct Polygons {
+pub struct NodeMesh {
+    /// The node's vertex edge keys, sorted, unique.
+    pub keys: Vec<u64>,
     /// Start of each polygon in `vertices`, plus the end.
     pub offsets: Vec<u32>,
-    /// Edge keys.
-    pub vertices: Vec<u64>,
+    /// Local vertex indices (into `keys`).
+    pub vertices: Vec<u32>,
 }
 
-impl Polygons {
+impl NodeMesh {
     /// Number of polygons.
     pub fn len(&self) -> usize {
         self.offsets.len().saturating_sub(1)
@@ -46,26 +48,35 @@ impl Polygons {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
-    /// Polygon `i`.
-    pub fn get(&self, i: usize) -> &[u64] {
+    /// Polygon `i` (local vertex indices).
+    pub fn get(&self, i: usize) -> &[u32] {
         &self.vertices[self.offsets[i] as usize..self.offsets[i + 1] as usize]
     }
-    /// Appends a polygon.
-    pub fn push(&mut self, polygon: &[u64]) {
+    fn push(&mut self, polygon: &[u32]) {
         if self.offsets.is_empty() {
             self.offsets.push(0);
         }
         self.vertices.extend_from_slice(polygon);
         self.offsets.push(self.vertices.len() as u32);
     }
-    /// Triangles as polygons (no merging).
-    pub fn from_triangles(triangles: &[[u64; 3]]) -> Polygons {
-        let mut p = Polygons::default();
-        for t in triangles {
-            p.push(t);
+    /// The triangles as they are (no merging), with local vertex numbering.
+    pub fn from_triangles(triangles: &[[u64; 3]]) -> NodeMesh {
+        let (keys, tris) = number_locally(triangles);
+        let mut m = NodeMesh { keys, ..NodeMesh::default() };
+        for t in &tris {
+            m.push(t);
         }
-        p
+        m
     }
+}
+
+/// The sorted unique keys of `triangles` and the triangles as indices into them.
+fn number_locally(triangles: &[[u64; 3]]) -> (Vec<u64>, Vec<[u32; 3]>) {
+    let mut keys: Vec<u64> = triangles.iter().flatten().copied().collect();
+    keys.sort_unstable();
+    keys.dedup();
+    let tris = triangles.iter().map(|t| t.map(|k| keys.binary_search(&k).unwrap_or(0) as u32)).collect();
+    (keys, tris)
 }
 
 pub(crate) fn sub(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
@@ -105,13 +116,8 @@ fn straight(p: [i64; 3], w: [i64; 3], n: [i64; 3]) -> bool {
 }
 
 /// Merges the triangles of one node into convex coplanar polygons.
-pub fn compress(triangles: &[[u64; 3]], dims: [usize; 3]) -> Polygons {
-    // Local vertex numbering: the node's sorted unique keys.
-    let mut keys: Vec<u64> = triangles.iter().flatten().copied().collect();
-    keys.sort_unstable();
-    keys.dedup();
-    let local = |k: u64| keys.binary_search(&k).unwrap_or(0) as u32;
-    let tris: Vec<[u32; 3]> = triangles.iter().map(|t| t.map(local)).collect();
+pub fn compress(triangles: &[[u64; 3]], dims: [usize; 3]) -> NodeMesh {
+    let (keys, tris) = number_locally(triangles);
     let points: Vec<[i64; 3]> = keys.iter().map(|&k| midpoint2(k, dims)).collect();
     let planes: Vec<[i64; 4]> = tris.iter().map(|t| plane(t.map(|v| points[v as usize]))).collect();
     // Outgoing directed edges per vertex (compressed rows): (to, triangle).
@@ -142,9 +148,8 @@ pub fn compress(triangles: &[[u64; 3]], dims: [usize; 3]) -> Polygons {
     order.sort_by_key(|&i| (planes[i as usize], i));
     let mut used = vec![false; tris.len()];
     let mut on_polygon = vec![false; keys.len()];
-    let mut out = Polygons::default();
+    let mut out = NodeMesh::default();
     let mut polygon: Vec<u32> = Vec::new();
-    let mut as_keys: Vec<u64> = Vec::new();
     for &seed in &order {
         let seed = seed as usize;
         if used[seed] {
@@ -186,10 +191,9 @@ pub fn compress(triangles: &[[u64; 3]], dims: [usize; 3]) -> Polygons {
         for &v in &polygon {
             on_polygon[v as usize] = false;
         }
-        as_keys.clear();
-        as_keys.extend(polygon.iter().map(|&v| keys[v as usize]));
-        out.push(&as_keys);
+        out.push(&polygon);
     }
+    out.keys = keys;
     out
 }
 

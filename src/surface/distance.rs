@@ -2,9 +2,9 @@
 //! one: what the DiscMC's merged facets cost in accuracy, in voxel units.
 //!
 //! Both surfaces come from the same case table, so cell by cell they have the
-//! same triangles (the same edge keys) at different positions. For each
-//! triangle of one surface, the samples are its three vertices and its
-//! centroid; each sample's distance to the other surface is the distance to
+//! same triangles (the same edge keys) at different positions. The samples of
+//! one surface are its vertices (each once) and the centroid of each of its
+//! triangles; each sample's distance to the other surface is the distance to
 //! the nearest triangle of the other surface in the 3 x 3 x 3 cells around it
 //! (the two surfaces never lie more than one cell apart: each point of either
 //! lies in the cell its triangle came from). Reported: the mean and the max
@@ -44,12 +44,27 @@ pub fn discretized_to_interpolated(grid: &Grid<'_>, octree: &VolumeOctree, isova
                 .iter()
                 .flat_map(|m| m.cells.iter().copied().zip(m.triangles.iter().copied()))
                 .collect();
-            cells.sort_unstable();
+            cells.par_sort_unstable();
+            // Vertices numbered once; both surfaces' positions computed once.
+            let mut keys: Vec<u64> = cells.iter().flat_map(|c| c.1).collect();
+            keys.par_sort_unstable();
+            keys.dedup();
+            let tris: Vec<(u64, [u32; 3])> = cells
+                .par_iter()
+                .map(|&(c, t)| (c, t.map(|k| keys.binary_search(&k).unwrap_or(0) as u32)))
+                .collect();
             let dims = g.dims;
-            let disc = |k: u64| midpoint2(k, dims).map(|v| v as f64 / 2.0);
-            let interp = |k: u64| interpolated_point(&g, k, self.iso);
-            let (s1, m1, n1) = one_way(&cells, dims, &disc, &interp);
-            let (s2, m2, n2) = one_way(&cells, dims, &interp, &disc);
+            let disc: Vec<[f64; 3]> = keys.par_iter().map(|&k| midpoint2(k, dims).map(|v| v as f64 / 2.0)).collect();
+            let interp: Vec<[f64; 3]> = keys.par_iter().map(|&k| interpolated_point(&g, k, self.iso)).collect();
+            // Each vertex is sampled once, by the first cell (in cell order) that uses it.
+            let mut owner = vec![u64::MAX; keys.len()];
+            for &(c, t) in &tris {
+                for v in t {
+                    owner[v as usize] = owner[v as usize].min(c);
+                }
+            }
+            let (s1, m1, n1) = one_way(&tris, &owner, dims, &disc, &interp);
+            let (s2, m2, n2) = one_way(&tris, &owner, dims, &interp, &disc);
             let samples = n1 + n2;
             Distance { mean: if samples > 0 { (s1 + s2) / samples as f64 } else { 0.0 }, max: m1.max(m2), samples }
         }
@@ -58,41 +73,49 @@ pub fn discretized_to_interpolated(grid: &Grid<'_>, octree: &VolumeOctree, isova
 }
 
 /// Sum, max and count of the distances from samples of surface `from` to
-/// surface `to`. Parallel over cells: each cell gathers the `to` triangles of
-/// its 27-cell neighbourhood once, then measures its own `from` samples.
-fn one_way(
-    cells: &[(u64, [u64; 3])],
-    dims: [usize; 3],
-    from: &(dyn Fn(u64) -> [f64; 3] + Sync),
-    to: &(dyn Fn(u64) -> [f64; 3] + Sync),
-) -> (f64, f64, usize) {
+/// surface `to` (positions per vertex). Parallel over cells: each cell
+/// gathers the `to` triangles of its 27-cell neighbourhood once, then measures
+/// its own `from` samples.
+fn one_way(tris: &[(u64, [u32; 3])], owner: &[u64], dims: [usize; 3], from: &[[f64; 3]], to: &[[f64; 3]]) -> (f64, f64, usize) {
     // Runs of equal cells: (cell, first, end).
     let mut runs: Vec<(u64, usize, usize)> = Vec::new();
-    for (i, &(c, _)) in cells.iter().enumerate() {
+    for (i, &(c, _)) in tris.iter().enumerate() {
         match runs.last_mut() {
             Some(r) if r.0 == c => r.2 = i + 1,
             _ => runs.push((c, i, i + 1)),
         }
     }
     runs.par_iter()
-        .map_init(Vec::new, |candidates: &mut Vec<[[f64; 3]; 3]>, &(cell, first, end)| {
-            let c = cell as usize;
-            let xyz = [c % dims[0], (c / dims[0]) % dims[1], c / (dims[0] * dims[1])];
-            candidates.clear();
-            for_neighbours(&runs, dims, xyz, |r| candidates.extend(cells[r.1..r.2].iter().map(|e| e.1.map(to))));
-            let (mut sum, mut max, mut count) = (0.0, 0.0f64, 0usize);
-            for &(_, tri) in &cells[first..end] {
-                let p = tri.map(from);
-                let centroid = [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0);
-                for q in [p[0], p[1], p[2], centroid] {
+        .map_init(
+            || (Vec::new(), Vec::new()),
+            |(candidates, sampled): &mut (Vec<[[f64; 3]; 3]>, Vec<u32>), &(cell, first, end)| {
+                let c = cell as usize;
+                let xyz = [c % dims[0], (c / dims[0]) % dims[1], c / (dims[0] * dims[1])];
+                candidates.clear();
+                sampled.clear();
+                for_neighbours(&runs, dims, xyz, |r| {
+                    candidates.extend(tris[r.1..r.2].iter().map(|e| e.1.map(|v| to[v as usize])))
+                });
+                let (mut sum, mut max, mut count) = (0.0, 0.0f64, 0usize);
+                let mut measure = |q: [f64; 3]| {
                     let d = candidates.iter().map(|&t| point_triangle(q, t)).fold(f64::INFINITY, f64::min);
                     sum += d;
                     max = max.max(d);
                     count += 1;
+                };
+                for &(_, tri) in &tris[first..end] {
+                    let p = tri.map(|v| from[v as usize]);
+                    measure([0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0));
+                    for (k, &v) in tri.iter().enumerate() {
+                        if owner[v as usize] == cell && !sampled.contains(&v) {
+                            sampled.push(v);
+                            measure(p[k]);
+                        }
+                    }
                 }
-            }
-            (sum, max, count)
-        })
+                (sum, max, count)
+            },
+        )
         .reduce(|| (0.0, 0.0, 0), |a, b| (a.0 + b.0, a.1.max(b.1), a.2 + b.2))
 }
 
