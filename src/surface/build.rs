@@ -22,7 +22,7 @@
 
 use super::collinear::keep_flags;
 use super::compress::{compress, NodeMesh};
-use super::extract::{edge_of_key, march, midpoint2, NodeTriangles};
+use super::extract::{edge_of_key, march, midpoint2, EdgeIndex, NodeTriangles};
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::octree::{NodeId, VolumeOctree};
@@ -176,9 +176,9 @@ pub fn surface_nodes(octree: &VolumeOctree, isovalue: f64) -> Vec<NodeId> {
 pub fn march_nodes<T: Sample>(g: &TypedGrid<'_, T>, octree: &VolumeOctree, nodes: &[NodeId], iso: f64) -> Vec<NodeTriangles> {
     nodes
         .par_iter()
-        .map(|&id| {
+        .map_init(EdgeIndex::default, |index, &id| {
             let n = octree.node(id);
-            march(g, n.lo, n.hi, iso)
+            march(g, n.lo, n.hi, iso, index)
         })
         .collect()
 }
@@ -204,7 +204,7 @@ impl GridVisitor for Extraction<'_> {
         let merge = options.compress && options.mode == SurfaceMode::Discretized;
         let meshes: Vec<NodeMesh> = marched
             .par_iter()
-            .map(|m| if merge { compress(&m.triangles, dims) } else { NodeMesh::from_triangles(&m.triangles) })
+            .map(|m| if merge { compress(m, dims) } else { NodeMesh::from_triangles(m) })
             .collect();
         let uncompressed_triangles = marched.iter().map(|m| m.triangles.len()).sum();
         drop(marched);

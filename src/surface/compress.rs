@@ -25,13 +25,13 @@
 //! union of its triangles is exactly the polygon, so the merged surface covers
 //! the same point set as the facets.
 
-use super::extract::midpoint2;
+use super::extract::{midpoint2, NodeTriangles};
 
 /// Polygons of a node: `vertices[offsets[i] .. offsets[i + 1]]` index the
-/// node's sorted vertex keys `keys`; counter-clockwise from outside.
+/// node's vertex keys `keys` (local numbering); counter-clockwise from outside.
 #[derive(Debug, Default, Clone, PartialEq, Eq)]
 pub struct NodeMesh {
-    /// The node's vertex edge keys, sorted, unique.
+    /// The node's vertex edge keys, unique.
     pub keys: Vec<u64>,
     /// Start of each polygon in `vertices`, plus the end.
     pub offsets: Vec<u32>,
@@ -59,24 +59,14 @@ impl NodeMesh {
         self.vertices.extend_from_slice(polygon);
         self.offsets.push(self.vertices.len() as u32);
     }
-    /// The triangles as they are (no merging), with local vertex numbering.
-    pub fn from_triangles(triangles: &[[u64; 3]]) -> NodeMesh {
-        let (keys, tris) = number_locally(triangles);
-        let mut m = NodeMesh { keys, ..NodeMesh::default() };
-        for t in &tris {
-            m.push(t);
+    /// The triangles as they are (no merging).
+    pub fn from_triangles(node: &NodeTriangles) -> NodeMesh {
+        NodeMesh {
+            keys: node.keys.clone(),
+            offsets: (0..=node.triangles.len() as u32).map(|i| 3 * i).collect(),
+            vertices: node.triangles.iter().flatten().copied().collect(),
         }
-        m
     }
-}
-
-/// The sorted unique keys of `triangles` and the triangles as indices into them.
-fn number_locally(triangles: &[[u64; 3]]) -> (Vec<u64>, Vec<[u32; 3]>) {
-    let mut keys: Vec<u64> = triangles.iter().flatten().copied().collect();
-    keys.sort_unstable();
-    keys.dedup();
-    let tris = triangles.iter().map(|t| t.map(|k| keys.binary_search(&k).unwrap_or(0) as u32)).collect();
-    (keys, tris)
 }
 
 pub(crate) fn sub(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
@@ -88,22 +78,6 @@ pub(crate) fn cross(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
 pub(crate) fn dot(a: [i64; 3], b: [i64; 3]) -> i64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-fn gcd(a: i64, b: i64) -> i64 {
-    if b == 0 {
-        a.abs()
-    } else {
-        gcd(b, a % b)
-    }
-}
-
-/// The plane `(n, d)` of a triangle in doubled coordinates, `n` reduced by its gcd.
-fn plane(p: [[i64; 3]; 3]) -> [i64; 4] {
-    let n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
-    let g = gcd(gcd(n[0], n[1]), n[2]).max(1);
-    let n = [n[0] / g, n[1] / g, n[2] / g];
-    [n[0], n[1], n[2], dot(n, p[0])]
-}
-
 /// The turn at `w` (from `p`, to `n`) against `normal`: > 0 convex, 0 straight
 /// (or a spike, told apart by [`straight`]), < 0 reflex.
 pub(crate) fn turn(p: [i64; 3], w: [i64; 3], n: [i64; 3], normal: [i64; 3]) -> i64 {
@@ -116,13 +90,19 @@ fn straight(p: [i64; 3], w: [i64; 3], n: [i64; 3]) -> bool {
 }
 
 /// Merges the triangles of one node into convex coplanar polygons.
-pub fn compress(triangles: &[[u64; 3]], dims: [usize; 3]) -> NodeMesh {
-    let (keys, tris) = number_locally(triangles);
+pub fn compress(node: &NodeTriangles, dims: [usize; 3]) -> NodeMesh {
+    let keys = node.keys.clone();
+    let tris = &node.triangles;
     let points: Vec<[i64; 3]> = keys.iter().map(|&k| midpoint2(k, dims)).collect();
-    let planes: Vec<[i64; 4]> = tris.iter().map(|t| plane(t.map(|v| points[v as usize]))).collect();
+    // The plane n . x = d of each facet: n from the case table, d from one vertex.
+    let planes: Vec<[i64; 4]> = tris
+        .iter()
+        .zip(&node.normals)
+        .map(|(t, n)| [n[0], n[1], n[2], dot(*n, points[t[0] as usize])])
+        .collect();
     // Outgoing directed edges per vertex (compressed rows): (to, triangle).
     let mut start = vec![0u32; keys.len() + 1];
-    for t in &tris {
+    for t in tris {
         for &v in t {
             start[v as usize + 1] += 1;
         }

@@ -42,7 +42,7 @@ pub fn discretized_to_interpolated(grid: &Grid<'_>, octree: &VolumeOctree, isova
             let marched = march_nodes(&g, self.octree, &nodes, self.iso);
             let mut cells: Vec<(u64, [u64; 3])> = marched
                 .iter()
-                .flat_map(|m| m.cells.iter().copied().zip(m.triangles.iter().copied()))
+                .flat_map(|m| m.cells.iter().copied().zip((0..m.triangles.len()).map(|i| m.keys_of(i))))
                 .collect();
             cells.par_sort_unstable();
             // Vertices numbered once; both surfaces' positions computed once.

@@ -35,41 +35,95 @@ pub fn midpoint2(key: u64, dims: [usize; 3]) -> [i64; 3] {
     m
 }
 
-/// Triangles of one node, counter-clockwise seen from outside (below the isovalue).
+/// Triangles of one node, counter-clockwise seen from outside (below the
+/// isovalue), with the node's vertices numbered locally in first-seen order.
 #[derive(Debug, Default, Clone)]
 pub struct NodeTriangles {
-    /// Vertex edge keys of each triangle.
-    pub triangles: Vec<[u64; 3]>,
+    /// Edge key of each local vertex.
+    pub keys: Vec<u64>,
+    /// Local vertex indices of each triangle.
+    pub triangles: Vec<[u32; 3]>,
+    /// Each triangle's reduced plane normal in doubled coordinates (from the case table).
+    pub normals: Vec<[i64; 3]>,
     /// Linear index `x + nx * (y + ny * z)` of the cell each triangle came from.
     pub cells: Vec<u64>,
 }
 
+impl NodeTriangles {
+    /// Triangle `i` as edge keys.
+    pub fn keys_of(&self, i: usize) -> [u64; 3] {
+        self.triangles[i].map(|v| self.keys[v as usize])
+    }
+}
+
+/// Nodes with at most this many edges number their vertices through a dense
+/// table (a reused buffer); larger homogeneous nodes use a hash map.
+const DENSE_EDGES: usize = 3 * 33 * 33 * 33;
+
+/// Reusable numbering buffer of [`march`] (one per worker).
+#[derive(Debug, Default)]
+pub struct EdgeIndex {
+    dense: Vec<u32>,
+}
+
 /// Marches the cells `[lo, hi)` (point box `[lo, hi]`) at `isovalue`.
-pub fn march<T: Sample>(g: &TypedGrid<'_, T>, lo: [usize; 3], hi: [usize; 3], isovalue: f64) -> NodeTriangles {
+pub fn march<T: Sample>(
+    g: &TypedGrid<'_, T>,
+    lo: [usize; 3],
+    hi: [usize; 3],
+    isovalue: f64,
+    index: &mut EdgeIndex,
+) -> NodeTriangles {
     let table = cases();
     let dims = g.dims;
     let mut out = NodeTriangles::default();
+    // Local edge slot of the edge from point p along axis: 3 * (local point) + axis.
+    let w = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
+    let slots = 3 * w[0] * w[1] * w[2];
+    let dense = slots <= DENSE_EDGES;
+    if dense {
+        index.dense.clear();
+        index.dense.resize(slots, u32::MAX);
+    }
+    let mut sparse: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
     let mut corner_values = [0.0f64; 8];
     for z in lo[2]..hi[2] {
         for y in lo[1]..hi[1] {
             for x in lo[0]..hi[0] {
-                let mut index = 0usize;
+                let mut case = 0usize;
                 for (c, v) in corner_values.iter_mut().enumerate() {
                     *v = g.at(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
                     if *v >= isovalue {
-                        index |= 1 << c;
+                        case |= 1 << c;
                     }
                 }
-                if index == 0 || index == 255 {
+                if case == 0 || case == 255 {
                     continue;
                 }
                 let cell = (x + dims[0] * (y + dims[1] * z)) as u64;
-                let key = |e: u8| {
-                    let (a, _, axis) = edge_corners(e as usize);
-                    edge_key([x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)], axis, dims)
-                };
-                for t in &table[index].triangles {
-                    out.triangles.push([key(t[0]), key(t[1]), key(t[2])]);
+                let entry = &table[case];
+                for (t, n) in entry.triangles.iter().zip(&entry.normals) {
+                    let tri = t.map(|e| {
+                        let (a, _, axis) = edge_corners(e as usize);
+                        let p = [x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)];
+                        let next = out.keys.len() as u32;
+                        let id = if dense {
+                            let slot = 3 * ((p[0] - lo[0]) + w[0] * ((p[1] - lo[1]) + w[1] * (p[2] - lo[2]))) + axis;
+                            let s = &mut index.dense[slot];
+                            if *s == u32::MAX {
+                                *s = next;
+                            }
+                            *s
+                        } else {
+                            *sparse.entry(edge_key(p, axis, dims)).or_insert(next)
+                        };
+                        if id == next {
+                            out.keys.push(edge_key(p, axis, dims));
+                        }
+                        id
+                    });
+                    out.triangles.push(tri);
+                    out.normals.push(*n);
                     out.cells.push(cell);
                 }
             }

@@ -68,6 +68,10 @@ pub struct Case {
     /// an ambiguous face would otherwise put a triangle in that face, and the
     /// cube across the face the same triangle reversed (a zero-volume fin).
     pub triangles: Vec<[u8; 3]>,
+    /// Each triangle's plane normal in doubled coordinates, divided by the gcd
+    /// of its components (right-hand, pointing out): the same for every cell, so
+    /// face compression reads it here instead of computing it per facet.
+    pub normals: Vec<[i64; 3]>,
 }
 
 /// True when the midpoints of edges `a`, `b`, `c` lie in one face of the cube.
@@ -102,6 +106,19 @@ fn cross(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
 }
 fn dot(a: [i64; 3], b: [i64; 3]) -> i64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `n` divided by the gcd of its components.
+pub fn reduced(n: [i64; 3]) -> [i64; 3] {
+    fn gcd(a: i64, b: i64) -> i64 {
+        if b == 0 {
+            a.abs()
+        } else {
+            gcd(b, a % b)
+        }
+    }
+    let g = gcd(gcd(n[0], n[1]), n[2]).max(1);
+    [n[0] / g, n[1] / g, n[2] / g]
 }
 
 fn build_case(index: usize) -> Case {
@@ -166,8 +183,15 @@ fn build_case(index: usize) -> Case {
         }
         cycles.push(cycle);
     }
-    let triangles = cycles.iter().flat_map(|c| triangulate(c)).collect();
-    Case { cycles, triangles }
+    let triangles: Vec<[u8; 3]> = cycles.iter().flat_map(|c| triangulate(c)).collect();
+    let normals = triangles
+        .iter()
+        .map(|t| {
+            let p = t.map(|e| edge_midpoint2(e as usize));
+            reduced(cross(sub(p[1], p[0]), sub(p[2], p[0])))
+        })
+        .collect();
+    Case { cycles, triangles, normals }
 }
 
 #[cfg(test)]
