@@ -86,14 +86,33 @@ pub fn march<T: Sample>(
         index.dense.resize(slots, u32::MAX);
     }
     let mut sparse: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
-    let mut corner_values = [0.0f64; 8];
+    // Inside flags (value >= isovalue) of two point slices, z and z + 1: each
+    // sample is read and compared once, not once per cell that shares it.
+    let plane = w[0] * w[1];
+    let mut inside = vec![false; 2 * plane];
+    let fill = |slice: &mut [bool], z: usize| {
+        for y in 0..w[1] {
+            for x in 0..w[0] {
+                slice[x + w[0] * y] = g.at(lo[0] + x, lo[1] + y, z) >= isovalue;
+            }
+        }
+    };
+    fill(&mut inside[..plane], lo[2]);
     for z in lo[2]..hi[2] {
+        let (below, above) = inside.split_at_mut(plane);
+        if z > lo[2] {
+            below.copy_from_slice(above);
+        }
+        fill(above, z + 1);
+        let flag = |x: usize, y: usize, dz: usize| {
+            let s = if dz == 0 { &*below } else { &*above };
+            s[(x - lo[0]) + w[0] * (y - lo[1])]
+        };
         for y in lo[1]..hi[1] {
             for x in lo[0]..hi[0] {
                 let mut case = 0usize;
-                for (c, v) in corner_values.iter_mut().enumerate() {
-                    *v = g.at(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
-                    if *v >= isovalue {
+                for c in 0..8 {
+                    if flag(x + (c & 1), y + ((c >> 1) & 1), (c >> 2) & 1) {
                         case |= 1 << c;
                     }
                 }
