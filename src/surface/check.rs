@@ -94,24 +94,28 @@ pub fn polygon_normal(s: &Surface, polygon: &[u32]) -> [f64; 3] {
     n
 }
 
-/// Surface area in index units (fan triangulation from the first vertex,
-/// exact for the convex polygons this crate makes).
-pub fn area(s: &Surface) -> f64 {
+/// Sum of `f(p0, pk, pk+1)` over the fan triangles of every polygon.
+fn fan_sum(s: &Surface, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f64) -> f64 {
     (0..s.polygon_count())
         .map(|i| {
             let p = s.polygon(i);
             let o = s.points[p[0] as usize];
-            (1..p.len() - 1)
-                .map(|k| {
-                    let a = s.points[p[k] as usize];
-                    let b = s.points[p[k + 1] as usize];
-                    let (u, v) = ([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]]);
-                    let c = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-                    0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
-                })
-                .sum::<f64>()
+            (1..p.len() - 1).map(|k| f(o, s.points[p[k] as usize], s.points[p[k + 1] as usize])).sum::<f64>()
         })
         .sum()
+}
+
+fn cross(u: [f64; 3], v: [f64; 3]) -> [f64; 3] {
+    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+}
+
+/// Surface area in index units (fan triangulation from the first vertex,
+/// exact for the convex polygons this crate makes).
+pub fn area(s: &Surface) -> f64 {
+    fan_sum(s, |o, a, b| {
+        let c = cross([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]]);
+        0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+    })
 }
 
 /// Signed volume enclosed, in cubic index units (divergence theorem:
@@ -119,18 +123,8 @@ pub fn area(s: &Surface) -> f64 {
 /// inside (values at or above the isovalue) out, so a closed surface around an
 /// inside region encloses a positive volume.
 pub fn volume(s: &Surface) -> f64 {
-    (0..s.polygon_count())
-        .map(|i| {
-            let p = s.polygon(i);
-            let o = s.points[p[0] as usize];
-            (1..p.len() - 1)
-                .map(|k| {
-                    let a = s.points[p[k] as usize];
-                    let b = s.points[p[k + 1] as usize];
-                    let c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-                    (o[0] * c[0] + o[1] * c[1] + o[2] * c[2]) / 6.0
-                })
-                .sum::<f64>()
-        })
-        .sum()
+    fan_sum(s, |o, a, b| {
+        let c = cross(a, b);
+        (o[0] * c[0] + o[1] * c[1] + o[2] * c[2]) / 6.0
+    })
 }

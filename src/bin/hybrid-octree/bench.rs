@@ -9,6 +9,7 @@
 //! (smooth everywhere, no constant brick) shows the kernel's own scaling.
 
 use crate::build::build_octree;
+use crate::output::print_report;
 use crate::pool::with_threads;
 use clap::{Args, Subcommand};
 use hybrid_octree::datasets::{generate, Dataset};
@@ -101,13 +102,7 @@ pub fn run(command: &BenchCommand) -> Result<()> {
             }
         }
     }
-    if args.json {
-        let text = serde_json::to_string(&rows).map_err(|e| Error::Internal(format!("JSON output: {e}")))?;
-        println!("{text}");
-    } else {
-        print_ratios(&rows);
-    }
-    Ok(())
+    print_report(&rows, args.json, |rows| print_ratios(rows))
 }
 
 fn measure(

@@ -1,6 +1,7 @@
 //! `build`: build the Volume Octree and report it, as text or one JSON object.
 
 use crate::input::InputArgs;
+use crate::output::print_report;
 use crate::pool::with_threads;
 use clap::Args;
 use hybrid_octree::grid::Grid;
@@ -88,13 +89,7 @@ pub fn run(args: &BuildArgs) -> Result<()> {
         octree.validate().map_err(|e| Error::Internal(format!("octree failed validation: {e}")))?;
         report(&grid, &octree, args.tolerance)
     })?;
-    if args.json {
-        let text = serde_json::to_string(&report).map_err(|e| Error::Internal(format!("JSON output: {e}")))?;
-        println!("{text}");
-    } else {
-        print_text(&report);
-    }
-    Ok(())
+    print_report(&report, args.json, print_text)
 }
 
 /// Collects the statistics of a built octree.

@@ -16,6 +16,7 @@ mod build;
 mod generate;
 mod info;
 mod input;
+mod output;
 mod pool;
 mod surface;
 

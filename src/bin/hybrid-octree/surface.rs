@@ -5,6 +5,7 @@
 
 use crate::build::build_octree;
 use crate::input::InputArgs;
+use crate::output::print_report;
 use crate::pool::with_threads;
 use clap::Args;
 use hybrid_octree::hybrid::HybridOctree;
@@ -115,13 +116,7 @@ pub fn run(args: &SurfaceArgs) -> Result<()> {
             distance_ms: measured.map(|m| m.1),
         })
     })?;
-    if args.json {
-        let text = serde_json::to_string(&report).map_err(|e| Error::Internal(format!("JSON output: {e}")))?;
-        println!("{text}");
-    } else {
-        print_text(&report);
-    }
-    Ok(())
+    print_report(&report, args.json, print_text)
 }
 
 fn print_text(r: &SurfaceReport) {
