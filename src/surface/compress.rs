@@ -127,7 +127,13 @@ pub fn compress(node: &NodeTriangles, dims: [usize; 3]) -> NodeMesh {
     let mut order: Vec<u32> = (0..tris.len() as u32).collect();
     order.sort_by_key(|&i| (planes[i as usize], i));
     let mut used = vec![false; tris.len()];
+    // The growing polygon as a ring of local vertices: next/prev links (a
+    // vertex is on the polygon at most once), so an insertion or a removal is
+    // O(1). `edges` holds the polygon edges still to try, by their first vertex.
     let mut on_polygon = vec![false; keys.len()];
+    let mut next = vec![u32::MAX; keys.len()];
+    let mut prev = vec![u32::MAX; keys.len()];
+    let mut edges: Vec<u32> = Vec::new();
     let mut out = NodeMesh::default();
     let mut polygon: Vec<u32> = Vec::new();
     for &seed in &order {
@@ -138,35 +144,36 @@ pub fn compress(node: &NodeTriangles, dims: [usize; 3]) -> NodeMesh {
         used[seed] = true;
         let key = planes[seed];
         let normal = [key[0], key[1], key[2]];
-        polygon.clear();
-        polygon.extend_from_slice(&tris[seed]);
-        for &v in &polygon {
-            on_polygon[v as usize] = true;
+        let t = tris[seed];
+        let mut ring = Ring { next: &mut next, prev: &mut prev, on: &mut on_polygon, len: 3, first: t[0] };
+        for k in 0..3 {
+            ring.link(t[k], t[(k + 1) % 3]);
+            ring.on[t[k] as usize] = true;
         }
-        let mut i = 0;
-        let mut since_change = 0;
-        // Walk the boundary until a full lap adds nothing.
-        while since_change < polygon.len() {
-            let n = polygon.len();
-            let at = i % n;
-            let (u, v) = (polygon[at], polygon[(at + 1) % n]);
-            let grown = match across(v, u) {
-                Some(t) if !used[t] && planes[t] == key => {
-                    let tri = tris[t];
-                    let k = tri.iter().position(|&x| x == v).unwrap_or(0);
-                    let c = tri[(k + 2) % 3];
-                    try_add(&mut polygon, at, c, normal, &points, &mut on_polygon).then_some(t)
-                }
-                _ => None,
-            };
-            if let Some(t) = grown {
-                used[t] = true;
-                since_change = 0;
-                i = at.min(polygon.len() - 1); // revisit the new edges from u
-            } else {
-                since_change += 1;
-                i = (at + 1) % polygon.len();
+        edges.clear();
+        edges.extend_from_slice(&[t[2], t[1], t[0]]);
+        while let Some(u) = edges.pop() {
+            if !ring.on[u as usize] {
+                continue; // removed since it was pushed
             }
+            let v = ring.next[u as usize];
+            let Some(t) = across(v, u).filter(|&t| !used[t] && planes[t] == key) else {
+                continue;
+            };
+            let tri = tris[t];
+            let k = tri.iter().position(|&x| x == v).unwrap_or(0);
+            let c = tri[(k + 2) % 3];
+            if let Some(touched) = ring.try_add(u, v, c, normal, &points) {
+                used[t] = true;
+                // Edges whose ends changed neighbours: try them (again).
+                edges.extend(touched.into_iter().flatten());
+            }
+        }
+        polygon.clear();
+        let mut v = ring.first;
+        for _ in 0..ring.len {
+            polygon.push(v);
+            v = ring.next[v as usize];
         }
         for &v in &polygon {
             on_polygon[v as usize] = false;
@@ -177,57 +184,74 @@ pub fn compress(node: &NodeTriangles, dims: [usize; 3]) -> NodeMesh {
     out
 }
 
-/// Adds the triangle `(v, u, c)` across edge `polygon[at] -> polygon[at + 1]`
-/// when the result stays convex (checked at the vertices whose neighbours
-/// change; the others keep their turns). Returns whether it was added.
-fn try_add(
-    polygon: &mut Vec<u32>,
-    at: usize,
-    c: u32,
-    normal: [i64; 3],
-    points: &[[i64; 3]],
-    on_polygon: &mut [bool],
-) -> bool {
-    let n = polygon.len();
-    let (iu, iv) = (at, (at + 1) % n);
-    let prev_u = polygon[(iu + n - 1) % n];
-    let next_v = polygon[(iv + 1) % n];
-    let p = |v: u32| points[v as usize];
-    let ok = |a: u32, w: u32, b: u32| {
-        let t = turn(p(a), p(w), p(b), normal);
-        t > 0 || (t == 0 && straight(p(a), p(w), p(b)))
-    };
-    let u = polygon[iu];
-    let v = polygon[iv];
-    if n == 3 && c == prev_u && c == next_v {
-        return false;
+/// A polygon as a ring of linked vertices.
+struct Ring<'a> {
+    next: &'a mut [u32],
+    prev: &'a mut [u32],
+    on: &'a mut [bool],
+    len: usize,
+    /// Some vertex on the ring (where the output walk starts).
+    first: u32,
+}
+
+impl Ring<'_> {
+    fn link(&mut self, a: u32, b: u32) {
+        self.next[a as usize] = b;
+        self.prev[b as usize] = a;
     }
-    if c == prev_u {
-        // The notch at u is filled: ... c u v ... -> ... c v ...
-        let prev_c = polygon[(iu + n - 2) % n];
-        if n <= 3 || !(ok(prev_c, c, v) && ok(c, v, next_v)) {
-            return false;
+
+    /// Adds the triangle `(v, u, c)` across the ring edge `u -> v` when the
+    /// result stays convex (checked at the vertices whose neighbours change;
+    /// the others keep their turns). Returns the first vertices of the edges to
+    /// try again, or `None` when refused.
+    fn try_add(&mut self, u: u32, v: u32, c: u32, normal: [i64; 3], points: &[[i64; 3]]) -> Option<[Option<u32>; 4]> {
+        let prev_u = self.prev[u as usize];
+        let next_v = self.next[v as usize];
+        let p = |x: u32| points[x as usize];
+        let ok = |a: u32, w: u32, b: u32| {
+            let t = turn(p(a), p(w), p(b), normal);
+            t > 0 || (t == 0 && straight(p(a), p(w), p(b)))
+        };
+        if self.len == 3 && c == prev_u && c == next_v {
+            return None;
         }
-        polygon.remove(iu);
-        on_polygon[u as usize] = false;
-        true
-    } else if c == next_v {
-        // The notch at v is filled: ... u v c ... -> ... u c ...
-        let next_c = polygon[(iv + 2) % n];
-        if n <= 3 || !(ok(prev_u, u, c) && ok(u, c, next_c)) {
-            return false;
+        if c == prev_u {
+            // The notch at u is filled: ... c u v ... -> ... c v ...
+            let prev_c = self.prev[c as usize];
+            if self.len <= 3 || !(ok(prev_c, c, v) && ok(c, v, next_v)) {
+                return None;
+            }
+            self.remove(u);
+            self.link(c, v);
+            Some([Some(prev_c), Some(c), Some(v), None])
+        } else if c == next_v {
+            // The notch at v is filled: ... u v c ... -> ... u c ...
+            let next_c = self.next[c as usize];
+            if self.len <= 3 || !(ok(prev_u, u, c) && ok(u, c, next_c)) {
+                return None;
+            }
+            self.remove(v);
+            self.link(u, c);
+            Some([Some(prev_u), Some(u), Some(c), None])
+        } else if self.on[c as usize] {
+            None
+        } else {
+            if !(ok(prev_u, u, c) && ok(u, c, v) && ok(c, v, next_v)) {
+                return None;
+            }
+            self.link(u, c);
+            self.link(c, v);
+            self.on[c as usize] = true;
+            self.len += 1;
+            Some([Some(prev_u), Some(u), Some(c), Some(v)])
         }
-        polygon.remove(iv);
-        on_polygon[v as usize] = false;
-        true
-    } else if on_polygon[c as usize] {
-        false
-    } else {
-        if !(ok(prev_u, u, c) && ok(u, c, v) && ok(c, v, next_v)) {
-            return false;
+    }
+
+    fn remove(&mut self, x: u32) {
+        self.on[x as usize] = false;
+        self.len -= 1;
+        if self.first == x {
+            self.first = self.next[x as usize];
         }
-        polygon.insert(iu + 1, c);
-        on_polygon[c as usize] = true;
-        true
     }
 }
