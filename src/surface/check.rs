@@ -60,20 +60,23 @@ pub fn edge_use(s: &Surface) -> EdgeUse {
 /// the tests compare it with.
 pub fn boundary_edges(s: &Surface, dims: [usize; 3]) -> usize {
     use rayon::prelude::*;
+    // Bit 2a (2a + 1) set: the vertex's edge midpoint lies on the low (high) face of axis a.
+    let faces: Vec<u8> = s
+        .keys
+        .par_iter()
+        .map(|&k| {
+            let m = midpoint2(k, dims);
+            (0..3).fold(0u8, |bits, a| {
+                let top = 2 * (dims[a] as i64 - 1);
+                bits | (u8::from(m[a] == 0) << (2 * a)) | (u8::from(m[a] == top) << (2 * a + 1))
+            })
+        })
+        .collect();
     (0..s.polygon_count())
         .into_par_iter()
         .map(|i| {
             let p = s.polygon(i);
-            (0..p.len())
-                .filter(|&k| {
-                    let a = midpoint2(s.keys[p[k] as usize], dims);
-                    let b = midpoint2(s.keys[p[(k + 1) % p.len()] as usize], dims);
-                    (0..3).any(|ax| {
-                        let top = 2 * (dims[ax] as i64 - 1);
-                        (a[ax] == 0 && b[ax] == 0) || (a[ax] == top && b[ax] == top)
-                    })
-                })
-                .count()
+            (0..p.len()).filter(|&k| faces[p[k] as usize] & faces[p[(k + 1) % p.len()] as usize] != 0).count()
         })
         .sum()
 }
