@@ -13,25 +13,12 @@ octree build / FlyingEdges from this one run; runs move by 15-25 %.
 import argparse
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 
 from paraview.simple import LoadPlugin, TrivialProducer
-from vtkmodules.vtkCommonCore import vtkMultiThreader, vtkSMPTools
-from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader
-
-
-def median_ms(fn, repeats):
-    fn()  # warm-up, untimed
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        fn()
-        times.append((time.perf_counter() - t) * 1e3)
-    return statistics.median(times)
+from side_by_side import generated_image, median_ms, time_flying_edges, use_all_cores
+from vtkmodules.vtkCommonCore import vtkSMPTools
 
 
 def main():
@@ -44,10 +31,7 @@ def main():
     ap.add_argument("--leaf-size", type=int, default=16)
     args = ap.parse_args()
 
-    cores = os.cpu_count()
-    vtkSMPTools.SetBackend("STDThread")
-    vtkSMPTools.Initialize(cores)
-    vtkMultiThreader.SetGlobalMaximumNumberOfThreads(cores)
+    cores = use_all_cores()
     LoadPlugin(args.plugin, remote=False, ns=globals())
 
     print(f"cores: {cores}, VTK SMP backend {vtkSMPTools.GetBackend()} "
@@ -59,29 +43,19 @@ def main():
         for size in [int(s) for s in args.sizes.split(",")]:
             for scalar in args.types.split(","):
                 path = os.path.join(tmp, f"sl{size}{scalar}.vti")
-                subprocess.run([args.cli, "generate", "--dataset", "shepp-logan", "--size", str(size),
-                                "--type", scalar, "--output", path], check=True, capture_output=True)
-                reader = vtkXMLImageDataReader()
-                reader.SetFileName(path)
-                reader.Update()
-                image = reader.GetOutput()
+                image = generated_image(args.cli, "shepp-logan", size, scalar, path)
                 lo, hi = image.GetPointData().GetScalars().GetRange()
                 iso = lo + 0.5 * (hi - lo)
 
-                fe = vtkFlyingEdges3D()
-                fe.SetInputData(image)
-                fe.SetValue(0, iso)
-                fe.ComputeNormalsOff()
-
-                def run_fe():
-                    fe.Modified()
-                    fe.Update()
-                fe_ms = median_ms(run_fe, args.repeats)
+                fe_ms, fe = time_flying_edges(image, iso, args.repeats)
                 tris = fe.GetOutput().GetNumberOfCells()
 
                 producer = TrivialProducer()
                 producer.GetClientSideObject().SetOutput(image)
-                octree = HybridOctree(Input=producer, LeafSize=args.leaf_size)  # noqa: F821 (from LoadPlugin)
+                # An isovalue above the data range: no surface, so the filter's time is
+                # the octree build and its boxes (the surface has its own benchmark).
+                octree = HybridOctree(Input=producer, LeafSize=args.leaf_size,  # noqa: F821 (from LoadPlugin)
+                                      Isovalue=hi + 1.0, MeasureSurfaceDistance=0)
                 octree.UpdatePipeline()
                 # Time the VTK filter itself, as FlyingEdges is timed: ParaView's proxy
                 # update adds its own data-information pass over the input image.

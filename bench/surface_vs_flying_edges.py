@@ -47,29 +47,18 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 from paraview.simple import Delete, LoadPlugin, TrivialProducer
+from side_by_side import generated_image, median_ms, time_flying_edges, use_all_cores
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import reference, vtkMultiThreader, vtkPoints, vtkSMPTools
+from vtkmodules.vtkCommonCore import reference, vtkPoints, vtkSMPTools
 from vtkmodules.vtkCommonDataModel import vtkGenericCell, vtkPolyData, vtkStaticCellLocator, vtkStaticPointLocator
-from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D, vtkTriangleFilter
+from vtkmodules.vtkFiltersCore import vtkTriangleFilter
 from vtkmodules.vtkIOLegacy import vtkPolyDataReader
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 
 HALF_DIAGONAL = 0.5 * 3 ** 0.5
 DEFAULT_CASES = "shepp-logan:256:0.5,shepp-logan:256:0.25,marschner-lobb:256:0.5,marschner-lobb:256:0.3"
-
-
-def median_ms(fn, repeats):
-    fn()  # warm-up, untimed
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        fn()
-        times.append((time.perf_counter() - t) * 1e3)
-    return statistics.median(times)
 
 
 def field(data, name):
@@ -243,10 +232,7 @@ def main():
     ap.add_argument("--no-distance", action="store_true", help="skip the distance measurement")
     args = ap.parse_args()
 
-    cores = os.cpu_count()
-    vtkSMPTools.SetBackend("STDThread")
-    vtkSMPTools.Initialize(cores)
-    vtkMultiThreader.SetGlobalMaximumNumberOfThreads(cores)
+    cores = use_all_cores()
     LoadPlugin(args.plugin, remote=False, ns=globals())
     source = args.source
     if source == "auto":
@@ -267,29 +253,18 @@ def main():
     print(line)
     print("-" * len(line))
     results = []
+    images = {}
     with tempfile.TemporaryDirectory() as tmp:
         for case in args.cases.split(","):
             dataset, size, iso = case.split(":")
             size, iso = int(size), float(iso)
             path = os.path.join(tmp, f"{dataset}{size}.vti")
-            if not os.path.exists(path):
-                subprocess.run([args.cli, "generate", "--dataset", dataset, "--size", str(size),
-                                "--type", "f32", "--output", path], check=True, capture_output=True)
-            reader = vtkXMLImageDataReader()
-            reader.SetFileName(path)
-            reader.Update()
-            image = reader.GetOutput()
+            if (dataset, size) not in images:  # one volume for all isovalues of a dataset
+                images[(dataset, size)] = generated_image(args.cli, dataset, size, "f32", path)
+            image = images[(dataset, size)]
             origin, spacing = image.GetOrigin(), image.GetSpacing()
 
-            fe = vtkFlyingEdges3D()
-            fe.SetInputData(image)
-            fe.SetValue(0, iso)
-            fe.ComputeNormalsOff()
-
-            def run_fe():
-                fe.Modified()
-                fe.Update()
-            fe_ms = median_ms(run_fe, args.repeats)
+            fe_ms, fe = time_flying_edges(image, iso, args.repeats)
             fe_out = vtkPolyData()
             fe_out.DeepCopy(fe.GetOutput())
             fe_tris = fe_out.GetNumberOfCells()
