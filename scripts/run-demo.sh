@@ -25,5 +25,5 @@ echo "== ParaView (pvbatch) with the HybridOctree plugin =="
 vti=$(mktemp --suffix=.vti)
 trap 'rm -f "$vti"' EXIT
 "$cli" generate --dataset shepp-logan --size "$size" --type f32 --output "$vti"
-xvfb-run -a -s "-screen 0 1280x1024x24" \
+bash scripts/with-xvfb.sh \
   pvbatch scripts/demo_pvbatch.py --plugin "$plugin" --input "$vti" --output hybrid-octree-demo.png

@@ -15,4 +15,4 @@ CARGO_TARGET_DIR="$PWD/build/cargo" cargo test --release --locked
 
 echo "== CTest (under Xvfb) =="
 cd build
-xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure
+bash ../scripts/with-xvfb.sh ctest --output-on-failure
