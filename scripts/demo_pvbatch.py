@@ -22,16 +22,25 @@ octree = HybridOctree(Input=reader, ErrorTolerance=args.tolerance,  # noqa: F821
                       Isovalue=args.isovalue, SurfaceMode=0, MeasureSurfaceDistance=1)
 octree.UpdatePipeline()
 
-fd = octree.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
+def field(port, name):
+    """The one value of field-data array `name` on output `port` of the filter."""
+    return octree.GetClientSideObject().GetOutputDataObject(port).GetFieldData().GetArray(name).GetValue(0)
+
+
 def value(name):
-    return fd.GetArray(name).GetValue(0)
+    return field(0, name)
+
+
 print(f"Hybrid Octree filter: {int(value('node_count'))} nodes, {int(value('levels'))} levels, "
       f"{int(value('cut_count'))} boxes in the cut at tolerance {args.tolerance}, "
       f"{int(value('octree_bytes'))} octree bytes for {int(value('input_bytes'))} input bytes, "
       f"built in {value('build_ms'):.1f} ms")
-sd = octree.GetClientSideObject().GetOutputDataObject(1).GetFieldData()
+
+
 def surface(name):
-    return sd.GetArray(name).GetValue(0)
+    return field(1, name)
+
+
 print(f"Surface at {args.isovalue}: {int(surface('polygons'))} DiscMC polygons "
       f"({int(surface('triangles'))} triangles, {int(surface('uncompressed_triangles'))} before face compression), "
       f"{int(surface('boundary_edges'))} boundary edges, "

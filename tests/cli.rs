@@ -41,12 +41,17 @@ fn temp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("hybrid-octree-cli-{}-{n}-{name}", std::process::id()))
 }
 
-fn build_json(args: &[&str]) -> Value {
-    let mut all = vec!["build", "--json"];
+/// Runs `command --json args...`, which must succeed, and parses its one JSON object.
+fn json_of(command: &str, args: &[&str]) -> Value {
+    let mut all = vec![command, "--json"];
     all.extend_from_slice(args);
     let out = run(&all);
     assert!(out.status.success(), "{}", stderr(&out));
     serde_json::from_str(&stdout(&out)).expect("one JSON object on stdout")
+}
+
+fn build_json(args: &[&str]) -> Value {
+    json_of("build", args)
 }
 
 /// The command failed with status 2, a one-line `error:` message containing
@@ -208,11 +213,7 @@ fn bench_prints_a_row_per_combination_and_the_ratio() {
 }
 
 fn surface_json(args: &[&str]) -> Value {
-    let mut all = vec!["surface", "--json"];
-    all.extend_from_slice(args);
-    let out = run(&all);
-    assert!(out.status.success(), "{}", stderr(&out));
-    serde_json::from_str(&stdout(&out)).expect("one JSON object on stdout")
+    json_of("surface", args)
 }
 
 #[test]

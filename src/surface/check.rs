@@ -81,20 +81,15 @@ pub fn boundary_edges(s: &Surface, dims: [usize; 3]) -> usize {
         .sum()
 }
 
-/// Twice the area vector of a planar polygon in index space:
-/// `sum over edges of p_k x p_(k+1)` (its length is twice the area).
+/// Twice the area vector of a planar polygon in index space: the sum over its
+/// fan triangles `(p0, pk, pk+1)` of `(pk - p0) x (pk+1 - p0)` (its length is
+/// twice the area, its direction the outward normal).
 pub fn polygon_normal(s: &Surface, polygon: &[u32]) -> [f64; 3] {
-    let mut n = [0.0; 3];
     let o = s.points[polygon[0] as usize];
-    for k in 1..polygon.len().saturating_sub(1) {
-        let a = s.points[polygon[k] as usize];
-        let b = s.points[polygon[k + 1] as usize];
-        let (u, v) = ([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]]);
-        n[0] += u[1] * v[2] - u[2] * v[1];
-        n[1] += u[2] * v[0] - u[0] * v[2];
-        n[2] += u[0] * v[1] - u[1] * v[0];
-    }
-    n
+    (1..polygon.len().saturating_sub(1)).fold([0.0; 3], |n, k| {
+        let c = fan_cross(o, s.points[polygon[k] as usize], s.points[polygon[k + 1] as usize]);
+        [n[0] + c[0], n[1] + c[1], n[2] + c[2]]
+    })
 }
 
 /// Sum of `f(p0, pk, pk+1)` over the fan triangles of every polygon.
@@ -112,11 +107,16 @@ fn cross(u: [f64; 3], v: [f64; 3]) -> [f64; 3] {
     [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
 }
 
+/// `(a - o) x (b - o)`: twice the area vector of triangle `(o, a, b)`.
+fn fan_cross(o: [f64; 3], a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    cross([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]])
+}
+
 /// Surface area in index units (fan triangulation from the first vertex,
 /// exact for the convex polygons this crate makes).
 pub fn area(s: &Surface) -> f64 {
     fan_sum(s, |o, a, b| {
-        let c = cross([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]]);
+        let c = fan_cross(o, a, b);
         0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
     })
 }
