@@ -20,8 +20,8 @@
 //! `node_ranges` gives each node's polygons. Deterministic: every step is
 //! either per node (collected in node order) or a sort.
 
-use super::collinear::keep_flags;
-use super::compress::{compress, NodeMesh};
+use super::assemble::{assemble, Mesh, NodePart};
+use super::faces::{merge_coplanar, NodeFaces};
 use super::extract::{edge_of_key, march, midpoint2, EdgeIndex, NodeTriangles};
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
@@ -84,9 +84,12 @@ impl SurfaceOptions {
 /// Counts and times of an extraction.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct SurfaceStats {
-    /// Polygons in the output.
+    /// Polygons (triangles) in the output.
     pub polygons: usize,
-    /// Triangles when every (convex) polygon is fan-triangulated: sum of (vertices - 2).
+    /// Faces: coplanar facets merged into one polygon (DiscMC with
+    /// compression), or the triangles themselves.
+    pub faces: usize,
+    /// Triangles in the output (every face triangulated with its own vertices).
     pub triangles: usize,
     /// Triangles marched, before compression.
     pub uncompressed_triangles: usize,
@@ -98,7 +101,7 @@ pub struct SurfaceStats {
     pub surface_nodes: usize,
     /// Marching time (all nodes, parallel), ms.
     pub extract_ms: f64,
-    /// Compression, vertex naming and assembly time, ms.
+    /// Compression (merging, straight vertices, triangulation), vertex naming and assembly time, ms.
     pub compress_ms: f64,
 }
 
@@ -109,18 +112,21 @@ pub struct Surface {
     pub isovalue: f64,
     /// Discretized or interpolated.
     pub mode: SurfaceMode,
-    /// Edge key of each point (sorted ascending).
+    /// Edge key of each point (unique; vertices on node boundaries first, in
+    /// key order, then each node's inner vertices).
     pub keys: Vec<u64>,
     /// Index-space positions.
     pub points: Vec<[f64; 3]>,
     /// Unit outward normals in world space.
     pub normals: Vec<[f32; 3]>,
-    /// Start of each polygon in `connectivity`, plus the end.
+    /// Start of each polygon (a triangle) in `connectivity`, plus the end.
     pub offsets: Vec<u32>,
     /// Point indices, counter-clockwise seen from outside.
     pub connectivity: Vec<u32>,
     /// The terminal node of each polygon.
     pub polygon_node: Vec<NodeId>,
+    /// The face (merged coplanar polygon) each triangle belongs to.
+    pub polygon_face: Vec<u32>,
     /// Per terminal node with surface: (node, first polygon, end polygon).
     pub node_ranges: Vec<(NodeId, u32, u32)>,
     /// Counts and times.
@@ -195,68 +201,31 @@ impl GridVisitor for Extraction<'_> {
         let Extraction { octree, options, spacing } = self;
         let dims = g.dims;
         let iso = options.isovalue;
+        // Per node, in parallel: march its cells, then merge its coplanar
+        // facets into faces while they are still in cache.
         let started = Instant::now();
+        let merge = options.compress && options.mode == SurfaceMode::Discretized;
         let nodes = surface_nodes(octree, iso);
-        let marched = march_nodes(&g, octree, &nodes, iso);
+        let parts: Vec<(NodePart, usize)> = nodes
+            .par_iter()
+            .map_init(EdgeIndex::default, |index, &id| {
+                let n = octree.node(id);
+                let m = march(&g, n.lo, n.hi, iso, index);
+                let marched = m.triangles.len();
+                let faces = if merge { merge_coplanar(m) } else { NodeFaces::from_triangles(m) };
+                (NodePart::new(id, faces, merge), marched)
+            })
+            .collect();
+        let uncompressed_triangles = parts.iter().map(|p| p.1).sum();
+        let parts: Vec<NodePart> = parts.into_iter().map(|p| p.0).collect();
         let extract_ms = started.elapsed().as_secs_f64() * 1e3;
 
         let started = Instant::now();
-        let merge = options.compress && options.mode == SurfaceMode::Discretized;
-        let meshes: Vec<NodeMesh> = marched
-            .par_iter()
-            .map(|m| if merge { compress(m, dims) } else { NodeMesh::from_triangles(m) })
-            .collect();
-        let uncompressed_triangles = marched.iter().map(|m| m.triangles.len()).sum();
-        drop(marched);
-
-        // One name per vertex for the whole mesh: the sorted union of the nodes' keys.
-        let mut keys: Vec<u64> = meshes.iter().flat_map(|m| m.keys.iter().copied()).collect();
-        keys.par_sort_unstable();
-        keys.dedup();
-        let node_global: Vec<Vec<u32>> = meshes
-            .par_iter()
-            .map(|m| m.keys.iter().map(|k| keys.binary_search(k).unwrap_or(0) as u32).collect())
-            .collect();
-        let keep = if merge { keep_flags(&meshes, &node_global, keys.len(), dims) } else { vec![true; keys.len()] };
-        // New index of every kept vertex (prefix count).
-        let mut new_index = vec![u32::MAX; keys.len()];
-        let mut kept = Vec::with_capacity(keys.len());
-        for (g, (&key, &k)) in keys.iter().zip(&keep).enumerate() {
-            if k {
-                new_index[g] = kept.len() as u32;
-                kept.push(key);
-            }
-        }
-        // Connectivity, node by node in parallel, then concatenated in node order.
-        let per_node: Vec<(Vec<u32>, Vec<u32>)> = meshes
-            .par_iter()
-            .zip(&node_global)
-            .map(|(mesh, global)| {
-                let mut ends = Vec::with_capacity(mesh.len());
-                let mut ids = Vec::with_capacity(mesh.vertices.len());
-                for i in 0..mesh.len() {
-                    ids.extend(
-                        mesh.get(i).iter().map(|&l| new_index[global[l as usize] as usize]).filter(|&v| v != u32::MAX),
-                    );
-                    ends.push(ids.len() as u32);
-                }
-                (ends, ids)
-            })
-            .collect();
-        drop((meshes, node_global, new_index));
-        let mut offsets = vec![0u32];
-        let mut connectivity = Vec::with_capacity(per_node.iter().map(|n| n.1.len()).sum());
-        let mut polygon_node = Vec::new();
-        let mut node_ranges = Vec::new();
-        for (&node, (ends, ids)) in nodes.iter().zip(&per_node) {
-            let first = polygon_node.len() as u32;
-            let base = connectivity.len() as u32;
-            offsets.extend(ends.iter().map(|e| base + e));
-            connectivity.extend_from_slice(ids);
-            polygon_node.extend(std::iter::repeat_n(node, ends.len()));
-            node_ranges.push((node, first, polygon_node.len() as u32));
-        }
-        drop(per_node);
+        let mesh = assemble(&parts)?;
+        drop(parts);
+        let Mesh { keys: kept, triangles, triangle_face, triangle_node, node_ranges, faces } = mesh;
+        let offsets: Vec<u32> = (0..=triangles.len() as u32).map(|i| 3 * i).collect();
+        let connectivity: Vec<u32> = triangles.into_iter().flatten().collect();
         let points: Vec<[f64; 3]> = kept
             .par_iter()
             .map(|&key| match options.mode {
@@ -272,14 +241,16 @@ impl GridVisitor for Extraction<'_> {
             normals: Vec::new(),
             offsets,
             connectivity,
-            polygon_node,
+            polygon_node: triangle_node,
+            polygon_face: triangle_face,
             node_ranges,
             stats: SurfaceStats::default(),
         };
         surface.normals = normals(&g, &surface, spacing);
         surface.stats = SurfaceStats {
             polygons: surface.polygon_count(),
-            triangles: (0..surface.polygon_count()).map(|i| surface.polygon(i).len() - 2).sum(),
+            faces,
+            triangles: surface.polygon_count(),
             uncompressed_triangles,
             vertices: surface.points.len(),
             boundary_edges: super::check::boundary_edges(&surface, dims),

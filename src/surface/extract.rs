@@ -35,12 +35,42 @@ pub fn midpoint2(key: u64, dims: [usize; 3]) -> [i64; 3] {
     m
 }
 
+/// The vertices of one node, numbered locally in first-seen order.
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
+pub struct NodeVertices {
+    /// Edge key of each vertex.
+    pub keys: Vec<u64>,
+    /// Its edge midpoint in doubled index coordinates ([`midpoint2`]).
+    pub midpoints: Vec<[i64; 3]>,
+    /// Whether its edge lies on a face of the node's box (other nodes may use it).
+    pub on_boundary: Vec<bool>,
+}
+
+impl NodeVertices {
+    /// Number of vertices.
+    pub fn len(&self) -> usize {
+        self.keys.len()
+    }
+    /// True when there is none.
+    pub fn is_empty(&self) -> bool {
+        self.keys.is_empty()
+    }
+    /// Adds the vertex on the edge from `p` along `axis` of the node `[lo, hi]`.
+    pub fn push(&mut self, p: [usize; 3], axis: usize, lo: [usize; 3], hi: [usize; 3], dims: [usize; 3]) {
+        let mut m = [2 * p[0] as i64, 2 * p[1] as i64, 2 * p[2] as i64];
+        m[axis] += 1;
+        self.keys.push(edge_key(p, axis, dims));
+        self.midpoints.push(m);
+        self.on_boundary.push((0..3).any(|b| b != axis && (p[b] == lo[b] || p[b] == hi[b])));
+    }
+}
+
 /// Triangles of one node, counter-clockwise seen from outside (below the
-/// isovalue), with the node's vertices numbered locally in first-seen order.
+/// isovalue).
 #[derive(Debug, Default, Clone)]
 pub struct NodeTriangles {
-    /// Edge key of each local vertex.
-    pub keys: Vec<u64>,
+    /// The node's vertices.
+    pub verts: NodeVertices,
     /// Local vertex indices of each triangle.
     pub triangles: Vec<[u32; 3]>,
     /// Each triangle's reduced plane normal in doubled coordinates (from the case table).
@@ -52,7 +82,7 @@ pub struct NodeTriangles {
 impl NodeTriangles {
     /// Triangle `i` as edge keys.
     pub fn keys_of(&self, i: usize) -> [u64; 3] {
-        self.triangles[i].map(|v| self.keys[v as usize])
+        self.triangles[i].map(|v| self.verts.keys[v as usize])
     }
 }
 
@@ -125,7 +155,7 @@ pub fn march<T: Sample>(
                     let tri = t.map(|e| {
                         let (a, _, axis) = edge_corners(e as usize);
                         let p = [x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)];
-                        let next = out.keys.len() as u32;
+                        let next = out.verts.len() as u32;
                         let id = if dense {
                             let slot = 3 * ((p[0] - lo[0]) + w[0] * ((p[1] - lo[1]) + w[1] * (p[2] - lo[2]))) + axis;
                             let s = &mut index.dense[slot];
@@ -137,7 +167,7 @@ pub fn march<T: Sample>(
                             *sparse.entry(edge_key(p, axis, dims)).or_insert(next)
                         };
                         if id == next {
-                            out.keys.push(edge_key(p, axis, dims));
+                            out.verts.push(p, axis, lo, hi, dims);
                         }
                         id
                     });

@@ -9,12 +9,15 @@
 //! assembles the mesh, [`check`] measures it (edges, area, volume),
 //! [`distance`] compares two surfaces.
 
+pub mod assemble;
 pub mod build;
 pub mod check;
-pub mod collinear;
-pub mod compress;
 pub mod distance;
+pub mod earclip;
+pub mod exact;
 pub mod extract;
+pub mod faces;
+pub mod straight;
 pub mod table;
 
 pub use build::{Surface, SurfaceMode, SurfaceOptions, SurfaceStats};

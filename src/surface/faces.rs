@@ -1,0 +1,261 @@
+//! Face compression (the Surface Octree's terminal surface nodes, paper 1
+//! section 2.2): the coplanar DiscMC facets of one terminal node merged into
+//! faces, with no point of the surface moved.
+//!
+//! DiscMC vertices are edge midpoints, so every facet plane has one of a few
+//! small integer normals (from the case table) and two facets sharing an edge
+//! with the same normal are coplanar. A *region* is a set of coplanar facets
+//! of the node connected through shared edges; a *face* is the region's
+//! boundary loop, counter-clockwise seen from outside: the facet edges whose
+//! facet across lies in another plane, in another node, or outside the volume.
+//! Each loop is traced with half-edges: from the boundary edge `a -> b` of a
+//! facet, the next boundary edge leaves `b`, found by rotating about `b`
+//! through the region's facets:
+//!
+//! ```text
+//! in facet t: b -> c boundary?  yes: next edge.  no: t' = facet across b -> c
+//! (it holds c -> b); continue with the edge that leaves b in t'.
+//! ```
+//!
+//! Vertices inside a region belong to no face and leave the surface. A region
+//! with a hole (a loop turning clockwise) or whose loop touches itself at a
+//! vertex is not a simple polygon; the facets of that plane in that node stay
+//! as they are, each its own face. Faces are simple polygons, possibly
+//! non-convex: [`super::earclip`] triangulates them.
+
+use super::exact::{dot, loop_area2};
+use super::extract::{NodeTriangles, NodeVertices};
+
+/// The faces of one terminal node: loop `i` is
+/// `vertices[offsets[i] .. offsets[i + 1]]`, local vertex indices into `verts`,
+/// counter-clockwise seen from outside, in the plane with normal `normals[i]`.
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
+pub struct NodeFaces {
+    /// The node's vertices (local numbering, as marched).
+    pub verts: NodeVertices,
+    /// Start of each face in `vertices`, plus the end.
+    pub offsets: Vec<u32>,
+    /// Local vertex indices.
+    pub vertices: Vec<u32>,
+    /// The plane normal of each face (doubled coordinates, reduced integers).
+    pub normals: Vec<[i64; 3]>,
+}
+
+impl NodeFaces {
+    /// Number of faces.
+    pub fn len(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+    /// True when there is no face.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Face `i` (local vertex indices).
+    pub fn get(&self, i: usize) -> &[u32] {
+        &self.vertices[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+    fn push(&mut self, face: &[u32], normal: [i64; 3]) {
+        if self.offsets.is_empty() {
+            self.offsets.push(0);
+        }
+        self.vertices.extend_from_slice(face);
+        self.offsets.push(self.vertices.len() as u32);
+        self.normals.push(normal);
+    }
+    /// Every facet its own face (no merging: interpolated mode, or compression off).
+    pub fn from_triangles(node: NodeTriangles) -> NodeFaces {
+        let count = node.triangles.len();
+        NodeFaces {
+            offsets: (0..=count as u32).map(|i| 3 * i).collect(),
+            vertices: node.triangles.iter().flatten().copied().collect(),
+            normals: node.normals,
+            verts: node.verts,
+        }
+    }
+}
+
+/// Half-edge `k` of facet `t` (from corner `k` to corner `k + 1`) is `3 t + k`.
+fn half_edge(t: usize, k: usize) -> usize {
+    3 * t + k
+}
+
+/// Merges the facets of one node into faces (see the module documentation).
+pub fn merge_coplanar(node: NodeTriangles) -> NodeFaces {
+    let tris = &node.triangles;
+    let planes = &node.normals;
+    let nv = node.verts.len();
+    // Outgoing half-edges per vertex (compressed rows): (to, half-edge).
+    let mut start = vec![0u32; nv + 1];
+    for t in tris {
+        for &v in t {
+            start[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut outgoing = vec![(0u32, 0u32); 3 * tris.len()];
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let from = t[k] as usize;
+            outgoing[fill[from] as usize] = (t[(k + 1) % 3], half_edge(i, k) as u32);
+            fill[from] += 1;
+        }
+    }
+    drop(fill);
+    // The half-edge across each half-edge `a -> b` (the reverse `b -> a` in
+    // the facet on the other side) when that facet lies in the same plane;
+    // NONE marks a face boundary edge (another plane, another node, or the
+    // volume's face).
+    const NONE: u32 = u32::MAX;
+    const UNSET: u32 = u32::MAX - 1;
+    let mut twin = vec![UNSET; 3 * tris.len()];
+    for h in 0..3 * tris.len() {
+        if twin[h] != UNSET {
+            continue; // set from its twin
+        }
+        let (t, k) = (h / 3, h % 3);
+        let (a, b) = (tris[t][k], tris[t][(k + 1) % 3]);
+        let row = &outgoing[start[b as usize] as usize..start[b as usize + 1] as usize];
+        twin[h] = NONE;
+        if let Some(&(_, r)) = row.iter().find(|e| e.0 == a) {
+            if planes[r as usize / 3] == planes[t] {
+                twin[h] = r;
+                twin[r as usize] = h as u32;
+            } else {
+                twin[r as usize] = NONE;
+            }
+        }
+    }
+    drop((start, outgoing));
+    let points = &node.verts.midpoints;
+    let mut visited = vec![false; 3 * tris.len()];
+    let mut seen_in = vec![u32::MAX; nv];
+    let mut loops = NodeFaces::default();
+    // Planes whose faces in this node are not simple polygons.
+    let mut broken: Vec<[i64; 3]> = Vec::new();
+    let mut face: Vec<u32> = Vec::new();
+    for h0 in 0..3 * tris.len() {
+        if twin[h0] != NONE || visited[h0] {
+            continue;
+        }
+        let normal = planes[h0 / 3];
+        let id = loops.len() as u32;
+        face.clear();
+        let mut simple = true;
+        let mut h = h0;
+        loop {
+            visited[h] = true;
+            let (t, k) = (h / 3, h % 3);
+            let a = tris[t][k];
+            if seen_in[a as usize] == id {
+                simple = false; // the loop touches itself at a
+            }
+            seen_in[a as usize] = id;
+            face.push(a);
+            // Rotate about b = the end of h through the region to the next
+            // boundary edge: from the half-edge b -> c that leaves b in this
+            // facet, across to c -> b, then the half-edge leaving b there.
+            let mut next = half_edge(t, (k + 1) % 3);
+            let mut guard = 0;
+            while twin[next] != NONE && guard <= tris.len() {
+                let across = twin[next] as usize;
+                next = half_edge(across / 3, (across % 3 + 1) % 3);
+                guard += 1;
+            }
+            if guard > tris.len() || face.len() > 3 * tris.len() {
+                simple = false; // not a manifold fan (cannot happen for a watertight table)
+                break;
+            }
+            h = next;
+            if h == h0 {
+                break;
+            }
+        }
+        let counter_clockwise = dot(loop_area2(face.iter().map(|&v| points[v as usize])), normal) > 0;
+        if !(simple && counter_clockwise) {
+            broken.push(normal);
+        }
+        loops.push(&face, normal);
+    }
+    if broken.is_empty() {
+        loops.verts = node.verts;
+        return loops;
+    }
+    // Faces of intact planes, then the facets of broken planes one by one.
+    broken.sort_unstable();
+    broken.dedup();
+    let is_broken = |n: &[i64; 3]| broken.binary_search(n).is_ok();
+    let mut out = NodeFaces::default();
+    for i in 0..loops.len() {
+        if !is_broken(&loops.normals[i]) {
+            out.push(loops.get(i), loops.normals[i]);
+        }
+    }
+    for (t, n) in tris.iter().zip(planes) {
+        if is_broken(n) {
+            out.push(t, *n);
+        }
+    }
+    out.verts = node.verts;
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A node of facets in the plane z = 1 (doubled z = 2 is not a midpoint;
+    /// use the midpoints of z-edges at z = 0: doubled (2x, 2y, 1)).
+    fn grid_facets(cells: &[(usize, usize)], dims: [usize; 3]) -> NodeTriangles {
+        let mut node = NodeTriangles::default();
+        let id = |node: &mut NodeTriangles, x: usize, y: usize| -> u32 {
+            let k = crate::surface::extract::edge_key([x, y, 0], 2, dims);
+            match node.verts.keys.iter().position(|&q| q == k) {
+                Some(i) => i as u32,
+                None => {
+                    node.verts.push([x, y, 0], 2, [0, 0, 0], [dims[0] - 1, dims[1] - 1, dims[2] - 1], dims);
+                    node.verts.len() as u32 - 1
+                }
+            }
+        };
+        for &(x, y) in cells {
+            let (a, b, c, d) = (id(&mut node, x, y), id(&mut node, x + 1, y), id(&mut node, x + 1, y + 1), id(&mut node, x, y + 1));
+            node.triangles.push([a, b, c]);
+            node.triangles.push([a, c, d]);
+            node.normals.extend([[0, 0, 1], [0, 0, 1]]);
+            node.cells.extend([0, 0]);
+        }
+        node
+    }
+
+    #[test]
+    fn an_l_shaped_region_is_one_non_convex_face() {
+        let dims = [8, 8, 2];
+        let node = grid_facets(&[(0, 0), (1, 0), (0, 1)], dims);
+        let f = merge_coplanar(node.clone());
+        assert_eq!(f.len(), 1);
+        // Boundary of the L: 8 vertices (corners and straight ones), interior none.
+        assert_eq!(f.get(0).len(), 8);
+    }
+
+    #[test]
+    fn a_region_with_a_hole_keeps_its_facets() {
+        let dims = [8, 8, 2];
+        let ring: Vec<(usize, usize)> = (0..3).flat_map(|x| (0..3).map(move |y| (x, y))).filter(|&c| c != (1, 1)).collect();
+        let node = grid_facets(&ring, dims);
+        let f = merge_coplanar(node.clone());
+        assert_eq!(f.len(), node.triangles.len());
+    }
+
+    #[test]
+    fn regions_touching_at_a_vertex_keep_their_facets() {
+        let dims = [8, 8, 2];
+        let node = grid_facets(&[(0, 0), (1, 1)], dims);
+        let f = merge_coplanar(node.clone());
+        // One region per square, each loop simple: two faces of 4.
+        assert_eq!(f.len(), 2);
+        assert!(f.get(0).len() == 4 && f.get(1).len() == 4);
+    }
+}
