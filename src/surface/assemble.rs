@@ -13,6 +13,7 @@
 
 use super::earclip::EarClipper;
 use super::faces::NodeFaces;
+use super::table::plane_normals;
 use super::straight::{vertex_flags, TURNS, USED};
 use crate::error::{Error, Result};
 use crate::octree::NodeId;
@@ -62,31 +63,66 @@ pub struct Mesh {
 
 /// Names the vertices of `parts` (in node order) and triangulates their faces.
 pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
-    // Boundary vertices: (key, turns) from every node, merged by key.
-    let mut boundary: Vec<(u64, bool)> = parts
+    // Inner vertices kept per node, numbered after the shared ones.
+    let inner_counts: Vec<u32> =
+        parts.par_iter().map(|p| (0..p.faces.verts.len()).filter(|&l| p.inner_kept(l)).count() as u32).collect();
+    // Boundary vertices: (key, turns, node, local) from every node, sorted by
+    // key; a key's run says whether any node turns there.
+    let mut boundary: Vec<(u64, bool, u32, u32)> = parts
         .par_iter()
-        .flat_map_iter(|p| {
+        .enumerate()
+        .flat_map_iter(|(i, p)| {
             let v = &p.faces.verts;
-            (0..v.len()).filter(|&l| v.on_boundary[l] && p.flags[l] & USED != 0).map(|l| (v.keys[l], p.flags[l] & TURNS != 0))
+            (0..v.len())
+                .filter(|&l| v.on_boundary[l] && p.flags[l] & USED != 0)
+                .map(move |l| (v.keys[l], p.flags[l] & TURNS != 0, i as u32, l as u32))
         })
         .collect();
     boundary.par_sort_unstable();
-    // Sorted by (key, turns): the last entry of a key says whether any node turns there.
-    let shared: Vec<u64> = boundary
-        .iter()
-        .enumerate()
-        .filter(|&(i, e)| e.1 && boundary.get(i + 1).is_none_or(|n| n.0 != e.0))
-        .map(|(_, e)| e.0)
-        .collect();
-    drop(boundary);
-    // Inner vertices kept per node, numbered after the shared ones.
-    let mut first_inner = Vec::with_capacity(parts.len() + 1);
-    let mut next = shared.len() as u32;
-    for p in parts {
-        first_inner.push(next);
-        next += (0..p.faces.verts.len()).filter(|&l| p.inner_kept(l)).count() as u32;
+    let mut shared: Vec<u64> = Vec::new();
+    let mut shared_of: Vec<u32> = vec![u32::MAX; boundary.len()];
+    let mut run = 0;
+    while run < boundary.len() {
+        let key = boundary[run].0;
+        let mut end = run;
+        while end < boundary.len() && boundary[end].0 == key {
+            end += 1;
+        }
+        // Sorted by (key, turns, ..): the run's last entry turns if any does.
+        if boundary[end - 1].1 {
+            shared_of[run..end].fill(shared.len() as u32);
+            shared.push(key);
+        }
+        run = end;
     }
-    let vertex_count = next as usize;
+    let mut first_inner = Vec::with_capacity(parts.len());
+    let mut next = shared.len() as u32;
+    for &count in &inner_counts {
+        first_inner.push(next);
+        next += count;
+    }
+    // Global index of each node's local vertices (u32::MAX: the vertex leaves).
+    let mut global: Vec<Vec<u32>> = parts
+        .par_iter()
+        .zip(&first_inner)
+        .map(|(p, &first)| {
+            let mut inner = first;
+            (0..p.faces.verts.len())
+                .map(|l| {
+                    if p.inner_kept(l) {
+                        inner += 1;
+                        inner - 1
+                    } else {
+                        u32::MAX
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    for (e, &g) in boundary.iter().zip(&shared_of) {
+        global[e.2 as usize][e.3 as usize] = g;
+    }
+    drop((boundary, shared_of));
     let mut face_base = Vec::with_capacity(parts.len());
     let mut faces = 0u32;
     for p in parts {
@@ -94,62 +130,73 @@ pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
         faces += p.faces.len() as u32;
     }
 
-    let per_node: Vec<Result<(Vec<[u32; 3]>, Vec<u32>)>> = parts
+    // Triangles per node: a face of k kept vertices gives k - 2.
+    let counts: Vec<usize> = parts
         .par_iter()
-        .zip(&first_inner)
-        .zip(&face_base)
-        .map_init(EarClipper::default, |clipper, ((p, &first), &face0)| {
-            let v = &p.faces.verts;
-            // Global index of each local vertex, u32::MAX when it leaves.
-            let mut inner = first;
-            let global: Vec<u32> = (0..v.len())
-                .map(|l| {
-                    if v.on_boundary[l] {
-                        shared.binary_search(&v.keys[l]).map_or(u32::MAX, |g| g as u32)
-                    } else if p.inner_kept(l) {
-                        inner += 1;
-                        inner - 1
-                    } else {
-                        u32::MAX
-                    }
-                })
-                .collect();
-            let mut triangles = Vec::with_capacity(p.faces.vertices.len());
-            let mut face_of = Vec::with_capacity(p.faces.vertices.len());
-            let mut kept: Vec<u32> = Vec::new();
-            for f in 0..p.faces.len() {
-                kept.clear();
-                kept.extend(p.faces.get(f).iter().copied().filter(|&l| global[l as usize] != u32::MAX));
-                let before = triangles.len();
-                if !clipper.triangulate(&kept, &v.midpoints, p.faces.normals[f], &mut triangles) {
-                    return Err(Error::Internal(format!(
-                        "face {f} of node {:?} is not a simple polygon ({} vertices); please report this volume and isovalue",
-                        p.node,
-                        kept.len()
-                    )));
-                }
-                face_of.resize(triangles.len(), face0 + f as u32);
-                for t in &mut triangles[before..] {
-                    *t = t.map(|l| global[l as usize]);
-                }
-            }
-            Ok((triangles, face_of))
+        .zip(&global)
+        .map(|(p, global)| {
+            (0..p.faces.len())
+                .map(|f| p.faces.get(f).iter().filter(|&&l| global[l as usize] != u32::MAX).count().saturating_sub(2))
+                .sum()
         })
         .collect();
-
-    let mut mesh = Mesh { faces: faces as usize, ..Mesh::default() };
-    mesh.keys.reserve(vertex_count);
-    mesh.keys.extend_from_slice(&shared);
-    for p in parts {
-        mesh.keys.extend((0..p.faces.verts.len()).filter(|&l| p.inner_kept(l)).map(|l| p.faces.verts.keys[l]));
+    let total: usize = counts.iter().sum();
+    let mut mesh = Mesh {
+        faces: faces as usize,
+        triangles: vec![[0; 3]; total],
+        triangle_face: vec![0; total],
+        ..Mesh::default()
+    };
+    // Each node fills its own slice of the output, in parallel.
+    let mut slices = Vec::with_capacity(parts.len());
+    let (mut rest_t, mut rest_f) = (&mut mesh.triangles[..], &mut mesh.triangle_face[..]);
+    for &count in &counts {
+        let (t, tail_t) = rest_t.split_at_mut(count);
+        let (f, tail_f) = rest_f.split_at_mut(count);
+        slices.push((t, f));
+        (rest_t, rest_f) = (tail_t, tail_f);
     }
-    for (p, result) in parts.iter().zip(per_node) {
-        let (triangles, face_of) = result?;
-        let first = mesh.triangles.len() as u32;
-        mesh.triangles.extend_from_slice(&triangles);
-        mesh.triangle_face.extend_from_slice(&face_of);
-        mesh.triangle_node.extend(std::iter::repeat_n(p.node, triangles.len()));
-        mesh.node_ranges.push((p.node, first, mesh.triangles.len() as u32));
+    slices
+        .into_par_iter()
+        .zip(parts)
+        .zip(&global)
+        .zip(&face_base)
+        .map_init(
+            || (EarClipper::default(), Vec::new(), Vec::new()),
+            |(clipper, kept, triangles), ((((out, face_out), p), global), &face0)| {
+                triangles.clear();
+                let mut at = 0;
+                for f in 0..p.faces.len() {
+                    kept.clear();
+                    kept.extend(p.faces.get(f).iter().copied().filter(|&l| global[l as usize] != u32::MAX));
+                    if !clipper.triangulate(kept, &p.faces.verts.midpoints, plane_normals()[p.faces.planes[f] as usize], triangles) {
+                        return Err(Error::Internal(format!(
+                            "face {f} of node {:?} is not a simple polygon ({} vertices); please report this volume and isovalue",
+                            p.node,
+                            kept.len()
+                        )));
+                    }
+                    for t in triangles.drain(..) {
+                        out[at] = t.map(|l| global[l as usize]);
+                        face_out[at] = face0 + f as u32;
+                        at += 1;
+                    }
+                }
+                Ok(())
+            },
+        )
+        .collect::<Result<()>>()?;
+
+    mesh.keys = shared;
+    mesh.keys.par_extend(parts.par_iter().flat_map_iter(|p| {
+        (0..p.faces.verts.len()).filter(|&l| p.inner_kept(l)).map(|l| p.faces.verts.keys[l])
+    }));
+    mesh.triangle_node.par_extend(parts.par_iter().zip(&counts).flat_map_iter(|(p, &n)| std::iter::repeat_n(p.node, n)));
+    let mut first = 0u32;
+    for (p, &n) in parts.iter().zip(&counts) {
+        let end = first + n as u32;
+        mesh.node_ranges.push((p.node, first, end));
+        first = end;
     }
     Ok(mesh)
 }

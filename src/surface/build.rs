@@ -178,13 +178,13 @@ pub fn surface_nodes(octree: &VolumeOctree, isovalue: f64) -> Vec<NodeId> {
     nodes
 }
 
-/// Marches every surface node (parallel, node order kept).
+/// Marches every surface node (parallel, node order kept), recording cells.
 pub fn march_nodes<T: Sample>(g: &TypedGrid<'_, T>, octree: &VolumeOctree, nodes: &[NodeId], iso: f64) -> Vec<NodeTriangles> {
     nodes
         .par_iter()
         .map_init(EdgeIndex::default, |index, &id| {
             let n = octree.node(id);
-            march(g, n.lo, n.hi, iso, index)
+            march(g, n.lo, n.hi, iso, index, true)
         })
         .collect()
 }
@@ -210,7 +210,7 @@ impl GridVisitor for Extraction<'_> {
             .par_iter()
             .map_init(EdgeIndex::default, |index, &id| {
                 let n = octree.node(id);
-                let m = march(&g, n.lo, n.hi, iso, index);
+                let m = march(&g, n.lo, n.hi, iso, index, false);
                 let marched = m.triangles.len();
                 let faces = if merge { merge_coplanar(m) } else { NodeFaces::from_triangles(m) };
                 (NodePart::new(id, faces, merge), marched)
@@ -224,8 +224,8 @@ impl GridVisitor for Extraction<'_> {
         let mesh = assemble(&parts)?;
         drop(parts);
         let Mesh { keys: kept, triangles, triangle_face, triangle_node, node_ranges, faces } = mesh;
-        let offsets: Vec<u32> = (0..=triangles.len() as u32).map(|i| 3 * i).collect();
-        let connectivity: Vec<u32> = triangles.into_iter().flatten().collect();
+        let offsets: Vec<u32> = (0..=triangles.len() as u32).into_par_iter().map(|i| 3 * i).collect();
+        let connectivity: Vec<u32> = triangles.par_iter().flat_map_iter(|t| t.iter().copied()).collect();
         let points: Vec<[f64; 3]> = kept
             .par_iter()
             .map(|&key| match options.mode {

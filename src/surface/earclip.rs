@@ -15,12 +15,17 @@
 
 use super::exact::{in_closed_triangle, turn};
 
-/// The ear clipper, with its ring buffers reused from face to face.
+/// The ear clipper, with its buffers reused from face to face.
 #[derive(Debug, Default)]
 pub struct EarClipper {
     next: Vec<usize>,
     prev: Vec<usize>,
     convex: Vec<bool>,
+    clipped: Vec<bool>,
+    /// Vertices that did not turn strictly at the start. Clipping an ear only
+    /// shrinks the angles at its two neighbours, so a convex vertex never
+    /// becomes reflex or straight again: no vertex joins the list.
+    others: Vec<usize>,
 }
 
 impl EarClipper {
@@ -29,77 +34,76 @@ impl EarClipper {
     /// `out` as it was, if no ear is left before the end (the polygon was not
     /// simple).
     pub fn triangulate(&mut self, face: &[u32], points: &[[i64; 3]], normal: [i64; 3], out: &mut Vec<[u32; 3]>) -> bool {
-        triangulate(face, points, normal, out, &mut self.next, &mut self.prev, &mut self.convex)
-    }
-}
-
-fn triangulate(
-    face: &[u32],
-    points: &[[i64; 3]],
-    normal: [i64; 3],
-    out: &mut Vec<[u32; 3]>,
-    next: &mut Vec<usize>,
-    prev: &mut Vec<usize>,
-    convex: &mut Vec<bool>,
-) -> bool {
-    let n = face.len();
-    if n < 3 {
-        return n == 0;
-    }
-    if n == 3 {
-        out.push([face[0], face[1], face[2]]);
-        return true;
-    }
-    let before = out.len();
-    let p = |i: usize| points[face[i] as usize];
-    next.clear();
-    next.extend((1..=n).map(|i| i % n));
-    prev.clear();
-    prev.extend((0..n).map(|i| (i + n - 1) % n));
-    let turns = |prev: &[usize], next: &[usize], i: usize| turn(p(prev[i]), p(i), p(next[i]), normal) > 0;
-    // Whether each vertex turns strictly counter-clockwise; only the two
-    // neighbours of a clipped ear change.
-    convex.clear();
-    convex.extend((0..n).map(|i| turns(prev, next, i)));
-    let mut left = n;
-    let mut i = 0;
-    let mut tried = 0;
-    while left > 3 {
-        if tried > left {
-            out.truncate(before);
-            return false;
+        let n = face.len();
+        if n < 3 {
+            return n == 0;
         }
-        let (a, c) = (prev[i], next[i]);
-        let ear = convex[i] && {
-            // No non-convex vertex of the rest in the closed triangle (a, i, c).
-            let mut j = next[c];
-            let mut clear = true;
-            while j != a {
-                if !convex[j] && in_closed_triangle(p(j), p(a), p(i), p(c), normal) {
-                    clear = false;
-                    break;
-                }
-                j = next[j];
+        if n == 3 {
+            out.push([face[0], face[1], face[2]]);
+            return true;
+        }
+        let before = out.len();
+        let p = |i: usize| points[face[i] as usize];
+        let EarClipper { next, prev, convex, clipped, others } = self;
+        next.clear();
+        next.extend((1..=n).map(|i| i % n));
+        prev.clear();
+        prev.extend((0..n).map(|i| (i + n - 1) % n));
+        let turns = |prev: &[usize], next: &[usize], i: usize| turn(p(prev[i]), p(i), p(next[i]), normal) > 0;
+        convex.clear();
+        convex.extend((0..n).map(|i| turns(prev, next, i)));
+        clipped.clear();
+        clipped.resize(n, false);
+        others.clear();
+        others.extend((0..n).filter(|&i| !convex[i]));
+        if others.is_empty() {
+            // Strictly convex: every fan triangle from vertex 0 is an ear.
+            out.extend((1..n - 1).map(|k| [face[0], face[k], face[k + 1]]));
+            return true;
+        }
+        let mut left = n;
+        let mut i = 0;
+        let mut tried = 0;
+        while left > 3 {
+            if tried > left {
+                out.truncate(before);
+                return false;
             }
-            clear
-        };
-        if ear {
-            out.push([face[a], face[i], face[c]]);
-            next[a] = c;
-            prev[c] = a;
-            convex[a] = turns(prev, next, a);
-            convex[c] = turns(prev, next, c);
-            left -= 1;
-            tried = 0;
-            i = a; // a's turn changed; c's too, reached next
-        } else {
-            i = c;
-            tried += 1;
+            let (a, c) = (prev[i], next[i]);
+            let ear = convex[i] && {
+                // No non-convex vertex of the rest in the closed triangle (a, i, c).
+                let (pa, pi, pc) = (p(a), p(i), p(c));
+                let lo = [0, 1, 2].map(|k| pa[k].min(pi[k]).min(pc[k]));
+                let hi = [0, 1, 2].map(|k| pa[k].max(pi[k]).max(pc[k]));
+                !others.iter().any(|&j| {
+                    let q = p(j);
+                    j != a
+                        && j != c
+                        && !clipped[j]
+                        && !convex[j]
+                        && (0..3).all(|k| lo[k] <= q[k] && q[k] <= hi[k])
+                        && in_closed_triangle(q, pa, pi, pc, normal)
+                })
+            };
+            if ear {
+                out.push([face[a], face[i], face[c]]);
+                clipped[i] = true;
+                next[a] = c;
+                prev[c] = a;
+                convex[a] = turns(prev, next, a);
+                convex[c] = turns(prev, next, c);
+                left -= 1;
+                tried = 0;
+                i = a; // a's turn changed; c's too, reached next
+            } else {
+                i = c;
+                tried += 1;
+            }
         }
+        let a = prev[i];
+        out.push([face[a], face[i], face[next[i]]]);
+        true
     }
-    let a = prev[i];
-    out.push([face[a], face[i], face[next[i]]]);
-    true
 }
 
 #[cfg(test)]

@@ -73,9 +73,10 @@ pub struct NodeTriangles {
     pub verts: NodeVertices,
     /// Local vertex indices of each triangle.
     pub triangles: Vec<[u32; 3]>,
-    /// Each triangle's reduced plane normal in doubled coordinates (from the case table).
-    pub normals: Vec<[i64; 3]>,
-    /// Linear index `x + nx * (y + ny * z)` of the cell each triangle came from.
+    /// Each triangle's plane: an index into [`super::table::plane_normals`].
+    pub planes: Vec<u8>,
+    /// Linear index `x + nx * (y + ny * z)` of the cell each triangle came
+    /// from (only when [`march`] is asked to record them).
     pub cells: Vec<u64>,
 }
 
@@ -96,13 +97,15 @@ pub struct EdgeIndex {
     dense: Vec<u32>,
 }
 
-/// Marches the cells `[lo, hi)` (point box `[lo, hi]`) at `isovalue`.
+/// Marches the cells `[lo, hi)` (point box `[lo, hi]`) at `isovalue`;
+/// `record_cells` also keeps each triangle's cell.
 pub fn march<T: Sample>(
     g: &TypedGrid<'_, T>,
     lo: [usize; 3],
     hi: [usize; 3],
     isovalue: f64,
     index: &mut EdgeIndex,
+    record_cells: bool,
 ) -> NodeTriangles {
     let table = cases();
     let dims = g.dims;
@@ -151,7 +154,7 @@ pub fn march<T: Sample>(
                 }
                 let cell = (x + dims[0] * (y + dims[1] * z)) as u64;
                 let entry = &table[case];
-                for (t, n) in entry.triangles.iter().zip(&entry.normals) {
+                for (t, &plane) in entry.triangles.iter().zip(&entry.planes) {
                     let tri = t.map(|e| {
                         let (a, _, axis) = edge_corners(e as usize);
                         let p = [x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)];
@@ -172,8 +175,10 @@ pub fn march<T: Sample>(
                         id
                     });
                     out.triangles.push(tri);
-                    out.normals.push(*n);
-                    out.cells.push(cell);
+                    out.planes.push(plane);
+                    if record_cells {
+                        out.cells.push(cell);
+                    }
                 }
             }
         }

@@ -25,10 +25,12 @@
 
 use super::exact::{dot, loop_area2};
 use super::extract::{NodeTriangles, NodeVertices};
+use super::table::plane_normals;
 
 /// The faces of one terminal node: loop `i` is
 /// `vertices[offsets[i] .. offsets[i + 1]]`, local vertex indices into `verts`,
-/// counter-clockwise seen from outside, in the plane with normal `normals[i]`.
+/// counter-clockwise seen from outside, in plane `planes[i]` (an index into
+/// [`super::table::plane_normals`]).
 #[derive(Debug, Default, Clone, PartialEq, Eq)]
 pub struct NodeFaces {
     /// The node's vertices (local numbering, as marched).
@@ -37,8 +39,8 @@ pub struct NodeFaces {
     pub offsets: Vec<u32>,
     /// Local vertex indices.
     pub vertices: Vec<u32>,
-    /// The plane normal of each face (doubled coordinates, reduced integers).
-    pub normals: Vec<[i64; 3]>,
+    /// The plane of each face.
+    pub planes: Vec<u8>,
 }
 
 impl NodeFaces {
@@ -54,13 +56,13 @@ impl NodeFaces {
     pub fn get(&self, i: usize) -> &[u32] {
         &self.vertices[self.offsets[i] as usize..self.offsets[i + 1] as usize]
     }
-    fn push(&mut self, face: &[u32], normal: [i64; 3]) {
+    fn push(&mut self, face: &[u32], plane: u8) {
         if self.offsets.is_empty() {
             self.offsets.push(0);
         }
         self.vertices.extend_from_slice(face);
         self.offsets.push(self.vertices.len() as u32);
-        self.normals.push(normal);
+        self.planes.push(plane);
     }
     /// Every facet its own face (no merging: interpolated mode, or compression off).
     pub fn from_triangles(node: NodeTriangles) -> NodeFaces {
@@ -68,7 +70,7 @@ impl NodeFaces {
         NodeFaces {
             offsets: (0..=count as u32).map(|i| 3 * i).collect(),
             vertices: node.triangles.iter().flatten().copied().collect(),
-            normals: node.normals,
+            planes: node.planes,
             verts: node.verts,
         }
     }
@@ -82,7 +84,7 @@ fn half_edge(t: usize, k: usize) -> usize {
 /// Merges the facets of one node into faces (see the module documentation).
 pub fn merge_coplanar(node: NodeTriangles) -> NodeFaces {
     let tris = &node.triangles;
-    let planes = &node.normals;
+    let planes = &node.planes;
     let nv = node.verts.len();
     // Outgoing half-edges per vertex (compressed rows): (to, half-edge).
     let mut start = vec![0u32; nv + 1];
@@ -134,13 +136,14 @@ pub fn merge_coplanar(node: NodeTriangles) -> NodeFaces {
     let mut seen_in = vec![u32::MAX; nv];
     let mut loops = NodeFaces::default();
     // Planes whose faces in this node are not simple polygons.
-    let mut broken: Vec<[i64; 3]> = Vec::new();
+    let mut broken: Vec<u8> = Vec::new();
     let mut face: Vec<u32> = Vec::new();
     for h0 in 0..3 * tris.len() {
         if twin[h0] != NONE || visited[h0] {
             continue;
         }
-        let normal = planes[h0 / 3];
+        let plane = planes[h0 / 3];
+        let normal = plane_normals()[plane as usize];
         let id = loops.len() as u32;
         face.clear();
         let mut simple = true;
@@ -175,9 +178,9 @@ pub fn merge_coplanar(node: NodeTriangles) -> NodeFaces {
         }
         let counter_clockwise = dot(loop_area2(face.iter().map(|&v| points[v as usize])), normal) > 0;
         if !(simple && counter_clockwise) {
-            broken.push(normal);
+            broken.push(plane);
         }
-        loops.push(&face, normal);
+        loops.push(&face, plane);
     }
     if broken.is_empty() {
         loops.verts = node.verts;
@@ -186,11 +189,11 @@ pub fn merge_coplanar(node: NodeTriangles) -> NodeFaces {
     // Faces of intact planes, then the facets of broken planes one by one.
     broken.sort_unstable();
     broken.dedup();
-    let is_broken = |n: &[i64; 3]| broken.binary_search(n).is_ok();
+    let is_broken = |n: &u8| broken.binary_search(n).is_ok();
     let mut out = NodeFaces::default();
     for i in 0..loops.len() {
-        if !is_broken(&loops.normals[i]) {
-            out.push(loops.get(i), loops.normals[i]);
+        if !is_broken(&loops.planes[i]) {
+            out.push(loops.get(i), loops.planes[i]);
         }
     }
     for (t, n) in tris.iter().zip(planes) {
@@ -224,8 +227,8 @@ mod tests {
             let (a, b, c, d) = (id(&mut node, x, y), id(&mut node, x + 1, y), id(&mut node, x + 1, y + 1), id(&mut node, x, y + 1));
             node.triangles.push([a, b, c]);
             node.triangles.push([a, c, d]);
-            node.normals.extend([[0, 0, 1], [0, 0, 1]]);
-            node.cells.extend([0, 0]);
+            let up = plane_normals().binary_search(&[0, 0, 1]).expect("the table has the plane z") as u8;
+            node.planes.extend([up, up]);
         }
         node
     }

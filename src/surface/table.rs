@@ -72,6 +72,8 @@ pub struct Case {
     /// of its components (right-hand, pointing out): the same for every cell, so
     /// face compression reads it here instead of computing it per facet.
     pub normals: Vec<[i64; 3]>,
+    /// Each triangle's plane normal as an index into [`plane_normals`].
+    pub planes: Vec<u8>,
 }
 
 /// True when the midpoints of edges `a`, `b`, `c` lie in one face of the cube.
@@ -94,8 +96,28 @@ fn triangulate(cycle: &[u8]) -> Vec<[u8; 3]> {
 
 /// The 256 cases, indexed by `sum over inside corners c of 2^c`.
 pub fn cases() -> &'static [Case; 256] {
-    static TABLE: OnceLock<Box<[Case; 256]>> = OnceLock::new();
-    TABLE.get_or_init(|| Box::new(std::array::from_fn(build_case)))
+    &table().0
+}
+
+/// The distinct facet plane normals of all cases, sorted (DiscMC facets take
+/// a finite set of orientations; a plane id is an index into this list).
+pub fn plane_normals() -> &'static [[i64; 3]] {
+    &table().1
+}
+
+fn table() -> &'static (Box<[Case; 256]>, Vec<[i64; 3]>) {
+    static TABLE: OnceLock<(Box<[Case; 256]>, Vec<[i64; 3]>)> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut cases: Box<[Case; 256]> = Box::new(std::array::from_fn(build_case));
+        let mut normals: Vec<[i64; 3]> = cases.iter().flat_map(|c| c.normals.iter().copied()).collect();
+        normals.sort_unstable();
+        normals.dedup();
+        assert!(normals.len() <= 256, "{} facet planes do not fit a u8 id", normals.len());
+        for case in cases.iter_mut() {
+            case.planes = case.normals.iter().map(|n| normals.binary_search(n).unwrap_or(0) as u8).collect();
+        }
+        (cases, normals)
+    })
 }
 
 fn sub(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
@@ -191,7 +213,7 @@ fn build_case(index: usize) -> Case {
             reduced(cross(sub(p[1], p[0]), sub(p[2], p[0])))
         })
         .collect();
-    Case { cycles, triangles, normals }
+    Case { cycles, triangles, normals, planes: Vec::new() }
 }
 
 #[cfg(test)]
