@@ -177,7 +177,9 @@ bool VolumeOctree::ExtractSurface(const void* bytes, std::size_t byteCount,
     CopyInto(s.connectivity, surface.Connectivity);
     CopyInto(s.polygon_node, surface.PolygonNode);
     CopyInto(s.polygon_level, surface.PolygonLevel);
+    CopyInto(s.polygon_face, surface.PolygonFace);
     surface.Polygons = s.polygons;
+    surface.Faces = s.faces;
     surface.Triangles = s.triangles;
     surface.UncompressedTriangles = s.uncompressed_triangles;
     surface.Vertices = s.vertices;

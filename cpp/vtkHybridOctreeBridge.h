@@ -85,7 +85,7 @@ struct CutBoxes
 enum class SurfaceMode
 {
   /// Discretized Marching Cubes: vertices at edge midpoints, coplanar facets
-  /// merged into convex polygons (lossless).
+  /// merged into faces and re-triangulated (lossless).
   Discretized,
   /// Classic Marching Cubes: vertices linearly interpolated along edges.
   Interpolated
@@ -96,8 +96,9 @@ enum class SurfaceMode
 ///
 /// Sizes: `Points` and `Normals` hold 3 values per vertex; polygon `i` uses
 /// `Connectivity[Offsets[i] .. Offsets[i + 1]]`, so `Offsets` holds
-/// `Polygons + 1` values starting at 0; `PolygonNode` and `PolygonLevel` hold
-/// one value per polygon.
+/// `Polygons + 1` values starting at 0; `PolygonNode`, `PolygonLevel` and
+/// `PolygonFace` hold one value per polygon. Polygons are triangles: the
+/// merged coplanar faces triangulated with their own vertices.
 struct SurfaceMesh
 {
   std::vector<double> Points;
@@ -106,8 +107,10 @@ struct SurfaceMesh
   std::vector<std::int64_t> Connectivity;
   std::vector<std::uint32_t> PolygonNode;  ///< terminal node holding the polygon (level-by-level id)
   std::vector<std::uint32_t> PolygonLevel; ///< level of that node (0 = root)
+  std::vector<std::uint32_t> PolygonFace;  ///< the merged coplanar face the triangle belongs to
   std::uint64_t Polygons = 0;
-  std::uint64_t Triangles = 0;             ///< after fan-triangulating every polygon
+  std::uint64_t Faces = 0;                 ///< merged coplanar faces
+  std::uint64_t Triangles = 0;             ///< triangles in the output (= Polygons)
   std::uint64_t UncompressedTriangles = 0; ///< before coplanar facets are merged
   std::uint64_t Vertices = 0;
   std::uint64_t BoundaryEdges = 0; ///< edges of one polygon only (0: closed surface)

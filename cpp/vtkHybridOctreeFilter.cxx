@@ -309,6 +309,7 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   const std::size_t vertices = mesh.Points.size() / 3;
   if (mesh.Points.size() != 3 * mesh.Vertices || mesh.Normals.size() != mesh.Points.size() ||
     polygons != mesh.Polygons || mesh.PolygonLevel.size() != polygons ||
+    mesh.PolygonFace.size() != polygons ||
     mesh.Offsets.size() != polygons + 1 || mesh.Offsets.front() != 0 ||
     mesh.Offsets.back() != static_cast<std::int64_t>(mesh.Connectivity.size()))
   {
@@ -356,6 +357,10 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   level->SetNumberOfValues(static_cast<vtkIdType>(polygons));
   std::copy(mesh.PolygonNode.begin(), mesh.PolygonNode.end(), node->GetPointer(0));
   std::copy(mesh.PolygonLevel.begin(), mesh.PolygonLevel.end(), level->GetPointer(0));
+  vtkNew<vtkIdTypeArray> face;
+  face->SetName("face");
+  face->SetNumberOfValues(static_cast<vtkIdType>(polygons));
+  std::copy(mesh.PolygonFace.begin(), mesh.PolygonFace.end(), face->GetPointer(0));
 
   auto surface = vtkSmartPointer<vtkPolyData>::New();
   surface->SetPoints(points);
@@ -363,6 +368,7 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   surface->GetPointData()->SetNormals(normals);
   surface->GetCellData()->AddArray(node);
   surface->GetCellData()->AddArray(level);
+  surface->GetCellData()->AddArray(face);
 
   vtkNew<vtkFieldData> fieldData;
   AddFieldValue<vtkDoubleArray>(fieldData, "isovalue", this->Isovalue);
@@ -371,6 +377,7 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   modeName->InsertNextValue(this->GetSurfaceModeAsString());
   fieldData->AddArray(modeName);
   AddFieldValue<vtkTypeInt64Array>(fieldData, "polygons", mesh.Polygons);
+  AddFieldValue<vtkTypeInt64Array>(fieldData, "faces", mesh.Faces);
   AddFieldValue<vtkTypeInt64Array>(fieldData, "triangles", mesh.Triangles);
   AddFieldValue<vtkTypeInt64Array>(
     fieldData, "uncompressed_triangles", mesh.UncompressedTriangles);

@@ -24,16 +24,21 @@
  * Output port 1 ("Surface"): the isosurface at Isovalue that the Hybrid
  * Octree keeps, extracted per terminal node (The Hybrid Octree, section 2.2).
  * SurfaceMode chooses it: Discretized (default) is the Discretized Marching
- * Cubes surface (vertices at edge midpoints) with coplanar facets merged into
- * convex polygons, losslessly: fewer, larger polygons; Interpolated is the
+ * Cubes surface (vertices at edge midpoints) with each region of coplanar
+ * facets in a node merged into one face, losslessly, and the face
+ * triangulated with its own vertices (no T-junctions): far fewer triangles;
+ * Interpolated is the
  * classic Marching Cubes surface with vertices interpolated along the edges
  * (the vertices vtkFlyingEdges3D produces), triangles only. Points are
  * doubles; point data "Normals" (float, 3 components, unit length, pointing
  * from values >= Isovalue towards values below it) is the active normals
- * array; polygons are convex. Cell arrays: "node" (id of the terminal octree
- * node holding the polygon, in the level-by-level numbering) and "level".
+ * array; polygons are triangles. Cell arrays: "node" (id of the terminal
+ * octree node holding the triangle, in the level-by-level numbering), "level"
+ * and "face" (the merged coplanar face the triangle belongs to: color by it
+ * to see the compression).
  * Field data: "isovalue", "surface_mode" (string: "discretized" or
- * "interpolated"), "polygons", "triangles" (after fan triangulation),
+ * "interpolated"), "polygons" (= "triangles"), "faces" (merged coplanar
+ * faces), "triangles",
  * "uncompressed_triangles" (before facets are merged), "vertices",
  * "boundary_edges" (edges of one polygon only: 0 for a closed surface),
  * "extract_ms", "compress_ms", "distance_mean", "distance_max" (sampled
@@ -127,8 +132,8 @@ public:
    * Which isosurface output port 1 holds: SURFACE_MODE_DISCRETIZED (0,
    * default) is the Discretized Marching Cubes surface the Hybrid Octree keeps:
    * vertices at edge midpoints, so within about half a voxel of the
-   * interpolated surface, with coplanar facets merged into convex polygons,
-   * which leaves far fewer triangles to draw. SURFACE_MODE_INTERPOLATED (1) is
+   * interpolated surface, with coplanar facets merged into faces and
+   * re-triangulated, which leaves far fewer triangles to draw. SURFACE_MODE_INTERPOLATED (1) is
    * the classic Marching Cubes surface: exact vertices, more triangles.
    */
   vtkSetClampMacro(SurfaceMode, int, SURFACE_MODE_DISCRETIZED, SURFACE_MODE_INTERPOLATED);

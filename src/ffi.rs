@@ -100,14 +100,18 @@ mod bridge {
         points: Vec<f64>,
         /// 3 per point: unit outward normals (from values >= isovalue towards values below it).
         normals: Vec<f32>,
-        /// Polygon i uses connectivity[offsets[i] .. offsets[i + 1]]; offsets.len() = polygons + 1.
+        /// Polygon (triangle) i uses connectivity[offsets[i] .. offsets[i + 1]]; offsets.len() = polygons + 1.
         offsets: Vec<i64>,
         connectivity: Vec<i64>,
         /// Per polygon: the terminal octree node holding it and its level.
         polygon_node: Vec<u32>,
         polygon_level: Vec<u32>,
+        /// Per polygon: the merged coplanar face it triangulates.
+        polygon_face: Vec<u32>,
         polygons: u64,
-        /// Triangles when every (convex) polygon is fan-triangulated.
+        /// Merged coplanar faces (DiscMC with compression), else the triangles.
+        faces: u64,
+        /// Triangles in the output (= polygons).
         triangles: u64,
         /// Triangles before face compression.
         uncompressed_triangles: u64,
@@ -240,7 +244,9 @@ impl VolumeOctreeHandle {
                 connectivity: surface.connectivity.iter().map(|&c| c as i64).collect(),
                 polygon_node: surface.polygon_node.iter().map(|n| n.0).collect(),
                 polygon_level: surface.polygon_node.iter().map(|&n| self.octree.node(n).level as u32).collect(),
+                polygon_face: surface.polygon_face.clone(),
                 polygons: st.polygons as u64,
+                faces: st.faces as u64,
                 triangles: st.triangles as u64,
                 uncompressed_triangles: st.uncompressed_triangles as u64,
                 vertices: st.vertices as u64,

@@ -212,6 +212,28 @@ fn bench_prints_a_row_per_combination_and_the_ratio() {
     assert!(text.contains("shepp-logan u8, 1 thread(s), leaf 8: ns/voxel size 33 / size 17 = "), "{text}");
 }
 
+#[test]
+fn bench_surface_prints_every_mode_with_ratios_to_interpolated() {
+    let out = run(&["bench", "surface", "--cases", "sphere:0.5,marschner-lobb:0.3", "--size", "33", "--threads", "1", "--repeats", "1", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Value = serde_json::from_str(&stdout(&out)).expect("a JSON array");
+    let rows = rows.as_array().expect("rows");
+    assert_eq!(rows.len(), 6, "two cases, three modes each");
+    for case in rows.chunks(3) {
+        let (interp, plain, disc) = (&case[0], &case[1], &case[2]);
+        assert_eq!((interp["mode"].as_str(), plain["mode"].as_str(), disc["mode"].as_str()), (Some("interpolated"), Some("discmc-unmerged"), Some("discmc")));
+        assert_eq!(interp["time_vs_interpolated"], 1.0);
+        assert_eq!(plain["triangles"], interp["triangles"], "same facets, other vertices");
+        assert!(disc["triangles"].as_u64() < plain["triangles"].as_u64(), "{disc}");
+        assert!(disc["faces"].as_u64() < disc["triangles"].as_u64(), "{disc}");
+        assert!(disc["triangles_vs_uncompressed"].as_f64().unwrap() < 1.0);
+    }
+    let bad = run(&["bench", "surface", "--cases", "sphere"]);
+    assert_clean_failure(&bad, "DATASET:ISOVALUE");
+    let bad = run(&["bench", "surface", "--modes", "fast"]);
+    assert_clean_failure(&bad, "unknown mode 'fast'");
+}
+
 fn surface_json(args: &[&str]) -> Value {
     json_of("surface", args)
 }
@@ -223,7 +245,7 @@ fn surface_reports_both_modes_and_what_compression_saves() {
     let plain = surface_json(&[&common[..], &["--no-compress"]].concat());
     let interp = surface_json(&[&common[..], &["--mode", "interpolated"]].concat());
     for r in [&disc, &plain, &interp] {
-        for key in ["polygons", "triangles", "uncompressed_triangles", "vertices", "boundary_edges", "extract_ms", "compress_ms"] {
+        for key in ["polygons", "faces", "triangles", "uncompressed_triangles", "vertices", "boundary_edges", "extract_ms", "compress_ms"] {
             assert!(r.get(key).is_some(), "missing {key} in {r}");
         }
         assert_eq!(r["boundary_edges"], 0, "a closed sphere: {r}");
@@ -236,6 +258,10 @@ fn surface_reports_both_modes_and_what_compression_saves() {
     // Compression keeps the surface (area, volume) and saves polygons.
     assert_eq!(disc["uncompressed_triangles"], plain["triangles"]);
     assert!(disc["polygons"].as_u64() < plain["polygons"].as_u64());
+    // Faces: merged facets, fewer than the triangles that draw them; unmerged, one per facet.
+    assert!(disc["faces"].as_u64() < disc["triangles"].as_u64(), "{disc}");
+    assert_eq!(plain["faces"], plain["triangles"]);
+    assert_eq!(interp["faces"], interp["triangles"]);
     let rel = |a: &Value, b: &Value, k: &str| (a[k].as_f64().unwrap() - b[k].as_f64().unwrap()).abs() / b[k].as_f64().unwrap().abs();
     assert!(rel(&disc, &plain, "area") < 1e-9 && rel(&disc, &plain, "volume") < 1e-9);
     // Same topology: interpolated triangles are the DiscMC facets, moved.

@@ -22,7 +22,7 @@
 
 use super::assemble::{assemble, Mesh, NodePart};
 use super::faces::{merge_coplanar, NodeFaces};
-use super::extract::{edge_of_key, march, midpoint2, EdgeIndex, NodeTriangles};
+use super::extract::{edge_of_key, march, midpoint2, EdgeIndex, NodeTriangles, Record};
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::octree::{NodeId, VolumeOctree};
@@ -184,7 +184,7 @@ pub fn march_nodes<T: Sample>(g: &TypedGrid<'_, T>, octree: &VolumeOctree, nodes
         .par_iter()
         .map_init(EdgeIndex::default, |index, &id| {
             let n = octree.node(id);
-            march(g, n.lo, n.hi, iso, index, true)
+            march(g, n.lo, n.hi, iso, index, Record { cells: true, across: false })
         })
         .collect()
 }
@@ -210,7 +210,7 @@ impl GridVisitor for Extraction<'_> {
             .par_iter()
             .map_init(EdgeIndex::default, |index, &id| {
                 let n = octree.node(id);
-                let m = march(&g, n.lo, n.hi, iso, index, false);
+                let m = march(&g, n.lo, n.hi, iso, index, Record { cells: false, across: merge });
                 let marched = m.triangles.len();
                 let faces = if merge { merge_coplanar(m) } else { NodeFaces::from_triangles(m) };
                 (NodePart::new(id, faces, merge), marched)

@@ -9,7 +9,7 @@
 //! Only nodes whose `[min, max]` brackets the isovalue (`min < iso <= max`:
 //! some sample inside, some outside) have cells to visit.
 
-use super::table::{cases, edge_corners};
+use super::table::{cases, edge_corners, ON_CELL_FACE};
 use crate::grid::{Sample, TypedGrid};
 
 /// The edge key of the edge from point `p` along `axis` in a grid of `dims`.
@@ -76,8 +76,13 @@ pub struct NodeTriangles {
     /// Each triangle's plane: an index into [`super::table::plane_normals`].
     pub planes: Vec<u8>,
     /// Linear index `x + nx * (y + ny * z)` of the cell each triangle came
-    /// from (only when [`march`] is asked to record them).
+    /// from (only when [`Record::cells`]).
     pub cells: Vec<u64>,
+    /// For half-edge `3 t + k` (corner `k` to corner `k + 1` of triangle
+    /// `t`): the half-edge running the other way in the facet across, or
+    /// [`NO_TWIN`] where the surface leaves the node or the volume (only when
+    /// [`Record::across`]).
+    pub across: Vec<u32>,
 }
 
 impl NodeTriangles {
@@ -85,6 +90,18 @@ impl NodeTriangles {
     pub fn keys_of(&self, i: usize) -> [u64; 3] {
         self.triangles[i].map(|v| self.verts.keys[v as usize])
     }
+}
+
+/// [`NodeTriangles::across`] of an edge with no facet across in the node.
+pub const NO_TWIN: u32 = u32::MAX;
+
+/// What [`march`] records besides the triangles.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Record {
+    /// Each triangle's cell.
+    pub cells: bool,
+    /// Each half-edge's twin.
+    pub across: bool,
 }
 
 /// Nodes with at most this many edges number their vertices through a dense
@@ -95,17 +112,27 @@ const DENSE_EDGES: usize = 3 * 33 * 33 * 33;
 #[derive(Debug, Default)]
 pub struct EdgeIndex {
     dense: Vec<u32>,
+    /// The slots of `dense` the current node set (freed when it is done).
+    touched: Vec<u32>,
+    /// Per local vertex, the half-edges leaving it along a cell face (at most
+    /// one per cell around its grid edge, so four).
+    face_out: Vec<[u32; 4]>,
 }
 
-/// Marches the cells `[lo, hi)` (point box `[lo, hi]`) at `isovalue`;
-/// `record_cells` also keeps each triangle's cell.
+/// Marches the cells `[lo, hi)` (point box `[lo, hi]`) at `isovalue`,
+/// recording what `record` asks for.
+///
+/// Twins: an edge inside a cell (a fan diagonal) has its twin in the same
+/// cell, from the case table; an edge on a cell face has it in the cell across
+/// that face, found among the (at most four) face half-edges leaving its end
+/// vertex.
 pub fn march<T: Sample>(
     g: &TypedGrid<'_, T>,
     lo: [usize; 3],
     hi: [usize; 3],
     isovalue: f64,
     index: &mut EdgeIndex,
-    record_cells: bool,
+    record: Record,
 ) -> NodeTriangles {
     let table = cases();
     let dims = g.dims;
@@ -114,9 +141,8 @@ pub fn march<T: Sample>(
     let w = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
     let slots = 3 * w[0] * w[1] * w[2];
     let dense = slots <= DENSE_EDGES;
-    if dense {
-        index.dense.clear();
-        index.dense.resize(slots, u32::MAX);
+    if dense && index.dense.len() < slots {
+        index.dense.resize(slots, u32::MAX); // all free between nodes: each node frees its own
     }
     let mut sparse: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
     // Inside flags (value >= isovalue) of two point slices, z and z + 1: each
@@ -131,57 +157,108 @@ pub fn march<T: Sample>(
         }
     };
     fill(&mut inside[..plane], lo[2]);
+    let mut ids = [0u32; 12];
     for z in lo[2]..hi[2] {
         let (below, above) = inside.split_at_mut(plane);
         if z > lo[2] {
             below.copy_from_slice(above);
         }
         fill(above, z + 1);
-        let flag = |x: usize, y: usize, dz: usize| {
-            let s = if dz == 0 { &*below } else { &*above };
-            s[(x - lo[0]) + w[0] * (y - lo[1])]
-        };
         for y in lo[1]..hi[1] {
+            // The four point rows around the cells of this row: (y, z), (y + 1, z), (y, z + 1), (y + 1, z + 1).
+            let r = [
+                &below[w[0] * (y - lo[1])..w[0] * (y - lo[1] + 1)],
+                &below[w[0] * (y - lo[1] + 1)..w[0] * (y - lo[1] + 2)],
+                &above[w[0] * (y - lo[1])..w[0] * (y - lo[1] + 1)],
+                &above[w[0] * (y - lo[1] + 1)..w[0] * (y - lo[1] + 2)],
+            ];
+            // Corners c = dx + 2 dy + 4 dz: the even bits come from point x, the odd ones from x + 1.
+            let corners_at = |i: usize| {
+                usize::from(r[0][i]) | usize::from(r[1][i]) << 2 | usize::from(r[2][i]) << 4 | usize::from(r[3][i]) << 6
+            };
+            let mut right = corners_at(0);
             for x in lo[0]..hi[0] {
-                let mut case = 0usize;
-                for c in 0..8 {
-                    if flag(x + (c & 1), y + ((c >> 1) & 1), (c >> 2) & 1) {
-                        case |= 1 << c;
-                    }
-                }
+                let left = right;
+                right = corners_at(x - lo[0] + 1);
+                let case = left | right << 1;
                 if case == 0 || case == 255 {
                     continue;
                 }
-                let cell = (x + dims[0] * (y + dims[1] * z)) as u64;
                 let entry = &table[case];
-                for (t, &plane) in entry.triangles.iter().zip(&entry.planes) {
-                    let tri = t.map(|e| {
-                        let (a, _, axis) = edge_corners(e as usize);
-                        let p = [x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)];
-                        let next = out.verts.len() as u32;
-                        let id = if dense {
-                            let slot = 3 * ((p[0] - lo[0]) + w[0] * ((p[1] - lo[1]) + w[1] * (p[2] - lo[2]))) + axis;
-                            let s = &mut index.dense[slot];
-                            if *s == u32::MAX {
-                                *s = next;
-                            }
-                            *s
-                        } else {
-                            *sparse.entry(edge_key(p, axis, dims)).or_insert(next)
-                        };
-                        if id == next {
-                            out.verts.push(p, axis, lo, hi, dims);
+                // The node-local id of each crossed edge's vertex, created on first sight.
+                for &e in &entry.edges {
+                    let (a, _, axis) = edge_corners(e as usize);
+                    let p = [x + (a & 1), y + ((a >> 1) & 1), z + ((a >> 2) & 1)];
+                    let next = out.verts.len() as u32;
+                    let id = if dense {
+                        let slot = 3 * ((p[0] - lo[0]) + w[0] * ((p[1] - lo[1]) + w[1] * (p[2] - lo[2]))) + axis;
+                        let s = &mut index.dense[slot];
+                        if *s == u32::MAX {
+                            *s = next;
+                            index.touched.push(slot as u32);
                         }
-                        id
-                    });
+                        *s
+                    } else {
+                        *sparse.entry(edge_key(p, axis, dims)).or_insert(next)
+                    };
+                    if id == next {
+                        out.verts.push(p, axis, lo, hi, dims);
+                    }
+                    ids[e as usize] = id;
+                }
+                let cell = (x + dims[0] * (y + dims[1] * z)) as u64;
+                let base = 3 * out.triangles.len() as u32;
+                for (i, (t, &plane)) in entry.triangles.iter().zip(&entry.planes).enumerate() {
+                    let tri = t.map(|e| ids[e as usize]);
+                    if record.across {
+                        index.face_out.resize(out.verts.len(), [NO_TWIN; 4]);
+                        for (k, &code) in entry.across[i].iter().enumerate() {
+                            let h = base + 3 * i as u32 + k as u32;
+                            if code == ON_CELL_FACE {
+                                out.across.push(NO_TWIN);
+                                if let Some(free) = index.face_out[tri[k] as usize].iter_mut().find(|s| **s == NO_TWIN) {
+                                    *free = h;
+                                }
+                            } else {
+                                out.across.push(base + code as u32);
+                            }
+                        }
+                    }
                     out.triangles.push(tri);
                     out.planes.push(plane);
-                    if record_cells {
+                    if record.cells {
                         out.cells.push(cell);
                     }
                 }
             }
         }
     }
+    for &slot in &index.touched {
+        index.dense[slot as usize] = u32::MAX;
+    }
+    index.touched.clear();
+    if record.across {
+        match_face_twins(&mut out, &mut index.face_out);
+    }
     out
+}
+
+/// Pairs the half-edges on cell faces: `a -> b` with the `b -> a` among the
+/// face half-edges leaving `b`. Clears `face_out` for the next node.
+fn match_face_twins(out: &mut NodeTriangles, face_out: &mut Vec<[u32; 4]>) {
+    let end = |h: u32| out.triangles[h as usize / 3][(h as usize % 3 + 1) % 3];
+    for a in 0..face_out.len() {
+        for s in 0..4 {
+            let h = face_out[a][s];
+            if h == NO_TWIN || out.across[h as usize] != NO_TWIN {
+                continue;
+            }
+            let b = end(h) as usize;
+            if let Some(&r) = face_out[b].iter().find(|&&r| r != NO_TWIN && end(r) as usize == a) {
+                out.across[h as usize] = r;
+                out.across[r as usize] = h;
+            }
+        }
+    }
+    face_out.clear();
 }

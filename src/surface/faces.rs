@@ -24,7 +24,7 @@
 //! non-convex: [`super::earclip`] triangulates them.
 
 use super::exact::{dot, loop_area2};
-use super::extract::{NodeTriangles, NodeVertices};
+use super::extract::{NodeTriangles, NodeVertices, NO_TWIN};
 use super::table::plane_normals;
 
 /// The faces of one terminal node: loop `i` is
@@ -82,55 +82,22 @@ fn half_edge(t: usize, k: usize) -> usize {
 }
 
 /// Merges the facets of one node into faces (see the module documentation).
+/// The node must have been marched with [`super::extract::Record::across`].
 pub fn merge_coplanar(node: NodeTriangles) -> NodeFaces {
     let tris = &node.triangles;
     let planes = &node.planes;
     let nv = node.verts.len();
-    // Outgoing half-edges per vertex (compressed rows): (to, half-edge).
-    let mut start = vec![0u32; nv + 1];
-    for t in tris {
-        for &v in t {
-            start[v as usize + 1] += 1;
-        }
-    }
-    for v in 0..nv {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut outgoing = vec![(0u32, 0u32); 3 * tris.len()];
-    for (i, t) in tris.iter().enumerate() {
-        for k in 0..3 {
-            let from = t[k] as usize;
-            outgoing[fill[from] as usize] = (t[(k + 1) % 3], half_edge(i, k) as u32);
-            fill[from] += 1;
-        }
-    }
-    drop(fill);
     // The half-edge across each half-edge `a -> b` (the reverse `b -> a` in
-    // the facet on the other side) when that facet lies in the same plane;
-    // NONE marks a face boundary edge (another plane, another node, or the
-    // volume's face).
-    const NONE: u32 = u32::MAX;
-    const UNSET: u32 = u32::MAX - 1;
-    let mut twin = vec![UNSET; 3 * tris.len()];
-    for h in 0..3 * tris.len() {
-        if twin[h] != UNSET {
-            continue; // set from its twin
-        }
-        let (t, k) = (h / 3, h % 3);
-        let (a, b) = (tris[t][k], tris[t][(k + 1) % 3]);
-        let row = &outgoing[start[b as usize] as usize..start[b as usize + 1] as usize];
-        twin[h] = NONE;
-        if let Some(&(_, r)) = row.iter().find(|e| e.0 == a) {
-            if planes[r as usize / 3] == planes[t] {
-                twin[h] = r;
-                twin[r as usize] = h as u32;
-            } else {
-                twin[r as usize] = NONE;
-            }
-        }
-    }
-    drop((start, outgoing));
+    // the facet on the other side, from the marching) when that facet lies in
+    // the same plane; NONE marks a face boundary edge (another plane, another
+    // node, or the volume's face).
+    const NONE: u32 = NO_TWIN;
+    let twin: Vec<u32> = node
+        .across
+        .iter()
+        .enumerate()
+        .map(|(h, &r)| if r != NONE && planes[r as usize / 3] == planes[h / 3] { r } else { NONE })
+        .collect();
     let points = &node.verts.midpoints;
     let mut visited = vec![false; 3 * tris.len()];
     let mut seen_in = vec![u32::MAX; nv];
@@ -230,6 +197,14 @@ mod tests {
             let up = plane_normals().binary_search(&[0, 0, 1]).expect("the table has the plane z") as u8;
             node.planes.extend([up, up]);
         }
+        // Twins by brute force.
+        let t = &node.triangles;
+        node.across = (0..3 * t.len())
+            .map(|h| {
+                let (a, b) = (t[h / 3][h % 3], t[h / 3][(h % 3 + 1) % 3]);
+                (0..3 * t.len()).find(|&r| t[r / 3][r % 3] == b && t[r / 3][(r % 3 + 1) % 3] == a).map_or(NO_TWIN, |r| r as u32)
+            })
+            .collect();
         node
     }
 

@@ -63,6 +63,8 @@ pub fn edge_midpoint2(e: usize) -> [i64; 3] {
 pub struct Case {
     /// The cycles, each a list of edge ids.
     pub cycles: Vec<Vec<u8>>,
+    /// The edges the surface crosses (the cycles' edges, each once).
+    pub edges: Vec<u8>,
     /// Each cycle fan-triangulated from a start vertex chosen so that no
     /// triangle lies in a cube face: a cycle through three crossing edges of
     /// an ambiguous face would otherwise put a triangle in that face, and the
@@ -74,7 +76,15 @@ pub struct Case {
     pub normals: Vec<[i64; 3]>,
     /// Each triangle's plane normal as an index into [`plane_normals`].
     pub planes: Vec<u8>,
+    /// For edge `k` of triangle `t` (corner `k` to corner `k + 1`): the
+    /// half-edge `3 t' + k'` of this case running the other way (a diagonal of
+    /// a fan), or [`ON_CELL_FACE`] when the edge lies on a face of the cell and
+    /// its twin is in the neighbouring cell.
+    pub across: Vec<[u8; 3]>,
 }
+
+/// [`Case::across`] of an edge on a cell face.
+pub const ON_CELL_FACE: u8 = u8::MAX;
 
 /// True when the midpoints of edges `a`, `b`, `c` lie in one face of the cube.
 fn on_one_face(a: u8, b: u8, c: u8) -> bool {
@@ -213,7 +223,21 @@ fn build_case(index: usize) -> Case {
             reduced(cross(sub(p[1], p[0]), sub(p[2], p[0])))
         })
         .collect();
-    Case { cycles, triangles, normals, planes: Vec::new() }
+    let across = triangles
+        .iter()
+        .map(|t| {
+            std::array::from_fn(|k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                triangles
+                    .iter()
+                    .enumerate()
+                    .find_map(|(i, u)| (0..3).find(|&m| u[m] == b && u[(m + 1) % 3] == a).map(|m| (3 * i + m) as u8))
+                    .unwrap_or(ON_CELL_FACE)
+            })
+        })
+        .collect();
+    let edges = cycles.iter().flatten().copied().collect();
+    Case { cycles, edges, triangles, normals, planes: Vec::new(), across }
 }
 
 #[cfg(test)]

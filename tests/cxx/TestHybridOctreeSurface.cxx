@@ -395,6 +395,52 @@ void CheckSurface(Checker& t, const Sphere& sphere, int mode, const std::string&
   t.Check(interpolated || degenerate == 0,
     name + ": " + std::to_string(degenerate) + " DiscMC polygons have zero area");
   t.Check(fanTriangles == triangles, name + ": triangles = sum of (polygon size - 2)");
+
+  // Faces: every triangle names its merged coplanar face; the triangles of a
+  // face share its node and its plane, and there are "faces" of them.
+  vtkDataArray* face = surface->GetCellData()->GetArray("face");
+  if (!t.Check(face && face->GetNumberOfTuples() == polygons,
+        name + ": cell array 'face', one value per polygon"))
+  {
+    return;
+  }
+  struct FaceOf
+  {
+    double Node;
+    double Normal[3];
+  };
+  std::map<std::int64_t, FaceOf> faces;
+  int split = 0, bent = 0;
+  for (vtkIdType c = 0; c < polygons; ++c)
+  {
+    surface->GetCellPoints(c, ids);
+    double p0[3], p1[3], p2[3], e0[3], e1[3], n[3];
+    surface->GetPoint(ids->GetId(0), p0);
+    surface->GetPoint(ids->GetId(1), p1);
+    surface->GetPoint(ids->GetId(2), p2);
+    vtkMath::Subtract(p1, p0, e0);
+    vtkMath::Subtract(p2, p0, e1);
+    vtkMath::Cross(e0, e1, n);
+    if (vtkMath::Normalize(n) == 0.0)
+    {
+      continue; // zero-area interpolated triangle: no plane
+    }
+    const auto id = static_cast<std::int64_t>(face->GetTuple1(c));
+    auto found = faces.find(id);
+    if (found == faces.end())
+    {
+      faces[id] = { node->GetTuple1(c), { n[0], n[1], n[2] } };
+      continue;
+    }
+    split += found->second.Node != node->GetTuple1(c) ? 1 : 0;
+    bent += vtkMath::Dot(found->second.Normal, n) < 1.0 - 1e-9 ? 1 : 0;
+  }
+  const double faceCount = FieldValue(surface, "faces");
+  t.Check(split == 0, name + ": " + std::to_string(split) + " triangles lie in another node than their face");
+  t.Check(bent == 0, name + ": " + std::to_string(bent) + " triangles are not in their face's plane");
+  t.Check(interpolated ? faceCount == triangles : faceCount < triangles,
+    name + ": faces = triangles (interpolated) or fewer (merged DiscMC)");
+  t.Check(static_cast<double>(faces.size()) <= faceCount, name + ": face ids within the face count");
 }
 
 int Mode(int mode)

@@ -158,7 +158,7 @@ for leaf, tolerance in [(8, 0.01), (4, 0.0), (16, 0.05)]:
     Delete(o)
 
 # ---- The isosurface on output port 1 -------------------------------------------
-SURFACE_EXACT = ["polygons", "triangles", "uncompressed_triangles", "vertices", "boundary_edges"]
+SURFACE_EXACT = ["polygons", "faces", "triangles", "uncompressed_triangles", "vertices", "boundary_edges"]
 
 
 def cli_surface_json(path, isovalue, mode, leaf):

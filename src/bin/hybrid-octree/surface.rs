@@ -51,6 +51,7 @@ struct SurfaceReport {
     mode: SurfaceMode,
     compressed: bool,
     polygons: usize,
+    faces: usize,
     triangles: usize,
     uncompressed_triangles: usize,
     vertices: usize,
@@ -100,6 +101,7 @@ pub fn run(args: &SurfaceArgs) -> Result<()> {
             mode,
             compressed: options.compress && mode == SurfaceMode::Discretized,
             polygons: st.polygons,
+            faces: st.faces,
             triangles: st.triangles,
             uncompressed_triangles: st.uncompressed_triangles,
             vertices: st.vertices,
@@ -122,7 +124,8 @@ pub fn run(args: &SurfaceArgs) -> Result<()> {
 fn print_text(r: &SurfaceReport) {
     println!("isovalue:               {} ({:?}{})", r.isovalue, r.mode, if r.compressed { ", compressed" } else { "" });
     println!("polygons:               {}", r.polygons);
-    println!("triangles:              {} (fan-triangulated polygons)", r.triangles);
+    println!("faces:                  {} (coplanar facets merged)", r.faces);
+    println!("triangles:              {} (the faces triangulated)", r.triangles);
     println!("uncompressed triangles: {}", r.uncompressed_triangles);
     println!("vertices:               {}", r.vertices);
     println!("boundary edges:         {} (where the surface leaves the volume)", r.boundary_edges);
