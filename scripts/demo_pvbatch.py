@@ -41,7 +41,7 @@ def surface(name):
     return field(1, name)
 
 
-print(f"Surface at {args.isovalue}: {int(surface('polygons'))} DiscMC polygons "
+print(f"Surface at {args.isovalue}: {int(surface('faces'))} merged DiscMC faces "
       f"({int(surface('triangles'))} triangles, {int(surface('uncompressed_triangles'))} before face compression), "
       f"{int(surface('boundary_edges'))} boundary edges, "
       f"{surface('extract_ms') + surface('compress_ms'):.1f} ms; "

@@ -75,11 +75,15 @@ impl HybridOctree {
                 for &v in poly {
                     let p = s.points[v as usize];
                     if (0..3).any(|a| p[a] < node.lo[a] as f64 || p[a] > node.hi[a] as f64) {
-                        return Err(format!("polygon {i}: point {p:?} outside node {id:?} box {:?}..{:?}", node.lo, node.hi));
+                        return Err(format!(
+                            "polygon {i}: point {p:?} outside node {id:?} box {:?}..{:?}",
+                            node.lo, node.hi
+                        ));
                     }
                 }
-                // DiscMC vertices are distinct edge midpoints, no three collinear: never
-                // a zero-area facet. Interpolated vertices on samples equal to the
+                // DiscMC facets join distinct edge midpoints, no three collinear, and
+                // ear clipping cuts only ears with a strictly turning tip: never a
+                // zero-area triangle. Interpolated vertices on samples equal to the
                 // isovalue may coincide (as in every Marching Cubes), so only DiscMC is held to it.
                 let n = crate::surface::check::polygon_normal(s, poly);
                 if s.mode == SurfaceMode::Discretized && n.iter().all(|&c| c == 0.0) {
@@ -93,7 +97,10 @@ impl HybridOctree {
         }
         let edges = crate::surface::check::edge_use(s);
         if edges.nonmanifold > 0 {
-            return Err(format!("{} edges are used by more than two polygons or twice in one direction", edges.nonmanifold));
+            return Err(format!(
+                "{} edges are used by more than two polygons or twice in one direction",
+                edges.nonmanifold
+            ));
         }
         Ok(())
     }

@@ -214,14 +214,29 @@ fn bench_prints_a_row_per_combination_and_the_ratio() {
 
 #[test]
 fn bench_surface_prints_every_mode_with_ratios_to_interpolated() {
-    let out = run(&["bench", "surface", "--cases", "sphere:0.5,marschner-lobb:0.3", "--size", "33", "--threads", "1", "--repeats", "1", "--json"]);
+    let out = run(&[
+        "bench",
+        "surface",
+        "--cases",
+        "sphere:0.5,marschner-lobb:0.3",
+        "--size",
+        "33",
+        "--threads",
+        "1",
+        "--repeats",
+        "1",
+        "--json",
+    ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let rows: Value = serde_json::from_str(&stdout(&out)).expect("a JSON array");
     let rows = rows.as_array().expect("rows");
     assert_eq!(rows.len(), 6, "two cases, three modes each");
     for case in rows.chunks(3) {
         let (interp, plain, disc) = (&case[0], &case[1], &case[2]);
-        assert_eq!((interp["mode"].as_str(), plain["mode"].as_str(), disc["mode"].as_str()), (Some("interpolated"), Some("discmc-unmerged"), Some("discmc")));
+        assert_eq!(
+            (interp["mode"].as_str(), plain["mode"].as_str(), disc["mode"].as_str()),
+            (Some("interpolated"), Some("discmc-unmerged"), Some("discmc"))
+        );
         assert_eq!(interp["time_vs_interpolated"], 1.0);
         assert_eq!(plain["triangles"], interp["triangles"], "same facets, other vertices");
         assert!(disc["triangles"].as_u64() < plain["triangles"].as_u64(), "{disc}");
@@ -245,7 +260,16 @@ fn surface_reports_both_modes_and_what_compression_saves() {
     let plain = surface_json(&[&common[..], &["--no-compress"]].concat());
     let interp = surface_json(&[&common[..], &["--mode", "interpolated"]].concat());
     for r in [&disc, &plain, &interp] {
-        for key in ["polygons", "faces", "triangles", "uncompressed_triangles", "vertices", "boundary_edges", "extract_ms", "compress_ms"] {
+        for key in [
+            "polygons",
+            "faces",
+            "triangles",
+            "uncompressed_triangles",
+            "vertices",
+            "boundary_edges",
+            "extract_ms",
+            "compress_ms",
+        ] {
             assert!(r.get(key).is_some(), "missing {key} in {r}");
         }
         assert_eq!(r["boundary_edges"], 0, "a closed sphere: {r}");
@@ -262,7 +286,9 @@ fn surface_reports_both_modes_and_what_compression_saves() {
     assert!(disc["faces"].as_u64() < disc["triangles"].as_u64(), "{disc}");
     assert_eq!(plain["faces"], plain["triangles"]);
     assert_eq!(interp["faces"], interp["triangles"]);
-    let rel = |a: &Value, b: &Value, k: &str| (a[k].as_f64().unwrap() - b[k].as_f64().unwrap()).abs() / b[k].as_f64().unwrap().abs();
+    let rel = |a: &Value, b: &Value, k: &str| {
+        (a[k].as_f64().unwrap() - b[k].as_f64().unwrap()).abs() / b[k].as_f64().unwrap().abs()
+    };
     assert!(rel(&disc, &plain, "area") < 1e-9 && rel(&disc, &plain, "volume") < 1e-9);
     // Same topology: interpolated triangles are the DiscMC facets, moved.
     assert_eq!(interp["triangles"], plain["triangles"]);
@@ -271,13 +297,29 @@ fn surface_reports_both_modes_and_what_compression_saves() {
 #[test]
 fn surface_writes_a_vtk_file_and_refuses_bad_options() {
     let path = temp("surface.vtk");
-    let out = run(&["surface", "--dataset", "sphere", "--size", "17", "--isovalue", "0.5", "--output", path.to_str().unwrap()]);
+    let out = run(&[
+        "surface",
+        "--dataset",
+        "sphere",
+        "--size",
+        "17",
+        "--isovalue",
+        "0.5",
+        "--output",
+        path.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.starts_with("# vtk DataFile") && text.contains("POLYGONS") && text.contains("NORMALS"));
     std::fs::remove_file(&path).ok();
-    assert_clean_failure(&run(&["surface", "--dataset", "sphere", "--size", "9", "--isovalue", "0.5", "--mode", "smooth"]), "unknown surface mode 'smooth'");
-    assert_clean_failure(&run(&["surface", "--dataset", "sphere", "--size", "9", "--isovalue", "NaN"]), "must be a finite number");
+    assert_clean_failure(
+        &run(&["surface", "--dataset", "sphere", "--size", "9", "--isovalue", "0.5", "--mode", "smooth"]),
+        "unknown surface mode 'smooth'",
+    );
+    assert_clean_failure(
+        &run(&["surface", "--dataset", "sphere", "--size", "9", "--isovalue", "NaN"]),
+        "must be a finite number",
+    );
     // Outside the data range: an empty surface, not an error.
     let empty = surface_json(&["--dataset", "sphere", "--size", "9", "--isovalue", "7"]);
     assert_eq!(empty["polygons"], 0);

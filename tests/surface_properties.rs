@@ -26,7 +26,11 @@ fn ball(n: usize, spacing_free: bool) -> Vec<f32> {
         for y in 0..n {
             for x in 0..n {
                 let (dx, dy, dz) = (x as f32 - c, y as f32 - c, z as f32 - c);
-                let r = if spacing_free { (dx * dx + dy * dy + dz * dz).sqrt() } else { (dx * dx + 2.0 * dy * dy + dz * dz).sqrt() };
+                let r = if spacing_free {
+                    (dx * dx + dy * dy + dz * dz).sqrt()
+                } else {
+                    (dx * dx + 2.0 * dy * dy + dz * dz).sqrt()
+                };
                 v.push(-r); // inside (>= iso) is near the centre
             }
         }
@@ -80,7 +84,8 @@ fn compression_is_lossless_and_saves_polygons() {
     for (node, first, end) in &plain.surface.node_ranges {
         let range = merged.polygons_of(*node);
         for f in *first as usize..*end as usize {
-            let tri: Vec<[f64; 3]> = plain.surface.polygon(f).iter().map(|&v| plain.surface.points[v as usize]).collect();
+            let tri: Vec<[f64; 3]> =
+                plain.surface.polygon(f).iter().map(|&v| plain.surface.points[v as usize]).collect();
             for (wa, wb, wc) in [(1.0, 1.0, 1.0), (4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0), (1.0, 0.0, 0.0)] {
                 let w = wa + wb + wc;
                 let q = [0, 1, 2].map(|k| (wa * tri[0][k] + wb * tri[1][k] + wc * tri[2][k]) / w);
@@ -99,11 +104,41 @@ fn inside_convex(s: &Surface, p: usize, q: [f64; 3]) -> bool {
     let n = check::polygon_normal(s, s.polygon(p));
     let d = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let cross = |a: [f64; 3], b: [f64; 3]| [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    let cross =
+        |a: [f64; 3], b: [f64; 3]| [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
     if dot(n, d(q, poly[0])).abs() > 1e-9 {
         return false;
     }
     (0..poly.len()).all(|k| dot(cross(d(poly[(k + 1) % poly.len()], poly[k]), d(q, poly[k])), n) >= -1e-9)
+}
+
+#[test]
+fn a_plane_with_a_bump_merges_around_the_hole() {
+    // f = z, inside z >= 3: the plane z = 2.5, with one sample of the plane
+    // z = 2 lifted inside, which bulges the surface around it: the plane's
+    // region in that node has a hole, so its facets stay (a face must be a
+    // simple polygon), while the other nodes' planes merge.
+    let dims = [12, 12, 6];
+    let mut data: Vec<f64> = (0..12 * 12 * 6).map(|i| (i / (12 * 12)) as f64).collect();
+    data[5 + 12 * (5 + 12 * 2)] = 3.0;
+    let grid = Grid::scalar(Samples::F64(&data), dims).unwrap();
+    let merged = hybrid(&grid, 8, SurfaceOptions::discretized(3.0));
+    let plain = hybrid(&grid, 8, uncompressed(3.0));
+    assert_same_point_set(&merged.surface, &plain.surface);
+    let (m, p) = (&merged.surface, &plain.surface);
+    assert_eq!(check::edge_use(m).nonmanifold, 0);
+    assert_eq!(check::edge_use(m).boundary, m.stats.boundary_edges);
+    assert!(m.stats.faces < m.stats.triangles && m.stats.triangles < p.stats.triangles, "{:?}", m.stats);
+    // The node holding the bump keeps the plane's facets: more faces there
+    // than in a flat node of the same size.
+    let faces_in = |s: &Surface, node| -> usize {
+        let r = merged.polygons_of(node);
+        let mut f: Vec<u32> = s.polygon_face[r].to_vec();
+        f.dedup();
+        f.len()
+    };
+    let counts: Vec<usize> = m.node_ranges.iter().map(|r| faces_in(m, r.0)).collect();
+    assert!(counts.iter().max() > counts.iter().min(), "{counts:?}");
 }
 
 #[test]
@@ -192,7 +227,8 @@ fn anisotropic_spacing_gives_world_normals() {
     let grid = Grid::new(Samples::F32(&data), shape, 1, None).unwrap();
     let h = hybrid(&grid, 8, SurfaceOptions::interpolated(-5.0));
     // The top of the sphere (largest z) has a normal close to +z in world space too.
-    let top = (0..h.surface.points.len()).max_by(|&a, &b| h.surface.points[a][2].total_cmp(&h.surface.points[b][2])).unwrap();
+    let top =
+        (0..h.surface.points.len()).max_by(|&a, &b| h.surface.points[a][2].total_cmp(&h.surface.points[b][2])).unwrap();
     let nz = h.surface.normals[top][2];
     assert!(nz > 0.9, "normal {:?}", h.surface.normals[top]);
     for nrm in &h.surface.normals {

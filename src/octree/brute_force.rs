@@ -3,10 +3,10 @@
 //! Slow (O(samples x levels) per node); for tests and for checking a build.
 
 use super::build::normalise;
+use super::layout::NodeId;
 use super::trilinear::eval;
 use super::volume_octree::VolumeOctree;
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
-use super::layout::NodeId;
 
 /// E_p(n), p = 0 .. L-k-1, of node `id`, from the definition
 /// `max over q >= p of max over v in n of |f(v) - T_(2^(L-k-q))(v)| / range`.

@@ -18,7 +18,11 @@ impl VolumeOctree {
         let l = &self.layout;
         let slots = l.node_slots();
         if self.min.len() != slots || self.max.len() != slots {
-            return Err(format!("min/max arrays have {}/{} entries, layout needs {slots}", self.min.len(), self.max.len()));
+            return Err(format!(
+                "min/max arrays have {}/{} entries, layout needs {slots}",
+                self.min.len(),
+                self.max.len()
+            ));
         }
         let expected: usize = (0..l.levels())
             .map(|k| {
@@ -63,7 +67,10 @@ impl VolumeOctree {
                             cells += (0..3).map(|a| c.hi[a] - c.lo[a]).product::<usize>();
                         }
                         if lo != node.min || hi != node.max {
-                            return Err(format!("{at}: range [{}, {}] is not its children's [{lo}, {hi}]", node.min, node.max));
+                            return Err(format!(
+                                "{at}: range [{}, {}] is not its children's [{lo}, {hi}]",
+                                node.min, node.max
+                            ));
                         }
                         for (p, m) in child_max.iter().enumerate() {
                             if node.error(p + 1) != *m {

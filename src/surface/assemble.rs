@@ -13,8 +13,8 @@
 
 use super::earclip::EarClipper;
 use super::faces::NodeFaces;
-use super::table::plane_normals;
 use super::straight::{vertex_flags, TURNS, USED};
+use super::table::plane_normals;
 use crate::error::{Error, Result};
 use crate::octree::NodeId;
 use rayon::prelude::*;
@@ -27,17 +27,36 @@ pub struct NodePart {
     pub faces: NodeFaces,
     /// [`USED`] | [`TURNS`] per local vertex.
     pub flags: Vec<u8>,
+    /// Point and raw normal of each inner vertex that stays, in local order.
+    pub inner: Vec<([f64; 3], [f64; 3])>,
 }
 
 impl NodePart {
-    /// Flags the vertices of `faces`, the faces of terminal node `node`.
+    /// Flags the vertices of `faces`, the faces of terminal node `node`,
+    /// and places the inner ones that stay with `place` (edge start, axis).
     /// With `merged` false every used vertex stays (facets are not merged).
-    pub fn new(node: NodeId, faces: NodeFaces, merged: bool) -> NodePart {
+    pub fn new(
+        node: NodeId,
+        faces: NodeFaces,
+        merged: bool,
+        place: impl Fn([usize; 3], usize) -> ([f64; 3], [f64; 3]),
+    ) -> NodePart {
         let mut flags = vertex_flags(&faces);
         if !merged {
             flags.iter_mut().filter(|f| **f & USED != 0).for_each(|f| *f |= TURNS);
         }
-        NodePart { node, faces, flags }
+        let mut part = NodePart { node, faces, flags, inner: Vec::new() };
+        let v = &part.faces.verts;
+        part.inner = (0..v.len())
+            .filter(|&l| part.inner_kept(l))
+            .map(|l| {
+                // The edge midpoint in doubled coordinates: the odd coordinate is the axis.
+                let m = v.midpoints[l];
+                let axis = (0..3).find(|&k| m[k] & 1 == 1).unwrap_or(0);
+                place(m.map(|c| (c / 2) as usize), axis)
+            })
+            .collect();
+        part
     }
     fn inner_kept(&self, local: usize) -> bool {
         !self.faces.verts.on_boundary[local] && self.flags[local] & TURNS != 0
@@ -59,6 +78,8 @@ pub struct Mesh {
     pub node_ranges: Vec<(NodeId, u32, u32)>,
     /// Number of faces.
     pub faces: usize,
+    /// Number of vertices on node boundaries (the first ones of `keys`).
+    pub shared: usize,
 }
 
 /// Names the vertices of `parts` (in node order) and triangulates their faces.
@@ -187,11 +208,15 @@ pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
         )
         .collect::<Result<()>>()?;
 
+    mesh.shared = shared.len();
     mesh.keys = shared;
-    mesh.keys.par_extend(parts.par_iter().flat_map_iter(|p| {
-        (0..p.faces.verts.len()).filter(|&l| p.inner_kept(l)).map(|l| p.faces.verts.keys[l])
-    }));
-    mesh.triangle_node.par_extend(parts.par_iter().zip(&counts).flat_map_iter(|(p, &n)| std::iter::repeat_n(p.node, n)));
+    mesh.keys.par_extend(
+        parts
+            .par_iter()
+            .flat_map_iter(|p| (0..p.faces.verts.len()).filter(|&l| p.inner_kept(l)).map(|l| p.faces.verts.keys[l])),
+    );
+    mesh.triangle_node
+        .par_extend(parts.par_iter().zip(&counts).flat_map_iter(|(p, &n)| std::iter::repeat_n(p.node, n)));
     let mut first = 0u32;
     for (p, &n) in parts.iter().zip(&counts) {
         let end = first + n as u32;

@@ -3,26 +3,16 @@
 //! vertices once for the whole mesh, drop straight vertices, and place points
 //! and normals.
 //!
-//! Points are in index space (`world = origin + spacing * point`):
-//!
-//! ```text
-//! Discretized:   p = midpoint of the edge = a + (b - a) / 2
-//! Interpolated:  p = a + (b - a) * (iso - f(a)) / (f(b) - f(a))
-//! ```
-//!
-//! Normals are unit vectors in world space pointing from the inside (values
-//! at or above the isovalue) out: `-grad f / |grad f|`, with `grad f` the
-//! central-difference gradient (one-sided on the volume's faces) interpolated
-//! along the edge like the point; where the gradient vanishes, the area-weighted
-//! normal of the polygons around the point.
+//! Points and normals: [`super::place`].
 //!
 //! Polygons are ordered by terminal node id (level by level, x fastest);
 //! `node_ranges` gives each node's polygons. Deterministic: every step is
 //! either per node (collected in node order) or a sort.
 
 use super::assemble::{assemble, Mesh, NodePart};
+use super::extract::{march, EdgeIndex, NodeTriangles, Record};
 use super::faces::{merge_coplanar, NodeFaces};
-use super::extract::{edge_of_key, march, midpoint2, EdgeIndex, NodeTriangles, Record};
+use super::place::{finish_normals, Placer};
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::octree::{NodeId, VolumeOctree};
@@ -179,7 +169,12 @@ pub fn surface_nodes(octree: &VolumeOctree, isovalue: f64) -> Vec<NodeId> {
 }
 
 /// Marches every surface node (parallel, node order kept), recording cells.
-pub fn march_nodes<T: Sample>(g: &TypedGrid<'_, T>, octree: &VolumeOctree, nodes: &[NodeId], iso: f64) -> Vec<NodeTriangles> {
+pub fn march_nodes<T: Sample>(
+    g: &TypedGrid<'_, T>,
+    octree: &VolumeOctree,
+    nodes: &[NodeId],
+    iso: f64,
+) -> Vec<NodeTriangles> {
     nodes
         .par_iter()
         .map_init(EdgeIndex::default, |index, &id| {
@@ -206,6 +201,7 @@ impl GridVisitor for Extraction<'_> {
         let started = Instant::now();
         let merge = options.compress && options.mode == SurfaceMode::Discretized;
         let nodes = surface_nodes(octree, iso);
+        let placer = Placer { grid: &g, isovalue: iso, mode: options.mode };
         let parts: Vec<(NodePart, usize)> = nodes
             .par_iter()
             .map_init(EdgeIndex::default, |index, &id| {
@@ -213,7 +209,8 @@ impl GridVisitor for Extraction<'_> {
                 let m = march(&g, n.lo, n.hi, iso, index, Record { cells: false, across: merge });
                 let marched = m.triangles.len();
                 let faces = if merge { merge_coplanar(m) } else { NodeFaces::from_triangles(m) };
-                (NodePart::new(id, faces, merge), marched)
+                // The node's inner vertices that stay, placed while the node's samples are in cache.
+                (NodePart::new(id, faces, merge, |a, axis| placer.place(a, axis)), marched)
             })
             .collect();
         let uncompressed_triangles = parts.iter().map(|p| p.1).sum();
@@ -222,17 +219,14 @@ impl GridVisitor for Extraction<'_> {
 
         let started = Instant::now();
         let mesh = assemble(&parts)?;
+        let Mesh { keys: kept, triangles, triangle_face, triangle_node, node_ranges, faces, shared } = mesh;
+        // Points and raw normals: the vertices on node boundaries, then each node's inner ones.
+        let mut placed: Vec<([f64; 3], [f64; 3])> = kept[..shared].par_iter().map(|&k| placer.place_key(k)).collect();
+        placed.par_extend(parts.par_iter().flat_map_iter(|p| p.inner.iter().copied()));
         drop(parts);
-        let Mesh { keys: kept, triangles, triangle_face, triangle_node, node_ranges, faces } = mesh;
+        let (points, raw_normals): (Vec<[f64; 3]>, Vec<[f64; 3]>) = placed.into_par_iter().unzip();
         let offsets: Vec<u32> = (0..=triangles.len() as u32).into_par_iter().map(|i| 3 * i).collect();
         let connectivity: Vec<u32> = triangles.par_iter().flat_map_iter(|t| t.iter().copied()).collect();
-        let points: Vec<[f64; 3]> = kept
-            .par_iter()
-            .map(|&key| match options.mode {
-                SurfaceMode::Discretized => midpoint2(key, dims).map(|v| v as f64 / 2.0),
-                SurfaceMode::Interpolated => interpolated_point(&g, key, iso),
-            })
-            .collect();
         let mut surface = Surface {
             isovalue: iso,
             mode: options.mode,
@@ -246,7 +240,7 @@ impl GridVisitor for Extraction<'_> {
             node_ranges,
             stats: SurfaceStats::default(),
         };
-        surface.normals = normals(&g, &surface, spacing);
+        surface.normals = finish_normals(&surface, raw_normals, spacing);
         surface.stats = SurfaceStats {
             polygons: surface.polygon_count(),
             faces,
@@ -260,76 +254,4 @@ impl GridVisitor for Extraction<'_> {
         };
         Ok(surface)
     }
-}
-
-/// The interpolated crossing on edge `key`: `a + (b - a) * (iso - f(a)) / (f(b) - f(a))`.
-pub fn interpolated_point<T: Sample>(g: &TypedGrid<'_, T>, key: u64, iso: f64) -> [f64; 3] {
-    let (a, axis) = edge_of_key(key, g.dims);
-    let mut b = a;
-    b[axis] += 1;
-    let (fa, fb) = (g.at(a[0], a[1], a[2]), g.at(b[0], b[1], b[2]));
-    // One end is >= iso and the other < iso, so fb != fa.
-    let t = (iso - fa) / (fb - fa);
-    let mut p = a.map(|v| v as f64);
-    p[axis] += t;
-    p
-}
-
-/// Central-difference gradient at point `p` (one-sided on the faces), index units.
-fn gradient<T: Sample>(g: &TypedGrid<'_, T>, p: [usize; 3]) -> [f64; 3] {
-    let mut out = [0.0; 3];
-    for (a, o) in out.iter_mut().enumerate() {
-        let (mut lo, mut hi) = (p, p);
-        lo[a] = p[a].saturating_sub(1);
-        hi[a] = (p[a] + 1).min(g.dims[a] - 1);
-        let span = (hi[a] - lo[a]) as f64;
-        *o = (g.at(hi[0], hi[1], hi[2]) - g.at(lo[0], lo[1], lo[2])) / span;
-    }
-    out
-}
-
-/// Index-space direction `n` (a gradient or an area vector) to a world-space
-/// normal: the inverse-transpose of `diag(spacing)` divides by the spacing.
-fn normals<T: Sample>(g: &TypedGrid<'_, T>, s: &Surface, spacing: [f64; 3]) -> Vec<[f32; 3]> {
-    let mut out: Vec<[f64; 3]> = s
-        .keys
-        .par_iter()
-        .zip(&s.points)
-        .map(|(&key, point)| {
-            let (a, axis) = edge_of_key(key, g.dims);
-            let mut b = a;
-            b[axis] += 1;
-            let t = point[axis] - a[axis] as f64;
-            let (ga, gb) = (gradient(g, a), gradient(g, b));
-            [0, 1, 2].map(|k| -(ga[k] + (gb[k] - ga[k]) * t))
-        })
-        .collect();
-    // Fallback where the gradient vanishes: area-weighted polygon normals.
-    let flat: Vec<usize> = (0..out.len()).filter(|&i| out[i].iter().all(|&v| v == 0.0)).collect();
-    if !flat.is_empty() {
-        let mut acc = vec![[0.0f64; 3]; out.len()];
-        for i in 0..s.polygon_count() {
-            let poly = s.polygon(i);
-            let n = super::check::polygon_normal(s, poly);
-            for &v in poly {
-                for k in 0..3 {
-                    acc[v as usize][k] += n[k];
-                }
-            }
-        }
-        for i in flat {
-            out[i] = acc[i];
-        }
-    }
-    out.iter()
-        .map(|n| {
-            let n = [n[0] / spacing[0], n[1] / spacing[1], n[2] / spacing[2]];
-            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-            if len > 0.0 {
-                [(n[0] / len) as f32, (n[1] / len) as f32, (n[2] / len) as f32]
-            } else {
-                [0.0, 0.0, 1.0]
-            }
-        })
-        .collect()
 }

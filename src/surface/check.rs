@@ -112,8 +112,8 @@ fn fan_cross(o: [f64; 3], a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     cross([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]])
 }
 
-/// Surface area in index units (fan triangulation from the first vertex,
-/// exact for the convex polygons this crate makes).
+/// Surface area in index units (fan triangulation from the first vertex;
+/// the polygons this crate makes are triangles).
 pub fn area(s: &Surface) -> f64 {
     fan_sum(s, |o, a, b| {
         let c = fan_cross(o, a, b);

@@ -11,8 +11,9 @@
 //! over the samples of both directions (a sampled symmetric Hausdorff
 //! distance; the max is a lower bound of the true one, reached at vertices).
 
-use super::build::{interpolated_point, march_nodes, surface_nodes};
+use super::build::{march_nodes, surface_nodes};
 use super::extract::midpoint2;
+use super::place::interpolated_point;
 use crate::error::Result;
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::octree::VolumeOctree;
@@ -49,10 +50,8 @@ pub fn discretized_to_interpolated(grid: &Grid<'_>, octree: &VolumeOctree, isova
             let mut keys: Vec<u64> = cells.iter().flat_map(|c| c.1).collect();
             keys.par_sort_unstable();
             keys.dedup();
-            let tris: Vec<(u64, [u32; 3])> = cells
-                .par_iter()
-                .map(|&(c, t)| (c, t.map(|k| keys.binary_search(&k).unwrap_or(0) as u32)))
-                .collect();
+            let tris: Vec<(u64, [u32; 3])> =
+                cells.par_iter().map(|&(c, t)| (c, t.map(|k| keys.binary_search(&k).unwrap_or(0) as u32))).collect();
             let dims = g.dims;
             let disc: Vec<[f64; 3]> = keys.par_iter().map(|&k| midpoint2(k, dims).map(|v| v as f64 / 2.0)).collect();
             let interp: Vec<[f64; 3]> = keys.par_iter().map(|&k| interpolated_point(&g, k, self.iso)).collect();
@@ -76,7 +75,13 @@ pub fn discretized_to_interpolated(grid: &Grid<'_>, octree: &VolumeOctree, isova
 /// surface `to` (positions per vertex). Parallel over cells: each cell
 /// gathers the `to` triangles of its 27-cell neighbourhood once, then measures
 /// its own `from` samples.
-fn one_way(tris: &[(u64, [u32; 3])], owner: &[u64], dims: [usize; 3], from: &[[f64; 3]], to: &[[f64; 3]]) -> (f64, f64, usize) {
+fn one_way(
+    tris: &[(u64, [u32; 3])],
+    owner: &[u64],
+    dims: [usize; 3],
+    from: &[[f64; 3]],
+    to: &[[f64; 3]],
+) -> (f64, f64, usize) {
     // Runs of equal cells: (cell, first, end).
     let mut runs: Vec<(u64, usize, usize)> = Vec::new();
     for (i, &(c, _)) in tris.iter().enumerate() {
@@ -120,7 +125,12 @@ fn one_way(tris: &[(u64, [u32; 3])], owner: &[u64], dims: [usize; 3], from: &[[f
 }
 
 /// Calls `f` with the run of every non-empty cell in the 3 x 3 x 3 block around `xyz`.
-fn for_neighbours(runs: &[(u64, usize, usize)], dims: [usize; 3], xyz: [usize; 3], mut f: impl FnMut(&(u64, usize, usize))) {
+fn for_neighbours(
+    runs: &[(u64, usize, usize)],
+    dims: [usize; 3],
+    xyz: [usize; 3],
+    mut f: impl FnMut(&(u64, usize, usize)),
+) {
     for dz in -1i64..=1 {
         for dy in -1i64..=1 {
             for dx in -1i64..=1 {
@@ -201,6 +211,7 @@ mod tests {
         assert_eq!(point_triangle([0.2, 0.2, 2.0], t), 2.0); // face
         assert_eq!(point_triangle([-1.0, 0.0, 0.0], t), 1.0); // vertex a
         assert_eq!(point_triangle([0.5, -3.0, 0.0], t), 3.0); // edge ab
-        assert!((point_triangle([1.0, 1.0, 0.0], t) - 0.5f64.sqrt()).abs() < 1e-15); // edge bc
+        assert!((point_triangle([1.0, 1.0, 0.0], t) - 0.5f64.sqrt()).abs() < 1e-15);
+        // edge bc
     }
 }

@@ -33,7 +33,13 @@ impl EarClipper {
     /// `points`, counter-clockwise about `normal`) to `out`. Returns false, with
     /// `out` as it was, if no ear is left before the end (the polygon was not
     /// simple).
-    pub fn triangulate(&mut self, face: &[u32], points: &[[i64; 3]], normal: [i64; 3], out: &mut Vec<[u32; 3]>) -> bool {
+    pub fn triangulate(
+        &mut self,
+        face: &[u32],
+        points: &[[i64; 3]],
+        normal: [i64; 3],
+        out: &mut Vec<[u32; 3]>,
+    ) -> bool {
         let n = face.len();
         if n < 3 {
             return n == 0;
@@ -114,7 +120,10 @@ mod tests {
     fn area2(tris: &[[u32; 3]], pts: &[[i64; 3]], normal: [i64; 3]) -> i64 {
         tris.iter()
             .map(|t| {
-                let a = dot(cross(sub(pts[t[1] as usize], pts[t[0] as usize]), sub(pts[t[2] as usize], pts[t[0] as usize])), normal);
+                let a = dot(
+                    cross(sub(pts[t[1] as usize], pts[t[0] as usize]), sub(pts[t[2] as usize], pts[t[0] as usize])),
+                    normal,
+                );
                 assert!(a > 0, "zero-area or flipped triangle {t:?}");
                 a
             })

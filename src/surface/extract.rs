@@ -216,7 +216,8 @@ pub fn march<T: Sample>(
                             let h = base + 3 * i as u32 + k as u32;
                             if code == ON_CELL_FACE {
                                 out.across.push(NO_TWIN);
-                                if let Some(free) = index.face_out[tri[k] as usize].iter_mut().find(|s| **s == NO_TWIN) {
+                                if let Some(free) = index.face_out[tri[k] as usize].iter_mut().find(|s| **s == NO_TWIN)
+                                {
                                     *free = h;
                                 }
                             } else {

@@ -191,7 +191,8 @@ mod tests {
             }
         };
         for &(x, y) in cells {
-            let (a, b, c, d) = (id(&mut node, x, y), id(&mut node, x + 1, y), id(&mut node, x + 1, y + 1), id(&mut node, x, y + 1));
+            let (a, b, c, d) =
+                (id(&mut node, x, y), id(&mut node, x + 1, y), id(&mut node, x + 1, y + 1), id(&mut node, x, y + 1));
             node.triangles.push([a, b, c]);
             node.triangles.push([a, c, d]);
             let up = plane_normals().binary_search(&[0, 0, 1]).expect("the table has the plane z") as u8;
@@ -202,7 +203,9 @@ mod tests {
         node.across = (0..3 * t.len())
             .map(|h| {
                 let (a, b) = (t[h / 3][h % 3], t[h / 3][(h % 3 + 1) % 3]);
-                (0..3 * t.len()).find(|&r| t[r / 3][r % 3] == b && t[r / 3][(r % 3 + 1) % 3] == a).map_or(NO_TWIN, |r| r as u32)
+                (0..3 * t.len())
+                    .find(|&r| t[r / 3][r % 3] == b && t[r / 3][(r % 3 + 1) % 3] == a)
+                    .map_or(NO_TWIN, |r| r as u32)
             })
             .collect();
         node
@@ -221,7 +224,8 @@ mod tests {
     #[test]
     fn a_region_with_a_hole_keeps_its_facets() {
         let dims = [8, 8, 2];
-        let ring: Vec<(usize, usize)> = (0..3).flat_map(|x| (0..3).map(move |y| (x, y))).filter(|&c| c != (1, 1)).collect();
+        let ring: Vec<(usize, usize)> =
+            (0..3).flat_map(|x| (0..3).map(move |y| (x, y))).filter(|&c| c != (1, 1)).collect();
         let node = grid_facets(&ring, dims);
         let f = merge_coplanar(node.clone());
         assert_eq!(f.len(), node.triangles.len());

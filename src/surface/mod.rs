@@ -1,13 +1,15 @@
 //! The Surface Octree (paper 1, section 2.2): the Discretized Marching Cubes
-//! isosurface of the Volume Octree's terminal nodes, compressed losslessly
-//! into convex coplanar polygons; or, in interpolated mode, the classic
-//! linearly interpolated Marching Cubes surface.
+//! isosurface of the Volume Octree's terminal nodes, its coplanar facets
+//! merged losslessly into faces and re-triangulated; or, in interpolated
+//! mode, the classic linearly interpolated Marching Cubes surface.
 //!
 //! [`table`] derives the watertight case table, [`extract`] marches a node's
-//! cells, [`compress`] merges coplanar facets, [`collinear`] drops straight
-//! vertices without T-junctions, [`build`] runs it all in parallel and
-//! assembles the mesh, [`check`] measures it (edges, area, volume),
-//! [`distance`] compares two surfaces.
+//! cells, [`faces`] merges coplanar regions into faces, [`straight`] drops
+//! straight vertices without T-junctions, [`earclip`] triangulates faces
+//! ([`exact`]: integer geometry), [`assemble`] names vertices and builds the
+//! mesh, [`place`] computes points and normals, [`build`] runs it all in
+//! parallel, [`check`] measures it (edges, area, volume), [`distance`]
+//! compares two surfaces.
 
 pub mod assemble;
 pub mod build;
@@ -17,6 +19,7 @@ pub mod earclip;
 pub mod exact;
 pub mod extract;
 pub mod faces;
+pub mod place;
 pub mod straight;
 pub mod table;
 

@@ -98,10 +98,7 @@ fn triangulate(cycle: &[u8]) -> Vec<[u8; 3]> {
     let fan = |s: usize| -> Vec<[u8; 3]> {
         (1..n - 1).map(|i| [cycle[s], cycle[(s + i) % n], cycle[(s + i + 1) % n]]).collect()
     };
-    (0..n)
-        .map(fan)
-        .find(|tris| tris.iter().all(|t| !on_one_face(t[0], t[1], t[2])))
-        .unwrap_or_else(|| fan(0))
+    (0..n).map(fan).find(|tris| tris.iter().all(|t| !on_one_face(t[0], t[1], t[2]))).unwrap_or_else(|| fan(0))
 }
 
 /// The 256 cases, indexed by `sum over inside corners c of 2^c`.
@@ -115,8 +112,11 @@ pub fn plane_normals() -> &'static [[i64; 3]] {
     &table().1
 }
 
-fn table() -> &'static (Box<[Case; 256]>, Vec<[i64; 3]>) {
-    static TABLE: OnceLock<(Box<[Case; 256]>, Vec<[i64; 3]>)> = OnceLock::new();
+/// The cases and the distinct plane normals of their facets.
+type Table = (Box<[Case; 256]>, Vec<[i64; 3]>);
+
+fn table() -> &'static Table {
+    static TABLE: OnceLock<Table> = OnceLock::new();
     TABLE.get_or_init(|| {
         let mut cases: Box<[Case; 256]> = Box::new(std::array::from_fn(build_case));
         let mut normals: Vec<[i64; 3]> = cases.iter().flat_map(|c| c.normals.iter().copied()).collect();
@@ -265,7 +265,10 @@ mod tests {
             });
             assert_eq!(used, crossing.count(), "case {i}: every crossing edge is used once");
             assert!(case.cycles.iter().all(|c| c.len() >= 3), "case {i}");
-            assert!(case.triangles.iter().all(|t| !on_one_face(t[0], t[1], t[2])), "case {i}: a triangle lies in a face");
+            assert!(
+                case.triangles.iter().all(|t| !on_one_face(t[0], t[1], t[2])),
+                "case {i}: a triangle lies in a face"
+            );
             let expected: usize = case.cycles.iter().map(|c| c.len() - 2).sum();
             assert_eq!(case.triangles.len(), expected, "case {i}");
         }

@@ -7,6 +7,7 @@
 //! hybrid-octree surface  (--dataset NAME --size N | --file PATH) --isovalue V [--mode discretized|interpolated] [--distance] [--output F.vtk] [--json]
 //! hybrid-octree generate --dataset NAME --size N [--type T] --output FILE.vti
 //! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--repeats 3] [--json]
+//! hybrid-octree bench surface [--cases shepp-logan:0.5,...] [--size 256] [--modes discmc,...] [--threads 1,2] [--json]
 //! ```
 //!
 //! Library errors print `error: <message>` on stderr and exit with status 2.

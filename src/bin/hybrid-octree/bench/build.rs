@@ -8,8 +8,8 @@
 //! constant bricks and get cheaper per voxel; `--datasets marschner-lobb`
 //! (smooth everywhere, no constant brick) shows the kernel's own scaling.
 
-use crate::build::build_octree;
 use super::median_ms;
+use crate::build::build_octree;
 use crate::output::print_report;
 use crate::pool::with_threads;
 use clap::Args;
@@ -74,7 +74,16 @@ pub fn run(args: &BenchBuildArgs) -> Result<()> {
         println!(
             "{:>15} {:>6} {:>5} {:>7} {:>5} {:>9} {:>10} {:>9} {:>8} {:>12} {:>8}",
             "dataset",
-            "size", "type", "threads", "leaf", "nodes", "build ms", "Mvox/s", "ns/vox", "octree B", "oct/in %"
+            "size",
+            "type",
+            "threads",
+            "leaf",
+            "nodes",
+            "build ms",
+            "Mvox/s",
+            "ns/vox",
+            "octree B",
+            "oct/in %"
         );
     }
     for &dataset in &datasets {
@@ -82,9 +91,8 @@ pub fn run(args: &BenchBuildArgs) -> Result<()> {
             for &t in &threads {
                 for &leaf_size in &args.leaf_sizes {
                     for &size in &args.sizes {
-                        let row = with_threads(Some(t), || {
-                            measure(dataset, size, scalar_type, t, leaf_size, args.repeats)
-                        })?;
+                        let row =
+                            with_threads(Some(t), || measure(dataset, size, scalar_type, t, leaf_size, args.repeats))?;
                         if !args.json {
                             print_row(&row);
                         }

@@ -99,7 +99,18 @@ pub fn run(args: &BenchSurfaceArgs) -> Result<()> {
     if !args.json {
         println!(
             "{:>15} {:>6} {:>16} {:>3} {:>9} {:>8} {:>9} {:>8} {:>9} {:>9} {:>7} {:>7}",
-            "dataset", "iso", "mode", "thr", "total ms", "extract", "compress", "faces", "triangles", "vertices", "t/interp", "tri/unc"
+            "dataset",
+            "iso",
+            "mode",
+            "thr",
+            "total ms",
+            "extract",
+            "compress",
+            "faces",
+            "triangles",
+            "vertices",
+            "t/interp",
+            "tri/unc"
         );
     }
     let mut rows = Vec::new();
