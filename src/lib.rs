@@ -21,6 +21,7 @@
 #![warn(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn)]
 
+pub mod camera;
 pub mod datasets;
 pub mod error;
 #[allow(missing_docs)]
@@ -29,6 +30,11 @@ pub mod grid;
 pub mod hybrid;
 pub mod io;
 pub mod octree;
+pub mod order;
+pub mod plan;
+pub mod render;
+pub mod select;
+pub mod slab;
 pub mod surface;
 pub mod volume;
 

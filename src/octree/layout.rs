@@ -21,7 +21,7 @@
 use crate::error::{Error, Result};
 
 /// Index of a node in the level-by-level numbering.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
 pub struct NodeId(pub u32);
 
 /// The level structure of a Volume Octree over a grid of given dimensions.

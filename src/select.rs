@@ -1,0 +1,421 @@
+//! Texture-budget selection (paper 1 section 4.2, after Boada et al. 2001):
+//! a cut of the Volume Octree and a voxel-to-texel level `p` per node of the
+//! cut, within a texture budget.
+//!
+//! A node at level `k` drawn at level `p` samples its box every
+//! `stride = 2^(L - k - p)` cells, so it needs `2^p + 1` texels per axis
+//! (fewer where the box is clipped by the grid), borders included: adjacent
+//! bricks share their face samples, which keeps filtering seamless.
+//!
+//! ```text
+//! bytes(n, p)  = texels_x * texels_y * texels_z * bytes_per_texel
+//! error(n, p)  = Imp(n) * e_p(n)              (e_p normalised by the data range)
+//! Imp(n)       = 1                            inside the region of interest, or without one
+//!              = r / (r + dist(box(n), c) - r) = r / dist(box(n), c)   outside it
+//! ```
+//!
+//! (`c`, `r`: the region's centre and radius in index space; `dist` from the
+//! centre to the nearest point of the node's box). Greedy refinement from the
+//! root at `p = 0`: while the budget allows, take the step that removes the
+//! most weighted error per byte, among: raise `p` of a node of the cut by one
+//! (up to `max_brick_log2`, and never past full resolution), or, for a node
+//! already at the largest brick, split it into its children at the largest
+//! brick. A node stops when its weighted error is at most the tolerance `Eu`
+//! (`e_p(n) <= Eu / Imp(n)`). Ties go to the smaller node id, so the result
+//! is deterministic. Nodes whose value range the caller's `visible` test
+//! rejects (fully transparent under the transfer function) cost nothing and
+//! are never refined.
+
+use crate::error::{Error, Result};
+use crate::octree::{NodeId, NodeRef, VolumeOctree};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// A region of interest: a sphere in index space.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Roi {
+    /// Centre, index space.
+    pub center: [f64; 3],
+    /// Radius, index units (> 0).
+    pub radius: f64,
+}
+
+/// What to select.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SelectOptions {
+    /// Texture memory budget in bytes (> 0).
+    pub budget_bytes: usize,
+    /// The error tolerance Eu (fraction of the data range, >= 0).
+    pub tolerance: f64,
+    /// Region of interest, refined first.
+    pub roi: Option<Roi>,
+    /// Bytes per texel (4 for f32 textures).
+    pub bytes_per_texel: usize,
+    /// Largest brick: `2^max_brick_log2` cells per axis.
+    pub max_brick_log2: u32,
+}
+
+impl SelectOptions {
+    /// A budget and a tolerance, no region of interest, f32 texels, bricks up to 32 cells.
+    pub fn new(budget_bytes: usize, tolerance: f64) -> SelectOptions {
+        SelectOptions { budget_bytes, tolerance, roi: None, bytes_per_texel: 4, max_brick_log2: 5 }
+    }
+}
+
+/// One selected node: a texture request.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Brick {
+    /// The node.
+    pub node: NodeId,
+    /// Its level k.
+    pub level: usize,
+    /// Its voxel-to-texel level p: `2^p` cells per axis (before clipping).
+    pub p: usize,
+    /// Closed index box, clipped to the grid.
+    pub lo: [usize; 3],
+    /// Closed index box, clipped to the grid.
+    pub hi: [usize; 3],
+    /// Cells between texels: `2^(L - k - p)`.
+    pub stride: usize,
+    /// Texels per axis, borders included.
+    pub texels: [usize; 3],
+    /// Texture bytes.
+    pub bytes: usize,
+    /// e_p of the node (normalised by the data range).
+    pub error: f32,
+    /// Imp(n).
+    pub importance: f64,
+}
+
+impl Brick {
+    /// Index of the texel positions along `axis`: `lo + i * stride`, the last
+    /// one clamped to `hi`.
+    pub fn texel_positions(&self, axis: usize) -> impl Iterator<Item = usize> + '_ {
+        (0..self.texels[axis]).map(move |i| (self.lo[axis] + i * self.stride).min(self.hi[axis]))
+    }
+}
+
+/// The selected cut.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Selection {
+    /// The bricks, by node id; their boxes tile the grid exactly once (the
+    /// transparent nodes excepted).
+    pub bricks: Vec<Brick>,
+    /// Sum of the bricks' bytes.
+    pub texture_bytes: usize,
+    /// The budget asked for.
+    pub budget_bytes: usize,
+    /// Largest weighted error Imp(n) e_p(n) of the bricks.
+    pub max_error: f64,
+    /// Nodes left out as fully transparent.
+    pub skipped: usize,
+    /// Set when the budget is below the coarsest representation (then the
+    /// coarsest one is returned anyway) or the tolerance was not reached.
+    pub warning: Option<String>,
+}
+
+fn texels(lo: [usize; 3], hi: [usize; 3], stride: usize) -> [usize; 3] {
+    [0, 1, 2].map(|a| (hi[a] - lo[a]).div_ceil(stride) + 1)
+}
+
+fn make_brick(octree: &VolumeOctree, n: &NodeRef<'_>, p: usize, importance: f64, bytes_per_texel: usize) -> Brick {
+    let l = octree.layout().root_log2 as usize;
+    let stride = 1usize << (l - n.level - p);
+    let texels = texels(n.lo, n.hi, stride);
+    Brick {
+        node: n.id,
+        level: n.level,
+        p,
+        lo: n.lo,
+        hi: n.hi,
+        stride,
+        texels,
+        bytes: texels.iter().product::<usize>() * bytes_per_texel,
+        error: n.error(p),
+        importance,
+    }
+}
+
+/// Imp(n) (see the module documentation).
+pub fn importance(roi: Option<&Roi>, lo: [usize; 3], hi: [usize; 3]) -> f64 {
+    let Some(roi) = roi else { return 1.0 };
+    let d2: f64 = (0..3)
+        .map(|a| {
+            let c = roi.center[a];
+            let d = if c < lo[a] as f64 { lo[a] as f64 - c } else if c > hi[a] as f64 { c - hi[a] as f64 } else { 0.0 };
+            d * d
+        })
+        .sum();
+    let d = d2.sqrt();
+    if d <= roi.radius {
+        1.0
+    } else {
+        roi.radius / d
+    }
+}
+
+/// A refinement step in the queue.
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    /// Weighted error removed per byte added.
+    gain: f64,
+    node: NodeId,
+    /// The node's p when the step was queued (stale steps are skipped).
+    p: usize,
+}
+
+impl PartialEq for Step {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Step {}
+impl PartialOrd for Step {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Step {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.gain.total_cmp(&o.gain).then_with(|| o.node.cmp(&self.node))
+    }
+}
+
+/// Selects a cut and levels for `octree` (see the module documentation).
+/// `visible(min, max)` says whether a node with that value range shows under
+/// the transfer function; return `true` to keep every node.
+pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f64, f64) -> bool) -> Result<Selection> {
+    if options.budget_bytes == 0 {
+        return Err(Error::InvalidArgument(
+            "the texture budget is 0 bytes: give a budget of at least a few kilobytes".into(),
+        ));
+    }
+    if !(options.tolerance >= 0.0 && options.tolerance.is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "error tolerance {} must be a number >= 0 (a fraction of the data range)",
+            options.tolerance
+        )));
+    }
+    if let Some(r) = &options.roi {
+        if !(r.radius > 0.0 && r.radius.is_finite()) || r.center.iter().any(|c| !c.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "region of interest (centre {:?}, radius {}) needs a finite centre and a radius > 0",
+                r.center, r.radius
+            )));
+        }
+    }
+    if options.bytes_per_texel == 0 {
+        return Err(Error::InvalidArgument("bytes per texel must be at least 1".into()));
+    }
+    let l = octree.layout().root_log2 as usize;
+    let max_p = |n: &NodeRef<'_>| (l - n.level).min(options.max_brick_log2 as usize);
+    let weighted = |b: &Brick| b.importance * b.error as f64;
+
+    // The cut: node -> its brick; transparent nodes leave it.
+    let mut cut: std::collections::BTreeMap<NodeId, Brick> = std::collections::BTreeMap::new();
+    let mut skipped = 0usize;
+    let mut bytes = 0usize;
+    let mut queue = BinaryHeap::new();
+    let brick_of = |id: NodeId, p: usize| {
+        let n = octree.node(id);
+        make_brick(octree, &n, p, importance(options.roi.as_ref(), n.lo, n.hi), options.bytes_per_texel)
+    };
+    // The best next step of a brick in the cut, if it still violates the tolerance.
+    let next_step = |b: &Brick| -> Option<(Step, Vec<Brick>, usize)> {
+        if weighted(b) <= options.tolerance || b.error == 0.0 {
+            return None;
+        }
+        let n = octree.node(b.node);
+        if b.p < max_p(&n) {
+            let up = brick_of(b.node, b.p + 1);
+            let gain = (weighted(b) - weighted(&up)) / (up.bytes - b.bytes).max(1) as f64;
+            return Some((Step { gain, node: b.node, p: b.p }, vec![up], 0));
+        }
+        if n.is_terminal() {
+            return None;
+        }
+        let mut children = Vec::new();
+        let mut hidden = 0;
+        for c in octree.children(b.node) {
+            let cn = octree.node(c);
+            if !visible(cn.min, cn.max) {
+                hidden += 1;
+                continue;
+            }
+            children.push(brick_of(c, max_p(&cn)));
+        }
+        let added: usize = children.iter().map(|c| c.bytes).sum();
+        let after = children.iter().map(weighted).fold(0.0, f64::max);
+        let gain = (weighted(b) - after).max(0.0) / added.saturating_sub(b.bytes).max(1) as f64;
+        Some((Step { gain, node: b.node, p: b.p }, children, hidden))
+    };
+
+    let root = octree.node(octree.root());
+    if visible(root.min, root.max) {
+        let b = brick_of(root.id, 0);
+        bytes += b.bytes;
+        cut.insert(root.id, b);
+        if let Some((s, _, _)) = next_step(&b) {
+            queue.push(s);
+        }
+    } else {
+        skipped += 1;
+    }
+    let mut warning = None;
+    if bytes > options.budget_bytes {
+        warning = Some(format!(
+            "the budget of {} bytes is below the coarsest representation ({} bytes): drawing that anyway; \
+             raise the budget for any refinement",
+            options.budget_bytes, bytes
+        ));
+    }
+    while let Some(step) = queue.pop() {
+        let Some(current) = cut.get(&step.node).copied() else { continue };
+        if current.p != step.p {
+            continue; // stale
+        }
+        let Some((_, replacement, hidden)) = next_step(&current) else { continue };
+        let added: usize = replacement.iter().map(|r| r.bytes).sum();
+        if bytes - current.bytes + added > options.budget_bytes {
+            continue; // does not fit; cheaper steps of other nodes may
+        }
+        bytes = bytes - current.bytes + added;
+        cut.remove(&step.node);
+        skipped += hidden;
+        for r in replacement {
+            cut.insert(r.node, r);
+            if let Some((s, _, _)) = next_step(&r) {
+                queue.push(s);
+            }
+        }
+    }
+    let bricks: Vec<Brick> = cut.into_values().collect();
+    let max_error = bricks.iter().map(weighted).fold(0.0, f64::max);
+    if warning.is_none() && max_error > options.tolerance {
+        warning = Some(format!(
+            "the budget of {} bytes reaches a largest error of {:.4} of the data range, above the tolerance {}: \
+             raise the budget to reach it",
+            options.budget_bytes, max_error, options.tolerance
+        ));
+    }
+    Ok(Selection { bricks, texture_bytes: bytes, budget_bytes: options.budget_bytes, max_error, skipped, warning })
+}
+
+/// Uniform downsampling at one stride (what a mapper does when a volume does
+/// not fit: every brick at the same resolution): the terminal nodes, each
+/// sampled every `stride` cells (a power of two up to the leaf size), bytes
+/// counted the same way as [`select`]'s.
+pub fn uniform(octree: &VolumeOctree, stride: usize, bytes_per_texel: usize) -> Result<Selection> {
+    let layout = octree.layout();
+    let leaf = layout.leaf_size();
+    if !stride.is_power_of_two() || stride > leaf {
+        return Err(Error::InvalidArgument(format!(
+            "uniform stride {stride} must be a power of two up to the leaf size {leaf}"
+        )));
+    }
+    // Every terminal node (leaf bricks, and homogeneous nodes above them),
+    // sampled every `stride` cells: p = L - k - log2(stride).
+    let l = layout.root_log2 as usize;
+    let s = stride.trailing_zeros() as usize;
+    let mut bricks = Vec::new();
+    octree.for_each_node(|n| {
+        if n.is_terminal() {
+            bricks.push(make_brick(octree, &n, l - n.level - s, 1.0, bytes_per_texel));
+        }
+    });
+    bricks.sort_by_key(|b| b.node);
+    let texture_bytes = bricks.iter().map(|b| b.bytes).sum();
+    let max_error = bricks.iter().map(|b| b.error as f64).fold(0.0, f64::max);
+    Ok(Selection { bricks, texture_bytes, budget_bytes: texture_bytes, max_error, skipped: 0, warning: None })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::datasets::{generate, Dataset};
+    use crate::grid::ScalarType;
+    use crate::octree::BuildOptions;
+
+    fn octree(size: usize) -> VolumeOctree {
+        octree_of(Dataset::SheppLogan, size)
+    }
+
+    fn octree_of(dataset: Dataset, size: usize) -> VolumeOctree {
+        let v = generate(dataset, size, ScalarType::F32);
+        VolumeOctree::build(&v.grid(None).unwrap(), &BuildOptions { leaf_size: 8 }).unwrap()
+    }
+
+    /// Every grid cell lies in exactly one brick.
+    fn assert_tiles(o: &VolumeOctree, s: &Selection) {
+        let d = o.layout().dims;
+        let mut count = vec![0u8; (d[0] - 1) * (d[1] - 1) * (d[2] - 1)];
+        for b in &s.bricks {
+            for z in b.lo[2]..b.hi[2] {
+                for y in b.lo[1]..b.hi[1] {
+                    for x in b.lo[0]..b.hi[0] {
+                        count[x + (d[0] - 1) * (y + (d[1] - 1) * z)] += 1;
+                    }
+                }
+            }
+        }
+        assert!(count.iter().all(|&c| c == 1), "the cut does not tile the grid once");
+    }
+
+    #[test]
+    fn budget_is_respected_and_more_budget_buys_less_error() {
+        let o = octree(65);
+        let mut last = f64::INFINITY;
+        for budget in [4_000, 40_000, 400_000, 4_000_000] {
+            let s = select(&o, &SelectOptions::new(budget, 0.0), |_, _| true).unwrap();
+            assert!(s.texture_bytes <= budget, "{} > {budget}", s.texture_bytes);
+            assert_eq!(s.texture_bytes, s.bricks.iter().map(|b| b.bytes).sum::<usize>());
+            assert_tiles(&o, &s);
+            assert!(s.max_error <= last);
+            last = s.max_error;
+        }
+    }
+
+    #[test]
+    fn zero_budget_is_an_error_and_a_tiny_one_a_warning() {
+        let o = octree(33);
+        assert!(select(&o, &SelectOptions::new(0, 0.0), |_, _| true).is_err());
+        let s = select(&o, &SelectOptions::new(1, 0.0), |_, _| true).unwrap();
+        assert_eq!(s.bricks.len(), 1);
+        assert!(s.warning.as_deref().unwrap_or("").contains("below the coarsest"));
+    }
+
+    #[test]
+    fn tolerance_stops_refinement_and_transparent_nodes_cost_nothing() {
+        // Smooth data: coarse levels already meet a loose tolerance (the
+        // phantom's sharp edges keep a large error at every level but the finest).
+        let o = octree_of(Dataset::MarschnerLobb, 65);
+        let loose = select(&o, &SelectOptions::new(100_000_000, 0.3), |_, _| true).unwrap();
+        let tight = select(&o, &SelectOptions::new(100_000_000, 0.0), |_, _| true).unwrap();
+        assert!(loose.texture_bytes < tight.texture_bytes, "{} {} {} {}", loose.texture_bytes, tight.texture_bytes, loose.max_error, tight.max_error);
+        assert!(loose.max_error <= 0.3 && tight.max_error == 0.0);
+        assert!(loose.warning.is_none() && tight.warning.is_none());
+        // Only nodes reaching above 0.8 are visible: the rest are skipped.
+        let some = select(&o, &SelectOptions::new(100_000_000, 0.0), |_, max| max > 0.8).unwrap();
+        assert!(some.skipped > 0 && some.texture_bytes < tight.texture_bytes);
+    }
+
+    #[test]
+    fn roi_refines_near_its_centre_first() {
+        let o = octree(65);
+        let roi = Roi { center: [8.0, 8.0, 32.0], radius: 8.0 };
+        let s = select(&o, &SelectOptions { roi: Some(roi), ..SelectOptions::new(60_000, 0.0) }, |_, _| true).unwrap();
+        let near = s.bricks.iter().filter(|b| b.importance == 1.0).map(|b| b.stride).min().unwrap();
+        let far = s.bricks.iter().filter(|b| b.importance < 0.3).map(|b| b.stride).min().unwrap_or(usize::MAX);
+        assert!(near < far, "near stride {near}, far {far}");
+    }
+
+    #[test]
+    fn uniform_counts_the_same_bytes() {
+        let o = octree(65);
+        let u = uniform(&o, 2, 4).unwrap();
+        assert_tiles(&o, &u);
+        assert!(u.bricks.iter().all(|b| b.stride == 2));
+        assert!(u.bricks.iter().filter(|b| b.level == o.layout().leaf_level()).all(|b| b.texels == [5, 5, 5] && b.bytes == 500));
+        assert!(uniform(&o, 3, 4).is_err());
+    }
+}

@@ -1,0 +1,1 @@
+//! Slab integration: surface triangles into the slabs between the slices of each brick.
