@@ -4,7 +4,8 @@
 set -euo pipefail
 
 # libopenmpi-dev and libdouble-conversion-dev: ParaView's CMake package needs them but paraview-dev does not pull them in.
-PACKAGES=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev liblzma-dev xvfb xauth cmake make g++ pkg-config python3)
+# libfontconfig1-dev, libfreetype-dev, fonts-dejavu-core: the CLI's plots (plotters draws text through fontconfig).
+PACKAGES=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev liblzma-dev xvfb xauth cmake make g++ pkg-config python3 libfontconfig1-dev libfreetype-dev fonts-dejavu-core)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

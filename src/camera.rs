@@ -168,8 +168,9 @@ mod tests {
 
     #[test]
     fn basis_is_orthonormal_and_rays_point_forward() {
-        let c = Camera::new([0.0, -10.0, 0.0], [0.0; 3], [0.0, 0.0, 1.0], Projection::Perspective { view_angle_deg: 30.0 })
-            .unwrap();
+        let c =
+            Camera::new([0.0, -10.0, 0.0], [0.0; 3], [0.0, 0.0, 1.0], Projection::Perspective { view_angle_deg: 30.0 })
+                .unwrap();
         let (r, u, f) = c.basis();
         assert!((dot(r, u)).abs() < 1e-12 && dot(r, f).abs() < 1e-12 && dot(u, f).abs() < 1e-12);
         assert_eq!(f, [0.0, 1.0, 0.0]);

@@ -15,6 +15,7 @@
 
 use crate::camera::Camera;
 use crate::select::Brick;
+use rayon::prelude::*;
 
 /// How the surface is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -46,8 +47,9 @@ pub struct Plan {
 /// Triangles of the surface drawn between two slices of a brick.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Batch {
-    /// Slab index within the brick: slab `s` lies between slices `s` and `s + 1`
-    /// counted from the back (see [`BrickDraw::slices`]).
+    /// Slab index within the brick: slab `s` lies between slices `s - 1` and
+    /// `s` (slices back to front, see [`BrickDraw::slices`]); slab 0 is behind
+    /// the first slice, slab `n` in front of the last (see [`crate::slab`]).
     pub slab: usize,
     /// Surface triangle ids.
     pub triangles: Vec<u32>,
@@ -70,7 +72,12 @@ pub struct BrickDraw {
     pub slice_spacing: f64,
     /// View depths of the slices through the brick, back to front: slice
     /// planes at depths `k * slice_spacing` (a lattice shared by all bricks of
-    /// the same spacing), those inside the brick's depth range.
+    /// the same spacing), those inside the brick's depth range
+    /// (`d_min <= z < d_max`, see [`crate::slab::slice_depths`]). A sample on
+    /// a face shared with another brick belongs to the brick whose NEAR face
+    /// it is (each box is closed on the faces towards the eye and on the
+    /// volume's own faces), so every point is sampled by exactly one brick;
+    /// a GPU executor must use the same rule.
     pub slices: Vec<f64>,
     /// Surface batches (translucent surfaces only), back to front.
     pub batches: Vec<Batch>,
@@ -91,4 +98,181 @@ pub struct DrawList {
     /// Reference slice spacing d0 (world units): the full-resolution sample
     /// spacing, against which opacity is corrected.
     pub reference_spacing: f64,
+}
+
+/// What the scene holds besides the volume.
+#[derive(Debug, Clone, Copy)]
+pub struct Scene<'a> {
+    /// The isosurface, if drawn.
+    pub surface: Option<&'a crate::surface::Surface>,
+    /// Its opacity: 1 opaque, in (0, 1) translucent, 0 hidden.
+    pub surface_opacity: f64,
+    /// Gradient shading of the volume (only when the volume property asks).
+    pub shading: bool,
+}
+
+/// The plan for a scene (see the module documentation).
+pub fn plan(selection: &crate::select::Selection, scene: &Scene<'_>) -> Plan {
+    let has_surface = scene.surface.is_some_and(|s| s.polygon_count() > 0) && scene.surface_opacity > 0.0;
+    let surface = match (has_surface, scene.surface_opacity >= 1.0) {
+        (false, _) => SurfacePass::None,
+        (true, true) => SurfacePass::Opaque,
+        (true, false) => SurfacePass::Translucent,
+    };
+    let volume = !selection.bricks.is_empty();
+    let mut passes = Vec::new();
+    match surface {
+        SurfacePass::Opaque => passes.push("surface-opaque".to_string()),
+        SurfacePass::Translucent => passes.push("surface-in-slabs".to_string()),
+        SurfacePass::None => {}
+    }
+    if volume {
+        passes.push(if scene.shading { "volume-shaded" } else { "volume" }.to_string());
+    }
+    Plan { volume, surface, shading: scene.shading && volume, skipped_bricks: selection.skipped, passes }
+}
+
+/// The DrawList for `selection` seen from `camera`: the plan, the bricks back
+/// to front with their slices (every `stride` samples along the view: `d =
+/// stride * min(spacing)`, against `d0 = min(spacing)`), and the surface
+/// passes the plan asks for.
+pub fn draw_list(
+    octree: &crate::octree::VolumeOctree,
+    shape: &crate::grid::GridShape,
+    selection: &crate::select::Selection,
+    camera: &Camera,
+    scene: &Scene<'_>,
+) -> DrawList {
+    let plan = plan(selection, scene);
+    let d0 = shape.spacing.iter().copied().fold(f64::INFINITY, f64::min);
+    let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
+    let order = crate::order::brick_order(camera, octree, shape, &ids, true);
+    // Surface triangles by brick (translucent only): a terminal surface node
+    // lies inside exactly one brick of the cut: its own or an ancestor's.
+    let mut per_brick: Vec<Vec<(u32, [[f64; 3]; 3])>> = vec![Vec::new(); selection.bricks.len()];
+    if let (SurfacePass::Translucent, Some(s)) = (plan.surface, scene.surface) {
+        let index: std::collections::HashMap<crate::octree::NodeId, usize> =
+            ids.iter().enumerate().map(|(i, &id)| (id, i)).collect();
+        let layout = octree.layout();
+        for &(node, first, end) in &s.node_ranges {
+            let (mut level, mut c) = layout.locate(node);
+            let brick = loop {
+                if let Some(&b) = index.get(&layout.id(level, c)) {
+                    break Some(b);
+                }
+                if level == 0 {
+                    break None;
+                }
+                level -= 1;
+                c = c.map(|v| v / 2);
+            };
+            let Some(b) = brick else { continue };
+            for t in first..end {
+                let tri = s.polygon(t as usize);
+                per_brick[b].push((t, [0, 1, 2].map(|k| shape.world(s.points[tri[k] as usize]))));
+            }
+        }
+    }
+    let bricks = order
+        .par_iter()
+        .map(|&i| {
+            let brick = selection.bricks[i];
+            let world_lo = shape.world(brick.lo.map(|v| v as f64));
+            let world_hi = shape.world(brick.hi.map(|v| v as f64));
+            let slice_spacing = brick.stride as f64 * d0;
+            let slices = crate::slab::slice_depths(camera, world_lo, world_hi, slice_spacing);
+            let batches = if per_brick[i].is_empty() {
+                Vec::new()
+            } else {
+                crate::slab::assign_batches(camera, &slices, &per_brick[i])
+            };
+            BrickDraw { brick, world_lo, world_hi, slice_spacing, slices, batches }
+        })
+        .collect();
+    let opaque_triangles = match (plan.surface, scene.surface) {
+        (SurfacePass::Opaque, Some(s)) => (0..s.polygon_count() as u32).collect(),
+        _ => Vec::new(),
+    };
+    DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::datasets::{generate, Dataset};
+    use crate::grid::ScalarType;
+    use crate::octree::{BuildOptions, VolumeOctree};
+    use crate::select::{select, SelectOptions};
+    use crate::surface::{Surface, SurfaceOptions};
+
+    struct Fixture {
+        volume: crate::volume::Volume,
+        octree: VolumeOctree,
+        surface: Surface,
+    }
+
+    fn fixture() -> Fixture {
+        let volume = generate(Dataset::SheppLogan, 33, ScalarType::F32);
+        let grid = volume.grid(None).unwrap();
+        let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 8 }).unwrap();
+        let surface = Surface::extract(&grid, &octree, &SurfaceOptions::discretized(0.5)).unwrap();
+        Fixture { volume, octree, surface }
+    }
+
+    fn list(f: &Fixture, scene: &Scene<'_>, visible: impl Fn(f64, f64) -> bool) -> DrawList {
+        let grid = f.volume.grid(None).unwrap();
+        let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
+        let selection = select(&f.octree, &options, visible).unwrap();
+        let shape = grid.shape();
+        let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
+        draw_list(&f.octree, shape, &selection, &camera, scene)
+    }
+
+    #[test]
+    fn volume_only_without_a_surface() {
+        let f = fixture();
+        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: false }, |_, _| true);
+        assert_eq!(l.plan.passes, vec!["volume"]);
+        assert_eq!(l.plan.surface, SurfacePass::None);
+        assert!(l.opaque_triangles.is_empty() && l.bricks.iter().all(|b| b.batches.is_empty()));
+        assert!(l.bricks.iter().all(|b| !b.slices.is_empty()));
+    }
+
+    #[test]
+    fn opaque_surface_first_then_volume_without_interleaving() {
+        let f = fixture();
+        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: false }, |_, _| true);
+        assert_eq!(l.plan.passes, vec!["surface-opaque", "volume"]);
+        assert_eq!(l.opaque_triangles.len(), f.surface.polygon_count());
+        assert!(l.bricks.iter().all(|b| b.batches.is_empty()), "no batches in the slabs");
+    }
+
+    #[test]
+    fn translucent_surface_goes_into_the_slabs_every_triangle_at_least_once() {
+        let f = fixture();
+        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: true }, |_, _| true);
+        assert_eq!(l.plan.passes, vec!["surface-in-slabs", "volume-shaded"]);
+        assert!(l.opaque_triangles.is_empty());
+        let mut seen = vec![false; f.surface.polygon_count()];
+        for b in &l.bricks {
+            for batch in &b.batches {
+                for &t in &batch.triangles {
+                    seen[t as usize] = true;
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s), "a triangle is in no batch");
+    }
+
+    #[test]
+    fn transparent_nodes_cost_no_texture_and_a_hidden_surface_no_pass() {
+        let f = fixture();
+        let l =
+            list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: false }, |_, max| max > 0.9);
+        assert!(l.plan.skipped_bricks > 0);
+        assert_eq!(l.plan.surface, SurfacePass::None);
+        assert!(!l.plan.shading);
+        let none = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: true }, |_, _| false);
+        assert!(!none.plan.volume && none.bricks.is_empty() && none.plan.passes.is_empty() && !none.plan.shading);
+    }
 }

@@ -17,11 +17,13 @@
 //! (`c`, `r`: the region's centre and radius in index space; `dist` from the
 //! centre to the nearest point of the node's box). Greedy refinement from the
 //! root at `p = 0`: while the budget allows, take the step that removes the
-//! most weighted error per byte, among: raise `p` of a node of the cut by one
-//! (up to `max_brick_log2`, and never past full resolution), or, for a node
-//! already at the largest brick, split it into its children at the largest
-//! brick. A node stops when its weighted error is at most the tolerance `Eu`
-//! (`e_p(n) <= Eu / Imp(n)`). Ties go to the smaller node id, so the result
+//! most error mass per byte (error mass = `Imp(n) e_p(n) * cells(n)`: an
+//! error covering more of the volume costs more of the picture), each node
+//! offering the better of: raise its `p` to the level that removes the most
+//! mass per byte (up to `max_brick_log2`, never past full resolution), or split it into its children at the same
+//! stride (`p - 1`), which costs only their shared borders and lets each child
+//! refine on its own. A node stops when its weighted error is at most the
+//! tolerance `Eu` (`e_p(n) <= Eu / Imp(n)`). Ties go to the smaller node id, so the result
 //! is deterministic. Nodes whose value range the caller's `visible` test
 //! rejects (fully transparent under the transfer function) cost nothing and
 //! are never refined.
@@ -89,7 +91,9 @@ pub struct Brick {
 
 impl Brick {
     /// Index of the texel positions along `axis`: `lo + i * stride`, the last
-    /// one clamped to `hi`.
+    /// one clamped to `hi`. For a brick clipped by the grid the last texel is
+    /// closer than one stride to the one before, so a texture coordinate must
+    /// be `u = (x - lo) / stride` texels, not the box scaled to `[0, 1]`.
     pub fn texel_positions(&self, axis: usize) -> impl Iterator<Item = usize> + '_ {
         (0..self.texels[axis]).map(move |i| (self.lo[axis] + i * self.stride).min(self.hi[axis]))
     }
@@ -142,7 +146,13 @@ pub fn importance(roi: Option<&Roi>, lo: [usize; 3], hi: [usize; 3]) -> f64 {
     let d2: f64 = (0..3)
         .map(|a| {
             let c = roi.center[a];
-            let d = if c < lo[a] as f64 { lo[a] as f64 - c } else if c > hi[a] as f64 { c - hi[a] as f64 } else { 0.0 };
+            let d = if c < lo[a] as f64 {
+                lo[a] as f64 - c
+            } else if c > hi[a] as f64 {
+                c - hi[a] as f64
+            } else {
+                0.0
+            };
             d * d
         })
         .sum();
@@ -221,33 +231,49 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
         make_brick(octree, &n, p, importance(options.roi.as_ref(), n.lo, n.hi), options.bytes_per_texel)
     };
     // The best next step of a brick in the cut, if it still violates the tolerance.
+    // The error mass of a brick: Imp(n) e_p(n) times its cells (image error
+    // grows with the volume a wrong value covers, not only with its size).
+    let mass = |b: &Brick| weighted(b) * (0..3).map(|a| (b.hi[a] - b.lo[a]).max(1) as f64).product::<f64>();
     let next_step = |b: &Brick| -> Option<(Step, Vec<Brick>, usize)> {
         if weighted(b) <= options.tolerance || b.error == 0.0 {
             return None;
         }
         let n = octree.node(b.node);
-        if b.p < max_p(&n) {
-            let up = brick_of(b.node, b.p + 1);
-            let gain = (weighted(b) - weighted(&up)) / (up.bytes - b.bytes).max(1) as f64;
-            return Some((Step { gain, node: b.node, p: b.p }, vec![up], 0));
-        }
-        if n.is_terminal() {
-            return None;
-        }
-        let mut children = Vec::new();
-        let mut hidden = 0;
-        for c in octree.children(b.node) {
-            let cn = octree.node(c);
-            if !visible(cn.min, cn.max) {
-                hidden += 1;
-                continue;
+        // Raise p to the level q in (p, max] that removes the most error mass
+        // per byte: the same box, 2^(q-p) times the texels per axis. (Looking
+        // past p + 1 matters: across a sharp edge e_p stays near its maximum
+        // until full resolution, so one level alone may buy nothing.)
+        let raise = (b.p + 1..=max_p(&n))
+            .map(|q| {
+                let up = brick_of(b.node, q);
+                ((mass(b) - mass(&up)) / (up.bytes - b.bytes).max(1) as f64, up)
+            })
+            .max_by(|x, y| x.0.total_cmp(&y.0))
+            .map(|(gain, up)| (gain, vec![up], 0));
+        // Split: the children at the same stride (p - 1), which pays a little
+        // border and lets each child refine on its own; the error mass drops
+        // where children are already better than the parent's worst.
+        let split = (!n.is_terminal()).then(|| {
+            let mut children = Vec::new();
+            let mut hidden = 0;
+            for c in octree.children(b.node) {
+                let cn = octree.node(c);
+                if !visible(cn.min, cn.max) {
+                    hidden += 1;
+                    continue;
+                }
+                children.push(brick_of(c, b.p.saturating_sub(1).min(max_p(&cn))));
             }
-            children.push(brick_of(c, max_p(&cn)));
-        }
-        let added: usize = children.iter().map(|c| c.bytes).sum();
-        let after = children.iter().map(weighted).fold(0.0, f64::max);
-        let gain = (weighted(b) - after).max(0.0) / added.saturating_sub(b.bytes).max(1) as f64;
-        Some((Step { gain, node: b.node, p: b.p }, children, hidden))
+            let added: usize = children.iter().map(|c| c.bytes).sum();
+            let after: f64 = children.iter().map(mass).sum();
+            let gain = (mass(b) - after).max(0.0) / added.saturating_sub(b.bytes).max(1) as f64;
+            (gain, children, hidden)
+        });
+        let best = match (raise, split) {
+            (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
+            (r, s) => r.or(s),
+        };
+        best.map(|(gain, bricks, hidden)| (Step { gain, node: b.node, p: b.p }, bricks, hidden))
     };
 
     let root = octree.node(octree.root());
@@ -391,7 +417,14 @@ mod tests {
         let o = octree_of(Dataset::MarschnerLobb, 65);
         let loose = select(&o, &SelectOptions::new(100_000_000, 0.3), |_, _| true).unwrap();
         let tight = select(&o, &SelectOptions::new(100_000_000, 0.0), |_, _| true).unwrap();
-        assert!(loose.texture_bytes < tight.texture_bytes, "{} {} {} {}", loose.texture_bytes, tight.texture_bytes, loose.max_error, tight.max_error);
+        assert!(
+            loose.texture_bytes < tight.texture_bytes,
+            "{} {} {} {}",
+            loose.texture_bytes,
+            tight.texture_bytes,
+            loose.max_error,
+            tight.max_error
+        );
         assert!(loose.max_error <= 0.3 && tight.max_error == 0.0);
         assert!(loose.warning.is_none() && tight.warning.is_none());
         // Only nodes reaching above 0.8 are visible: the rest are skipped.
@@ -415,7 +448,11 @@ mod tests {
         let u = uniform(&o, 2, 4).unwrap();
         assert_tiles(&o, &u);
         assert!(u.bricks.iter().all(|b| b.stride == 2));
-        assert!(u.bricks.iter().filter(|b| b.level == o.layout().leaf_level()).all(|b| b.texels == [5, 5, 5] && b.bytes == 500));
+        assert!(u
+            .bricks
+            .iter()
+            .filter(|b| b.level == o.layout().leaf_level())
+            .all(|b| b.texels == [5, 5, 5] && b.bytes == 500));
         assert!(uniform(&o, 3, 4).is_err());
     }
 }

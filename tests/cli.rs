@@ -324,3 +324,103 @@ fn surface_writes_a_vtk_file_and_refuses_bad_options() {
     let empty = surface_json(&["--dataset", "sphere", "--size", "9", "--isovalue", "7"]);
     assert_eq!(empty["polygons"], 0);
 }
+
+#[test]
+fn render_writes_a_png_and_reports_the_plan_bytes_and_error() {
+    let dir = std::env::temp_dir().join(format!("ho-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (png, reference) = (dir.join("frame.png"), dir.join("reference.png"));
+    let r = json_of(
+        "render",
+        &[
+            "--dataset",
+            "shepp-logan",
+            "--size",
+            "33",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--budget-mb",
+            "0.05",
+            "--isovalue",
+            "0.5",
+            "--output",
+            png.to_str().unwrap(),
+            "--reference",
+            reference.to_str().unwrap(),
+        ],
+    );
+    for path in [&png, &reference] {
+        let bytes = std::fs::read(path).unwrap();
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{path:?} is not a PNG");
+    }
+    assert_eq!(r["passes"], serde_json::json!(["surface-opaque", "volume"]));
+    assert!(r["texture_bytes"].as_u64().unwrap() <= 50_000, "{r}");
+    assert!(r["bricks"].as_u64().unwrap() >= 1);
+    let ssim = r["ssim"].as_f64().unwrap();
+    assert!(ssim > 0.5 && ssim <= 1.0, "{r}");
+    assert!(r["rmse"].as_f64().unwrap() < 0.2, "{r}");
+    // Bad input: a zero budget and a camera looking from nowhere are clear errors.
+    let out =
+        run(&["render", "--dataset", "sphere", "--size", "9", "--budget-mb", "0", "--output", png.to_str().unwrap()]);
+    assert_clean_failure(&out, "budget");
+    let out = run(&["render", "--dataset", "sphere", "--size", "9", "--width", "0", "--output", png.to_str().unwrap()]);
+    assert_clean_failure(&out, "image size");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bench_render_compares_octree_and_uniform_at_equal_bytes() {
+    let dir = std::env::temp_dir().join(format!("ho-bench-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plot = dir.join("plot.png");
+    let out = run(&[
+        "bench",
+        "render",
+        "--dataset",
+        "marschner-lobb",
+        "--size",
+        "33",
+        "--width",
+        "48",
+        "--height",
+        "48",
+        "--strides",
+        "2,4",
+        "--tolerances",
+        "0.1",
+        "--leaf-size",
+        "8",
+        "--plot",
+        plot.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 5, "2 uniform + 2 octree at their bytes + 1 tolerance row");
+    for r in rows {
+        for key in [
+            "method",
+            "tolerance",
+            "budget_bytes",
+            "texture_bytes",
+            "bricks",
+            "select_ms",
+            "drawlist_ms",
+            "composite_ms",
+            "rmse",
+            "psnr",
+            "ssim",
+        ] {
+            assert!(r.get(key).is_some(), "missing {key} in {r}");
+        }
+        assert!(r["texture_bytes"].as_u64() <= r["budget_bytes"].as_u64(), "{r}");
+    }
+    assert_eq!(rows[0]["method"], "uniform");
+    assert_eq!(rows[1]["method"], "octree");
+    assert_eq!(rows[1]["budget_bytes"], rows[0]["texture_bytes"], "octree gets the uniform row's bytes");
+    assert_eq!(&std::fs::read(&plot).unwrap()[..4], b"\x89PNG");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

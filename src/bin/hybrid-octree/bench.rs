@@ -1,7 +1,9 @@
 //! Benchmarks that print tables: `bench build` (the Volume Octree) and
-//! `bench surface` (the Surface Octree's extraction and face compression).
+//! `bench surface` (the Surface Octree's extraction and face compression),
+//! `bench render` (what accuracy costs in time and memory when rendering).
 
 mod build;
+pub mod render;
 mod surface;
 
 use clap::Subcommand;
@@ -15,6 +17,8 @@ pub enum BenchCommand {
     Build(build::BenchBuildArgs),
     /// Isosurface extraction and face compression: time, faces, triangles.
     Surface(surface::BenchSurfaceArgs),
+    /// Rendering under a texture budget: error against time and memory, octree vs uniform downsampling.
+    Render(Box<render::BenchRenderArgs>),
 }
 
 /// Runs a benchmark.
@@ -22,6 +26,7 @@ pub fn run(command: &BenchCommand) -> Result<()> {
     match command {
         BenchCommand::Build(args) => build::run(args),
         BenchCommand::Surface(args) => surface::run(args),
+        BenchCommand::Render(args) => render::run(args),
     }
 }
 

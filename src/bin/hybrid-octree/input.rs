@@ -98,6 +98,17 @@ impl InputArgs {
         Ok(generate(dataset, self.size, self.scalar_type_or(ScalarType::F32)?))
     }
 
+    /// A short name of the input: the file name, or the dataset and size.
+    pub fn describe(&self) -> String {
+        match (&self.file, &self.dataset) {
+            (Some(path), _) => {
+                path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into())
+            }
+            (None, Some(d)) => format!("{d} {}^3", self.size),
+            (None, None) => "input".into(),
+        }
+    }
+
     /// The grid of the chosen component.
     pub fn grid<'v>(&self, volume: &'v Volume) -> Result<Grid<'v>> {
         volume.grid(self.component)

@@ -5,8 +5,10 @@
 //! hybrid-octree info     (--dataset NAME --size N | --file PATH) [--type T] [--component C]
 //! hybrid-octree build    (--dataset NAME --size N | --file PATH) [--leaf-size B] [--tolerance T] [--json]
 //! hybrid-octree surface  (--dataset NAME --size N | --file PATH) --isovalue V [--mode discretized|interpolated] [--distance] [--output F.vtk] [--json]
+//! hybrid-octree render   (--dataset NAME --size N | --file PATH) --output F.png [--budget-mb M] [--tolerance T] [--isovalue V] [--reference R.png] [--json]
 //! hybrid-octree generate --dataset NAME --size N [--type T] --output FILE.vti
 //! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--repeats 3] [--json]
+//! hybrid-octree bench render (--dataset NAME --size N | --file PATH) [--strides 2,4,8] [--tolerances ...] [--plot P.png] [--json]
 //! hybrid-octree bench surface [--cases shepp-logan:0.5,...] [--size 256] [--modes discmc,...] [--threads 1,2] [--json]
 //! ```
 //!
@@ -18,7 +20,10 @@ mod generate;
 mod info;
 mod input;
 mod output;
+mod plot;
 mod pool;
+mod render;
+mod scene;
 mod surface;
 
 use clap::{Parser, Subcommand};
@@ -39,6 +44,8 @@ enum Command {
     Build(build::BuildArgs),
     /// Extract the Hybrid Octree's isosurface (DiscMC + face compression, or interpolated MC).
     Surface(surface::SurfaceArgs),
+    /// Render one frame under a texture budget to a PNG (CPU compositor), optionally against the reference.
+    Render(render::RenderArgs),
     /// Write a built-in dataset to a VTK XML image file (.vti).
     Generate(generate::GenerateArgs),
     /// Benchmarks that print a table.
@@ -54,6 +61,7 @@ fn main() -> ExitCode {
         Command::Info(args) => info::run(&args),
         Command::Build(args) => build::run(&args),
         Command::Surface(args) => surface::run(&args),
+        Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     };

@@ -1,0 +1,57 @@
+//! The accuracy/cost plot of `bench render`: image error against frame time
+//! and against texture memory, one series per method, as a PNG.
+
+use hybrid_octree::{Error, Result};
+use plotters::prelude::*;
+use std::path::Path;
+
+/// One measured point of a series.
+#[derive(Debug, Clone, Copy)]
+pub struct Point {
+    /// Milliseconds (selection + DrawList + compositing).
+    pub ms: f64,
+    /// Texture megabytes.
+    pub mb: f64,
+    /// Image RMSE against the reference.
+    pub rmse: f64,
+}
+
+fn err(e: impl std::fmt::Display) -> Error {
+    Error::InvalidArgument(format!("cannot draw the plot: {e}"))
+}
+
+/// Writes a two-panel PNG: RMSE against ms (left) and against texture MB
+/// (right), one coloured line per `(name, points)` series.
+pub fn error_plot(path: &Path, title: &str, series: &[(&str, Vec<Point>)]) -> Result<()> {
+    let root = BitMapBackend::new(path, (1200, 500)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let root = root.titled(title, ("sans-serif", 22)).map_err(err)?;
+    let panels = root.split_evenly((1, 2));
+    let all: Vec<Point> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
+    let max = |f: fn(&Point) -> f64| all.iter().map(f).fold(0.0f64, f64::max) * 1.1 + 1e-9;
+    let colours = [RED, BLUE, GREEN, MAGENTA, CYAN];
+    type Axis = (fn(&Point) -> f64, &'static str);
+    let axes: [Axis; 2] = [(|p| p.ms, "time per frame (ms)"), (|p| p.mb, "texture memory (MB)")];
+    for (panel, (x_of, x_desc)) in panels.iter().zip(axes) {
+        let mut chart = ChartBuilder::on(panel)
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(0.0..max(x_of), 0.0..max(|p| p.rmse))
+            .map_err(err)?;
+        chart.configure_mesh().x_desc(x_desc).y_desc("RMSE against the reference").draw().map_err(err)?;
+        for ((name, points), colour) in series.iter().zip(colours.iter().cycle()) {
+            let mut line: Vec<(f64, f64)> = points.iter().map(|p| (x_of(p), p.rmse)).collect();
+            line.sort_by(|a, b| a.0.total_cmp(&b.0));
+            chart
+                .draw_series(LineSeries::new(line.clone(), colour.stroke_width(2)))
+                .map_err(err)?
+                .label(*name)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
+            chart.draw_series(line.iter().map(|&p| Circle::new(p, 4, colour.filled()))).map_err(err)?;
+        }
+        chart.configure_series_labels().background_style(WHITE).border_style(BLACK).draw().map_err(err)?;
+    }
+    root.present().map_err(err)?;
+    Ok(())
+}

@@ -1,0 +1,140 @@
+//! `render`: one frame of the Hybrid Octree under a texture budget, written
+//! as a PNG, with what it cost (bricks, bytes, step times, the plan) and,
+//! with `--reference`, how far it is from the full-resolution ray caster.
+
+use crate::input::InputArgs;
+use crate::output::print_report;
+use crate::pool::with_threads;
+use crate::scene::{frame, load, visible, SceneArgs};
+use clap::Args;
+use hybrid_octree::render::metrics::compare;
+use hybrid_octree::render::reference::{reference, ReferenceOptions};
+use hybrid_octree::select::{select, SelectOptions};
+use hybrid_octree::Result;
+use serde::Serialize;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Arguments of `render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    input: InputArgs,
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Texture budget in megabytes (10^6 bytes).
+    #[arg(long, default_value_t = 64.0)]
+    budget_mb: f64,
+    /// Error tolerance Eu: nodes stop refining at e_p <= Eu / Imp (fraction of the data range).
+    #[arg(long, default_value_t = 0.0)]
+    tolerance: f64,
+    /// The PNG to write.
+    #[arg(long)]
+    output: PathBuf,
+    /// Also ray-cast the full-resolution reference, report RMSE/PSNR/SSIM and write it here.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Print one JSON object on stdout instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// What `render` reports.
+#[derive(Debug, Serialize)]
+struct RenderReport {
+    output: String,
+    width: usize,
+    height: usize,
+    budget_bytes: usize,
+    texture_bytes: usize,
+    bricks: usize,
+    max_error: f64,
+    passes: Vec<String>,
+    skipped_bricks: usize,
+    warning: Option<String>,
+    select_ms: f64,
+    drawlist_ms: f64,
+    composite_ms: f64,
+    rmse: Option<f64>,
+    psnr: Option<f64>,
+    ssim: Option<f64>,
+    reference_ms: Option<f64>,
+}
+
+/// Renders and reports.
+pub fn run(args: &RenderArgs) -> Result<()> {
+    let budget_bytes = crate::bench::render::budget_bytes(args.budget_mb)?;
+    let report = with_threads(args.input.threads, || {
+        let volume = args.input.load()?;
+        let grid = args.input.grid(&volume)?;
+        let scene = load(&grid, &args.scene)?;
+        let options = SelectOptions { roi: args.scene.roi, ..SelectOptions::new(budget_bytes, args.tolerance) };
+        let started = Instant::now();
+        let selection = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
+        let select_ms = started.elapsed().as_secs_f64() * 1e3;
+        let f = frame(&grid, &scene, &selection, &args.scene)?;
+        f.image.to_png(&args.output)?;
+        let (mut rmse, mut psnr, mut ssim, mut reference_ms) = (None, None, None, None);
+        if let Some(path) = &args.reference {
+            let started = Instant::now();
+            let surface = scene.surface.as_ref().map(|s| (s, [0.9, 0.75, 0.55, args.scene.surface_opacity as f32]));
+            let r = reference(
+                &grid,
+                &scene.tf,
+                &scene.camera,
+                args.scene.width,
+                args.scene.height,
+                &ReferenceOptions { surface, ..ReferenceOptions::default() },
+            )?;
+            reference_ms = Some(started.elapsed().as_secs_f64() * 1e3);
+            r.to_png(path)?;
+            let m = compare(&f.image, &r)?;
+            (rmse, psnr, ssim) = (Some(m.rmse), Some(m.psnr), Some(m.ssim));
+        }
+        Ok(RenderReport {
+            output: args.output.display().to_string(),
+            width: args.scene.width,
+            height: args.scene.height,
+            budget_bytes,
+            texture_bytes: selection.texture_bytes,
+            bricks: selection.bricks.len(),
+            max_error: selection.max_error,
+            passes: f.list.plan.passes.clone(),
+            skipped_bricks: f.list.plan.skipped_bricks,
+            warning: selection.warning.clone(),
+            select_ms,
+            drawlist_ms: f.drawlist_ms,
+            composite_ms: f.composite_ms,
+            rmse,
+            psnr,
+            ssim,
+            reference_ms,
+        })
+    })?;
+    if let (false, Some(w)) = (args.json, &report.warning) {
+        eprintln!("warning: {w}");
+    }
+    print_report(&report, args.json, print_text)
+}
+
+fn print_text(r: &RenderReport) {
+    println!("wrote {} ({}x{})", r.output, r.width, r.height);
+    println!("plan:            {} ({} transparent nodes skipped)", r.passes.join(" -> "), r.skipped_bricks);
+    println!(
+        "bricks:          {} using {:.2} MB of a {:.2} MB budget, largest error {:.4}",
+        r.bricks,
+        r.texture_bytes as f64 / 1e6,
+        r.budget_bytes as f64 / 1e6,
+        r.max_error
+    );
+    println!(
+        "times:           select {:.1} ms, DrawList {:.1} ms, composite {:.1} ms",
+        r.select_ms, r.drawlist_ms, r.composite_ms
+    );
+    if let (Some(rmse), Some(psnr), Some(ssim)) = (r.rmse, r.psnr, r.ssim) {
+        println!(
+            "vs reference:    RMSE {rmse:.4}, PSNR {psnr:.2} dB, SSIM {ssim:.4} (reference {:.0} ms)",
+            r.reference_ms.unwrap_or(0.0)
+        );
+    }
+}

@@ -1,0 +1,138 @@
+//! The scene `render` and `bench render` share: the volume and its octree,
+//! an optional isosurface, a transfer function, a camera, and one frame made
+//! from a selection (select, DrawList, composite), timed step by step.
+
+use crate::build::build_octree;
+use clap::Args;
+use hybrid_octree::camera::Camera;
+use hybrid_octree::grid::Grid;
+use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
+use hybrid_octree::plan::{draw_list, DrawList, Scene};
+use hybrid_octree::render::compositor::composite;
+use hybrid_octree::render::image::Image;
+use hybrid_octree::render::transfer::TransferFunction;
+use hybrid_octree::select::{Roi, Selection};
+use hybrid_octree::surface::{Surface, SurfaceOptions};
+use hybrid_octree::{Error, Result};
+use std::time::Instant;
+
+/// View and scene options shared by `render` and `bench render`.
+#[derive(Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// Leaf brick size of the Volume Octree (power of two, 2..=256).
+    #[arg(long, default_value_t = DEFAULT_LEAF_SIZE)]
+    pub leaf_size: usize,
+    /// Also draw the isosurface at this value (the Hybrid Octree's DiscMC surface).
+    #[arg(long)]
+    pub isovalue: Option<f64>,
+    /// Opacity of the isosurface: 1 opaque (drawn first), below 1 translucent (drawn in the slabs).
+    #[arg(long, default_value_t = 1.0)]
+    pub surface_opacity: f64,
+    /// Camera azimuth in degrees about +z (0: looking from -y).
+    #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
+    pub azimuth: f64,
+    /// Camera elevation in degrees above the xy plane.
+    #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
+    pub elevation: f64,
+    /// Parallel projection instead of perspective.
+    #[arg(long)]
+    pub parallel: bool,
+    /// Image width in pixels.
+    #[arg(long, default_value_t = 512)]
+    pub width: usize,
+    /// Image height in pixels.
+    #[arg(long, default_value_t = 512)]
+    pub height: usize,
+    /// Region of interest X,Y,Z,R (index space): refined first.
+    #[arg(long, value_parser = roi, allow_hyphen_values = true)]
+    pub roi: Option<Roi>,
+}
+
+fn roi(s: &str) -> std::result::Result<Roi, String> {
+    let v: Vec<f64> =
+        s.split(',').map(|p| p.trim().parse::<f64>()).collect::<std::result::Result<_, _>>().map_err(|_| {
+            format!("'{s}' is not X,Y,Z,R (four numbers: the centre in index space and the radius in index units)")
+        })?;
+    match v[..] {
+        [x, y, z, r] => Ok(Roi { center: [x, y, z], radius: r }),
+        _ => Err(format!("'{s}' is not X,Y,Z,R: give four numbers")),
+    }
+}
+
+/// A loaded scene.
+pub struct Loaded {
+    /// The octree.
+    pub octree: VolumeOctree,
+    /// The isosurface, if asked for.
+    pub surface: Option<Surface>,
+    /// The transfer function (a ramp over the data range).
+    pub tf: TransferFunction,
+    /// The camera.
+    pub camera: Camera,
+}
+
+/// Builds the octree, the surface and the camera for `grid`.
+pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
+    if args.width == 0 || args.height == 0 || args.width > 8192 || args.height > 8192 {
+        return Err(Error::InvalidArgument(format!(
+            "image size {}x{} is out of range: use 1..=8192 pixels per side",
+            args.width, args.height
+        )));
+    }
+    if !(0.0..=1.0).contains(&args.surface_opacity) {
+        return Err(Error::InvalidArgument(format!(
+            "surface opacity {} must be between 0 and 1",
+            args.surface_opacity
+        )));
+    }
+    let octree = build_octree(grid, &BuildOptions { leaf_size: args.leaf_size })?;
+    let surface = match args.isovalue {
+        Some(iso) => Some(Surface::extract(grid, &octree, &SurfaceOptions::discretized(iso))?),
+        None => None,
+    };
+    let (min, max) = octree.value_range();
+    let tf = TransferFunction::ramp(min, max);
+    let shape = grid.shape();
+    let lo = shape.world([0.0; 3]);
+    let hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
+    let camera = Camera::around(lo, hi, args.azimuth, args.elevation, args.parallel)?;
+    Ok(Loaded { octree, surface, tf, camera })
+}
+
+/// One frame: its DrawList, image and step times.
+pub struct Frame {
+    /// What was drawn.
+    pub list: DrawList,
+    /// The picture.
+    pub image: Image,
+    /// DrawList time (slabs, order, plan), ms.
+    pub drawlist_ms: f64,
+    /// Compositing time, ms.
+    pub composite_ms: f64,
+}
+
+/// Makes the DrawList for `selection` and composites it.
+pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &SceneArgs) -> Result<Frame> {
+    let started = Instant::now();
+    let list = draw_list(
+        &scene.octree,
+        grid.shape(),
+        selection,
+        &scene.camera,
+        &Scene { surface: scene.surface.as_ref(), surface_opacity: args.surface_opacity, shading: false },
+    );
+    let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
+    let started = Instant::now();
+    let colour = [0.9, 0.75, 0.55, args.surface_opacity as f32];
+    let image =
+        composite(grid, &list, &scene.tf, args.width, args.height, scene.surface.as_ref().map(|s| (s, colour)))?;
+    let composite_ms = started.elapsed().as_secs_f64() * 1e3;
+    Ok(Frame { list, image, drawlist_ms, composite_ms })
+}
+
+/// The transfer function's visibility test for the selection: a node shows
+/// unless the transfer function is transparent over its whole range (and,
+/// with a surface, it holds none of it).
+pub fn visible<'a>(scene: &'a Loaded, isovalue: Option<f64>) -> impl Fn(f64, f64) -> bool + 'a {
+    move |min, max| !scene.tf.is_transparent_over(min, max) || isovalue.is_some_and(|iso| min < iso && iso <= max)
+}

@@ -1,0 +1,315 @@
+//! The CPU compositor: executes a [`DrawList`] as a GPU slicer would, one
+//! pixel ray at a time.
+//!
+//! Bricks are drawn in list order (back to front). A brick's texture is the
+//! grid at its texel positions, reconstructed trilinearly in texel space
+//! (T_p). It is sampled only on its slice planes: for each view depth `z` in
+//! [`BrickDraw::slices`] the pixel ray's point at that depth,
+//!
+//! ```text
+//! p = o + d (z - depth(o)) / (d . forward)
+//! ```
+//!
+//! counted when it lies in the brick's world box. Along each axis the box
+//! is closed on its near face (the one of smaller view depth; the min face
+//! when the view runs along the axis' faces) and open on its far face, and
+//! closed on the volume's own faces: a point on a face two bricks share
+//! belongs to exactly one of them, and a slice through a face seen head-on
+//! belongs to the brick whose near face it is, the one that lists it
+//! ([`crate::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
+//! sample is classified, corrected for the brick's slice spacing `d` against
+//! `d0 = DrawList::reference_spacing` and blended back to front:
+//!
+//! ```text
+//! a' = 1 - (1 - a)^(d / d0),   C = a' c + (1 - a') C,   A = a' + (1 - a') A
+//! ```
+//!
+//! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
+//! pixel's depth and its shaded colour is what the volume is blended over;
+//! samples at or behind that depth are dropped (a depth test). Translucent
+//! batches ([`crate::slab`]): the hits of slab `s`'s triangles, within the
+//! batch's clip range `near <= depth < far`, are blended after slices
+//! `0 .. s` and before slice `s` (slab `n` after the last), back to front.
+//! Rows run in parallel; every pixel is computed on its own, so the picture
+//! does not depend on the number of threads.
+
+use super::blend::{correct_opacity, over, Rgba};
+use super::check::{check_colour, check_list, check_size};
+use super::geometry::{at_depth, ray_box, screen_rect};
+use super::image::Image;
+use super::sample::{to_index, BrickTexture};
+use super::transfer::TransferFunction;
+use super::triangles::{Hit, TriangleGrid};
+use crate::camera::{dot, Ray};
+use crate::error::Result;
+use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
+use crate::plan::{BrickDraw, DrawList};
+use crate::surface::Surface;
+use rayon::prelude::*;
+
+/// A brick ready to draw.
+struct Prepared<'a> {
+    /// Position in the DrawList.
+    index: usize,
+    draw: &'a BrickDraw,
+    texture: BrickTexture,
+    /// Per axis, whether the min and max faces are in the box.
+    closed: [(bool, bool); 3],
+    /// `d / d0`.
+    ratio: f64,
+    /// Pixels `[x0, x1) x [y0, y1)` that may see the brick.
+    rect: [usize; 4],
+}
+
+impl Prepared<'_> {
+    /// In the box: inside, or on a closed face.
+    #[inline]
+    fn contains(&self, p: [f64; 3]) -> bool {
+        let (lo, hi) = (self.draw.world_lo, self.draw.world_hi);
+        (0..3).all(|a| {
+            (p[a] > lo[a] || (self.closed[a].0 && p[a] == lo[a]))
+                && (p[a] < hi[a] || (self.closed[a].1 && p[a] == hi[a]))
+        })
+    }
+}
+
+/// Which (brick position, batch index) pairs draw each surface polygon.
+struct Batches {
+    start: Vec<u32>,
+    entries: Vec<(u32, u32)>,
+}
+
+/// Composites `list` over `grid` with `tf` into a `width x height` picture
+/// (see the module documentation). `surface` (with its `[r, g, b, opacity]`)
+/// is required when the list draws surface triangles.
+pub fn composite(
+    grid: &Grid<'_>,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+    surface: Option<(&Surface, [f32; 4])>,
+) -> Result<Image> {
+    check_size(width, height)?;
+    let shape = *grid.shape();
+    check_list(list, &shape, surface.map(|s| s.0))?;
+    let d0 = list.reference_spacing;
+    let volume_lo = shape.world([0.0; 3]);
+    let volume_hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
+    let forward = list.camera.forward();
+    let bricks: Vec<Prepared> = list
+        .bricks
+        .iter()
+        .enumerate()
+        .filter_map(|(index, draw)| {
+            let rect = screen_rect(&list.camera, width, height, draw.world_lo, draw.world_hi)?;
+            // Near face closed, far face open, the volume's faces closed; along a face: min closed.
+            let closed = [0, 1, 2].map(|a| {
+                let (lo_near, hi_near) = (forward[a] >= 0.0, forward[a] < 0.0);
+                (lo_near || draw.world_lo[a] <= volume_lo[a], hi_near || draw.world_hi[a] >= volume_hi[a])
+            });
+            let ratio = draw.slice_spacing / d0;
+            Some(Prepared { index, draw, texture: BrickTexture::new(&draw.brick), closed, ratio, rect })
+        })
+        .collect();
+    let (mut opaque, mut translucent) = (None, None);
+    if let Some((s, colour)) = surface {
+        check_colour(colour)?;
+        opaque = TriangleGrid::new(s, &shape, list.opaque_triangles.iter().copied()).map(|g| (s, g, colour));
+        let mut ids: Vec<u32> =
+            list.bricks.iter().flat_map(|b| b.batches.iter().flat_map(|t| t.triangles.iter().copied())).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        translucent = TriangleGrid::new(s, &shape, ids.into_iter()).map(|g| (s, g, colour, batches(list, s)));
+    }
+    let executor = Executor {
+        list,
+        tf,
+        width,
+        height,
+        shape,
+        bricks: &bricks,
+        opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
+        translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
+    };
+    Ok(grid.visit(executor))
+}
+
+/// The batches drawing each polygon, as a table by polygon id.
+fn batches(list: &DrawList, surface: &Surface) -> Batches {
+    let mut pairs: Vec<(u32, u32, u32)> = Vec::new();
+    for (b, draw) in list.bricks.iter().enumerate() {
+        for (k, batch) in draw.batches.iter().enumerate() {
+            pairs.extend(batch.triangles.iter().map(|&t| (t, b as u32, k as u32)));
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    let mut start = vec![0u32; surface.polygon_count() + 1];
+    for &(t, _, _) in &pairs {
+        start[t as usize + 1] += 1;
+    }
+    for i in 1..start.len() {
+        start[i] += start[i - 1];
+    }
+    Batches { start, entries: pairs.into_iter().map(|(_, b, k)| (b, k)).collect() }
+}
+
+struct Executor<'a> {
+    list: &'a DrawList,
+    tf: &'a TransferFunction,
+    width: usize,
+    height: usize,
+    shape: GridShape,
+    bricks: &'a [Prepared<'a>],
+    opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
+    translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
+}
+
+/// Per-thread scratch: the row's bricks, the pixel's hits, a brick's batch hits.
+#[derive(Default)]
+struct Scratch {
+    row: Vec<usize>,
+    hits: Vec<Hit>,
+    /// `(slab, depth, straight colour, opacity)` of one brick's batch hits.
+    events: Vec<(usize, f64, [f64; 3], f64)>,
+}
+
+impl GridVisitor for Executor<'_> {
+    type Output = Image;
+    fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Image {
+        let rows: Vec<Vec<[f32; 4]>> = (0..self.height)
+            .into_par_iter()
+            .map_init(Scratch::default, |scratch, y| {
+                scratch.row.clear();
+                scratch.row.extend(
+                    (0..self.bricks.len()).filter(|&b| (self.bricks[b].rect[2]..self.bricks[b].rect[3]).contains(&y)),
+                );
+                (0..self.width).map(|x| self.pixel(&g, x, y, scratch)).collect()
+            })
+            .collect();
+        Image { width: self.width, height: self.height, rgba: rows.concat() }
+    }
+}
+
+/// A pixel's ray: `cos = direction . forward`, `z_origin = depth(origin)`,
+/// and the depth of the opaque surface (infinite without one).
+struct PixelRay {
+    ray: Ray,
+    cos: f64,
+    z_origin: f64,
+    limit: f64,
+}
+
+impl PixelRay {
+    /// View depth of the ray's point at parameter `t`.
+    #[inline]
+    fn depth(&self, t: f64) -> f64 {
+        self.z_origin + t * self.cos
+    }
+}
+
+impl Executor<'_> {
+    fn pixel<T: Sample>(&self, g: &TypedGrid<'_, T>, x: usize, y: usize, scratch: &mut Scratch) -> [f32; 4] {
+        let camera = &self.list.camera;
+        let ray = camera.ray(x, y, self.width, self.height);
+        let mut pr = PixelRay {
+            ray,
+            cos: dot(ray.direction, camera.forward()),
+            z_origin: camera.depth(ray.origin),
+            limit: f64::INFINITY,
+        };
+        let mut acc: Rgba = [0.0; 4];
+        if let Some((surface, tris, colour)) = self.opaque {
+            if let Some(h) = tris.first_hit(&ray, f64::INFINITY) {
+                pr.limit = pr.depth(h.t);
+                let a = colour[3] as f64;
+                let rgb = tris.shade(surface, &h, ray.direction, colour);
+                acc = [rgb[0] * a, rgb[1] * a, rgb[2] * a, a];
+            }
+        }
+        scratch.hits.clear();
+        if let Some((_, tris, _, _)) = self.translucent {
+            tris.all_hits(&ray, f64::INFINITY, &mut scratch.hits);
+        }
+        for i in 0..scratch.row.len() {
+            let b = scratch.row[i];
+            let rect = self.bricks[b].rect;
+            if (rect[0]..rect[1]).contains(&x) {
+                acc = self.brick(g, b, &pr, acc, scratch);
+            }
+        }
+        acc.map(|v| v as f32)
+    }
+
+    /// Blends brick `b`'s slices (and its batches' hits) over `acc`.
+    fn brick<T: Sample>(
+        &self,
+        g: &TypedGrid<'_, T>,
+        b: usize,
+        pr: &PixelRay,
+        mut acc: Rgba,
+        scratch: &mut Scratch,
+    ) -> Rgba {
+        let brick = &self.bricks[b];
+        let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else { return acc };
+        self.batch_events(b, pr, scratch);
+        let (za, zb) = (pr.depth(ta), pr.depth(tb));
+        let tol = 1e-9 * (1.0 + za.abs().max(zb.abs()));
+        let slices = &brick.draw.slices;
+        // Slices are back to front (decreasing): those in [za, zb], or all when batches interleave.
+        let (j0, j1) = if scratch.events.is_empty() {
+            (slices.partition_point(|&z| z > zb + tol), slices.partition_point(|&z| z >= za - tol))
+        } else {
+            (0, slices.len())
+        };
+        let mut e = 0;
+        for (j, &z) in slices.iter().enumerate().take(j1).skip(j0) {
+            // Slab j goes before slice j.
+            while let Some(&(_, _, c, a)) = scratch.events.get(e).filter(|ev| ev.0 <= j) {
+                acc = over(acc, c, a);
+                e += 1;
+            }
+            if z < pr.limit && z >= za - tol && z <= zb + tol {
+                let p = at_depth(&pr.ray, pr.z_origin, pr.cos, z);
+                if brick.contains(p) {
+                    let [r, gr, bl, a] = self.tf.eval(brick.texture.value(g, to_index(&self.shape, p)));
+                    acc = over(acc, [r as f64, gr as f64, bl as f64], correct_opacity(a as f64, brick.ratio));
+                }
+            }
+        }
+        for &(_, _, c, a) in &scratch.events[e..] {
+            acc = over(acc, c, a);
+        }
+        acc
+    }
+
+    /// The pixel's hits of brick `b`'s batch triangles in front of the
+    /// opaque depth and inside their batch's clip range, by slab, back to front.
+    fn batch_events(&self, b: usize, pr: &PixelRay, scratch: &mut Scratch) {
+        scratch.events.clear();
+        let Some((surface, tris, colour, table)) = self.translucent else { return };
+        let draw = self.bricks[b].draw;
+        if draw.batches.is_empty() {
+            return;
+        }
+        let index = self.bricks[b].index as u32;
+        for h in &scratch.hits {
+            let z = pr.depth(h.t);
+            if z >= pr.limit {
+                continue;
+            }
+            let p = h.polygon as usize;
+            let entries = &table.entries[table.start[p] as usize..table.start[p + 1] as usize];
+            for &(_, k) in entries.iter().filter(|e| e.0 == index) {
+                let batch = &draw.batches[k as usize];
+                if batch.clip.is_some_and(|(near, far)| !(near <= z && z < far)) {
+                    continue;
+                }
+                let rgb = tris.shade(surface, h, pr.ray.direction, colour);
+                scratch.events.push((batch.slab, z, rgb, colour[3] as f64));
+            }
+        }
+        scratch.events.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.total_cmp(&a.1)));
+    }
+}
