@@ -162,6 +162,26 @@ impl Camera {
     }
 }
 
+/// A camera from `position` to `focal` with any up vector across the view
+/// (the world axis least aligned with it): parallel with `scale`, or
+/// perspective at 30 degrees. For tests that sweep view directions.
+#[cfg(test)]
+pub(crate) fn test_camera(position: [f64; 3], focal: [f64; 3], parallel_scale: Option<f64>) -> Camera {
+    let d = sub(focal, position);
+    let up = if d[0].abs() <= d[1].abs() && d[0].abs() <= d[2].abs() {
+        [1.0, 0.0, 0.0]
+    } else if d[1].abs() <= d[2].abs() {
+        [0.0, 1.0, 0.0]
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    let projection = match parallel_scale {
+        Some(scale) => Projection::Parallel { scale },
+        None => Projection::Perspective { view_angle_deg: 30.0 },
+    };
+    Camera::new(position, focal, up, projection).unwrap()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -243,7 +243,7 @@ fn can_hide(eye: &Eye, a: ([f64; 3], [f64; 3]), b: ([f64; 3], [f64; 3])) -> Opti
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::{sub, Projection};
+
     use crate::datasets::{generate, generate_dims, Dataset};
     use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
@@ -279,21 +279,7 @@ mod tests {
     }
 
     fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
-        let d = sub(focal, position);
-        // Any up vector across the view.
-        let up = if d[0].abs() <= d[1].abs() && d[0].abs() <= d[2].abs() {
-            [1.0, 0.0, 0.0]
-        } else if d[1].abs() <= d[2].abs() {
-            [0.0, 1.0, 0.0]
-        } else {
-            [0.0, 0.0, 1.0]
-        };
-        let projection = if parallel {
-            Projection::Parallel { scale: 40.0 }
-        } else {
-            Projection::Perspective { view_angle_deg: 30.0 }
-        };
-        Camera::new(position, focal, up, projection).unwrap()
+        crate::camera::test_camera(position, focal, parallel.then_some(40.0))
     }
 
     /// Cameras around a volume centred at `c`: along +-x, +-y, +-z, the 8

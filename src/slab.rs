@@ -200,7 +200,7 @@ pub fn triangles_in_box(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::{cross, Projection};
+    use crate::camera::cross;
     use crate::datasets::{generate, Dataset};
     use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
@@ -208,20 +208,7 @@ mod tests {
     use crate::surface::SurfaceOptions;
 
     fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
-        let d = sub(focal, position);
-        let up = if d[0].abs() <= d[1].abs() && d[0].abs() <= d[2].abs() {
-            [1.0, 0.0, 0.0]
-        } else if d[1].abs() <= d[2].abs() {
-            [0.0, 1.0, 0.0]
-        } else {
-            [0.0, 0.0, 1.0]
-        };
-        let projection = if parallel {
-            Projection::Parallel { scale: 20.0 }
-        } else {
-            Projection::Perspective { view_angle_deg: 30.0 }
-        };
-        Camera::new(position, focal, up, projection).unwrap()
+        crate::camera::test_camera(position, focal, parallel.then_some(20.0))
     }
 
     fn polygon_area(p: &[[f64; 3]]) -> f64 {

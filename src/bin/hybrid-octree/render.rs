@@ -5,10 +5,9 @@
 use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::pool::with_threads;
-use crate::scene::{frame, load, visible, SceneArgs};
+use crate::scene::{frame, load, reference_image, visible, SceneArgs};
 use clap::Args;
 use hybrid_octree::render::metrics::compare;
-use hybrid_octree::render::reference::{reference, ReferenceOptions};
 use hybrid_octree::select::{select, SelectOptions};
 use hybrid_octree::Result;
 use serde::Serialize;
@@ -77,15 +76,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let (mut rmse, mut psnr, mut ssim, mut reference_ms) = (None, None, None, None);
         if let Some(path) = &args.reference {
             let started = Instant::now();
-            let surface = scene.surface.as_ref().map(|s| (s, [0.9, 0.75, 0.55, args.scene.surface_opacity as f32]));
-            let r = reference(
-                &grid,
-                &scene.tf,
-                &scene.camera,
-                args.scene.width,
-                args.scene.height,
-                &ReferenceOptions { surface, ..ReferenceOptions::default() },
-            )?;
+            let r = reference_image(&grid, &scene, &args.scene)?;
             reference_ms = Some(started.elapsed().as_secs_f64() * 1e3);
             r.to_png(path)?;
             let m = compare(&f.image, &r)?;

@@ -10,6 +10,7 @@ use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::{draw_list, DrawList, Scene};
 use hybrid_octree::render::compositor::composite;
 use hybrid_octree::render::image::Image;
+use hybrid_octree::render::reference::{reference, ReferenceOptions};
 use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, Selection};
 use hybrid_octree::surface::{Surface, SurfaceOptions};
@@ -123,11 +124,29 @@ pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &Scen
     );
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
-    let colour = [0.9, 0.75, 0.55, args.surface_opacity as f32];
+    let colour = surface_colour(args);
     let image =
         composite(grid, &list, &scene.tf, args.width, args.height, scene.surface.as_ref().map(|s| (s, colour)))?;
     let composite_ms = started.elapsed().as_secs_f64() * 1e3;
     Ok(Frame { list, image, drawlist_ms, composite_ms })
+}
+
+/// The isosurface colour `[r, g, b, opacity]`.
+pub fn surface_colour(args: &SceneArgs) -> [f32; 4] {
+    [0.9, 0.75, 0.55, args.surface_opacity as f32]
+}
+
+/// The full-resolution reference picture of the scene.
+pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Result<Image> {
+    let surface = scene.surface.as_ref().map(|s| (s, surface_colour(args)));
+    reference(
+        grid,
+        &scene.tf,
+        &scene.camera,
+        args.width,
+        args.height,
+        &ReferenceOptions { surface, ..ReferenceOptions::default() },
+    )
 }
 
 /// The transfer function's visibility test for the selection: a node shows

@@ -10,12 +10,11 @@ use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::plot::{error_plot, Point};
 use crate::pool::with_threads;
-use crate::scene::{frame, load, visible, Loaded, SceneArgs};
+use crate::scene::{frame, load, reference_image, visible, Loaded, SceneArgs};
 use clap::Args;
 use hybrid_octree::grid::Grid;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::metrics::compare;
-use hybrid_octree::render::reference::{reference, ReferenceOptions};
 use hybrid_octree::select::{select, uniform, SelectOptions, Selection};
 use hybrid_octree::{Error, Result};
 use serde::Serialize;
@@ -120,15 +119,7 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
         let volume = args.input.load()?;
         let grid = args.input.grid(&volume)?;
         let scene = load(&grid, &args.scene)?;
-        let surface = scene.surface.as_ref().map(|s| (s, [0.9, 0.75, 0.55, args.scene.surface_opacity as f32]));
-        let truth = reference(
-            &grid,
-            &scene.tf,
-            &scene.camera,
-            args.scene.width,
-            args.scene.height,
-            &ReferenceOptions { surface, ..ReferenceOptions::default() },
-        )?;
+        let truth = reference_image(&grid, &scene, &args.scene)?;
         let bench = Bench { grid: &grid, scene: &scene, args: &args.scene, truth: &truth };
         let mut rows = Vec::new();
         let mut largest = 0;
