@@ -154,24 +154,46 @@ pub fn draw_list(
         let index: std::collections::HashMap<crate::octree::NodeId, usize> =
             ids.iter().enumerate().map(|(i, &id)| (id, i)).collect();
         let layout = octree.layout();
-        for &(node, first, end) in &s.node_ranges {
-            let (mut level, mut c) = layout.locate(node);
-            let brick = loop {
-                if let Some(&b) = index.get(&layout.id(level, c)) {
-                    break Some(b);
+        // The brick of each surface node (parallel), then each brick's
+        // triangles in world space (parallel over bricks).
+        let brick_of: Vec<Option<usize>> = s
+            .node_ranges
+            .par_iter()
+            .map(|&(node, _, _)| {
+                let (mut level, mut c) = layout.locate(node);
+                loop {
+                    if let Some(&b) = index.get(&layout.id(level, c)) {
+                        return Some(b);
+                    }
+                    if level == 0 {
+                        return None;
+                    }
+                    level -= 1;
+                    c = c.map(|v| v / 2);
                 }
-                if level == 0 {
-                    break None;
-                }
-                level -= 1;
-                c = c.map(|v| v / 2);
-            };
-            let Some(b) = brick else { continue };
-            for t in first..end {
-                let tri = s.polygon(t as usize);
-                per_brick[b].push((t, [0, 1, 2].map(|k| shape.world(s.points[tri[k] as usize]))));
+            })
+            .collect();
+        let mut ranges_of: Vec<Vec<usize>> = vec![Vec::new(); selection.bricks.len()];
+        for (r, b) in brick_of.iter().enumerate() {
+            if let Some(b) = b {
+                ranges_of[*b].push(r);
             }
         }
+        per_brick = ranges_of
+            .par_iter()
+            .map(|ranges| {
+                ranges
+                    .iter()
+                    .flat_map(|&r| {
+                        let (_, first, end) = s.node_ranges[r];
+                        (first..end).map(move |t| {
+                            let tri = s.polygon(t as usize);
+                            (t, [0, 1, 2].map(|k| shape.world(s.points[tri[k] as usize])))
+                        })
+                    })
+                    .collect()
+            })
+            .collect();
     }
     let bricks = order
         .par_iter()
