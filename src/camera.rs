@@ -17,6 +17,7 @@
 //! `t = tan(view angle / 2)`.
 
 use crate::error::{Error, Result};
+use crate::vec3::{cross, dot, normalize, sub};
 
 /// How the camera projects.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -53,20 +54,6 @@ pub struct Ray {
     pub origin: [f64; 3],
     /// Unit direction.
     pub direction: [f64; 3],
-}
-
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-pub(crate) fn normalize(a: [f64; 3]) -> [f64; 3] {
-    let l = dot(a, a).sqrt();
-    [a[0] / l, a[1] / l, a[2] / l]
 }
 
 impl Camera {

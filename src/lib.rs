@@ -36,6 +36,7 @@ pub mod render;
 pub mod select;
 pub mod slab;
 pub mod surface;
+pub mod vec3;
 pub mod volume;
 
 pub use error::{Error, Result};

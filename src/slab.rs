@@ -58,11 +58,12 @@
 //! [`assign_batches`] is UpdatePosition: a pure function of the camera,
 //! called again whenever the camera moves.
 
-use crate::camera::{dot, sub, Camera};
+use crate::camera::Camera;
 use crate::grid::GridShape;
 use crate::octree::VolumeOctree;
 use crate::plan::Batch;
 use crate::surface::Surface;
+use crate::vec3::{dot, sub};
 
 /// A triangle in world space with its surface triangle id.
 pub type WorldTriangle = (u32, [[f64; 3]; 3]);
@@ -200,12 +201,12 @@ pub fn triangles_in_box(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::cross;
     use crate::datasets::{generate, Dataset};
     use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
     use crate::select::{select, SelectOptions};
     use crate::surface::SurfaceOptions;
+    use crate::vec3::cross;
 
     fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
         crate::camera::test_camera(position, focal, parallel.then_some(20.0))

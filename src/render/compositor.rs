@@ -40,11 +40,12 @@ use super::image::Image;
 use super::sample::{to_index, BrickTexture};
 use super::transfer::TransferFunction;
 use super::triangles::{Hit, TriangleGrid};
-use crate::camera::{dot, Ray};
+use crate::camera::Ray;
 use crate::error::Result;
 use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::plan::{BrickDraw, DrawList};
 use crate::surface::Surface;
+use crate::vec3::dot;
 use rayon::prelude::*;
 
 /// A brick ready to draw.

@@ -8,6 +8,7 @@
 
 use super::build::Surface;
 use super::extract::midpoint2;
+use crate::vec3::{cross, sub};
 
 /// How the edges of a surface are used.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -103,13 +104,9 @@ fn fan_sum(s: &Surface, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f64) -> f64 
         .sum()
 }
 
-fn cross(u: [f64; 3], v: [f64; 3]) -> [f64; 3] {
-    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-}
-
 /// `(a - o) x (b - o)`: twice the area vector of triangle `(o, a, b)`.
 fn fan_cross(o: [f64; 3], a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    cross([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]])
+    cross(sub(a, o), sub(b, o))
 }
 
 /// Surface area in index units (fan triangulation from the first vertex;

@@ -17,6 +17,7 @@ use super::place::interpolated_point;
 use crate::error::Result;
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::octree::VolumeOctree;
+use crate::vec3::{dot, sub};
 use rayon::prelude::*;
 
 /// Mean and max distance, in voxel (index) units.
@@ -145,13 +146,6 @@ fn for_neighbours(
             }
         }
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Distance from `p` to triangle `t` (closest point by Voronoi regions,

@@ -30,6 +30,7 @@
 //! segments link into closed cycles: the case's polygons, whose vertices are
 //! distinct edge midpoints (no three collinear, so no zero-area triangle).
 
+use super::exact::{cross, dot, sub};
 use std::sync::OnceLock;
 
 /// Corner offset of corner `c`.
@@ -128,16 +129,6 @@ fn table() -> &'static Table {
         }
         (cases, normals)
     })
-}
-
-fn sub(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn cross(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-fn dot(a: [i64; 3], b: [i64; 3]) -> i64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// `n` divided by the gcd of its components.
