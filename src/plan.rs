@@ -149,52 +149,10 @@ pub fn draw_list(
     let order = crate::order::brick_order(camera, octree, shape, &ids, true);
     // Surface triangles by brick (translucent only): a terminal surface node
     // lies inside exactly one brick of the cut: its own or an ancestor's.
-    let mut per_brick: Vec<Vec<(u32, [[f64; 3]; 3])>> = vec![Vec::new(); selection.bricks.len()];
-    if let (SurfacePass::Translucent, Some(s)) = (plan.surface, scene.surface) {
-        let index: std::collections::HashMap<crate::octree::NodeId, usize> =
-            ids.iter().enumerate().map(|(i, &id)| (id, i)).collect();
-        let layout = octree.layout();
-        // The brick of each surface node (parallel), then each brick's
-        // triangles in world space (parallel over bricks).
-        let brick_of: Vec<Option<usize>> = s
-            .node_ranges
-            .par_iter()
-            .map(|&(node, _, _)| {
-                let (mut level, mut c) = layout.locate(node);
-                loop {
-                    if let Some(&b) = index.get(&layout.id(level, c)) {
-                        return Some(b);
-                    }
-                    if level == 0 {
-                        return None;
-                    }
-                    level -= 1;
-                    c = c.map(|v| v / 2);
-                }
-            })
-            .collect();
-        let mut ranges_of: Vec<Vec<usize>> = vec![Vec::new(); selection.bricks.len()];
-        for (r, b) in brick_of.iter().enumerate() {
-            if let Some(b) = b {
-                ranges_of[*b].push(r);
-            }
-        }
-        per_brick = ranges_of
-            .par_iter()
-            .map(|ranges| {
-                ranges
-                    .iter()
-                    .flat_map(|&r| {
-                        let (_, first, end) = s.node_ranges[r];
-                        (first..end).map(move |t| {
-                            let tri = s.polygon(t as usize);
-                            (t, [0, 1, 2].map(|k| shape.world(s.points[tri[k] as usize])))
-                        })
-                    })
-                    .collect()
-            })
-            .collect();
-    }
+    let per_brick = match (plan.surface, scene.surface) {
+        (SurfacePass::Translucent, Some(s)) => crate::slab::triangles_by_brick(octree, s, shape, &ids),
+        _ => vec![Vec::new(); selection.bricks.len()],
+    };
     let bricks = order
         .par_iter()
         .map(|&i| {

@@ -60,10 +60,12 @@
 
 use crate::camera::Camera;
 use crate::grid::GridShape;
-use crate::octree::VolumeOctree;
+use crate::octree::{NodeId, VolumeOctree};
 use crate::plan::Batch;
 use crate::surface::Surface;
 use crate::vec3::{dot, sub};
+use rayon::prelude::*;
+use std::collections::HashMap;
 
 /// A triangle in world space with its surface triangle id.
 pub type WorldTriangle = (u32, [[f64; 3]; 3]);
@@ -169,33 +171,59 @@ pub fn assign_batches(camera: &Camera, slices: &[f64], triangles: &[WorldTriangl
     batches
 }
 
-/// The surface triangles inside the closed index box `[lo, hi]` (a brick's
-/// box), in world space with their ids: the triangles of every surface node
-/// (`surface.node_ranges`) whose box lies inside `[lo, hi]`. A brick may be
-/// an ancestor of the terminal surface nodes, so membership is decided by
-/// boxes, not ids; over the bricks of a cut, each triangle comes out exactly
-/// once (neighbouring boxes share faces, but a node box of at least one cell
-/// lies inside only one of them). Triangles come in surface order. Costs one
-/// pass over `node_ranges` per call.
-pub fn triangles_in_box(
+/// The surface triangles of each brick of a cut, in world space with their
+/// ids: `out[i]` for `bricks[i]`. A terminal surface node lies inside exactly
+/// one brick of the cut, its own or an ancestor's, found by walking up the
+/// octree from the node (`(level, c) -> (level - 1, c / 2)`); nodes under no
+/// brick (left out of the cut) give no triangles. Parallel over surface nodes
+/// and over bricks; triangles keep surface order within a brick.
+pub fn triangles_by_brick(
     octree: &VolumeOctree,
     surface: &Surface,
     shape: &GridShape,
-    lo: [usize; 3],
-    hi: [usize; 3],
-) -> Vec<WorldTriangle> {
-    let mut out = Vec::new();
-    for &(node, first, end) in &surface.node_ranges {
-        let n = octree.node(node);
-        if (0..3).all(|a| lo[a] <= n.lo[a] && n.hi[a] <= hi[a]) {
-            for t in first..end {
-                let ids = surface.polygon(t as usize);
-                debug_assert_eq!(ids.len(), 3, "surface polygons are triangles");
-                out.push((t, [0, 1, 2].map(|k| shape.world(surface.points[ids[k] as usize]))));
+    bricks: &[NodeId],
+) -> Vec<Vec<WorldTriangle>> {
+    let index: HashMap<NodeId, usize> = bricks.iter().enumerate().map(|(i, &id)| (id, i)).collect();
+    let layout = octree.layout();
+    let brick_of: Vec<Option<usize>> = surface
+        .node_ranges
+        .par_iter()
+        .map(|&(node, _, _)| {
+            let (mut level, mut c) = layout.locate(node);
+            loop {
+                if let Some(&b) = index.get(&layout.id(level, c)) {
+                    return Some(b);
+                }
+                if level == 0 {
+                    return None;
+                }
+                level -= 1;
+                c = c.map(|v| v / 2);
             }
+        })
+        .collect();
+    let mut ranges_of: Vec<Vec<usize>> = vec![Vec::new(); bricks.len()];
+    for (r, b) in brick_of.iter().enumerate() {
+        if let Some(b) = b {
+            ranges_of[*b].push(r);
         }
     }
-    out
+    ranges_of
+        .par_iter()
+        .map(|ranges| {
+            ranges
+                .iter()
+                .flat_map(|&r| {
+                    let (_, first, end) = surface.node_ranges[r];
+                    (first..end).map(move |t| {
+                        let ids = surface.polygon(t as usize);
+                        debug_assert_eq!(ids.len(), 3, "surface polygons are triangles");
+                        (t, [0, 1, 2].map(|k| shape.world(surface.points[ids[k] as usize])))
+                    })
+                })
+                .collect()
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -507,16 +535,19 @@ mod tests {
                 cam([16.0, -50.0, 16.0], [16.0; 3], true),
                 cam([12.3, 17.1, 20.2], [30.0, 2.0, 16.0], false),
             ];
-            for brick in &selection.bricks {
-                let tris = triangles_in_box(&octree, &surface, &shape, brick.lo, brick.hi);
-                for &(t, _) in &tris {
-                    seen[t as usize] += 1;
-                }
+            let ids: Vec<_> = selection.bricks.iter().map(|b| b.node).collect();
+            let by_brick = triangles_by_brick(&octree, &surface, &shape, &ids);
+            for (brick, tris) in selection.bricks.iter().zip(&by_brick) {
                 let (world_lo, world_hi) =
                     (shape.world(brick.lo.map(|v| v as f64)), shape.world(brick.hi.map(|v| v as f64)));
+                for &(t, p) in tris {
+                    seen[t as usize] += 1;
+                    // Independent of the ancestor walk: the triangle lies in its brick's box.
+                    assert!(p.iter().all(|v| (0..3).all(|a| world_lo[a] <= v[a] && v[a] <= world_hi[a])));
+                }
                 for camera in &cameras {
                     let slices = slice_depths(camera, world_lo, world_hi, brick.stride as f64);
-                    check_areas(camera, &slices, &tris);
+                    check_areas(camera, &slices, tris);
                 }
             }
             assert!(seen.iter().all(|&n| n == 1), "a triangle in no brick or in two");
