@@ -84,9 +84,6 @@ pub struct Mesh {
 
 /// Names the vertices of `parts` (in node order) and triangulates their faces.
 pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
-    // Inner vertices kept per node, numbered after the shared ones.
-    let inner_counts: Vec<u32> =
-        parts.par_iter().map(|p| (0..p.faces.verts.len()).filter(|&l| p.inner_kept(l)).count() as u32).collect();
     // Boundary vertices: (key, turns, node, local) from every node, sorted by
     // key; a key's run says whether any node turns there.
     let mut boundary: Vec<(u64, bool, u32, u32)> = parts
@@ -116,9 +113,10 @@ pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
         }
         run = end;
     }
+    // Inner vertices kept per node (placed in NodePart::new), numbered after the shared ones.
     let mut first_inner = Vec::with_capacity(parts.len());
     let mut next = shared.len() as u32;
-    for &count in &inner_counts {
+    for count in parts.iter().map(|p| p.inner.len() as u32) {
         first_inner.push(next);
         next += count;
     }

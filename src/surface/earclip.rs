@@ -21,10 +21,10 @@ pub struct EarClipper {
     next: Vec<usize>,
     prev: Vec<usize>,
     convex: Vec<bool>,
-    clipped: Vec<bool>,
     /// Vertices that did not turn strictly at the start. Clipping an ear only
     /// shrinks the angles at its two neighbours, so a convex vertex never
-    /// becomes reflex or straight again: no vertex joins the list.
+    /// becomes reflex or straight again: no vertex joins the list. A clipped
+    /// tip was convex and stays marked so, so `convex` alone filters both.
     others: Vec<usize>,
 }
 
@@ -50,7 +50,7 @@ impl EarClipper {
         }
         let before = out.len();
         let p = |i: usize| points[face[i] as usize];
-        let EarClipper { next, prev, convex, clipped, others } = self;
+        let EarClipper { next, prev, convex, others } = self;
         next.clear();
         next.extend((1..=n).map(|i| i % n));
         prev.clear();
@@ -58,8 +58,6 @@ impl EarClipper {
         let turns = |prev: &[usize], next: &[usize], i: usize| turn(p(prev[i]), p(i), p(next[i]), normal) > 0;
         convex.clear();
         convex.extend((0..n).map(|i| turns(prev, next, i)));
-        clipped.clear();
-        clipped.resize(n, false);
         others.clear();
         others.extend((0..n).filter(|&i| !convex[i]));
         if others.is_empty() {
@@ -85,7 +83,6 @@ impl EarClipper {
                     let q = p(j);
                     j != a
                         && j != c
-                        && !clipped[j]
                         && !convex[j]
                         && (0..3).all(|k| lo[k] <= q[k] && q[k] <= hi[k])
                         && in_closed_triangle(q, pa, pi, pc, normal)
@@ -93,7 +90,6 @@ impl EarClipper {
             };
             if ear {
                 out.push([face[a], face[i], face[c]]);
-                clipped[i] = true;
                 next[a] = c;
                 prev[c] = a;
                 convex[a] = turns(prev, next, a);

@@ -206,12 +206,14 @@ pub fn march<T: Sample>(
                     }
                     ids[e as usize] = id;
                 }
+                if record.across {
+                    index.face_out.resize(out.verts.len(), [NO_TWIN; 4]);
+                }
                 let cell = (x + dims[0] * (y + dims[1] * z)) as u64;
                 let base = 3 * out.triangles.len() as u32;
                 for (i, (t, &plane)) in entry.triangles.iter().zip(&entry.planes).enumerate() {
                     let tri = t.map(|e| ids[e as usize]);
                     if record.across {
-                        index.face_out.resize(out.verts.len(), [NO_TWIN; 4]);
                         for (k, &code) in entry.across[i].iter().enumerate() {
                             let h = base + 3 * i as u32 + k as u32;
                             if code == ON_CELL_FACE {
