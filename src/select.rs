@@ -404,7 +404,18 @@ mod tests {
     #[test]
     fn zero_budget_is_an_error_and_a_tiny_one_a_warning() {
         let o = octree(33);
-        assert!(select(&o, &SelectOptions::new(0, 0.0), |_, _| true).is_err());
+        let e = select(&o, &SelectOptions::new(0, 0.0), |_, _| true).unwrap_err().to_string();
+        assert!(e.contains("budget is 0 bytes"), "{e}");
+        let e = select(&o, &SelectOptions::new(1000, f64::NAN), |_, _| true).unwrap_err().to_string();
+        assert!(e.contains("tolerance"), "{e}");
+        let roi = Some(Roi { center: [1.0; 3], radius: 0.0 });
+        let e =
+            select(&o, &SelectOptions { roi, ..SelectOptions::new(1000, 0.0) }, |_, _| true).unwrap_err().to_string();
+        assert!(e.contains("radius > 0"), "{e}");
+        let e = select(&o, &SelectOptions { bytes_per_texel: 0, ..SelectOptions::new(1000, 0.0) }, |_, _| true)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bytes per texel"), "{e}");
         let s = select(&o, &SelectOptions::new(1, 0.0), |_, _| true).unwrap();
         assert_eq!(s.bricks.len(), 1);
         assert!(s.warning.as_deref().unwrap_or("").contains("below the coarsest"));
