@@ -41,6 +41,22 @@ proptest! {
 
     /// Any trilinear field a + bx + cy + dz + exy + fyz + gxz + hxyz has all
     /// errors 0 when the grid needs no padding (2^m + 1 samples per axis).
+    /// The squared errors summed up the tree equal the definition, node by
+    /// node (to f32 rounding and summation order).
+    #[test]
+    fn squared_errors_equal_brute_force((dims, data) in volume(19), leaf_log2 in 1u32..4) {
+        let grid = Grid::scalar(Samples::F32(&data), dims).unwrap();
+        let octree = build(&grid, 1 << leaf_log2);
+        for id in all_ids(&octree) {
+            let node = octree.node(id);
+            let brute = brute_force::squared_errors(&grid, &octree, id);
+            prop_assert_eq!(node.squared_errors.len(), brute.len());
+            for (p, (&fast, &slow)) in node.squared_errors.iter().zip(&brute).enumerate() {
+                prop_assert!((fast as f64 - slow).abs() <= 1e-5 * slow + 1e-9, "node {:?} p {}: {} vs {}", id, p, fast, slow);
+            }
+        }
+    }
+
     #[test]
     fn trilinear_field_has_zero_errors(m in 1u32..5, c in prop::array::uniform8(-4i32..4)) {
         let n = (1usize << m) + 1;

@@ -1,4 +1,4 @@
-//! The reference: nodal errors of one node computed straight from the
+//! The reference: nodal errors (and squared errors) of one node computed straight from the
 //! definition, sample by sample, with no sharing between nodes or strides.
 //! Slow (O(samples x levels) per node); for tests and for checking a build.
 
@@ -39,6 +39,43 @@ pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f
                 out[p] = normalise(envelope, vmax - vmin);
             }
             out
+        }
+    }
+    grid.visit(Brute { octree, id })
+}
+
+/// Q_p(n), p = 0 .. L-k-1, of node `id`, from the definition: the sum of
+/// `(f(v) - T_(2^(L-k-p))(v))^2 / range^2` over the samples v of the node's
+/// half-open box (its max faces belong to the next node, except on the
+/// grid's last samples).
+pub fn squared_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f64> {
+    struct Brute<'o> {
+        octree: &'o VolumeOctree,
+        id: NodeId,
+    }
+    impl GridVisitor for Brute<'_> {
+        type Output = Vec<f64>;
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f64> {
+            let node = self.octree.node(self.id);
+            let (vmin, vmax) = self.octree.value_range();
+            let range2 = if vmax > vmin { (vmax - vmin) * (vmax - vmin) } else { 1.0 };
+            let n = self.octree.layout().error_count(node.level);
+            let end = |a: usize| if node.hi[a] == g.dims[a] - 1 { node.hi[a] + 1 } else { node.hi[a] };
+            (0..n)
+                .map(|p| {
+                    let s = 1usize << (n - p);
+                    let mut sum = 0.0;
+                    for z in node.lo[2]..end(2) {
+                        for y in node.lo[1]..end(1) {
+                            for x in node.lo[0]..end(0) {
+                                let d = g.at(x, y, z) - eval(&g, s, x, y, z);
+                                sum += d * d;
+                            }
+                        }
+                    }
+                    sum / range2
+                })
+                .collect()
         }
     }
     grid.visit(Brute { octree, id })

@@ -21,6 +21,15 @@
 //! satisfy `E_p(parent) = max over children c of E_(p-1)(c)` exactly, which
 //! [`super::validate`] checks.
 //!
+//! For ranking refinements by what they buy (see [`crate::select`]) the
+//! octree also stores the squared error of every node and level,
+//!
+//! ```text
+//! Q_p(n) = sum over v in n of (f(v) - T_s(v))^2 / (max f - min f)^2
+//! ```
+//!
+//! summed over the half-open boxes of n's leaves (each sample counted once).
+//!
 //! Determinism: each leaf is computed alone and maxima are exact, so the
 //! result is bit-identical on any number of threads.
 
@@ -118,12 +127,15 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
     let mut max = vec![0.0f64; slots];
     // raw[id * strides + j - 1]: raw error of stride 2^j over the node's box.
     let mut raw = vec![0.0f64; slots * strides];
+    // squared[id * strides + j - 1]: squared error of stride 2^j, summed over the node's leaves.
+    let mut squared = vec![0.0f64; slots * strides];
     let leaf = layout.leaf_level();
     let off = layout.level_offset(leaf);
     for (i, s) in leaves.into_iter().enumerate() {
         min[off + i] = s.min;
         max[off + i] = s.max;
         raw[(off + i) * strides..(off + i + 1) * strides].copy_from_slice(&s.raw);
+        squared[(off + i) * strides..(off + i + 1) * strides].copy_from_slice(&s.squared);
     }
     for level in (0..leaf).rev() {
         let d = layout.level_dims(level);
@@ -133,6 +145,7 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
                     let id = layout.id(level, [x, y, z]).0 as usize;
                     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
                     let mut acc = vec![0.0f64; strides];
+                    let mut sum = vec![0.0f64; strides];
                     for (cl, cc) in layout.children(level, [x, y, z]) {
                         let c = layout.id(cl, cc).0 as usize;
                         lo = lo.min(min[c]);
@@ -140,10 +153,14 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
                         for (a, &r) in acc.iter_mut().zip(&raw[c * strides..(c + 1) * strides]) {
                             *a = a.max(r);
                         }
+                        for (a, &q) in sum.iter_mut().zip(&squared[c * strides..(c + 1) * strides]) {
+                            *a += q;
+                        }
                     }
                     min[id] = lo;
                     max[id] = hi;
                     raw[id * strides..(id + 1) * strides].copy_from_slice(&acc);
+                    squared[id * strides..(id + 1) * strides].copy_from_slice(&sum);
                 }
             }
         }
@@ -159,12 +176,19 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
     }
     error_offset.push(total);
     let mut errors = vec![0.0f32; total];
+    let mut squared_errors = vec![0.0f32; total];
+    let range2 = if range > 0.0 { range * range } else { 1.0 };
     for level in 0..layout.levels() {
         let n = layout.error_count(level);
         let first = layout.level_offset(level);
         let count = layout.level_offset(level + 1) - first;
         for local in 0..count {
             let r = &raw[(first + local) * strides..(first + local + 1) * strides];
+            let q = &squared[(first + local) * strides..(first + local + 1) * strides];
+            let at = error_offset[level] + local * n;
+            for (p, e2) in squared_errors[at..at + n].iter_mut().enumerate() {
+                *e2 = (q[n - p - 1] / range2) as f32;
+            }
             let e = &mut errors[error_offset[level] + local * n..error_offset[level] + (local + 1) * n];
             // E_p = max over strides 2^1 ..= 2^(L-k-p), walking p from fine to coarse.
             let mut envelope = 0.0f64;
@@ -174,7 +198,15 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
             }
         }
     }
-    VolumeOctree::from_parts(layout, min, max, errors, error_offset, started.elapsed().as_secs_f64() * 1e3)
+    VolumeOctree::from_parts(
+        layout,
+        min,
+        max,
+        errors,
+        squared_errors,
+        error_offset,
+        started.elapsed().as_secs_f64() * 1e3,
+    )
 }
 
 /// `e / range` rounded up to the next `f32` (0 when the range is 0).

@@ -6,8 +6,16 @@
 //! r_j(brick) = max over the samples v of the brick's closed box of |f(v) - T_s(v)|
 //! ```
 //!
-//! with T_s from [`super::trilinear`]. A node's nodal errors are maxima of
-//! these over its leaves (see [`super::build`]). Strides up to the brick size
+//! with T_s from [`super::trilinear`], and the squared stride error
+//!
+//! ```text
+//! q_j(brick) = sum over the samples v of the brick's half-open box of (f(v) - T_s(v))^2
+//! ```
+//!
+//! (half-open: a face shared with the next brick belongs to that brick; the
+//! grid's last samples belong to the last brick), so the bricks partition the
+//! samples and a node's `q_j` is the sum over its leaves. A node's nodal
+//! errors are maxima of `r_j` over its leaves (see [`super::build`]). Strides up to the brick size
 //! use coarse cells inside the brick; larger strides use the one coarse cell
 //! that contains the whole brick.
 //!
@@ -32,6 +40,8 @@ pub struct LeafStats {
     pub max: f64,
     /// `raw[j - 1]` = r_j, the raw error of stride `2^j`, `j = 1 ..= L`.
     pub raw: Vec<f64>,
+    /// `squared[j - 1]` = q_j, the squared error of stride `2^j`.
+    pub squared: Vec<f64>,
 }
 
 /// Reusable buffers of the kernel (one per worker).
@@ -63,24 +73,71 @@ fn coarse_positions(lo: usize, hi: usize, s: usize, n: usize, out: &mut Vec<usiz
     }
 }
 
-/// `max |a[i] - b[i]|` with four independent lanes so it vectorises
-/// (`if d > m` is `maxpd`; all values are finite).
+/// `(max |a[i] - b[i]|, sum over i < summed of (a[i] - b[i])^2)` with four
+/// independent lanes so it vectorises (`if d > m` is `maxpd`; all values are
+/// finite). The max starts from `init`.
 #[inline]
-fn max_abs_diff(a: &[f64], b: &[f64], init: f64) -> f64 {
+fn diff_stats(a: &[f64], b: &[f64], summed: usize, init: f64) -> (f64, f64) {
     let mut lanes = [init; 4];
-    let mut ca = a.chunks_exact(4);
-    let mut cb = b.chunks_exact(4);
-    for (x, y) in (&mut ca).zip(&mut cb) {
+    let mut sq = [0.0f64; 4];
+    let n4 = summed / 4 * 4;
+    for (x, y) in a[..n4].chunks_exact(4).zip(b[..n4].chunks_exact(4)) {
         for k in 0..4 {
-            let d = (x[k] - y[k]).abs();
-            lanes[k] = if d > lanes[k] { d } else { lanes[k] };
+            let d = x[k] - y[k];
+            let m = d.abs();
+            lanes[k] = if m > lanes[k] { m } else { lanes[k] };
+            sq[k] += d * d;
         }
     }
     let mut m = lanes[0].max(lanes[1]).max(lanes[2].max(lanes[3]));
-    for (x, y) in ca.remainder().iter().zip(cb.remainder()) {
-        m = m.max((x - y).abs());
+    let mut total = (sq[0] + sq[1]) + (sq[2] + sq[3]);
+    for (i, (x, y)) in a.iter().zip(b).enumerate().skip(n4) {
+        let d = x - y;
+        m = m.max(d.abs());
+        if i < summed {
+            total += d * d;
+        }
     }
-    m
+    (m, total)
+}
+
+/// Half-open extent along an axis: the samples `lo .. hi` of the closed box,
+/// plus `hi` itself when it is the grid's last sample.
+fn summed_count(lo: usize, hi: usize, n: usize) -> usize {
+    hi - lo + usize::from(hi == n - 1)
+}
+
+/// `sum over the half-open box of e^2` for `e` trilinear over the closed box
+/// `[lo, hi]` with corner values `e[corner]` (corner bit a: hi on axis a).
+/// Per axis, with hats `b0 = 1 - t`, `b1 = t`, `t = (x - lo) / (hi - lo)`,
+/// `M_a[i][j] = sum over x of b_i(t) b_j(t)`, and
+///
+/// ```text
+/// sum e^2 = sum over corners k, l of e_k e_l  M_x[k_x][l_x] M_y[k_y][l_y] M_z[k_z][l_z]
+/// ```
+fn trilinear_squared_sum(e: [f64; 8], lo: [usize; 3], hi: [usize; 3], dims: [usize; 3]) -> f64 {
+    let m = [0, 1, 2].map(|a| {
+        let mut m = [[0.0f64; 2]; 2];
+        let span = (hi[a] - lo[a]).max(1) as f64;
+        for x in lo[a]..lo[a] + summed_count(lo[a], hi[a], dims[a]) {
+            let t = (x - lo[a]) as f64 / span;
+            let b = [1.0 - t, t];
+            for i in 0..2 {
+                for j in 0..2 {
+                    m[i][j] += b[i] * b[j];
+                }
+            }
+        }
+        m
+    });
+    let mut total = 0.0;
+    for k in 0..8usize {
+        for l in 0..8usize {
+            let w: f64 = (0..3).map(|a| m[a][(k >> a) & 1][(l >> a) & 1]).product();
+            total += e[k] * e[l] * w;
+        }
+    }
+    total.max(0.0)
 }
 
 /// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`.
@@ -109,25 +166,30 @@ pub fn leaf_stats<T: Sample>(
         max = if v > max { v } else { max };
     }
     let mut raw = vec![0.0f64; strides];
+    let mut squared = vec![0.0f64; strides];
     let first_coarse = layout.leaf_log2 as usize + 1;
     if min == max {
         // A constant brick: every in-brick stride reproduces it exactly. For a
         // stride larger than the brick, T_s is trilinear over the brick, so
         // |c - T_s| is largest at one of the brick's eight corners.
-        for (j, r) in raw.iter_mut().enumerate().skip(first_coarse - 1) {
+        for (j, (r, q)) in raw.iter_mut().zip(squared.iter_mut()).enumerate().skip(first_coarse - 1) {
             let s = 1usize << (j + 1);
-            for corner in 0..8usize {
+            let mut e = [0.0f64; 8];
+            for (corner, ec) in e.iter_mut().enumerate() {
                 let x = if corner & 1 == 0 { lo[0] } else { hi[0] };
                 let y = if corner & 2 == 0 { lo[1] } else { hi[1] };
                 let z = if corner & 4 == 0 { lo[2] } else { hi[2] };
-                *r = r.max((min - super::trilinear::eval(g, s, x, y, z)).abs());
+                *ec = min - super::trilinear::eval(g, s, x, y, z);
+                *r = r.max(ec.abs());
             }
+            *q = trilinear_squared_sum(e, lo, hi, g.dims);
         }
-        return LeafStats { min, max, raw };
+        return LeafStats { min, max, raw, squared };
     }
     let Scratch { brick, v, w, t, xs, ys, frac, cells } = scratch;
     t.resize(wx, 0.0);
-    for (j, r) in raw.iter_mut().enumerate() {
+    let summed = [0, 1, 2].map(|a| summed_count(lo[a], hi[a], g.dims[a]));
+    for (j, (r, q)) in raw.iter_mut().zip(squared.iter_mut()).enumerate() {
         let s = 1usize << (j + 1);
         coarse_positions(lo[0], hi[0], s, g.dims[0], xs);
         coarse_positions(lo[1], hi[1], s, g.dims[1], ys);
@@ -146,6 +208,7 @@ pub fn leaf_stats<T: Sample>(
             }
         }
         let mut err = 0.0f64;
+        let mut sq = 0.0f64;
         for z in lo[2]..=hi[2] {
             let (z0, z1, tz) = bracket(z, s, g.dims[2]);
             // v(xa, yb) for every coarse (xa, yb) of this slice.
@@ -169,10 +232,14 @@ pub fn leaf_stats<T: Sample>(
                     }
                 }
                 let start = ((z - lo[2]) * wy + (y - lo[1])) * wx;
-                err = max_abs_diff(&brick[start..start + wx], t, err);
+                let in_sum = y - lo[1] < summed[1] && z - lo[2] < summed[2];
+                let (m, row_sq) = diff_stats(&brick[start..start + wx], t, if in_sum { summed[0] } else { 0 }, err);
+                err = m;
+                sq += row_sq;
             }
         }
         *r = err;
+        *q = sq;
     }
-    LeafStats { min, max, raw }
+    LeafStats { min, max, raw, squared }
 }

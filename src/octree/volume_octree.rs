@@ -13,6 +13,8 @@ pub struct VolumeOctree {
     pub(crate) min: Vec<f64>,
     pub(crate) max: Vec<f64>,
     pub(crate) errors: Vec<f32>,
+    /// Q_p per node, laid out as `errors`.
+    pub(crate) squared_errors: Vec<f32>,
     pub(crate) error_offset: Vec<usize>,
     pub(crate) build_ms: f64,
 }
@@ -23,6 +25,7 @@ impl PartialEq for VolumeOctree {
             && self.min == other.min
             && self.max == other.max
             && self.errors == other.errors
+            && self.squared_errors == other.squared_errors
             && self.error_offset == other.error_offset
     }
 }
@@ -47,6 +50,10 @@ pub struct NodeRef<'a> {
     /// `errors[p]` = E_p normalised by the data range, p = 0 .. L-level-1
     /// (E_(L-level) = 0 is implied). Empty for a 1-cell root.
     pub errors: &'a [f32],
+    /// `squared_errors[p]` = Q_p, the squared error of drawing the node at
+    /// level p, summed over its samples, normalised by the squared data range
+    /// (see [`super::build`]); laid out as `errors`.
+    pub squared_errors: &'a [f32],
     /// True for leaf bricks (minimal resolution nodes).
     pub is_leaf: bool,
 }
@@ -63,6 +70,10 @@ impl NodeRef<'_> {
     /// E_p for any p, with E_p = 0 for p >= L - level.
     pub fn error(&self, p: usize) -> f32 {
         self.errors.get(p).copied().unwrap_or(0.0)
+    }
+    /// Q_p for any p, with Q_p = 0 for p >= L - level.
+    pub fn squared_error(&self, p: usize) -> f32 {
+        self.squared_errors.get(p).copied().unwrap_or(0.0)
     }
 }
 
@@ -97,10 +108,11 @@ impl VolumeOctree {
         min: Vec<f64>,
         max: Vec<f64>,
         errors: Vec<f32>,
+        squared_errors: Vec<f32>,
         error_offset: Vec<usize>,
         build_ms: f64,
     ) -> VolumeOctree {
-        VolumeOctree { layout, min, max, errors, error_offset, build_ms }
+        VolumeOctree { layout, min, max, errors, squared_errors, error_offset, build_ms }
     }
 
     /// The level structure.
@@ -132,6 +144,7 @@ impl VolumeOctree {
             min: self.min[id.0 as usize],
             max: self.max[id.0 as usize],
             errors: &self.errors[start..start + n],
+            squared_errors: &self.squared_errors[start..start + n],
             is_leaf: level == self.layout.leaf_level(),
         }
     }
@@ -162,6 +175,7 @@ impl VolumeOctree {
             + self.min.capacity() * 8
             + self.max.capacity() * 8
             + self.errors.capacity() * 4
+            + self.squared_errors.capacity() * 4
             + self.error_offset.capacity() * std::mem::size_of::<usize>()
             + self.layout.levels() * (3 + 1) * std::mem::size_of::<usize>()
     }

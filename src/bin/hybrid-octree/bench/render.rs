@@ -1,7 +1,8 @@
 //! `bench render`: what each step of accuracy costs. For a sweep of texture
 //! budgets and error tolerances, the octree's selection, DrawList and CPU
-//! compositing, against uniform downsampling (every brick at one stride, what
-//! a mapper does when a volume does not fit) at the same texture bytes; each
+//! compositing, against uniform downsampling (the whole volume in one texture
+//! at one stride, what VTK's smart mapper does when a volume does not fit) at
+//! the same texture bytes; each
 //! frame compared with the full-resolution reference ray caster.
 //! Prints a table (or JSON rows), the RMSE ratio octree / uniform at equal
 //! bytes, and with `--plot` a PNG of RMSE against time and against memory.
