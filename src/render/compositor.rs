@@ -37,23 +37,24 @@ use super::blend::{correct_opacity, over, Rgba};
 use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
-use super::sample::{to_index, BrickTexture};
+use super::sample::to_index;
+use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::transfer::TransferFunction;
 use super::triangles::{Hit, TriangleGrid};
 use crate::camera::Ray;
 use crate::error::Result;
-use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
+use crate::grid::{Grid, GridShape};
 use crate::plan::{BrickDraw, DrawList};
 use crate::surface::Surface;
 use crate::vec3::dot;
 use rayon::prelude::*;
 
 /// A brick ready to draw.
-struct Prepared<'a> {
+struct Prepared<'a, S> {
     /// Position in the DrawList.
     index: usize,
     draw: &'a BrickDraw,
-    texture: BrickTexture,
+    texture: &'a Texture<S>,
     /// Per axis, whether the min and max faces are in the box.
     closed: [(bool, bool); 3],
     /// `d / d0`.
@@ -62,7 +63,7 @@ struct Prepared<'a> {
     rect: [usize; 4],
 }
 
-impl Prepared<'_> {
+impl<S> Prepared<'_, S> {
     /// In the box: inside, or on a closed face.
     #[inline]
     fn contains(&self, p: [f64; 3]) -> bool {
@@ -81,8 +82,9 @@ struct Batches {
 }
 
 /// Composites `list` over `grid` with `tf` into a `width x height` picture
-/// (see the module documentation). `surface` (with its `[r, g, b, opacity]`)
-/// is required when the list draws surface triangles.
+/// (see the module documentation): [`upload`]s the bricks' textures, then
+/// [`composite_textures`]. `surface` (with its `[r, g, b, opacity]`) is
+/// required when the list draws surface triangles.
 pub fn composite(
     grid: &Grid<'_>,
     list: &DrawList,
@@ -92,13 +94,44 @@ pub fn composite(
     surface: Option<(&Surface, [f32; 4])>,
 ) -> Result<Image> {
     check_size(width, height)?;
-    let shape = *grid.shape();
-    check_list(list, &shape, surface.map(|s| s.0))?;
+    check_list(list, grid.shape(), surface.map(|s| s.0))?;
+    composite_textures(&upload(grid, list)?, list, tf, width, height, surface)
+}
+
+/// Composites `list` from its uploaded `textures` (see [`composite`]).
+pub fn composite_textures(
+    textures: &Textures,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+    surface: Option<(&Surface, [f32; 4])>,
+) -> Result<Image> {
+    check_size(width, height)?;
+    check_list(list, &textures.shape, surface.map(|s| s.0))?;
+    textures.check(list)?;
+    Ok(match &textures.texels {
+        Texels::F32(t) => execute(t, &textures.shape, list, tf, width, height, surface)?,
+        Texels::F64(t) => execute(t, &textures.shape, list, tf, width, height, surface)?,
+    })
+}
+
+/// [`composite_textures`] on checked inputs, textures stored as `S`.
+fn execute<S: Texel>(
+    textures: &[Texture<S>],
+    shape: &GridShape,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+    surface: Option<(&Surface, [f32; 4])>,
+) -> Result<Image> {
+    let shape = *shape;
     let d0 = list.reference_spacing;
     let volume_lo = shape.world([0.0; 3]);
     let volume_hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
     let forward = list.camera.forward();
-    let bricks: Vec<Prepared> = list
+    let bricks: Vec<Prepared<S>> = list
         .bricks
         .iter()
         .enumerate()
@@ -110,7 +143,7 @@ pub fn composite(
                 (lo_near || draw.world_lo[a] <= volume_lo[a], hi_near || draw.world_hi[a] >= volume_hi[a])
             });
             let ratio = draw.slice_spacing / d0;
-            Some(Prepared { index, draw, texture: BrickTexture::new(&draw.brick), closed, ratio, rect })
+            Some(Prepared { index, draw, texture: &textures[index], closed, ratio, rect })
         })
         .collect();
     let (mut opaque, mut translucent) = (None, None);
@@ -133,7 +166,7 @@ pub fn composite(
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
-    Ok(grid.visit(executor))
+    Ok(executor.run())
 }
 
 /// The batches drawing each polygon, as a table by polygon id.
@@ -156,13 +189,13 @@ fn batches(list: &DrawList, surface: &Surface) -> Batches {
     Batches { start, entries: pairs.into_iter().map(|(_, b, k)| (b, k)).collect() }
 }
 
-struct Executor<'a> {
+struct Executor<'a, S> {
     list: &'a DrawList,
     tf: &'a TransferFunction,
     width: usize,
     height: usize,
     shape: GridShape,
-    bricks: &'a [Prepared<'a>],
+    bricks: &'a [Prepared<'a, S>],
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
@@ -176,9 +209,9 @@ struct Scratch {
     events: Vec<(usize, f64, [f64; 3], f64)>,
 }
 
-impl GridVisitor for Executor<'_> {
-    type Output = Image;
-    fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Image {
+impl<S: Texel> Executor<'_, S> {
+    /// The picture, rows in parallel.
+    fn run(self) -> Image {
         let rows: Vec<Vec<[f32; 4]>> = (0..self.height)
             .into_par_iter()
             .map_init(Scratch::default, |scratch, y| {
@@ -186,7 +219,7 @@ impl GridVisitor for Executor<'_> {
                 scratch.row.extend(
                     (0..self.bricks.len()).filter(|&b| (self.bricks[b].rect[2]..self.bricks[b].rect[3]).contains(&y)),
                 );
-                (0..self.width).map(|x| self.pixel(&g, x, y, scratch)).collect()
+                (0..self.width).map(|x| self.pixel(x, y, scratch)).collect()
             })
             .collect();
         Image { width: self.width, height: self.height, rgba: rows.concat() }
@@ -210,8 +243,8 @@ impl PixelRay {
     }
 }
 
-impl Executor<'_> {
-    fn pixel<T: Sample>(&self, g: &TypedGrid<'_, T>, x: usize, y: usize, scratch: &mut Scratch) -> [f32; 4] {
+impl<S: Texel> Executor<'_, S> {
+    fn pixel(&self, x: usize, y: usize, scratch: &mut Scratch) -> [f32; 4] {
         let camera = &self.list.camera;
         let ray = camera.ray(x, y, self.width, self.height);
         let mut pr = PixelRay {
@@ -237,21 +270,14 @@ impl Executor<'_> {
             let b = scratch.row[i];
             let rect = self.bricks[b].rect;
             if (rect[0]..rect[1]).contains(&x) {
-                acc = self.brick(g, b, &pr, acc, scratch);
+                acc = self.brick(b, &pr, acc, scratch);
             }
         }
         acc.map(|v| v as f32)
     }
 
     /// Blends brick `b`'s slices (and its batches' hits) over `acc`.
-    fn brick<T: Sample>(
-        &self,
-        g: &TypedGrid<'_, T>,
-        b: usize,
-        pr: &PixelRay,
-        mut acc: Rgba,
-        scratch: &mut Scratch,
-    ) -> Rgba {
+    fn brick(&self, b: usize, pr: &PixelRay, mut acc: Rgba, scratch: &mut Scratch) -> Rgba {
         let brick = &self.bricks[b];
         let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else { return acc };
         self.batch_events(b, pr, scratch);
@@ -274,7 +300,7 @@ impl Executor<'_> {
             if z < pr.limit && z >= za - tol && z <= zb + tol {
                 let p = at_depth(&pr.ray, pr.z_origin, pr.cos, z);
                 if brick.contains(p) {
-                    let [r, gr, bl, a] = self.tf.eval(brick.texture.value(g, to_index(&self.shape, p)));
+                    let [r, gr, bl, a] = self.tf.eval(brick.texture.value(to_index(&self.shape, p)));
                     acc = over(acc, [r as f64, gr as f64, bl as f64], correct_opacity(a as f64, brick.ratio));
                 }
             }

@@ -20,6 +20,7 @@ pub mod image;
 pub mod metrics;
 pub mod reference;
 mod sample;
+pub mod texture;
 pub mod transfer;
 mod triangles;
 
