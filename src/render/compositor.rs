@@ -1,7 +1,7 @@
 //! The CPU compositor: executes a [`DrawList`] as a GPU slicer would, one
 //! pixel ray at a time.
 //!
-//! Bricks are drawn in list order (back to front). A brick's texture is the
+//! The DrawList orders bricks back to front. A brick's texture is the
 //! grid at its texel positions, reconstructed trilinearly in texel space
 //! (T_p). It is sampled only on its slice planes: for each view depth `z` in
 //! [`BrickDraw::slices`] the pixel ray's point at that depth,
@@ -18,22 +18,28 @@
 //! belongs to the brick whose near face it is, the one that lists it
 //! ([`crate::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
 //! sample is classified, corrected for the brick's slice spacing `d` against
-//! `d0 = DrawList::reference_spacing` and blended back to front:
+//! `d0 = DrawList::reference_spacing` and blended. The DrawList's order is
+//! back to front (`over`); the compositor walks the same sequence reversed,
+//! front to back (`under`), which gives the same picture:
 //!
 //! ```text
-//! a' = 1 - (1 - a)^(d / d0),   C = a' c + (1 - a') C,   A = a' + (1 - a') A
+//! a' = 1 - (1 - a)^(d / d0),   C = C + (1 - A) a' c,   A = A + (1 - A) a'
 //! ```
 //!
+//! and stops a pixel once `A >= `[`OPAQUE`] (early ray termination): everything
+//! behind would add at most `1 - A <= 1 - OPAQUE` to each channel.
+//!
 //! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
-//! pixel's depth and its shaded colour is what the volume is blended over;
-//! samples at or behind that depth are dropped (a depth test). Translucent
-//! batches ([`crate::slab`]): the hits of slab `s`'s triangles, within the
-//! batch's clip range `near <= depth < far`, are blended after slices
-//! `0 .. s` and before slice `s` (slab `n` after the last), back to front.
+//! pixel's depth and its shaded colour goes under the volume in front of it,
+//! last; samples at or behind that depth are dropped (a depth test).
+//! Translucent batches ([`crate::slab`]): the hits of slab `s`'s triangles,
+//! within the batch's clip range `near <= depth < far`, are blended after
+//! slices `0 .. s` and before slice `s` (slab `n` after the last), back to
+//! front; walked in reverse like the slices.
 //! Rows run in parallel; every pixel is computed on its own, so the picture
 //! does not depend on the number of threads.
 
-use super::blend::{correct_opacity, over, Rgba};
+use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
@@ -48,6 +54,11 @@ use crate::plan::{BrickDraw, DrawList};
 use crate::surface::Surface;
 use crate::vec3::dot;
 use rayon::prelude::*;
+
+/// Early ray termination: a pixel whose accumulated opacity reaches this
+/// stops. Whatever lies behind would add at most `(1 - A) <= 1 - OPAQUE`
+/// (= 1/1024, a quarter of an 8-bit level) to each of its channels.
+pub const OPAQUE: f64 = 1.0 - 1.0 / 1024.0;
 
 /// A brick ready to draw.
 struct Prepared<'a, S> {
@@ -253,30 +264,37 @@ impl<S: Texel> Executor<'_, S> {
             z_origin: camera.depth(ray.origin),
             limit: f64::INFINITY,
         };
-        let mut acc: Rgba = [0.0; 4];
+        let mut surface_hit = None;
         if let Some((surface, tris, colour)) = self.opaque {
             if let Some(h) = tris.first_hit(&ray, f64::INFINITY) {
                 pr.limit = pr.depth(h.t);
-                let a = colour[3] as f64;
-                let rgb = tris.shade(surface, &h, ray.direction, colour);
-                acc = [rgb[0] * a, rgb[1] * a, rgb[2] * a, a];
+                surface_hit = Some((tris.shade(surface, &h, ray.direction, colour), colour[3] as f64));
             }
         }
         scratch.hits.clear();
         if let Some((_, tris, _, _)) = self.translucent {
             tris.all_hits(&ray, f64::INFINITY, &mut scratch.hits);
         }
-        for i in 0..scratch.row.len() {
+        // Front to back: the row's bricks in reverse list order, until opaque.
+        let mut acc: Rgba = [0.0; 4];
+        for i in (0..scratch.row.len()).rev() {
             let b = scratch.row[i];
             let rect = self.bricks[b].rect;
             if (rect[0]..rect[1]).contains(&x) {
                 acc = self.brick(b, &pr, acc, scratch);
+                if acc[3] >= OPAQUE {
+                    break;
+                }
             }
+        }
+        if let Some((rgb, a)) = surface_hit {
+            acc = under(acc, rgb, a);
         }
         acc.map(|v| v as f32)
     }
 
-    /// Blends brick `b`'s slices (and its batches' hits) over `acc`.
+    /// Blends brick `b`'s slices (and its batches' hits) under `acc`, front
+    /// to back, stopping once `acc` is [`OPAQUE`].
     fn brick(&self, b: usize, pr: &PixelRay, mut acc: Rgba, scratch: &mut Scratch) -> Rgba {
         let brick = &self.bricks[b];
         let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else { return acc };
@@ -290,23 +308,30 @@ impl<S: Texel> Executor<'_, S> {
         } else {
             (0, slices.len())
         };
-        let mut e = 0;
-        for (j, &z) in slices.iter().enumerate().take(j1).skip(j0) {
-            // Slab j goes before slice j.
-            while let Some(&(_, _, c, a)) = scratch.events.get(e).filter(|ev| ev.0 <= j) {
-                acc = over(acc, c, a);
-                e += 1;
+        // Events are by slab, back to front: taken from the end, front to back.
+        let mut e = scratch.events.len();
+        for j in (j0..j1).rev() {
+            // Slab j goes before slice j (back to front): slabs above j are in front of it.
+            while let Some(&(_, _, c, a)) = e.checked_sub(1).and_then(|k| scratch.events.get(k)).filter(|ev| ev.0 > j) {
+                acc = under(acc, c, a);
+                e -= 1;
             }
+            let z = slices[j];
             if z < pr.limit && z >= za - tol && z <= zb + tol {
                 let p = at_depth(&pr.ray, pr.z_origin, pr.cos, z);
                 if brick.contains(p) {
                     let [r, gr, bl, a] = self.tf.eval(brick.texture.value(to_index(&self.shape, p)));
-                    acc = over(acc, [r as f64, gr as f64, bl as f64], correct_opacity(a as f64, brick.ratio));
+                    if a > 0.0 {
+                        acc = under(acc, [r as f64, gr as f64, bl as f64], correct_opacity(a as f64, brick.ratio));
+                        if acc[3] >= OPAQUE {
+                            return acc;
+                        }
+                    }
                 }
             }
         }
-        for &(_, _, c, a) in &scratch.events[e..] {
-            acc = over(acc, c, a);
+        for &(_, _, c, a) in scratch.events[..e].iter().rev() {
+            acc = under(acc, c, a);
         }
         acc
     }
