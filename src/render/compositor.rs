@@ -17,7 +17,8 @@
 //! belongs to exactly one of them, and a slice through a face seen head-on
 //! belongs to the brick whose near face it is, the one that lists it
 //! ([`crate::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
-//! sample is classified, corrected for the brick's slice spacing `d` against
+//! sample is classified (through [`super::lut`], within 1e-6 of the transfer
+//! function), corrected for the brick's slice spacing `d` against
 //! `d0 = DrawList::reference_spacing` and blended. The DrawList's order is
 //! back to front (`over`); the compositor walks the same sequence reversed,
 //! front to back (`under`), which gives the same picture:
@@ -43,6 +44,7 @@ use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
+use super::lut::Lut;
 use super::sample::to_index;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::transfer::TransferFunction;
@@ -169,7 +171,7 @@ fn execute<S: Texel>(
     }
     let executor = Executor {
         list,
-        tf,
+        lut: Lut::new(tf),
         width,
         height,
         shape,
@@ -202,7 +204,8 @@ fn batches(list: &DrawList, surface: &Surface) -> Batches {
 
 struct Executor<'a, S> {
     list: &'a DrawList,
-    tf: &'a TransferFunction,
+    /// The transfer function, tabulated.
+    lut: Lut<'a>,
     width: usize,
     height: usize,
     shape: GridShape,
@@ -320,9 +323,9 @@ impl<S: Texel> Executor<'_, S> {
             if z < pr.limit && z >= za - tol && z <= zb + tol {
                 let p = at_depth(&pr.ray, pr.z_origin, pr.cos, z);
                 if brick.contains(p) {
-                    let [r, gr, bl, a] = self.tf.eval(brick.texture.value(to_index(&self.shape, p)));
+                    let [r, gr, bl, a] = self.lut.eval(brick.texture.value(to_index(&self.shape, p)));
                     if a > 0.0 {
-                        acc = under(acc, [r as f64, gr as f64, bl as f64], correct_opacity(a as f64, brick.ratio));
+                        acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
                         if acc[3] >= OPAQUE {
                             return acc;
                         }
