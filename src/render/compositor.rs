@@ -37,7 +37,7 @@
 //! within the batch's clip range `near <= depth < far`, are blended after
 //! slices `0 .. s` and before slice `s` (slab `n` after the last), back to
 //! front; walked in reverse like the slices.
-//! Rows run in parallel; every pixel is computed on its own, so the picture
+//! Bands of rows run in parallel; every pixel is computed on its own, so the picture
 //! does not depend on the number of threads.
 
 use super::blend::{correct_opacity, under, Rgba};
@@ -214,7 +214,10 @@ struct Executor<'a, S> {
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
 
-/// Per-thread scratch: the row's bricks, the pixel's hits, a brick's batch hits.
+/// Rows drawn together.
+const BAND: usize = 8;
+
+/// Per-thread scratch: the band's bricks, the pixel's hits, a brick's batch hits.
 #[derive(Default)]
 struct Scratch {
     row: Vec<usize>,
@@ -224,19 +227,29 @@ struct Scratch {
 }
 
 impl<S: Texel> Executor<'_, S> {
-    /// The picture, rows in parallel.
+    /// The picture, bands of [`BAND`] rows in parallel, each column of a
+    /// band in turn (neighbouring rays read the same texels).
     fn run(self) -> Image {
-        let rows: Vec<Vec<[f32; 4]>> = (0..self.height)
+        let (w, h) = (self.width, self.height);
+        let bands: Vec<Vec<[f32; 4]>> = (0..h.div_ceil(BAND))
             .into_par_iter()
-            .map_init(Scratch::default, |scratch, y| {
+            .map_init(Scratch::default, |scratch, band| {
+                let (y0, y1) = (band * BAND, ((band + 1) * BAND).min(h));
                 scratch.row.clear();
-                scratch.row.extend(
-                    (0..self.bricks.len()).filter(|&b| (self.bricks[b].rect[2]..self.bricks[b].rect[3]).contains(&y)),
-                );
-                (0..self.width).map(|x| self.pixel(x, y, scratch)).collect()
+                scratch.row.extend((0..self.bricks.len()).filter(|&b| {
+                    let rect = self.bricks[b].rect;
+                    rect[2] < y1 && y0 < rect[3]
+                }));
+                let mut out = vec![[0.0; 4]; (y1 - y0) * w];
+                for x in 0..w {
+                    for y in y0..y1 {
+                        out[(y - y0) * w + x] = self.pixel(x, y, scratch);
+                    }
+                }
+                out
             })
             .collect();
-        Image { width: self.width, height: self.height, rgba: rows.concat() }
+        Image { width: w, height: h, rgba: bands.concat() }
     }
 }
 
@@ -278,12 +291,12 @@ impl<S: Texel> Executor<'_, S> {
         if let Some((_, tris, _, _)) = self.translucent {
             tris.all_hits(&ray, f64::INFINITY, &mut scratch.hits);
         }
-        // Front to back: the row's bricks in reverse list order, until opaque.
+        // Front to back: the band's bricks in reverse list order, until opaque.
         let mut acc: Rgba = [0.0; 4];
         for i in (0..scratch.row.len()).rev() {
             let b = scratch.row[i];
             let rect = self.bricks[b].rect;
-            if (rect[0]..rect[1]).contains(&x) {
+            if (rect[0]..rect[1]).contains(&x) && (rect[2]..rect[3]).contains(&y) {
                 acc = self.brick(b, &pr, acc, scratch);
                 if acc[3] >= OPAQUE {
                     break;
