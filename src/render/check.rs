@@ -27,10 +27,9 @@ pub(crate) fn check_size(width: usize, height: usize) -> Result<()> {
     }
 }
 
-/// Checks a DrawList against the grid: brick boxes inside it, texel counts
-/// that match them, positive spacings, slices back to front, and triangle
-/// ids of the surface (which must be given when the list draws triangles).
-pub(crate) fn check_list(list: &DrawList, shape: &GridShape, surface: Option<&Surface>) -> Result<()> {
+/// Checks a DrawList's bricks against the grid: boxes inside it, texel
+/// counts that match them, positive spacings, slices back to front.
+pub(crate) fn check_bricks(list: &DrawList, shape: &GridShape) -> Result<()> {
     let bad = |m: String| Err(Error::InvalidArgument(format!("DrawList: {m}")));
     if !(list.reference_spacing > 0.0 && list.reference_spacing.is_finite()) {
         return bad(format!("reference spacing {} must be a positive number", list.reference_spacing));
@@ -52,6 +51,15 @@ pub(crate) fn check_list(list: &DrawList, shape: &GridShape, surface: Option<&Su
             return bad(format!("brick {i}'s slices must be finite depths listed back to front (decreasing)"));
         }
     }
+    Ok(())
+}
+
+/// Checks a DrawList against the grid: its bricks (see [`check_bricks`]),
+/// and triangle ids of the surface (which must be given when the list draws
+/// triangles).
+pub(crate) fn check_list(list: &DrawList, shape: &GridShape, surface: Option<&Surface>) -> Result<()> {
+    check_bricks(list, shape)?;
+    let bad = |m: String| Err(Error::InvalidArgument(format!("DrawList: {m}")));
     let mut ids = list
         .opaque_triangles
         .iter()

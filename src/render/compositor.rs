@@ -1,7 +1,7 @@
 //! The CPU compositor: executes a [`DrawList`] as a GPU slicer would, one
 //! pixel ray at a time.
 //!
-//! Bricks are drawn in list order (back to front). A brick's texture is the
+//! The DrawList orders bricks back to front. A brick's texture is the
 //! grid at its texel positions, reconstructed trilinearly in texel space
 //! (T_p). It is sampled only on its slice planes: for each view depth `z` in
 //! [`BrickDraw::slices`] the pixel ray's point at that depth,
@@ -17,43 +17,57 @@
 //! belongs to exactly one of them, and a slice through a face seen head-on
 //! belongs to the brick whose near face it is, the one that lists it
 //! ([`crate::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
-//! sample is classified, corrected for the brick's slice spacing `d` against
-//! `d0 = DrawList::reference_spacing` and blended back to front:
+//! sample is classified (through [`super::lut`], within 1e-6 of the transfer
+//! function), corrected for the brick's slice spacing `d` against
+//! `d0 = DrawList::reference_spacing` and blended. The DrawList's order is
+//! back to front (`over`); the compositor walks the same sequence reversed,
+//! front to back (`under`), which gives the same picture:
 //!
 //! ```text
-//! a' = 1 - (1 - a)^(d / d0),   C = a' c + (1 - a') C,   A = a' + (1 - a') A
+//! a' = 1 - (1 - a)^(d / d0),   C = C + (1 - A) a' c,   A = A + (1 - A) a'
 //! ```
 //!
+//! and stops a pixel once `A >= `[`OPAQUE`] (early ray termination): everything
+//! behind would add at most `1 - A <= 1 - OPAQUE` to each channel.
+//!
 //! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
-//! pixel's depth and its shaded colour is what the volume is blended over;
-//! samples at or behind that depth are dropped (a depth test). Translucent
-//! batches ([`crate::slab`]): the hits of slab `s`'s triangles, within the
-//! batch's clip range `near <= depth < far`, are blended after slices
-//! `0 .. s` and before slice `s` (slab `n` after the last), back to front.
-//! Rows run in parallel; every pixel is computed on its own, so the picture
+//! pixel's depth and its shaded colour goes under the volume in front of it,
+//! last; samples at or behind that depth are dropped (a depth test).
+//! Translucent batches ([`crate::slab`]): the hits of slab `s`'s triangles,
+//! within the batch's clip range `near <= depth < far`, are blended after
+//! slices `0 .. s` and before slice `s` (slab `n` after the last), back to
+//! front; walked in reverse like the slices.
+//! Bands of rows run in parallel; every pixel is computed on its own, so the picture
 //! does not depend on the number of threads.
 
-use super::blend::{correct_opacity, over, Rgba};
+use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
-use super::sample::{to_index, BrickTexture};
+use super::lut::Lut;
+use super::sample::to_index;
+use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::transfer::TransferFunction;
 use super::triangles::{Hit, TriangleGrid};
 use crate::camera::Ray;
 use crate::error::Result;
-use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
+use crate::grid::{Grid, GridShape};
 use crate::plan::{BrickDraw, DrawList};
 use crate::surface::Surface;
 use crate::vec3::dot;
 use rayon::prelude::*;
 
+/// Early ray termination: a pixel whose accumulated opacity reaches this
+/// stops. Whatever lies behind would add at most `(1 - A) <= 1 - OPAQUE`
+/// (= 1/1024, a quarter of an 8-bit level) to each of its channels.
+pub const OPAQUE: f64 = 1.0 - 1.0 / 1024.0;
+
 /// A brick ready to draw.
-struct Prepared<'a> {
+struct Prepared<'a, S> {
     /// Position in the DrawList.
     index: usize,
     draw: &'a BrickDraw,
-    texture: BrickTexture,
+    texture: &'a Texture<S>,
     /// Per axis, whether the min and max faces are in the box.
     closed: [(bool, bool); 3],
     /// `d / d0`.
@@ -62,7 +76,7 @@ struct Prepared<'a> {
     rect: [usize; 4],
 }
 
-impl Prepared<'_> {
+impl<S> Prepared<'_, S> {
     /// In the box: inside, or on a closed face.
     #[inline]
     fn contains(&self, p: [f64; 3]) -> bool {
@@ -81,8 +95,9 @@ struct Batches {
 }
 
 /// Composites `list` over `grid` with `tf` into a `width x height` picture
-/// (see the module documentation). `surface` (with its `[r, g, b, opacity]`)
-/// is required when the list draws surface triangles.
+/// (see the module documentation): [`upload`]s the bricks' textures, then
+/// [`composite_textures`]. `surface` (with its `[r, g, b, opacity]`) is
+/// required when the list draws surface triangles.
 pub fn composite(
     grid: &Grid<'_>,
     list: &DrawList,
@@ -92,13 +107,44 @@ pub fn composite(
     surface: Option<(&Surface, [f32; 4])>,
 ) -> Result<Image> {
     check_size(width, height)?;
-    let shape = *grid.shape();
-    check_list(list, &shape, surface.map(|s| s.0))?;
+    check_list(list, grid.shape(), surface.map(|s| s.0))?;
+    composite_textures(&upload(grid, list)?, list, tf, width, height, surface)
+}
+
+/// Composites `list` from its uploaded `textures` (see [`composite`]).
+pub fn composite_textures(
+    textures: &Textures,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+    surface: Option<(&Surface, [f32; 4])>,
+) -> Result<Image> {
+    check_size(width, height)?;
+    check_list(list, &textures.shape, surface.map(|s| s.0))?;
+    textures.check(list)?;
+    Ok(match &textures.texels {
+        Texels::F32(t) => execute(t, &textures.shape, list, tf, width, height, surface)?,
+        Texels::F64(t) => execute(t, &textures.shape, list, tf, width, height, surface)?,
+    })
+}
+
+/// [`composite_textures`] on checked inputs, textures stored as `S`.
+fn execute<S: Texel>(
+    textures: &[Texture<S>],
+    shape: &GridShape,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+    surface: Option<(&Surface, [f32; 4])>,
+) -> Result<Image> {
+    let shape = *shape;
     let d0 = list.reference_spacing;
     let volume_lo = shape.world([0.0; 3]);
     let volume_hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
     let forward = list.camera.forward();
-    let bricks: Vec<Prepared> = list
+    let bricks: Vec<Prepared<S>> = list
         .bricks
         .iter()
         .enumerate()
@@ -110,7 +156,7 @@ pub fn composite(
                 (lo_near || draw.world_lo[a] <= volume_lo[a], hi_near || draw.world_hi[a] >= volume_hi[a])
             });
             let ratio = draw.slice_spacing / d0;
-            Some(Prepared { index, draw, texture: BrickTexture::new(&draw.brick), closed, ratio, rect })
+            Some(Prepared { index, draw, texture: &textures[index], closed, ratio, rect })
         })
         .collect();
     let (mut opaque, mut translucent) = (None, None);
@@ -125,7 +171,7 @@ pub fn composite(
     }
     let executor = Executor {
         list,
-        tf,
+        lut: Lut::new(tf),
         width,
         height,
         shape,
@@ -133,7 +179,7 @@ pub fn composite(
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
-    Ok(grid.visit(executor))
+    Ok(executor.run())
 }
 
 /// The batches drawing each polygon, as a table by polygon id.
@@ -156,18 +202,22 @@ fn batches(list: &DrawList, surface: &Surface) -> Batches {
     Batches { start, entries: pairs.into_iter().map(|(_, b, k)| (b, k)).collect() }
 }
 
-struct Executor<'a> {
+struct Executor<'a, S> {
     list: &'a DrawList,
-    tf: &'a TransferFunction,
+    /// The transfer function, tabulated.
+    lut: Lut<'a>,
     width: usize,
     height: usize,
     shape: GridShape,
-    bricks: &'a [Prepared<'a>],
+    bricks: &'a [Prepared<'a, S>],
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
 
-/// Per-thread scratch: the row's bricks, the pixel's hits, a brick's batch hits.
+/// Rows drawn together.
+const BAND: usize = 8;
+
+/// Per-thread scratch: the band's bricks, the pixel's hits, a brick's batch hits.
 #[derive(Default)]
 struct Scratch {
     row: Vec<usize>,
@@ -176,20 +226,30 @@ struct Scratch {
     events: Vec<(usize, f64, [f64; 3], f64)>,
 }
 
-impl GridVisitor for Executor<'_> {
-    type Output = Image;
-    fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Image {
-        let rows: Vec<Vec<[f32; 4]>> = (0..self.height)
+impl<S: Texel> Executor<'_, S> {
+    /// The picture, bands of [`BAND`] rows in parallel, each column of a
+    /// band in turn (neighbouring rays read the same texels).
+    fn run(self) -> Image {
+        let (w, h) = (self.width, self.height);
+        let bands: Vec<Vec<[f32; 4]>> = (0..h.div_ceil(BAND))
             .into_par_iter()
-            .map_init(Scratch::default, |scratch, y| {
+            .map_init(Scratch::default, |scratch, band| {
+                let (y0, y1) = (band * BAND, ((band + 1) * BAND).min(h));
                 scratch.row.clear();
-                scratch.row.extend(
-                    (0..self.bricks.len()).filter(|&b| (self.bricks[b].rect[2]..self.bricks[b].rect[3]).contains(&y)),
-                );
-                (0..self.width).map(|x| self.pixel(&g, x, y, scratch)).collect()
+                scratch.row.extend((0..self.bricks.len()).filter(|&b| {
+                    let rect = self.bricks[b].rect;
+                    rect[2] < y1 && y0 < rect[3]
+                }));
+                let mut out = vec![[0.0; 4]; (y1 - y0) * w];
+                for x in 0..w {
+                    for y in y0..y1 {
+                        out[(y - y0) * w + x] = self.pixel(x, y, scratch);
+                    }
+                }
+                out
             })
             .collect();
-        Image { width: self.width, height: self.height, rgba: rows.concat() }
+        Image { width: w, height: h, rgba: bands.concat() }
     }
 }
 
@@ -210,8 +270,8 @@ impl PixelRay {
     }
 }
 
-impl Executor<'_> {
-    fn pixel<T: Sample>(&self, g: &TypedGrid<'_, T>, x: usize, y: usize, scratch: &mut Scratch) -> [f32; 4] {
+impl<S: Texel> Executor<'_, S> {
+    fn pixel(&self, x: usize, y: usize, scratch: &mut Scratch) -> [f32; 4] {
         let camera = &self.list.camera;
         let ray = camera.ray(x, y, self.width, self.height);
         let mut pr = PixelRay {
@@ -220,38 +280,38 @@ impl Executor<'_> {
             z_origin: camera.depth(ray.origin),
             limit: f64::INFINITY,
         };
-        let mut acc: Rgba = [0.0; 4];
+        let mut surface_hit = None;
         if let Some((surface, tris, colour)) = self.opaque {
             if let Some(h) = tris.first_hit(&ray, f64::INFINITY) {
                 pr.limit = pr.depth(h.t);
-                let a = colour[3] as f64;
-                let rgb = tris.shade(surface, &h, ray.direction, colour);
-                acc = [rgb[0] * a, rgb[1] * a, rgb[2] * a, a];
+                surface_hit = Some((tris.shade(surface, &h, ray.direction, colour), colour[3] as f64));
             }
         }
         scratch.hits.clear();
         if let Some((_, tris, _, _)) = self.translucent {
             tris.all_hits(&ray, f64::INFINITY, &mut scratch.hits);
         }
-        for i in 0..scratch.row.len() {
+        // Front to back: the band's bricks in reverse list order, until opaque.
+        let mut acc: Rgba = [0.0; 4];
+        for i in (0..scratch.row.len()).rev() {
             let b = scratch.row[i];
             let rect = self.bricks[b].rect;
-            if (rect[0]..rect[1]).contains(&x) {
-                acc = self.brick(g, b, &pr, acc, scratch);
+            if (rect[0]..rect[1]).contains(&x) && (rect[2]..rect[3]).contains(&y) {
+                acc = self.brick(b, &pr, acc, scratch);
+                if acc[3] >= OPAQUE {
+                    break;
+                }
             }
+        }
+        if let Some((rgb, a)) = surface_hit {
+            acc = under(acc, rgb, a);
         }
         acc.map(|v| v as f32)
     }
 
-    /// Blends brick `b`'s slices (and its batches' hits) over `acc`.
-    fn brick<T: Sample>(
-        &self,
-        g: &TypedGrid<'_, T>,
-        b: usize,
-        pr: &PixelRay,
-        mut acc: Rgba,
-        scratch: &mut Scratch,
-    ) -> Rgba {
+    /// Blends brick `b`'s slices (and its batches' hits) under `acc`, front
+    /// to back, stopping once `acc` is [`OPAQUE`].
+    fn brick(&self, b: usize, pr: &PixelRay, mut acc: Rgba, scratch: &mut Scratch) -> Rgba {
         let brick = &self.bricks[b];
         let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else { return acc };
         self.batch_events(b, pr, scratch);
@@ -264,23 +324,30 @@ impl Executor<'_> {
         } else {
             (0, slices.len())
         };
-        let mut e = 0;
-        for (j, &z) in slices.iter().enumerate().take(j1).skip(j0) {
-            // Slab j goes before slice j.
-            while let Some(&(_, _, c, a)) = scratch.events.get(e).filter(|ev| ev.0 <= j) {
-                acc = over(acc, c, a);
-                e += 1;
+        // Events are by slab, back to front: taken from the end, front to back.
+        let mut e = scratch.events.len();
+        for j in (j0..j1).rev() {
+            // Slab j goes before slice j (back to front): slabs above j are in front of it.
+            while let Some(&(_, _, c, a)) = e.checked_sub(1).and_then(|k| scratch.events.get(k)).filter(|ev| ev.0 > j) {
+                acc = under(acc, c, a);
+                e -= 1;
             }
+            let z = slices[j];
             if z < pr.limit && z >= za - tol && z <= zb + tol {
                 let p = at_depth(&pr.ray, pr.z_origin, pr.cos, z);
                 if brick.contains(p) {
-                    let [r, gr, bl, a] = self.tf.eval(brick.texture.value(g, to_index(&self.shape, p)));
-                    acc = over(acc, [r as f64, gr as f64, bl as f64], correct_opacity(a as f64, brick.ratio));
+                    let [r, gr, bl, a] = self.lut.eval(brick.texture.value(to_index(&self.shape, p)));
+                    if a > 0.0 {
+                        acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
+                        if acc[3] >= OPAQUE {
+                            return acc;
+                        }
+                    }
                 }
             }
         }
-        for &(_, _, c, a) in &scratch.events[e..] {
-            acc = over(acc, c, a);
+        for &(_, _, c, a) in scratch.events[..e].iter().rev() {
+            acc = under(acc, c, a);
         }
         acc
     }

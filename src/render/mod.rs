@@ -8,7 +8,7 @@
 //! [`compositor`] executes a [`DrawList`](crate::plan::DrawList) slice by
 //! slice, brick by brick.
 //! Inside the crate: `check` (inputs), `sample` (trilinear reconstruction of the grid and of a
-//! brick's texture), `geometry` (rays against boxes and slice planes, screen
+//! brick's texture), `lut` (the transfer function tabulated), `geometry` (rays against boxes and slice planes, screen
 //! footprints), `triangles` (ray-triangle hits through a uniform grid, surface
 //! shading).
 
@@ -17,9 +17,11 @@ mod check;
 pub mod compositor;
 mod geometry;
 pub mod image;
+mod lut;
 pub mod metrics;
 pub mod reference;
 mod sample;
+pub mod texture;
 pub mod transfer;
 mod triangles;
 

@@ -354,3 +354,27 @@ fn the_pipeline_tracks_the_reference() {
         assert!(m.rmse < bound, "{name}: {m:?}");
     }
 }
+
+/// Early ray termination: a dense fog (opacity 0.7 per slice, 8 slices) stops
+/// after 6 slices, at `1 - 0.3^6 >= OPAQUE`; the picture is within
+/// `1 - OPAQUE` of the whole sum `1 - 0.3^8`, in every channel. The opaque
+/// surface behind is then dropped too, within the same bound.
+#[test]
+fn rays_stop_once_opaque_within_the_bound() {
+    use super::compositor::OPAQUE;
+    let data = vec![0.5f32; 9 * 9 * 9];
+    let grid = Grid::scalar(crate::grid::Samples::F32(&data), [9, 9, 9]).unwrap();
+    let tf = TransferFunction::new(vec![(0.0, [1.0, 0.5, 0.25])], vec![(0.0, 0.7)]).unwrap();
+    let camera =
+        Camera::new([4.0, 4.0, 100.0], [4.0, 4.0, 4.0], [0.0, 1.0, 0.0], Projection::Parallel { scale: 3.0 }).unwrap();
+    let list = draw_list(grid.shape(), &camera, &[brick(0, [0; 3], [8; 3], 1)], SurfacePass::None);
+    let image = composite(&grid, &list, &tf, 6, 6, None).unwrap();
+    let (stopped, whole) = (1.0 - 0.3f64.powi(6), 1.0 - 0.3f64.powi(8));
+    assert!(stopped >= OPAQUE && 1.0 - 0.3f64.powi(5) < OPAQUE);
+    for p in &image.rgba {
+        assert!((p[3] as f64 - stopped).abs() < 1e-6, "{p:?}");
+        for (k, c) in [1.0, 0.5, 0.25, 1.0].iter().enumerate() {
+            assert!((p[k] as f64 - c * whole).abs() <= 1.0 - OPAQUE, "{p:?}");
+        }
+    }
+}

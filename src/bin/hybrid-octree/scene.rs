@@ -1,6 +1,7 @@
 //! The scene `render` and `bench render` share: the volume and its octree,
 //! an optional isosurface, a transfer function, a camera, and one frame made
-//! from a selection (select, DrawList, composite), timed step by step.
+//! from a selection (select, DrawList, texture upload, composite), timed step
+//! by step.
 
 use crate::build::build_octree;
 use clap::Args;
@@ -8,9 +9,10 @@ use hybrid_octree::camera::Camera;
 use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::{draw_list, DrawList, Scene};
-use hybrid_octree::render::compositor::composite;
+use hybrid_octree::render::compositor::composite_textures;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference, ReferenceOptions};
+use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, Selection};
 use hybrid_octree::surface::{Surface, SurfaceOptions};
@@ -108,7 +110,9 @@ pub struct Frame {
     pub image: Image,
     /// DrawList time (slabs, order, plan), ms.
     pub drawlist_ms: f64,
-    /// Compositing time, ms.
+    /// Texture upload time (the bricks' textures copied once per DrawList), ms.
+    pub upload_ms: f64,
+    /// Compositing time (the frame drawn from the uploaded textures), ms.
     pub composite_ms: f64,
 }
 
@@ -124,11 +128,14 @@ pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &Scen
     );
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
+    let textures = upload(grid, &list)?;
+    let upload_ms = started.elapsed().as_secs_f64() * 1e3;
+    let started = Instant::now();
     let colour = surface_colour(args);
-    let image =
-        composite(grid, &list, &scene.tf, args.width, args.height, scene.surface.as_ref().map(|s| (s, colour)))?;
+    let surface = scene.surface.as_ref().map(|s| (s, colour));
+    let image = composite_textures(&textures, &list, &scene.tf, args.width, args.height, surface)?;
     let composite_ms = started.elapsed().as_secs_f64() * 1e3;
-    Ok(Frame { list, image, drawlist_ms, composite_ms })
+    Ok(Frame { list, image, drawlist_ms, upload_ms, composite_ms })
 }
 
 /// The isosurface colour `[r, g, b, opacity]`.

@@ -1,0 +1,280 @@
+//! The "upload": every brick's texture copied once into its own contiguous
+//! array, as a GPU slicer uploads 3D textures before it draws.
+//!
+//! Texel `(i, j, k)` of a brick of `n` texels per axis is stored at
+//! `i + n_x (j + n_y k)` and holds the grid value at the texel position
+//! `min(lo + (i, j, k) stride, hi)` (see [`crate::select::Brick::texel_positions`]).
+//! The copy is `f32` when every copied value is exactly an `f32` (all `u8`,
+//! `i8`, `u16`, `i16` and `f32` grids), else `f64`: either way it holds the
+//! grid's values exactly, and [`Texture::value`] reconstructs T_p bit for bit
+//! (the trilinear formula and evaluation order of [`super::sample`]):
+//!
+//! ```text
+//! u = (x - lo) / stride,  clamped to [0, n - 1];  i0 = floor(u), i1 = min(i0 + 1, n - 1), t = u - i0
+//! v(ia, jb) = lerp(f(ia, jb, k0), f(ia, jb, k1), tz),  w(ia) = lerp(v(ia, j0), v(ia, j1), ty)
+//! T_p(x)    = lerp(w(i0), w(i1), tx)
+//! ```
+//!
+//! Textures are made once per DrawList, bricks in parallel; a frame reads
+//! only them, never the grid.
+
+use super::check::check_bricks;
+use crate::error::{Error, Result};
+use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
+use crate::octree::trilinear::lerp;
+use crate::plan::DrawList;
+use crate::select::Brick;
+use rayon::prelude::*;
+
+/// A stored texel: `f32` or `f64`, read back as `f64`.
+pub(crate) trait Texel: Copy + Send + Sync + 'static {
+    /// The texel holding `v`, `None` when `v` is not exactly representable.
+    fn exact(v: f64) -> Option<Self>;
+    /// The stored value.
+    fn get(self) -> f64;
+}
+
+impl Texel for f32 {
+    #[inline]
+    fn exact(v: f64) -> Option<f32> {
+        let t = v as f32;
+        (t as f64 == v).then_some(t)
+    }
+    #[inline(always)]
+    fn get(self) -> f64 {
+        self as f64
+    }
+}
+
+impl Texel for f64 {
+    #[inline]
+    fn exact(v: f64) -> Option<f64> {
+        Some(v)
+    }
+    #[inline(always)]
+    fn get(self) -> f64 {
+        self
+    }
+}
+
+/// One brick's texture: its texels, contiguous, x fastest.
+#[derive(Debug, Clone)]
+pub(crate) struct Texture<S> {
+    /// The brick's index box and stride (to check the texture against a DrawList).
+    lo: [usize; 3],
+    hi: [usize; 3],
+    stride: usize,
+    /// Texels per axis.
+    n: [usize; 3],
+    data: Vec<S>,
+}
+
+impl<S: Texel> Texture<S> {
+    /// Copies `brick`'s texels from `g` (the brick checked to lie in the grid);
+    /// `None` when a value is not exactly an `S`.
+    fn copy<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick) -> Option<Texture<S>> {
+        let pos = |a: usize, i: usize| (brick.lo[a] + i * brick.stride).min(brick.hi[a]);
+        let n = brick.texels;
+        let mut data = Vec::with_capacity(n[0] * n[1] * n[2]);
+        for k in 0..n[2] {
+            for j in 0..n[1] {
+                for i in 0..n[0] {
+                    data.push(S::exact(g.at(pos(0, i), pos(1, j), pos(2, k)))?);
+                }
+            }
+        }
+        Some(Texture { lo: brick.lo, hi: brick.hi, stride: brick.stride, n, data })
+    }
+
+    /// True when this is the texture of `brick`.
+    fn is_of(&self, brick: &Brick) -> bool {
+        (self.lo, self.hi, self.stride, self.n) == (brick.lo, brick.hi, brick.stride, brick.texels)
+    }
+
+    /// T_p at index-space point `x` (see the module documentation).
+    #[inline]
+    pub(crate) fn value(&self, x: [f64; 3]) -> f64 {
+        let mut i0 = [0; 3];
+        let mut step = [0; 3];
+        let mut t = [0.0; 3];
+        let pitch = [1, self.n[0], self.n[0] * self.n[1]];
+        for a in 0..3 {
+            let u = ((x[a] - self.lo[a] as f64) / self.stride as f64).clamp(0.0, (self.n[a] - 1) as f64);
+            let i = u as usize;
+            (i0[a], step[a], t[a]) = (i, if i + 1 < self.n[a] { pitch[a] } else { 0 }, u - i as f64);
+        }
+        let base = i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2];
+        let f = |o: usize| self.data[o].get();
+        let w = |o: usize| {
+            let v0 = lerp(f(o), f(o + step[2]), t[2]);
+            let v1 = lerp(f(o + step[1]), f(o + step[1] + step[2]), t[2]);
+            lerp(v0, v1, t[1])
+        };
+        lerp(w(base), w(base + step[0]), t[0])
+    }
+}
+
+/// Every brick's texture of a DrawList, in list order (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct Textures {
+    pub(crate) shape: GridShape,
+    pub(crate) texels: Texels,
+}
+
+/// The textures' storage type.
+#[derive(Debug, Clone)]
+pub(crate) enum Texels {
+    F32(Vec<Texture<f32>>),
+    F64(Vec<Texture<f64>>),
+}
+
+impl Textures {
+    /// Bytes of texel data.
+    pub fn bytes(&self) -> usize {
+        match &self.texels {
+            Texels::F32(t) => t.iter().map(|t| t.data.len() * 4).sum(),
+            Texels::F64(t) => t.iter().map(|t| t.data.len() * 8).sum(),
+        }
+    }
+
+    /// Checks that these are the textures of `list`'s bricks.
+    pub(crate) fn check(&self, list: &DrawList) -> Result<()> {
+        fn all<S: Texel>(t: &[Texture<S>], list: &DrawList) -> bool {
+            t.len() == list.bricks.len() && t.iter().zip(&list.bricks).all(|(t, d)| t.is_of(&d.brick))
+        }
+        let ok = match &self.texels {
+            Texels::F32(t) => all(t, list),
+            Texels::F64(t) => all(t, list),
+        };
+        if ok {
+            Ok(())
+        } else {
+            Err(Error::InvalidArgument(
+                "textures: they were uploaded for another DrawList; upload this DrawList's bricks".into(),
+            ))
+        }
+    }
+}
+
+/// Uploads `list`'s brick textures from `grid` (bricks in parallel).
+pub fn upload(grid: &Grid<'_>, list: &DrawList) -> Result<Textures> {
+    let shape = *grid.shape();
+    check_bricks(list, &shape)?;
+    Ok(Textures { shape, texels: grid.visit(Upload(list)) })
+}
+
+struct Upload<'a>(&'a DrawList);
+
+impl GridVisitor for Upload<'_> {
+    type Output = Texels;
+    fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Texels {
+        let bricks = &self.0.bricks;
+        let f32s: Option<Vec<Texture<f32>>> = bricks.par_iter().map(|d| Texture::copy(&g, &d.brick)).collect();
+        match f32s {
+            Some(t) => Texels::F32(t),
+            None => {
+                Texels::F64(bricks.par_iter().map(|d| Texture::copy(&g, &d.brick).expect("f64 holds f64")).collect())
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::{Grid, Samples};
+    use crate::octree::trilinear;
+    use crate::octree::NodeId;
+    use crate::render::sample::trilinear as grid_trilinear;
+
+    fn brick(lo: [usize; 3], hi: [usize; 3], stride: usize) -> Brick {
+        let texels = [0, 1, 2].map(|a| (hi[a] - lo[a]).div_ceil(stride) + 1);
+        Brick { node: NodeId(0), level: 0, p: 0, lo, hi, stride, texels, bytes: 0, error: 0.0, importance: 1.0 }
+    }
+
+    const BRICKS: [([usize; 3], [usize; 3], usize); 4] = [
+        ([0, 0, 0], [8, 8, 8], 4),
+        ([8, 0, 8], [10, 8, 10], 4),
+        ([4, 4, 4], [6, 6, 6], 1),
+        ([2, 4, 2], [10, 10, 8], 2),
+    ];
+
+    /// The copied texture is T_p: equal, bit for bit, to the octree's
+    /// definition at every grid point of the brick, clipped bricks included,
+    /// and to the grid read at the texel positions (no copy) everywhere between.
+    struct SameAsTp<S>(std::marker::PhantomData<S>);
+    impl<S: Texel> GridVisitor for SameAsTp<S> {
+        type Output = ();
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) {
+            for (lo, hi, s) in BRICKS {
+                let b = brick(lo, hi, s);
+                let tex = Texture::<S>::copy(&g, &b).unwrap();
+                for z in lo[2]..=hi[2] {
+                    for y in lo[1]..=hi[1] {
+                        for x in lo[0]..=hi[0] {
+                            let p = [x as f64, y as f64, z as f64];
+                            assert_eq!(tex.value(p), trilinear::eval(&g, s, x, y, z), "{lo:?} s {s} at {p:?}");
+                        }
+                    }
+                }
+                // Between texels and outside the brick (clamped): the same formula on the grid.
+                let pos = |a: usize, i: usize| (lo[a] + i * s).min(hi[a]);
+                for q in 0..500 {
+                    let r = |m: usize| ((q * m) % 997) as f64 / 997.0;
+                    let p = [0, 1, 2].map(|a| lo[a] as f64 - 1.0 + r(31 + 7 * a) * (hi[a] - lo[a] + 2) as f64);
+                    let u = [0, 1, 2].map(|a| (p[a] - lo[a] as f64) / s as f64);
+                    let direct = grid_trilinear(b.texels, u, |i, j, k| g.at(pos(0, i), pos(1, j), pos(2, k)));
+                    assert_eq!(tex.value(p).to_bits(), direct.to_bits(), "{lo:?} s {s} at {p:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn brick_texture_is_t_p() {
+        let data: Vec<f64> = (0..11 * 11 * 11).map(|i| ((i * 7919) % 101) as f64 / 100.0).collect();
+        let g = Grid::scalar(Samples::F64(&data), [11, 11, 11]).unwrap();
+        g.visit(SameAsTp::<f64>(std::marker::PhantomData));
+        let data: Vec<f32> = data.iter().map(|&v| v as f32).collect();
+        let g = Grid::scalar(Samples::F32(&data), [11, 11, 11]).unwrap();
+        g.visit(SameAsTp::<f32>(std::marker::PhantomData));
+    }
+
+    /// f32 storage only when exact: an f32 grid uploads as f32, an f64 grid
+    /// of values that are not f32s as f64.
+    #[test]
+    fn storage_is_exact() {
+        use crate::camera::Camera;
+        use crate::plan::{BrickDraw, DrawList, Plan, SurfacePass};
+        let list = |b: Brick| DrawList {
+            plan: Plan {
+                volume: true,
+                surface: SurfacePass::None,
+                shading: false,
+                skipped_bricks: 0,
+                passes: Vec::new(),
+            },
+            camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),
+            bricks: vec![BrickDraw {
+                brick: b,
+                world_lo: [0.0; 3],
+                world_hi: [4.0; 3],
+                slice_spacing: 1.0,
+                slices: Vec::new(),
+                batches: Vec::new(),
+            }],
+            opaque_triangles: Vec::new(),
+            reference_spacing: 1.0,
+        };
+        let l = list(brick([0; 3], [4; 3], 1));
+        let f64s: Vec<f64> = (0..125).map(|i| i as f64 / 10.0).collect();
+        let t = upload(&Grid::scalar(Samples::F64(&f64s), [5, 5, 5]).unwrap(), &l).unwrap();
+        assert!(matches!(t.texels, Texels::F64(_)) && t.bytes() == 125 * 8);
+        let f32s: Vec<f32> = (0..125).map(|i| i as f32 / 10.0).collect();
+        let t = upload(&Grid::scalar(Samples::F32(&f32s), [5, 5, 5]).unwrap(), &l).unwrap();
+        assert!(matches!(t.texels, Texels::F32(_)) && t.bytes() == 125 * 4);
+        t.check(&l).unwrap();
+        let e = t.check(&list(brick([0; 3], [4; 3], 2))).unwrap_err().to_string();
+        assert!(e.contains("another DrawList"), "{e}");
+    }
+}
