@@ -118,7 +118,7 @@ pub fn composite(
         check_colour(colour)?;
         opaque = TriangleGrid::new(s, &shape, list.opaque_triangles.iter().copied()).map(|g| (s, g, colour));
         let mut ids: Vec<u32> =
-            list.bricks.iter().flat_map(|b| b.batches.iter().flat_map(|t| t.triangles.iter().copied())).collect();
+            list.bricks.iter().flat_map(|b| b.batches.iter().flat_map(|t| t.triangles.clone())).collect();
         ids.sort_unstable();
         ids.dedup();
         translucent = TriangleGrid::new(s, &shape, ids.into_iter()).map(|g| (s, g, colour, batches(list, s)));
@@ -141,7 +141,7 @@ fn batches(list: &DrawList, surface: &Surface) -> Batches {
     let mut pairs: Vec<(u32, u32, u32)> = Vec::new();
     for (b, draw) in list.bricks.iter().enumerate() {
         for (k, batch) in draw.batches.iter().enumerate() {
-            pairs.extend(batch.triangles.iter().map(|&t| (t, b as u32, k as u32)));
+            pairs.extend(batch.triangles.clone().map(|t| (t, b as u32, k as u32)));
         }
     }
     pairs.sort_unstable();

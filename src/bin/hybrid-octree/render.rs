@@ -52,6 +52,7 @@ struct RenderReport {
     skipped_bricks: usize,
     warning: Option<String>,
     select_ms: f64,
+    slab_polygons_ms: f64,
     drawlist_ms: f64,
     composite_ms: f64,
     rmse: Option<f64>,
@@ -94,6 +95,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             skipped_bricks: f.list.plan.skipped_bricks,
             warning: selection.warning.clone(),
             select_ms,
+            slab_polygons_ms: f.slab_polygons_ms,
             drawlist_ms: f.drawlist_ms,
             composite_ms: f.composite_ms,
             rmse,
@@ -119,8 +121,8 @@ fn print_text(r: &RenderReport) {
         r.max_error
     );
     println!(
-        "times:           select {:.1} ms, DrawList {:.1} ms, composite {:.1} ms",
-        r.select_ms, r.drawlist_ms, r.composite_ms
+        "times:           select {:.1} ms, SlabPolygons {:.1} ms, DrawList {:.1} ms, composite {:.1} ms",
+        r.select_ms, r.slab_polygons_ms, r.drawlist_ms, r.composite_ms
     );
     if let (Some(rmse), Some(psnr), Some(ssim)) = (r.rmse, r.psnr, r.ssim) {
         println!(
