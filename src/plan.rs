@@ -269,6 +269,42 @@ mod tests {
     }
 
     #[test]
+    fn slab_polygons_made_once_give_the_same_list_for_each_view() {
+        let f = fixture();
+        let grid = f.volume.grid(None).unwrap();
+        let shape = grid.shape();
+        let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
+        let selection = select(&f.octree, &options, |_, _| true).unwrap();
+        let polygons = crate::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
+        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
+        for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
+            let camera =
+                Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), azimuth, elevation, parallel).unwrap();
+            let once = draw_list(&f.octree, shape, &selection, &camera, &scene, Some(&polygons));
+            assert_eq!(once, draw_list(&f.octree, shape, &selection, &camera, &scene, None));
+            assert!(once.bricks.iter().any(|b| !b.batches.is_empty()));
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "made for another selection or surface")]
+    fn slab_polygons_of_another_selection_are_refused() {
+        let f = fixture();
+        let grid = f.volume.grid(None).unwrap();
+        let shape = grid.shape();
+        // Other nodes (a SlabPolygons depends on the bricks' nodes only, not their strides).
+        let small = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
+        let all = select(&f.octree, &small, |_, _| true).unwrap();
+        let fewer = select(&f.octree, &SelectOptions::new(200_000, 0.0), |_, _| true).unwrap();
+        let nodes = |s: &crate::select::Selection| s.bricks.iter().map(|b| b.node).collect::<Vec<_>>();
+        assert_ne!(nodes(&all), nodes(&fewer));
+        let polygons = crate::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
+        let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
+        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
+        draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons));
+    }
+
+    #[test]
     fn transparent_nodes_cost_no_texture_and_a_hidden_surface_no_pass() {
         let f = fixture();
         let l =

@@ -225,8 +225,8 @@ impl SlabPolygons {
         self.batches.len()
     }
 
-    /// Whether this was made for `selection`'s bricks and a surface of
-    /// `polygons` polygons.
+    /// Whether this was made for `selection`'s bricks (their nodes, in
+    /// order: strides do not matter) and a surface of `polygons` polygons.
     pub fn fits(&self, selection: &Selection, polygons: usize) -> bool {
         self.polygons == polygons
             && self.bricks.len() == selection.bricks.len()
