@@ -314,6 +314,9 @@ mod tests {
     /// A triangle in world space with its surface triangle id.
     type WorldTriangle = (u32, [[f64; 3]; 3]);
 
+    /// A triangle drawn in a slab: (triangle, slab, clip).
+    type Drawn = (u32, usize, Option<(f64, f64)>);
+
     fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
         crate::camera::test_camera(position, focal, parallel.then_some(20.0))
     }
@@ -376,7 +379,7 @@ mod tests {
     fn areas(
         camera: &Camera,
         index: &HashMap<u32, [[f64; 3]; 3]>,
-        drawn: impl IntoIterator<Item = (u32, usize, Option<(f64, f64)>)>,
+        drawn: impl IntoIterator<Item = Drawn>,
     ) -> HashMap<(u32, usize), f64> {
         let mut out: HashMap<(u32, usize), f64> = HashMap::new();
         for (t, slab, clip) in drawn {
@@ -390,7 +393,7 @@ mod tests {
     /// vertex depths `[d_lo, d_hi]`: `near = slab(d_lo)`, `far = #{ i :
     /// slices[i] >= d_hi }`, or `slab(d_hi)` if flat), as (triangle, slab,
     /// clip): the reference the batches must draw the same areas as.
-    fn per_triangle(camera: &Camera, slices: &[f64], tris: &[WorldTriangle]) -> Vec<(u32, usize, Option<(f64, f64)>)> {
+    fn per_triangle(camera: &Camera, slices: &[f64], tris: &[WorldTriangle]) -> Vec<Drawn> {
         let mut out = Vec::new();
         for &(id, tri) in tris {
             let d = tri.map(|p| camera.depth(p));
