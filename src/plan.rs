@@ -51,8 +51,10 @@ pub struct Batch {
     /// `s` (slices back to front, see [`BrickDraw::slices`]); slab 0 is behind
     /// the first slice, slab `n` in front of the last (see [`crate::slab`]).
     pub slab: usize,
-    /// Surface triangle ids.
-    pub triangles: Vec<u32>,
+    /// Surface triangle ids (polygon ids of the surface, contiguous: the
+    /// polygons of one or more terminal surface nodes, see
+    /// [`crate::slab::SlabPolygons`]).
+    pub triangles: std::ops::Range<u32>,
     /// `Some((near, far))`: clip to view depths `near <= depth < far`
     /// (batches whose triangles span more than this slab).
     pub clip: Option<(f64, f64)>,
@@ -136,22 +138,45 @@ pub fn plan(selection: &crate::select::Selection, scene: &Scene<'_>) -> Plan {
 /// to front with their slices (every `stride` samples along the view: `d =
 /// stride * min(spacing)`, against `d0 = min(spacing)`), and the surface
 /// passes the plan asks for.
+///
+/// Only view-dependent work is done here (order, slices, UpdatePosition of
+/// the surface batches, see [`crate::slab`]). A translucent surface is drawn
+/// from `polygons`, the selection's [`SlabPolygons`](crate::slab::SlabPolygons)
+/// made once per selection and surface; without it they are made here, every
+/// call.
+///
+/// # Panics
+///
+/// If `polygons` was made for other bricks than `selection`'s or for a
+/// surface of another polygon count than `scene.surface`.
 pub fn draw_list(
     octree: &crate::octree::VolumeOctree,
     shape: &crate::grid::GridShape,
     selection: &crate::select::Selection,
     camera: &Camera,
     scene: &Scene<'_>,
+    polygons: Option<&crate::slab::SlabPolygons>,
 ) -> DrawList {
     let plan = plan(selection, scene);
     let d0 = shape.spacing.iter().copied().fold(f64::INFINITY, f64::min);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
     let order = crate::order::brick_order(camera, octree, shape, &ids, true);
-    // Surface triangles by brick (translucent only): a terminal surface node
-    // lies inside exactly one brick of the cut: its own or an ancestor's.
-    let per_brick = match (plan.surface, scene.surface) {
-        (SurfacePass::Translucent, Some(s)) => crate::slab::triangles_by_brick(octree, s, shape, &ids),
-        _ => vec![Vec::new(); selection.bricks.len()],
+    let made;
+    let polygons = match (plan.surface, scene.surface) {
+        (SurfacePass::Translucent, Some(s)) => Some(match polygons {
+            Some(p) => {
+                assert!(
+                    p.fits(selection, s.polygon_count()),
+                    "draw_list: the SlabPolygons were made for another selection or surface"
+                );
+                p
+            }
+            None => {
+                made = crate::slab::SlabPolygons::new(octree, s, shape, selection);
+                &made
+            }
+        }),
+        _ => None,
     };
     let bricks = order
         .par_iter()
@@ -161,10 +186,9 @@ pub fn draw_list(
             let world_hi = shape.world(brick.hi.map(|v| v as f64));
             let slice_spacing = brick.stride as f64 * d0;
             let slices = crate::slab::slice_depths(camera, world_lo, world_hi, slice_spacing);
-            let batches = if per_brick[i].is_empty() {
-                Vec::new()
-            } else {
-                crate::slab::assign_batches(camera, &slices, &per_brick[i])
+            let batches = match polygons.map(|p| p.brick(i)) {
+                Some(b) if !b.is_empty() => crate::slab::assign_batches(camera, &slices, b),
+                _ => Vec::new(),
             };
             BrickDraw { brick, world_lo, world_hi, slice_spacing, slices, batches }
         })
@@ -205,7 +229,7 @@ mod tests {
         let selection = select(&f.octree, &options, visible).unwrap();
         let shape = grid.shape();
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
-        draw_list(&f.octree, shape, &selection, &camera, scene)
+        draw_list(&f.octree, shape, &selection, &camera, scene, None)
     }
 
     #[test]
@@ -236,12 +260,48 @@ mod tests {
         let mut seen = vec![false; f.surface.polygon_count()];
         for b in &l.bricks {
             for batch in &b.batches {
-                for &t in &batch.triangles {
+                for t in batch.triangles.clone() {
                     seen[t as usize] = true;
                 }
             }
         }
         assert!(seen.iter().all(|&s| s), "a triangle is in no batch");
+    }
+
+    #[test]
+    fn slab_polygons_made_once_give_the_same_list_for_each_view() {
+        let f = fixture();
+        let grid = f.volume.grid(None).unwrap();
+        let shape = grid.shape();
+        let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
+        let selection = select(&f.octree, &options, |_, _| true).unwrap();
+        let polygons = crate::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
+        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
+        for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
+            let camera =
+                Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), azimuth, elevation, parallel).unwrap();
+            let once = draw_list(&f.octree, shape, &selection, &camera, &scene, Some(&polygons));
+            assert_eq!(once, draw_list(&f.octree, shape, &selection, &camera, &scene, None));
+            assert!(once.bricks.iter().any(|b| !b.batches.is_empty()));
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "made for another selection or surface")]
+    fn slab_polygons_of_another_selection_are_refused() {
+        let f = fixture();
+        let grid = f.volume.grid(None).unwrap();
+        let shape = grid.shape();
+        // Other nodes (a SlabPolygons depends on the bricks' nodes only, not their strides).
+        let small = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
+        let all = select(&f.octree, &small, |_, _| true).unwrap();
+        let fewer = select(&f.octree, &SelectOptions::new(200_000, 0.0), |_, _| true).unwrap();
+        let nodes = |s: &crate::select::Selection| s.bricks.iter().map(|b| b.node).collect::<Vec<_>>();
+        assert_ne!(nodes(&all), nodes(&fewer));
+        let polygons = crate::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
+        let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
+        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
+        draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons));
     }
 
     #[test]

@@ -39,36 +39,40 @@
 //! slice, drawn before it. Slab 0 and slab `n` are unbounded, so no triangle
 //! is ever lost, wherever it lies; without slices everything is slab 0.
 //!
-//! A triangle with vertex depths in `[d_lo, d_hi]` covers the slabs
+//! # Per selection and per view
+//!
+//! The paper splits the work in two. Once per selection, the slab
+//! integration phase builds the [`SlabPolygons`]: each selected brick's
+//! polygons grouped by terminal surface node into batches, each with the
+//! tight world box of its vertices (view independent). For every new view,
+//! UpdatePosition ([`assign_batches`]) only places each batch, by the view
+//! depths of its box's corners, `[d_lo, d_hi]` (widened by a few rounding
+//! units `r`), into the slabs it covers:
 //!
 //! ```text
-//! far  = #{ i : slices[i] >= d_hi }    if d_lo < d_hi    (its points at d_hi have no area)
-//!      = slab(d_hi)                    if d_lo = d_hi    (flat: lying in one plane of constant depth)
-//! near = slab(d_lo)
+//! far  = slab(d_hi + r)
+//! near = slab(d_lo - r)
 //! ```
 //!
-//! and goes, if `far = near`, unclipped into that slab's batch (`clip =
-//! None`), else into every slab `far ..= near` with `clip = Some((near_s,
-//! far_s))`, the slab's interval (infinite for the two outer slabs). Each
-//! point of the triangle is then drawn in exactly one slab: a flat triangle
-//! lying on a slice plane is drawn once, in the slab behind that slice, and a
-//! vertex on a slice plane does not pull the triangle into the slab on the
-//! other side.
-//!
-//! [`assign_batches`] is UpdatePosition: a pure function of the camera,
-//! called again whenever the camera moves.
+//! If `far = near` the batch is drawn unclipped in that slab (`clip =
+//! None`), else in every slab `far ..= near` with `clip = Some((near_s,
+//! far_s))`, the slab's interval (infinite for the two outer slabs). As the
+//! intervals are half-open and tile the depth axis, each point of each
+//! triangle is drawn in exactly one slab: a flat triangle lying on a slice
+//! plane once, in the slab behind that slice. The cost per view is
+//! O(batches); no triangle is read or copied (a batch names its triangles by
+//! a range of surface polygon ids).
 
 use crate::camera::Camera;
 use crate::grid::GridShape;
 use crate::octree::{NodeId, VolumeOctree};
 use crate::plan::Batch;
+use crate::select::Selection;
 use crate::surface::Surface;
 use crate::vec3::{dot, sub};
 use rayon::prelude::*;
 use std::collections::HashMap;
-
-/// A triangle in world space with its surface triangle id.
-pub type WorldTriangle = (u32, [[f64; 3]; 3]);
+use std::ops::Range;
 
 /// View depths `k * spacing` of the view-aligned slice planes through the
 /// box `[world_lo, world_hi]`, back to front (largest depth first): those
@@ -124,106 +128,177 @@ pub fn slab_interval(slices: &[f64], slab: usize) -> (f64, f64) {
     (near, far)
 }
 
-/// The batches of `triangles` (world space, with their ids) for a brick
-/// sliced at `slices` (view depths, back to front, strictly decreasing, as
-/// [`slice_depths`] gives them), seen from `camera`. This is UpdatePosition:
-/// call it again for a new camera.
-///
-/// A triangle within one slab goes into that slab's unclipped batch; one
-/// spanning slabs goes into the clipped batch of every slab it spans, with
-/// `clip = Some((near, far))` the slab's interval ([`slab_interval`]; the
-/// outer slabs' intervals are unbounded: `-inf` or `+inf`). See the module
-/// documentation for the rules. Batches come back to front: by slab, and in a
-/// slab the unclipped batch before the clipped one; empty batches are left
-/// out; triangles keep their input order. A triangle with a non-finite vertex
-/// goes unclipped into slab 0.
-pub fn assign_batches(camera: &Camera, slices: &[f64], triangles: &[WorldTriangle]) -> Vec<Batch> {
-    debug_assert!(slices.windows(2).all(|w| w[0] > w[1]), "slices must be back to front: strictly decreasing");
-    let f = camera.forward();
-    let depth = |p: [f64; 3]| dot(sub(p, camera.position), f);
-    let n = slices.len();
-    // (unclipped, clipped) triangle ids per slab.
-    let mut slabs: Vec<(Vec<u32>, Vec<u32>)> = vec![(Vec::new(), Vec::new()); n + 1];
-    for &(id, tri) in triangles {
-        let d = tri.map(depth);
-        let d_lo = d[0].min(d[1]).min(d[2]);
-        let d_hi = d[0].max(d[1]).max(d[2]);
-        // near = slab(d_lo); far = #{slices >= d_hi} unless flat (then slab(d_hi)).
-        let near = slab_of(slices, d_lo);
-        let far = if d_lo < d_hi { slices.partition_point(|&s| s >= d_hi) } else { near };
-        if far == near {
-            slabs[near].0.push(id);
-        } else {
-            for slab in &mut slabs[far..=near] {
-                slab.1.push(id);
-            }
-        }
-    }
-    let mut batches = Vec::new();
-    for (slab, (whole, clipped)) in slabs.into_iter().enumerate() {
-        if !whole.is_empty() {
-            batches.push(Batch { slab, triangles: whole, clip: None });
-        }
-        if !clipped.is_empty() {
-            batches.push(Batch { slab, triangles: clipped, clip: Some(slab_interval(slices, slab)) });
-        }
-    }
-    batches
+/// One batch of [`SlabPolygons`]: the polygons of one terminal surface node
+/// (surface polygon ids `triangles`, contiguous in the surface, see
+/// `Surface::node_ranges`) and the tight world box of their vertices.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolygonBatch {
+    /// Surface polygon ids.
+    pub triangles: Range<u32>,
+    /// World box of the triangles' vertices (smallest corner).
+    pub lo: [f64; 3],
+    /// World box of the triangles' vertices (largest corner).
+    pub hi: [f64; 3],
 }
 
-/// The surface triangles of each brick of a cut, in world space with their
-/// ids: `out[i]` for `bricks[i]`. A terminal surface node lies inside exactly
-/// one brick of the cut, its own or an ancestor's, found by walking up the
-/// octree from the node (`(level, c) -> (level - 1, c / 2)`); nodes under no
-/// brick (left out of the cut) give no triangles. Parallel over surface nodes
-/// and over bricks; triangles keep surface order within a brick.
-pub fn triangles_by_brick(
-    octree: &VolumeOctree,
-    surface: &Surface,
-    shape: &GridShape,
-    bricks: &[NodeId],
-) -> Vec<Vec<WorldTriangle>> {
-    let index: HashMap<NodeId, usize> = bricks.iter().enumerate().map(|(i, &id)| (id, i)).collect();
-    let layout = octree.layout();
-    let brick_of: Vec<Option<usize>> = surface
-        .node_ranges
-        .par_iter()
-        .map(|&(node, _, _)| {
-            let (mut level, mut c) = layout.locate(node);
-            loop {
-                if let Some(&b) = index.get(&layout.id(level, c)) {
-                    return Some(b);
+/// The SlabPolygons of a selection (paper 1, section 4.1: built once by the
+/// slab integration phase, "the set of surface nodes" of each brick): per
+/// selected brick, its surface polygons grouped by terminal surface node into
+/// [`PolygonBatch`]es with their world boxes. View independent: make it once
+/// per selection (and surface); [`assign_batches`] (UpdatePosition) then
+/// places the batches into the slabs of each new view in O(batches), without
+/// touching a triangle.
+///
+/// A terminal surface node lies inside exactly one brick of the cut, its own
+/// or an ancestor's, found by walking up the octree from the node (`(level,
+/// c) -> (level - 1, c / 2)`); nodes under no brick (left out of the cut)
+/// give no batch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SlabPolygons {
+    /// The bricks' nodes, in selection order.
+    bricks: Vec<NodeId>,
+    /// Brick `i`'s batches are `batches[starts[i]..starts[i + 1]]`.
+    starts: Vec<u32>,
+    /// All batches, brick after brick, in surface order within a brick.
+    batches: Vec<PolygonBatch>,
+    /// The surface's polygon count (to check the surface given with it).
+    polygons: usize,
+}
+
+impl SlabPolygons {
+    /// The SlabPolygons of `selection`'s bricks for `surface` (see the type
+    /// documentation). Parallel over surface nodes; deterministic.
+    pub fn new(octree: &VolumeOctree, surface: &Surface, shape: &GridShape, selection: &Selection) -> Self {
+        let bricks: Vec<NodeId> = selection.bricks.iter().map(|b| b.node).collect();
+        let index: HashMap<NodeId, u32> = bricks.iter().enumerate().map(|(i, &id)| (id, i as u32)).collect();
+        let layout = octree.layout();
+        // (brick, batch) per surface node with polygons.
+        let mut found: Vec<(u32, PolygonBatch)> = surface
+            .node_ranges
+            .par_iter()
+            .filter(|&&(_, first, end)| first < end)
+            .filter_map(|&(node, first, end)| {
+                let (mut level, mut c) = layout.locate(node);
+                let brick = loop {
+                    if let Some(&b) = index.get(&layout.id(level, c)) {
+                        break b;
+                    }
+                    if level == 0 {
+                        return None;
+                    }
+                    level -= 1;
+                    c = c.map(|v| v / 2);
+                };
+                let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+                for t in first..end {
+                    for &v in surface.polygon(t as usize) {
+                        let p = shape.world(surface.points[v as usize]);
+                        for a in 0..3 {
+                            lo[a] = lo[a].min(p[a]);
+                            hi[a] = hi[a].max(p[a]);
+                        }
+                    }
                 }
-                if level == 0 {
-                    return None;
-                }
-                level -= 1;
-                c = c.map(|v| v / 2);
-            }
-        })
-        .collect();
-    let mut ranges_of: Vec<Vec<usize>> = vec![Vec::new(); bricks.len()];
-    for (r, b) in brick_of.iter().enumerate() {
-        if let Some(b) = b {
-            ranges_of[*b].push(r);
+                Some((brick, PolygonBatch { triangles: first..end, lo, hi }))
+            })
+            .collect();
+        // Stable: surface order within a brick.
+        found.sort_by_key(|e| e.0);
+        let mut starts = vec![0u32; bricks.len() + 1];
+        for &(b, _) in &found {
+            starts[b as usize + 1] += 1;
+        }
+        for i in 1..starts.len() {
+            starts[i] += starts[i - 1];
+        }
+        let batches = found.into_iter().map(|e| e.1).collect();
+        SlabPolygons { bricks, starts, batches, polygons: surface.polygon_count() }
+    }
+
+    /// The batches of brick `i` (selection order).
+    pub fn brick(&self, i: usize) -> &[PolygonBatch] {
+        &self.batches[self.starts[i] as usize..self.starts[i + 1] as usize]
+    }
+
+    /// Number of batches over all bricks.
+    pub fn batch_count(&self) -> usize {
+        self.batches.len()
+    }
+
+    /// Whether this was made for `selection`'s bricks (their nodes, in
+    /// order: strides do not matter) and a surface of `polygons` polygons.
+    pub fn fits(&self, selection: &Selection, polygons: usize) -> bool {
+        self.polygons == polygons
+            && self.bricks.len() == selection.bricks.len()
+            && self.bricks.iter().zip(&selection.bricks).all(|(&a, b)| a == b.node)
+    }
+}
+
+/// UpdatePosition (paper 1, section 4.1: "determines the new slab position
+/// by applying the viewing transformation" to each surface node): the slab
+/// batches of one brick's [`PolygonBatch`]es for a brick sliced at `slices`
+/// (view depths, back to front, strictly decreasing, as [`slice_depths`]
+/// gives them), seen from `camera`. A pure function of the camera, O(batches):
+/// call it again for a new view.
+///
+/// A batch's depth range `[d_lo, d_hi]` is that of the 8 corners of its
+/// box, widened by a few rounding units `r` (so that every vertex depth,
+/// however rounded, lies inside). It covers the slabs
+///
+/// ```text
+/// far = slab(d_hi + r),   near = slab(d_lo - r)
+/// ```
+///
+/// and goes, if `far = near`, unclipped into that slab (`clip = None`), else
+/// into every slab `far ..= near` with `clip = Some((near_s, far_s))`, the
+/// slab's interval ([`slab_interval`]; the outer slabs' are unbounded). As
+/// the clip intervals are half-open (`near_s <= depth < far_s`) and tile the
+/// depth axis, every point of every triangle is drawn in exactly one slab,
+/// a flat triangle on a slice plane included (in the slab behind it).
+///
+/// Batches come back to front: by slab, and in a slab the unclipped ones
+/// before the clipped ones, in the input order; consecutive batches of the
+/// same slab and clip whose triangle ranges touch are merged into one. A
+/// batch with a non-finite box goes unclipped into slab 0.
+pub fn assign_batches(camera: &Camera, slices: &[f64], batches: &[PolygonBatch]) -> Vec<Batch> {
+    debug_assert!(slices.windows(2).all(|w| w[0] > w[1]), "slices must be back to front: strictly decreasing");
+    let f = camera.forward();
+    let e = camera.position;
+    // (slab * 2 + clipped, triangles), then stably sorted: back to front.
+    let mut placed: Vec<(usize, Range<u32>)> = Vec::with_capacity(batches.len());
+    for b in batches {
+        // The nearest and farthest corners: per axis the side towards and away from the eye.
+        let (mut d_lo, mut d_hi, mut size) = (0.0, 0.0, 0.0);
+        for a in 0..3 {
+            let (u, v) = ((b.lo[a] - e[a]) * f[a], (b.hi[a] - e[a]) * f[a]);
+            d_lo += u.min(v);
+            d_hi += u.max(v);
+            size += u.abs().max(v.abs());
+        }
+        let r = 16.0 * f64::EPSILON * size;
+        let (far, near) = (slab_of(slices, d_hi + r), slab_of(slices, d_lo - r));
+        if !(d_lo.is_finite() && d_hi.is_finite()) {
+            placed.push((0, b.triangles.clone()));
+        } else if far == near {
+            placed.push((2 * near, b.triangles.clone()));
+        } else {
+            placed.extend((far..=near).map(|s| (2 * s + 1, b.triangles.clone())));
         }
     }
-    ranges_of
-        .par_iter()
-        .map(|ranges| {
-            ranges
-                .iter()
-                .flat_map(|&r| {
-                    let (_, first, end) = surface.node_ranges[r];
-                    (first..end).map(move |t| {
-                        let ids = surface.polygon(t as usize);
-                        debug_assert_eq!(ids.len(), 3, "surface polygons are triangles");
-                        (t, [0, 1, 2].map(|k| shape.world(surface.points[ids[k] as usize])))
-                    })
-                })
-                .collect()
-        })
-        .collect()
+    placed.sort_by_key(|p| p.0);
+    let mut out: Vec<Batch> = Vec::with_capacity(placed.len());
+    for (key, triangles) in placed {
+        let (slab, clipped) = (key / 2, key % 2 == 1);
+        if let Some(last) = out.last_mut() {
+            if last.slab == slab && last.clip.is_some() == clipped && last.triangles.end == triangles.start {
+                last.triangles.end = triangles.end;
+                continue;
+            }
+        }
+        let clip = clipped.then(|| slab_interval(slices, slab));
+        out.push(Batch { slab, triangles, clip });
+    }
+    out
 }
 
 #[cfg(test)]
@@ -235,6 +310,12 @@ mod tests {
     use crate::select::{select, SelectOptions};
     use crate::surface::SurfaceOptions;
     use crate::vec3::cross;
+
+    /// A triangle in world space with its surface triangle id.
+    type WorldTriangle = (u32, [[f64; 3]; 3]);
+
+    /// A triangle drawn in a slab: (triangle, slab, clip).
+    type Drawn = (u32, usize, Option<(f64, f64)>);
 
     fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
         crate::camera::test_camera(position, focal, parallel.then_some(20.0))
@@ -276,47 +357,120 @@ mod tests {
         polygon_area(&clip_plane(camera, poly, far, -1.0))
     }
 
-    /// The drawn area per triangle must be its area: nothing lost, nothing
-    /// drawn twice. Also checks order, intervals and that unclipped
-    /// triangles lie in their slab. Returns the batches.
-    fn check_areas(camera: &Camera, slices: &[f64], tris: &[WorldTriangle]) -> Vec<Batch> {
-        assert!(slices.windows(2).all(|w| w[0] > w[1]));
-        let batches = assign_batches(camera, slices, tris);
-        assert!(batches.windows(2).all(|w| w[0].slab < w[1].slab || (w[0].slab == w[1].slab && w[0].clip.is_none())));
-        let index: std::collections::HashMap<u32, [[f64; 3]; 3]> = tris.iter().copied().collect();
-        let mut drawn: std::collections::HashMap<u32, f64> = std::collections::HashMap::new();
-        for b in &batches {
-            let (near, far) = slab_interval(slices, b.slab);
-            for &t in &b.triangles {
-                let tri = index[&t];
-                let a = match b.clip {
-                    None => {
-                        let d = tri.map(|p| camera.depth(p));
-                        let (lo, hi) = (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]));
-                        assert!(
-                            near <= lo && hi <= far,
-                            "unclipped triangle {t} ({lo}, {hi}) outside slab ({near}, {far})"
-                        );
-                        if lo == hi {
-                            assert!(hi < far, "a flat triangle on the far plane belongs to the slab behind");
-                        }
-                        polygon_area(&tri)
-                    }
-                    Some(clip) => {
-                        assert_eq!(clip, (near, far));
-                        clipped_area(camera, tri, near, far)
-                    }
-                };
-                *drawn.entry(t).or_default() += a;
+    /// The area of `tri` drawn in a slab: all of it unclipped, else its part
+    /// with `near <= depth < far` (a flat triangle wholly or not at all, by
+    /// the half-open rule; for the others the planes have no area).
+    fn drawn_area(camera: &Camera, tri: [[f64; 3]; 3], clip: Option<(f64, f64)>) -> f64 {
+        let d = tri.map(|p| camera.depth(p));
+        match clip {
+            None => polygon_area(&tri),
+            Some((near, far)) if d[0] == d[1] && d[1] == d[2] => {
+                if near <= d[0] && d[0] < far {
+                    polygon_area(&tri)
+                } else {
+                    0.0
+                }
+            }
+            Some((near, far)) => clipped_area(camera, tri, near, far),
+        }
+    }
+
+    /// The drawn area of each (triangle, slab) pair.
+    fn areas(
+        camera: &Camera,
+        index: &HashMap<u32, [[f64; 3]; 3]>,
+        drawn: impl IntoIterator<Item = Drawn>,
+    ) -> HashMap<(u32, usize), f64> {
+        let mut out: HashMap<(u32, usize), f64> = HashMap::new();
+        for (t, slab, clip) in drawn {
+            *out.entry((t, slab)).or_default() += drawn_area(camera, index[&t], clip);
+        }
+        out.retain(|_, a| *a > 0.0);
+        out
+    }
+
+    /// The old per-triangle assignment (every triangle on its own, by its
+    /// vertex depths `[d_lo, d_hi]`: `near = slab(d_lo)`, `far = #{ i :
+    /// slices[i] >= d_hi }`, or `slab(d_hi)` if flat), as (triangle, slab,
+    /// clip): the reference the batches must draw the same areas as.
+    fn per_triangle(camera: &Camera, slices: &[f64], tris: &[WorldTriangle]) -> Vec<Drawn> {
+        let mut out = Vec::new();
+        for &(id, tri) in tris {
+            let d = tri.map(|p| camera.depth(p));
+            let (d_lo, d_hi) = (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]));
+            let near = slab_of(slices, d_lo);
+            let far = if d_lo < d_hi { slices.partition_point(|&s| s >= d_hi) } else { near };
+            if far == near {
+                out.push((id, near, None));
+            } else {
+                out.extend((far..=near).map(|s| (id, s, Some(slab_interval(slices, s)))));
             }
         }
+        out
+    }
+
+    /// Batches of `size` consecutive triangles (ids consecutive, see
+    /// [`random_triangles`]), each with its vertices' box.
+    fn batches_of(tris: &[WorldTriangle], size: usize) -> Vec<PolygonBatch> {
+        tris.chunks(size)
+            .map(|c| {
+                let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+                for p in c.iter().flat_map(|t| t.1) {
+                    lo = [0, 1, 2].map(|a| lo[a].min(p[a]));
+                    hi = [0, 1, 2].map(|a| hi[a].max(p[a]));
+                }
+                PolygonBatch { triangles: c[0].0..c[c.len() - 1].0 + 1, lo, hi }
+            })
+            .collect()
+    }
+
+    /// The batches of `batches` in `slices`, checked: back to front,
+    /// intervals, unclipped triangles inside their slab, and per triangle
+    /// the drawn area is its area (nothing lost, nothing drawn twice) and,
+    /// slab by slab, what the old per-triangle assignment draws.
+    fn check_areas(camera: &Camera, slices: &[f64], tris: &[WorldTriangle], batches: &[PolygonBatch]) -> Vec<Batch> {
+        assert!(slices.windows(2).all(|w| w[0] > w[1]));
+        let out = assign_batches(camera, slices, batches);
+        assert!(out.windows(2).all(|w| w[0].slab < w[1].slab || (w[0].slab == w[1].slab && w[0].clip <= w[1].clip)));
+        let index: HashMap<u32, [[f64; 3]; 3]> = tris.iter().copied().collect();
+        let mut drawn = Vec::new();
+        for b in &out {
+            let (near, far) = slab_interval(slices, b.slab);
+            for t in b.triangles.clone() {
+                if b.clip.is_none() {
+                    let d = index[&t].map(|p| camera.depth(p));
+                    let (lo, hi) = (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]));
+                    assert!(near <= lo && hi < far, "unclipped triangle {t} ({lo}, {hi}) outside slab ({near}, {far})");
+                } else {
+                    assert_eq!(b.clip, Some((near, far)));
+                }
+                drawn.push((t, b.slab, b.clip));
+            }
+        }
+        let got = areas(camera, &index, drawn);
+        let old = areas(camera, &index, per_triangle(camera, slices, tris));
+        let close = |a: f64, b: f64, area: f64| (a - b).abs() <= 1e-9 * area;
         for &(t, tri) in tris {
             let area = polygon_area(&tri);
-            let got = drawn.get(&t).copied();
-            assert!(got.is_some(), "triangle {t} is in no batch");
-            assert!((got.unwrap() - area).abs() <= 1e-9 * area, "triangle {t}: drawn area {got:?}, area {area}");
+            let total: f64 = got.iter().filter(|e| e.0 .0 == t).map(|e| e.1).sum();
+            assert!(close(total, area, area), "triangle {t}: drawn area {total}, area {area}");
         }
+        for key in got.keys().chain(old.keys()) {
+            let area = polygon_area(&index[&key.0]);
+            let (g, o) = (got.get(key).copied().unwrap_or(0.0), old.get(key).copied().unwrap_or(0.0));
+            assert!(close(g, o, area), "triangle {}, slab {}: {g} drawn, {o} before", key.0, key.1);
+        }
+        out
+    }
+
+    /// The slabs drawing a positive area of triangle `id`, with whether clipped.
+    fn slabs_of(camera: &Camera, tris: &[WorldTriangle], batches: &[Batch], id: u32) -> Vec<(usize, bool)> {
+        let tri = tris.iter().find(|t| t.0 == id).unwrap().1;
         batches
+            .iter()
+            .filter(|b| b.triangles.contains(&id) && drawn_area(camera, tri, b.clip) > 0.0)
+            .map(|b| (b.slab, b.clip.is_some()))
+            .collect()
     }
 
     /// Deterministic pseudo-random numbers in [0, 1).
@@ -338,6 +492,8 @@ mod tests {
                 (id, [0, 1, 2].map(|_| [0, 1, 2].map(|a| c[a] + size * (r.next() - 0.5))))
             })
             .filter(|(_, t)| polygon_area(t) > 1e-6)
+            .enumerate()
+            .map(|(k, (_, t))| (k as u32, t))
             .collect()
     }
 
@@ -411,30 +567,33 @@ mod tests {
             (0, t([4.0, 4.0, 4.0])),    // flat, on the plane of depth 14
             (1, t([4.0, 4.0, 4.5])),    // an edge on a plane, inside [14, 15)
             (2, t([4.0, 5.0, 4.0])),    // apex on the far plane 15: still one slab
-            (3, t([3.0, 5.0, 4.0])),    // vertices on three planes: two slabs, clipped
+            (3, t([3.0, 5.0, 4.0])),    // vertices on three planes: two slabs
             (4, t([-3.0, 12.0, 2.0])),  // beyond both ends
             (5, t([9.0, 9.0, 9.0])),    // flat, behind the first slice
             (6, t([-1.0, -1.0, -1.0])), // flat, in front of the last slice
             (7, t([7.0, 7.0, 7.0])),    // flat, on the first slice (depth 17)
             (8, t([0.0, 0.0, 0.0])),    // flat, on the last slice (depth 10)
+            (9, t([4.2, 4.8, 4.5])),    // strictly inside [14, 15)
         ];
-        let batches = check_areas(&camera, &slices, &tris);
-        let slabs_of = |id: u32| -> Vec<(usize, bool)> {
-            batches.iter().filter(|b| b.triangles.contains(&id)).map(|b| (b.slab, b.clip.is_some())).collect()
-        };
-        assert_eq!(slabs_of(0), vec![(3, false)], "on slice 3 (depth 14): the slab behind it, once");
-        assert_eq!(slabs_of(1), vec![(3, false)]);
-        assert_eq!(slabs_of(2), vec![(3, false)]);
+        let batches = check_areas(&camera, &slices, &tris, &batches_of(&tris, 1));
+        let slabs_of = |id: u32| slabs_of(&camera, &tris, &batches, id);
+        // Flat on slice 3 (depth 14): drawn in the slab behind it only (the
+        // batch touches the plane, so it is clipped to both sides).
+        assert_eq!(slabs_of(0), vec![(3, true)]);
+        assert_eq!(slabs_of(1), vec![(3, true)]);
+        assert_eq!(slabs_of(2), vec![(3, true)]);
         assert_eq!(slabs_of(3), vec![(3, true), (4, true)]);
         assert_eq!(slabs_of(4), (0..=8).map(|s| (s, true)).collect::<Vec<_>>());
         assert_eq!(slabs_of(5), vec![(0, false)]);
         assert_eq!(slabs_of(6), vec![(8, false)]);
-        assert_eq!(slabs_of(7), vec![(0, false)]);
-        assert_eq!(slabs_of(8), vec![(7, false)]);
-        // Without slices: one unclipped batch.
-        let all = assign_batches(&camera, &[], &tris);
-        assert_eq!(all.len(), 1);
-        assert_eq!((all[0].slab, all[0].clip, all[0].triangles.len()), (0, None, tris.len()));
+        assert_eq!(slabs_of(7), vec![(0, true)]);
+        assert_eq!(slabs_of(8), vec![(7, true)]);
+        assert_eq!(slabs_of(9), vec![(3, false)]);
+        // All in one batch: clipped in every slab, the same areas.
+        check_areas(&camera, &slices, &tris, &batches_of(&tris, tris.len()));
+        // Without slices: one unclipped batch (the consecutive ranges merged).
+        let all = assign_batches(&camera, &[], &batches_of(&tris, 1));
+        assert_eq!(all, vec![Batch { slab: 0, triangles: 0..10, clip: None }]);
     }
 
     #[test]
@@ -445,7 +604,9 @@ mod tests {
             let mut slices: Vec<f64> = tris.iter().step_by(4).flat_map(|t| t.1.map(|p| camera.depth(p))).collect();
             slices.sort_by(|a, b| b.total_cmp(a));
             slices.dedup();
-            check_areas(&camera, &slices, &tris);
+            for size in [1, 3, 20] {
+                check_areas(&camera, &slices, &tris, &batches_of(&tris, size));
+            }
         }
     }
 
@@ -462,12 +623,17 @@ mod tests {
         cameras.push(cam([30.0, 30.0, 8.0], c, true));
         cameras.push(cam([-20.0, 8.0, 36.0], c, false));
         cameras.push(cam([-10.0, -10.0, -10.0], c, true));
+        // Perspective from inside the box.
+        cameras.push(cam([5.0, 9.0, 7.0], [12.0, 2.0, 10.0], false));
         for camera in &cameras {
             for spacing in [0.5, 1.0, 4.0] {
                 let slices = slice_depths(camera, [0.0; 3], [16.0; 3], spacing);
                 assert!(!slices.is_empty());
-                let batches = check_areas(camera, &slices, &tris);
+                let batches = check_areas(camera, &slices, &tris, &batches_of(&tris, 1));
                 assert!(batches.iter().any(|b| b.clip.is_some()) && batches.iter().any(|b| b.clip.is_none()));
+                for size in [4, 50] {
+                    check_areas(camera, &slices, &tris, &batches_of(&tris, size));
+                }
             }
         }
     }
@@ -482,26 +648,26 @@ mod tests {
         assert_eq!(f[2], 0.0);
         let slices = slice_depths(&camera, [0.0; 3], [8.0; 3], 1.0);
         let mut tris = Vec::new();
-        for (k, &d) in slices.iter().enumerate() {
+        for &d in &slices {
             // A point at depth d, and two offsets across the view: x - y and z.
             let p0 = [0, 1, 2].map(|a| camera.position[a] + d * f[a]);
             let tri = [p0, [p0[0] + 1.0, p0[1] - 1.0, p0[2]], [p0[0], p0[1], p0[2] + 1.0]];
-            tris.push((k as u32, tri));
+            tris.push((tris.len() as u32, tri));
             // Edge-on: spans depth along f, zero extent across one direction.
             let edge_on = [p0, [p0[0] + 0.8, p0[1] + 0.8, p0[2]], [p0[0], p0[1], p0[2] + 2.0]];
-            tris.push((1000 + k as u32, edge_on));
+            tris.push((tris.len() as u32, edge_on));
         }
-        let batches = check_areas(&camera, &slices, &tris);
-        // Each in-plane triangle is drawn unclipped once, or, if rounding
-        // tilts it off the plane, split across the plane without extra area
-        // (checked above); the exact-depth ones in the slab behind the slice.
-        for (k, &(id, tri)) in tris.iter().enumerate().filter(|(_, t)| t.0 < 1000) {
+        let batches = check_areas(&camera, &slices, &tris, &batches_of(&tris, 1));
+        check_areas(&camera, &slices, &tris, &batches_of(&tris, 2));
+        // Each in-plane triangle is drawn once, or, if rounding tilts it off
+        // the plane, split across the plane without extra area (checked
+        // above); the exact-depth ones in the slab behind the slice.
+        for &(id, tri) in tris.iter().step_by(2) {
             let d = tri.map(|p| camera.depth(p));
             if d[0] == d[1] && d[1] == d[2] {
-                let hits: Vec<&Batch> = batches.iter().filter(|b| b.triangles.contains(&id)).collect();
-                assert_eq!(hits.len(), 1, "flat triangle {k} drawn {} times", hits.len());
-                assert_eq!(hits[0].slab, slab_of(&slices, d[0]));
-                assert!(hits[0].clip.is_none());
+                let hits = slabs_of(&camera, &tris, &batches, id);
+                assert_eq!(hits.len(), 1, "flat triangle {id} drawn {} times", hits.len());
+                assert_eq!(hits[0].0, slab_of(&slices, d[0]));
             }
         }
     }
@@ -509,14 +675,15 @@ mod tests {
     #[test]
     fn a_new_camera_reassigns() {
         let tris = random_triangles(3, 100, 0.0, 16.0);
+        let batches = batches_of(&tris, 3);
         let a = cam([-20.0, 8.0, 8.0], [8.0; 3], false);
         let b = cam([8.0, 30.0, 40.0], [8.0; 3], false);
         let sa = slice_depths(&a, [0.0; 3], [16.0; 3], 1.0);
         let sb = slice_depths(&b, [0.0; 3], [16.0; 3], 1.0);
-        let first = assign_batches(&a, &sa, &tris);
-        let moved = check_areas(&b, &sb, &tris);
+        let first = assign_batches(&a, &sa, &batches);
+        let moved = check_areas(&b, &sb, &tris, &batches);
         assert_ne!(first, moved);
-        assert_eq!(assign_batches(&a, &sa, &tris), first, "deterministic");
+        assert_eq!(assign_batches(&a, &sa, &batches), first, "deterministic");
     }
 
     #[test]
@@ -527,30 +694,44 @@ mod tests {
         let surface = Surface::extract(&grid, &octree, &SurfaceOptions::discretized(0.5)).unwrap();
         assert!(surface.polygon_count() > 100);
         let shape = *grid.shape();
+        let world = |t: u32| surface.polygon(t as usize).iter().map(|&v| shape.world(surface.points[v as usize]));
+        let cameras = [
+            cam([-30.0, 10.0, 60.0], [16.0; 3], false),
+            cam([16.0, -50.0, 16.0], [16.0; 3], true),
+            cam([16.0, 16.0, -40.0], [16.0; 3], false),
+            cam([-20.0, -20.0, -20.0], [16.0; 3], true),
+            cam([12.3, 17.1, 20.2], [30.0, 2.0, 16.0], false),
+        ];
         for budget in [40_000, 300_000, 10_000_000] {
             let selection = select(&octree, &SelectOptions::new(budget, 0.0), |_, _| true).unwrap();
+            let polygons = SlabPolygons::new(&octree, &surface, &shape, &selection);
+            assert!(polygons.fits(&selection, surface.polygon_count()));
+            assert!(!polygons.fits(&selection, surface.polygon_count() + 1));
+            assert_eq!(SlabPolygons::new(&octree, &surface, &shape, &selection), polygons, "deterministic");
             let mut seen = vec![0u32; surface.polygon_count()];
-            let cameras = [
-                cam([-30.0, 10.0, 60.0], [16.0; 3], false),
-                cam([16.0, -50.0, 16.0], [16.0; 3], true),
-                cam([12.3, 17.1, 20.2], [30.0, 2.0, 16.0], false),
-            ];
-            let ids: Vec<_> = selection.bricks.iter().map(|b| b.node).collect();
-            let by_brick = triangles_by_brick(&octree, &surface, &shape, &ids);
-            for (brick, tris) in selection.bricks.iter().zip(&by_brick) {
+            for (i, brick) in selection.bricks.iter().enumerate() {
                 let (world_lo, world_hi) =
                     (shape.world(brick.lo.map(|v| v as f64)), shape.world(brick.hi.map(|v| v as f64)));
-                for &(t, p) in tris {
-                    seen[t as usize] += 1;
-                    // Independent of the ancestor walk: the triangle lies in its brick's box.
-                    assert!(p.iter().all(|v| (0..3).all(|a| world_lo[a] <= v[a] && v[a] <= world_hi[a])));
+                let batches = polygons.brick(i);
+                let mut tris: Vec<WorldTriangle> = Vec::new();
+                for b in batches {
+                    assert!(!b.triangles.is_empty());
+                    // Independent of the ancestor walk: the batch lies in its brick's box.
+                    assert!((0..3).all(|a| world_lo[a] <= b.lo[a] && b.hi[a] <= world_hi[a]));
+                    for t in b.triangles.clone() {
+                        seen[t as usize] += 1;
+                        let p: Vec<[f64; 3]> = world(t).collect();
+                        assert!(p.iter().all(|v| (0..3).all(|a| b.lo[a] <= v[a] && v[a] <= b.hi[a])), "tight box");
+                        tris.push((t, [p[0], p[1], p[2]]));
+                    }
                 }
                 for camera in &cameras {
                     let slices = slice_depths(camera, world_lo, world_hi, brick.stride as f64);
-                    check_areas(camera, &slices, tris);
+                    check_areas(camera, &slices, &tris, batches);
                 }
             }
             assert!(seen.iter().all(|&n| n == 1), "a triangle in no brick or in two");
+            assert_eq!(polygons.batch_count(), (0..selection.bricks.len()).map(|i| polygons.brick(i).len()).sum());
         }
     }
 }

@@ -60,17 +60,19 @@ pub(crate) fn check_bricks(list: &DrawList, shape: &GridShape) -> Result<()> {
 pub(crate) fn check_list(list: &DrawList, shape: &GridShape, surface: Option<&Surface>) -> Result<()> {
     check_bricks(list, shape)?;
     let bad = |m: String| Err(Error::InvalidArgument(format!("DrawList: {m}")));
+    // Batch ranges by their last id (an empty range draws nothing).
     let mut ids = list
         .opaque_triangles
         .iter()
-        .chain(list.bricks.iter().flat_map(|b| b.batches.iter().flat_map(|t| &t.triangles)));
+        .copied()
+        .chain(list.bricks.iter().flat_map(|b| b.batches.iter().filter_map(|t| t.triangles.clone().next_back())));
     match (ids.clone().next(), surface) {
         (None, _) => Ok(()),
         (Some(_), None) => {
             bad("it draws surface triangles but no surface was given: pass the surface the DrawList was made with"
                 .into())
         }
-        (Some(_), Some(s)) => match ids.find(|&&t| t as usize >= s.polygon_count()) {
+        (Some(_), Some(s)) => match ids.find(|&t| t as usize >= s.polygon_count()) {
             Some(t) => bad(format!("triangle {t} is not one of the surface's {} polygons", s.polygon_count())),
             None => Ok(()),
         },

@@ -163,11 +163,9 @@ fn execute<S: Texel>(
     if let Some((s, colour)) = surface {
         check_colour(colour)?;
         opaque = TriangleGrid::new(s, &shape, list.opaque_triangles.iter().copied()).map(|g| (s, g, colour));
-        let mut ids: Vec<u32> =
-            list.bricks.iter().flat_map(|b| b.batches.iter().flat_map(|t| t.triangles.iter().copied())).collect();
-        ids.sort_unstable();
-        ids.dedup();
-        translucent = TriangleGrid::new(s, &shape, ids.into_iter()).map(|g| (s, g, colour, batches(list, s)));
+        let table = batches(list, s);
+        let ids = (0..s.polygon_count() as u32).filter(|&t| table.start[t as usize] < table.start[t as usize + 1]);
+        translucent = TriangleGrid::new(s, &shape, ids).map(|g| (s, g, colour, table));
     }
     let executor = Executor {
         list,
@@ -182,24 +180,28 @@ fn execute<S: Texel>(
     Ok(executor.run())
 }
 
-/// The batches drawing each polygon, as a table by polygon id.
+/// The batches drawing each polygon, as a table by polygon id: entries by
+/// (brick position, batch index), in O(polygons + batch triangles).
 fn batches(list: &DrawList, surface: &Surface) -> Batches {
-    let mut pairs: Vec<(u32, u32, u32)> = Vec::new();
-    for (b, draw) in list.bricks.iter().enumerate() {
-        for (k, batch) in draw.batches.iter().enumerate() {
-            pairs.extend(batch.triangles.iter().map(|&t| (t, b as u32, k as u32)));
-        }
-    }
-    pairs.sort_unstable();
-    pairs.dedup();
     let mut start = vec![0u32; surface.polygon_count() + 1];
-    for &(t, _, _) in &pairs {
-        start[t as usize + 1] += 1;
+    let all = || list.bricks.iter().enumerate().flat_map(|(b, d)| d.batches.iter().enumerate().map(move |k| (b, k)));
+    for (_, (_, batch)) in all() {
+        for t in batch.triangles.clone() {
+            start[t as usize + 1] += 1;
+        }
     }
     for i in 1..start.len() {
         start[i] += start[i - 1];
     }
-    Batches { start, entries: pairs.into_iter().map(|(_, b, k)| (b, k)).collect() }
+    let mut at = start.clone();
+    let mut entries = vec![(0u32, 0u32); start[start.len() - 1] as usize];
+    for (b, (k, batch)) in all() {
+        for t in batch.triangles.clone() {
+            entries[at[t as usize] as usize] = (b as u32, k as u32);
+            at[t as usize] += 1;
+        }
+    }
+    Batches { start, entries }
 }
 
 struct Executor<'a, S> {
@@ -368,8 +370,10 @@ impl<S: Texel> Executor<'_, S> {
                 continue;
             }
             let p = h.polygon as usize;
+            // The polygon's entries of this brick (entries by brick, then batch).
             let entries = &table.entries[table.start[p] as usize..table.start[p + 1] as usize];
-            for &(_, k) in entries.iter().filter(|e| e.0 == index) {
+            let first = entries.partition_point(|e| e.0 < index);
+            for &(_, k) in entries[first..].iter().take_while(|e| e.0 == index) {
                 let batch = &draw.batches[k as usize];
                 if batch.clip.is_some_and(|(near, far)| !(near <= z && z < far)) {
                     continue;

@@ -241,7 +241,7 @@ fn translucent_batches_are_blended_inside_their_slab() {
     // is in slab #{slices > 95.5} = 4: after the slices 99..=96, before 95.
     let slices = &list.bricks[0].slices;
     assert_eq!((slices.len(), slices[0], slices[3], slices[4]), (8, 99.0, 96.0, 95.0));
-    list.bricks[0].batches = vec![Batch { slab: 4, triangles: vec![0, 1], clip: None }];
+    list.bricks[0].batches = vec![Batch { slab: 4, triangles: 0..2, clip: None }];
     let colour = [0.0, 0.0, 1.0, 0.5];
     let image = composite(&grid, &list, &tf, 6, 6, Some((&plane, colour))).unwrap();
     let mut acc = [0.0; 4];
@@ -342,7 +342,10 @@ fn the_pipeline_tracks_the_reference() {
         ("1/4 budget, translucent surface", &coarse, 0.4, 0.05),
     ] {
         let scene = Scene { surface: Some(&surface), surface_opacity: opacity, shading: false };
-        let list = crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene);
+        // Translucent: the selection's SlabPolygons made once, apart from the view.
+        let polygons = (opacity > 0.0 && opacity < 1.0)
+            .then(|| crate::slab::SlabPolygons::new(&octree, &surface, grid.shape(), selection));
+        let list = crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref());
         let with = (opacity > 0.0).then_some((&surface, [colour[0], colour[1], colour[2], opacity as f32]));
         let image = composite(&grid, &list, &tf, 96, 96, with).unwrap();
         let options = ReferenceOptions { step: None, surface: with };

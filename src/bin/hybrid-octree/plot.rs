@@ -8,7 +8,7 @@ use std::path::Path;
 /// One measured point of a series.
 #[derive(Debug, Clone, Copy)]
 pub struct Point {
-    /// Milliseconds (selection + DrawList + compositing).
+    /// Milliseconds (selection + SlabPolygons + DrawList + compositing).
     pub ms: f64,
     /// Texture megabytes.
     pub mb: f64,

@@ -52,6 +52,7 @@ struct RenderReport {
     skipped_bricks: usize,
     warning: Option<String>,
     select_ms: f64,
+    slab_polygons_ms: f64,
     drawlist_ms: f64,
     upload_ms: f64,
     composite_ms: f64,
@@ -95,6 +96,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             skipped_bricks: f.list.plan.skipped_bricks,
             warning: selection.warning.clone(),
             select_ms,
+            slab_polygons_ms: f.slab_polygons_ms,
             drawlist_ms: f.drawlist_ms,
             upload_ms: f.upload_ms,
             composite_ms: f.composite_ms,
@@ -121,8 +123,8 @@ fn print_text(r: &RenderReport) {
         r.max_error
     );
     println!(
-        "times:           select {:.1} ms, DrawList {:.1} ms, upload {:.1} ms, composite {:.1} ms",
-        r.select_ms, r.drawlist_ms, r.upload_ms, r.composite_ms
+        "times:           select {:.1} ms, SlabPolygons {:.1} ms, DrawList {:.1} ms, upload {:.1} ms, composite {:.1} ms",
+        r.select_ms, r.slab_polygons_ms, r.drawlist_ms, r.upload_ms, r.composite_ms
     );
     if let (Some(rmse), Some(psnr), Some(ssim)) = (r.rmse, r.psnr, r.ssim) {
         println!(

@@ -1,6 +1,7 @@
 //! The scene `render` and `bench render` share: the volume and its octree,
 //! an optional isosurface, a transfer function, a camera, and one frame made
-//! from a selection (select, DrawList, texture upload, composite), timed step
+//! from a selection (select, SlabPolygons, DrawList, texture upload,
+//! composite), timed step
 //! by step.
 
 use crate::build::build_octree;
@@ -8,13 +9,14 @@ use clap::Args;
 use hybrid_octree::camera::Camera;
 use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
-use hybrid_octree::plan::{draw_list, DrawList, Scene};
+use hybrid_octree::plan::{draw_list, plan, DrawList, Scene, SurfacePass};
 use hybrid_octree::render::compositor::composite_textures;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference, ReferenceOptions};
 use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, Selection};
+use hybrid_octree::slab::SlabPolygons;
 use hybrid_octree::surface::{Surface, SurfaceOptions};
 use hybrid_octree::{Error, Result};
 use std::time::Instant;
@@ -108,7 +110,10 @@ pub struct Frame {
     pub list: DrawList,
     /// The picture.
     pub image: Image,
-    /// DrawList time (slabs, order, plan), ms.
+    /// SlabPolygons time (the selection's surface batches, translucent
+    /// surfaces only; once per selection), ms.
+    pub slab_polygons_ms: f64,
+    /// DrawList time (the per-view part: order, slices, batches into slabs, plan), ms.
     pub drawlist_ms: f64,
     /// Texture upload time (the bricks' textures copied once per DrawList), ms.
     pub upload_ms: f64,
@@ -116,16 +121,18 @@ pub struct Frame {
     pub composite_ms: f64,
 }
 
-/// Makes the DrawList for `selection` and composites it.
+/// Makes the SlabPolygons (translucent surface) and the DrawList for
+/// `selection`, and composites it.
 pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &SceneArgs) -> Result<Frame> {
+    let view = Scene { surface: scene.surface.as_ref(), surface_opacity: args.surface_opacity, shading: false };
     let started = Instant::now();
-    let list = draw_list(
-        &scene.octree,
-        grid.shape(),
-        selection,
-        &scene.camera,
-        &Scene { surface: scene.surface.as_ref(), surface_opacity: args.surface_opacity, shading: false },
-    );
+    let polygons = match (plan(selection, &view).surface, &scene.surface) {
+        (SurfacePass::Translucent, Some(s)) => Some(SlabPolygons::new(&scene.octree, s, grid.shape(), selection)),
+        _ => None,
+    };
+    let slab_polygons_ms = started.elapsed().as_secs_f64() * 1e3;
+    let started = Instant::now();
+    let list = draw_list(&scene.octree, grid.shape(), selection, &scene.camera, &view, polygons.as_ref());
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let textures = upload(grid, &list)?;
@@ -135,7 +142,7 @@ pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &Scen
     let surface = scene.surface.as_ref().map(|s| (s, colour));
     let image = composite_textures(&textures, &list, &scene.tf, args.width, args.height, surface)?;
     let composite_ms = started.elapsed().as_secs_f64() * 1e3;
-    Ok(Frame { list, image, drawlist_ms, upload_ms, composite_ms })
+    Ok(Frame { list, image, slab_polygons_ms, drawlist_ms, upload_ms, composite_ms })
 }
 
 /// The isosurface colour `[r, g, b, opacity]`.

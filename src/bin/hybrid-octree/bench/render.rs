@@ -1,8 +1,8 @@
 //! `bench render`: what each step of accuracy costs. For a sweep of texture
-//! budgets and error tolerances, the octree's selection, DrawList and CPU
-//! compositing, against uniform downsampling (the whole volume in one texture
-//! at one stride, what VTK's smart mapper does when a volume does not fit) at
-//! the same texture bytes; each
+//! budgets and error tolerances, the octree's selection, SlabPolygons
+//! (translucent surface), DrawList and CPU compositing, against uniform
+//! downsampling (the whole volume in one texture at one stride, what VTK's
+//! smart mapper does when a volume does not fit) at the same texture bytes; each
 //! frame compared with the full-resolution reference ray caster.
 //! Prints a table (or JSON rows), the RMSE ratio octree / uniform at equal
 //! bytes, and with `--plot` a PNG of RMSE against time and against memory.
@@ -56,6 +56,9 @@ struct Row {
     texture_bytes: usize,
     bricks: usize,
     select_ms: f64,
+    /// The selection's SlabPolygons (translucent surface only), ms.
+    slab_polygons_ms: f64,
+    /// The per-view DrawList, ms.
     drawlist_ms: f64,
     upload_ms: f64,
     composite_ms: f64,
@@ -103,6 +106,7 @@ fn measure(b: &Bench<'_, '_>, m: Method, selection: Selection, select_ms: f64) -
         texture_bytes: selection.texture_bytes,
         bricks: selection.bricks.len(),
         select_ms,
+        slab_polygons_ms: f.slab_polygons_ms,
         drawlist_ms: f.drawlist_ms,
         upload_ms: f.upload_ms,
         composite_ms: f.composite_ms,
@@ -163,7 +167,7 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
             rows.iter()
                 .filter(|r| r.method == method)
                 .map(|r| Point {
-                    ms: r.select_ms + r.drawlist_ms + r.composite_ms,
+                    ms: r.select_ms + r.slab_polygons_ms + r.drawlist_ms + r.composite_ms,
                     mb: r.texture_bytes as f64 / 1e6,
                     rmse: r.rmse,
                 })
@@ -181,7 +185,7 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
 
 fn print_table(rows: &[Row]) {
     println!(
-        "{:>8} {:>9} {:>6} {:>11} {:>11} {:>7} {:>9} {:>9} {:>10} {:>8} {:>8} {:>7} {:>8}",
+        "{:>8} {:>9} {:>6} {:>11} {:>11} {:>7} {:>9} {:>9} {:>9} {:>10} {:>8} {:>8} {:>7} {:>8}",
         "method",
         "tolerance",
         "stride",
@@ -189,6 +193,7 @@ fn print_table(rows: &[Row]) {
         "texture B",
         "bricks",
         "select",
+        "slabpoly",
         "drawlist",
         "composite",
         "RMSE",
@@ -198,7 +203,7 @@ fn print_table(rows: &[Row]) {
     );
     for r in rows {
         println!(
-            "{:>8} {:>9} {:>6} {:>11} {:>11} {:>7} {:>9.2} {:>9.2} {:>10.1} {:>8.5} {:>8.2} {:>7.4} {:>8.4}",
+            "{:>8} {:>9} {:>6} {:>11} {:>11} {:>7} {:>9.2} {:>9.2} {:>9.2} {:>10.1} {:>8.5} {:>8.2} {:>7.4} {:>8.4}",
             r.method,
             r.tolerance.map_or("-".into(), |t| format!("{t}")),
             r.stride.map_or("-".into(), |s| s.to_string()),
@@ -206,6 +211,7 @@ fn print_table(rows: &[Row]) {
             r.texture_bytes,
             r.bricks,
             r.select_ms,
+            r.slab_polygons_ms,
             r.drawlist_ms,
             r.composite_ms,
             r.rmse,
