@@ -145,10 +145,11 @@ pub fn plan(selection: &crate::select::Selection, scene: &Scene<'_>) -> Plan {
 /// made once per selection and surface; without it they are made here, every
 /// call.
 ///
-/// # Panics
+/// # Errors
 ///
-/// If `polygons` was made for other bricks than `selection`'s or for a
-/// surface of another polygon count than `scene.surface`.
+/// [`crate::Error::InvalidArgument`] if `polygons` was made for other bricks
+/// than `selection`'s or for a surface of another polygon count than
+/// `scene.surface` (make them again after a new selection).
 pub fn draw_list(
     octree: &crate::octree::VolumeOctree,
     shape: &crate::grid::GridShape,
@@ -156,7 +157,7 @@ pub fn draw_list(
     camera: &Camera,
     scene: &Scene<'_>,
     polygons: Option<&crate::slab::SlabPolygons>,
-) -> DrawList {
+) -> crate::Result<DrawList> {
     let plan = plan(selection, scene);
     let d0 = shape.spacing.iter().copied().fold(f64::INFINITY, f64::min);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
@@ -164,12 +165,11 @@ pub fn draw_list(
     let made;
     let polygons = match (plan.surface, scene.surface) {
         (SurfacePass::Translucent, Some(s)) => Some(match polygons {
-            Some(p) => {
-                assert!(
-                    p.fits(selection, s.polygon_count()),
-                    "draw_list: the SlabPolygons were made for another selection or surface"
-                );
-                p
+            Some(p) if p.fits(selection, s.polygon_count()) => p,
+            Some(_) => {
+                return Err(crate::Error::InvalidArgument(
+                    "the SlabPolygons were made for another selection or surface: make them again for this one".into(),
+                ))
             }
             None => {
                 made = crate::slab::SlabPolygons::new(octree, s, shape, selection);
@@ -197,7 +197,7 @@ pub fn draw_list(
         (SurfacePass::Opaque, Some(s)) => (0..s.polygon_count() as u32).collect(),
         _ => Vec::new(),
     };
-    DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0 }
+    Ok(DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0 })
 }
 
 #[cfg(test)]
@@ -229,7 +229,7 @@ mod tests {
         let selection = select(&f.octree, &options, visible).unwrap();
         let shape = grid.shape();
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
-        draw_list(&f.octree, shape, &selection, &camera, scene, None)
+        draw_list(&f.octree, shape, &selection, &camera, scene, None).unwrap()
     }
 
     #[test]
@@ -280,14 +280,13 @@ mod tests {
         for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
             let camera =
                 Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), azimuth, elevation, parallel).unwrap();
-            let once = draw_list(&f.octree, shape, &selection, &camera, &scene, Some(&polygons));
-            assert_eq!(once, draw_list(&f.octree, shape, &selection, &camera, &scene, None));
+            let once = draw_list(&f.octree, shape, &selection, &camera, &scene, Some(&polygons)).unwrap();
+            assert_eq!(once, draw_list(&f.octree, shape, &selection, &camera, &scene, None).unwrap());
             assert!(once.bricks.iter().any(|b| !b.batches.is_empty()));
         }
     }
 
     #[test]
-    #[should_panic(expected = "made for another selection or surface")]
     fn slab_polygons_of_another_selection_are_refused() {
         let f = fixture();
         let grid = f.volume.grid(None).unwrap();
@@ -301,7 +300,8 @@ mod tests {
         let polygons = crate::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
         let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
-        draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons));
+        let e = draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons)).unwrap_err().to_string();
+        assert!(e.contains("made for another selection or surface"), "{e}");
     }
 
     #[test]

@@ -345,7 +345,8 @@ fn the_pipeline_tracks_the_reference() {
         // Translucent: the selection's SlabPolygons made once, apart from the view.
         let polygons = (opacity > 0.0 && opacity < 1.0)
             .then(|| crate::slab::SlabPolygons::new(&octree, &surface, grid.shape(), selection));
-        let list = crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref());
+        let list =
+            crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref()).unwrap();
         let with = (opacity > 0.0).then_some((&surface, [colour[0], colour[1], colour[2], opacity as f32]));
         let image = composite(&grid, &list, &tf, 96, 96, with).unwrap();
         let options = ReferenceOptions { step: None, surface: with };

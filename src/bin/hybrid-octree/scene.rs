@@ -132,7 +132,7 @@ pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &Scen
     };
     let slab_polygons_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
-    let list = draw_list(&scene.octree, grid.shape(), selection, &scene.camera, &view, polygons.as_ref());
+    let list = draw_list(&scene.octree, grid.shape(), selection, &scene.camera, &view, polygons.as_ref())?;
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let textures = upload(grid, &list)?;
