@@ -66,6 +66,8 @@ pub(crate) struct Texture<S> {
     stride: usize,
     /// Texels per axis.
     n: [usize; 3],
+    /// `n - 1`, per axis.
+    last: [f64; 3],
     data: Vec<S>,
 }
 
@@ -83,7 +85,7 @@ impl<S: Texel> Texture<S> {
                 }
             }
         }
-        Some(Texture { lo: brick.lo, hi: brick.hi, stride: brick.stride, n, data })
+        Some(Texture { lo: brick.lo, hi: brick.hi, stride: brick.stride, n, last: n.map(|n| (n - 1) as f64), data })
     }
 
     /// True when this is the texture of `brick`.
@@ -92,8 +94,9 @@ impl<S: Texel> Texture<S> {
     }
 
     /// T_p at index-space point `x` (see the module documentation): [`Self::at_texel`]
-    /// of `u = (x - lo) / stride`.
-    #[inline]
+    /// of `u = (x - lo) / stride`. (The compositor reads [`Self::at_texel`] along
+    /// [`Self::texel_line`].)
+    #[cfg(test)]
     pub(crate) fn value(&self, x: [f64; 3]) -> f64 {
         self.at_texel([0, 1, 2].map(|a| (x[a] - self.lo[a] as f64) / self.stride as f64))
     }
@@ -115,9 +118,11 @@ impl<S: Texel> Texture<S> {
         let mut t = [0.0; 3];
         let pitch = [1, self.n[0], self.n[0] * self.n[1]];
         for a in 0..3 {
-            let u = u[a].clamp(0.0, (self.n[a] - 1) as f64);
-            let i = u as usize;
-            (i0[a], step[a], t[a]) = (i, if i + 1 < self.n[a] { pitch[a] } else { 0 }, u - i as f64);
+            let u = u[a].clamp(0.0, self.last[a]);
+            // u in [0, n - 1] (n < 2^32): the u32 cast is floor(u), both conversions single instructions.
+            let i = u as u32;
+            let i0a = i as usize;
+            (i0[a], step[a], t[a]) = (i0a, if i0a + 1 < self.n[a] { pitch[a] } else { 0 }, u - i as f64);
         }
         let base = i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2];
         // The 8 texels lie in data[base ..= base + step0 + step1 + step2]: one bounds check.
