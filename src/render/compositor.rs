@@ -17,6 +17,19 @@
 //! belongs to exactly one of them, and a slice through a face seen head-on
 //! belongs to the brick whose near face it is, the one that lists it
 //! ([`crate::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
+//! coordinate of `p(z)` is monotone in `z` (as computed, rounding included),
+//! so the slices inside the box are one run: the exact test is made only at
+//! its ends, scanning in from the first and last candidate slices. The
+//! texture is read at the texel coordinates of `p(z)` along the ray's texel
+//! line, from its entry depth `z_a` (per ray and brick; no accumulation):
+//!
+//! ```text
+//! u(z) = u_a + (z - z_a) u_b,   u_a = ((p(z_a) - origin) / spacing - lo) / stride,
+//!                               u_b = d / (spacing stride (d . forward))
+//! ```
+//!
+//! (the same line as `((p(z) - origin) / spacing - lo) / stride`, up to
+//! rounding: a few ulps of the brick's texel coordinates). Each
 //! sample is classified (through [`super::lut`], within 1e-6 of the transfer
 //! function), corrected for the brick's slice spacing `d` against
 //! `d0 = DrawList::reference_spacing` and blended. The DrawList's order is
@@ -320,12 +333,27 @@ impl<S: Texel> Executor<'_, S> {
         let (za, zb) = (pr.depth(ta), pr.depth(tb));
         let tol = 1e-9 * (1.0 + za.abs().max(zb.abs()));
         let slices = &brick.draw.slices;
-        // Slices are back to front (decreasing): those in [za, zb], or all when batches interleave.
-        let (j0, j1) = if scratch.events.is_empty() {
-            (slices.partition_point(|&z| z > zb + tol), slices.partition_point(|&z| z >= za - tol))
-        } else {
-            (0, slices.len())
-        };
+        // Slices are back to front (decreasing). Candidates: z < limit and za - tol <= z <= zb + tol.
+        let c0 = slices.partition_point(|&z| z > zb + tol).max(slices.partition_point(|&z| z >= pr.limit));
+        let c1 = slices.partition_point(|&z| z >= za - tol).max(c0);
+        // Sampled: the candidates whose p(z) is in the box, a contiguous run (p(z) is monotone per axis).
+        let inside = |j: usize| brick.contains(at_depth(&pr.ray, pr.z_origin, pr.cos, slices[j]));
+        let mut s0 = c0;
+        while s0 < c1 && !inside(s0) {
+            s0 += 1;
+        }
+        let mut s1 = c1;
+        while s1 > s0 && !inside(s1 - 1) {
+            s1 -= 1;
+        }
+        // All slices when batches interleave.
+        let (j0, j1) = if scratch.events.is_empty() { (s0, s1) } else { (0, slices.len()) };
+        // The texel line u(z) = ua + (z - za) ub (see the module documentation).
+        let spacing = self.shape.spacing;
+        let (ua, ub) = brick.texture.texel_line(
+            to_index(&self.shape, at_depth(&pr.ray, pr.z_origin, pr.cos, za)),
+            [0, 1, 2].map(|a| pr.ray.direction[a] / (spacing[a] * pr.cos)),
+        );
         // Events are by slab, back to front: taken from the end, front to back.
         let mut e = scratch.events.len();
         for j in (j0..j1).rev() {
@@ -334,16 +362,13 @@ impl<S: Texel> Executor<'_, S> {
                 acc = under(acc, c, a);
                 e -= 1;
             }
-            let z = slices[j];
-            if z < pr.limit && z >= za - tol && z <= zb + tol {
-                let p = at_depth(&pr.ray, pr.z_origin, pr.cos, z);
-                if brick.contains(p) {
-                    let [r, gr, bl, a] = self.lut.eval(brick.texture.value(to_index(&self.shape, p)));
-                    if a > 0.0 {
-                        acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
-                        if acc[3] >= OPAQUE {
-                            return acc;
-                        }
+            if (s0..s1).contains(&j) {
+                let dz = slices[j] - za;
+                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel([0, 1, 2].map(|k| ua[k] + dz * ub[k])));
+                if a > 0.0 {
+                    acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
+                    if acc[3] >= OPAQUE {
+                        return acc;
                     }
                 }
             }

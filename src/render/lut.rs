@@ -61,9 +61,10 @@ impl<'a> Lut<'a> {
     #[inline]
     pub(crate) fn eval(&self, value: f64) -> [f64; 4] {
         let u = (value - self.lo) * self.inv_h;
-        let k = u as usize;
-        if u >= 0.0 && self.clean.get(k) == Some(&true) {
-            let (a, b, t) = (self.ends[k], self.ends[k + 1], u - k as f64);
+        // Saturating; a u32 cast (of u >= 0) converts in one instruction either way.
+        let k = u as u32;
+        if u >= 0.0 && self.clean.get(k as usize) == Some(&true) {
+            let (a, b, t) = (self.ends[k as usize], self.ends[k as usize + 1], u - k as f64);
             return std::array::from_fn(|c| a[c] as f64 + (b[c] as f64 - a[c] as f64) * t);
         }
         self.tf.eval(value).map(|c| c as f64)

@@ -66,6 +66,8 @@ pub(crate) struct Texture<S> {
     stride: usize,
     /// Texels per axis.
     n: [usize; 3],
+    /// `n - 1`, per axis.
+    last: [f64; 3],
     data: Vec<S>,
 }
 
@@ -83,7 +85,7 @@ impl<S: Texel> Texture<S> {
                 }
             }
         }
-        Some(Texture { lo: brick.lo, hi: brick.hi, stride: brick.stride, n, data })
+        Some(Texture { lo: brick.lo, hi: brick.hi, stride: brick.stride, n, last: n.map(|n| (n - 1) as f64), data })
     }
 
     /// True when this is the texture of `brick`.
@@ -91,26 +93,47 @@ impl<S: Texel> Texture<S> {
         (self.lo, self.hi, self.stride, self.n) == (brick.lo, brick.hi, brick.stride, brick.texels)
     }
 
-    /// T_p at index-space point `x` (see the module documentation).
-    #[inline]
+    /// T_p at index-space point `x` (see the module documentation): [`Self::at_texel`]
+    /// of `u = (x - lo) / stride`. (The compositor reads [`Self::at_texel`] along
+    /// [`Self::texel_line`].)
+    #[cfg(test)]
     pub(crate) fn value(&self, x: [f64; 3]) -> f64 {
+        self.at_texel([0, 1, 2].map(|a| (x[a] - self.lo[a] as f64) / self.stride as f64))
+    }
+
+    /// The texel coordinates `u(s) = a + s b` of the index-space line
+    /// `x(s) = xa + s xb`: `a = (xa - lo) / stride`, `b = xb / stride`.
+    #[inline]
+    pub(crate) fn texel_line(&self, xa: [f64; 3], xb: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+        let s = self.stride as f64;
+        ([0, 1, 2].map(|a| (xa[a] - self.lo[a] as f64) / s), xb.map(|b| b / s))
+    }
+
+    /// T_p at texel coordinates `u` (`u = (x - lo) / stride`, clamped to
+    /// `[0, n - 1]`; see the module documentation).
+    #[inline]
+    pub(crate) fn at_texel(&self, u: [f64; 3]) -> f64 {
         let mut i0 = [0; 3];
         let mut step = [0; 3];
         let mut t = [0.0; 3];
         let pitch = [1, self.n[0], self.n[0] * self.n[1]];
         for a in 0..3 {
-            let u = ((x[a] - self.lo[a] as f64) / self.stride as f64).clamp(0.0, (self.n[a] - 1) as f64);
-            let i = u as usize;
-            (i0[a], step[a], t[a]) = (i, if i + 1 < self.n[a] { pitch[a] } else { 0 }, u - i as f64);
+            let u = u[a].clamp(0.0, self.last[a]);
+            // u in [0, n - 1] (n < 2^32): the u32 cast is floor(u), both conversions single instructions.
+            let i = u as u32;
+            let i0a = i as usize;
+            (i0[a], step[a], t[a]) = (i0a, if i0a + 1 < self.n[a] { pitch[a] } else { 0 }, u - i as f64);
         }
         let base = i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2];
-        let f = |o: usize| self.data[o].get();
+        // The 8 texels lie in data[base ..= base + step0 + step1 + step2]: one bounds check.
+        let d = &self.data[base..=base + step[0] + step[1] + step[2]];
+        let f = |o: usize| d[o].get();
         let w = |o: usize| {
             let v0 = lerp(f(o), f(o + step[2]), t[2]);
             let v1 = lerp(f(o + step[1]), f(o + step[1] + step[2]), t[2]);
             lerp(v0, v1, t[1])
         };
-        lerp(w(base), w(base + step[0]), t[0])
+        lerp(w(0), w(step[0]), t[0])
     }
 }
 
