@@ -85,6 +85,67 @@ void CopyInto(const rust::Vec<From>& from, std::vector<To>& to)
 {
   to.assign(from.begin(), from.end());
 }
+void CopyMesh(const hybrid_octree::SurfaceOutput& s, SurfaceMesh& surface)
+{
+  CopyInto(s.points, surface.Points);
+  CopyInto(s.normals, surface.Normals);
+  CopyInto(s.offsets, surface.Offsets);
+  CopyInto(s.connectivity, surface.Connectivity);
+  CopyInto(s.polygon_node, surface.PolygonNode);
+  CopyInto(s.polygon_level, surface.PolygonLevel);
+  CopyInto(s.polygon_face, surface.PolygonFace);
+  surface.Polygons = s.polygons;
+  surface.Faces = s.faces;
+  surface.Triangles = s.triangles;
+  surface.UncompressedTriangles = s.uncompressed_triangles;
+  surface.Vertices = s.vertices;
+  surface.BoundaryEdges = s.boundary_edges;
+  surface.ExtractMilliseconds = s.extract_ms;
+  surface.CompressMilliseconds = s.compress_ms;
+  surface.DistanceMean = s.distance_mean;
+  surface.DistanceMax = s.distance_max;
+}
+
+/// The bridge's camera.
+hybrid_octree::CameraDesc ToRust(const CameraDescription& camera)
+{
+  hybrid_octree::CameraDesc desc;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    desc.position[axis] = camera.Position[axis];
+    desc.focal_point[axis] = camera.FocalPoint[axis];
+    desc.view_up[axis] = camera.ViewUp[axis];
+  }
+  desc.parallel = camera.Parallel;
+  desc.parallel_scale = camera.ParallelScale;
+  desc.view_angle = camera.ViewAngle;
+  return desc;
+}
+
+void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
+{
+  CopyInto(out.brick, list.Brick);
+  CopyInto(out.node_id, list.NodeId);
+  CopyInto(out.bounds, list.Bounds);
+  CopyInto(out.texels, list.Texels);
+  CopyInto(out.stride, list.Stride);
+  CopyInto(out.slice_spacing, list.SliceSpacing);
+  CopyInto(out.opacity_ratio, list.OpacityRatio);
+  CopyInto(out.slice_offsets, list.SliceOffsets);
+  CopyInto(out.slices, list.Slices);
+  list.Passes = std::string(out.passes);
+  list.ReferenceSpacing = out.reference_spacing;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    list.Forward[axis] = out.forward[axis];
+  }
+  CopyInto(out.batch_offsets, list.BatchOffsets);
+  CopyInto(out.batch_slab, list.BatchSlab);
+  CopyInto(out.batch_first, list.BatchFirst);
+  CopyInto(out.batch_end, list.BatchEnd);
+  CopyInto(out.batch_clip, list.BatchClip);
+  list.OpaqueTriangles = out.opaque_triangles;
+}
 } // namespace
 
 struct VolumeOctree::Internals
@@ -175,23 +236,7 @@ bool VolumeOctree::ExtractSurface(const void* bytes, std::size_t byteCount,
     const hybrid_octree::GridDesc desc = ToRust(grid);
     const hybrid_octree::SurfaceOutput s = this->Impl->Handle->extract_surface(
       ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode), measureDistance);
-    CopyInto(s.points, surface.Points);
-    CopyInto(s.normals, surface.Normals);
-    CopyInto(s.offsets, surface.Offsets);
-    CopyInto(s.connectivity, surface.Connectivity);
-    CopyInto(s.polygon_node, surface.PolygonNode);
-    CopyInto(s.polygon_level, surface.PolygonLevel);
-    CopyInto(s.polygon_face, surface.PolygonFace);
-    surface.Polygons = s.polygons;
-    surface.Faces = s.faces;
-    surface.Triangles = s.triangles;
-    surface.UncompressedTriangles = s.uncompressed_triangles;
-    surface.Vertices = s.vertices;
-    surface.BoundaryEdges = s.boundary_edges;
-    surface.ExtractMilliseconds = s.extract_ms;
-    surface.CompressMilliseconds = s.compress_ms;
-    surface.DistanceMean = s.distance_mean;
-    surface.DistanceMax = s.distance_max;
+    CopyMesh(s, surface);
     return true;
   }
   catch (const std::exception& e)
@@ -319,33 +364,9 @@ bool Selection::GetDrawList(const VolumeOctree& octree, const CameraDescription&
 {
   try
   {
-    hybrid_octree::CameraDesc desc;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      desc.position[axis] = camera.Position[axis];
-      desc.focal_point[axis] = camera.FocalPoint[axis];
-      desc.view_up[axis] = camera.ViewUp[axis];
-    }
-    desc.parallel = camera.Parallel;
-    desc.parallel_scale = camera.ParallelScale;
-    desc.view_angle = camera.ViewAngle;
     const hybrid_octree::DrawListOutput out =
-      this->Impl->Handle->draw_list(*octree.Impl->Handle, desc);
-    CopyInto(out.brick, list.Brick);
-    CopyInto(out.node_id, list.NodeId);
-    CopyInto(out.bounds, list.Bounds);
-    CopyInto(out.texels, list.Texels);
-    CopyInto(out.stride, list.Stride);
-    CopyInto(out.slice_spacing, list.SliceSpacing);
-    CopyInto(out.opacity_ratio, list.OpacityRatio);
-    CopyInto(out.slice_offsets, list.SliceOffsets);
-    CopyInto(out.slices, list.Slices);
-    list.Passes = std::string(out.passes);
-    list.ReferenceSpacing = out.reference_spacing;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      list.Forward[axis] = out.forward[axis];
-    }
+      this->Impl->Handle->draw_list(*octree.Impl->Handle, ToRust(camera));
+    CopyDrawList(out, list);
     return true;
   }
   catch (const std::exception& e)
@@ -365,6 +386,72 @@ bool Selection::GetBrickTexels(const void* bytes, std::size_t byteCount,
     const rust::Vec<float> t =
       this->Impl->Handle->brick_texels(ToSlice(bytes, byteCount), desc, brick);
     CopyInto(t, texels);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+struct Surface::Internals
+{
+  explicit Internals(rust::Box<hybrid_octree::SurfaceHandle> handle)
+    : Handle(std::move(handle))
+  {
+  }
+  rust::Box<hybrid_octree::SurfaceHandle> Handle;
+};
+
+bool Selection::GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
+  const Surface& surface, double surfaceOpacity, DrawList& list, std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::DrawListOutput out = this->Impl->Handle->draw_list_with_surface(
+      *octree.Impl->Handle, ToRust(camera), *surface.Impl->Handle, surfaceOpacity);
+    CopyDrawList(out, list);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+Surface::Surface(std::unique_ptr<Internals> internals)
+  : Impl(std::move(internals))
+{
+}
+
+Surface::~Surface() = default;
+
+std::unique_ptr<Surface> VolumeOctree::ExtractSurfaceForDrawing(const void* bytes,
+  std::size_t byteCount, const GridDescription& grid, double isovalue, SurfaceMode mode,
+  std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::GridDesc desc = ToRust(grid);
+    rust::Box<hybrid_octree::SurfaceHandle> handle = this->Impl->Handle->surface_for_drawing(
+      ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode));
+    return std::unique_ptr<Surface>(
+      new Surface(std::unique_ptr<Surface::Internals>(new Surface::Internals(std::move(handle)))));
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return nullptr;
+}
+
+bool Surface::GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string& error) const
+{
+  try
+  {
+    CopyMesh(this->Impl->Handle->mesh(*octree.Impl->Handle), mesh);
     return true;
   }
   catch (const std::exception& e)

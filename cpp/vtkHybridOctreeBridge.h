@@ -170,7 +170,15 @@ struct CameraDescription
  * `Slices[SliceOffsets[i] .. SliceOffsets[i+1]]`: view depths back to front,
  * the plane of depth z being {x : (x - camera position) . Forward = z}.
  * Texture coordinate along axis a, in texels: (x - min_a) / (Stride * spacing_a),
- * clamped to [0, texels - 1]. Surface batches are not carried yet.
+ * clamped to [0, texels - 1].
+ *
+ * With a translucent surface, brick `i`'s triangle batches are
+ * `BatchOffsets[i] .. BatchOffsets[i+1]`, back to front: batch `k` draws the
+ * surface triangles `BatchFirst[k] .. BatchEnd[k]` (polygon ids of
+ * Surface::GetMesh()) in slab `BatchSlab[k]` (between slices s-1 and s),
+ * clipped to view depths `BatchClip[2k] <= depth < BatchClip[2k+1]`
+ * (infinite: no clip needed). With an opaque surface, triangles
+ * `0 .. OpaqueTriangles` are drawn first (depth write), then the bricks.
  */
 struct DrawList
 {
@@ -186,6 +194,12 @@ struct DrawList
   std::string Passes; ///< comma-joined, e.g. "volume"; empty without bricks
   double ReferenceSpacing = 0.0; ///< d0, world units
   double Forward[3] = { 0.0, 0.0, -1.0 }; ///< unit view direction
+  std::vector<std::size_t> BatchOffsets; ///< bricks + 1 values
+  std::vector<std::size_t> BatchSlab;
+  std::vector<std::uint32_t> BatchFirst;
+  std::vector<std::uint32_t> BatchEnd;
+  std::vector<double> BatchClip; ///< 2 per batch
+  std::size_t OpaqueTriangles = 0;
 
   std::size_t GetNumberOfBricks() const { return this->Brick.size(); }
 };
@@ -204,6 +218,7 @@ CameraDescription DescribeCamera(vtkCamera* camera);
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function);
 
 class Selection;
+class Surface;
 
 /// A Volume Octree owned on the C++ side (it owns the Rust handle).
 class VolumeOctree
@@ -248,8 +263,17 @@ public:
    */
   std::unique_ptr<Selection> Select(const SelectDescription& options, std::string& error) const;
 
+  /**
+   * Extracts the isosurface (as ExtractSurface(), without the distance) and
+   * keeps it for drawing with a Selection. Returns nullptr and sets `error`
+   * on failure.
+   */
+  std::unique_ptr<Surface> ExtractSurfaceForDrawing(const void* bytes, std::size_t byteCount,
+    const GridDescription& grid, double isovalue, SurfaceMode mode, std::string& error) const;
+
 private:
   friend class Selection;
+  friend class Surface;
   struct Internals;
   explicit VolumeOctree(std::unique_ptr<Internals> internals);
   std::unique_ptr<Internals> Impl;
@@ -271,6 +295,12 @@ public:
   bool GetDrawList(const VolumeOctree& octree, const CameraDescription& camera, DrawList& list,
     std::string& error) const;
 
+  /// The DrawList with `surface` (extracted from `octree`) at `surfaceOpacity`:
+  /// 1 opaque (drawn first), (0, 1) translucent (batches in the slabs), 0 hidden.
+  /// The slab batching is made on the first call for a surface and kept.
+  bool GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
+    const Surface& surface, double surfaceOpacity, DrawList& list, std::string& error) const;
+
   /**
    * Brick `brick`'s texels (x fastest; texel (i, j, k) is the image at
    * min(lo + (i, j, k) * stride, hi)) as float: exact for 8/16-bit and float
@@ -285,6 +315,26 @@ private:
   friend class VolumeOctree;
   struct Internals;
   explicit Selection(std::unique_ptr<Internals> internals);
+  std::unique_ptr<Internals> Impl;
+};
+
+/// An isosurface kept for drawing (it owns the Rust handle).
+class Surface
+{
+public:
+  ~Surface();
+  Surface(const Surface&) = delete;
+  Surface& operator=(const Surface&) = delete;
+
+  /// The mesh (world coordinates); its polygon ids are the DrawList's
+  /// triangle ids. `octree`: the one it was extracted from. False and `error` on failure.
+  bool GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string& error) const;
+
+private:
+  friend class VolumeOctree;
+  friend class Selection;
+  struct Internals;
+  explicit Surface(std::unique_ptr<Internals> internals);
   std::unique_ptr<Internals> Impl;
 };
 

@@ -182,7 +182,7 @@ mod bridge {
     }
 
     /// A DrawList for one camera, flattened per brick in drawing order (back
-    /// to front). Volume bricks only: surface batches are not carried yet.
+    /// to front), with the surface passes when drawn with a surface.
     #[derive(Debug)]
     struct DrawListOutput {
         /// Index of the brick in the selection (for brick_texels).
@@ -211,6 +211,20 @@ mod bridge {
         reference_spacing: f64,
         /// The camera's unit view direction.
         forward: [f64; 3],
+        /// Translucent surface: brick i's triangle batches are batches
+        /// batch_offsets[i] .. batch_offsets[i + 1], back to front (empty
+        /// lists without one).
+        batch_offsets: Vec<usize>,
+        /// Per batch: the slab s within its brick (between slices s - 1 and s;
+        /// 0 behind the first slice, slices-count in front of the last).
+        batch_slab: Vec<usize>,
+        /// Per batch: surface triangles [first, end) (polygon ids of the SurfaceHandle's mesh).
+        batch_first: Vec<u32>,
+        batch_end: Vec<u32>,
+        /// Per batch, 2 values: clip to view depths near <= depth < far; (-inf, inf): no clip needed.
+        batch_clip: Vec<f64>,
+        /// Opaque surface: the surface pass draws triangles 0 .. this first (0 otherwise).
+        opaque_triangles: usize,
     }
 
     // ---- Rust types and functions for C++ --------------------------------
@@ -257,10 +271,35 @@ mod bridge {
         /// `render::texture::brick_texels_f32`), from the image the octree
         /// was built from.
         fn brick_texels(self: &SelectionHandle, bytes: &[u8], desc: &GridDesc, brick: usize) -> Result<Vec<f32>>;
+
+        /// An isosurface kept for drawing with a selection.
+        type SurfaceHandle;
+
+        /// Extracts the isosurface (as extract_surface, no distance) and keeps it for drawing.
+        fn surface_for_drawing(
+            self: &VolumeOctreeHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            isovalue: f64,
+            mode: SurfaceMode,
+        ) -> Result<Box<SurfaceHandle>>;
+        /// The kept surface as a mesh (its polygon ids are the DrawList's
+        /// triangle ids); `octree`: the handle it was extracted from.
+        fn mesh(self: &SurfaceHandle, octree: &VolumeOctreeHandle) -> Result<SurfaceOutput>;
+        /// The DrawList with `surface` at `surface_opacity` (1: opaque pass
+        /// first; (0, 1): batches in the slabs; 0: hidden). The selection's
+        /// SlabPolygons are made on the first call and kept for this surface.
+        fn draw_list_with_surface(
+            self: &SelectionHandle,
+            octree: &VolumeOctreeHandle,
+            camera: &CameraDesc,
+            surface: &SurfaceHandle,
+            surface_opacity: f64,
+        ) -> Result<DrawListOutput>;
     }
 }
 
-pub use crate::ffi_render::SelectionHandle;
+pub use crate::ffi_render::{SelectionHandle, SurfaceHandle};
 pub use bridge::{
     CameraDesc, CutBoxes, DrawListOutput, GridDesc, OctreeSummary, ScalarType, SelectDesc, SelectionSummary,
     SurfaceMode, SurfaceOutput,
@@ -330,7 +369,7 @@ pub(crate) fn build_volume_octree(
 }
 
 impl VolumeOctreeHandle {
-    fn extract_surface(
+    pub(crate) fn extract_surface(
         &self,
         bytes: &[u8],
         desc: &GridDesc,
@@ -340,44 +379,54 @@ impl VolumeOctreeHandle {
     ) -> Result<SurfaceOutput, String> {
         guarded(|| {
             let grid = grid_of(bytes, desc)?;
-            if grid.shape() != &self.shape {
-                return Err(Error::InvalidArgument(
-                    "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
-                ));
-            }
-            let options = match mode {
-                SurfaceMode::Discretized => SurfaceOptions::discretized(isovalue),
-                SurfaceMode::Interpolated => SurfaceOptions::interpolated(isovalue),
-                _ => return Err(Error::InvalidArgument("unknown surface mode code from C++".into())),
-            };
-            let surface = Surface::extract(&grid, &self.octree, &options)?;
+            let surface = self.extract(&grid, isovalue, mode)?;
             let (distance_mean, distance_max) = if measure_distance {
                 let d = distance::discretized_to_interpolated(&grid, &self.octree, isovalue)?;
                 (d.mean, d.max)
             } else {
                 (-1.0, -1.0)
             };
-            let st = &surface.stats;
-            Ok(SurfaceOutput {
-                points: surface.points.iter().flat_map(|p| self.shape.world(*p)).collect(),
-                normals: surface.normals.iter().flatten().copied().collect(),
-                offsets: surface.offsets.iter().map(|&o| o as i64).collect(),
-                connectivity: surface.connectivity.iter().map(|&c| c as i64).collect(),
-                polygon_node: surface.polygon_node.iter().map(|n| n.0).collect(),
-                polygon_level: surface.polygon_node.iter().map(|&n| self.octree.node(n).level as u32).collect(),
-                polygon_face: surface.polygon_face.clone(),
-                polygons: st.polygons as u64,
-                faces: st.faces as u64,
-                triangles: st.triangles as u64,
-                uncompressed_triangles: st.uncompressed_triangles as u64,
-                vertices: st.vertices as u64,
-                boundary_edges: st.boundary_edges as u64,
-                extract_ms: st.extract_ms,
-                compress_ms: st.compress_ms,
-                distance_mean,
-                distance_max,
-            })
+            Ok(self.surface_output(&surface, distance_mean, distance_max))
         })
+    }
+
+    /// The isosurface of `grid` (checked to be the image the octree was built from).
+    pub(crate) fn extract(&self, grid: &Grid<'_>, isovalue: f64, mode: SurfaceMode) -> crate::error::Result<Surface> {
+        if grid.shape() != &self.shape {
+            return Err(Error::InvalidArgument(
+                "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
+            ));
+        }
+        let options = match mode {
+            SurfaceMode::Discretized => SurfaceOptions::discretized(isovalue),
+            SurfaceMode::Interpolated => SurfaceOptions::interpolated(isovalue),
+            _ => return Err(Error::InvalidArgument("unknown surface mode code from C++".into())),
+        };
+        Surface::extract(grid, &self.octree, &options)
+    }
+
+    /// `surface` for C++ (world points).
+    pub(crate) fn surface_output(&self, surface: &Surface, distance_mean: f64, distance_max: f64) -> SurfaceOutput {
+        let st = &surface.stats;
+        SurfaceOutput {
+            points: surface.points.iter().flat_map(|p| self.shape.world(*p)).collect(),
+            normals: surface.normals.iter().flatten().copied().collect(),
+            offsets: surface.offsets.iter().map(|&o| o as i64).collect(),
+            connectivity: surface.connectivity.iter().map(|&c| c as i64).collect(),
+            polygon_node: surface.polygon_node.iter().map(|n| n.0).collect(),
+            polygon_level: surface.polygon_node.iter().map(|&n| self.octree.node(n).level as u32).collect(),
+            polygon_face: surface.polygon_face.clone(),
+            polygons: st.polygons as u64,
+            faces: st.faces as u64,
+            triangles: st.triangles as u64,
+            uncompressed_triangles: st.uncompressed_triangles as u64,
+            vertices: st.vertices as u64,
+            boundary_edges: st.boundary_edges as u64,
+            extract_ms: st.extract_ms,
+            compress_ms: st.compress_ms,
+            distance_mean,
+            distance_max,
+        }
     }
 
     fn summary(&self) -> Result<OctreeSummary, String> {

@@ -5,19 +5,25 @@
 //!
 //! The selection, the DrawList and the texel layout are those of the CLI:
 //! [`select`] with the transfer function's visibility test, [`draw_list`]
-//! (volume only: the surface passes are not carried through the bridge yet),
+//! (with a kept isosurface, a [`SurfaceHandle`], and the selection's
+//! [`SlabPolygons`] made once per selection and surface),
 //! [`brick_texels_f32`] (the layout of [`crate::render::texture`]).
 
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::ffi::{
-    grid_of, guarded, CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary, VolumeOctreeHandle,
+    grid_of, guarded, CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary, SurfaceMode, SurfaceOutput,
+    VolumeOctreeHandle,
 };
 use crate::grid::GridShape;
-use crate::plan::{draw_list, DrawList, Scene};
+use crate::plan::{draw_list, plan, DrawList, Scene, SurfacePass};
 use crate::render::texture::brick_texels_f32;
 use crate::render::transfer::TransferFunction;
 use crate::select::{select, Roi, SelectOptions, Selection};
+use crate::slab::SlabPolygons;
+use crate::surface::Surface;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
 
 /// What a bridge function returns: an error crosses as its message.
 type Bridged<T> = std::result::Result<T, String>;
@@ -28,7 +34,19 @@ pub struct SelectionHandle {
     pub(crate) selection: Selection,
     octree_id: u64,
     shape: GridShape,
+    /// The SlabPolygons of the last translucent surface drawn, with its id.
+    polygons: Mutex<Option<(u64, SlabPolygons)>>,
 }
+
+/// An isosurface kept for drawing, with the octree it was extracted from.
+#[derive(Debug)]
+pub struct SurfaceHandle {
+    pub(crate) surface: Surface,
+    octree_id: u64,
+    id: u64,
+}
+
+static NEXT_SURFACE_ID: AtomicU64 = AtomicU64::new(1);
 
 /// The select options of `desc` for a grid of `shape`: the ROI from world
 /// to index space (centre through origin and spacing, radius divided by the
@@ -107,8 +125,15 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         passes: list.plan.passes.join(","),
         reference_spacing: list.reference_spacing,
         forward: list.camera.forward(),
+        batch_offsets: Vec::with_capacity(n + 1),
+        batch_slab: Vec::new(),
+        batch_first: Vec::new(),
+        batch_end: Vec::new(),
+        batch_clip: Vec::new(),
+        opaque_triangles: list.opaque_triangles.len(),
     };
     out.slice_offsets.push(0);
+    out.batch_offsets.push(0);
     for d in &list.bricks {
         // Bricks are sorted by node id in the selection.
         let index = selection.bricks.binary_search_by_key(&d.brick.node, |b| b.node).expect("a selected brick");
@@ -122,6 +147,14 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         out.opacity_ratio.push(d.slice_spacing / list.reference_spacing);
         out.slices.extend_from_slice(&d.slices);
         out.slice_offsets.push(out.slices.len());
+        for b in &d.batches {
+            out.batch_slab.push(b.slab);
+            out.batch_first.push(b.triangles.start);
+            out.batch_end.push(b.triangles.end);
+            let (near, far) = b.clip.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+            out.batch_clip.extend_from_slice(&[near, far]);
+        }
+        out.batch_offsets.push(out.batch_slab.len());
     }
     out
 }
@@ -130,7 +163,47 @@ impl VolumeOctreeHandle {
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
             let selection = select_with(self, desc)?;
-            Ok(Box::new(SelectionHandle { selection, octree_id: self.id, shape: self.shape }))
+            Ok(Box::new(SelectionHandle {
+                selection,
+                octree_id: self.id,
+                shape: self.shape,
+                polygons: Mutex::new(None),
+            }))
+        })
+    }
+}
+
+impl VolumeOctreeHandle {
+    pub(crate) fn surface_for_drawing(
+        &self,
+        bytes: &[u8],
+        desc: &GridDesc,
+        isovalue: f64,
+        mode: SurfaceMode,
+    ) -> Bridged<Box<SurfaceHandle>> {
+        guarded(|| {
+            let surface = self.extract(&grid_of(bytes, desc)?, isovalue, mode)?;
+            let id = NEXT_SURFACE_ID.fetch_add(1, Ordering::Relaxed);
+            Ok(Box::new(SurfaceHandle { surface, octree_id: self.id, id }))
+        })
+    }
+}
+
+impl SurfaceHandle {
+    fn check_octree(&self, octree: &VolumeOctreeHandle) -> Result<()> {
+        if self.octree_id == octree.id {
+            Ok(())
+        } else {
+            Err(Error::InvalidArgument(
+                "the surface was extracted from another octree: extract it from this one".into(),
+            ))
+        }
+    }
+
+    pub(crate) fn mesh(&self, octree: &VolumeOctreeHandle) -> Bridged<SurfaceOutput> {
+        guarded(|| {
+            self.check_octree(octree)?;
+            Ok(octree.surface_output(&self.surface, -1.0, -1.0))
         })
     }
 }
@@ -150,20 +223,52 @@ impl SelectionHandle {
         })
     }
 
-    /// The DrawList itself (for the bridge and the tests).
-    pub(crate) fn list(&self, octree: &VolumeOctreeHandle, camera_desc: &CameraDesc) -> Result<DrawList> {
+    /// The DrawList itself (for the bridge and the tests), with `surface` at an opacity.
+    pub(crate) fn list(
+        &self,
+        octree: &VolumeOctreeHandle,
+        camera_desc: &CameraDesc,
+        surface: Option<(&SurfaceHandle, f64)>,
+    ) -> Result<DrawList> {
         if octree.id != self.octree_id {
             return Err(Error::InvalidArgument(
                 "this selection was made from another octree: select again from this one".into(),
             ));
         }
         let camera = camera(camera_desc)?;
-        let scene = Scene { surface: None, surface_opacity: 1.0, shading: false };
-        draw_list(&octree.octree, &octree.shape, &self.selection, &camera, &scene, None)
+        let Some((s, surface_opacity)) = surface else {
+            let scene = Scene { surface: None, surface_opacity: 1.0, shading: false };
+            return draw_list(&octree.octree, &octree.shape, &self.selection, &camera, &scene, None);
+        };
+        s.check_octree(octree)?;
+        if !(0.0..=1.0).contains(&surface_opacity) {
+            return Err(Error::InvalidArgument(format!("surface opacity {surface_opacity} must be between 0 and 1")));
+        }
+        let scene = Scene { surface: Some(&s.surface), surface_opacity, shading: false };
+        if plan(&self.selection, &scene).surface != SurfacePass::Translucent {
+            return draw_list(&octree.octree, &octree.shape, &self.selection, &camera, &scene, None);
+        }
+        let mut cache = self.polygons.lock().unwrap_or_else(|e| e.into_inner());
+        if cache.as_ref().is_none_or(|(id, _)| *id != s.id) {
+            let made = SlabPolygons::new(&octree.octree, &s.surface, &octree.shape, &self.selection);
+            *cache = Some((s.id, made));
+        }
+        let polygons = cache.as_ref().map(|(_, p)| p);
+        draw_list(&octree.octree, &octree.shape, &self.selection, &camera, &scene, polygons)
     }
 
     pub(crate) fn draw_list(&self, octree: &VolumeOctreeHandle, camera_desc: &CameraDesc) -> Bridged<DrawListOutput> {
-        guarded(|| Ok(flatten(&self.list(octree, camera_desc)?, &self.selection)))
+        guarded(|| Ok(flatten(&self.list(octree, camera_desc, None)?, &self.selection)))
+    }
+
+    pub(crate) fn draw_list_with_surface(
+        &self,
+        octree: &VolumeOctreeHandle,
+        camera_desc: &CameraDesc,
+        surface: &SurfaceHandle,
+        surface_opacity: f64,
+    ) -> Bridged<DrawListOutput> {
+        guarded(|| Ok(flatten(&self.list(octree, camera_desc, Some((surface, surface_opacity)))?, &self.selection)))
     }
 
     pub(crate) fn brick_texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize) -> Bridged<Vec<f32>> {
@@ -342,7 +447,7 @@ mod tests {
             let scene = Scene { surface: None, surface_opacity: 1.0, shading: false };
             let direct =
                 plan::draw_list(&h.octree, &h.shape, &s.selection, &camera(&c).unwrap(), &scene, None).unwrap();
-            assert_eq!(direct, s.list(&h, &c).unwrap());
+            assert_eq!(direct, s.list(&h, &c, None).unwrap());
             let n = direct.bricks.len();
             assert!(n > 1 && n == s.selection.bricks.len(), "{n} bricks");
             assert_eq!(out.passes, "volume");
@@ -418,5 +523,82 @@ mod tests {
         let all: Vec<f32> = (0..s.selection.bricks.len()).flat_map(|i| s.brick_texels(b, &desc, i).unwrap()).collect();
         assert!(!all.is_empty() && all.iter().all(|&v| v == 1.0f32));
         assert!(grid.value(2, 2, 2) != 1.0);
+    }
+
+    #[test]
+    fn draw_list_with_a_surface_is_plan_draw_list() {
+        use crate::ffi::SurfaceMode;
+        let d = data();
+        let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+        let s = h
+            .select_bricks(&SelectDesc {
+                has_roi: true,
+                roi_center: [0.0, 5.0, 6.0],
+                roi_radius: 1.0,
+                ..options(30_000)
+            })
+            .unwrap();
+        let surface = h.surface_for_drawing(bytes(&d), &desc(), 0.5, SurfaceMode::Discretized).unwrap();
+        let mesh = surface.mesh(&h).unwrap();
+        let polygons = surface.surface.polygon_count();
+        assert!(polygons > 0 && mesh.polygons as usize == polygons);
+        assert_eq!(
+            mesh.points,
+            h.extract_surface(bytes(&d), &desc(), 0.5, SurfaceMode::Discretized, false).unwrap().points
+        );
+        for c in cameras() {
+            let camera = camera(&c).unwrap();
+            for (opacity, passes) in [(0.4, "surface-in-slabs,volume"), (1.0, "surface-opaque,volume"), (0.0, "volume")]
+            {
+                let scene = Scene { surface: Some(&surface.surface), surface_opacity: opacity, shading: false };
+                let direct = plan::draw_list(&h.octree, &h.shape, &s.selection, &camera, &scene, None).unwrap();
+                assert_eq!(s.list(&h, &c, Some((&surface, opacity))).unwrap(), direct);
+                let out = s.draw_list_with_surface(&h, &c, &surface, opacity).unwrap();
+                assert_eq!(out.passes, passes);
+                assert_eq!(out.opaque_triangles, direct.opaque_triangles.len());
+                assert_eq!(out.batch_offsets.len(), direct.bricks.len() + 1);
+                let mut seen = vec![false; polygons];
+                for (i, b) in direct.bricks.iter().enumerate() {
+                    let range = out.batch_offsets[i]..out.batch_offsets[i + 1];
+                    assert_eq!(range.len(), b.batches.len());
+                    for (k, batch) in range.zip(&b.batches) {
+                        assert_eq!(out.batch_slab[k], batch.slab);
+                        assert_eq!(out.batch_first[k]..out.batch_end[k], batch.triangles);
+                        let clip = batch.clip.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+                        assert_eq!(out.batch_clip[2 * k..2 * k + 2], [clip.0, clip.1]);
+                        batch.triangles.clone().for_each(|t| seen[t as usize] = true);
+                    }
+                }
+                assert_eq!(seen.iter().all(|&v| v), opacity > 0.0 && opacity < 1.0, "opacity {opacity}");
+                if opacity == 1.0 {
+                    assert_eq!(out.opaque_triangles, polygons);
+                }
+            }
+        }
+        // Kept SlabPolygons are made again for another surface.
+        let other = h.surface_for_drawing(bytes(&d), &desc(), 0.3, SurfaceMode::Discretized).unwrap();
+        let c = &cameras()[1];
+        let scene = Scene { surface: Some(&other.surface), surface_opacity: 0.4, shading: false };
+        let direct = plan::draw_list(&h.octree, &h.shape, &s.selection, &camera(c).unwrap(), &scene, None).unwrap();
+        assert_eq!(s.list(&h, c, Some((&other, 0.4))).unwrap(), direct);
+    }
+
+    #[test]
+    fn draw_list_with_a_surface_errors() {
+        use crate::ffi::SurfaceMode;
+        let d = data();
+        let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+        let other = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+        let s = h.select_bricks(&options(12_000)).unwrap();
+        let surface = h.surface_for_drawing(bytes(&d), &desc(), 0.5, SurfaceMode::Discretized).unwrap();
+        let foreign = other.surface_for_drawing(bytes(&d), &desc(), 0.5, SurfaceMode::Discretized).unwrap();
+        let c = &cameras()[0];
+        assert!(s.draw_list_with_surface(&h, c, &foreign, 0.5).unwrap_err().contains("another octree"));
+        assert!(foreign.mesh(&h).unwrap_err().contains("another octree"));
+        for bad in [f64::NAN, 1.5, -0.1] {
+            assert!(s.draw_list_with_surface(&h, c, &surface, bad).unwrap_err().contains("surface opacity"));
+        }
+        let e = h.surface_for_drawing(bytes(&d), &desc(), f64::NAN, SurfaceMode::Discretized).map(|_| ()).unwrap_err();
+        assert!(e.contains("isovalue"), "{e}");
     }
 }

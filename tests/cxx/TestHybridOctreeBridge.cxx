@@ -6,7 +6,9 @@
  *
  * Scenarios: `draw_list` (budget kept, bricks back to front for a camera
  * along +z and a diagonal one, slices inside their brick), `texels` (every
- * brick's texels are the image at the texel positions), `transparent` (a
+ * brick's texels are the image at the texel positions), `surface` (a kept
+ * isosurface: translucent batches cover every triangle, opaque pass first,
+ * hidden: volume only), `transparent` (a
  * vtkPiecewiseFunction that is 0 everywhere: no brick), `errors` (budget 0,
  * NaN tolerance, bad ROI, camera at its focal point, brick out of range,
  * another octree's selection: clear messages, no crash).
@@ -338,6 +340,82 @@ int Texels()
   return check.Result();
 }
 
+int SurfaceBatches()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  B::SelectDescription options;
+  options.BudgetBytes = 30000;
+  options.HasIsovalue = true;
+  options.Isovalue = 150.0;
+  std::string error;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  std::unique_ptr<B::Surface> surface = f.Octree->ExtractSurfaceForDrawing(
+    f.Bytes(), f.ByteCount(), f.Grid, 150.0, B::SurfaceMode::Discretized, error);
+  if (!check.Check(selection && surface, "select and surface: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  B::SurfaceMesh mesh;
+  check.Check(surface->GetMesh(*f.Octree, mesh, error), "mesh: " + error);
+  check.Check(mesh.Polygons > 0 && mesh.Offsets.size() == mesh.Polygons + 1, "a surface");
+  vtkNew<vtkCamera> camera;
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double diagonal[3] = { 1.0, 0.8, 0.6 };
+  Aim(camera, centre, diagonal, false);
+  const B::CameraDescription view = B::DescribeCamera(camera);
+  for (int round = 0; round < 2; ++round) // the second round reuses the kept slab batching
+  {
+    B::DrawList list;
+    if (!check.Check(selection->GetDrawList(*f.Octree, view, *surface, 0.5, list, error),
+          "translucent: " + error))
+    {
+      return check.Result();
+    }
+    const std::size_t n = list.GetNumberOfBricks();
+    check.Check(list.Passes == "surface-in-slabs,volume", "translucent passes: " + list.Passes);
+    check.Check(list.OpaqueTriangles == 0 && list.BatchOffsets.size() == n + 1 &&
+        list.BatchOffsets.back() == list.BatchSlab.size() &&
+        list.BatchClip.size() == 2 * list.BatchSlab.size(),
+      "translucent: batch sizes");
+    std::vector<bool> seen(mesh.Polygons, false);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::size_t slices = list.SliceOffsets[i + 1] - list.SliceOffsets[i];
+      for (std::size_t k = list.BatchOffsets[i]; k < list.BatchOffsets[i + 1]; ++k)
+      {
+        check.Check(list.BatchSlab[k] <= slices, "batch slab within the brick's slabs");
+        check.Check(list.BatchClip[2 * k] < list.BatchClip[2 * k + 1], "clip near < far");
+        check.Check(list.BatchFirst[k] < list.BatchEnd[k] && list.BatchEnd[k] <= mesh.Polygons,
+          "batch triangles within the mesh");
+        for (std::uint32_t t = list.BatchFirst[k]; t < list.BatchEnd[k] && t < mesh.Polygons; ++t)
+        {
+          seen[t] = true;
+        }
+      }
+    }
+    check.Check(std::all_of(seen.begin(), seen.end(), [](bool v) { return v; }),
+      "every triangle is in some batch");
+  }
+  B::DrawList opaque;
+  check.Check(selection->GetDrawList(*f.Octree, view, *surface, 1.0, opaque, error), error);
+  check.Check(opaque.Passes == "surface-opaque,volume" && opaque.OpaqueTriangles == mesh.Polygons &&
+      opaque.BatchSlab.empty(),
+    "opaque: surface pass first, all triangles, no batches (" + opaque.Passes + ")");
+  B::DrawList hidden;
+  check.Check(selection->GetDrawList(*f.Octree, view, *surface, 0.0, hidden, error), error);
+  check.Check(hidden.Passes == "volume" && hidden.OpaqueTriangles == 0, "hidden surface: volume only");
+  error.clear();
+  check.Check(!selection->GetDrawList(*f.Octree, view, *surface, 2.0, hidden, error) &&
+      error.find("surface opacity") != std::string::npos,
+    "opacity 2: '" + error + "'");
+  return check.Result();
+}
+
 int Transparent()
 {
   Checker check;
@@ -452,6 +530,10 @@ int TestHybridOctreeBridge(int argc, char* argv[])
   {
     return Texels();
   }
+  if (scenario == "surface")
+  {
+    return SurfaceBatches();
+  }
   if (scenario == "transparent")
   {
     return Transparent();
@@ -461,6 +543,6 @@ int TestHybridOctreeBridge(int argc, char* argv[])
     return Errors();
   }
   std::cerr << "unknown scenario '" << scenario
-            << "': use draw_list, texels, transparent or errors\n";
+            << "': use draw_list, texels, surface, transparent or errors\n";
   return EXIT_FAILURE;
 }
