@@ -9,6 +9,10 @@
 
 #include "hybrid-octree/src/ffi.rs.h"
 
+#include "vtkCamera.h"
+#include "vtkPiecewiseFunction.h"
+
+#include <algorithm>
 #include <exception>
 #include <utility>
 
@@ -80,6 +84,67 @@ template <typename From, typename To>
 void CopyInto(const rust::Vec<From>& from, std::vector<To>& to)
 {
   to.assign(from.begin(), from.end());
+}
+void CopyMesh(const hybrid_octree::SurfaceOutput& s, SurfaceMesh& surface)
+{
+  CopyInto(s.points, surface.Points);
+  CopyInto(s.normals, surface.Normals);
+  CopyInto(s.offsets, surface.Offsets);
+  CopyInto(s.connectivity, surface.Connectivity);
+  CopyInto(s.polygon_node, surface.PolygonNode);
+  CopyInto(s.polygon_level, surface.PolygonLevel);
+  CopyInto(s.polygon_face, surface.PolygonFace);
+  surface.Polygons = s.polygons;
+  surface.Faces = s.faces;
+  surface.Triangles = s.triangles;
+  surface.UncompressedTriangles = s.uncompressed_triangles;
+  surface.Vertices = s.vertices;
+  surface.BoundaryEdges = s.boundary_edges;
+  surface.ExtractMilliseconds = s.extract_ms;
+  surface.CompressMilliseconds = s.compress_ms;
+  surface.DistanceMean = s.distance_mean;
+  surface.DistanceMax = s.distance_max;
+}
+
+/// The bridge's camera.
+hybrid_octree::CameraDesc ToRust(const CameraDescription& camera)
+{
+  hybrid_octree::CameraDesc desc;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    desc.position[axis] = camera.Position[axis];
+    desc.focal_point[axis] = camera.FocalPoint[axis];
+    desc.view_up[axis] = camera.ViewUp[axis];
+  }
+  desc.parallel = camera.Parallel;
+  desc.parallel_scale = camera.ParallelScale;
+  desc.view_angle = camera.ViewAngle;
+  return desc;
+}
+
+void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
+{
+  CopyInto(out.brick, list.Brick);
+  CopyInto(out.node_id, list.NodeId);
+  CopyInto(out.bounds, list.Bounds);
+  CopyInto(out.texels, list.Texels);
+  CopyInto(out.stride, list.Stride);
+  CopyInto(out.slice_spacing, list.SliceSpacing);
+  CopyInto(out.opacity_ratio, list.OpacityRatio);
+  CopyInto(out.slice_offsets, list.SliceOffsets);
+  CopyInto(out.slices, list.Slices);
+  list.Passes = std::string(out.passes);
+  list.ReferenceSpacing = out.reference_spacing;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    list.Forward[axis] = out.forward[axis];
+  }
+  CopyInto(out.batch_offsets, list.BatchOffsets);
+  CopyInto(out.batch_slab, list.BatchSlab);
+  CopyInto(out.batch_first, list.BatchFirst);
+  CopyInto(out.batch_end, list.BatchEnd);
+  CopyInto(out.batch_clip, list.BatchClip);
+  list.OpaqueTriangles = out.opaque_triangles;
 }
 } // namespace
 
@@ -171,23 +236,222 @@ bool VolumeOctree::ExtractSurface(const void* bytes, std::size_t byteCount,
     const hybrid_octree::GridDesc desc = ToRust(grid);
     const hybrid_octree::SurfaceOutput s = this->Impl->Handle->extract_surface(
       ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode), measureDistance);
-    CopyInto(s.points, surface.Points);
-    CopyInto(s.normals, surface.Normals);
-    CopyInto(s.offsets, surface.Offsets);
-    CopyInto(s.connectivity, surface.Connectivity);
-    CopyInto(s.polygon_node, surface.PolygonNode);
-    CopyInto(s.polygon_level, surface.PolygonLevel);
-    CopyInto(s.polygon_face, surface.PolygonFace);
-    surface.Polygons = s.polygons;
-    surface.Faces = s.faces;
-    surface.Triangles = s.triangles;
-    surface.UncompressedTriangles = s.uncompressed_triangles;
-    surface.Vertices = s.vertices;
-    surface.BoundaryEdges = s.boundary_edges;
-    surface.ExtractMilliseconds = s.extract_ms;
-    surface.CompressMilliseconds = s.compress_ms;
-    surface.DistanceMean = s.distance_mean;
-    surface.DistanceMax = s.distance_max;
+    CopyMesh(s, surface);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+CameraDescription DescribeCamera(vtkCamera* camera)
+{
+  CameraDescription d;
+  if (!camera)
+  {
+    return d;
+  }
+  camera->GetPosition(d.Position);
+  camera->GetFocalPoint(d.FocalPoint);
+  camera->GetViewUp(d.ViewUp);
+  d.Parallel = camera->GetParallelProjection() != 0;
+  d.ParallelScale = camera->GetParallelScale();
+  d.ViewAngle = camera->GetViewAngle();
+  return d;
+}
+
+std::vector<double> OpacityPoints(vtkPiecewiseFunction* function)
+{
+  std::vector<double> points;
+  const int n = function ? function->GetSize() : 0;
+  if (n == 0)
+  {
+    return points;
+  }
+  points.reserve(2 * n + 4);
+  double node[4];
+  const bool clamped = function->GetClamping() != 0;
+  for (int i = 0; i < n; ++i)
+  {
+    function->GetNodeValue(i, node);
+    if (i == 0 && !clamped)
+    {
+      points.push_back(node[0]);
+      points.push_back(0.0);
+    }
+    points.push_back(node[0]);
+    points.push_back(std::min(1.0, std::max(0.0, node[1])));
+  }
+  if (!clamped)
+  {
+    points.push_back(node[0]);
+    points.push_back(0.0);
+  }
+  return points;
+}
+
+struct Selection::Internals
+{
+  explicit Internals(rust::Box<hybrid_octree::SelectionHandle> handle)
+    : Handle(std::move(handle))
+  {
+  }
+  rust::Box<hybrid_octree::SelectionHandle> Handle;
+};
+
+std::unique_ptr<Selection> VolumeOctree::Select(
+  const SelectDescription& options, std::string& error) const
+{
+  try
+  {
+    hybrid_octree::SelectDesc desc;
+    desc.budget_bytes = options.BudgetBytes;
+    desc.tolerance = options.Tolerance;
+    desc.has_roi = options.HasRoi;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      desc.roi_center[axis] = options.RoiCenter[axis];
+    }
+    desc.roi_radius = options.RoiRadius;
+    for (double v : options.OpacityPoints)
+    {
+      desc.opacity_points.push_back(v);
+    }
+    desc.has_isovalue = options.HasIsovalue;
+    desc.isovalue = options.Isovalue;
+    rust::Box<hybrid_octree::SelectionHandle> handle = this->Impl->Handle->select_bricks(desc);
+    return std::unique_ptr<Selection>(
+      new Selection(std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return nullptr;
+}
+
+Selection::Selection(std::unique_ptr<Internals> internals)
+  : Impl(std::move(internals))
+{
+}
+
+Selection::~Selection() = default;
+
+bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::SelectionSummary s = this->Impl->Handle->summary();
+    summary.Bricks = s.bricks;
+    summary.TextureBytes = s.texture_bytes;
+    summary.BudgetBytes = s.budget_bytes;
+    summary.MaxError = s.max_error;
+    summary.Skipped = s.skipped;
+    summary.Warning = std::string(s.warning);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+bool Selection::GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
+  DrawList& list, std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::DrawListOutput out =
+      this->Impl->Handle->draw_list(*octree.Impl->Handle, ToRust(camera));
+    CopyDrawList(out, list);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+bool Selection::GetBrickTexels(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, std::size_t brick, std::vector<float>& texels,
+  std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::GridDesc desc = ToRust(grid);
+    const rust::Vec<float> t =
+      this->Impl->Handle->brick_texels(ToSlice(bytes, byteCount), desc, brick);
+    CopyInto(t, texels);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+struct Surface::Internals
+{
+  explicit Internals(rust::Box<hybrid_octree::SurfaceHandle> handle)
+    : Handle(std::move(handle))
+  {
+  }
+  rust::Box<hybrid_octree::SurfaceHandle> Handle;
+};
+
+bool Selection::GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
+  const Surface& surface, double surfaceOpacity, DrawList& list, std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::DrawListOutput out = this->Impl->Handle->draw_list_with_surface(
+      *octree.Impl->Handle, ToRust(camera), *surface.Impl->Handle, surfaceOpacity);
+    CopyDrawList(out, list);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+Surface::Surface(std::unique_ptr<Internals> internals)
+  : Impl(std::move(internals))
+{
+}
+
+Surface::~Surface() = default;
+
+std::unique_ptr<Surface> VolumeOctree::ExtractSurfaceForDrawing(const void* bytes,
+  std::size_t byteCount, const GridDescription& grid, double isovalue, SurfaceMode mode,
+  std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::GridDesc desc = ToRust(grid);
+    rust::Box<hybrid_octree::SurfaceHandle> handle = this->Impl->Handle->surface_for_drawing(
+      ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode));
+    return std::unique_ptr<Surface>(
+      new Surface(std::unique_ptr<Surface::Internals>(new Surface::Internals(std::move(handle)))));
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return nullptr;
+}
+
+bool Surface::GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string& error) const
+{
+  try
+  {
+    CopyMesh(this->Impl->Handle->mesh(*octree.Impl->Handle), mesh);
     return true;
   }
   catch (const std::exception& e)

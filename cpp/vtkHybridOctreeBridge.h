@@ -21,6 +21,9 @@
 #include <string>
 #include <vector>
 
+class vtkCamera;
+class vtkPiecewiseFunction;
+
 namespace vtkHybridOctreeBridge
 {
 
@@ -120,6 +123,103 @@ struct SurfaceMesh
   double DistanceMax = -1.0;
 };
 
+/// What to select for drawing (see SelectDesc in src/ffi.rs).
+struct SelectDescription
+{
+  std::size_t BudgetBytes = 0; ///< texture budget (f32 texels), > 0
+  double Tolerance = 0.0;      ///< error tolerance, fraction of the data range, >= 0
+  bool HasRoi = false;
+  double RoiCenter[3] = { 0.0, 0.0, 0.0 }; ///< world coordinates
+  double RoiRadius = 1.0; ///< world units (divided by the smallest spacing in index space)
+  /// The scalar opacity, (value, opacity) pairs flattened (see OpacityPoints());
+  /// nodes over whose range it is 0 get no texture. Empty: every node shows.
+  std::vector<double> OpacityPoints;
+  bool HasIsovalue = false; ///< nodes holding the isovalue always show
+  double Isovalue = 0.0;
+};
+
+/// Summary of a selection (see SelectionSummary in src/ffi.rs).
+struct SelectionSummary
+{
+  std::uint64_t Bricks = 0;
+  std::uint64_t TextureBytes = 0;
+  std::uint64_t BudgetBytes = 0;
+  double MaxError = 0.0; ///< largest weighted error, fraction of the data range
+  std::uint64_t Skipped = 0; ///< nodes left out as fully transparent
+  std::string Warning;       ///< empty when none
+};
+
+/// A camera as vtkCamera describes it (see DescribeCamera()).
+struct CameraDescription
+{
+  double Position[3] = { 0.0, 0.0, 1.0 };
+  double FocalPoint[3] = { 0.0, 0.0, 0.0 };
+  double ViewUp[3] = { 0.0, 1.0, 0.0 };
+  bool Parallel = false;
+  double ParallelScale = 1.0; ///< half the view height, world units
+  double ViewAngle = 30.0;    ///< full vertical angle, degrees
+};
+
+/**
+ * A DrawList for one camera (see DrawListOutput in src/ffi.rs): the volume
+ * bricks in drawing order, back to front. Per brick `i`: `Brick[i]` (its
+ * index in the selection, for GetBrickTexels()), `NodeId[i]`,
+ * `Bounds[6i .. 6i+6]` (world, VTK order), `Texels[3i .. 3i+3]`,
+ * `Stride[i]` (cells between texels), `SliceSpacing[i]` (d, world),
+ * `OpacityRatio[i]` (d / d0: a' = 1 - (1 - a)^(d/d0)), and its slices
+ * `Slices[SliceOffsets[i] .. SliceOffsets[i+1]]`: view depths back to front,
+ * the plane of depth z being {x : (x - camera position) . Forward = z}.
+ * Texture coordinate along axis a, in texels: (x - min_a) / (Stride * spacing_a),
+ * clamped to [0, texels - 1].
+ *
+ * With a translucent surface, brick `i`'s triangle batches are
+ * `BatchOffsets[i] .. BatchOffsets[i+1]`, back to front: batch `k` draws the
+ * surface triangles `BatchFirst[k] .. BatchEnd[k]` (polygon ids of
+ * Surface::GetMesh()) in slab `BatchSlab[k]` (between slices s-1 and s),
+ * clipped to view depths `BatchClip[2k] <= depth < BatchClip[2k+1]`
+ * (infinite: no clip needed). With an opaque surface, triangles
+ * `0 .. OpaqueTriangles` are drawn first (depth write), then the bricks.
+ */
+struct DrawList
+{
+  std::vector<std::size_t> Brick;
+  std::vector<std::uint32_t> NodeId;
+  std::vector<double> Bounds;
+  std::vector<std::size_t> Texels;
+  std::vector<std::size_t> Stride;
+  std::vector<double> SliceSpacing;
+  std::vector<double> OpacityRatio;
+  std::vector<std::size_t> SliceOffsets;
+  std::vector<double> Slices;
+  std::string Passes; ///< comma-joined, e.g. "volume"; empty without bricks
+  double ReferenceSpacing = 0.0; ///< d0, world units
+  double Forward[3] = { 0.0, 0.0, -1.0 }; ///< unit view direction
+  std::vector<std::size_t> BatchOffsets; ///< bricks + 1 values
+  std::vector<std::size_t> BatchSlab;
+  std::vector<std::uint32_t> BatchFirst;
+  std::vector<std::uint32_t> BatchEnd;
+  std::vector<double> BatchClip; ///< 2 per batch
+  std::size_t OpaqueTriangles = 0;
+
+  std::size_t GetNumberOfBricks() const { return this->Brick.size(); }
+};
+
+/// The camera's position, focal point, view up, projection, parallel scale
+/// and (vertical) view angle.
+CameraDescription DescribeCamera(vtkCamera* camera);
+
+/**
+ * The nodes of a scalar opacity function as (value, opacity) pairs,
+ * flattened, opacities clamped to [0, 1]. With clamping off, the opacity
+ * steps to 0 outside the nodes (a 0 point is added at each end). Midpoint and
+ * sharpness are not carried: the function is taken piecewise linear, which
+ * leaves the "zero over a range" test unchanged except for sharpness-1 steps.
+ */
+std::vector<double> OpacityPoints(vtkPiecewiseFunction* function);
+
+class Selection;
+class Surface;
+
 /// A Volume Octree owned on the C++ side (it owns the Rust handle).
 class VolumeOctree
 {
@@ -156,9 +256,85 @@ public:
     double isovalue, SurfaceMode mode, bool measureDistance, SurfaceMesh& surface,
     std::string& error) const;
 
+  /**
+   * Selects bricks (nodes and texture levels) within the budget. Returns
+   * nullptr and sets `error` on failure (budget 0, a bad tolerance, ROI or
+   * opacity points).
+   */
+  std::unique_ptr<Selection> Select(const SelectDescription& options, std::string& error) const;
+
+  /**
+   * Extracts the isosurface (as ExtractSurface(), without the distance) and
+   * keeps it for drawing with a Selection. Returns nullptr and sets `error`
+   * on failure.
+   */
+  std::unique_ptr<Surface> ExtractSurfaceForDrawing(const void* bytes, std::size_t byteCount,
+    const GridDescription& grid, double isovalue, SurfaceMode mode, std::string& error) const;
+
 private:
+  friend class Selection;
+  friend class Surface;
   struct Internals;
   explicit VolumeOctree(std::unique_ptr<Internals> internals);
+  std::unique_ptr<Internals> Impl;
+};
+
+/// A selection of a VolumeOctree (it owns the Rust handle).
+class Selection
+{
+public:
+  ~Selection();
+  Selection(const Selection&) = delete;
+  Selection& operator=(const Selection&) = delete;
+
+  /// Bricks, bytes, error, skipped nodes, warning. False and `error` on failure.
+  bool GetSummary(SelectionSummary& summary, std::string& error) const;
+
+  /// The DrawList for `camera`; `octree` must be the one Select() was called on.
+  /// Replaces the contents of `list`. False and `error` on failure.
+  bool GetDrawList(const VolumeOctree& octree, const CameraDescription& camera, DrawList& list,
+    std::string& error) const;
+
+  /// The DrawList with `surface` (extracted from `octree`) at `surfaceOpacity`:
+  /// 1 opaque (drawn first), (0, 1) translucent (batches in the slabs), 0 hidden.
+  /// The slab batching is made on the first call for a surface and kept.
+  bool GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
+    const Surface& surface, double surfaceOpacity, DrawList& list, std::string& error) const;
+
+  /**
+   * Brick `brick`'s texels (x fastest; texel (i, j, k) is the image at
+   * min(lo + (i, j, k) * stride, hi)) as float: exact for 8/16-bit and float
+   * images, rounded to nearest for double and 32-bit integers. `bytes`,
+   * `byteCount` and `grid` describe the image the octree was built from.
+   * Replaces the contents of `texels`. False and `error` on failure.
+   */
+  bool GetBrickTexels(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    std::size_t brick, std::vector<float>& texels, std::string& error) const;
+
+private:
+  friend class VolumeOctree;
+  struct Internals;
+  explicit Selection(std::unique_ptr<Internals> internals);
+  std::unique_ptr<Internals> Impl;
+};
+
+/// An isosurface kept for drawing (it owns the Rust handle).
+class Surface
+{
+public:
+  ~Surface();
+  Surface(const Surface&) = delete;
+  Surface& operator=(const Surface&) = delete;
+
+  /// The mesh (world coordinates); its polygon ids are the DrawList's
+  /// triangle ids. `octree`: the one it was extracted from. False and `error` on failure.
+  bool GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string& error) const;
+
+private:
+  friend class VolumeOctree;
+  friend class Selection;
+  struct Internals;
+  explicit Surface(std::unique_ptr<Internals> internals);
   std::unique_ptr<Internals> Impl;
 };
 

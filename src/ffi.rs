@@ -125,6 +125,108 @@ mod bridge {
         distance_max: f64,
     }
 
+    /// What to select (see `select::SelectOptions`; f32 texels, bricks up to
+    /// 128 cells per axis).
+    #[derive(Debug)]
+    struct SelectDesc {
+        /// Texture budget in bytes (> 0).
+        budget_bytes: usize,
+        /// Error tolerance, a fraction of the data range (>= 0).
+        tolerance: f64,
+        /// Refine around a region of interest.
+        has_roi: bool,
+        /// ROI centre, WORLD coordinates (turned into index space with the
+        /// image's origin and spacing).
+        roi_center: [f64; 3],
+        /// ROI radius, world units (> 0), turned into index units by dividing
+        /// by the smallest spacing: with anisotropic spacing the index-space
+        /// sphere covers at least the world sphere.
+        roi_radius: f64,
+        /// The scalar opacity transfer function, (value, opacity) pairs
+        /// flattened, values increasing: nodes over whose range it is 0 are
+        /// skipped (no texture). Empty: every node shows.
+        opacity_points: Vec<f64>,
+        /// With an isosurface: nodes holding the isovalue always show.
+        has_isovalue: bool,
+        isovalue: f64,
+    }
+
+    /// Summary of a selection.
+    #[derive(Debug)]
+    struct SelectionSummary {
+        bricks: usize,
+        /// Sum of the bricks' bytes (f32 texels).
+        texture_bytes: usize,
+        budget_bytes: usize,
+        /// Largest weighted error Imp(n) e_p(n) of the bricks.
+        max_error: f64,
+        /// Nodes left out as fully transparent.
+        skipped: usize,
+        /// "" when none (else: the budget is below the coarsest representation,
+        /// or the tolerance was not reached).
+        warning: String,
+    }
+
+    /// A camera as vtkCamera gives it (world coordinates).
+    #[derive(Debug)]
+    struct CameraDesc {
+        position: [f64; 3],
+        focal_point: [f64; 3],
+        view_up: [f64; 3],
+        /// GetParallelProjection().
+        parallel: bool,
+        /// GetParallelScale(): half the view height, world units.
+        parallel_scale: f64,
+        /// GetViewAngle(): full vertical angle, degrees.
+        view_angle: f64,
+    }
+
+    /// A DrawList for one camera, flattened per brick in drawing order (back
+    /// to front), with the surface passes when drawn with a surface.
+    #[derive(Debug)]
+    struct DrawListOutput {
+        /// Index of the brick in the selection (for brick_texels).
+        brick: Vec<usize>,
+        node_id: Vec<u32>,
+        /// 6 per brick, world: xmin, xmax, ymin, ymax, zmin, zmax.
+        bounds: Vec<f64>,
+        /// 3 per brick: texels per axis (x, y, z). Texture coordinate of a
+        /// world point along axis a, in texels: (x - xmin) / (stride * spacing[a]),
+        /// clamped to [0, texels - 1] (the last texel of a clipped brick is closer).
+        texels: Vec<usize>,
+        /// Cells between texels.
+        stride: Vec<usize>,
+        /// World distance d between the brick's slices.
+        slice_spacing: Vec<f64>,
+        /// d / d0: opacity correction a' = 1 - (1 - a)^(d / d0).
+        opacity_ratio: Vec<f64>,
+        /// Brick i's slices are slices[slice_offsets[i] .. slice_offsets[i + 1]].
+        slice_offsets: Vec<usize>,
+        /// View depths (position-relative, along `forward`), back to front:
+        /// the plane of depth z is {x : (x - camera position) . forward = z}.
+        slices: Vec<f64>,
+        /// The plan's passes in order, comma-joined ("volume", "" with no brick).
+        passes: String,
+        /// d0, world units.
+        reference_spacing: f64,
+        /// The camera's unit view direction.
+        forward: [f64; 3],
+        /// Translucent surface: brick i's triangle batches are batches
+        /// batch_offsets[i] .. batch_offsets[i + 1], back to front (empty
+        /// lists without one).
+        batch_offsets: Vec<usize>,
+        /// Per batch: the slab s within its brick (between slices s - 1 and s;
+        /// 0 behind the first slice, slices-count in front of the last).
+        batch_slab: Vec<usize>,
+        /// Per batch: surface triangles [first, end) (polygon ids of the SurfaceHandle's mesh).
+        batch_first: Vec<u32>,
+        batch_end: Vec<u32>,
+        /// Per batch, 2 values: clip to view depths near <= depth < far; (-inf, inf): no clip needed.
+        batch_clip: Vec<f64>,
+        /// Opaque surface: the surface pass draws triangles 0 .. this first (0 otherwise).
+        opaque_triangles: usize,
+    }
+
     // ---- Rust types and functions for C++ --------------------------------
 
     extern "Rust" {
@@ -149,21 +251,74 @@ mod bridge {
             mode: SurfaceMode,
             measure_distance: bool,
         ) -> Result<SurfaceOutput>;
+
+        /// A selection of the octree's nodes and texture levels, for drawing.
+        type SelectionHandle;
+
+        /// Selects bricks within the budget (errors: budget 0, a tolerance
+        /// that is not a number >= 0, a bad ROI or opacity points).
+        fn select_bricks(self: &VolumeOctreeHandle, options: &SelectDesc) -> Result<Box<SelectionHandle>>;
+        /// Bricks, bytes, error, skipped nodes, warning.
+        fn summary(self: &SelectionHandle) -> Result<SelectionSummary>;
+        /// The DrawList of the selection for `camera` (`octree`: the handle
+        /// the selection was made from).
+        fn draw_list(
+            self: &SelectionHandle,
+            octree: &VolumeOctreeHandle,
+            camera: &CameraDesc,
+        ) -> Result<DrawListOutput>;
+        /// Brick `brick`'s texels as f32, x fastest (see
+        /// `render::texture::brick_texels_f32`), from the image the octree
+        /// was built from.
+        fn brick_texels(self: &SelectionHandle, bytes: &[u8], desc: &GridDesc, brick: usize) -> Result<Vec<f32>>;
+
+        /// An isosurface kept for drawing with a selection.
+        type SurfaceHandle;
+
+        /// Extracts the isosurface (as extract_surface, no distance) and keeps it for drawing.
+        fn surface_for_drawing(
+            self: &VolumeOctreeHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            isovalue: f64,
+            mode: SurfaceMode,
+        ) -> Result<Box<SurfaceHandle>>;
+        /// The kept surface as a mesh (its polygon ids are the DrawList's
+        /// triangle ids); `octree`: the handle it was extracted from.
+        fn mesh(self: &SurfaceHandle, octree: &VolumeOctreeHandle) -> Result<SurfaceOutput>;
+        /// The DrawList with `surface` at `surface_opacity` (1: opaque pass
+        /// first; (0, 1): batches in the slabs; 0: hidden). The selection's
+        /// SlabPolygons are made on the first call and kept for this surface.
+        fn draw_list_with_surface(
+            self: &SelectionHandle,
+            octree: &VolumeOctreeHandle,
+            camera: &CameraDesc,
+            surface: &SurfaceHandle,
+            surface_opacity: f64,
+        ) -> Result<DrawListOutput>;
     }
 }
 
-pub use bridge::{CutBoxes, GridDesc, OctreeSummary, ScalarType, SurfaceMode, SurfaceOutput};
+pub use crate::ffi_render::{SelectionHandle, SurfaceHandle};
+pub use bridge::{
+    CameraDesc, CutBoxes, DrawListOutput, GridDesc, OctreeSummary, ScalarType, SelectDesc, SelectionSummary,
+    SurfaceMode, SurfaceOutput,
+};
 
 /// A Volume Octree together with the geometry needed to place its boxes.
 #[derive(Debug)]
 pub struct VolumeOctreeHandle {
-    octree: VolumeOctree,
-    shape: GridShape,
+    pub(crate) octree: VolumeOctree,
+    pub(crate) shape: GridShape,
     input_bytes: usize,
+    /// Unique per build: a selection remembers the octree it was made from.
+    pub(crate) id: u64,
 }
 
+static NEXT_OCTREE_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
 /// Runs `f`, turning a panic into [`Error::Internal`] so it never crosses the bridge.
-fn guarded<T>(f: impl FnOnce() -> crate::error::Result<T>) -> Result<T, String> {
+pub(crate) fn guarded<T>(f: impl FnOnce() -> crate::error::Result<T>) -> Result<T, String> {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(Ok(value)) => Ok(value),
         Ok(Err(e)) => Err(e.to_string()),
@@ -193,23 +348,28 @@ fn scalar_type(t: ScalarType) -> crate::error::Result<GridScalarType> {
 }
 
 /// The checked grid over the borrowed bytes.
-fn grid_of<'a>(bytes: &'a [u8], desc: &GridDesc) -> crate::error::Result<Grid<'a>> {
+pub(crate) fn grid_of<'a>(bytes: &'a [u8], desc: &GridDesc) -> crate::error::Result<Grid<'a>> {
     let samples = Samples::from_bytes(bytes, scalar_type(desc.scalar_type)?)?;
     let shape = GridShape { dims: desc.dims, spacing: desc.spacing, origin: desc.origin };
     let component = usize::try_from(desc.component).ok();
     Grid::new(samples, shape, desc.components, component)
 }
 
-fn build_volume_octree(bytes: &[u8], desc: &GridDesc, leaf_size: u32) -> Result<Box<VolumeOctreeHandle>, String> {
+pub(crate) fn build_volume_octree(
+    bytes: &[u8],
+    desc: &GridDesc,
+    leaf_size: u32,
+) -> Result<Box<VolumeOctreeHandle>, String> {
     guarded(|| {
         let grid = grid_of(bytes, desc)?;
         let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: leaf_size as usize })?;
-        Ok(Box::new(VolumeOctreeHandle { octree, shape: *grid.shape(), input_bytes: grid.input_bytes() }))
+        let id = NEXT_OCTREE_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Ok(Box::new(VolumeOctreeHandle { octree, shape: *grid.shape(), input_bytes: grid.input_bytes(), id }))
     })
 }
 
 impl VolumeOctreeHandle {
-    fn extract_surface(
+    pub(crate) fn extract_surface(
         &self,
         bytes: &[u8],
         desc: &GridDesc,
@@ -219,44 +379,54 @@ impl VolumeOctreeHandle {
     ) -> Result<SurfaceOutput, String> {
         guarded(|| {
             let grid = grid_of(bytes, desc)?;
-            if grid.shape() != &self.shape {
-                return Err(Error::InvalidArgument(
-                    "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
-                ));
-            }
-            let options = match mode {
-                SurfaceMode::Discretized => SurfaceOptions::discretized(isovalue),
-                SurfaceMode::Interpolated => SurfaceOptions::interpolated(isovalue),
-                _ => return Err(Error::InvalidArgument("unknown surface mode code from C++".into())),
-            };
-            let surface = Surface::extract(&grid, &self.octree, &options)?;
+            let surface = self.extract(&grid, isovalue, mode)?;
             let (distance_mean, distance_max) = if measure_distance {
                 let d = distance::discretized_to_interpolated(&grid, &self.octree, isovalue)?;
                 (d.mean, d.max)
             } else {
                 (-1.0, -1.0)
             };
-            let st = &surface.stats;
-            Ok(SurfaceOutput {
-                points: surface.points.iter().flat_map(|p| self.shape.world(*p)).collect(),
-                normals: surface.normals.iter().flatten().copied().collect(),
-                offsets: surface.offsets.iter().map(|&o| o as i64).collect(),
-                connectivity: surface.connectivity.iter().map(|&c| c as i64).collect(),
-                polygon_node: surface.polygon_node.iter().map(|n| n.0).collect(),
-                polygon_level: surface.polygon_node.iter().map(|&n| self.octree.node(n).level as u32).collect(),
-                polygon_face: surface.polygon_face.clone(),
-                polygons: st.polygons as u64,
-                faces: st.faces as u64,
-                triangles: st.triangles as u64,
-                uncompressed_triangles: st.uncompressed_triangles as u64,
-                vertices: st.vertices as u64,
-                boundary_edges: st.boundary_edges as u64,
-                extract_ms: st.extract_ms,
-                compress_ms: st.compress_ms,
-                distance_mean,
-                distance_max,
-            })
+            Ok(self.surface_output(&surface, distance_mean, distance_max))
         })
+    }
+
+    /// The isosurface of `grid` (checked to be the image the octree was built from).
+    pub(crate) fn extract(&self, grid: &Grid<'_>, isovalue: f64, mode: SurfaceMode) -> crate::error::Result<Surface> {
+        if grid.shape() != &self.shape {
+            return Err(Error::InvalidArgument(
+                "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
+            ));
+        }
+        let options = match mode {
+            SurfaceMode::Discretized => SurfaceOptions::discretized(isovalue),
+            SurfaceMode::Interpolated => SurfaceOptions::interpolated(isovalue),
+            _ => return Err(Error::InvalidArgument("unknown surface mode code from C++".into())),
+        };
+        Surface::extract(grid, &self.octree, &options)
+    }
+
+    /// `surface` for C++ (world points).
+    pub(crate) fn surface_output(&self, surface: &Surface, distance_mean: f64, distance_max: f64) -> SurfaceOutput {
+        let st = &surface.stats;
+        SurfaceOutput {
+            points: surface.points.iter().flat_map(|p| self.shape.world(*p)).collect(),
+            normals: surface.normals.iter().flatten().copied().collect(),
+            offsets: surface.offsets.iter().map(|&o| o as i64).collect(),
+            connectivity: surface.connectivity.iter().map(|&c| c as i64).collect(),
+            polygon_node: surface.polygon_node.iter().map(|n| n.0).collect(),
+            polygon_level: surface.polygon_node.iter().map(|&n| self.octree.node(n).level as u32).collect(),
+            polygon_face: surface.polygon_face.clone(),
+            polygons: st.polygons as u64,
+            faces: st.faces as u64,
+            triangles: st.triangles as u64,
+            uncompressed_triangles: st.uncompressed_triangles as u64,
+            vertices: st.vertices as u64,
+            boundary_edges: st.boundary_edges as u64,
+            extract_ms: st.extract_ms,
+            compress_ms: st.compress_ms,
+            distance_mean,
+            distance_max,
+        }
     }
 
     fn summary(&self) -> Result<OctreeSummary, String> {

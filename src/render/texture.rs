@@ -57,6 +57,56 @@ impl Texel for f64 {
     }
 }
 
+/// The grid values at `brick`'s texel positions, texel `(i, j, k)` at
+/// `i + n_x (j + n_y k)` (x fastest), each stored by `f`; `None` at the first
+/// value `f` refuses. The one texel layout of every brick texture (the
+/// uploads here and the bridge's `brick_texels`); the brick must lie in the grid.
+fn texel_values<T: Sample, S>(g: &TypedGrid<'_, T>, brick: &Brick, f: impl Fn(f64) -> Option<S>) -> Option<Vec<S>> {
+    let pos = |a: usize, i: usize| (brick.lo[a] + i * brick.stride).min(brick.hi[a]);
+    let n = brick.texels;
+    let mut data = Vec::with_capacity(n[0] * n[1] * n[2]);
+    for k in 0..n[2] {
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                data.push(f(g.at(pos(0, i), pos(1, j), pos(2, k)))?);
+            }
+        }
+    }
+    Some(data)
+}
+
+/// One brick's texels as `f32`, in the layout of the module documentation
+/// (x fastest, texel positions `min(lo + i stride, hi)`): what a GPU
+/// executor uploads as a 3D texture. Values are rounded to the nearest `f32`:
+/// exact for `u8`, `i8`, `u16`, `i16` and `f32` grids; `f64` values and `u32`
+/// or `i32` values beyond 2^24 in magnitude lose their low bits.
+///
+/// # Errors
+///
+/// [`Error::InvalidArgument`] if the brick is not a brick of this grid (its
+/// box outside the grid, a zero stride or texel counts that do not match).
+pub fn brick_texels_f32(grid: &Grid<'_>, brick: &Brick) -> Result<Vec<f32>> {
+    let dims = grid.dims();
+    let expected = [0, 1, 2].map(|a| (brick.hi[a].saturating_sub(brick.lo[a])).div_ceil(brick.stride.max(1)) + 1);
+    if brick.stride == 0
+        || (0..3).any(|a| brick.lo[a] > brick.hi[a] || brick.hi[a] >= dims[a])
+        || brick.texels != expected
+    {
+        return Err(Error::InvalidArgument(format!(
+            "brick (node {}) has box {:?}..{:?}, stride {} and texels {:?}: not a brick of this {dims:?} grid",
+            brick.node.0, brick.lo, brick.hi, brick.stride, brick.texels
+        )));
+    }
+    struct F32<'b>(&'b Brick);
+    impl GridVisitor for F32<'_> {
+        type Output = Vec<f32>;
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f32> {
+            texel_values(&g, self.0, |v| Some(v as f32)).expect("every value is stored")
+        }
+    }
+    Ok(grid.visit(F32(brick)))
+}
+
 /// One brick's texture: its texels, contiguous, x fastest.
 #[derive(Debug, Clone)]
 pub(crate) struct Texture<S> {
@@ -75,16 +125,8 @@ impl<S: Texel> Texture<S> {
     /// Copies `brick`'s texels from `g` (the brick checked to lie in the grid);
     /// `None` when a value is not exactly an `S`.
     fn copy<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick) -> Option<Texture<S>> {
-        let pos = |a: usize, i: usize| (brick.lo[a] + i * brick.stride).min(brick.hi[a]);
+        let data = texel_values(g, brick, S::exact)?;
         let n = brick.texels;
-        let mut data = Vec::with_capacity(n[0] * n[1] * n[2]);
-        for k in 0..n[2] {
-            for j in 0..n[1] {
-                for i in 0..n[0] {
-                    data.push(S::exact(g.at(pos(0, i), pos(1, j), pos(2, k)))?);
-                }
-            }
-        }
         Some(Texture { lo: brick.lo, hi: brick.hi, stride: brick.stride, n, last: n.map(|n| (n - 1) as f64), data })
     }
 

@@ -1,0 +1,548 @@
+/**
+ * @file   TestHybridOctreeBridge.cxx
+ * @brief  The render half of the bridge, as vtkHybridOctreeVolumeMapper will
+ *         call it: select bricks of a vtkImageData within a budget, get the
+ *         DrawList for a vtkCamera, read each brick's texels.
+ *
+ * Scenarios: `draw_list` (budget kept, bricks back to front for a camera
+ * along +z and a diagonal one, slices inside their brick), `texels` (every
+ * brick's texels are the image at the texel positions), `surface` (a kept
+ * isosurface: translucent batches cover every triangle, opaque pass first,
+ * hidden: volume only), `transparent` (a
+ * vtkPiecewiseFunction that is 0 everywhere: no brick), `errors` (budget 0,
+ * NaN tolerance, bad ROI, camera at its focal point, brick out of range,
+ * another octree's selection: clear messages, no crash).
+ */
+#include "vtkHybridOctreeBridge.h"
+
+#include "HybridOctreeTestUtilities.h"
+
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRTAnalyticSource.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace
+{
+namespace B = vtkHybridOctreeBridge;
+
+/// The wavelet on extent [0, 24] x [0, 20] x [0, 16] (float), its octree and grid.
+struct Fixture
+{
+  vtkNew<vtkRTAnalyticSource> Source;
+  vtkImageData* Image = nullptr;
+  vtkFloatArray* Values = nullptr;
+  B::GridDescription Grid;
+  std::unique_ptr<B::VolumeOctree> Octree;
+
+  Fixture()
+  {
+    this->Source->SetWholeExtent(0, 24, 0, 20, 0, 16);
+    this->Source->Update();
+    this->Image = this->Source->GetOutput();
+    this->Values = vtkFloatArray::SafeDownCast(this->Image->GetPointData()->GetScalars());
+    int dims[3];
+    this->Image->GetDimensions(dims);
+    this->Grid.Type = B::ScalarType::F32;
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Grid.Dims[a] = static_cast<std::size_t>(dims[a]);
+      this->Grid.Spacing[a] = this->Image->GetSpacing()[a];
+      this->Grid.Origin[a] = this->Image->GetOrigin()[a];
+    }
+    std::string error;
+    this->Octree = B::VolumeOctree::Build(this->Bytes(), this->ByteCount(), this->Grid, 8, error);
+    if (!this->Octree)
+    {
+      std::cerr << "build failed: " << error << "\n";
+    }
+  }
+
+  const void* Bytes() const { return this->Values->GetVoidPointer(0); }
+  std::size_t ByteCount() const
+  {
+    return static_cast<std::size_t>(this->Values->GetDataSize()) * sizeof(float);
+  }
+  float At(std::size_t i, std::size_t j, std::size_t k) const
+  {
+    return this->Values->GetValue(
+      static_cast<vtkIdType>(i + this->Grid.Dims[0] * (j + this->Grid.Dims[1] * k)));
+  }
+};
+
+/// A vtkCamera looking at the image centre from `direction` (unit not needed), far away.
+void Aim(vtkCamera* camera, const double centre[3], const double direction[3], bool parallel)
+{
+  camera->SetFocalPoint(centre[0], centre[1], centre[2]);
+  camera->SetPosition(centre[0] - 80 * direction[0], centre[1] - 80 * direction[1],
+    centre[2] - 80 * direction[2]);
+  // Up across the view: +y when looking mostly along z, else +z.
+  const double n = std::sqrt(
+    direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+  if (std::abs(direction[2]) > 0.9 * n)
+  {
+    camera->SetViewUp(0.0, 1.0, 0.0);
+  }
+  else
+  {
+    camera->SetViewUp(0.0, 0.0, 1.0);
+  }
+  camera->SetParallelProjection(parallel ? 1 : 0);
+  camera->SetParallelScale(20.0);
+  camera->SetViewAngle(30.0);
+}
+
+double Depth(const B::CameraDescription& c, const double forward[3], const double p[3])
+{
+  double d = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    d += (p[a] - c.Position[a]) * forward[a];
+  }
+  return d;
+}
+
+/// Checks one DrawList: sizes, passes, the forward axis, slices inside their
+/// brick and back to front, and of two face-adjacent bricks the one beyond
+/// the shared face (seen from the eye) drawn first.
+void CheckDrawList(Checker& check, const B::DrawList& list, const B::CameraDescription& camera,
+  std::uint64_t bricks, const std::string& name)
+{
+  const std::size_t n = list.GetNumberOfBricks();
+  check.Check(n == bricks, name + ": one entry per selected brick");
+  check.Check(list.Passes == "volume", name + ": passes '" + list.Passes + "' should be 'volume'");
+  check.Check(list.ReferenceSpacing == 1.0, name + ": reference spacing 1");
+  check.Check(list.Bounds.size() == 6 * n && list.Texels.size() == 3 * n &&
+      list.SliceOffsets.size() == n + 1 && list.SliceOffsets.back() == list.Slices.size(),
+    name + ": flattened sizes");
+  double view[3], norm = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    view[a] = camera.FocalPoint[a] - camera.Position[a];
+    norm += view[a] * view[a];
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    check.Check(std::abs(view[a] / std::sqrt(norm) - list.Forward[a]) < 1e-12,
+      name + ": forward is the unit view direction");
+  }
+  std::size_t adjacent = 0; // face-adjacent pairs whose order was checked
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* b = &list.Bounds[6 * i];
+    check.Check(std::abs(list.OpacityRatio[i] - list.SliceSpacing[i] / list.ReferenceSpacing) <
+        1e-12,
+      name + ": opacity ratio d/d0");
+    check.Check(list.SliceSpacing[i] == static_cast<double>(list.Stride[i]),
+      name + ": slice spacing = stride * min spacing");
+    double dmin = std::numeric_limits<double>::infinity(), dmax = -dmin;
+    for (int c = 0; c < 8; ++c)
+    {
+      const double corner[3] = { b[(c & 1) ? 1 : 0], b[(c & 2) ? 3 : 2], b[(c & 4) ? 5 : 4] };
+      const double d = Depth(camera, list.Forward, corner);
+      dmin = std::min(dmin, d);
+      dmax = std::max(dmax, d);
+    }
+    const std::size_t s0 = list.SliceOffsets[i], s1 = list.SliceOffsets[i + 1];
+    check.Check(s1 > s0, name + ": every brick has slices");
+    for (std::size_t s = s0; s < s1; ++s)
+    {
+      check.Check(list.Slices[s] >= dmin - 1e-9 && list.Slices[s] <= dmax + 1e-9,
+        name + ": slice " + std::to_string(s) + " inside brick " + std::to_string(i));
+      check.Check(s == s0 || list.Slices[s] < list.Slices[s - 1], name + ": slices back to front");
+    }
+    // Face-adjacent bricks: the one on the far side of the shared face from the eye comes first.
+    for (std::size_t j = i + 1; j < n; ++j)
+    {
+      const double* c = &list.Bounds[6 * j];
+      for (int a = 0; a < 3; ++a)
+      {
+        bool overlap = true;
+        for (int o = 0; o < 3; ++o)
+        {
+          if (o != a &&
+            std::min(b[2 * o + 1], c[2 * o + 1]) - std::max(b[2 * o], c[2 * o]) <= 0.0)
+          {
+            overlap = false;
+          }
+        }
+        if (!overlap)
+        {
+          continue;
+        }
+        // j drawn after i must be on the eye's side of the shared face (parallel:
+        // the side the view comes from; a face along the view orders nothing).
+        adjacent += c[2 * a] == b[2 * a + 1] || c[2 * a + 1] == b[2 * a];
+        if (c[2 * a] == b[2 * a + 1]) // j above i along a
+        {
+          check.Check(camera.Parallel ? list.Forward[a] <= 1e-12 : camera.Position[a] >= c[2 * a],
+            name + ": brick " + std::to_string(j) + " (above " + std::to_string(i) +
+              ") drawn later but farther");
+        }
+        else if (c[2 * a + 1] == b[2 * a]) // j below i along a
+        {
+          check.Check(camera.Parallel ? list.Forward[a] >= -1e-12 : camera.Position[a] <= b[2 * a],
+            name + ": brick " + std::to_string(j) + " (below " + std::to_string(i) +
+              ") drawn later but farther");
+        }
+      }
+    }
+  }
+  check.Check(adjacent > 0, name + ": some face-adjacent bricks to order");
+}
+
+std::vector<double> Ramp(double lo, double hi)
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(lo, 0.0);
+  opacity->AddPoint(hi, 0.8);
+  return B::OpacityPoints(opacity);
+}
+
+int DrawLists()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  double range[2];
+  f.Values->GetRange(range);
+  B::SelectDescription options;
+  options.BudgetBytes = 20000;
+  options.Tolerance = 0.0;
+  options.OpacityPoints = Ramp(range[0], range[1]);
+  check.Check(options.OpacityPoints.size() == 4, "two opacity nodes, clamped: two pairs");
+  options.HasRoi = true;
+  options.RoiCenter[0] = 3.0;
+  options.RoiCenter[1] = 3.0;
+  options.RoiCenter[2] = 3.0;
+  options.RoiRadius = 2.0;
+  std::string error;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  if (!check.Check(selection != nullptr, "select: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  B::SelectionSummary summary;
+  check.Check(selection->GetSummary(summary, error), "summary: " + error);
+  std::cout << "bricks " << summary.Bricks << ", " << summary.TextureBytes << " of "
+            << summary.BudgetBytes << " bytes, max error " << summary.MaxError << ", warning '"
+            << summary.Warning << "'\n";
+  check.Check(summary.TextureBytes <= 20000 && summary.BudgetBytes == 20000, "bytes within the budget");
+  check.Check(summary.Bricks > 1, "more than one brick");
+
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double alongZ[3] = { 0.0, 0.0, 1.0 };
+  const double diagonal[3] = { 1.0, 0.8, 0.6 };
+  const double back[3] = { -0.3, -1.0, -0.7 };
+  struct View
+  {
+    const double* Direction;
+    bool Parallel;
+    const char* Name;
+  };
+  for (const View& v : { View{ alongZ, true, "+z parallel" }, View{ diagonal, false, "diagonal" },
+         View{ back, false, "back diagonal" } })
+  {
+    vtkNew<vtkCamera> camera;
+    Aim(camera, centre, v.Direction, v.Parallel);
+    const B::CameraDescription desc = B::DescribeCamera(camera);
+    check.Check(desc.Parallel == v.Parallel && desc.ViewAngle == 30.0 && desc.ParallelScale == 20.0,
+      std::string(v.Name) + ": DescribeCamera");
+    B::DrawList list;
+    if (check.Check(selection->GetDrawList(*f.Octree, desc, list, error),
+          std::string(v.Name) + ": draw list: " + error))
+    {
+      CheckDrawList(check, list, desc, summary.Bricks, v.Name);
+    }
+  }
+  return check.Result();
+}
+
+int Texels()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  B::SelectDescription options;
+  options.BudgetBytes = 30000;
+  std::string error;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  if (!check.Check(selection != nullptr, "select: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  vtkNew<vtkCamera> camera;
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double diagonal[3] = { 1.0, 0.8, 0.6 };
+  Aim(camera, centre, diagonal, false);
+  B::DrawList list;
+  if (!check.Check(selection->GetDrawList(*f.Octree, B::DescribeCamera(camera), list, error),
+        "draw list: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  bool strided = false;
+  std::vector<float> texels;
+  for (std::size_t i = 0; i < list.GetNumberOfBricks(); ++i)
+  {
+    if (!check.Check(
+          selection->GetBrickTexels(f.Bytes(), f.ByteCount(), f.Grid, list.Brick[i], texels, error),
+          "texels: " + error))
+    {
+      continue;
+    }
+    const std::size_t* n = &list.Texels[3 * i];
+    const std::size_t stride = list.Stride[i];
+    strided = strided || stride > 1;
+    check.Check(texels.size() == n[0] * n[1] * n[2], "texel count = product of the dims");
+    std::size_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = static_cast<std::size_t>(
+        std::lround((list.Bounds[6 * i + 2 * a] - f.Grid.Origin[a]) / f.Grid.Spacing[a]));
+      hi[a] = static_cast<std::size_t>(
+        std::lround((list.Bounds[6 * i + 2 * a + 1] - f.Grid.Origin[a]) / f.Grid.Spacing[a]));
+    }
+    std::size_t wrong = 0;
+    for (std::size_t k = 0; k < n[2]; ++k)
+    {
+      for (std::size_t j = 0; j < n[1]; ++j)
+      {
+        for (std::size_t t = 0; t < n[0]; ++t)
+        {
+          const float expected = f.At(std::min(lo[0] + t * stride, hi[0]),
+            std::min(lo[1] + j * stride, hi[1]), std::min(lo[2] + k * stride, hi[2]));
+          wrong += texels[t + n[0] * (j + n[1] * k)] != expected;
+        }
+      }
+    }
+    check.Check(wrong == 0, "brick " + std::to_string(i) + ": " + std::to_string(wrong) +
+        " texels differ from the image at the texel positions");
+  }
+  check.Check(strided, "some brick is downsampled (stride > 1)");
+  return check.Result();
+}
+
+int SurfaceBatches()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  B::SelectDescription options;
+  options.BudgetBytes = 30000;
+  options.HasIsovalue = true;
+  options.Isovalue = 150.0;
+  std::string error;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  std::unique_ptr<B::Surface> surface = f.Octree->ExtractSurfaceForDrawing(
+    f.Bytes(), f.ByteCount(), f.Grid, 150.0, B::SurfaceMode::Discretized, error);
+  if (!check.Check(selection && surface, "select and surface: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  B::SurfaceMesh mesh;
+  check.Check(surface->GetMesh(*f.Octree, mesh, error), "mesh: " + error);
+  check.Check(mesh.Polygons > 0 && mesh.Offsets.size() == mesh.Polygons + 1, "a surface");
+  vtkNew<vtkCamera> camera;
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double diagonal[3] = { 1.0, 0.8, 0.6 };
+  Aim(camera, centre, diagonal, false);
+  const B::CameraDescription view = B::DescribeCamera(camera);
+  for (int round = 0; round < 2; ++round) // the second round reuses the kept slab batching
+  {
+    B::DrawList list;
+    if (!check.Check(selection->GetDrawList(*f.Octree, view, *surface, 0.5, list, error),
+          "translucent: " + error))
+    {
+      return check.Result();
+    }
+    const std::size_t n = list.GetNumberOfBricks();
+    check.Check(list.Passes == "surface-in-slabs,volume", "translucent passes: " + list.Passes);
+    check.Check(list.OpaqueTriangles == 0 && list.BatchOffsets.size() == n + 1 &&
+        list.BatchOffsets.back() == list.BatchSlab.size() &&
+        list.BatchClip.size() == 2 * list.BatchSlab.size(),
+      "translucent: batch sizes");
+    std::vector<bool> seen(mesh.Polygons, false);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::size_t slices = list.SliceOffsets[i + 1] - list.SliceOffsets[i];
+      for (std::size_t k = list.BatchOffsets[i]; k < list.BatchOffsets[i + 1]; ++k)
+      {
+        check.Check(list.BatchSlab[k] <= slices, "batch slab within the brick's slabs");
+        check.Check(list.BatchClip[2 * k] < list.BatchClip[2 * k + 1], "clip near < far");
+        check.Check(list.BatchFirst[k] < list.BatchEnd[k] && list.BatchEnd[k] <= mesh.Polygons,
+          "batch triangles within the mesh");
+        for (std::uint32_t t = list.BatchFirst[k]; t < list.BatchEnd[k] && t < mesh.Polygons; ++t)
+        {
+          seen[t] = true;
+        }
+      }
+    }
+    check.Check(std::all_of(seen.begin(), seen.end(), [](bool v) { return v; }),
+      "every triangle is in some batch");
+  }
+  B::DrawList opaque;
+  check.Check(selection->GetDrawList(*f.Octree, view, *surface, 1.0, opaque, error), error);
+  check.Check(opaque.Passes == "surface-opaque,volume" && opaque.OpaqueTriangles == mesh.Polygons &&
+      opaque.BatchSlab.empty(),
+    "opaque: surface pass first, all triangles, no batches (" + opaque.Passes + ")");
+  B::DrawList hidden;
+  check.Check(selection->GetDrawList(*f.Octree, view, *surface, 0.0, hidden, error), error);
+  check.Check(hidden.Passes == "volume" && hidden.OpaqueTriangles == 0, "hidden surface: volume only");
+  error.clear();
+  check.Check(!selection->GetDrawList(*f.Octree, view, *surface, 2.0, hidden, error) &&
+      error.find("surface opacity") != std::string::npos,
+    "opacity 2: '" + error + "'");
+  return check.Result();
+}
+
+int Transparent()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  vtkNew<vtkPiecewiseFunction> zero;
+  zero->AddPoint(-1000.0, 0.0);
+  zero->AddPoint(1000.0, 0.0);
+  B::SelectDescription options;
+  options.BudgetBytes = 30000;
+  options.OpacityPoints = B::OpacityPoints(zero);
+  std::string error;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  if (!check.Check(selection != nullptr, "select: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  B::SelectionSummary summary;
+  selection->GetSummary(summary, error);
+  check.Check(summary.Bricks == 0 && summary.TextureBytes == 0 && summary.Skipped > 0,
+    "a transparent transfer function selects no brick");
+  vtkNew<vtkCamera> camera;
+  B::DrawList list;
+  check.Check(selection->GetDrawList(*f.Octree, B::DescribeCamera(camera), list, error),
+    "draw list: " + error);
+  check.Check(list.GetNumberOfBricks() == 0 && list.Passes.empty(), "nothing to draw");
+  // Clamping off: the opacity steps to 0 outside the nodes.
+  vtkNew<vtkPiecewiseFunction> window;
+  window->AddPoint(100.0, 0.5);
+  window->AddPoint(200.0, 0.5);
+  window->ClampingOff();
+  const std::vector<double> points = B::OpacityPoints(window);
+  check.Check(points == std::vector<double>{ 100.0, 0.0, 100.0, 0.5, 200.0, 0.5, 200.0, 0.0 },
+    "unclamped opacity: 0 outside the nodes");
+  return check.Result();
+}
+
+int Errors()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  const auto fails = [&](const B::SelectDescription& o, const std::string& fragment)
+  {
+    std::string error;
+    const bool refused = f.Octree->Select(o, error) == nullptr;
+    check.Check(refused && error.find(fragment) != std::string::npos,
+      "expected an error with '" + fragment + "', got '" + error + "'");
+  };
+  B::SelectDescription options;
+  options.BudgetBytes = 0;
+  fails(options, "budget is 0 bytes");
+  options.BudgetBytes = 30000;
+  options.Tolerance = std::numeric_limits<double>::quiet_NaN();
+  fails(options, "error tolerance NaN");
+  options.Tolerance = 0.0;
+  options.HasRoi = true;
+  options.RoiRadius = 0.0;
+  fails(options, "region of interest");
+  options.HasRoi = false;
+  options.OpacityPoints = { 0.0, 1.0, 2.0 };
+  fails(options, "(value, opacity) pairs");
+  options.OpacityPoints.clear();
+
+  std::string error;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  if (!check.Check(selection != nullptr, "select: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  B::CameraDescription camera; // default: at (0, 0, 1) looking at the origin
+  camera.FocalPoint[2] = camera.Position[2];
+  B::DrawList list;
+  error.clear();
+  check.Check(!selection->GetDrawList(*f.Octree, camera, list, error) &&
+      error.find("position equals the focal point") != std::string::npos,
+    "camera at its focal point: '" + error + "'");
+  Fixture other;
+  error.clear();
+  check.Check(!selection->GetDrawList(*other.Octree, B::CameraDescription(), list, error) &&
+      error.find("another octree") != std::string::npos,
+    "another octree: '" + error + "'");
+  std::vector<float> texels;
+  error.clear();
+  check.Check(!selection->GetBrickTexels(f.Bytes(), f.ByteCount(), f.Grid, 1000000, texels, error) &&
+      error.find("does not exist") != std::string::npos,
+    "brick out of range: '" + error + "'");
+  B::GridDescription moved = f.Grid;
+  moved.Origin[0] += 1.0;
+  error.clear();
+  check.Check(!selection->GetBrickTexels(f.Bytes(), f.ByteCount(), moved, 0, texels, error) &&
+      error.find("image changed") != std::string::npos,
+    "another image: '" + error + "'");
+  return check.Result();
+}
+} // namespace
+
+int TestHybridOctreeBridge(int argc, char* argv[])
+{
+  const std::string scenario = argc > 1 ? argv[1] : "";
+  if (scenario == "draw_list")
+  {
+    return DrawLists();
+  }
+  if (scenario == "texels")
+  {
+    return Texels();
+  }
+  if (scenario == "surface")
+  {
+    return SurfaceBatches();
+  }
+  if (scenario == "transparent")
+  {
+    return Transparent();
+  }
+  if (scenario == "errors")
+  {
+    return Errors();
+  }
+  std::cerr << "unknown scenario '" << scenario
+            << "': use draw_list, texels, surface, transparent or errors\n";
+  return EXIT_FAILURE;
+}
