@@ -62,7 +62,10 @@ pub struct SelectOptions {
 }
 
 impl SelectOptions {
-    /// A budget and a tolerance, no region of interest, f32 texels, bricks up to 32 cells.
+    /// A budget and a tolerance, no region of interest, f32 texels, bricks up
+    /// to 128 cells per axis (129^3 texels, 8.6 MB: within every GL 3D
+    /// texture limit, and large enough that data with detail everywhere can
+    /// be drawn as a few big bricks with little border overhead).
     pub fn new(budget_bytes: usize, tolerance: f64) -> SelectOptions {
         SelectOptions { budget_bytes, tolerance, roi: None, bytes_per_texel: 4, max_brick_log2: 7 }
     }
