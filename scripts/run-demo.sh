@@ -2,7 +2,9 @@
 # Installs what is missing, builds everything, and runs the main job on the
 # built-in 256^3 Shepp-Logan phantom: the CLI builds and describes its Volume
 # Octree and its isosurface (DiscMC with face compression, and what that costs
-# in accuracy), then pvbatch loads the ParaView plugin, applies the Hybrid
+# in accuracy), renders it under an 8 MB texture budget with a translucent
+# isosurface (hybrid-octree-render.png, against the full-resolution reference
+# hybrid-octree-reference.png), then pvbatch loads the ParaView plugin, applies the Hybrid
 # Octree filter to the same volume, and renders its node boxes and isosurface
 # to hybrid-octree-demo.png.
 set -euo pipefail
@@ -20,6 +22,10 @@ echo "== hybrid-octree build --dataset shepp-logan --size $size =="
 
 echo "== hybrid-octree surface --dataset shepp-logan --size $size --isovalue 0.5 --distance =="
 "$cli" surface --dataset shepp-logan --size "$size" --isovalue 0.5 --distance
+
+echo "== hybrid-octree render --dataset shepp-logan --size $size --budget-mb 8 (translucent isosurface, vs the reference) =="
+"$cli" render --dataset shepp-logan --size "$size" --budget-mb 8 --isovalue 0.5 --surface-opacity 0.4 \
+  --output hybrid-octree-render.png --reference hybrid-octree-reference.png
 
 echo "== ParaView (pvbatch) with the HybridOctree plugin =="
 vti=$(mktemp --suffix=.vti)
