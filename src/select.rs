@@ -218,7 +218,8 @@ fn gain(removed: f64, added_bytes: f64) -> f64 {
 /// children cost nothing), whichever needs fewer bytes. A constant or smooth
 /// part of a node drops to a few texels and a transparent one to none, so
 /// the bytes go where the error is. Returns the bricks and how many
-/// transparent nodes were left out.
+/// transparent nodes were left out. Results are kept in `memo` by (node, p):
+/// they depend on nothing else within one selection.
 fn cheapest(
     octree: &VolumeOctree,
     n: &NodeRef<'_>,
@@ -226,29 +227,41 @@ fn cheapest(
     brick_of: &dyn Fn(NodeId, usize) -> Brick,
     max_p: &dyn Fn(&NodeRef<'_>) -> usize,
     visible: &dyn Fn(f64, f64) -> bool,
+    memo: &Memo,
 ) -> (Vec<Brick>, usize) {
+    if let Some(known) = memo.borrow().get(&(n.id, p)) {
+        return known.clone();
+    }
     let q = (0..p).find(|&q| n.squared_error(q) <= n.squared_error(p)).unwrap_or(p);
     let own = brick_of(n.id, q);
-    if n.is_terminal() || p == 0 {
-        return (vec![own], 0);
-    }
-    let mut children = Vec::new();
-    let mut hidden = 0;
-    for c in octree.children(n.id) {
-        let cn = octree.node(c);
-        if !visible(cn.min, cn.max) {
-            hidden += 1;
-            continue;
+    let mut form = (vec![own], 0);
+    if !(n.is_terminal() || p == 0) {
+        let mut children = Vec::new();
+        let (mut hidden, mut bytes) = (0, 0);
+        for c in octree.children(n.id) {
+            let cn = octree.node(c);
+            if !visible(cn.min, cn.max) {
+                hidden += 1;
+                continue;
+            }
+            let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, visible, memo);
+            bytes += bricks.iter().map(|b| b.bytes).sum::<usize>();
+            children.extend(bricks);
+            hidden += h;
+            if bytes >= own.bytes {
+                break;
+            }
         }
-        let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, visible);
-        children.extend(bricks);
-        hidden += h;
-        if children.iter().map(|b| b.bytes).sum::<usize>() >= own.bytes {
-            return (vec![own], 0);
+        if bytes < own.bytes {
+            form = (children, hidden);
         }
     }
-    (children, hidden)
+    memo.borrow_mut().insert((n.id, p), form.clone());
+    form
 }
+
+/// [`cheapest`]'s results of one selection.
+type Memo = std::cell::RefCell<std::collections::HashMap<(NodeId, usize), (Vec<Brick>, usize)>>;
 
 /// Selects a cut and levels for `octree` (see the module documentation).
 /// `visible(min, max)` says whether a node with that value range shows under
@@ -287,6 +300,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
     // The best next step of a brick in the cut, if it still violates the tolerance.
     // The error mass of a brick: Imp(n) Q_p(n), its squared error summed over its samples.
     let mass = |b: &Brick| b.importance * octree.node(b.node).squared_error(b.p) as f64;
+    let memo = Memo::default();
     let next_step = |b: &Brick| -> Option<(Step, Vec<Brick>, usize)> {
         if weighted(b) <= options.tolerance || b.error == 0.0 {
             return None;
@@ -298,7 +312,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
         // until full resolution, so one level alone may buy nothing.)
         let raise = (b.p + 1..=max_p(&n))
             .map(|q| {
-                let (up, hidden) = cheapest(octree, &n, q, &brick_of, &max_p, &visible);
+                let (up, hidden) = cheapest(octree, &n, q, &brick_of, &max_p, &visible, &memo);
                 let (up_bytes, up_mass) = (up.iter().map(|u| u.bytes).sum::<usize>(), up.iter().map(mass).sum::<f64>());
                 (gain(mass(b) - up_mass, up_bytes as f64 - b.bytes as f64), up, hidden)
             })
@@ -315,7 +329,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
                     hidden += 1;
                     continue;
                 }
-                let (bricks, h) = cheapest(octree, &cn, b.p - 1, &brick_of, &max_p, &visible);
+                let (bricks, h) = cheapest(octree, &cn, b.p - 1, &brick_of, &max_p, &visible, &memo);
                 children.extend(bricks);
                 hidden += h;
             }
@@ -393,7 +407,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
     // everywhere that level is the better cut).
     let from_root = grow(vec![coarsest], 0);
     let fine = (1..=max_p(&root)).rev().find_map(|p| {
-        let (bricks, hidden) = cheapest(octree, &root, p, &brick_of, &max_p, &visible);
+        let (bricks, hidden) = cheapest(octree, &root, p, &brick_of, &max_p, &visible, &memo);
         (bricks.iter().map(|b| b.bytes).sum::<usize>() <= options.budget_bytes).then_some((bricks, hidden))
     });
     let total_mass = |cut: &std::collections::BTreeMap<NodeId, Brick>| cut.values().map(mass).sum::<f64>();
@@ -583,7 +597,7 @@ mod tests {
         for p in 1..=l {
             let own = brick_of(root.id, p);
             for visible in [&(|_: f64, _: f64| true) as &dyn Fn(f64, f64) -> bool, &|_, max| max > 0.5] {
-                let (bricks, _) = cheapest(&o, &root, p, &brick_of, &max_p, visible);
+                let (bricks, _) = cheapest(&o, &root, p, &brick_of, &max_p, visible, &Memo::default());
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
                 assert!(bytes <= own.bytes, "p {p}: {bytes} > {}", own.bytes);
