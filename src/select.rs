@@ -236,28 +236,47 @@ fn cheapest(
     let own = brick_of(n.id, q);
     let mut form = (vec![own], 0);
     if !(n.is_terminal() || p == 0) {
-        let mut children = Vec::new();
-        let (mut hidden, mut bytes) = (0, 0);
-        for c in octree.children(n.id) {
-            let cn = octree.node(c);
-            if !visible(cn.min, cn.max) {
-                hidden += 1;
-                continue;
-            }
-            let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, visible, memo);
-            bytes += bricks.iter().map(|b| b.bytes).sum::<usize>();
-            children.extend(bricks);
-            hidden += h;
-            if bytes >= own.bytes {
-                break;
-            }
-        }
+        let (children, hidden, bytes) = children_forms(octree, n, p, own.bytes, brick_of, max_p, visible, memo);
         if bytes < own.bytes {
             form = (children, hidden);
         }
     }
     memo.borrow_mut().insert((n.id, p), form.clone());
     form
+}
+
+/// The visible children of `n` (not terminal, `p >= 1`), each in its
+/// [`cheapest`] form at `p - 1` (the stride of `n` at `p`): their bricks, the
+/// transparent nodes left out, and their bytes. Stops early once the bytes
+/// reach `enough`.
+#[allow(clippy::too_many_arguments)]
+fn children_forms(
+    octree: &VolumeOctree,
+    n: &NodeRef<'_>,
+    p: usize,
+    enough: usize,
+    brick_of: &dyn Fn(NodeId, usize) -> Brick,
+    max_p: &dyn Fn(&NodeRef<'_>) -> usize,
+    visible: &dyn Fn(f64, f64) -> bool,
+    memo: &Memo,
+) -> (Vec<Brick>, usize, usize) {
+    let mut children = Vec::new();
+    let (mut hidden, mut bytes) = (0, 0);
+    for c in octree.children(n.id) {
+        let cn = octree.node(c);
+        if !visible(cn.min, cn.max) {
+            hidden += 1;
+            continue;
+        }
+        let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, visible, memo);
+        bytes += bricks.iter().map(|b| b.bytes).sum::<usize>();
+        children.extend(bricks);
+        hidden += h;
+        if bytes >= enough {
+            break;
+        }
+    }
+    (children, hidden, bytes)
 }
 
 /// [`cheapest`]'s results of one selection.
@@ -321,19 +340,8 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
         // cheapest form (see `cheapest`), which pays a little border and lets
         // each child refine on its own.
         let split = (!n.is_terminal() && b.p > 0).then(|| {
-            let mut children = Vec::new();
-            let mut hidden = 0;
-            for c in octree.children(b.node) {
-                let cn = octree.node(c);
-                if !visible(cn.min, cn.max) {
-                    hidden += 1;
-                    continue;
-                }
-                let (bricks, h) = cheapest(octree, &cn, b.p - 1, &brick_of, &max_p, &visible, &memo);
-                children.extend(bricks);
-                hidden += h;
-            }
-            let added: usize = children.iter().map(|c| c.bytes).sum();
+            let (children, hidden, added) =
+                children_forms(octree, &n, b.p, usize::MAX, &brick_of, &max_p, &visible, &memo);
             let after: f64 = children.iter().map(mass).sum();
             (gain(mass(b) - after, added as f64 - b.bytes as f64), children, hidden)
         });
