@@ -2,7 +2,7 @@
  * @file   vtkHybridOctreeBridge.cxx
  * @brief  The C++ half of the bridge: the only includer of the cxx header.
  *
- * Every call into Rust is wrapped in try/catch: the Rust side turns errors
+ * Every call into Rust runs under `Guarded` (try/catch): the Rust side turns errors
  * and panics into `rust::Error`, which derives from std::exception.
  */
 #include "vtkHybridOctreeBridge.h"
@@ -21,6 +21,24 @@ namespace vtkHybridOctreeBridge
 
 namespace
 {
+/// Runs `body`, a call into Rust: a `rust::Error` (an error or a panic on the
+/// Rust side, which derives from std::exception) becomes `false` with its
+/// message in `error`.
+template <typename Body>
+bool Guarded(std::string& error, Body&& body)
+{
+  try
+  {
+    body();
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
 hybrid_octree::ScalarType ToRust(ScalarType type)
 {
   switch (type)
@@ -167,25 +185,20 @@ VolumeOctree::~VolumeOctree() = default;
 std::unique_ptr<VolumeOctree> VolumeOctree::Build(const void* bytes, std::size_t byteCount,
   const GridDescription& grid, unsigned int leafSize, std::string& error)
 {
-  try
-  {
+  std::unique_ptr<VolumeOctree> result;
+  Guarded(error, [&] {
     const hybrid_octree::GridDesc desc = ToRust(grid);
     rust::Box<hybrid_octree::VolumeOctreeHandle> handle =
       hybrid_octree::build_volume_octree(ToSlice(bytes, byteCount), desc, leafSize);
-    return std::unique_ptr<VolumeOctree>(
+    result = std::unique_ptr<VolumeOctree>(
       new VolumeOctree(std::unique_ptr<Internals>(new Internals(std::move(handle)))));
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return nullptr;
+  });
+  return result;
 }
 
 bool VolumeOctree::GetSummary(OctreeSummary& summary, std::string& error) const
 {
-  try
-  {
+  return Guarded(error, [&] {
     const hybrid_octree::OctreeSummary s = this->Impl->Handle->summary();
     summary.NodeCount = s.node_count;
     summary.TerminalCount = s.terminal_count;
@@ -198,19 +211,12 @@ bool VolumeOctree::GetSummary(OctreeSummary& summary, std::string& error) const
     summary.BuildMilliseconds = s.build_ms;
     summary.ValueMin = s.value_min;
     summary.ValueMax = s.value_max;
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
+  });
 }
 
 bool VolumeOctree::GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& error) const
 {
-  try
-  {
+  return Guarded(error, [&] {
     const hybrid_octree::CutBoxes cut = this->Impl->Handle->cut_boxes(tolerance);
     CopyInto(cut.bounds, boxes.Bounds);
     CopyInto(cut.node_id, boxes.NodeId);
@@ -218,32 +224,19 @@ bool VolumeOctree::GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& e
     CopyInto(cut.nodal_error, boxes.NodalError);
     CopyInto(cut.min, boxes.Min);
     CopyInto(cut.max, boxes.Max);
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
+  });
 }
 
 bool VolumeOctree::ExtractSurface(const void* bytes, std::size_t byteCount,
   const GridDescription& grid, double isovalue, SurfaceMode mode, bool measureDistance,
   SurfaceMesh& surface, std::string& error) const
 {
-  try
-  {
+  return Guarded(error, [&] {
     const hybrid_octree::GridDesc desc = ToRust(grid);
     const hybrid_octree::SurfaceOutput s = this->Impl->Handle->extract_surface(
       ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode), measureDistance);
     CopyMesh(s, surface);
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
+  });
 }
 
 CameraDescription DescribeCamera(vtkCamera* camera)
@@ -304,8 +297,8 @@ struct Selection::Internals
 std::unique_ptr<Selection> VolumeOctree::Select(
   const SelectDescription& options, std::string& error) const
 {
-  try
-  {
+  std::unique_ptr<Selection> result;
+  Guarded(error, [&] {
     hybrid_octree::SelectDesc desc;
     desc.budget_bytes = options.BudgetBytes;
     desc.tolerance = options.Tolerance;
@@ -322,14 +315,10 @@ std::unique_ptr<Selection> VolumeOctree::Select(
     desc.has_isovalue = options.HasIsovalue;
     desc.isovalue = options.Isovalue;
     rust::Box<hybrid_octree::SelectionHandle> handle = this->Impl->Handle->select_bricks(desc);
-    return std::unique_ptr<Selection>(
+    result = std::unique_ptr<Selection>(
       new Selection(std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return nullptr;
+  });
+  return result;
 }
 
 Selection::Selection(std::unique_ptr<Internals> internals)
@@ -341,8 +330,7 @@ Selection::~Selection() = default;
 
 bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
 {
-  try
-  {
+  return Guarded(error, [&] {
     const hybrid_octree::SelectionSummary s = this->Impl->Handle->summary();
     summary.Bricks = s.bricks;
     summary.TextureBytes = s.texture_bytes;
@@ -350,49 +338,29 @@ bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
     summary.MaxError = s.max_error;
     summary.Skipped = s.skipped;
     summary.Warning = std::string(s.warning);
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
+  });
 }
 
 bool Selection::GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
   DrawList& list, std::string& error) const
 {
-  try
-  {
+  return Guarded(error, [&] {
     const hybrid_octree::DrawListOutput out =
       this->Impl->Handle->draw_list(*octree.Impl->Handle, ToRust(camera));
     CopyDrawList(out, list);
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
+  });
 }
 
 bool Selection::GetBrickTexels(const void* bytes, std::size_t byteCount,
   const GridDescription& grid, std::size_t brick, std::vector<float>& texels,
   std::string& error) const
 {
-  try
-  {
+  return Guarded(error, [&] {
     const hybrid_octree::GridDesc desc = ToRust(grid);
     const rust::Vec<float> t =
       this->Impl->Handle->brick_texels(ToSlice(bytes, byteCount), desc, brick);
     CopyInto(t, texels);
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
+  });
 }
 
 struct Surface::Internals
@@ -407,18 +375,11 @@ struct Surface::Internals
 bool Selection::GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
   const Surface& surface, double surfaceOpacity, DrawList& list, std::string& error) const
 {
-  try
-  {
+  return Guarded(error, [&] {
     const hybrid_octree::DrawListOutput out = this->Impl->Handle->draw_list_with_surface(
       *octree.Impl->Handle, ToRust(camera), *surface.Impl->Handle, surfaceOpacity);
     CopyDrawList(out, list);
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
+  });
 }
 
 Surface::Surface(std::unique_ptr<Internals> internals)
@@ -432,33 +393,22 @@ std::unique_ptr<Surface> VolumeOctree::ExtractSurfaceForDrawing(const void* byte
   std::size_t byteCount, const GridDescription& grid, double isovalue, SurfaceMode mode,
   std::string& error) const
 {
-  try
-  {
+  std::unique_ptr<Surface> result;
+  Guarded(error, [&] {
     const hybrid_octree::GridDesc desc = ToRust(grid);
     rust::Box<hybrid_octree::SurfaceHandle> handle = this->Impl->Handle->surface_for_drawing(
       ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode));
-    return std::unique_ptr<Surface>(
+    result = std::unique_ptr<Surface>(
       new Surface(std::unique_ptr<Surface::Internals>(new Surface::Internals(std::move(handle)))));
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return nullptr;
+  });
+  return result;
 }
 
 bool Surface::GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string& error) const
 {
-  try
-  {
+  return Guarded(error, [&] {
     CopyMesh(this->Impl->Handle->mesh(*octree.Impl->Handle), mesh);
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
+  });
 }
 
 } // namespace vtkHybridOctreeBridge
