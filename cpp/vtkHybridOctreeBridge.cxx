@@ -363,6 +363,28 @@ bool Selection::GetBrickTexels(const void* bytes, std::size_t byteCount,
   });
 }
 
+bool Selection::Composite(const VolumeOctree& octree, const CameraDescription& camera,
+  const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const std::vector<double>& colorPoints, const std::vector<double>& opacityPoints,
+  std::size_t width, std::size_t height, std::vector<float>& rgba, std::string& error) const
+{
+  try
+  {
+    const hybrid_octree::GridDesc desc = ToRust(grid);
+    const rust::Vec<float> out = this->Impl->Handle->composite(*octree.Impl->Handle,
+      ToRust(camera), ToSlice(bytes, byteCount), desc,
+      rust::Slice<const double>(colorPoints.data(), colorPoints.size()),
+      rust::Slice<const double>(opacityPoints.data(), opacityPoints.size()), width, height);
+    CopyInto(out, rgba);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
 struct Surface::Internals
 {
   explicit Internals(rust::Box<hybrid_octree::SurfaceHandle> handle)

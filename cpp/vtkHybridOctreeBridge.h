@@ -311,6 +311,19 @@ public:
   bool GetBrickTexels(const void* bytes, std::size_t byteCount, const GridDescription& grid,
     std::size_t brick, std::vector<float>& texels, std::string& error) const;
 
+  /**
+   * The CPU compositor's picture of GetDrawList(octree, camera) (volume
+   * only), `width x height`, premultiplied RGBA floats, rows from the top,
+   * with the transfer function of `colorPoints` ((value, r, g, b) flattened)
+   * and `opacityPoints` ((value, opacity) flattened), piecewise linear.
+   * `bytes`, `byteCount` and `grid`: the image the octree was built from.
+   * The reference vtkHybridOctreeVolumeMapper's OpenGL output is tested against.
+   */
+  bool Composite(const VolumeOctree& octree, const CameraDescription& camera, const void* bytes,
+    std::size_t byteCount, const GridDescription& grid, const std::vector<double>& colorPoints,
+    const std::vector<double>& opacityPoints, std::size_t width, std::size_t height,
+    std::vector<float>& rgba, std::string& error) const;
+
 private:
   friend class VolumeOctree;
   struct Internals;

@@ -272,6 +272,23 @@ mod bridge {
         /// was built from.
         fn brick_texels(self: &SelectionHandle, bytes: &[u8], desc: &GridDesc, brick: usize) -> Result<Vec<f32>>;
 
+        /// The CPU compositor's picture of the selection's DrawList for
+        /// `camera` (volume only), `width x height`, premultiplied RGBA
+        /// (4 floats per pixel, rows from the top), with the transfer function
+        /// of `colors` ((value, r, g, b) flattened) and `opacities` ((value,
+        /// opacity) flattened), over the image the octree was built from.
+        fn composite(
+            self: &SelectionHandle,
+            octree: &VolumeOctreeHandle,
+            camera: &CameraDesc,
+            bytes: &[u8],
+            desc: &GridDesc,
+            colors: &[f64],
+            opacities: &[f64],
+            width: usize,
+            height: usize,
+        ) -> Result<Vec<f32>>;
+
         /// An isosurface kept for drawing with a selection.
         type SurfaceHandle;
 

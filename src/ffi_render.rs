@@ -271,6 +271,41 @@ impl SelectionHandle {
         guarded(|| Ok(flatten(&self.list(octree, camera_desc, Some((surface, surface_opacity)))?, &self.selection)))
     }
 
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn composite(
+        &self,
+        octree: &VolumeOctreeHandle,
+        camera_desc: &CameraDesc,
+        bytes: &[u8],
+        desc: &GridDesc,
+        colors: &[f64],
+        opacities: &[f64],
+        width: usize,
+        height: usize,
+    ) -> Bridged<Vec<f32>> {
+        guarded(|| {
+            let grid = grid_of(bytes, desc)?;
+            if grid.shape() != &self.shape {
+                return Err(Error::InvalidArgument(
+                    "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
+                ));
+            }
+            if colors.len() % 4 != 0 || opacities.len() % 2 != 0 {
+                return Err(Error::InvalidArgument(format!(
+                    "{} colour and {} opacity values: give (value, r, g, b) and (value, opacity) tuples, flattened",
+                    colors.len(),
+                    opacities.len()
+                )));
+            }
+            let c = colors.chunks(4).map(|v| (v[0], [v[1] as f32, v[2] as f32, v[3] as f32])).collect();
+            let o = opacities.chunks(2).map(|v| (v[0], v[1] as f32)).collect();
+            let tf = TransferFunction::new(c, o)?;
+            let list = self.list(octree, camera_desc, None)?;
+            let image = crate::render::compositor::composite(&grid, &list, &tf, width, height, None)?;
+            Ok(image.rgba.iter().flatten().copied().collect())
+        })
+    }
+
     pub(crate) fn brick_texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize) -> Bridged<Vec<f32>> {
         guarded(|| {
             let grid = grid_of(bytes, desc)?;

@@ -1,0 +1,127 @@
+/**
+ * @class   vtkHybridOctreeVolumeMapper
+ * @brief   Volume mapper that draws the Hybrid Octree's DrawList with OpenGL.
+ *
+ * On Render() the mapper takes its vtkImageData input (point scalars; a
+ * multi-component array needs SetComponent()), builds the Volume Octree
+ * through the Rust core (cached by the scalars' MTime and the image
+ * geometry), selects bricks under BudgetMB and ErrorTolerance, skipping the
+ * nodes over whose range the vtkVolumeProperty's scalar opacity is 0, and
+ * asks the core for the DrawList of the active camera: bricks back to front,
+ * per brick its slice depths back to front.
+ *
+ * Each brick's texels are uploaded once as a 3D R32F vtkTextureObject (kept
+ * per (node, stride) while the selection holds it). The transfer function is
+ * a 1D RGBA float table (colour from the vtkColorTransferFunction, opacity
+ * from the scalar opacity) of TableSize entries over the scalars' range.
+ * Each slice is drawn as the polygon of its plane clipped to the brick's box
+ * (computed on the CPU); the fragment shader reads the brick's texture at
+ * texel coordinate clamp((x - lo) / (stride * spacing), 0, n - 1), looks the
+ * value up in the table, corrects the opacity a' = 1 - (1 - a)^(d / d0) and
+ * blends premultiplied, back to front (GL_ONE, GL_ONE_MINUS_SRC_ALPHA), with
+ * the depth test on (opaque geometry occludes the volume) and depth writes
+ * off. Every GL state change goes through vtkOpenGLState and is restored.
+ *
+ * CompositeOnCPU() runs the Rust CPU compositor on the same DrawList and
+ * table: the reference the OpenGL picture is tested against.
+ *
+ * Limitations of this first version: volume only (no isosurface, ROI or
+ * interactive budget yet); the vtkVolume's matrix and the image's direction
+ * matrix are ignored (identity assumed).
+ */
+#ifndef vtkHybridOctreeVolumeMapper_h
+#define vtkHybridOctreeVolumeMapper_h
+
+#include "HybridOctreeFiltersModule.h" // for export macro
+#include "vtkVolumeMapper.h"
+
+#include <memory> // for std::unique_ptr
+
+class vtkFloatArray;
+
+class HYBRIDOCTREEFILTERS_EXPORT vtkHybridOctreeVolumeMapper : public vtkVolumeMapper
+{
+public:
+  static vtkHybridOctreeVolumeMapper* New();
+  vtkTypeMacro(vtkHybridOctreeVolumeMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Texture budget in MB (10^6 bytes of f32 texels); default 64. 0 is an error at Render().
+  vtkSetClampMacro(BudgetMB, double, 0.0, 1.0e6);
+  vtkGetMacro(BudgetMB, double);
+  ///@}
+
+  ///@{
+  /// Error tolerance, a fraction of the data range (0..1); default 0.
+  vtkSetClampMacro(ErrorTolerance, double, 0.0, 1.0);
+  vtkGetMacro(ErrorTolerance, double);
+  ///@}
+
+  ///@{
+  /// Cells per axis of a leaf brick; default 16.
+  vtkSetClampMacro(LeafSize, int, 2, 128);
+  vtkGetMacro(LeafSize, int);
+  ///@}
+
+  ///@{
+  /// The component of a multi-component scalar array; -1 (default): none,
+  /// allowed only for one-component arrays.
+  vtkSetMacro(Component, int);
+  vtkGetMacro(Component, int);
+  ///@}
+
+  ///@{
+  /// Entries of the transfer function table; default 256.
+  vtkSetClampMacro(TableSize, int, 2, 65536);
+  vtkGetMacro(TableSize, int);
+  ///@}
+
+  ///@{
+  /// Statistics of the last frame: bricks drawn, bytes of resident brick
+  /// textures, slices drawn, and whether it drew (0 after an error).
+  vtkGetMacro(LastBricks, int);
+  vtkGetMacro(LastTextureBytes, vtkTypeInt64);
+  vtkGetMacro(LastSlices, vtkTypeInt64);
+  vtkGetMacro(LastRenderOK, bool);
+  ///@}
+
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  /**
+   * The CPU compositor's picture of the DrawList the mapper draws for `ren`'s
+   * active camera and `vol`'s property (Render() must have succeeded with
+   * them): `width x height` premultiplied RGBA floats, rows from the top,
+   * into `rgba` (4 components). False after a vtkErrorMacro.
+   */
+  bool CompositeOnCPU(vtkRenderer* ren, vtkVolume* vol, int width, int height, vtkFloatArray* rgba);
+
+protected:
+  vtkHybridOctreeVolumeMapper();
+  ~vtkHybridOctreeVolumeMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// Octree, selection and transfer function table up to date; false after an error.
+  bool Prepare(vtkRenderer* ren, vtkVolume* vol);
+
+  double BudgetMB = 64.0;
+  double ErrorTolerance = 0.0;
+  int LeafSize = 16;
+  int Component = -1;
+  int TableSize = 256;
+  int LastBricks = 0;
+  vtkTypeInt64 LastTextureBytes = 0;
+  vtkTypeInt64 LastSlices = 0;
+  bool LastRenderOK = false;
+
+private:
+  vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;
+  void operator=(const vtkHybridOctreeVolumeMapper&) = delete;
+
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif
