@@ -25,7 +25,7 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include <GL/gl.h> // GL enums and glDrawArrays (core since 1.1; no glew headers here)
+#include "vtk_glew.h"
 
 #include <algorithm>
 #include <array>
