@@ -36,6 +36,7 @@
 #include "vtkVolumeMapper.h"
 
 #include <memory> // for std::unique_ptr
+#include <string> // for LastPlan
 
 class vtkFloatArray;
 
@@ -47,15 +48,61 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Texture budget in MB (10^6 bytes of f32 texels); default 64. 0 is an error at Render().
+  /// Texture budget in MB (10^6 bytes of f32 texels) of a still frame;
+  /// default 64. Resident brick textures never exceed it. 0 is an error at Render().
   vtkSetClampMacro(BudgetMB, double, 0.0, 1.0e6);
   vtkGetMacro(BudgetMB, double);
+  ///@}
+
+  ///@{
+  /// Texture budget in MB of an interactive frame (when the render window
+  /// asks for more than InteractiveUpdateRate frames per second, as during
+  /// camera interaction); default 8. The next still frame refines to BudgetMB.
+  vtkSetClampMacro(InteractiveBudgetMB, double, 0.0, 1.0e6);
+  vtkGetMacro(InteractiveBudgetMB, double);
+  ///@}
+
+  ///@{
+  /// Desired update rate (frames per second) above which a frame is
+  /// interactive; default 1 (VTK's still update rate is 0.0001, its
+  /// interactive one 15).
+  vtkSetClampMacro(InteractiveUpdateRate, double, 0.0, 1.0e6);
+  vtkGetMacro(InteractiveUpdateRate, double);
   ///@}
 
   ///@{
   /// Error tolerance, a fraction of the data range (0..1); default 0.
   vtkSetClampMacro(ErrorTolerance, double, 0.0, 1.0);
   vtkGetMacro(ErrorTolerance, double);
+  ///@}
+
+  ///@{
+  /// Region of interest (The Hybrid Octree, section 3.2): bricks near the
+  /// sphere of RoiCenter (world) and RoiRadius (world units) are refined
+  /// first. Off by default.
+  vtkSetMacro(UseRoi, bool);
+  vtkGetMacro(UseRoi, bool);
+  vtkBooleanMacro(UseRoi, bool);
+  vtkSetVector3Macro(RoiCenter, double);
+  vtkGetVector3Macro(RoiCenter, double);
+  vtkSetClampMacro(RoiRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RoiRadius, double);
+  ///@}
+
+  ///@{
+  /// The isosurface drawn with the volume: on with ShowSurface, at Isovalue,
+  /// with SurfaceColor (RGB 0..1) and SurfaceOpacity (1: opaque, drawn
+  /// first with depth; below 1: translucent, sorted into the slabs between
+  /// the slices). Off by default.
+  vtkSetMacro(ShowSurface, bool);
+  vtkGetMacro(ShowSurface, bool);
+  vtkBooleanMacro(ShowSurface, bool);
+  vtkSetMacro(Isovalue, double);
+  vtkGetMacro(Isovalue, double);
+  vtkSetVector3Macro(SurfaceColor, double);
+  vtkGetVector3Macro(SurfaceColor, double);
+  vtkSetClampMacro(SurfaceOpacity, double, 0.0, 1.0);
+  vtkGetMacro(SurfaceOpacity, double);
   ///@}
 
   ///@{
@@ -72,17 +119,28 @@ public:
   ///@}
 
   ///@{
-  /// Entries of the transfer function table; default 256.
+  /// Entries of the transfer function table; default 1024.
   vtkSetClampMacro(TableSize, int, 2, 65536);
   vtkGetMacro(TableSize, int);
   ///@}
 
   ///@{
   /// Statistics of the last frame: bricks drawn, bytes of resident brick
-  /// textures, slices drawn, and whether it drew (0 after an error).
+  /// textures and of those uploaded for this frame, slices drawn, surface
+  /// triangles drawn, the passes that ran (comma-joined, e.g.
+  /// "opaque-surface,volume"), wall-clock milliseconds of Render(), the
+  /// selection's estimated error (largest weighted nodal error, a fraction
+  /// of the data range), whether the frame was interactive, and whether it
+  /// drew (false after an error).
   vtkGetMacro(LastBricks, int);
   vtkGetMacro(LastTextureBytes, vtkTypeInt64);
+  vtkGetMacro(LastUploadedBytes, vtkTypeInt64);
   vtkGetMacro(LastSlices, vtkTypeInt64);
+  vtkGetMacro(LastSurfaceTriangles, vtkTypeInt64);
+  const char* GetLastPlan() const { return this->LastPlan.c_str(); }
+  vtkGetMacro(LastFrameMilliseconds, double);
+  vtkGetMacro(LastEstimatedError, double);
+  vtkGetMacro(LastInteractive, bool);
   vtkGetMacro(LastRenderOK, bool);
   ///@}
 
@@ -107,13 +165,28 @@ protected:
   bool Prepare(vtkRenderer* ren, vtkVolume* vol);
 
   double BudgetMB = 64.0;
+  double InteractiveBudgetMB = 8.0;
+  double InteractiveUpdateRate = 1.0;
   double ErrorTolerance = 0.0;
+  bool UseRoi = false;
+  double RoiCenter[3] = { 0.0, 0.0, 0.0 };
+  double RoiRadius = 1.0;
+  bool ShowSurface = false;
+  double Isovalue = 0.0;
+  double SurfaceColor[3] = { 1.0, 1.0, 1.0 };
+  double SurfaceOpacity = 1.0;
   int LeafSize = 16;
   int Component = -1;
-  int TableSize = 256;
+  int TableSize = 1024;
   int LastBricks = 0;
   vtkTypeInt64 LastTextureBytes = 0;
+  vtkTypeInt64 LastUploadedBytes = 0;
   vtkTypeInt64 LastSlices = 0;
+  vtkTypeInt64 LastSurfaceTriangles = 0;
+  std::string LastPlan;
+  double LastFrameMilliseconds = 0.0;
+  double LastEstimatedError = 0.0;
+  bool LastInteractive = false;
   bool LastRenderOK = false;
 
 private:
