@@ -363,28 +363,6 @@ bool Selection::GetBrickTexels(const void* bytes, std::size_t byteCount,
   });
 }
 
-bool Selection::Composite(const VolumeOctree& octree, const CameraDescription& camera,
-  const void* bytes, std::size_t byteCount, const GridDescription& grid,
-  const std::vector<double>& colorPoints, const std::vector<double>& opacityPoints,
-  std::size_t width, std::size_t height, std::vector<float>& rgba, std::string& error) const
-{
-  try
-  {
-    const hybrid_octree::GridDesc desc = ToRust(grid);
-    const rust::Vec<float> out = this->Impl->Handle->composite(*octree.Impl->Handle,
-      ToRust(camera), ToSlice(bytes, byteCount), desc,
-      rust::Slice<const double>(colorPoints.data(), colorPoints.size()),
-      rust::Slice<const double>(opacityPoints.data(), opacityPoints.size()), width, height);
-    CopyInto(out, rgba);
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  return false;
-}
-
 struct Surface::Internals
 {
   explicit Internals(rust::Box<hybrid_octree::SurfaceHandle> handle)
@@ -430,6 +408,27 @@ bool Surface::GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string
 {
   return Guarded(error, [&] {
     CopyMesh(this->Impl->Handle->mesh(*octree.Impl->Handle), mesh);
+  });
+}
+
+bool Selection::Composite(const VolumeOctree& octree, const CameraDescription& camera,
+  const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const CompositeScene& scene, std::size_t width, std::size_t height, std::vector<float>& rgba,
+  std::string& error) const
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::GridDesc desc = ToRust(grid);
+    const rust::Slice<const double> colors(scene.ColorPoints.data(), scene.ColorPoints.size());
+    const rust::Slice<const double> opacities(
+      scene.OpacityPoints.data(), scene.OpacityPoints.size());
+    const rust::Vec<float> out = scene.SurfaceToDraw
+      ? this->Impl->Handle->composite_with_surface(*octree.Impl->Handle, ToRust(camera),
+          ToSlice(bytes, byteCount), desc, colors, opacities,
+          *scene.SurfaceToDraw->Impl->Handle,
+          rust::Slice<const double>(scene.SurfaceRGBA, 4), width, height)
+      : this->Impl->Handle->composite(*octree.Impl->Handle, ToRust(camera),
+          ToSlice(bytes, byteCount), desc, colors, opacities, width, height);
+    CopyInto(out, rgba);
   });
 }
 

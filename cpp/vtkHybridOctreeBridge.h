@@ -204,6 +204,17 @@ struct DrawList
   std::size_t GetNumberOfBricks() const { return this->Brick.size(); }
 };
 
+class Surface;
+
+/// What Selection::Composite() draws besides the bricks' texels.
+struct CompositeScene
+{
+  std::vector<double> ColorPoints;   ///< (value, r, g, b) flattened
+  std::vector<double> OpacityPoints; ///< (value, opacity) flattened
+  const Surface* SurfaceToDraw = nullptr; ///< the isosurface, or none
+  double SurfaceRGBA[4] = { 1.0, 1.0, 1.0, 1.0 }; ///< its colour and opacity
+};
+
 /// The camera's position, focal point, view up, projection, parallel scale
 /// and (vertical) view angle.
 CameraDescription DescribeCamera(vtkCamera* camera);
@@ -218,7 +229,6 @@ CameraDescription DescribeCamera(vtkCamera* camera);
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function);
 
 class Selection;
-class Surface;
 
 /// A Volume Octree owned on the C++ side (it owns the Rust handle).
 class VolumeOctree
@@ -312,17 +322,18 @@ public:
     std::size_t brick, std::vector<float>& texels, std::string& error) const;
 
   /**
-   * The CPU compositor's picture of GetDrawList(octree, camera) (volume
-   * only), `width x height`, premultiplied RGBA floats, rows from the top,
-   * with the transfer function of `colorPoints` ((value, r, g, b) flattened)
-   * and `opacityPoints` ((value, opacity) flattened), piecewise linear.
-   * `bytes`, `byteCount` and `grid`: the image the octree was built from.
-   * The reference vtkHybridOctreeVolumeMapper's OpenGL output is tested against.
+   * The CPU compositor's picture of the DrawList (GetDrawList(octree,
+   * camera), with `scene.SurfaceToDraw` at `scene.SurfaceRGBA[3]` when set),
+   * `width x height`, premultiplied RGBA floats, rows from the top, with the
+   * transfer function of `scene.ColorPoints` ((value, r, g, b) flattened) and
+   * `scene.OpacityPoints` ((value, opacity) flattened), piecewise linear; the
+   * surface headlight-shaded, `rgb |n . d|`. `bytes`, `byteCount` and `grid`:
+   * the image the octree was built from. The reference
+   * vtkHybridOctreeVolumeMapper's OpenGL output is tested against.
    */
   bool Composite(const VolumeOctree& octree, const CameraDescription& camera, const void* bytes,
-    std::size_t byteCount, const GridDescription& grid, const std::vector<double>& colorPoints,
-    const std::vector<double>& opacityPoints, std::size_t width, std::size_t height,
-    std::vector<float>& rgba, std::string& error) const;
+    std::size_t byteCount, const GridDescription& grid, const CompositeScene& scene,
+    std::size_t width, std::size_t height, std::vector<float>& rgba, std::string& error) const;
 
 private:
   friend class VolumeOctree;

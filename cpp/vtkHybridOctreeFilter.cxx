@@ -1,6 +1,7 @@
 #include "vtkHybridOctreeFilter.h"
 
 #include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeImageInput.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -62,76 +63,17 @@ struct vtkHybridOctreeFilter::vtkInternals
   bool IsBuiltFrom(const vtkDataArray* array, vtkMTimeType arrayMTime,
     const vtkHybridOctreeBridge::GridDescription& grid, int leafSize) const
   {
-    if (!this->Octree || this->Array != array || this->ArrayMTime != arrayMTime ||
-      this->LeafSize != leafSize || this->Grid.Type != grid.Type ||
-      this->Grid.Components != grid.Components || this->Grid.Component != grid.Component)
-    {
-      return false;
-    }
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      if (this->Grid.Dims[axis] != grid.Dims[axis] ||
-        this->Grid.Spacing[axis] != grid.Spacing[axis] ||
-        this->Grid.Origin[axis] != grid.Origin[axis])
-      {
-        return false;
-      }
-    }
-    return true;
+    return this->Octree && this->Array == array && this->ArrayMTime == arrayMTime &&
+      this->LeafSize == leafSize && vtkHybridOctreeImageInput::SameGrid(this->Grid, grid);
   }
 };
 
 namespace
 {
-/// Maps a VTK scalar type to the core's; false for types the core cannot read.
-bool ToBridgeType(int vtkType, vtkHybridOctreeBridge::ScalarType& type)
-{
-  using vtkHybridOctreeBridge::ScalarType;
-  switch (vtkType)
-  {
-    case VTK_UNSIGNED_CHAR:
-      type = ScalarType::U8;
-      return true;
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-      type = ScalarType::I8;
-      return true;
-    case VTK_UNSIGNED_SHORT:
-      type = ScalarType::U16;
-      return true;
-    case VTK_SHORT:
-      type = ScalarType::I16;
-      return true;
-    case VTK_UNSIGNED_INT:
-      type = ScalarType::U32;
-      return true;
-    case VTK_INT:
-      type = ScalarType::I32;
-      return true;
-    case VTK_FLOAT:
-      type = ScalarType::F32;
-      return true;
-    case VTK_DOUBLE:
-      type = ScalarType::F64;
-      return true;
-    default:
-      return false;
-  }
-}
-
-/// The bytes of the chosen array that the core reads (all components).
-std::size_t ByteCount(vtkDataArray* scalars)
-{
-  return static_cast<std::size_t>(scalars->GetNumberOfTuples()) *
-    static_cast<std::size_t>(scalars->GetNumberOfComponents()) *
-    static_cast<std::size_t>(scalars->GetDataTypeSize());
-}
-
-/// The array's storage, or nullptr when it is empty.
-const void* Bytes(vtkDataArray* scalars)
-{
-  return ByteCount(scalars) > 0 ? scalars->GetVoidPointer(0) : nullptr;
-}
+using vtkHybridOctreeImageInput::ByteCount;
+using vtkHybridOctreeImageInput::Bytes;
+using vtkHybridOctreeImageInput::DescribeGrid;
+using vtkHybridOctreeImageInput::ToBridgeType;
 
 /// True when every octree node id fits the int cell array "node".
 bool FitsInt(const std::vector<std::uint32_t>& ids)
@@ -230,20 +172,8 @@ vtkDataArray* vtkHybridOctreeFilter::GetScalars(
 //------------------------------------------------------------------------------
 bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scalars)
 {
-  vtkHybridOctreeBridge::GridDescription grid;
-  ToBridgeType(scalars->GetDataType(), grid.Type);
-  const int* extent = image->GetExtent();
-  const double* spacing = image->GetSpacing();
-  const double* origin = image->GetOrigin();
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    const int cells = extent[2 * axis + 1] - extent[2 * axis];
-    grid.Dims[axis] = cells >= 0 ? static_cast<std::size_t>(cells) + 1 : 0;
-    grid.Spacing[axis] = spacing[axis];
-    grid.Origin[axis] = origin[axis] + extent[2 * axis] * spacing[axis];
-  }
-  grid.Components = static_cast<std::size_t>(scalars->GetNumberOfComponents());
-  grid.Component = this->Component;
+  const vtkHybridOctreeBridge::GridDescription grid =
+    DescribeGrid(image, scalars, this->Component);
 
   vtkInternals& cache = *this->Internals;
   if (cache.IsBuiltFrom(scalars, scalars->GetMTime(), grid, this->LeafSize))

@@ -1,6 +1,10 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 
+#include "vtkHybridOctreeBrickTextures.h"
 #include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeImageInput.h"
+#include "vtkHybridOctreeSliceDrawer.h"
+#include "vtkHybridOctreeSurfaceDrawer.h"
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -10,17 +14,14 @@
 #include "vtkInformation.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
-#include "vtkOpenGLVertexArrayObject.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
-#include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
@@ -28,11 +29,9 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
-#include <array>
+#include <chrono>
 #include <cmath>
-#include <map>
 #include <string>
-#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkHybridOctreeVolumeMapper);
@@ -40,213 +39,71 @@ vtkStandardNewMacro(vtkHybridOctreeVolumeMapper);
 namespace
 {
 using namespace vtkHybridOctreeBridge;
+using vtkHybridOctreeImageInput::ByteCount;
+using vtkHybridOctreeImageInput::Bytes;
 
-const char* VertexShader = R"(//VTK::System::Dec
-in vec3 vertexWC;
-uniform mat4 WCDC;
-out vec3 positionWC;
-void main()
+/// `m` applied to the point `p` (w = 1).
+void TransformPoint(vtkMatrix4x4* m, const double p[3], double out[3])
 {
-  positionWC = vertexWC;
-  gl_Position = WCDC * vec4(vertexWC, 1.0);
-}
-)";
-
-const char* FragmentShader = R"(//VTK::System::Dec
-in vec3 positionWC;
-uniform sampler3D brickTexture;
-uniform sampler2D transferTable;
-uniform vec3 brickLo;
-uniform vec3 inverseStep;
-uniform vec3 texels;
-uniform vec2 tableScaleShift;
-uniform float opacityRatio;
-//VTK::Output::Dec
-void main()
-{
-  vec3 u = clamp((positionWC - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
-  float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
-  vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
-  float a = clamp(c.a, 0.0, 1.0);
-  if (a < 1.0)
+  double in[4] = { p[0], p[1], p[2], 1.0 };
+  double r[4];
+  m->MultiplyPoint(in, r);
+  for (int k = 0; k < 3; ++k)
   {
-    a = 1.0 - exp(opacityRatio * log(1.0 - a));
-  }
-  gl_FragData[0] = vec4(clamp(c.rgb, 0.0, 1.0) * a, a);
-}
-)";
-
-bool ToBridgeType(int vtkType, ScalarType& type)
-{
-  switch (vtkType)
-  {
-    case VTK_UNSIGNED_CHAR:
-      type = ScalarType::U8;
-      return true;
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-      type = ScalarType::I8;
-      return true;
-    case VTK_UNSIGNED_SHORT:
-      type = ScalarType::U16;
-      return true;
-    case VTK_SHORT:
-      type = ScalarType::I16;
-      return true;
-    case VTK_UNSIGNED_INT:
-      type = ScalarType::U32;
-      return true;
-    case VTK_INT:
-      type = ScalarType::I32;
-      return true;
-    case VTK_FLOAT:
-      type = ScalarType::F32;
-      return true;
-    case VTK_DOUBLE:
-      type = ScalarType::F64;
-      return true;
-    default:
-      return false;
+    out[k] = r[k] / r[3];
   }
 }
 
-std::size_t ByteCount(vtkDataArray* scalars)
+/// `m`'s linear part applied to the vector `v`.
+void TransformVector(vtkMatrix4x4* m, const double v[3], double out[3])
 {
-  return static_cast<std::size_t>(scalars->GetNumberOfTuples()) *
-    static_cast<std::size_t>(scalars->GetNumberOfComponents()) *
-    static_cast<std::size_t>(scalars->GetDataTypeSize());
-}
-
-const void* Bytes(vtkDataArray* scalars)
-{
-  return ByteCount(scalars) > 0 ? scalars->GetVoidPointer(0) : nullptr;
-}
-
-bool SameGrid(const GridDescription& a, const GridDescription& b)
-{
-  for (int i = 0; i < 3; ++i)
+  for (int r = 0; r < 3; ++r)
   {
-    if (a.Dims[i] != b.Dims[i] || a.Spacing[i] != b.Spacing[i] || a.Origin[i] != b.Origin[i])
-    {
-      return false;
-    }
+    out[r] = m->GetElement(r, 0) * v[0] + m->GetElement(r, 1) * v[1] + m->GetElement(r, 2) * v[2];
   }
-  return a.Type == b.Type && a.Components == b.Components && a.Component == b.Component;
-}
-
-double Dot(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/// The polygon of the plane {x : (x - eye) . forward = depth} inside the box
-/// `bounds` (VTK order), as a triangle fan appended to `out` (3 floats per
-/// vertex); returns the vertices appended.
-std::size_t SlicePolygon(const double bounds[6], const double eye[3], const double forward[3],
-  const double right[3], const double up[3], double depth, std::vector<float>& out)
-{
-  double corners[8][3];
-  double dist[8];
-  for (int c = 0; c < 8; ++c)
-  {
-    corners[c][0] = bounds[(c & 1)];
-    corners[c][1] = bounds[2 + ((c >> 1) & 1)];
-    corners[c][2] = bounds[4 + ((c >> 2) & 1)];
-    const double rel[3] = { corners[c][0] - eye[0], corners[c][1] - eye[1],
-      corners[c][2] - eye[2] };
-    dist[c] = Dot(rel, forward) - depth;
-  }
-  static const int edges[12][2] = { { 0, 1 }, { 2, 3 }, { 4, 5 }, { 6, 7 }, { 0, 2 }, { 1, 3 },
-    { 4, 6 }, { 5, 7 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
-  std::vector<std::array<double, 3>> points;
-  for (int c = 0; c < 8; ++c)
-  {
-    if (dist[c] == 0.0)
-    {
-      points.push_back({ corners[c][0], corners[c][1], corners[c][2] });
-    }
-  }
-  for (const auto& e : edges)
-  {
-    const double da = dist[e[0]], db = dist[e[1]];
-    if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0))
-    {
-      const double t = da / (da - db);
-      std::array<double, 3> p;
-      for (int k = 0; k < 3; ++k)
-      {
-        p[k] = corners[e[0]][k] + t * (corners[e[1]][k] - corners[e[0]][k]);
-      }
-      points.push_back(p);
-    }
-  }
-  if (points.size() < 3)
-  {
-    return 0;
-  }
-  double centre[3] = { 0.0, 0.0, 0.0 };
-  for (const auto& p : points)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      centre[k] += p[k] / static_cast<double>(points.size());
-    }
-  }
-  std::vector<std::pair<double, std::size_t>> order;
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    const double rel[3] = { points[i][0] - centre[0], points[i][1] - centre[1],
-      points[i][2] - centre[2] };
-    order.emplace_back(std::atan2(Dot(rel, up), Dot(rel, right)), i);
-  }
-  std::sort(order.begin(), order.end());
-  std::size_t added = 0;
-  for (std::size_t i = 1; i + 1 < order.size(); ++i)
-  {
-    for (std::size_t j : { order[0].second, order[i].second, order[i + 1].second })
-    {
-      out.push_back(static_cast<float>(points[j][0]));
-      out.push_back(static_cast<float>(points[j][1]));
-      out.push_back(static_cast<float>(points[j][2]));
-      ++added;
-    }
-  }
-  return added;
 }
 } // namespace
 
 struct vtkHybridOctreeVolumeMapper::vtkInternals
 {
-  // Octree cache.
+  // The octree, rebuilt when the scalars, the image geometry or LeafSize change.
   std::unique_ptr<VolumeOctree> Octree;
   vtkDataArray* Array = nullptr;
   vtkMTimeType ArrayMTime = 0;
   GridDescription Grid;
   int LeafSize = 0;
   unsigned long OctreeGeneration = 0;
+  vtkDataArray* Scalars = nullptr;
 
-  // Selection cache.
+  // The selection, made again when its inputs change.
   std::unique_ptr<Selection> Selected;
+  SelectionSummary Summary;
   unsigned long SelectedGeneration = 0;
-  std::size_t SelectedBudget = 0;
-  double SelectedTolerance = -1.0;
+  std::vector<double> SelectedKey;
   std::vector<double> SelectedOpacity;
 
-  // Transfer function table, the points the CPU compositor gets.
-  std::vector<double> ColorPoints;
-  std::vector<double> OpacityPoints;
+  // The isosurface, extracted again when the octree or the isovalue change.
+  std::unique_ptr<Surface> Iso;
+  unsigned long IsoGeneration = 0;
+  double IsoValue = 0.0;
+
+  // Transfer function table (what the CPU compositor gets too).
+  CompositeScene Transfer;
   std::vector<float> Table;
   double RangeLo = 0.0;
   double RangeHi = 1.0;
+  bool TableUploaded = false;
+
+  // Model matrix (volume matrix x image direction) and its inverse.
+  vtkNew<vtkMatrix4x4> Model;
+  vtkNew<vtkMatrix4x4> ModelInverse;
 
   // GL resources.
-  std::map<std::pair<std::uint32_t, std::size_t>, vtkSmartPointer<vtkTextureObject>> Textures;
-  unsigned long TexturesGeneration = 0;
+  vtkHybridOctreeBrickTextures Bricks;
+  vtkHybridOctreeSliceDrawer Slices;
+  vtkHybridOctreeSurfaceDrawer SurfaceDrawer;
+  const Surface* UploadedSurface = nullptr;
   vtkSmartPointer<vtkTextureObject> TableTexture;
-  vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
-  vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
-
-  vtkDataArray* Scalars = nullptr;
 };
 
 vtkHybridOctreeVolumeMapper::vtkHybridOctreeVolumeMapper()
@@ -258,7 +115,7 @@ vtkHybridOctreeVolumeMapper::~vtkHybridOctreeVolumeMapper() = default;
 
 int vtkHybridOctreeVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
 {
-  // Accept any data set so that a non-image input is a clear error, not a pipeline failure.
+  // Any data set, so that a non-image input is a clear error, not a pipeline failure.
   this->Superclass::FillInputPortInformation(port, info);
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
   // Optional, so that Render() with no input reports its own error.
@@ -266,13 +123,25 @@ int vtkHybridOctreeVolumeMapper::FillInputPortInformation(int port, vtkInformati
   return 1;
 }
 
-bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* vtkNotUsed(ren), vtkVolume* vol)
+bool vtkHybridOctreeVolumeMapper::IsInteractive(vtkRenderer* ren) const
 {
-  vtkInternals& in = *this->Internals;
-  if (this->GetNumberOfInputConnections(0) == 0)
+  vtkRenderWindow* window = ren ? ren->GetRenderWindow() : nullptr;
+  return window && window->GetDesiredUpdateRate() > this->InteractiveUpdateRate;
+}
+
+double vtkHybridOctreeVolumeMapper::FrameBudgetMB(vtkRenderer* ren) const
+{
+  return this->IsInteractive(ren) ? std::min(this->InteractiveBudgetMB, this->BudgetMB)
+                                  : this->BudgetMB;
+}
+
+vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
+{
+  image = nullptr;
+  if (this->GetNumberOfInputConnections(0) == 0 && !this->GetDataSetInput())
   {
     vtkErrorMacro("no input: connect a vtkImageData with point scalars");
-    return false;
+    return nullptr;
   }
   if (vtkAlgorithm* producer = this->GetInputAlgorithm())
   {
@@ -282,148 +151,300 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* vtkNotUsed(ren), vtkVolum
   if (!data)
   {
     vtkErrorMacro("no input: connect a vtkImageData with point scalars");
-    return false;
+    return nullptr;
   }
-  vtkImageData* image = vtkImageData::SafeDownCast(data);
+  image = vtkImageData::SafeDownCast(data);
   if (!image)
   {
     vtkErrorMacro("the input is a " << data->GetClassName()
                                     << ", not a vtkImageData: the mapper draws images only");
-    return false;
+    return nullptr;
   }
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   if (!scalars || image->GetNumberOfPoints() == 0)
   {
-    vtkErrorMacro("the input image is empty or has no point scalars");
-    return false;
+    vtkErrorMacro("the input image is empty or has no point scalars: give it point scalars");
+    return nullptr;
   }
   const int components = scalars->GetNumberOfComponents();
   if (components > 1 && this->Component < 0)
   {
     vtkErrorMacro("the point scalars have " << components
                                             << " components: choose one with SetComponent()");
-    return false;
+    return nullptr;
   }
   if (this->Component >= components)
   {
     vtkErrorMacro("component " << this->Component << " does not exist: the point scalars have "
                                << components << " components");
-    return false;
+    return nullptr;
   }
-  GridDescription grid;
-  if (!ToBridgeType(scalars->GetDataType(), grid.Type))
+  ScalarType type;
+  if (!vtkHybridOctreeImageInput::ToBridgeType(scalars->GetDataType(), type) ||
+    !scalars->HasStandardMemoryLayout())
   {
-    vtkErrorMacro("scalar type " << scalars->GetDataTypeAsString() << " is not supported");
-    return false;
+    vtkErrorMacro("scalar type " << scalars->GetDataTypeAsString()
+                                 << " is not supported: cast to float, double or an 8/16/32-bit "
+                                    "integer type (vtkImageCast)");
+    return nullptr;
   }
-  const int* extent = image->GetExtent();
-  const double* spacing = image->GetSpacing();
-  const double* origin = image->GetOrigin();
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    const int cells = extent[2 * axis + 1] - extent[2 * axis];
-    grid.Dims[axis] = cells >= 0 ? static_cast<std::size_t>(cells) + 1 : 0;
-    grid.Spacing[axis] = spacing[axis];
-    grid.Origin[axis] = origin[axis] + extent[2 * axis] * spacing[axis];
-  }
-  grid.Components = static_cast<std::size_t>(components);
-  grid.Component = components > 1 ? this->Component : -1;
-  if (this->BudgetMB <= 0.0)
-  {
-    vtkErrorMacro("the texture budget is 0 MB: set BudgetMB > 0");
-    return false;
-  }
+  return scalars;
+}
 
-  std::string error;
-  if (!in.Octree || in.Array != scalars || in.ArrayMTime != scalars->GetMTime() ||
-    !SameGrid(in.Grid, grid) || in.LeafSize != this->LeafSize)
-  {
-    in.Octree.reset();
-    in.Selected.reset();
-    in.Octree = VolumeOctree::Build(Bytes(scalars), ByteCount(scalars), grid,
-      static_cast<unsigned int>(this->LeafSize), error);
-    if (!in.Octree)
-    {
-      vtkErrorMacro(<< error);
-      return false;
-    }
-    in.Array = scalars;
-    in.ArrayMTime = scalars->GetMTime();
-    in.Grid = grid;
-    in.LeafSize = this->LeafSize;
-    ++in.OctreeGeneration;
-  }
+bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray* scalars)
+{
+  vtkInternals& in = *this->Internals;
+  const GridDescription grid = vtkHybridOctreeImageInput::DescribeGrid(
+    image, scalars, scalars->GetNumberOfComponents() > 1 ? this->Component : -1);
   in.Scalars = scalars;
-
-  vtkVolumeProperty* property = vol ? vol->GetProperty() : nullptr;
-  if (!property)
+  if (in.Octree && in.Array == scalars && in.ArrayMTime == scalars->GetMTime() &&
+    vtkHybridOctreeImageInput::SameGrid(in.Grid, grid) && in.LeafSize == this->LeafSize)
   {
-    vtkErrorMacro("the volume has no vtkVolumeProperty");
+    return true;
+  }
+  in.Selected.reset();
+  in.Iso.reset();
+  in.Octree.reset();
+  std::string error;
+  in.Octree = VolumeOctree::Build(
+    Bytes(scalars), ByteCount(scalars), grid, static_cast<unsigned int>(this->LeafSize), error);
+  if (!in.Octree)
+  {
+    vtkErrorMacro(<< error);
     return false;
   }
+  in.Array = scalars;
+  in.ArrayMTime = scalars->GetMTime();
+  in.Grid = grid;
+  in.LeafSize = this->LeafSize;
+  ++in.OctreeGeneration;
+  return true;
+}
+
+void vtkHybridOctreeVolumeMapper::UpdateModelMatrix(vtkImageData* image, vtkVolume* vol)
+{
+  // Samples sit at origin + direction * (index * spacing): the octree's frame
+  // (origin + index * spacing) maps to it by T(origin) D T(-origin).
+  vtkInternals& in = *this->Internals;
+  vtkNew<vtkMatrix4x4> frame;
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  const double* o = in.Grid.Origin;
+  for (int r = 0; r < 3; ++r)
+  {
+    double shift = o[r];
+    for (int c = 0; c < 3; ++c)
+    {
+      frame->SetElement(r, c, direction->GetElement(r, c));
+      shift -= direction->GetElement(r, c) * o[c];
+    }
+    frame->SetElement(r, 3, shift);
+  }
+  vtkMatrix4x4::Multiply4x4(vol->GetMatrix(), frame, in.Model);
+  vtkMatrix4x4::Invert(in.Model, in.ModelInverse);
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* property)
+{
+  vtkInternals& in = *this->Internals;
   vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
   vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
-
-  // The transfer function table over the scalars' range.
   double range[2];
-  scalars->GetRange(range, grid.Component < 0 ? 0 : grid.Component);
+  in.Scalars->GetRange(range, in.Grid.Component < 0 ? 0 : in.Grid.Component);
   if (!(range[1] > range[0]))
   {
     range[1] = range[0] + 1.0;
   }
+  // VTK's opacities are per ScalarOpacityUnitDistance U; the DrawList corrects
+  // per d0 = min spacing: a table opacity 1 - (1 - a)^(d0 / U) gives
+  // 1 - (1 - a)^(d / U) after the DrawList's correction.
+  const double unit = property->GetScalarOpacityUnitDistance(0);
+  const double d0 = std::min({ in.Grid.Spacing[0], in.Grid.Spacing[1], in.Grid.Spacing[2] });
+  const double exponent = unit > 0.0 ? d0 / unit : 1.0;
   const int n = this->TableSize;
   std::vector<double> rgb(3 * static_cast<std::size_t>(n));
   std::vector<double> alpha(static_cast<std::size_t>(n));
   color->GetTable(range[0], range[1], n, rgb.data());
   opacity->GetTable(range[0], range[1], n, alpha.data());
-  in.RangeLo = range[0];
-  in.RangeHi = range[1];
-  in.Table.assign(4 * static_cast<std::size_t>(n), 0.0f);
-  in.ColorPoints.clear();
-  in.OpacityPoints.clear();
+  std::vector<float> table(4 * static_cast<std::size_t>(n));
+  in.Transfer.ColorPoints.clear();
+  in.Transfer.OpacityPoints.clear();
   for (int k = 0; k < n; ++k)
   {
     const double v = range[0] + (range[1] - range[0]) * k / (n - 1);
-    const double a = std::min(1.0, std::max(0.0, alpha[k]));
+    double a = std::min(1.0, std::max(0.0, alpha[k]));
+    a = a < 1.0 ? 1.0 - std::pow(1.0 - a, exponent) : 1.0;
     for (int c = 0; c < 3; ++c)
     {
-      in.Table[4 * k + c] = static_cast<float>(rgb[3 * k + c]);
+      table[4 * k + c] = static_cast<float>(rgb[3 * k + c]);
     }
-    in.Table[4 * k + 3] = static_cast<float>(a);
-    in.ColorPoints.insert(in.ColorPoints.end(),
-      { v, static_cast<double>(in.Table[4 * k]), static_cast<double>(in.Table[4 * k + 1]),
-        static_cast<double>(in.Table[4 * k + 2]) });
-    in.OpacityPoints.insert(in.OpacityPoints.end(), { v, static_cast<double>(in.Table[4 * k + 3]) });
+    table[4 * k + 3] = static_cast<float>(a);
+    in.Transfer.ColorPoints.insert(in.Transfer.ColorPoints.end(),
+      { v, static_cast<double>(table[4 * k]), static_cast<double>(table[4 * k + 1]),
+        static_cast<double>(table[4 * k + 2]) });
+    in.Transfer.OpacityPoints.insert(
+      in.Transfer.OpacityPoints.end(), { v, static_cast<double>(table[4 * k + 3]) });
   }
-
-  // The selection.
-  SelectDescription select;
-  select.BudgetBytes = static_cast<std::size_t>(this->BudgetMB * 1.0e6);
-  select.Tolerance = this->ErrorTolerance;
-  select.OpacityPoints = vtkHybridOctreeBridge::OpacityPoints(opacity);
-  if (!in.Selected || in.SelectedGeneration != in.OctreeGeneration ||
-    in.SelectedBudget != select.BudgetBytes || in.SelectedTolerance != select.Tolerance ||
-    in.SelectedOpacity != select.OpacityPoints)
+  if (table != in.Table || range[0] != in.RangeLo || range[1] != in.RangeHi)
   {
-    in.Selected = in.Octree->Select(select, error);
-    if (!in.Selected)
-    {
-      vtkErrorMacro(<< error);
-      return false;
-    }
-    in.SelectedGeneration = in.OctreeGeneration;
-    in.SelectedBudget = select.BudgetBytes;
-    in.SelectedTolerance = select.Tolerance;
-    in.SelectedOpacity = select.OpacityPoints;
+    in.Table.swap(table);
+    in.RangeLo = range[0];
+    in.RangeHi = range[1];
+    in.TableUploaded = false;
   }
   return true;
 }
 
+bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkRenderer* ren, vtkVolumeProperty* property)
+{
+  vtkInternals& in = *this->Internals;
+  const double budgetMB = this->FrameBudgetMB(ren);
+  if (!(budgetMB > 0.0))
+  {
+    vtkErrorMacro("the texture budget is 0 MB: set BudgetMB (and InteractiveBudgetMB) above 0");
+    return false;
+  }
+  SelectDescription select;
+  select.BudgetBytes = static_cast<std::size_t>(budgetMB * 1.0e6);
+  select.Tolerance = this->ErrorTolerance;
+  select.OpacityPoints = vtkHybridOctreeBridge::OpacityPoints(property->GetScalarOpacity(0));
+  select.HasRoi = this->UseRoi;
+  TransformPoint(in.ModelInverse, this->RoiCenter, select.RoiCenter);
+  select.RoiRadius = this->RoiRadius;
+  select.HasIsovalue = this->ShowSurface;
+  select.Isovalue = this->Isovalue;
+  const std::vector<double> key = { static_cast<double>(select.BudgetBytes), select.Tolerance,
+    select.HasRoi ? 1.0 : 0.0, select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2],
+    select.RoiRadius, select.HasIsovalue ? 1.0 : 0.0, select.Isovalue };
+  if (in.Selected && in.SelectedGeneration == in.OctreeGeneration && in.SelectedKey == key &&
+    in.SelectedOpacity == select.OpacityPoints)
+  {
+    return true;
+  }
+  std::string error;
+  in.Selected = in.Octree->Select(select, error);
+  if (!in.Selected || !in.Selected->GetSummary(in.Summary, error))
+  {
+    in.Selected.reset();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.SelectedGeneration = in.OctreeGeneration;
+  in.SelectedKey = key;
+  in.SelectedOpacity = select.OpacityPoints;
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdateSurface()
+{
+  vtkInternals& in = *this->Internals;
+  if (!this->ShowSurface || !(this->SurfaceOpacity > 0.0))
+  {
+    return true;
+  }
+  if (!std::isfinite(this->Isovalue))
+  {
+    vtkErrorMacro("the isovalue " << this->Isovalue << " is not a finite number");
+    return false;
+  }
+  if (in.Iso && in.IsoGeneration == in.OctreeGeneration && in.IsoValue == this->Isovalue)
+  {
+    return true;
+  }
+  std::string error;
+  in.Iso = in.Octree->ExtractSurfaceForDrawing(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+    this->Isovalue, SurfaceMode::Discretized, error);
+  SurfaceMesh mesh;
+  if (!in.Iso || !in.Iso->GetMesh(*in.Octree, mesh, error) ||
+    !in.SurfaceDrawer.Upload(mesh, error))
+  {
+    in.Iso.reset();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.UploadedSurface = in.Iso.get();
+  in.IsoGeneration = in.OctreeGeneration;
+  in.IsoValue = this->Isovalue;
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkImageData* image = nullptr;
+  vtkDataArray* scalars = this->CheckInput(image);
+  if (!scalars)
+  {
+    return false;
+  }
+  vtkVolumeProperty* property = vol ? vol->GetProperty() : nullptr;
+  if (!property)
+  {
+    vtkErrorMacro("the volume has no vtkVolumeProperty: give it one with a scalar opacity");
+    return false;
+  }
+  if (!(this->FrameBudgetMB(ren) > 0.0))
+  {
+    vtkErrorMacro("the texture budget is 0 MB: set BudgetMB (and InteractiveBudgetMB) above 0");
+    return false;
+  }
+  if (!this->UpdateOctree(image, scalars))
+  {
+    return false;
+  }
+  this->UpdateModelMatrix(image, vol);
+  return this->UpdateTransferFunction(property) && this->UpdateSelection(ren, property) &&
+    this->UpdateSurface();
+}
+
+CameraDescription vtkHybridOctreeVolumeMapper::ModelCamera(vtkRenderer* ren) const
+{
+  // The camera in the octree's frame: position and focal point through the
+  // inverse model matrix, view up through its linear part.
+  CameraDescription cam = DescribeCamera(ren->GetActiveCamera());
+  vtkMatrix4x4* inverse = this->Internals->ModelInverse;
+  double p[3], f[3], up[3];
+  TransformPoint(inverse, cam.Position, p);
+  TransformPoint(inverse, cam.FocalPoint, f);
+  TransformVector(inverse, cam.ViewUp, up);
+  const double scale = std::cbrt(std::fabs(this->Internals->Model->Determinant()));
+  for (int k = 0; k < 3; ++k)
+  {
+    cam.Position[k] = p[k];
+    cam.FocalPoint[k] = f[k];
+    cam.ViewUp[k] = up[k];
+  }
+  if (scale > 0.0)
+  {
+    cam.ParallelScale /= scale;
+  }
+  return cam;
+}
+
+bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& list)
+{
+  vtkInternals& in = *this->Internals;
+  std::string error;
+  const CameraDescription cam = this->ModelCamera(ren);
+  const bool surface = in.Iso && this->ShowSurface && this->SurfaceOpacity > 0.0;
+  const bool ok = surface
+    ? in.Selected->GetDrawList(*in.Octree, cam, *in.Iso, this->SurfaceOpacity, list, error)
+    : in.Selected->GetDrawList(*in.Octree, cam, list, error);
+  if (!ok)
+  {
+    vtkErrorMacro(<< error);
+  }
+  return ok;
+}
+
 void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
+  const auto start = std::chrono::steady_clock::now();
   this->LastRenderOK = false;
   this->LastBricks = 0;
   this->LastSlices = 0;
+  this->LastSurfaceTriangles = 0;
+  this->LastUploadedBytes = 0;
+  this->LastPlan.clear();
+  this->LastInteractive = this->IsInteractive(ren);
   vtkInternals& in = *this->Internals;
   vtkOpenGLRenderWindow* window =
     ren ? vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()) : nullptr;
@@ -433,213 +454,201 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("an OpenGL render window and camera are required");
     return;
   }
-  if (!this->Prepare(ren, vol))
-  {
-    return;
-  }
-  std::string error;
-  const CameraDescription cam = DescribeCamera(camera);
   DrawList list;
-  if (!in.Selected->GetDrawList(*in.Octree, cam, list, error))
+  if (!this->Prepare(ren, vol) || !this->GetFrameDrawList(ren, list))
   {
-    vtkErrorMacro(<< error);
     return;
   }
-
-  // Slice polygons, on the CPU.
-  double right[3], up[3];
+  if (this->DrawFrame(ren, window, camera, list))
   {
-    const double* f = list.Forward;
-    const double* vu = cam.ViewUp;
-    right[0] = f[1] * vu[2] - f[2] * vu[1];
-    right[1] = f[2] * vu[0] - f[0] * vu[2];
-    right[2] = f[0] * vu[1] - f[1] * vu[0];
-    const double norm = std::sqrt(Dot(right, right));
-    for (double& r : right)
-    {
-      r /= norm;
-    }
-    up[0] = right[1] * f[2] - right[2] * f[1];
-    up[1] = right[2] * f[0] - right[0] * f[2];
-    up[2] = right[0] * f[1] - right[1] * f[0];
+    this->LastRenderOK = true;
   }
+  this->LastBricks = static_cast<int>(list.GetNumberOfBricks());
+  this->LastPlan = list.Passes;
+  this->LastEstimatedError = in.Summary.MaxError;
+  this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
+  this->LastUploadedBytes = static_cast<vtkTypeInt64>(in.Bricks.GetUploadedBytes());
+  this->LastFrameMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool vtkHybridOctreeVolumeMapper::DrawFrame(
+  vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera, const DrawList& list)
+{
+  vtkInternals& in = *this->Internals;
+  std::string error;
   const std::size_t bricks = list.GetNumberOfBricks();
-  std::vector<float> vertices;
-  std::vector<std::size_t> first(bricks + 1, 0);
-  for (std::size_t i = 0; i < bricks; ++i)
-  {
-    for (std::size_t s = list.SliceOffsets[i]; s < list.SliceOffsets[i + 1]; ++s)
-    {
-      SlicePolygon(&list.Bounds[6 * i], cam.Position, list.Forward, right, up, list.Slices[s],
-        vertices);
-    }
-    first[i + 1] = vertices.size() / 3;
-    this->LastSlices += static_cast<vtkTypeInt64>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
-  }
 
-  // Textures: keep those the selection still draws, upload the new ones.
-  if (in.TexturesGeneration != in.OctreeGeneration)
-  {
-    for (auto& t : in.Textures)
-    {
-      t.second->ReleaseGraphicsResources(window);
-    }
-    in.Textures.clear();
-    in.TexturesGeneration = in.OctreeGeneration;
-  }
-  std::map<std::pair<std::uint32_t, std::size_t>, vtkSmartPointer<vtkTextureObject>> used;
+  // Brick textures: resident ones reused, the rest uploaded within the budget.
+  in.Bricks.BeginFrame(static_cast<std::size_t>(this->BudgetMB * 1.0e6));
   std::vector<vtkTextureObject*> textures(bricks, nullptr);
-  std::vector<float> texels;
   for (std::size_t i = 0; i < bricks; ++i)
   {
-    const auto key = std::make_pair(list.NodeId[i], list.Stride[i]);
-    auto found = in.Textures.find(key);
-    vtkSmartPointer<vtkTextureObject> texture;
-    if (found != in.Textures.end())
+    const std::size_t brick = list.Brick[i];
+    textures[i] = in.Bricks.Acquire(window, { list.NodeId[i], list.Stride[i] },
+      &list.Texels[3 * i], [&](std::vector<float>& texels) {
+        return in.Selected->GetBrickTexels(
+          Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, error);
+      },
+      error);
+    if (!textures[i])
     {
-      texture = found->second;
-    }
-    else
-    {
-      if (!in.Selected->GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
-            list.Brick[i], texels, error))
-      {
-        vtkErrorMacro(<< error);
-        return;
-      }
-      texture = vtkSmartPointer<vtkTextureObject>::New();
-      texture->SetContext(window);
-      texture->SetWrapS(vtkTextureObject::ClampToEdge);
-      texture->SetWrapT(vtkTextureObject::ClampToEdge);
-      texture->SetWrapR(vtkTextureObject::ClampToEdge);
-      texture->SetMinificationFilter(vtkTextureObject::Linear);
-      texture->SetMagnificationFilter(vtkTextureObject::Linear);
-      if (!texture->Create3DFromRaw(static_cast<unsigned int>(list.Texels[3 * i]),
-            static_cast<unsigned int>(list.Texels[3 * i + 1]),
-            static_cast<unsigned int>(list.Texels[3 * i + 2]), 1, VTK_FLOAT, texels.data()))
-      {
-        vtkErrorMacro("could not create the 3D texture of brick " << i);
-        return;
-      }
-    }
-    used[key] = texture;
-    textures[i] = texture;
-  }
-  for (auto& t : in.Textures)
-  {
-    if (!used.count(t.first))
-    {
-      t.second->ReleaseGraphicsResources(window);
+      vtkErrorMacro(<< error);
+      return false;
     }
   }
-  in.Textures.swap(used);
-  this->LastTextureBytes = 0;
-  for (std::size_t i = 0; i < bricks; ++i)
-  {
-    this->LastTextureBytes += static_cast<vtkTypeInt64>(4 * list.Texels[3 * i] *
-      list.Texels[3 * i + 1] * list.Texels[3 * i + 2]);
-  }
-
   // The transfer function table.
   if (!in.TableTexture)
   {
     in.TableTexture = vtkSmartPointer<vtkTextureObject>::New();
+    in.TableUploaded = false;
   }
-  in.TableTexture->SetContext(window);
-  in.TableTexture->SetWrapS(vtkTextureObject::ClampToEdge);
-  in.TableTexture->SetWrapT(vtkTextureObject::ClampToEdge);
-  in.TableTexture->SetMinificationFilter(vtkTextureObject::Linear);
-  in.TableTexture->SetMagnificationFilter(vtkTextureObject::Linear);
-  in.TableTexture->Create2DFromRaw(
-    static_cast<unsigned int>(this->TableSize), 1, 4, VTK_FLOAT, in.Table.data());
-
-  if (vertices.empty())
+  if (!in.TableUploaded || in.TableTexture->GetContext() != window)
   {
-    this->LastBricks = static_cast<int>(bricks);
-    this->LastRenderOK = true;
-    return;
-  }
-
-  vtkShaderProgram* program =
-    window->GetShaderCache()->ReadyShaderProgram(VertexShader, FragmentShader, "");
-  if (!program)
-  {
-    vtkErrorMacro("could not compile the slice shader");
-    return;
-  }
-  if (!in.Vertices)
-  {
-    in.Vertices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
-    in.Vao = vtkSmartPointer<vtkOpenGLVertexArrayObject>::New();
-  }
-  in.Vertices->Upload(vertices, vtkOpenGLBufferObject::ArrayBuffer);
-  in.Vao->Bind();
-  if (!in.Vao->AddAttributeArray(
-        program, in.Vertices, "vertexWC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
-  {
-    vtkErrorMacro("could not bind the slice vertices");
-    in.Vao->Release();
-    return;
+    in.TableTexture->SetContext(window);
+    in.TableTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.TableTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+    in.TableTexture->SetMinificationFilter(vtkTextureObject::Linear);
+    in.TableTexture->SetMagnificationFilter(vtkTextureObject::Linear);
+    if (!in.TableTexture->Create2DFromRaw(
+          static_cast<unsigned int>(this->TableSize), 1, 4, VTK_FLOAT, in.Table.data()))
+    {
+      vtkErrorMacro("OpenGL could not create the transfer function table texture");
+      return false;
+    }
+    in.TableUploaded = true;
   }
 
+  const CameraDescription cam = this->ModelCamera(ren);
+  in.Slices.Build(list, cam.Position, cam.ViewUp);
+  for (std::size_t i = 0; i < bricks; ++i)
+  {
+    this->LastSlices += static_cast<vtkTypeInt64>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
+  }
+
+  // Model to clip: VTK's key matrices are transposed for OpenGL.
   vtkMatrix4x4* wcvc;
   vtkMatrix4x4* vcdc;
   vtkMatrix4x4* wcdc;
   vtkMatrix3x3* normals;
   camera->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
-  program->SetUniformMatrix("WCDC", wcdc);
-  const double scale = (this->TableSize - 1.0) / (this->TableSize * (in.RangeHi - in.RangeLo));
-  const float scaleShift[2] = { static_cast<float>(scale),
-    static_cast<float>(0.5 / this->TableSize - in.RangeLo * scale) };
-  program->SetUniform2f("tableScaleShift", scaleShift);
+  vtkNew<vtkMatrix4x4> mcwc;
+  vtkMatrix4x4::Transpose(in.Model, mcwc);
+  vtkNew<vtkMatrix4x4> mcdc;
+  vtkMatrix4x4::Multiply4x4(mcwc, wcdc, mcdc);
+  const double rgba[4] = { this->SurfaceColor[0], this->SurfaceColor[1], this->SurfaceColor[2],
+    this->SurfaceOpacity };
 
   vtkOpenGLState* state = window->GetState();
-  {
-    vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
-    vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
-    vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
-    vtkOpenGLState::ScopedglDepthMask depthMask(state);
-    vtkOpenGLState::ScopedglActiveTexture activeTexture(state);
-    state->vtkglEnable(GL_BLEND);
-    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    state->vtkglEnable(GL_DEPTH_TEST);
-    state->vtkglDepthMask(GL_FALSE);
-    state->vtkglDisable(GL_CULL_FACE);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglActiveTexture activeTexture(state);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_CULL_FACE);
 
-    in.TableTexture->Activate();
-    program->SetUniformi("transferTable", in.TableTexture->GetTextureUnit());
-    for (std::size_t i = 0; i < bricks; ++i)
+  // Opaque surface first, writing depth, so that the volume behind it is hidden.
+  if (list.OpaqueTriangles > 0)
+  {
+    state->vtkglDisable(GL_BLEND);
+    state->vtkglDepthMask(GL_TRUE);
+    if (!in.SurfaceDrawer.Bind(window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error))
     {
-      const GLsizei count = static_cast<GLsizei>(first[i + 1] - first[i]);
-      if (count == 0)
-      {
-        continue;
-      }
-      const double* b = &list.Bounds[6 * i];
-      const float lo[3] = { static_cast<float>(b[0]), static_cast<float>(b[2]),
-        static_cast<float>(b[4]) };
-      float inverseStep[3];
-      float n[3];
-      for (int a = 0; a < 3; ++a)
-      {
-        inverseStep[a] = static_cast<float>(1.0 / (list.Stride[i] * in.Grid.Spacing[a]));
-        n[a] = static_cast<float>(list.Texels[3 * i + a]);
-      }
-      textures[i]->Activate();
-      program->SetUniformi("brickTexture", textures[i]->GetTextureUnit());
-      program->SetUniform3f("brickLo", lo);
-      program->SetUniform3f("inverseStep", inverseStep);
-      program->SetUniform3f("texels", n);
-      program->SetUniformf("opacityRatio", static_cast<float>(list.OpacityRatio[i]));
-      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first[i]), count);
-      textures[i]->Deactivate();
+      vtkErrorMacro(<< error);
+      return false;
     }
-    in.TableTexture->Deactivate();
+    in.SurfaceDrawer.Draw(0, list.OpaqueTriangles, -HUGE_VAL, HUGE_VAL);
+    in.SurfaceDrawer.Unbind();
+    this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(list.OpaqueTriangles);
   }
-  in.Vao->Release();
-  this->LastBricks = static_cast<int>(bricks);
-  this->LastRenderOK = true;
+
+  // Bricks back to front, each's slices back to front, translucent surface
+  // batches in their slabs; blended premultiplied, depth tested, not written.
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  state->vtkglDepthMask(GL_FALSE);
+  const bool batches = !list.BatchOffsets.empty() && list.BatchOffsets.back() > 0;
+  // Clip distances only while the surface program (which writes them) is bound.
+  auto clipDistances = [&](bool on) {
+    for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
+    {
+      on ? state->vtkglEnable(plane) : state->vtkglDisable(plane);
+    }
+  };
+  in.TableTexture->Activate();
+  enum class Current
+  {
+    None,
+    Slices,
+    Surface
+  } current = Current::None;
+  bool ok = true;
+  auto useSlices = [&](std::size_t i) {
+    if (current != Current::Slices)
+    {
+      in.SurfaceDrawer.Unbind();
+      clipDistances(false);
+      if (!in.Slices.Bind(
+            window, mcdc, in.TableTexture, this->TableSize, in.RangeLo, in.RangeHi, error))
+      {
+        return false;
+      }
+      current = Current::Slices;
+    }
+    in.Slices.UseBrick(list, i, in.Grid.Spacing, textures[i]);
+    return true;
+  };
+  for (std::size_t i = 0; i < bricks && ok; ++i)
+  {
+    textures[i]->Activate();
+    std::size_t next = list.SliceOffsets[i];
+    const std::size_t last = list.SliceOffsets[i + 1];
+    const std::size_t firstBatch = batches ? list.BatchOffsets[i] : 0;
+    const std::size_t endBatch = batches ? list.BatchOffsets[i + 1] : 0;
+    for (std::size_t k = firstBatch; k < endBatch && ok; ++k)
+    {
+      // Slab s lies between slices s - 1 and s: draw the slices behind it first.
+      const std::size_t slab = list.SliceOffsets[i] + list.BatchSlab[k];
+      if (slab > next)
+      {
+        ok = useSlices(i);
+        in.Slices.DrawSlices(next, slab);
+        next = slab;
+      }
+      if (ok && current != Current::Surface)
+      {
+        in.Slices.Unbind();
+        clipDistances(true);
+        ok = in.SurfaceDrawer.Bind(
+          window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error);
+        current = Current::Surface;
+      }
+      if (ok)
+      {
+        in.SurfaceDrawer.Draw(list.BatchFirst[k], list.BatchEnd[k], list.BatchClip[2 * k],
+          list.BatchClip[2 * k + 1]);
+        this->LastSurfaceTriangles +=
+          static_cast<vtkTypeInt64>(list.BatchEnd[k] - list.BatchFirst[k]);
+      }
+    }
+    if (ok && last > next)
+    {
+      ok = useSlices(i);
+      in.Slices.DrawSlices(next, last);
+    }
+    textures[i]->Deactivate();
+  }
+  in.Slices.Unbind();
+  in.SurfaceDrawer.Unbind();
+  in.TableTexture->Deactivate();
+  clipDistances(false);
+  if (!ok)
+  {
+    vtkErrorMacro(<< error);
+  }
+  return ok;
 }
 
 bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
@@ -655,11 +664,21 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   {
     return false;
   }
+  CompositeScene scene = in.Transfer;
+  if (in.Iso && this->ShowSurface && this->SurfaceOpacity > 0.0)
+  {
+    scene.SurfaceToDraw = in.Iso.get();
+    for (int k = 0; k < 3; ++k)
+    {
+      scene.SurfaceRGBA[k] = this->SurfaceColor[k];
+    }
+    scene.SurfaceRGBA[3] = this->SurfaceOpacity;
+  }
   std::vector<float> out;
   std::string error;
-  if (!in.Selected->Composite(*in.Octree, DescribeCamera(ren->GetActiveCamera()), Bytes(in.Scalars),
-        ByteCount(in.Scalars), in.Grid, in.ColorPoints, in.OpacityPoints,
-        static_cast<std::size_t>(width), static_cast<std::size_t>(height), out, error))
+  if (!in.Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
+        ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
+        static_cast<std::size_t>(height), out, error))
   {
     vtkErrorMacro(<< error);
     return false;
@@ -673,36 +692,49 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
 void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& in = *this->Internals;
-  for (auto& t : in.Textures)
-  {
-    t.second->ReleaseGraphicsResources(window);
-  }
-  in.Textures.clear();
+  in.Bricks.Clear(window);
   if (in.TableTexture)
   {
     in.TableTexture->ReleaseGraphicsResources(window);
+    in.TableUploaded = false;
   }
-  if (in.Vertices)
-  {
-    in.Vertices->ReleaseGraphicsResources();
-  }
-  if (in.Vao)
-  {
-    in.Vao->ReleaseGraphicsResources();
-  }
+  in.Slices.ReleaseGraphicsResources();
+  in.SurfaceDrawer.ReleaseGraphicsResources();
   this->Superclass::ReleaseGraphicsResources(window);
+}
+
+vtkTypeInt64 vtkHybridOctreeVolumeMapper::GetResidentTextureCount() const
+{
+  return static_cast<vtkTypeInt64>(this->Internals->Bricks.GetNumberOfTextures());
 }
 
 void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "BudgetMB: " << this->BudgetMB << "\n";
+  os << indent << "InteractiveBudgetMB: " << this->InteractiveBudgetMB << "\n";
+  os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
+  os << indent << "UseRoi: " << this->UseRoi << "\n";
+  os << indent << "RoiCenter: (" << this->RoiCenter[0] << ", " << this->RoiCenter[1] << ", "
+     << this->RoiCenter[2] << ")\n";
+  os << indent << "RoiRadius: " << this->RoiRadius << "\n";
+  os << indent << "ShowSurface: " << this->ShowSurface << "\n";
+  os << indent << "Isovalue: " << this->Isovalue << "\n";
+  os << indent << "SurfaceColor: (" << this->SurfaceColor[0] << ", " << this->SurfaceColor[1]
+     << ", " << this->SurfaceColor[2] << ")\n";
+  os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
   os << indent << "LeafSize: " << this->LeafSize << "\n";
   os << indent << "Component: " << this->Component << "\n";
   os << indent << "TableSize: " << this->TableSize << "\n";
   os << indent << "LastBricks: " << this->LastBricks << "\n";
   os << indent << "LastTextureBytes: " << this->LastTextureBytes << "\n";
+  os << indent << "LastUploadedBytes: " << this->LastUploadedBytes << "\n";
   os << indent << "LastSlices: " << this->LastSlices << "\n";
+  os << indent << "LastSurfaceTriangles: " << this->LastSurfaceTriangles << "\n";
+  os << indent << "LastPlan: " << this->LastPlan << "\n";
+  os << indent << "LastFrameMilliseconds: " << this->LastFrameMilliseconds << "\n";
+  os << indent << "LastEstimatedError: " << this->LastEstimatedError << "\n";
+  os << indent << "LastInteractive: " << this->LastInteractive << "\n";
   os << indent << "LastRenderOK: " << this->LastRenderOK << "\n";
 }

@@ -38,7 +38,19 @@
 #include <memory> // for std::unique_ptr
 #include <string> // for LastPlan
 
+class vtkDataArray;
 class vtkFloatArray;
+class vtkImageData;
+class vtkOpenGLCamera;
+class vtkOpenGLRenderWindow;
+class vtkVolumeProperty;
+#ifndef __VTK_WRAP__
+namespace vtkHybridOctreeBridge
+{
+struct CameraDescription;
+struct DrawList;
+}
+#endif
 
 class HYBRIDOCTREEFILTERS_EXPORT vtkHybridOctreeVolumeMapper : public vtkVolumeMapper
 {
@@ -144,6 +156,9 @@ public:
   vtkGetMacro(LastRenderOK, bool);
   ///@}
 
+  /// Textures resident after the last frame (bricks kept for later frames included).
+  vtkTypeInt64 GetResidentTextureCount() const;
+
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
@@ -161,8 +176,14 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
-  /// Octree, selection and transfer function table up to date; false after an error.
+  /// Input, octree, transfer function table, selection and surface up to
+  /// date for `ren` and `vol`; false after a vtkErrorMacro.
   bool Prepare(vtkRenderer* ren, vtkVolume* vol);
+  /// Whether `ren`'s window asks for an interactive frame rate.
+  bool IsInteractive(vtkRenderer* ren) const;
+  /// The budget of a frame of `ren`: InteractiveBudgetMB (at most BudgetMB)
+  /// when interactive, else BudgetMB.
+  double FrameBudgetMB(vtkRenderer* ren) const;
 
   double BudgetMB = 64.0;
   double InteractiveBudgetMB = 8.0;
@@ -191,6 +212,21 @@ protected:
 
 private:
   vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;
+#ifndef __VTK_WRAP__
+  /// The checked input image and its scalars (nullptr after a vtkErrorMacro).
+  vtkDataArray* CheckInput(vtkImageData*& image);
+  bool UpdateOctree(vtkImageData* image, vtkDataArray* scalars);
+  void UpdateModelMatrix(vtkImageData* image, vtkVolume* vol);
+  bool UpdateTransferFunction(vtkVolumeProperty* property);
+  bool UpdateSelection(vtkRenderer* ren, vtkVolumeProperty* property);
+  bool UpdateSurface();
+  /// The active camera in the octree's frame (through the inverse model matrix).
+  vtkHybridOctreeBridge::CameraDescription ModelCamera(vtkRenderer* ren) const;
+  bool GetFrameDrawList(vtkRenderer* ren, vtkHybridOctreeBridge::DrawList& list);
+  /// Executes `list`: textures, table, opaque surface, slices and batches.
+  bool DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera,
+    const vtkHybridOctreeBridge::DrawList& list);
+#endif
   void operator=(const vtkHybridOctreeVolumeMapper&) = delete;
 
   struct vtkInternals;

@@ -289,6 +289,24 @@ mod bridge {
             height: usize,
         ) -> Result<Vec<f32>>;
 
+        /// As `composite`, with `surface` drawn in colour and opacity
+        /// `surface_rgba` (4 values; opacity 1: the opaque pass, below 1: the
+        /// batches in the slabs), headlight-shaded.
+        #[allow(clippy::too_many_arguments)]
+        fn composite_with_surface(
+            self: &SelectionHandle,
+            octree: &VolumeOctreeHandle,
+            camera: &CameraDesc,
+            bytes: &[u8],
+            desc: &GridDesc,
+            colors: &[f64],
+            opacities: &[f64],
+            surface: &SurfaceHandle,
+            surface_rgba: &[f64],
+            width: usize,
+            height: usize,
+        ) -> Result<Vec<f32>>;
+
         /// An isosurface kept for drawing with a selection.
         type SurfaceHandle;
 

@@ -283,27 +283,69 @@ impl SelectionHandle {
         width: usize,
         height: usize,
     ) -> Bridged<Vec<f32>> {
+        guarded(|| self.composite_scene(octree, camera_desc, bytes, desc, (colors, opacities), None, width, height))
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn composite_with_surface(
+        &self,
+        octree: &VolumeOctreeHandle,
+        camera_desc: &CameraDesc,
+        bytes: &[u8],
+        desc: &GridDesc,
+        colors: &[f64],
+        opacities: &[f64],
+        surface: &SurfaceHandle,
+        surface_rgba: &[f64],
+        width: usize,
+        height: usize,
+    ) -> Bridged<Vec<f32>> {
         guarded(|| {
-            let grid = grid_of(bytes, desc)?;
-            if grid.shape() != &self.shape {
-                return Err(Error::InvalidArgument(
-                    "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
-                ));
-            }
-            if colors.len() % 4 != 0 || opacities.len() % 2 != 0 {
-                return Err(Error::InvalidArgument(format!(
-                    "{} colour and {} opacity values: give (value, r, g, b) and (value, opacity) tuples, flattened",
-                    colors.len(),
-                    opacities.len()
-                )));
-            }
-            let c = colors.chunks(4).map(|v| (v[0], [v[1] as f32, v[2] as f32, v[3] as f32])).collect();
-            let o = opacities.chunks(2).map(|v| (v[0], v[1] as f32)).collect();
-            let tf = TransferFunction::new(c, o)?;
-            let list = self.list(octree, camera_desc, None)?;
-            let image = crate::render::compositor::composite(&grid, &list, &tf, width, height, None)?;
-            Ok(image.rgba.iter().flatten().copied().collect())
+            let rgba: [f64; 4] = surface_rgba.try_into().map_err(|_| {
+                Error::InvalidArgument(format!(
+                    "{} surface colour values: give r, g, b and opacity",
+                    surface_rgba.len()
+                ))
+            })?;
+            let surface = Some((surface, rgba));
+            self.composite_scene(octree, camera_desc, bytes, desc, (colors, opacities), surface, width, height)
         })
+    }
+
+    /// The CPU compositor on this selection's DrawList: the transfer function
+    /// from `(colors, opacities)` tuples, `surface` with its `[r, g, b, opacity]`.
+    #[allow(clippy::too_many_arguments)]
+    fn composite_scene(
+        &self,
+        octree: &VolumeOctreeHandle,
+        camera_desc: &CameraDesc,
+        bytes: &[u8],
+        desc: &GridDesc,
+        (colors, opacities): (&[f64], &[f64]),
+        surface: Option<(&SurfaceHandle, [f64; 4])>,
+        width: usize,
+        height: usize,
+    ) -> Result<Vec<f32>> {
+        let grid = grid_of(bytes, desc)?;
+        if grid.shape() != &self.shape {
+            return Err(Error::InvalidArgument(
+                "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
+            ));
+        }
+        if colors.len() % 4 != 0 || opacities.len() % 2 != 0 {
+            return Err(Error::InvalidArgument(format!(
+                "{} colour and {} opacity values: give (value, r, g, b) and (value, opacity) tuples, flattened",
+                colors.len(),
+                opacities.len()
+            )));
+        }
+        let c = colors.chunks(4).map(|v| (v[0], [v[1] as f32, v[2] as f32, v[3] as f32])).collect();
+        let o = opacities.chunks(2).map(|v| (v[0], v[1] as f32)).collect();
+        let tf = TransferFunction::new(c, o)?;
+        let list = self.list(octree, camera_desc, surface.map(|(s, rgba)| (s, rgba[3])))?;
+        let drawn = surface.map(|(s, rgba)| (&s.surface, rgba.map(|v| v as f32)));
+        let image = crate::render::compositor::composite(&grid, &list, &tf, width, height, drawn)?;
+        Ok(image.rgba.iter().flatten().copied().collect())
     }
 
     pub(crate) fn brick_texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize) -> Bridged<Vec<f32>> {
@@ -635,5 +677,46 @@ mod tests {
         }
         let e = h.surface_for_drawing(bytes(&d), &desc(), f64::NAN, SurfaceMode::Discretized).map(|_| ()).unwrap_err();
         assert!(e.contains("isovalue"), "{e}");
+    }
+
+    #[test]
+    fn composite_through_the_bridge_is_the_cpu_compositor() {
+        use crate::ffi::SurfaceMode;
+        use crate::render::compositor::composite;
+        let d = data();
+        let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+        let s = h.select_bricks(&options(30_000)).unwrap();
+        let surface = h.surface_for_drawing(bytes(&d), &desc(), 0.5, SurfaceMode::Discretized).unwrap();
+        let colors = [0.0, 0.2, 0.3, 0.4, 1.0, 1.0, 0.9, 0.8];
+        let opacities = [0.0, 0.0, 0.3, 0.05, 1.0, 0.2];
+        let tf = TransferFunction::new(
+            vec![(0.0, [0.2, 0.3, 0.4]), (1.0, [1.0, 0.9, 0.8])],
+            vec![(0.0, 0.0), (0.3, 0.05), (1.0, 0.2)],
+        )
+        .unwrap();
+        let grid = grid_of(bytes(&d), &desc()).unwrap();
+        for c in cameras() {
+            let volume = s.composite(&h, &c, bytes(&d), &desc(), &colors, &opacities, 40, 30).unwrap();
+            let direct = composite(&grid, &s.list(&h, &c, None).unwrap(), &tf, 40, 30, None).unwrap();
+            assert_eq!(volume, direct.rgba.iter().flatten().copied().collect::<Vec<f32>>());
+            assert!(volume.iter().any(|&v| v > 0.0), "the ball shows");
+            for opacity in [0.4, 1.0] {
+                let rgba = [0.9, 0.5, 0.1, opacity];
+                let with = s
+                    .composite_with_surface(&h, &c, bytes(&d), &desc(), &colors, &opacities, &surface, &rgba, 40, 30)
+                    .unwrap();
+                let list = s.list(&h, &c, Some((&surface, opacity))).unwrap();
+                let drawn = Some((&surface.surface, rgba.map(|v| v as f32)));
+                let direct = composite(&grid, &list, &tf, 40, 30, drawn).unwrap();
+                assert_eq!(with, direct.rgba.iter().flatten().copied().collect::<Vec<f32>>());
+                assert_ne!(with, volume, "the surface shows at opacity {opacity}");
+            }
+        }
+        let c = &cameras()[0];
+        let e = s
+            .composite_with_surface(&h, c, bytes(&d), &desc(), &colors, &opacities, &surface, &[1.0; 3], 8, 8)
+            .unwrap_err();
+        assert!(e.contains("surface colour"), "{e}");
+        assert!(s.composite(&h, c, bytes(&d), &desc(), &colors[..3], &opacities, 8, 8).unwrap_err().contains("tuples"));
     }
 }

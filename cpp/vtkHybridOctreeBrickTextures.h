@@ -1,0 +1,86 @@
+/**
+ * @file   vtkHybridOctreeBrickTextures.h
+ * @brief  The resident 3D textures of the selected bricks (private to the module).
+ *
+ * The Hybrid Octree, section 3.2: the texture memory holds the bricks of the
+ * current selection, and a new selection (a moved region of interest, another
+ * budget) loads only the bricks it does not find there. A brick's texture is
+ * identified by its node and texel stride (level p); it stays resident across
+ * frames while the byte limit allows, and the least recently drawn textures
+ * not needed by the current frame are released first, before an upload would
+ * pass the limit. So resident bytes never exceed the limit, as long as one
+ * frame's bricks fit it (which the selection guarantees: they fit its budget).
+ *
+ * Texels are single-channel 32-bit floats (4 bytes each), filtered linearly
+ * and clamped to the edge.
+ */
+#ifndef vtkHybridOctreeBrickTextures_h
+#define vtkHybridOctreeBrickTextures_h
+
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkWindow;
+
+class vtkHybridOctreeBrickTextures
+{
+public:
+  /// (octree node id, texel stride): what a brick's texture holds.
+  using Key = std::pair<std::uint32_t, std::size_t>;
+  /// Fills its argument with a brick's texels (x fastest); false and a
+  /// message in the caller's error string on failure.
+  using Fetch = std::function<bool(std::vector<float>&)>;
+
+  /// Starts a frame whose textures may occupy at most `limitBytes`.
+  void BeginFrame(std::size_t limitBytes);
+
+  /**
+   * The texture of brick `key` (`texels` per axis) for this frame: the
+   * resident one, or a new one filled from `fetch`, after releasing least
+   * recently drawn textures of earlier frames as needed to stay within the
+   * limit. nullptr and `error` when the upload fails or this frame's textures
+   * alone would pass the limit.
+   */
+  vtkTextureObject* Acquire(vtkOpenGLRenderWindow* window, const Key& key,
+    const std::size_t texels[3], const Fetch& fetch, std::string& error);
+
+  /// Bytes of all resident textures.
+  std::size_t GetResidentBytes() const { return this->ResidentBytes; }
+  /// Bytes uploaded since BeginFrame().
+  std::size_t GetUploadedBytes() const { return this->UploadedBytes; }
+  /// Resident textures.
+  std::size_t GetNumberOfTextures() const { return this->Entries.size(); }
+
+  /// Releases every texture (a new octree, or the context going away).
+  void Clear(vtkWindow* window);
+
+private:
+  struct Entry
+  {
+    vtkSmartPointer<vtkTextureObject> Texture;
+    std::size_t Bytes = 0;
+    std::uint64_t LastFrame = 0;
+  };
+  /// Releases textures not drawn in this frame, least recently drawn first,
+  /// until `incoming` more bytes fit the limit; false when they cannot.
+  bool MakeRoom(std::size_t incoming);
+
+  std::map<Key, Entry> Entries;
+  std::size_t ResidentBytes = 0;
+  std::size_t UploadedBytes = 0;
+  std::size_t LimitBytes = 0;
+  std::uint64_t Frame = 0;
+  vtkWindow* Window = nullptr;
+  std::vector<float> Scratch;
+};
+
+#endif

@@ -1,0 +1,87 @@
+#include "vtkHybridOctreeImageInput.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+
+namespace vtkHybridOctreeImageInput
+{
+using vtkHybridOctreeBridge::GridDescription;
+using vtkHybridOctreeBridge::ScalarType;
+
+bool ToBridgeType(int vtkType, ScalarType& type)
+{
+  switch (vtkType)
+  {
+    case VTK_UNSIGNED_CHAR:
+      type = ScalarType::U8;
+      return true;
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+      type = ScalarType::I8;
+      return true;
+    case VTK_UNSIGNED_SHORT:
+      type = ScalarType::U16;
+      return true;
+    case VTK_SHORT:
+      type = ScalarType::I16;
+      return true;
+    case VTK_UNSIGNED_INT:
+      type = ScalarType::U32;
+      return true;
+    case VTK_INT:
+      type = ScalarType::I32;
+      return true;
+    case VTK_FLOAT:
+      type = ScalarType::F32;
+      return true;
+    case VTK_DOUBLE:
+      type = ScalarType::F64;
+      return true;
+    default:
+      return false;
+  }
+}
+
+std::size_t ByteCount(vtkDataArray* scalars)
+{
+  return static_cast<std::size_t>(scalars->GetNumberOfTuples()) *
+    static_cast<std::size_t>(scalars->GetNumberOfComponents()) *
+    static_cast<std::size_t>(scalars->GetDataTypeSize());
+}
+
+const void* Bytes(vtkDataArray* scalars)
+{
+  return ByteCount(scalars) > 0 ? scalars->GetVoidPointer(0) : nullptr;
+}
+
+GridDescription DescribeGrid(vtkImageData* image, vtkDataArray* scalars, int component)
+{
+  GridDescription grid;
+  ToBridgeType(scalars->GetDataType(), grid.Type);
+  const int* extent = image->GetExtent();
+  const double* spacing = image->GetSpacing();
+  const double* origin = image->GetOrigin();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const int cells = extent[2 * axis + 1] - extent[2 * axis];
+    grid.Dims[axis] = cells >= 0 ? static_cast<std::size_t>(cells) + 1 : 0;
+    grid.Spacing[axis] = spacing[axis];
+    grid.Origin[axis] = origin[axis] + extent[2 * axis] * spacing[axis];
+  }
+  grid.Components = static_cast<std::size_t>(scalars->GetNumberOfComponents());
+  grid.Component = component;
+  return grid;
+}
+
+bool SameGrid(const GridDescription& a, const GridDescription& b)
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    if (a.Dims[i] != b.Dims[i] || a.Spacing[i] != b.Spacing[i] || a.Origin[i] != b.Origin[i])
+    {
+      return false;
+    }
+  }
+  return a.Type == b.Type && a.Components == b.Components && a.Component == b.Component;
+}
+}

@@ -1,0 +1,81 @@
+/**
+ * @file   vtkHybridOctreeSurfaceDrawer.h
+ * @brief  The Hybrid Octree's isosurface drawn with OpenGL (private to the module).
+ *
+ * The Hybrid Octree, section 3.3: the surface polygons are drawn with the
+ * volume, either all first when opaque (depth test and write, so that the
+ * volume behind them is hidden), or, when translucent, in batches sorted
+ * into the slabs between the brick slices, each batch clipped to its slab's
+ * view depths when its triangles span more than one slab:
+ *
+ *     gl_ClipDistance[0] = z - near,  gl_ClipDistance[1] = far - z,
+ *     z = (x - eye) . forward          (the DrawList's view depth)
+ *
+ * Shading is the CPU compositor's headlight Lambert, `rgb = colour |n . d|`
+ * with `n` the interpolated vertex normal and `d` the viewing ray's
+ * direction, blended premultiplied: `(rgb a, a)`.
+ *
+ * Triangle `t` of the DrawList (a polygon id of the surface mesh) is drawn as
+ * indices `3t .. 3t + 3` of the element buffer.
+ */
+#ifndef vtkHybridOctreeSurfaceDrawer_h
+#define vtkHybridOctreeSurfaceDrawer_h
+
+#include "vtkHybridOctreeBridge.h"
+#include "vtkSmartPointer.h"
+
+#include <cstddef>
+#include <string>
+
+class vtkMatrix4x4;
+class vtkOpenGLBufferObject;
+class vtkOpenGLRenderWindow;
+class vtkOpenGLVertexArrayObject;
+class vtkShaderProgram;
+
+class vtkHybridOctreeSurfaceDrawer
+{
+public:
+  vtkHybridOctreeSurfaceDrawer();
+  ~vtkHybridOctreeSurfaceDrawer();
+
+  /// Loads `mesh` (triangles only) into buffers; false and `error` otherwise.
+  bool Upload(const vtkHybridOctreeBridge::SurfaceMesh& mesh, std::string& error);
+
+  /// Triangles loaded.
+  std::size_t GetNumberOfTriangles() const { return this->Triangles; }
+
+  /**
+   * Makes the surface program current for a frame: `mcdc` the model-to-clip
+   * matrix, `eye`, `forward` and `parallel` the DrawList's camera (model
+   * coordinates), `rgba` colour and opacity. False and `error` when the
+   * program does not compile.
+   */
+  bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, const double eye[3],
+    const double forward[3], bool parallel, const double rgba[4], std::string& error);
+
+  /// Draws triangles `first .. end` clipped to view depths [near, far)
+  /// (infinite bounds: unclipped). The program must be bound.
+  void Draw(std::size_t first, std::size_t end, double near, double far);
+
+  /// Unbinds the vertex arrays.
+  void Unbind();
+
+  /// Frees the buffers (the context is going away).
+  void ReleaseGraphicsResources();
+
+private:
+  vtkHybridOctreeSurfaceDrawer(const vtkHybridOctreeSurfaceDrawer&) = delete;
+  vtkHybridOctreeSurfaceDrawer& operator=(const vtkHybridOctreeSurfaceDrawer&) = delete;
+
+  vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
+  vtkSmartPointer<vtkOpenGLBufferObject> Indices;
+  vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
+  vtkShaderProgram* Program = nullptr;
+  std::vector<float> VertexData;
+  std::vector<unsigned int> IndexData;
+  bool Uploaded = false;
+  std::size_t Triangles = 0;
+};
+
+#endif
