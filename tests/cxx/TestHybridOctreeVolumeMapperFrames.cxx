@@ -1,0 +1,185 @@
+/**
+ * vtkHybridOctreeVolumeMapper over many frames, and its errors, under Xvfb.
+ *
+ *   orbit:       two laps of 36 frames (10 degrees apart) with the region of
+ *                interest moving and the budget changing: resident texture
+ *                bytes never above the budget, the second lap uploads no more
+ *                than the first (bricks stay resident), the resident texture
+ *                count does not grow from lap to lap, and releasing the
+ *                graphics resources frees them all.
+ *   interactive: a window asking for 30 frames a second gets the interactive
+ *                budget; a still frame after it refines to the full budget.
+ *   no_input, not_image, budget_zero, multi_component, empty_image, nan:
+ *                a clear vtkErrorMacro, nothing drawn, no crash, no OpenGL
+ *                error left behind.
+ */
+#include "HybridOctreeMapperScene.h"
+#include "HybridOctreeTestUtilities.h"
+
+#include "vtkAutoInit.h"
+#include "vtkDoubleArray.h"
+#include "vtkPolyData.h"
+
+#include <iostream>
+#include <limits>
+#include <string>
+
+VTK_MODULE_INIT(vtkRenderingOpenGL2);
+
+namespace
+{
+using namespace MapperScene;
+
+int Orbit()
+{
+  Checker check;
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  Scene scene(mapper);
+  mapper->SetLeafSize(8);
+  mapper->UseRoiOn();
+  mapper->SetRoiRadius(12.0);
+  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  errors->Watch(mapper);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  vtkTypeInt64 uploaded[2] = { 0, 0 };
+  vtkTypeInt64 count[2] = { 0, 0 };
+  bool bounded = true;
+  bool drew = true;
+  for (int lap = 0; lap < 2; ++lap)
+  {
+    for (int frame = 0; frame < 36; ++frame)
+    {
+      // The ROI circles the volume; the budget alternates 0.3 and 0.2 MB.
+      const double angle = frame * 10.0 * 3.14159265358979 / 180.0;
+      mapper->SetRoiCenter(24.0 * std::cos(angle), 24.0 * std::sin(angle), 0.0);
+      const double budget = frame % 2 ? 0.2 : 0.3;
+      mapper->SetBudgetMB(budget);
+      camera->Azimuth(10.0);
+      scene.Renderer->ResetCameraClippingRange();
+      scene.Window->Render();
+      drew = drew && mapper->GetLastRenderOK();
+      bounded = bounded && mapper->GetLastTextureBytes() <= budget * 1.0e6;
+      uploaded[lap] += mapper->GetLastUploadedBytes();
+      count[lap] = std::max(count[lap], mapper->GetResidentTextureCount());
+    }
+  }
+  std::cout << "uploaded bytes lap 1 " << uploaded[0] << ", lap 2 " << uploaded[1]
+            << "; most resident textures lap 1 " << count[0] << ", lap 2 " << count[1] << "\n";
+  check.Check(drew, "every frame drew:\n" + errors->AllErrors());
+  check.Check(bounded, "resident texture bytes never above the budget");
+  check.Check(uploaded[0] > 0 && uploaded[1] <= uploaded[0], "the second lap uploads no more");
+  check.Check(count[1] <= count[0], "resident textures do not grow");
+  mapper->ReleaseGraphicsResources(scene.Window);
+  check.Check(mapper->GetResidentTextureCount() == 0, "released textures are gone");
+  scene.Window->Render();
+  check.Check(mapper->GetLastRenderOK() && mapper->GetLastUploadedBytes() > 0,
+    "a frame after the release uploads again");
+  check.Check(NoGLError(scene.Window), "no OpenGL error left behind");
+  return check.Result();
+}
+
+int Interactive()
+{
+  Checker check;
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  Scene scene(mapper);
+  mapper->SetLeafSize(8);
+  mapper->SetBudgetMB(1.0);
+  mapper->SetInteractiveBudgetMB(0.1);
+  scene.Window->SetDesiredUpdateRate(30.0);
+  scene.Window->Render();
+  const bool interactive = mapper->GetLastInteractive();
+  const vtkTypeInt64 interactiveBytes = mapper->GetLastTextureBytes();
+  const double interactiveError = mapper->GetLastEstimatedError();
+  scene.Window->SetDesiredUpdateRate(0.0001);
+  scene.Window->Render();
+  std::cout << "interactive: " << interactiveBytes << " texture bytes, estimated error "
+            << interactiveError << "; still: " << mapper->GetLastTextureBytes()
+            << " resident bytes, estimated error " << mapper->GetLastEstimatedError() << "\n";
+  check.Check(interactive, "30 frames a second is interactive");
+  check.Check(interactiveBytes <= 100000, "the interactive frame keeps to its budget");
+  check.Check(!mapper->GetLastInteractive(), "the still frame is not interactive");
+  check.Check(mapper->GetLastEstimatedError() < interactiveError, "the still frame refines");
+  check.Check(mapper->GetLastTextureBytes() > interactiveBytes, "with more texture bytes");
+  return check.Result();
+}
+
+int BadInput(const std::string& scenario)
+{
+  Checker check;
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  Scene scene(mapper);
+  mapper->RemoveAllInputConnections(0);
+  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  errors->Watch(mapper);
+  std::string expected;
+  vtkNew<vtkPolyData> polyData;
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(9, 9, 9);
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("values");
+  if (scenario == "no_input")
+  {
+    expected = "no input";
+  }
+  else if (scenario == "not_image")
+  {
+    mapper->SetInputDataObject(polyData);
+    expected = "not a vtkImageData";
+  }
+  else if (scenario == "budget_zero")
+  {
+    mapper->SetInputConnection(scene.Wavelet->GetOutputPort());
+    mapper->SetBudgetMB(0.0);
+    expected = "budget";
+  }
+  else if (scenario == "multi_component")
+  {
+    values->SetNumberOfComponents(3);
+    values->SetNumberOfTuples(9 * 9 * 9);
+    values->Fill(1.0);
+    image->GetPointData()->SetScalars(values);
+    mapper->SetInputDataObject(image);
+    expected = "SetComponent";
+  }
+  else if (scenario == "empty_image")
+  {
+    vtkNew<vtkImageData> empty;
+    mapper->SetInputDataObject(empty);
+    expected = "empty";
+  }
+  else if (scenario == "nan")
+  {
+    values->SetNumberOfTuples(9 * 9 * 9);
+    for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+    {
+      values->SetValue(i, i == 100 ? std::numeric_limits<double>::quiet_NaN() : 0.01 * i);
+    }
+    image->GetPointData()->SetScalars(values);
+    mapper->SetInputDataObject(image);
+    expected = "NaN";
+  }
+  scene.Window->Render();
+  // vtkVolume skips a mapper without input: call Render() directly as well.
+  mapper->Render(scene.Renderer, scene.Volume);
+  check.Check(errors->HasError(expected),
+    "error containing '" + expected + "'; got\n" + errors->AllErrors());
+  check.Check(!mapper->GetLastRenderOK(), "nothing drawn");
+  check.Check(NoGLError(scene.Window), "no OpenGL error left behind");
+  return check.Result();
+}
+} // namespace
+
+int TestHybridOctreeVolumeMapperFrames(int argc, char* argv[])
+{
+  const std::string scenario = argc > 1 ? argv[1] : "orbit";
+  if (scenario == "orbit")
+  {
+    return Orbit();
+  }
+  if (scenario == "interactive")
+  {
+    return Interactive();
+  }
+  return BadInput(scenario);
+}
