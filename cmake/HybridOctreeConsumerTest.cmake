@@ -38,3 +38,7 @@ find_program(consumer hybrid_octree_consumer
   PATHS "${WORK_DIR}/build" "${WORK_DIR}/build/${BUILD_TYPE}" NO_DEFAULT_PATH)
 run_step("run the consumer" "${consumer}")
 message(STATUS "${step_output}")
+find_program(volume hybrid_octree_volume
+  PATHS "${WORK_DIR}/build" "${WORK_DIR}/build/${BUILD_TYPE}" NO_DEFAULT_PATH)
+run_step("run the volume application" "${volume}")
+message(STATUS "${step_output}")
