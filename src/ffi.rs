@@ -277,6 +277,7 @@ mod bridge {
         /// (4 floats per pixel, rows from the top), with the transfer function
         /// of `colors` ((value, r, g, b) flattened) and `opacities` ((value,
         /// opacity) flattened), over the image the octree was built from.
+        #[allow(clippy::too_many_arguments)]
         fn composite(
             self: &SelectionHandle,
             octree: &VolumeOctreeHandle,
