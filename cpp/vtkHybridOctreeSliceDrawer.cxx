@@ -40,7 +40,11 @@ void main()
   float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
   float a = clamp(c.a, 0.0, 1.0);
-  if (a < 1.0)
+  if (a == 0.0)
+  {
+    discard; // blends to nothing: skip the blend
+  }
+  if (opacityRatio != 1.0 && a < 1.0)
   {
     a = 1.0 - exp(opacityRatio * log(1.0 - a));
   }

@@ -391,6 +391,13 @@ pub(crate) fn grid_of<'a>(bytes: &'a [u8], desc: &GridDesc) -> crate::error::Res
     Grid::new(samples, shape, desc.components, component)
 }
 
+/// As [`grid_of`] without the non-finite scan (see [`Grid::unscanned`]).
+pub(crate) fn grid_unscanned<'a>(bytes: &'a [u8], desc: &GridDesc) -> crate::error::Result<Grid<'a>> {
+    let samples = Samples::from_bytes(bytes, scalar_type(desc.scalar_type)?)?;
+    let shape = GridShape { dims: desc.dims, spacing: desc.spacing, origin: desc.origin };
+    Grid::unscanned(samples, shape, desc.components, usize::try_from(desc.component).ok())
+}
+
 pub(crate) fn build_volume_octree(
     bytes: &[u8],
     desc: &GridDesc,

@@ -350,7 +350,10 @@ impl SelectionHandle {
 
     pub(crate) fn brick_texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize) -> Bridged<Vec<f32>> {
         guarded(|| {
-            let grid = grid_of(bytes, desc)?;
+            // One brick of many: scanning the whole image for NaN per brick
+            // would cost a full pass each; the octree's build scanned it, and
+            // only this brick's texels are checked here.
+            let grid = crate::ffi::grid_unscanned(bytes, desc)?;
             if grid.shape() != &self.shape {
                 return Err(Error::InvalidArgument(
                     "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
@@ -362,7 +365,14 @@ impl SelectionHandle {
                     self.selection.bricks.len()
                 )));
             };
-            brick_texels_f32(&grid, b)
+            let texels = brick_texels_f32(&grid, b)?;
+            if let Some(i) = texels.iter().position(|v| !v.is_finite()) {
+                return Err(Error::InvalidArgument(format!(
+                    "brick {brick} holds a NaN or infinite value (texel {i}): the image changed since the \
+                     octree was built; fix the values and rebuild it"
+                )));
+            }
+            Ok(texels)
         })
     }
 }
@@ -585,6 +595,18 @@ mod tests {
         assert!(s.brick_texels(bytes(&d), &desc(), n).unwrap_err().contains("does not exist"));
         let moved = GridDesc { origin: [0.0; 3], ..desc() };
         assert!(s.brick_texels(bytes(&d), &moved, 0).unwrap_err().contains("image changed"));
+        // A NaN written after the build: the brick that reads it says so, the others still load.
+        let roi = SelectDesc { has_roi: true, roi_center: [0.0, 5.0, 6.0], roi_radius: 1.0, ..options(30_000) };
+        let s = h.select_bricks(&roi).unwrap();
+        assert!(s.selection.bricks.len() > 1);
+        let b = &s.selection.bricks[0];
+        let mut changed = d.clone();
+        changed[b.lo[0] + N * (b.lo[1] + N * b.lo[2])] = f32::NAN;
+        let e = s.brick_texels(bytes(&changed), &desc(), 0).unwrap_err();
+        assert!(e.contains("NaN"), "{e}");
+        let far = s.selection.bricks.iter().position(|o| (0..3).any(|a| o.lo[a] > b.lo[a] || o.hi[a] < b.lo[a]));
+        let far = far.expect("a brick away from the NaN");
+        assert!(s.brick_texels(bytes(&changed), &desc(), far).is_ok());
     }
 
     #[test]

@@ -301,6 +301,20 @@ impl<'a> Grid<'a> {
     /// Checks everything listed in the module docs; the non-finite scan is one
     /// parallel pass over float data and free for integer data.
     pub fn new(samples: Samples<'a>, shape: GridShape, components: usize, component: Option<usize>) -> Result<Self> {
+        let grid = Grid::unscanned(samples, shape, components, component)?;
+        grid.check_finite()?;
+        Ok(grid)
+    }
+
+    /// [`Grid::new`] without the non-finite scan, for reading part of a grid
+    /// already checked whole (a selected brick's texels, after the octree was
+    /// built from the same samples): the caller checks the values it reads.
+    pub fn unscanned(
+        samples: Samples<'a>,
+        shape: GridShape,
+        components: usize,
+        component: Option<usize>,
+    ) -> Result<Self> {
         let values = shape.check(components)?;
         if samples.len() != values {
             return Err(Error::LengthMismatch { expected: values, actual: samples.len() });
@@ -311,9 +325,7 @@ impl<'a> Grid<'a> {
             None if components > 1 => return Err(Error::ComponentRequired { components }),
             None => 0,
         };
-        let grid = Grid { samples, shape, components, component };
-        grid.check_finite()?;
-        Ok(grid)
+        Ok(Grid { samples, shape, components, component })
     }
 
     /// A single-component grid over `samples` (convenience for tests and datasets).
