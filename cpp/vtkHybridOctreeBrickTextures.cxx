@@ -38,7 +38,7 @@ bool vtkHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
   return true;
 }
 
-vtkTextureObject* vtkHybridOctreeBrickTextures::Acquire(vtkOpenGLRenderWindow* window,
+const vtkHybridOctreeBrickTextures::Resident* vtkHybridOctreeBrickTextures::Acquire(vtkOpenGLRenderWindow* window,
   const Key& key, const std::size_t texels[3], const Fetch& fetch, std::string& error)
 {
   if (this->Window && this->Window != window)
@@ -50,7 +50,7 @@ vtkTextureObject* vtkHybridOctreeBrickTextures::Acquire(vtkOpenGLRenderWindow* w
   if (found != this->Entries.end())
   {
     found->second.LastFrame = this->Frame;
-    return found->second.Texture;
+    return &found->second;
   }
   const std::size_t bytes = 4 * texels[0] * texels[1] * texels[2];
   if (!this->MakeRoom(bytes))
@@ -83,13 +83,14 @@ vtkTextureObject* vtkHybridOctreeBrickTextures::Acquire(vtkOpenGLRenderWindow* w
       std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " float 3D texture";
     return nullptr;
   }
-  Entry& entry = this->Entries[key];
+  Resident& entry = this->Entries[key];
   entry.Texture = texture;
+  entry.Occupancy.Measure(this->Scratch, texels);
   entry.Bytes = bytes;
   entry.LastFrame = this->Frame;
   this->ResidentBytes += bytes;
   this->UploadedBytes += bytes;
-  return entry.Texture;
+  return &entry;
 }
 
 void vtkHybridOctreeBrickTextures::Clear(vtkWindow* window)

@@ -12,11 +12,13 @@
  * frame's bricks fit it (which the selection guarantees: they fit its budget).
  *
  * Texels are single-channel 32-bit floats (4 bytes each), filtered linearly
- * and clamped to the edge.
+ * and clamped to the edge. With each texture the cache keeps the brick's
+ * block value ranges (vtkHybridOctreeBrickOccupancy), measured at upload.
  */
 #ifndef vtkHybridOctreeBrickTextures_h
 #define vtkHybridOctreeBrickTextures_h
 
+#include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 
@@ -40,6 +42,15 @@ public:
   /// message in the caller's error string on failure.
   using Fetch = std::function<bool(std::vector<float>&)>;
 
+  /// A resident brick: its texture and block value ranges.
+  struct Resident
+  {
+    vtkSmartPointer<vtkTextureObject> Texture;
+    vtkHybridOctreeBrickOccupancy Occupancy;
+    std::size_t Bytes = 0;
+    std::uint64_t LastFrame = 0;
+  };
+
   /// Starts a frame whose textures may occupy at most `limitBytes`.
   void BeginFrame(std::size_t limitBytes);
 
@@ -50,7 +61,7 @@ public:
    * limit. nullptr and `error` when the upload fails or this frame's textures
    * alone would pass the limit.
    */
-  vtkTextureObject* Acquire(vtkOpenGLRenderWindow* window, const Key& key,
+  const Resident* Acquire(vtkOpenGLRenderWindow* window, const Key& key,
     const std::size_t texels[3], const Fetch& fetch, std::string& error);
 
   /// Bytes of all resident textures.
@@ -64,17 +75,11 @@ public:
   void Clear(vtkWindow* window);
 
 private:
-  struct Entry
-  {
-    vtkSmartPointer<vtkTextureObject> Texture;
-    std::size_t Bytes = 0;
-    std::uint64_t LastFrame = 0;
-  };
   /// Releases textures not drawn in this frame, least recently drawn first,
   /// until `incoming` more bytes fit the limit; false when they cannot.
   bool MakeRoom(std::size_t incoming);
 
-  std::map<Key, Entry> Entries;
+  std::map<Key, Resident> Entries;
   std::size_t ResidentBytes = 0;
   std::size_t UploadedBytes = 0;
   std::size_t LimitBytes = 0;

@@ -56,8 +56,9 @@ void main()
 vtkHybridOctreeSliceDrawer::vtkHybridOctreeSliceDrawer() = default;
 vtkHybridOctreeSliceDrawer::~vtkHybridOctreeSliceDrawer() = default;
 
-void vtkHybridOctreeSliceDrawer::Build(
-  const vtkHybridOctreeBridge::DrawList& list, const double eye[3], const double viewUp[3])
+void vtkHybridOctreeSliceDrawer::Build(const vtkHybridOctreeBridge::DrawList& list,
+  const std::vector<double>& bounds, const std::vector<char>& drawn, const double eye[3],
+  const double viewUp[3])
 {
   double right[3], up[3];
   vtkHybridOctreeSliceGeometry::ViewBasis(list.Forward, viewUp, right, up);
@@ -67,8 +68,11 @@ void vtkHybridOctreeSliceDrawer::Build(
   {
     for (std::size_t s = list.SliceOffsets[i]; s < list.SliceOffsets[i + 1]; ++s)
     {
-      vtkHybridOctreeSliceGeometry::AppendSlicePolygon(
-        &list.Bounds[6 * i], eye, list.Forward, right, up, list.Slices[s], this->VertexData);
+      if (drawn[i])
+      {
+        vtkHybridOctreeSliceGeometry::AppendSlicePolygon(
+          &bounds[6 * i], eye, list.Forward, right, up, list.Slices[s], this->VertexData);
+      }
       this->SliceFirst.push_back(this->VertexData.size() / 3);
     }
   }

@@ -36,9 +36,10 @@ public:
   ~vtkHybridOctreeSliceDrawer();
 
   /// The slice polygons of every brick of `list` for a camera at `eye` with
-  /// `viewUp` (model coordinates), on the CPU.
-  void Build(const vtkHybridOctreeBridge::DrawList& list, const double eye[3],
-    const double viewUp[3]);
+  /// `viewUp` (model coordinates), on the CPU: brick i's slices clipped to
+  /// `bounds[6i .. 6i+6]` (inside its box), none where `drawn[i]` is 0.
+  void Build(const vtkHybridOctreeBridge::DrawList& list, const std::vector<double>& bounds,
+    const std::vector<char>& drawn, const double eye[3], const double viewUp[3]);
 
   /**
    * Makes the slice program current: `mcdc` the model-to-clip matrix,

@@ -1,5 +1,6 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 
+#include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkHybridOctreeBrickTextures.h"
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeImageInput.h"
@@ -90,6 +91,7 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   // Transfer function table (what the CPU compositor gets too).
   CompositeScene Transfer;
   std::vector<float> Table;
+  vtkHybridOctreeOpacityTable Opacity; ///< the table's zero-opacity test
   double RangeLo = 0.0;
   double RangeHi = 1.0;
   bool TableUploaded = false;
@@ -289,6 +291,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
     in.Table.swap(table);
     in.RangeLo = range[0];
     in.RangeHi = range[1];
+    in.Opacity.Set(in.Table, range[0], range[1]);
     in.TableUploaded = false;
   }
   return true;
@@ -463,7 +466,6 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     this->LastRenderOK = true;
   }
-  this->LastBricks = static_cast<int>(list.GetNumberOfBricks());
   this->LastPlan = list.Passes;
   this->LastEstimatedError = in.Summary.MaxError;
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
@@ -482,19 +484,33 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   // Brick textures: resident ones reused, the rest uploaded within the budget.
   in.Bricks.BeginFrame(static_cast<std::size_t>(this->BudgetMB * 1.0e6));
   std::vector<vtkTextureObject*> textures(bricks, nullptr);
+  // Per brick the box its slices are clipped to: its visible blocks (empty: not drawn).
+  std::vector<double> drawBounds(6 * bricks, 0.0);
+  std::vector<char> drawn(bricks, 0);
   for (std::size_t i = 0; i < bricks; ++i)
   {
     const std::size_t brick = list.Brick[i];
-    textures[i] = in.Bricks.Acquire(window, { list.NodeId[i], list.Stride[i] },
+    const vtkHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(window, { list.NodeId[i], list.Stride[i] },
       &list.Texels[3 * i], [&](std::vector<float>& texels) {
         return in.Selected->GetBrickTexels(
           Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, error);
       },
       error);
-    if (!textures[i])
+    if (!resident)
     {
       vtkErrorMacro(<< error);
       return false;
+    }
+    textures[i] = resident->Texture;
+    double lo[3], hi[3];
+    drawn[i] = resident->Occupancy.VisibleBox(in.Opacity, lo, hi);
+    for (int a = 0; a < 3 && drawn[i]; ++a)
+    {
+      // Texel t sits at min + t * stride * spacing (the last one at most at max).
+      const double step = list.Stride[i] * in.Grid.Spacing[a];
+      const double* b = &list.Bounds[6 * i + 2 * a];
+      drawBounds[6 * i + 2 * a] = std::max(b[0], b[0] + lo[a] * step);
+      drawBounds[6 * i + 2 * a + 1] = std::min(b[1], b[0] + hi[a] * step);
     }
   }
   // The transfer function table.
@@ -520,10 +536,15 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   }
 
   const CameraDescription cam = this->ModelCamera(ren);
-  in.Slices.Build(list, cam.Position, cam.ViewUp);
+  in.Slices.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp);
   for (std::size_t i = 0; i < bricks; ++i)
   {
-    this->LastSlices += static_cast<vtkTypeInt64>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
+    if (drawn[i])
+    {
+      this->LastSlices +=
+        static_cast<vtkTypeInt64>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
+      ++this->LastBricks;
+    }
   }
 
   // Model to clip: VTK's key matrices are transposed for OpenGL.
