@@ -26,6 +26,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 class vtkMatrix4x4;
 class vtkOpenGLBufferObject;
@@ -44,6 +45,10 @@ public:
 
   /// Triangles loaded.
   std::size_t GetNumberOfTriangles() const { return this->Triangles; }
+  /// The loaded vertices, 6 floats each (position, normal).
+  const std::vector<float>& GetVertexData() const { return this->VertexData; }
+  /// The loaded triangles' vertex ids, 3 a triangle.
+  const std::vector<unsigned int>& GetIndexData() const { return this->IndexData; }
 
   /**
    * Makes the surface program current for a frame: `mcdc` the model-to-clip

@@ -1,10 +1,10 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 
+#include "vtkHybridOctreeBrickDrawer.h"
 #include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkHybridOctreeBrickTextures.h"
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeImageInput.h"
-#include "vtkHybridOctreeSliceDrawer.h"
 #include "vtkHybridOctreeSurfaceDrawer.h"
 
 #include "vtkCamera.h"
@@ -102,7 +102,7 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
 
   // GL resources.
   vtkHybridOctreeBrickTextures Bricks;
-  vtkHybridOctreeSliceDrawer Slices;
+  vtkHybridOctreeBrickDrawer Drawer;
   vtkHybridOctreeSurfaceDrawer SurfaceDrawer;
   const Surface* UploadedSurface = nullptr;
   vtkSmartPointer<vtkTextureObject> TableTexture;
@@ -536,7 +536,15 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   }
 
   const CameraDescription cam = this->ModelCamera(ren);
-  in.Slices.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp);
+  const bool batches = !list.BatchOffsets.empty() && list.BatchOffsets.back() > 0;
+  vtkHybridOctreeBrickDrawer::SurfaceData translucent;
+  if (batches)
+  {
+    translucent.Vertices = &in.SurfaceDrawer.GetVertexData();
+    translucent.Triangles = &in.SurfaceDrawer.GetIndexData();
+  }
+  this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(
+    in.Drawer.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp, translucent));
   for (std::size_t i = 0; i < bricks; ++i)
   {
     if (drawn[i])
@@ -585,86 +593,35 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
     this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(list.OpaqueTriangles);
   }
 
-  // Bricks back to front, each's slices back to front, translucent surface
-  // batches in their slabs; blended premultiplied, depth tested, not written.
+  // Bricks back to front, each one draw: its slices back to front with the
+  // translucent triangles of each slab between them; blended premultiplied,
+  // depth tested, not written. Clip distances on while the program (which
+  // writes them) is bound.
   state->vtkglEnable(GL_BLEND);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   state->vtkglDepthMask(GL_FALSE);
-  const bool batches = !list.BatchOffsets.empty() && list.BatchOffsets.back() > 0;
-  // Clip distances only while the surface program (which writes them) is bound.
-  auto clipDistances = [&](bool on) {
+  in.TableTexture->Activate();
+  const bool ok = in.Drawer.Bind(window, mcdc, in.TableTexture, this->TableSize, in.RangeLo,
+    in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
+  if (ok)
+  {
     for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
     {
-      on ? state->vtkglEnable(plane) : state->vtkglDisable(plane);
+      state->vtkglEnable(plane);
     }
-  };
-  in.TableTexture->Activate();
-  enum class Current
-  {
-    None,
-    Slices,
-    Surface
-  } current = Current::None;
-  bool ok = true;
-  auto useSlices = [&](std::size_t i) {
-    if (current != Current::Slices)
+    for (std::size_t i = 0; i < bricks; ++i)
     {
-      in.SurfaceDrawer.Unbind();
-      clipDistances(false);
-      if (!in.Slices.Bind(
-            window, mcdc, in.TableTexture, this->TableSize, in.RangeLo, in.RangeHi, error))
-      {
-        return false;
-      }
-      current = Current::Slices;
+      textures[i]->Activate();
+      in.Drawer.DrawBrick(list, i, in.Grid.Spacing, textures[i]);
+      textures[i]->Deactivate();
     }
-    in.Slices.UseBrick(list, i, in.Grid.Spacing, textures[i]);
-    return true;
-  };
-  for (std::size_t i = 0; i < bricks && ok; ++i)
-  {
-    textures[i]->Activate();
-    std::size_t next = list.SliceOffsets[i];
-    const std::size_t last = list.SliceOffsets[i + 1];
-    const std::size_t firstBatch = batches ? list.BatchOffsets[i] : 0;
-    const std::size_t endBatch = batches ? list.BatchOffsets[i + 1] : 0;
-    for (std::size_t k = firstBatch; k < endBatch && ok; ++k)
+    for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
     {
-      // Slab s lies between slices s - 1 and s: draw the slices behind it first.
-      const std::size_t slab = list.SliceOffsets[i] + list.BatchSlab[k];
-      if (slab > next)
-      {
-        ok = useSlices(i);
-        in.Slices.DrawSlices(next, slab);
-        next = slab;
-      }
-      if (ok && current != Current::Surface)
-      {
-        in.Slices.Unbind();
-        clipDistances(true);
-        ok = in.SurfaceDrawer.Bind(
-          window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error);
-        current = Current::Surface;
-      }
-      if (ok)
-      {
-        in.SurfaceDrawer.Draw(list.BatchFirst[k], list.BatchEnd[k], list.BatchClip[2 * k],
-          list.BatchClip[2 * k + 1]);
-        this->LastSurfaceTriangles +=
-          static_cast<vtkTypeInt64>(list.BatchEnd[k] - list.BatchFirst[k]);
-      }
+      state->vtkglDisable(plane);
     }
-    if (ok && last > next)
-    {
-      ok = useSlices(i);
-      in.Slices.DrawSlices(next, last);
-    }
-    textures[i]->Deactivate();
+    in.Drawer.Unbind();
   }
-  in.Slices.Unbind();
-  in.SurfaceDrawer.Unbind();
   in.TableTexture->Deactivate();
-  clipDistances(false);
   if (!ok)
   {
     vtkErrorMacro(<< error);
@@ -719,7 +676,7 @@ void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
     in.TableTexture->ReleaseGraphicsResources(window);
     in.TableUploaded = false;
   }
-  in.Slices.ReleaseGraphicsResources();
+  in.Drawer.ReleaseGraphicsResources();
   in.SurfaceDrawer.ReleaseGraphicsResources();
   this->Superclass::ReleaseGraphicsResources(window);
 }

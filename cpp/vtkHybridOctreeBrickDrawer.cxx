@@ -1,0 +1,334 @@
+#include "vtkHybridOctreeBrickDrawer.h"
+
+#include "vtkHybridOctreeSliceGeometry.h"
+
+#include "vtkMatrix4x4.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+
+namespace
+{
+/// Floats per vertex: position, normal, clip interval (near, far), surface flag.
+constexpr std::size_t Stride = 9;
+/// An unbounded clip side (the shader's clip distances stay finite).
+constexpr float Unbounded = 1.0e30f;
+
+const char* VertexShader = R"(//VTK::System::Dec
+in vec3 vertexMC;
+in vec3 normalMC;
+in vec2 clipMC;
+in float surfaceMC;
+uniform mat4 MCDC;
+uniform vec3 eye;
+uniform vec3 forward;
+out vec3 positionMC;
+out vec3 normal;
+flat out float isSurface;
+void main()
+{
+  positionMC = vertexMC;
+  normal = normalMC;
+  isSurface = surfaceMC;
+  float z = dot(vertexMC - eye, forward);
+  gl_ClipDistance[0] = z - clipMC.x;
+  gl_ClipDistance[1] = clipMC.y - z;
+  gl_Position = MCDC * vec4(vertexMC, 1.0);
+}
+)";
+
+const char* FragmentShader = R"(//VTK::System::Dec
+in vec3 positionMC;
+in vec3 normal;
+flat in float isSurface;
+uniform sampler3D brickTexture;
+uniform sampler2D transferTable;
+uniform vec3 brickLo;
+uniform vec3 inverseStep;
+uniform vec3 texels;
+uniform vec2 tableScaleShift;
+uniform float opacityRatio;
+uniform vec3 eye;
+uniform vec3 forward;
+uniform int parallel;
+uniform vec4 surfaceColor;
+//VTK::Output::Dec
+void main()
+{
+  if (isSurface > 0.5)
+  {
+    vec3 d = parallel != 0 ? forward : normalize(positionMC - eye);
+    float len = length(normal);
+    float lambert = len > 0.0 ? abs(dot(normal, d)) / len : 1.0;
+    vec3 rgb = clamp(surfaceColor.rgb, 0.0, 1.0) * lambert;
+    gl_FragData[0] = vec4(rgb * surfaceColor.a, surfaceColor.a);
+    return;
+  }
+  vec3 u = clamp((positionMC - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
+  float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
+  vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
+  float a = clamp(c.a, 0.0, 1.0);
+  if (a == 0.0)
+  {
+    discard; // blends to nothing: skip the blend
+  }
+  if (opacityRatio != 1.0 && a < 1.0)
+  {
+    a = 1.0 - exp(opacityRatio * log(1.0 - a));
+  }
+  gl_FragData[0] = vec4(clamp(c.rgb, 0.0, 1.0) * a, a);
+}
+)";
+
+/// A triangle copy in a slab, clipped to [Near, Far).
+struct Placed
+{
+  std::size_t Slab;
+  std::uint32_t Triangle;
+  float Near;
+  float Far;
+};
+}
+
+vtkHybridOctreeBrickDrawer::vtkHybridOctreeBrickDrawer() = default;
+vtkHybridOctreeBrickDrawer::~vtkHybridOctreeBrickDrawer() = default;
+
+void vtkHybridOctreeBrickDrawer::Emit(
+  const float position[3], const float normal[3], float near, float far, float surface)
+{
+  this->VertexData.insert(this->VertexData.end(),
+    { position[0], position[1], position[2], normal[0], normal[1], normal[2], near, far,
+      surface });
+}
+
+std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawList& list,
+  const std::vector<double>& bounds, const std::vector<char>& drawn, const double eye[3],
+  const double viewUp[3], const SurfaceData& surface)
+{
+  double right[3], up[3];
+  vtkHybridOctreeSliceGeometry::ViewBasis(list.Forward, viewUp, right, up);
+  this->VertexData.clear();
+  this->BrickFirst.assign(1, 0);
+  this->Uploaded = false;
+  const bool withSurface = surface.Vertices && surface.Triangles &&
+    list.BatchOffsets.size() == list.GetNumberOfBricks() + 1;
+  const float* sv = withSurface ? surface.Vertices->data() : nullptr;
+  const std::size_t vertexCount = withSurface ? surface.Vertices->size() / 6 : 0;
+  const float noNormal[3] = { 0.0f, 0.0f, 0.0f };
+  const float f[3] = { static_cast<float>(list.Forward[0]), static_cast<float>(list.Forward[1]),
+    static_cast<float>(list.Forward[2]) };
+  const float e[3] = { static_cast<float>(eye[0]), static_cast<float>(eye[1]),
+    static_cast<float>(eye[2]) };
+  std::vector<float> polygon;
+  std::vector<Placed> placed;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
+  std::size_t placedTotal = 0;
+  for (std::size_t i = 0; i < list.GetNumberOfBricks(); ++i)
+  {
+    const double* slices = list.Slices.data() + list.SliceOffsets[i];
+    const std::size_t n = list.SliceOffsets[i + 1] - list.SliceOffsets[i];
+    // slab(z) = #{ k : S[k] > z }, the slices being sorted back to front.
+    auto slab = [&](double z) {
+      return static_cast<std::size_t>(
+        std::partition_point(slices, slices + n, [z](double s) { return s > z; }) - slices);
+    };
+    placed.clear();
+    if (withSurface)
+    {
+      ranges.clear();
+      for (std::size_t k = list.BatchOffsets[i]; k < list.BatchOffsets[i + 1]; ++k)
+      {
+        ranges.emplace_back(list.BatchFirst[k], list.BatchEnd[k]);
+      }
+      // The union of the batches' ranges (a batch spanning slabs is listed once per slab).
+      std::sort(ranges.begin(), ranges.end());
+      std::uint32_t covered = 0;
+      for (const auto& range : ranges)
+      {
+        for (std::uint32_t t = std::max(range.first, covered); t < range.second; ++t)
+        {
+          if (3 * static_cast<std::size_t>(t) + 2 >= surface.Triangles->size())
+          {
+            continue;
+          }
+          double zmin = HUGE_VAL, zmax = -HUGE_VAL;
+          for (int c = 0; c < 3; ++c)
+          {
+            const unsigned int v = (*surface.Triangles)[3 * static_cast<std::size_t>(t) + c];
+            const float* p = sv + 6 * std::min<std::size_t>(v, vertexCount - 1);
+            const double z = (p[0] - e[0]) * static_cast<double>(f[0]) +
+              (p[1] - e[1]) * static_cast<double>(f[1]) + (p[2] - e[2]) * static_cast<double>(f[2]);
+            zmin = std::min(zmin, z);
+            zmax = std::max(zmax, z);
+          }
+          const std::size_t far = slab(zmax);
+          const std::size_t near = slab(zmin);
+          if (far == near)
+          {
+            placed.push_back({ far, t, -Unbounded, Unbounded });
+            continue;
+          }
+          for (std::size_t s = far; s <= near; ++s)
+          {
+            placed.push_back({ s, t, s < n ? static_cast<float>(slices[s]) : -Unbounded,
+              s > 0 ? static_cast<float>(slices[s - 1]) : Unbounded });
+          }
+        }
+        covered = std::max(covered, range.second);
+      }
+      std::stable_sort(placed.begin(), placed.end(),
+        [](const Placed& a, const Placed& b) { return a.Slab < b.Slab; });
+      placedTotal += placed.size();
+    }
+    std::size_t next = 0;
+    for (std::size_t s = 0; s <= n; ++s)
+    {
+      for (; next < placed.size() && placed[next].Slab == s; ++next)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          const unsigned int v =
+            (*surface.Triangles)[3 * static_cast<std::size_t>(placed[next].Triangle) + c];
+          const float* p = sv + 6 * std::min<std::size_t>(v, vertexCount - 1);
+          this->Emit(p, p + 3, placed[next].Near, placed[next].Far, 1.0f);
+        }
+      }
+      if (s < n && drawn[i])
+      {
+        polygon.clear();
+        vtkHybridOctreeSliceGeometry::AppendSlicePolygon(
+          &bounds[6 * i], eye, list.Forward, right, up, slices[s], polygon);
+        for (std::size_t v = 0; v + 2 < polygon.size(); v += 3)
+        {
+          this->Emit(&polygon[v], noNormal, -Unbounded, Unbounded, 0.0f);
+        }
+      }
+    }
+    this->BrickFirst.push_back(this->VertexData.size() / Stride);
+  }
+  return placedTotal;
+}
+
+bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
+  vtkTextureObject* table, int entries, double lo, double hi, const double eye[3],
+  const double forward[3], bool parallel, const double surfaceRGBA[4], std::string& error)
+{
+  this->Program = window->GetShaderCache()->ReadyShaderProgram(VertexShader, FragmentShader, "");
+  if (!this->Program)
+  {
+    error = "the brick shader did not compile";
+    return false;
+  }
+  if (!this->Vao)
+  {
+    this->Vertices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
+    this->Vao = vtkSmartPointer<vtkOpenGLVertexArrayObject>::New();
+    this->Uploaded = false;
+  }
+  this->Vao->Bind();
+  if (!this->Uploaded)
+  {
+    if (!this->VertexData.empty() &&
+      !this->Vertices->Upload(this->VertexData, vtkOpenGLBufferObject::ArrayBuffer))
+    {
+      error = "could not load the slices into an OpenGL buffer";
+      this->Vao->Release();
+      return false;
+    }
+    this->Uploaded = true;
+  }
+  const int stride = static_cast<int>(Stride * sizeof(float));
+  if (!this->VertexData.empty() &&
+    (!this->Vao->AddAttributeArray(
+       this->Program, this->Vertices, "vertexMC", 0, stride, VTK_FLOAT, 3, false) ||
+      !this->Vao->AddAttributeArray(
+        this->Program, this->Vertices, "normalMC", 3 * sizeof(float), stride, VTK_FLOAT, 3, false) ||
+      !this->Vao->AddAttributeArray(
+        this->Program, this->Vertices, "clipMC", 6 * sizeof(float), stride, VTK_FLOAT, 2, false) ||
+      !this->Vao->AddAttributeArray(this->Program, this->Vertices, "surfaceMC", 8 * sizeof(float),
+        stride, VTK_FLOAT, 1, false)))
+  {
+    error = "could not bind the brick vertices";
+    this->Vao->Release();
+    return false;
+  }
+  this->Program->SetUniformMatrix("MCDC", mcdc);
+  // Table cell k holds the value lo + (hi - lo) k / (entries - 1); its centre
+  // is at texture coordinate (k + 0.5) / entries.
+  const double scale = (entries - 1.0) / (entries * (hi - lo));
+  const float scaleShift[2] = { static_cast<float>(scale),
+    static_cast<float>(0.5 / entries - lo * scale) };
+  this->Program->SetUniform2f("tableScaleShift", scaleShift);
+  this->Program->SetUniformi("transferTable", table->GetTextureUnit());
+  const float e[3] = { static_cast<float>(eye[0]), static_cast<float>(eye[1]),
+    static_cast<float>(eye[2]) };
+  const float f[3] = { static_cast<float>(forward[0]), static_cast<float>(forward[1]),
+    static_cast<float>(forward[2]) };
+  const float c[4] = { static_cast<float>(surfaceRGBA[0]), static_cast<float>(surfaceRGBA[1]),
+    static_cast<float>(surfaceRGBA[2]), static_cast<float>(surfaceRGBA[3]) };
+  this->Program->SetUniform3f("eye", e);
+  this->Program->SetUniform3f("forward", f);
+  this->Program->SetUniformi("parallel", parallel ? 1 : 0);
+  this->Program->SetUniform4f("surfaceColor", c);
+  return true;
+}
+
+void vtkHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList& list,
+  std::size_t i, const double spacing[3], vtkTextureObject* texture)
+{
+  if (i + 1 >= this->BrickFirst.size() || !this->Program)
+  {
+    return;
+  }
+  const std::size_t first = this->BrickFirst[i];
+  const std::size_t count = this->BrickFirst[i + 1] - first;
+  if (count == 0)
+  {
+    return;
+  }
+  const double* b = &list.Bounds[6 * i];
+  const float lo[3] = { static_cast<float>(b[0]), static_cast<float>(b[2]),
+    static_cast<float>(b[4]) };
+  float inverseStep[3];
+  float n[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    inverseStep[a] = static_cast<float>(1.0 / (list.Stride[i] * spacing[a]));
+    n[a] = static_cast<float>(list.Texels[3 * i + a]);
+  }
+  this->Program->SetUniformi("brickTexture", texture->GetTextureUnit());
+  this->Program->SetUniform3f("brickLo", lo);
+  this->Program->SetUniform3f("inverseStep", inverseStep);
+  this->Program->SetUniform3f("texels", n);
+  this->Program->SetUniformf("opacityRatio", static_cast<float>(list.OpacityRatio[i]));
+  glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
+}
+
+void vtkHybridOctreeBrickDrawer::Unbind()
+{
+  if (this->Vao)
+  {
+    this->Vao->Release();
+  }
+}
+
+void vtkHybridOctreeBrickDrawer::ReleaseGraphicsResources()
+{
+  if (this->Vertices)
+  {
+    this->Vertices->ReleaseGraphicsResources();
+    this->Vao->ReleaseGraphicsResources();
+  }
+  this->Vertices = nullptr;
+  this->Vao = nullptr;
+  this->Program = nullptr;
+  this->Uploaded = false;
+}

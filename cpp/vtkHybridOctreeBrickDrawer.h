@@ -1,0 +1,113 @@
+/**
+ * @file   vtkHybridOctreeBrickDrawer.h
+ * @brief  The bricks' slices, and the translucent surface in their slabs, drawn with OpenGL
+ *         (private to the module).
+ *
+ * The Hybrid Octree, sections 3 and 4.1: a brick of level p is drawn as slices
+ * every d = stride * d0 along the view, its texture sampled trilinearly at
+ *
+ *     u_a = clamp((x_a - lo_a) / (stride * spacing_a), 0, texels_a - 1)   (texels)
+ *
+ * the value looked up in the transfer-function table and the opacity
+ * corrected for the slice spacing, `a' = 1 - (1 - a)^(d / d0)`, blended
+ * premultiplied back to front: `C = (c a', a') + (1 - a') C`. Exactly the CPU
+ * compositor's sampling of the same DrawList.
+ *
+ * A translucent surface is drawn inside the slabs between the slices. With
+ * the brick's slices at depths S[0] > S[1] > ... > S[n-1] (back to front),
+ * slab s = { z : S[s] <= z < S[s-1] } (slab 0 unbounded behind, slab n in
+ * front), z = (x - eye) . forward. The DrawList names each brick's surface
+ * triangles (its batches); each triangle goes, per view, into the slabs its
+ * depth range [z_min, z_max] covers, slab(z) = #{ k : S[k] > z }: unclipped
+ * when that is one slab, else once per slab, clipped to it with
+ *
+ *     gl_ClipDistance[0] = z - near,  gl_ClipDistance[1] = far - z.
+ *
+ * Per triangle rather than per batch: a batch (a terminal surface node) spans
+ * as many slabs as its brick is deep, a triangle one or two. Each brick is
+ * one draw call of one program, in the order slab 0's triangles, slice 0,
+ * slab 1's triangles, slice 1, ..., slab n's triangles (OpenGL keeps primitive
+ * order within a draw). Surface fragments are shaded as in the CPU
+ * compositor: headlight Lambert `rgb = colour |n . d|`, blended `(rgb a, a)`.
+ */
+#ifndef vtkHybridOctreeBrickDrawer_h
+#define vtkHybridOctreeBrickDrawer_h
+
+#include "vtkHybridOctreeBridge.h"
+#include "vtkSmartPointer.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+class vtkMatrix4x4;
+class vtkOpenGLBufferObject;
+class vtkOpenGLRenderWindow;
+class vtkOpenGLVertexArrayObject;
+class vtkShaderProgram;
+class vtkTextureObject;
+
+class vtkHybridOctreeBrickDrawer
+{
+public:
+  /// The translucent surface's vertices: 6 floats each (position, normal),
+  /// and triangle t's vertex ids at 3t .. 3t + 3.
+  struct SurfaceData
+  {
+    const std::vector<float>* Vertices = nullptr;
+    const std::vector<unsigned int>* Triangles = nullptr;
+  };
+
+  vtkHybridOctreeBrickDrawer();
+  ~vtkHybridOctreeBrickDrawer();
+
+  /**
+   * The vertices of every brick of `list` for a camera at `eye` with
+   * `viewUp` (model coordinates), on the CPU: brick i's slices clipped to
+   * `bounds[6i .. 6i+6]` (inside its box; none where `drawn[i]` is 0), and,
+   * when `surface` is given and the list has batches, the brick's surface
+   * triangles in their slabs. Returns the surface triangles placed (copies
+   * in several slabs counted each time).
+   */
+  std::size_t Build(const vtkHybridOctreeBridge::DrawList& list, const std::vector<double>& bounds,
+    const std::vector<char>& drawn, const double eye[3], const double viewUp[3],
+    const SurfaceData& surface);
+
+  /**
+   * Makes the program current: `mcdc` the model-to-clip matrix, `table` the
+   * transfer-function table (RGBA over [lo, hi] in `entries` cells), `eye`,
+   * `forward`, `parallel` the camera in model coordinates, `surfaceRGBA` the
+   * surface's colour and opacity. Uploads the vertices of the last Build()
+   * on the first call after it. False and `error` on failure.
+   */
+  bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, vtkTextureObject* table,
+    int entries, double lo, double hi, const double eye[3], const double forward[3],
+    bool parallel, const double surfaceRGBA[4], std::string& error);
+
+  /// Draws brick i of the built list, sampling `texture`.
+  void DrawBrick(const vtkHybridOctreeBridge::DrawList& list, std::size_t i,
+    const double spacing[3], vtkTextureObject* texture);
+
+  /// Unbinds the vertex arrays.
+  void Unbind();
+
+  /// Frees the buffers (the context is going away).
+  void ReleaseGraphicsResources();
+
+private:
+  vtkHybridOctreeBrickDrawer(const vtkHybridOctreeBrickDrawer&) = delete;
+  vtkHybridOctreeBrickDrawer& operator=(const vtkHybridOctreeBrickDrawer&) = delete;
+
+  /// Appends one vertex: position, normal, clip interval, surface flag.
+  void Emit(const float position[3], const float normal[3], float near, float far, float surface);
+
+  std::vector<float> VertexData;
+  /// Brick i's vertices: BrickFirst[i] .. BrickFirst[i + 1].
+  std::vector<std::size_t> BrickFirst;
+  vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
+  vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
+  vtkShaderProgram* Program = nullptr;
+  bool Uploaded = false;
+};
+
+#endif
