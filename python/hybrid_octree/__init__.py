@@ -1,0 +1,11 @@
+"""The Hybrid Octree's VTK classes for Python (pvpython, pvbatch, or python3
+with ParaView's VTK on the path).
+
+    from hybrid_octree import vtkHybridOctreeFilter, vtkHybridOctreeVolumeMapper
+
+Both are ordinary VTK algorithms: connect them to VTK sources, readers and
+renderers as in C++ (see the README).
+"""
+from .HybridOctreeFilters import vtkHybridOctreeFilter, vtkHybridOctreeVolumeMapper
+
+__all__ = ["vtkHybridOctreeFilter", "vtkHybridOctreeVolumeMapper"]
