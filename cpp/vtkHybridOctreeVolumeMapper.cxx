@@ -4,6 +4,7 @@
 #include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkHybridOctreeBrickTextures.h"
 #include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeFloatTarget.h"
 #include "vtkHybridOctreeImageInput.h"
 #include "vtkHybridOctreeSurfaceDrawer.h"
 
@@ -103,6 +104,7 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   // GL resources.
   vtkHybridOctreeBrickTextures Bricks;
   vtkHybridOctreeBrickDrawer Drawer;
+  vtkHybridOctreeFloatTarget Target;
   vtkHybridOctreeSurfaceDrawer SurfaceDrawer;
   const Surface* UploadedSurface = nullptr;
   vtkSmartPointer<vtkTextureObject> TableTexture;
@@ -597,12 +599,19 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   // translucent triangles of each slab between them; blended premultiplied,
   // depth tested, not written. Clip distances on while the program (which
   // writes them) is bound.
+  if (!in.Target.Begin(ren, window, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
   state->vtkglEnable(GL_BLEND);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  state->vtkglDisable(GL_DEPTH_TEST); // the shader tests against the copied depth
   state->vtkglDepthMask(GL_FALSE);
   in.TableTexture->Activate();
-  const bool ok = in.Drawer.Bind(window, mcdc, in.TableTexture, this->TableSize, in.RangeLo,
-    in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
+  in.Target.GetDepth()->Activate();
+  const bool ok = in.Drawer.Bind(window, mcdc, in.TableTexture, in.Target.GetDepth(),
+    this->TableSize, in.RangeLo, in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
   if (ok)
   {
     for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
@@ -621,7 +630,9 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
     }
     in.Drawer.Unbind();
   }
+  in.Target.GetDepth()->Deactivate();
   in.TableTexture->Deactivate();
+  in.Target.End(window);
   if (!ok)
   {
     vtkErrorMacro(<< error);
@@ -677,6 +688,7 @@ void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
     in.TableUploaded = false;
   }
   in.Drawer.ReleaseGraphicsResources();
+  in.Target.ReleaseGraphicsResources(window);
   in.SurfaceDrawer.ReleaseGraphicsResources();
   this->Superclass::ReleaseGraphicsResources(window);
 }

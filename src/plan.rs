@@ -294,7 +294,7 @@ mod tests {
         // Other nodes (a SlabPolygons depends on the bricks' nodes only, not their strides).
         let small = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
         let all = select(&f.octree, &small, |_, _| true).unwrap();
-        let fewer = select(&f.octree, &SelectOptions::new(200_000, 0.0), |_, _| true).unwrap();
+        let fewer = select(&f.octree, &SelectOptions::new(20_000, 0.0), |_, _| true).unwrap();
         let nodes = |s: &crate::select::Selection| s.bricks.iter().map(|b| b.node).collect::<Vec<_>>();
         assert_ne!(nodes(&all), nodes(&fewer));
         let polygons = crate::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);

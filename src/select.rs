@@ -339,11 +339,37 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
         // Split: the children at the same stride (p - 1), each in its
         // cheapest form (see `cheapest`), which pays a little border and lets
         // each child refine on its own.
+        //
+        // A split at the same stride removes no error by itself unless parts
+        // of the node drop out; it pays off through the raises of single
+        // children it allows, when raising the whole node does not fit. So it
+        // is ranked by the better of its own gain and its best one-step
+        // lookahead: the split followed by the best raise of one child,
+        // `(removed by both) / (bytes of both)`.
         let split = (!n.is_terminal() && b.p > 0).then(|| {
             let (children, hidden, added) =
                 children_forms(octree, &n, b.p, usize::MAX, &brick_of, &max_p, &visible, &memo);
             let after: f64 = children.iter().map(mass).sum();
-            (gain(mass(b) - after, added as f64 - b.bytes as f64), children, hidden)
+            let split_bytes = added as f64 - b.bytes as f64;
+            let direct = gain(mass(b) - after, split_bytes);
+            let ahead = children
+                .iter()
+                .flat_map(|c| {
+                    let cn = octree.node(c.node);
+                    (c.p + 1..=max_p(&cn)).map(move |q| (c, cn, q))
+                })
+                .map(|(c, cn, q)| {
+                    let (up, _) = cheapest(octree, &cn, q, &brick_of, &max_p, &visible, &memo);
+                    let up_bytes = up.iter().map(|u| u.bytes).sum::<usize>() as f64 - c.bytes as f64;
+                    let removed = mass(b) - after + mass(c) - up.iter().map(mass).sum::<f64>();
+                    if removed > 0.0 {
+                        removed / (split_bytes + up_bytes).max(1.0)
+                    } else {
+                        0.0
+                    }
+                })
+                .fold(0.0, f64::max);
+            (direct.max(ahead), children, hidden)
         });
         let best = match (raise, split) {
             (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),

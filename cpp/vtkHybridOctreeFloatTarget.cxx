@@ -1,0 +1,167 @@
+#include "vtkHybridOctreeFloatTarget.h"
+
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+namespace
+{
+/// The target's premultiplied RGBA, as is (blended by the fixed function).
+const char* CompositeShader = R"(//VTK::System::Dec
+in vec2 texCoord;
+uniform sampler2D composited;
+//VTK::Output::Dec
+void main()
+{
+  gl_FragData[0] = texture(composited, texCoord);
+}
+)";
+}
+
+vtkHybridOctreeFloatTarget::vtkHybridOctreeFloatTarget() = default;
+vtkHybridOctreeFloatTarget::~vtkHybridOctreeFloatTarget() = default;
+
+bool vtkHybridOctreeFloatTarget::Begin(
+  vtkRenderer* ren, vtkOpenGLRenderWindow* window, std::string& error)
+{
+  int width = 0, height = 0, x = 0, y = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  if (width <= 0 || height <= 0)
+  {
+    error = "the renderer's viewport is empty";
+    return false;
+  }
+  if (!this->Framebuffer || this->Color->GetContext() != window)
+  {
+    this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    this->Framebuffer->SetContext(window);
+    this->Color = vtkSmartPointer<vtkTextureObject>::New();
+    this->Color->SetContext(window);
+    this->Depth = vtkSmartPointer<vtkTextureObject>::New();
+    this->Depth->SetContext(window);
+    this->DepthFramebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    this->DepthFramebuffer->SetContext(window);
+    this->Quad.reset();
+    this->Size[0] = this->Size[1] = 0;
+  }
+  // A depth blit needs the same depth format on both sides: the window's.
+  GLint bits = 0, type = 0;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+  const int format = type == GL_FLOAT ? vtkTextureObject::Float32
+    : bits <= 16                      ? vtkTextureObject::Fixed16
+    : bits <= 24                      ? vtkTextureObject::Fixed24
+                                      : vtkTextureObject::Fixed32;
+  if (this->Size[0] != width || this->Size[1] != height || this->DepthFormat != format)
+  {
+    this->Color->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Color->SetMagnificationFilter(vtkTextureObject::Nearest);
+    this->Color->SetWrapS(vtkTextureObject::ClampToEdge);
+    this->Color->SetWrapT(vtkTextureObject::ClampToEdge);
+    this->Depth->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    if (!this->Color->Allocate2D(width, height, 4, VTK_FLOAT) ||
+      !this->Depth->AllocateDepth(width, height, format))
+    {
+      error = "OpenGL could not allocate a float colour and a depth texture of the viewport's size";
+      return false;
+    }
+    this->Size[0] = width;
+    this->Size[1] = height;
+    this->DepthFormat = format;
+  }
+  // The depth of what is drawn so far, blitted from the bound (read)
+  // framebuffer: a blit also resolves a multisampled one (a copy would not).
+  vtkOpenGLState* state = window->GetState();
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+  state->PushFramebufferBindings();
+  this->DepthFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->DepthFramebuffer->AddDepthAttachment(this->Depth);
+  glBlitFramebuffer(x, y, x + width, y + height, 0, 0, width, height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  state->PopFramebufferBindings();
+  if (glGetError() != GL_NO_ERROR)
+  {
+    error = "OpenGL could not read the window's depth buffer into a texture of its format (" +
+      std::to_string(bits) + "-bit)";
+    return false;
+  }
+
+  state->PushFramebufferBindings();
+  this->Framebuffer->Bind();
+  this->Framebuffer->AddColorAttachment(0, this->Color);
+  this->Framebuffer->ActivateDrawBuffer(0);
+  if (this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER) == 0)
+  {
+    state->PopFramebufferBindings();
+    error = "OpenGL refused the float framebuffer";
+    return false;
+  }
+  state->vtkglGetIntegerv(GL_VIEWPORT, this->Viewport);
+  state->vtkglGetIntegerv(GL_SCISSOR_BOX, this->Scissor);
+  state->vtkglViewport(0, 0, width, height);
+  state->vtkglScissor(0, 0, width, height);
+  vtkOpenGLState::ScopedglClearColor clearColor(state);
+  state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  return true;
+}
+
+void vtkHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
+{
+  vtkOpenGLState* state = window->GetState();
+  state->PopFramebufferBindings();
+  state->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  state->vtkglScissor(this->Scissor[0], this->Scissor[1], this->Scissor[2], this->Scissor[3]);
+  if (!this->Quad)
+  {
+    this->Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, CompositeShader, ""));
+  }
+  if (!this->Quad->Program)
+  {
+    return;
+  }
+  window->GetShaderCache()->ReadyShaderProgram(this->Quad->Program);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  this->Color->Activate();
+  this->Quad->Program->SetUniformi("composited", this->Color->GetTextureUnit());
+  this->Quad->Render();
+  this->Color->Deactivate();
+}
+
+void vtkHybridOctreeFloatTarget::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->Quad)
+  {
+    this->Quad->ReleaseGraphicsResources(window);
+    this->Quad.reset();
+  }
+  if (this->Framebuffer)
+  {
+    this->Framebuffer->ReleaseGraphicsResources(window);
+    this->Color->ReleaseGraphicsResources(window);
+    this->Depth->ReleaseGraphicsResources(window);
+    this->DepthFramebuffer->ReleaseGraphicsResources(window);
+  }
+  this->Framebuffer = nullptr;
+  this->Color = nullptr;
+  this->Depth = nullptr;
+  this->DepthFramebuffer = nullptr;
+  this->Size[0] = this->Size[1] = 0;
+}
