@@ -53,17 +53,15 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from render_vs_fixed_point import BACKGROUND, camera_around, png_rgb, ramp  # noqa: E402
+from render_vs_fixed_point import BACKGROUND, camera_around, png_rgb, volume_property  # noqa: E402
 from side_by_side import generated_image, use_all_cores  # noqa: E402
 
 from hybrid_octree import vtkHybridOctreeVolumeMapper  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction  # noqa: E402
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D  # noqa: E402
 from vtkmodules.vtkIOImage import vtkPNGWriter  # noqa: E402
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkPolyDataMapper,  # noqa: E402
-                                         vtkRenderer, vtkRenderWindow, vtkVolume, vtkVolumeProperty,
-                                         vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,  # noqa: E402
+                                         vtkRenderWindow, vtkVolume, vtkWindowToImageFilter)
 from vtkmodules.vtkRenderingVolume import (vtkFixedPointVolumeRayCastMapper,  # noqa: E402
                                            vtkGPUVolumeRayCastMapper)
 from vtkmodules.vtkRenderingVolumeOpenGL2 import vtkSmartVolumeMapper  # noqa: E402
@@ -72,25 +70,6 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: E402,F401 (the OpenGL render wind
 SURFACE_RGB = (0.9, 0.75, 0.55)  # src/bin/hybrid-octree/scene.rs surface_colour
 SURFACE_OPACITY = 0.4
 ISO_FRACTION = 0.5
-
-
-def volume_property(image):
-    """The ramp transfer function, opacities per d0 (ScalarOpacityUnitDistance)."""
-    vmin, vmax = image.GetPointData().GetScalars().GetRange()
-    colours, opacities = ramp(vmin, vmax)
-    colour = vtkColorTransferFunction()
-    for x, (r, g, b) in colours:
-        colour.AddRGBPoint(x, r, g, b)
-    opacity = vtkPiecewiseFunction()
-    for x, a in opacities:
-        opacity.AddPoint(x, a)
-    prop = vtkVolumeProperty()
-    prop.SetColor(colour)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(min(image.GetSpacing()))
-    prop.SetInterpolationTypeToLinear()
-    prop.ShadeOff()
-    return prop
 
 
 def isovalue(image):

@@ -110,11 +110,11 @@ def camera_around(lo, hi, azimuth_deg, elevation_deg, parallel):
     return position, centre, up, projection
 
 
-def vtk_scene(image, width, height):
-    """The fixed-point ray cast scene of `image`: (render window, renderer,
-    mapper, volume), not rendered yet."""
+def volume_property(image):
+    """The ramp transfer function of `image`'s range as a vtkVolumeProperty:
+    opacities per d0 = min spacing (ScalarOpacityUnitDistance), linear
+    interpolation, no shading."""
     vmin, vmax = image.GetPointData().GetScalars().GetRange()
-    d0 = min(image.GetSpacing())
     colours, opacities = ramp(vmin, vmax)
     colour = vtkColorTransferFunction()
     for x, (r, g, b) in colours:
@@ -125,9 +125,17 @@ def vtk_scene(image, width, height):
     prop = vtkVolumeProperty()
     prop.SetColor(colour)
     prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(d0)  # ramp opacities are per d0
+    prop.SetScalarOpacityUnitDistance(min(image.GetSpacing()))  # ramp opacities are per d0
     prop.SetInterpolationTypeToLinear()
     prop.ShadeOff()
+    return prop
+
+
+def vtk_scene(image, width, height):
+    """The fixed-point ray cast scene of `image`: (render window, renderer,
+    mapper, volume), not rendered yet."""
+    d0 = min(image.GetSpacing())
+    prop = volume_property(image)
 
     mapper = vtkFixedPointVolumeRayCastMapper()
     mapper.SetInputData(image)

@@ -60,15 +60,9 @@ uniform vec3 eye;
 uniform vec3 forward;
 uniform int parallel;
 uniform vec4 surfaceColor;
-uniform sampler2D opaqueDepth;
 //VTK::Output::Dec
 void main()
 {
-  // Behind opaque geometry already drawn (its depth copied by the float target).
-  if (gl_FragCoord.z > texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy), 0).r)
-  {
-    discard;
-  }
   if (isSurface > 0.5)
   {
     vec3 d = parallel != 0 ? forward : normalize(positionMC - eye);
@@ -224,9 +218,8 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
 }
 
 bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
-  vtkTextureObject* table, vtkTextureObject* depth, int entries, double lo, double hi,
-  const double eye[3], const double forward[3], bool parallel, const double surfaceRGBA[4],
-  std::string& error)
+  vtkTextureObject* table, int entries, double lo, double hi, const double eye[3],
+  const double forward[3], bool parallel, const double surfaceRGBA[4], std::string& error)
 {
   this->Program = window->GetShaderCache()->ReadyShaderProgram(VertexShader, FragmentShader, "");
   if (!this->Program)
@@ -275,7 +268,6 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
     static_cast<float>(0.5 / entries - lo * scale) };
   this->Program->SetUniform2f("tableScaleShift", scaleShift);
   this->Program->SetUniformi("transferTable", table->GetTextureUnit());
-  this->Program->SetUniformi("opaqueDepth", depth->GetTextureUnit());
   const float e[3] = { static_cast<float>(eye[0]), static_cast<float>(eye[1]),
     static_cast<float>(eye[2]) };
   const float f[3] = { static_cast<float>(forward[0]), static_cast<float>(forward[1]),

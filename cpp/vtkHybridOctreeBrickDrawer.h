@@ -75,15 +75,14 @@ public:
 
   /**
    * Makes the program current: `mcdc` the model-to-clip matrix, `table` the
-   * transfer-function table (RGBA over [lo, hi] in `entries` cells), `depth`
-   * the depth of the opaque geometry (fragments behind it are dropped), `eye`,
+   * transfer-function table (RGBA over [lo, hi] in `entries` cells), `eye`,
    * `forward`, `parallel` the camera in model coordinates, `surfaceRGBA` the
    * surface's colour and opacity. Uploads the vertices of the last Build()
    * on the first call after it. False and `error` on failure.
    */
   bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, vtkTextureObject* table,
-    vtkTextureObject* depth, int entries, double lo, double hi, const double eye[3],
-    const double forward[3], bool parallel, const double surfaceRGBA[4], std::string& error);
+    int entries, double lo, double hi, const double eye[3], const double forward[3],
+    bool parallel, const double surfaceRGBA[4], std::string& error);
 
   /// Draws brick i of the built list, sampling `texture`.
   void DrawBrick(const vtkHybridOctreeBridge::DrawList& list, std::size_t i,

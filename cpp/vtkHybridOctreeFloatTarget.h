@@ -11,9 +11,9 @@
  * once, premultiplied, over the window (`(ONE, ONE_MINUS_SRC_ALPHA)`).
  *
  * Opaque geometry already drawn (VTK's opaque actors, the mapper's opaque
- * surface) still hides the volume: its depth is blitted into a depth texture
- * first (which also resolves a multisampled window), and the brick shader
- * discards fragments behind it.
+ * surface) still hides the volume: its depth is blitted into the target's
+ * depth attachment first (a blit also resolves a multisampled window), and
+ * the bricks are drawn depth-tested against it, without writing it.
  */
 #ifndef vtkHybridOctreeFloatTarget_h
 #define vtkHybridOctreeFloatTarget_h
@@ -42,9 +42,6 @@ public:
    * OpenGL refuses (the window's bindings are then unchanged).
    */
   bool Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window, std::string& error);
-
-  /// The copied depth (valid between Begin() and End()).
-  vtkTextureObject* GetDepth() { return this->Depth; }
 
   /// Restores the window's framebuffer and viewport and blends the target over it.
   void End(vtkOpenGLRenderWindow* window);
