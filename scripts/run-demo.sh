@@ -6,7 +6,9 @@
 # isosurface (hybrid-octree-render.png, against the full-resolution reference
 # hybrid-octree-reference.png), then pvbatch loads the ParaView plugin, applies the Hybrid
 # Octree filter to the same volume, and renders its node boxes and isosurface
-# to hybrid-octree-demo.png.
+# to hybrid-octree-demo.png, and vtkHybridOctreeVolumeMapper (OpenGL, from
+# Python) draws the volume and translucent isosurface at the default 64 MB
+# budget to hybrid-octree-mapper.png, with its error against the reference.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -33,3 +35,8 @@ trap 'rm -f "$vti"' EXIT
 "$cli" generate --dataset shepp-logan --size "$size" --type f32 --output "$vti"
 bash scripts/with-xvfb.sh \
   pvbatch scripts/demo_pvbatch.py --plugin "$plugin" --input "$vti" --output hybrid-octree-demo.png
+
+echo "== vtkHybridOctreeVolumeMapper (OpenGL) from pvbatch, 64 MB, translucent isosurface, vs the reference =="
+PYTHONPATH="$PWD/build/lib/python3.11/site-packages" bash scripts/with-xvfb.sh \
+  pvbatch scripts/demo_mapper.py --input "$vti" --output hybrid-octree-mapper.png \
+  --reference hybrid-octree-reference.png
