@@ -3,6 +3,7 @@
 #include "vtkHybridOctreeSliceGeometry.h"
 
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -51,6 +52,7 @@ in vec3 normal;
 flat in float isSurface;
 uniform sampler3D brickTexture;
 uniform sampler2D transferTable;
+uniform sampler2D opaqueDepth;
 uniform vec3 brickLo;
 uniform vec3 inverseStep;
 uniform vec3 texels;
@@ -60,9 +62,80 @@ uniform vec3 eye;
 uniform vec3 forward;
 uniform int parallel;
 uniform vec4 surfaceColor;
+uniform vec3 boxLo;
+uniform vec3 boxHi;
+uniform float sliceSpacing;
+uniform mat4 DCMC;
+uniform vec2 viewportSize;
 //VTK::Output::Dec
+
+// Opacity a' of the sample at model position p, and its colour.
+vec4 sampleAt(vec3 p)
+{
+  vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
+  float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
+  vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
+  float a = clamp(c.a, 0.0, 1.0);
+  if (opacityRatio != 1.0 && a > 0.0 && a < 1.0)
+  {
+    a = 1.0 - exp(opacityRatio * log(1.0 - a));
+  }
+  return vec4(clamp(c.rgb, 0.0, 1.0), a);
+}
+
+// The view depth (x - eye) . forward of the point at this pixel and depth-buffer value d.
+float viewDepth(float d)
+{
+  vec4 q = DCMC * vec4(gl_FragCoord.xy / viewportSize * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
+  return dot(q.xyz / q.w - eye, forward);
+}
+
 void main()
 {
+  float opaque = texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy), 0).r;
+  if (isSurface > 1.5)
+  {
+    // A ray-marched brick: this fragment is on the exit face of its box; the
+    // samples are the slice lattice z = k d between entry and exit (the same
+    // samples as the slices), front to back, up to opaque geometry.
+    vec3 dir = parallel != 0 ? forward : normalize(positionMC - eye);
+    vec3 origin = parallel != 0 ? positionMC - forward * dot(positionMC - eye, forward) : eye;
+    vec3 inv = 1.0 / dir;
+    vec3 t1 = (boxLo - origin) * inv;
+    vec3 t2 = (boxHi - origin) * inv;
+    vec3 tn = min(t1, t2);
+    vec3 tf = max(t1, t2);
+    float tIn = max(max(tn.x, tn.y), tn.z);
+    float tOut = min(min(tf.x, tf.y), tf.z);
+    if (dot(positionMC - origin, dir) < 0.5 * (tIn + tOut))
+    {
+      discard; // the entry face
+    }
+    float cosA = dot(dir, forward);
+    float zIn = max(tIn * cosA, viewDepth(0.0));
+    float zOut = min(tOut * cosA, viewDepth(opaque));
+    int k0 = int(ceil(zIn / sliceSpacing));
+    int k1 = min(int(ceil(zOut / sliceSpacing)) - 1, k0 + 4096);
+    vec3 C = vec3(0.0);
+    float A = 0.0;
+    for (int k = k0; k <= k1 && A < 0.999; ++k)
+    {
+      vec4 s = sampleAt(origin + dir * (float(k) * sliceSpacing / cosA));
+      C += (1.0 - A) * s.a * s.rgb;
+      A += (1.0 - A) * s.a;
+    }
+    if (A == 0.0)
+    {
+      discard;
+    }
+    gl_FragData[0] = vec4(C, A);
+    return;
+  }
+  // Behind opaque geometry already drawn.
+  if (gl_FragCoord.z > opaque)
+  {
+    discard;
+  }
   if (isSurface > 0.5)
   {
     vec3 d = parallel != 0 ? forward : normalize(positionMC - eye);
@@ -72,19 +145,12 @@ void main()
     gl_FragData[0] = vec4(rgb * surfaceColor.a, surfaceColor.a);
     return;
   }
-  vec3 u = clamp((positionMC - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
-  float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
-  vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
-  float a = clamp(c.a, 0.0, 1.0);
-  if (a == 0.0)
+  vec4 s = sampleAt(positionMC);
+  if (s.a == 0.0)
   {
     discard; // blends to nothing: skip the blend
   }
-  if (opacityRatio != 1.0 && a < 1.0)
-  {
-    a = 1.0 - exp(opacityRatio * log(1.0 - a));
-  }
-  gl_FragData[0] = vec4(clamp(c.rgb, 0.0, 1.0) * a, a);
+  gl_FragData[0] = vec4(s.rgb * s.a, s.a);
 }
 )";
 
@@ -109,6 +175,25 @@ void vtkHybridOctreeBrickDrawer::Emit(
       surface });
 }
 
+void vtkHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
+{
+  // Corner c at x[c & 1], y[(c >> 1) & 1], z[(c >> 2) & 1]; two triangles a face.
+  static const int faces[6][4] = { { 0, 2, 6, 4 }, { 1, 5, 7, 3 }, { 0, 4, 5, 1 }, { 2, 3, 7, 6 },
+    { 0, 1, 3, 2 }, { 4, 6, 7, 5 } };
+  const float none[3] = { 0.0f, 0.0f, 0.0f };
+  for (const auto& f : faces)
+  {
+    for (int k : { 0, 1, 2, 0, 2, 3 })
+    {
+      const int c = f[k];
+      const float p[3] = { static_cast<float>(bounds[c & 1]),
+        static_cast<float>(bounds[2 + ((c >> 1) & 1)]),
+        static_cast<float>(bounds[4 + ((c >> 2) & 1)]) };
+      this->Emit(p, none, -Unbounded, Unbounded, 2.0f);
+    }
+  }
+}
+
 std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawList& list,
   const std::vector<double>& bounds, const std::vector<char>& drawn, const double eye[3],
   const double viewUp[3], const SurfaceData& surface)
@@ -116,6 +201,7 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
   double right[3], up[3];
   vtkHybridOctreeSliceGeometry::ViewBasis(list.Forward, viewUp, right, up);
   this->VertexData.clear();
+  this->Boxes.clear();
   this->BrickFirst.assign(1, 0);
   this->Uploaded = false;
   const bool withSurface = surface.Vertices && surface.Triangles &&
@@ -188,6 +274,17 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
         [](const Placed& a, const Placed& b) { return a.Slab < b.Slab; });
       placedTotal += placed.size();
     }
+    this->Boxes.insert(this->Boxes.end(), &bounds[6 * i], &bounds[6 * i] + 6);
+    if (placed.empty())
+    {
+      // No triangles between its slices: the brick is ray-marched, drawn as its box.
+      if (drawn[i] && n > 0)
+      {
+        this->EmitBox(&bounds[6 * i]);
+      }
+      this->BrickFirst.push_back(this->VertexData.size() / Stride);
+      continue;
+    }
     std::size_t next = 0;
     for (std::size_t s = 0; s <= n; ++s)
     {
@@ -218,8 +315,9 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
 }
 
 bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
-  vtkTextureObject* table, int entries, double lo, double hi, const double eye[3],
-  const double forward[3], bool parallel, const double surfaceRGBA[4], std::string& error)
+  vtkTextureObject* table, vtkTextureObject* depth, int entries, double lo, double hi,
+  const double eye[3], const double forward[3], bool parallel, const double surfaceRGBA[4],
+  std::string& error)
 {
   this->Program = window->GetShaderCache()->ReadyShaderProgram(VertexShader, FragmentShader, "");
   if (!this->Program)
@@ -268,6 +366,14 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
     static_cast<float>(0.5 / entries - lo * scale) };
   this->Program->SetUniform2f("tableScaleShift", scaleShift);
   this->Program->SetUniformi("transferTable", table->GetTextureUnit());
+  this->Program->SetUniformi("opaqueDepth", depth->GetTextureUnit());
+  // Clip to model coordinates: the inverse of MCDC (VTK's matrices are transposed).
+  vtkNew<vtkMatrix4x4> dcmc;
+  vtkMatrix4x4::Invert(mcdc, dcmc);
+  this->Program->SetUniformMatrix("DCMC", dcmc);
+  const float size[2] = { static_cast<float>(depth->GetWidth()),
+    static_cast<float>(depth->GetHeight()) };
+  this->Program->SetUniform2f("viewportSize", size);
   const float e[3] = { static_cast<float>(eye[0]), static_cast<float>(eye[1]),
     static_cast<float>(eye[2]) };
   const float f[3] = { static_cast<float>(forward[0]), static_cast<float>(forward[1]),
@@ -309,6 +415,14 @@ void vtkHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList
   this->Program->SetUniform3f("inverseStep", inverseStep);
   this->Program->SetUniform3f("texels", n);
   this->Program->SetUniformf("opacityRatio", static_cast<float>(list.OpacityRatio[i]));
+  const double* box = &this->Boxes[6 * i];
+  const float boxLo[3] = { static_cast<float>(box[0]), static_cast<float>(box[2]),
+    static_cast<float>(box[4]) };
+  const float boxHi[3] = { static_cast<float>(box[1]), static_cast<float>(box[3]),
+    static_cast<float>(box[5]) };
+  this->Program->SetUniform3f("boxLo", boxLo);
+  this->Program->SetUniform3f("boxHi", boxHi);
+  this->Program->SetUniformf("sliceSpacing", static_cast<float>(list.SliceSpacing[i]));
   glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
 }
 

@@ -75,14 +75,16 @@ public:
 
   /**
    * Makes the program current: `mcdc` the model-to-clip matrix, `table` the
-   * transfer-function table (RGBA over [lo, hi] in `entries` cells), `eye`,
+   * transfer-function table (RGBA over [lo, hi] in `entries` cells), `depth`
+   * the opaque geometry's depth (viewport-sized; fragments and ray samples
+   * behind it are dropped), `eye`,
    * `forward`, `parallel` the camera in model coordinates, `surfaceRGBA` the
    * surface's colour and opacity. Uploads the vertices of the last Build()
    * on the first call after it. False and `error` on failure.
    */
   bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, vtkTextureObject* table,
-    int entries, double lo, double hi, const double eye[3], const double forward[3],
-    bool parallel, const double surfaceRGBA[4], std::string& error);
+    vtkTextureObject* depth, int entries, double lo, double hi, const double eye[3],
+    const double forward[3], bool parallel, const double surfaceRGBA[4], std::string& error);
 
   /// Draws brick i of the built list, sampling `texture`.
   void DrawBrick(const vtkHybridOctreeBridge::DrawList& list, std::size_t i,
@@ -98,12 +100,17 @@ private:
   vtkHybridOctreeBrickDrawer(const vtkHybridOctreeBrickDrawer&) = delete;
   vtkHybridOctreeBrickDrawer& operator=(const vtkHybridOctreeBrickDrawer&) = delete;
 
+  /// Appends the 12 triangles of a box (flag 2: a ray-marched brick).
+  void EmitBox(const double bounds[6]);
+
   /// Appends one vertex: position, normal, clip interval, surface flag.
   void Emit(const float position[3], const float normal[3], float near, float far, float surface);
 
   std::vector<float> VertexData;
   /// Brick i's vertices: BrickFirst[i] .. BrickFirst[i + 1].
   std::vector<std::size_t> BrickFirst;
+  /// Brick i's drawn box (its visible blocks): Boxes[6i .. 6i+6].
+  std::vector<double> Boxes;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

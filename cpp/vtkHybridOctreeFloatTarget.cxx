@@ -99,7 +99,6 @@ bool vtkHybridOctreeFloatTarget::Begin(
   state->PushFramebufferBindings();
   this->Framebuffer->Bind();
   this->Framebuffer->AddColorAttachment(0, this->Color);
-  this->Framebuffer->AddDepthAttachment(this->Depth);
   this->Framebuffer->ActivateDrawBuffer(0);
   if (this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER) == 0)
   {

@@ -11,9 +11,9 @@
  * once, premultiplied, over the window (`(ONE, ONE_MINUS_SRC_ALPHA)`).
  *
  * Opaque geometry already drawn (VTK's opaque actors, the mapper's opaque
- * surface) still hides the volume: its depth is blitted into the target's
- * depth attachment first (a blit also resolves a multisampled window), and
- * the bricks are drawn depth-tested against it, without writing it.
+ * surface) still hides the volume: its depth is blitted into a depth texture
+ * first (a blit also resolves a multisampled window); the brick shader
+ * drops fragments and ray samples behind it.
  */
 #ifndef vtkHybridOctreeFloatTarget_h
 #define vtkHybridOctreeFloatTarget_h
@@ -45,6 +45,9 @@ public:
 
   /// Restores the window's framebuffer and viewport and blends the target over it.
   void End(vtkOpenGLRenderWindow* window);
+
+  /// The opaque depth copied by Begin(), viewport-sized (valid until End()).
+  vtkTextureObject* GetDepth() { return this->Depth; }
 
   void ReleaseGraphicsResources(vtkWindow* window);
 

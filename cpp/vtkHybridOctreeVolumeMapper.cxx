@@ -606,11 +606,12 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   }
   state->vtkglEnable(GL_BLEND);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  state->vtkglEnable(GL_DEPTH_TEST); // against the opaque depth the float target copied
+  state->vtkglDisable(GL_DEPTH_TEST); // the shader tests against the copied opaque depth
   state->vtkglDepthMask(GL_FALSE);
   in.TableTexture->Activate();
-  const bool ok = in.Drawer.Bind(window, mcdc, in.TableTexture, this->TableSize, in.RangeLo,
-    in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
+  in.Target.GetDepth()->Activate();
+  const bool ok = in.Drawer.Bind(window, mcdc, in.TableTexture, in.Target.GetDepth(),
+    this->TableSize, in.RangeLo, in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
   if (ok)
   {
     for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
@@ -629,6 +630,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
     }
     in.Drawer.Unbind();
   }
+  in.Target.GetDepth()->Deactivate();
   in.TableTexture->Deactivate();
   in.Target.End(window);
   if (!ok)
