@@ -8,7 +8,8 @@
  *                count does not grow from lap to lap, and releasing the
  *                graphics resources frees them all.
  *   interactive: a window asking for 30 frames a second gets the interactive
- *                budget; a still frame after it refines to the full budget.
+ *                budget; a still frame after it refines to the full budget;
+ *                PrintSelf shows every setting and statistic.
  *   no_input, not_image, budget_zero, multi_component, empty_image, nan:
  *                a clear vtkErrorMacro, nothing drawn, no crash, no OpenGL
  *                error left behind.
@@ -22,6 +23,7 @@
 
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <string>
 
 VTK_MODULE_INIT(vtkRenderingOpenGL2);
@@ -101,6 +103,16 @@ int Interactive()
   check.Check(!mapper->GetLastInteractive(), "the still frame is not interactive");
   check.Check(mapper->GetLastEstimatedError() < interactiveError, "the still frame refines");
   check.Check(mapper->GetLastTextureBytes() > interactiveBytes, "with more texture bytes");
+  // PrintSelf shows every setting and statistic.
+  std::ostringstream printed;
+  mapper->Print(printed);
+  for (const char* name : { "BudgetMB: 1", "InteractiveBudgetMB: 0.1", "ErrorTolerance", "UseRoi",
+         "RoiCenter", "RoiRadius", "ShowSurface", "Isovalue", "SurfaceColor", "SurfaceOpacity",
+         "LastBricks", "LastTextureBytes", "LastUploadedBytes", "LastPlan: volume",
+         "LastFrameMilliseconds", "LastEstimatedError", "LastInteractive: 0", "LastRenderOK: 1" })
+  {
+    check.Check(printed.str().find(name) != std::string::npos, std::string("PrintSelf shows ") + name);
+  }
   return check.Result();
 }
 
