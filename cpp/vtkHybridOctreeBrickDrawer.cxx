@@ -67,6 +67,7 @@ uniform vec3 boxHi;
 uniform float sliceSpacing;
 uniform mat4 DCMC;
 uniform vec2 viewportSize;
+uniform float nearDepth;
 //VTK::Output::Dec
 
 // Opacity a' of the sample at model position p, and its colour.
@@ -112,8 +113,8 @@ void main()
       discard; // the entry face
     }
     float cosA = dot(dir, forward);
-    float zIn = max(tIn * cosA, viewDepth(0.0));
-    float zOut = min(tOut * cosA, viewDepth(opaque));
+    float zIn = max(tIn * cosA, nearDepth);
+    float zOut = min(tOut * cosA, opaque < 1.0 ? viewDepth(opaque) : 1.0e30);
     int k0 = int(ceil(zIn / sliceSpacing));
     int k1 = min(int(ceil(zOut / sliceSpacing)) - 1, k0 + 4096);
     vec3 C = vec3(0.0);
@@ -177,7 +178,10 @@ void vtkHybridOctreeBrickDrawer::Emit(
 
 void vtkHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
 {
-  // Corner c at x[c & 1], y[(c >> 1) & 1], z[(c >> 2) & 1]; two triangles a face.
+  // Corner c at x[c & 1], y[(c >> 1) & 1], z[(c >> 2) & 1]; two triangles a
+  // face, wound counter-clockwise seen from inside the box: the faces a ray
+  // leaves by are the front faces, so culling back faces leaves one fragment
+  // per pixel.
   static const int faces[6][4] = { { 0, 2, 6, 4 }, { 1, 5, 7, 3 }, { 0, 4, 5, 1 }, { 2, 3, 7, 6 },
     { 0, 1, 3, 2 }, { 4, 6, 7, 5 } };
   const float none[3] = { 0.0f, 0.0f, 0.0f };
@@ -202,6 +206,7 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
   vtkHybridOctreeSliceGeometry::ViewBasis(list.Forward, viewUp, right, up);
   this->VertexData.clear();
   this->Boxes.clear();
+  this->RayMarched.clear();
   this->BrickFirst.assign(1, 0);
   this->Uploaded = false;
   const bool withSurface = surface.Vertices && surface.Triangles &&
@@ -283,6 +288,7 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
         this->EmitBox(&bounds[6 * i]);
       }
       this->BrickFirst.push_back(this->VertexData.size() / Stride);
+      this->RayMarched.push_back(1);
       continue;
     }
     std::size_t next = 0;
@@ -310,6 +316,7 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
       }
     }
     this->BrickFirst.push_back(this->VertexData.size() / Stride);
+    this->RayMarched.push_back(0);
   }
   return placedTotal;
 }
@@ -374,6 +381,18 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
   const float size[2] = { static_cast<float>(depth->GetWidth()),
     static_cast<float>(depth->GetHeight()) };
   this->Program->SetUniform2f("viewportSize", size);
+  // The near plane's view depth: the centre of the near clip face, unprojected.
+  double ndc[4] = { 0.0, 0.0, -1.0, 1.0 };
+  // VTK keeps its key matrices transposed for OpenGL: p_r = sum_j dcmc[j][r] ndc_j.
+  double near[4];
+  for (int r = 0; r < 4; ++r)
+  {
+    near[r] = dcmc->GetElement(0, r) * ndc[0] + dcmc->GetElement(1, r) * ndc[1] +
+      dcmc->GetElement(2, r) * ndc[2] + dcmc->GetElement(3, r) * ndc[3];
+  }
+  const float nearDepth = static_cast<float>((near[0] / near[3] - eye[0]) * forward[0] +
+    (near[1] / near[3] - eye[1]) * forward[1] + (near[2] / near[3] - eye[2]) * forward[2]);
+  this->Program->SetUniformf("nearDepth", nearDepth);
   const float e[3] = { static_cast<float>(eye[0]), static_cast<float>(eye[1]),
     static_cast<float>(eye[2]) };
   const float f[3] = { static_cast<float>(forward[0]), static_cast<float>(forward[1]),

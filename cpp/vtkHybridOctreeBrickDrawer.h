@@ -90,6 +90,12 @@ public:
   void DrawBrick(const vtkHybridOctreeBridge::DrawList& list, std::size_t i,
     const double spacing[3], vtkTextureObject* texture);
 
+  /// Whether brick i is drawn as its ray-marched box (else as slices).
+  bool IsRayMarched(std::size_t i) const
+  {
+    return i < this->RayMarched.size() && this->RayMarched[i];
+  }
+
   /// Unbinds the vertex arrays.
   void Unbind();
 
@@ -109,6 +115,8 @@ private:
   std::vector<float> VertexData;
   /// Brick i's vertices: BrickFirst[i] .. BrickFirst[i + 1].
   std::vector<std::size_t> BrickFirst;
+  /// Per brick: drawn as its ray-marched box.
+  std::vector<char> RayMarched;
   /// Brick i's drawn box (its visible blocks): Boxes[6i .. 6i+6].
   std::vector<double> Boxes;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;

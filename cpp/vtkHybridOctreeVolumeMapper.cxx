@@ -618,12 +618,27 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
     {
       state->vtkglEnable(plane);
     }
+    // Ray-marched boxes keep only the faces rays leave by (see
+    // vtkHybridOctreeBrickDrawer::EmitBox); a mirroring model matrix turns
+    // their winding over.
+    vtkOpenGLState::ScopedglEnableDisable frontFace(state, GL_CULL_FACE);
+    state->vtkglCullFace(GL_BACK);
+    glFrontFace(in.Model->Determinant() < 0.0 ? GL_CW : GL_CCW);
     for (std::size_t i = 0; i < bricks; ++i)
     {
+      if (in.Drawer.IsRayMarched(i))
+      {
+        state->vtkglEnable(GL_CULL_FACE);
+      }
+      else
+      {
+        state->vtkglDisable(GL_CULL_FACE);
+      }
       textures[i]->Activate();
       in.Drawer.DrawBrick(list, i, in.Grid.Spacing, textures[i]);
       textures[i]->Deactivate();
     }
+    glFrontFace(GL_CCW);
     for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
     {
       state->vtkglDisable(plane);

@@ -10,6 +10,8 @@
  *   tiny_opacity: cpu_match with opacities of 0.001 to 0.004 a sample,
  *                summed over ~65 slices (each slice's c a' is below an 8-bit
  *                step): RMSE < 0.004.
+ *   inside:      cpu_match with the camera inside the volume (rays start at
+ *                the near plane): the same threshold.
  *   multisample: cpu_match in a 4-sample window (the mapper blits the
  *                window's depth, which resolves it): the same threshold.
  *   opaque_surface, translucent_surface: the isosurface drawn with the
@@ -96,6 +98,17 @@ int CpuMatch(const std::string& scenario)
     tiny->AddPoint(scene.Range[1], 0.004);
     scene.Property->SetScalarOpacity(tiny);
     threshold = 0.004;
+  }
+  if (scenario == "inside")
+  {
+    // The camera inside the volume, near a corner where the opacity is 0:
+    // rays start at the near plane (0.01 from the eye; the CPU compositor's
+    // rays start at the eye itself, whose sample is transparent there),
+    // bricks behind the eye draw nothing.
+    vtkCamera* camera = scene.Renderer->GetActiveCamera();
+    camera->SetPosition(27.0, -25.0, 26.0);
+    camera->SetFocalPoint(0.0, 0.0, 0.0);
+    camera->SetClippingRange(0.01, 200.0);
   }
   if (scenario == "multisample")
   {
@@ -243,6 +256,7 @@ int TestHybridOctreeVolumeMapper(int argc, char* argv[])
 {
   const std::string scenario = argc > 1 ? argv[1] : "cpu_match";
   if (scenario == "cpu_match" || scenario == "multisample" || scenario == "tiny_opacity" ||
+    scenario == "inside" ||
     scenario == "opaque_surface" ||
     scenario == "translucent_surface")
   {
