@@ -2,6 +2,7 @@
 # find_package(HybridOctree) from an installed tree and use the filter.
 #   -DBUILD_DIR=<this build> -DSOURCE_DIR=<tests/consumer> -DWORK_DIR=<scratch>
 #   -DVTK_DIR=<VTK package dir> [-DBUILD_TYPE=Release]
+#   [-DPVPYTHON=<pvpython> -DPYTHON_DESTINATION=<lib/python3.x/site-packages>]
 foreach (var IN ITEMS BUILD_DIR SOURCE_DIR WORK_DIR VTK_DIR)
   if (NOT DEFINED ${var})
     message(FATAL_ERROR "${var} is required")
@@ -42,3 +43,13 @@ find_program(volume hybrid_octree_volume
   PATHS "${WORK_DIR}/build" "${WORK_DIR}/build/${BUILD_TYPE}" NO_DEFAULT_PATH)
 run_step("run the volume application" "${volume}")
 message(STATUS "${step_output}")
+
+# The installed Python package, from the prefix (not the build tree).
+if (PVPYTHON AND PYTHON_DESTINATION)
+  set(site "${prefix}/${PYTHON_DESTINATION}")
+  run_step("import the installed Python package"
+    "${CMAKE_COMMAND}" -E env "PYTHONPATH=${site}"
+    "${PVPYTHON}" -c
+    "import hybrid_octree as h; assert h.__file__.startswith('${site}'), h.__file__; m = h.vtkHybridOctreeVolumeMapper(); m.SetBudgetMB(3); assert m.GetBudgetMB() == 3; h.vtkHybridOctreeFilter(); print('python OK:', h.__file__)")
+  message(STATUS "${step_output}")
+endif ()
