@@ -24,7 +24,8 @@ Scenes (per dataset, generated at --size^3 f32 by `hybrid-octree generate`):
 The camera of frame k is Camera::around(lo, hi, 30 + 10 k, 20) of
 src/camera.rs (perspective, 30 degrees), so that the CLI can render the same
 view. Every frame is a still frame (desired update rate 0.0001). Timed: the
-wall time of renderWindow.Render() of each frame after one untimed warm-up
+wall time of renderWindow.Render() + WaitForCompletion() (glFinish) of each
+frame after one untimed warm-up
 frame (texture uploads, shader compiles); reported: median, min and max over
 the orbit.
 
@@ -166,6 +167,7 @@ class Scene:
         self.look(azimuth)
         t = time.perf_counter()
         self.window.Render()
+        self.window.WaitForCompletion()  # glFinish: the drawing, not only its submission
         return (time.perf_counter() - t) * 1e3
 
     def rgb(self):
