@@ -54,7 +54,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from render_vs_fixed_point import BACKGROUND, camera_around, png_rgb, volume_property  # noqa: E402
+from render_vs_fixed_point import BACKGROUND, look_around, png_rgb, volume_property  # noqa: E402
 from side_by_side import generated_image, use_all_cores  # noqa: E402
 
 from hybrid_octree import vtkHybridOctreeVolumeMapper  # noqa: E402
@@ -152,14 +152,7 @@ class Scene:
         self.bounds = image.GetBounds()
 
     def look(self, azimuth):
-        b = self.bounds
-        position, focal, up, (_, angle) = camera_around(b[0::2], b[1::2], azimuth, 20.0, False)
-        camera = self.renderer.GetActiveCamera()
-        camera.SetPosition(*position)
-        camera.SetFocalPoint(*focal)
-        camera.SetViewUp(*up)
-        camera.ParallelProjectionOff()
-        camera.SetViewAngle(angle)
+        look_around(self.renderer, self.bounds, azimuth)
         self.renderer.ResetCameraClippingRange()
 
     def render(self, azimuth):

@@ -110,6 +110,24 @@ def camera_around(lo, hi, azimuth_deg, elevation_deg, parallel):
     return position, centre, up, projection
 
 
+def look_around(renderer, bounds, azimuth_deg, elevation_deg=20.0, parallel=False):
+    """Points `renderer`'s camera as Camera::around(lo, hi, azimuth,
+    elevation, parallel) of src/camera.rs, lo and hi the first and last
+    sample's world positions (GridShape::world), i.e. the image `bounds`."""
+    position, focal, up, (kind, value) = camera_around(bounds[0::2], bounds[1::2], azimuth_deg, elevation_deg,
+                                                       parallel)
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition(*position)
+    camera.SetFocalPoint(*focal)
+    camera.SetViewUp(*up)
+    if kind == "parallel":
+        camera.ParallelProjectionOn()
+        camera.SetParallelScale(value)
+    else:
+        camera.ParallelProjectionOff()
+        camera.SetViewAngle(value)
+
+
 def volume_property(image):
     """The ramp transfer function of `image`'s range as a vtkVolumeProperty:
     opacities per d0 = min spacing (ScalarOpacityUnitDistance), linear
@@ -151,20 +169,7 @@ def vtk_scene(image, width, height):
     renderer = vtkRenderer()
     renderer.AddVolume(volume)
     renderer.SetBackground(*BACKGROUND)
-    # Camera::around(lo, hi, 30, 20, false), lo and hi the first and last
-    # sample's world positions (GridShape::world), i.e. the image bounds.
-    b = image.GetBounds()
-    position, focal, up, (kind, value) = camera_around(b[0::2], b[1::2], 30.0, 20.0, False)
-    camera = renderer.GetActiveCamera()
-    camera.SetPosition(*position)
-    camera.SetFocalPoint(*focal)
-    camera.SetViewUp(*up)
-    if kind == "parallel":
-        camera.ParallelProjectionOn()
-        camera.SetParallelScale(value)
-    else:
-        camera.ParallelProjectionOff()
-        camera.SetViewAngle(value)
+    look_around(renderer, image.GetBounds(), 30.0)
     renderer.ResetCameraClippingRange()  # the whole volume between the planes
 
     window = vtkRenderWindow()

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
-from render_vs_fixed_point import BACKGROUND, camera_around, png_rgb, volume_property  # noqa: E402
+from render_vs_fixed_point import BACKGROUND, look_around, png_rgb, volume_property  # noqa: E402
 
 from hybrid_octree import vtkHybridOctreeVolumeMapper  # noqa: E402
 from vtkmodules.vtkIOImage import vtkPNGWriter  # noqa: E402
@@ -44,13 +44,7 @@ volume.SetProperty(volume_property(image))
 renderer = vtkRenderer()
 renderer.SetBackground(*BACKGROUND)
 renderer.AddVolume(volume)
-b = image.GetBounds()
-position, focal, up, (_, angle) = camera_around(b[0::2], b[1::2], 30.0, 20.0, False)
-camera = renderer.GetActiveCamera()
-camera.SetPosition(*position)
-camera.SetFocalPoint(*focal)
-camera.SetViewUp(*up)
-camera.SetViewAngle(angle)
+look_around(renderer, image.GetBounds(), 30.0)
 renderer.ResetCameraClippingRange()
 window = vtkRenderWindow()
 window.SetOffScreenRendering(1)
