@@ -17,18 +17,12 @@ const char* VertexShader = R"(//VTK::System::Dec
 in vec3 vertexMC;
 in vec3 normalMC;
 uniform mat4 MCDC;
-uniform vec3 eye;
-uniform vec3 forward;
-uniform vec2 clipDepths;
 out vec3 positionMC;
 out vec3 normal;
 void main()
 {
   positionMC = vertexMC;
   normal = normalMC;
-  float z = dot(vertexMC - eye, forward);
-  gl_ClipDistance[0] = z - clipDepths.x;
-  gl_ClipDistance[1] = clipDepths.y - z;
   gl_Position = MCDC * vec4(vertexMC, 1.0);
 }
 )";
@@ -51,11 +45,6 @@ void main()
 }
 )";
 
-/// A clip bound the shader can hold: infinite bounds become +-1e30.
-float ClipBound(double v)
-{
-  return static_cast<float>(std::max(-1.0e30, std::min(1.0e30, v)));
-}
 }
 
 vtkHybridOctreeSurfaceDrawer::vtkHybridOctreeSurfaceDrawer() = default;
@@ -159,14 +148,12 @@ bool vtkHybridOctreeSurfaceDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix
   return true;
 }
 
-void vtkHybridOctreeSurfaceDrawer::Draw(std::size_t first, std::size_t end, double near, double far)
+void vtkHybridOctreeSurfaceDrawer::Draw(std::size_t first, std::size_t end)
 {
   if (end <= first || !this->Program)
   {
     return;
   }
-  const float clip[2] = { ClipBound(near), ClipBound(far) };
-  this->Program->SetUniform2f("clipDepths", clip);
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * (end - first)), GL_UNSIGNED_INT,
     reinterpret_cast<const void*>(3 * first * sizeof(unsigned int)));
 }

@@ -2,18 +2,14 @@
  * @file   vtkHybridOctreeSurfaceDrawer.h
  * @brief  The Hybrid Octree's isosurface drawn with OpenGL (private to the module).
  *
- * The Hybrid Octree, section 3.3: the surface polygons are drawn with the
- * volume, either all first when opaque (depth test and write, so that the
- * volume behind them is hidden), or, when translucent, in batches sorted
- * into the slabs between the brick slices, each batch clipped to its slab's
- * view depths when its triangles span more than one slab:
- *
- *     gl_ClipDistance[0] = z - near,  gl_ClipDistance[1] = far - z,
- *     z = (x - eye) . forward          (the DrawList's view depth)
+ * The Hybrid Octree, section 3.3: an opaque surface is drawn before the
+ * volume, with depth test and write, so that the volume behind it is hidden
+ * (a translucent one is drawn in the slabs by vtkHybridOctreeBrickDrawer,
+ * from this drawer's vertex and index data).
  *
  * Shading is the CPU compositor's headlight Lambert, `rgb = colour |n . d|`
  * with `n` the interpolated vertex normal and `d` the viewing ray's
- * direction, blended premultiplied: `(rgb a, a)`.
+ * direction.
  *
  * Triangle `t` of the DrawList (a polygon id of the surface mesh) is drawn as
  * indices `3t .. 3t + 3` of the element buffer.
@@ -59,9 +55,8 @@ public:
   bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, const double eye[3],
     const double forward[3], bool parallel, const double rgba[4], std::string& error);
 
-  /// Draws triangles `first .. end` clipped to view depths [near, far)
-  /// (infinite bounds: unclipped). The program must be bound.
-  void Draw(std::size_t first, std::size_t end, double near, double far);
+  /// Draws triangles `first .. end`. The program must be bound.
+  void Draw(std::size_t first, std::size_t end);
 
   /// Unbinds the vertex arrays.
   void Unbind();

@@ -590,7 +590,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
       vtkErrorMacro(<< error);
       return false;
     }
-    in.SurfaceDrawer.Draw(0, list.OpaqueTriangles, -HUGE_VAL, HUGE_VAL);
+    in.SurfaceDrawer.Draw(0, list.OpaqueTriangles);
     in.SurfaceDrawer.Unbind();
     this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(list.OpaqueTriangles);
   }
