@@ -164,10 +164,25 @@ vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
                                     << ", not a vtkImageData: the mapper draws images only");
     return nullptr;
   }
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  // The array VTK's scalar selection names (SelectScalarArray, ScalarMode;
+  // by default the point scalars), as vtkSmartVolumeMapper picks it.
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
+    image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (scalars && cellFlag != 0)
+  {
+    vtkErrorMacro("the selected array " << (scalars->GetName() ? scalars->GetName() : "")
+                                        << " is cell data: the mapper draws point data "
+                                           "(convert with vtkCellDataToPointData)");
+    return nullptr;
+  }
   if (!scalars || image->GetNumberOfPoints() == 0)
   {
-    vtkErrorMacro("the input image is empty or has no point scalars: give it point scalars");
+    vtkErrorMacro("the input image is empty or has no point scalars"
+      << (this->ScalarMode == VTK_SCALAR_MODE_DEFAULT ? std::string()
+                                                     : std::string(" named ") +
+             (this->ArrayName ? this->ArrayName : "(none)"))
+      << ": give it point scalars or select an existing point array");
     return nullptr;
   }
   const int components = scalars->GetNumberOfComponents();
@@ -385,6 +400,19 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   {
     vtkErrorMacro("the volume has no vtkVolumeProperty: give it one with a scalar opacity");
     return false;
+  }
+  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND && !this->WarnedBlendMode)
+  {
+    // Warned once: the picture is still the composite one, not silently called MIP.
+    vtkWarningMacro("only composite blending is implemented; blend mode "
+      << this->BlendMode << " is drawn as composite");
+    this->WarnedBlendMode = true;
+  }
+  if (property->GetShade(0) && !this->WarnedShade)
+  {
+    vtkWarningMacro("volume shading (vtkVolumeProperty::ShadeOn) is not implemented; the "
+                    "volume is drawn unshaded");
+    this->WarnedShade = true;
   }
   if (!(this->FrameBudgetMB(ren) > 0.0))
   {

@@ -209,6 +209,9 @@ protected:
   double LastEstimatedError = 0.0;
   bool LastInteractive = false;
   bool LastRenderOK = false;
+  /// Unsupported settings are warned about once each.
+  bool WarnedBlendMode = false;
+  bool WarnedShade = false;
 
 private:
   vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;

@@ -1,0 +1,141 @@
+#include "vtkPVHybridOctreeRepresentation.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkHybridOctreeVolumeMapper.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVLODVolume.h"
+#include "vtkScalarsToColors.h"
+#include "vtkVolumeProperty.h"
+
+vtkStandardNewMacro(vtkPVHybridOctreeRepresentation);
+
+vtkPVHybridOctreeRepresentation::vtkPVHybridOctreeRepresentation()
+{
+  // The base class made its vtkMultiBlockVolumeMapper; the actor gets the
+  // mapper in UpdateMapperParameters().
+  this->VolumeMapper = vtkSmartPointer<vtkHybridOctreeVolumeMapper>::New();
+}
+
+vtkPVHybridOctreeRepresentation::~vtkPVHybridOctreeRepresentation() = default;
+
+vtkHybridOctreeVolumeMapper* vtkPVHybridOctreeRepresentation::Mapper() const
+{
+  return static_cast<vtkHybridOctreeVolumeMapper*>(this->VolumeMapper.GetPointer());
+}
+
+vtkHybridOctreeVolumeMapper* vtkPVHybridOctreeRepresentation::GetHybridOctreeMapper()
+{
+  return this->Mapper();
+}
+
+int vtkPVHybridOctreeRepresentation::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+void vtkPVHybridOctreeRepresentation::UpdateMapperParameters()
+{
+  this->Superclass::UpdateMapperParameters();
+  // A multi-component array: the component the colour map shows
+  // (vtkScalarsToColors::COMPONENT); magnitude is not drawn (the mapper
+  // then says to choose a component).
+  vtkColorTransferFunction* ctf = this->Property->GetRGBTransferFunction(0);
+  const bool component = ctf && ctf->GetVectorMode() == vtkScalarsToColors::COMPONENT;
+  this->Mapper()->SetComponent(component ? ctf->GetVectorComponent() : -1);
+}
+
+// ---- Forwarded settings -------------------------------------------------------
+
+void vtkPVHybridOctreeRepresentation::SetBudgetMB(double mb)
+{
+  this->Mapper()->SetBudgetMB(mb);
+}
+
+void vtkPVHybridOctreeRepresentation::SetInteractiveBudgetMB(double mb)
+{
+  this->Mapper()->SetInteractiveBudgetMB(mb);
+}
+
+void vtkPVHybridOctreeRepresentation::SetErrorTolerance(double tolerance)
+{
+  this->Mapper()->SetErrorTolerance(tolerance);
+}
+
+void vtkPVHybridOctreeRepresentation::SetUseRoi(bool use)
+{
+  this->Mapper()->SetUseRoi(use);
+}
+
+void vtkPVHybridOctreeRepresentation::SetRoiCenter(double x, double y, double z)
+{
+  this->Mapper()->SetRoiCenter(x, y, z);
+}
+
+void vtkPVHybridOctreeRepresentation::SetRoiRadius(double radius)
+{
+  this->Mapper()->SetRoiRadius(radius);
+}
+
+void vtkPVHybridOctreeRepresentation::SetShowSurface(bool show)
+{
+  this->Mapper()->SetShowSurface(show);
+}
+
+void vtkPVHybridOctreeRepresentation::SetIsovalue(double value)
+{
+  this->Mapper()->SetIsovalue(value);
+}
+
+void vtkPVHybridOctreeRepresentation::SetSurfaceColor(double r, double g, double b)
+{
+  this->Mapper()->SetSurfaceColor(r, g, b);
+}
+
+void vtkPVHybridOctreeRepresentation::SetSurfaceOpacity(double opacity)
+{
+  this->Mapper()->SetSurfaceOpacity(opacity);
+}
+
+void vtkPVHybridOctreeRepresentation::SetLeafSize(int cells)
+{
+  this->Mapper()->SetLeafSize(cells);
+}
+
+// ---- Statistics -----------------------------------------------------------------
+
+int vtkPVHybridOctreeRepresentation::GetLastBricks()
+{
+  return this->Mapper()->GetLastBricks();
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastTextureMB()
+{
+  return static_cast<double>(this->Mapper()->GetLastTextureBytes()) / 1.0e6;
+}
+
+const char* vtkPVHybridOctreeRepresentation::GetLastPlan()
+{
+  this->LastPlan = this->Mapper()->GetLastPlan();
+  return this->LastPlan.c_str();
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastFrameMilliseconds()
+{
+  return this->Mapper()->GetLastFrameMilliseconds();
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastEstimatedError()
+{
+  return this->Mapper()->GetLastEstimatedError();
+}
+
+void vtkPVHybridOctreeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "HybridOctreeMapper:\n";
+  this->Mapper()->PrintSelf(os, indent.GetNextIndent());
+}

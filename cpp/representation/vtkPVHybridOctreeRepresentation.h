@@ -1,0 +1,83 @@
+/**
+ * @class   vtkPVHybridOctreeRepresentation
+ * @brief   ParaView's "Hybrid Octree Volume" representation of image data.
+ *
+ * ParaView's own volume representation of image data
+ * (vtkImageVolumeRepresentation: colour and opacity transfer functions of
+ * the coloured array, visibility, LOD outline, data delivery, ordered
+ * compositing of the ranks' pieces) with vtkHybridOctreeVolumeMapper as its
+ * mapper: each rank builds the Hybrid Octree of its own piece, selects its
+ * bricks under the texture budget and draws them; ParaView composites the
+ * ranks' images in visibility order from the pieces' bounds
+ * (vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, as the base class asks).
+ *
+ * The Hybrid Octree settings are forwarded to the mapper; the statistics of
+ * the last frame are read back from it (the server manager's
+ * information-only properties).
+ */
+#ifndef vtkPVHybridOctreeRepresentation_h
+#define vtkPVHybridOctreeRepresentation_h
+
+#include "HybridOctreeRepresentationsModule.h"
+#include "vtkImageVolumeRepresentation.h"
+
+#include <string>
+
+class vtkHybridOctreeVolumeMapper;
+
+class HYBRIDOCTREEREPRESENTATIONS_EXPORT vtkPVHybridOctreeRepresentation
+  : public vtkImageVolumeRepresentation
+{
+public:
+  static vtkPVHybridOctreeRepresentation* New();
+  vtkTypeMacro(vtkPVHybridOctreeRepresentation, vtkImageVolumeRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Forwarded to vtkHybridOctreeVolumeMapper (see its documentation).
+  void SetBudgetMB(double mb);
+  void SetInteractiveBudgetMB(double mb);
+  void SetErrorTolerance(double tolerance);
+  void SetUseRoi(bool use);
+  void SetRoiCenter(double x, double y, double z);
+  void SetRoiRadius(double radius);
+  void SetShowSurface(bool show);
+  void SetIsovalue(double value);
+  void SetSurfaceColor(double r, double g, double b);
+  void SetSurfaceOpacity(double opacity);
+  void SetLeafSize(int cells);
+  ///@}
+
+  ///@{
+  /// Statistics of the last frame this process drew (0 or empty before one).
+  int GetLastBricks();
+  double GetLastTextureMB();
+  const char* GetLastPlan();
+  double GetLastFrameMilliseconds();
+  double GetLastEstimatedError();
+  ///@}
+
+  /// The mapper (for tests and Python).
+  vtkHybridOctreeVolumeMapper* GetHybridOctreeMapper();
+
+protected:
+  vtkPVHybridOctreeRepresentation();
+  ~vtkPVHybridOctreeRepresentation() override;
+
+  /// Image data only (the mapper draws vtkImageData).
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// The base class's parameters (array, scalar mode, independent
+  /// components), then the component of a multi-component array from the
+  /// colour map's vector mode.
+  void UpdateMapperParameters() override;
+
+private:
+  vtkPVHybridOctreeRepresentation(const vtkPVHybridOctreeRepresentation&) = delete;
+  void operator=(const vtkPVHybridOctreeRepresentation&) = delete;
+
+  vtkHybridOctreeVolumeMapper* Mapper() const;
+  std::string LastPlan;
+};
+
+#endif
