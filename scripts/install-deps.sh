@@ -4,9 +4,10 @@
 set -euo pipefail
 
 # libopenmpi-dev and libdouble-conversion-dev: ParaView's CMake package needs them but paraview-dev does not pull them in.
+# openmpi-bin: mpiexec, for the 2-rank pvbatch test of the representation.
 # libglew-dev: VTK::RenderingOpenGL2 (the volume mapper) includes <GL/glew.h> and links GLEW.
 # libfontconfig1-dev, libfreetype-dev, fonts-dejavu-core: the CLI's plots (plotters draws text through fontconfig).
-PACKAGES=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev liblzma-dev libglew-dev xvfb xauth cmake make g++ pkg-config python3 libfontconfig1-dev libfreetype-dev fonts-dejavu-core)
+PACKAGES=(paraview paraview-dev python3-paraview libopenmpi-dev openmpi-bin libdouble-conversion-dev liblzma-dev libglew-dev xvfb xauth cmake make g++ pkg-config python3 libfontconfig1-dev libfreetype-dev fonts-dejavu-core)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,0 +1,259 @@
+"""pvbatch test of the "Hybrid Octree Volume" representation.
+
+    pvbatch test_representation.py --plugin <HybridOctree.so> --cli <hybrid-octree> --workdir <dir>
+
+A 64^3 Shepp-Logan phantom written by the CLI is read with ParaView's own
+reader (XMLImageDataReader) and drawn, in one render view, by:
+
+- ParaView's "Volume" representation (vtkGPUVolumeRayCastMapper through
+  vtkMultiBlockVolumeMapper), the baseline image;
+- "Hybrid Octree Volume" at the default 64 MB budget: RMSE against the
+  baseline at most 0.03 (RGB in [0, 1]; the two sample the same trilinear
+  field at different positions, as in the mapper's gpu_reference test);
+- "Hybrid Octree Volume" at a 0.05 MB budget: its statistics stay within
+  the budget and its picture is further from the baseline.
+
+It also checks: the representation type is offered for image data and not
+for an unstructured grid; the last-frame statistics; the plan with an
+opaque and a translucent isosurface; hiding; a state file saved and loaded
+keeps every Hybrid Octree property and the picture; a Python trace of the
+pipeline replays to the same picture; a NaN volume and a zero budget give
+the mapper's clear error while pvbatch keeps rendering.
+"""
+import argparse
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from paraview import servermanager, smtrace  # noqa: E402
+from paraview.simple import *  # noqa: E402,F401,F403
+from pvtest import Checks, read_png_rgb, report, rmse  # noqa: E402
+from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--cli", required=True)
+parser.add_argument("--workdir", required=True)
+args = parser.parse_args()
+os.makedirs(args.workdir, exist_ok=True)
+
+t = Checks("HybridOctree representation test")
+LoadPlugin(args.plugin, remote=False, ns=globals())
+t.log_vtk_output(os.path.join(args.workdir, "vtk-output.txt"))
+
+HYBRID = "Hybrid Octree Volume"
+phantom_vti = os.path.join(args.workdir, "phantom64.vti")
+subprocess.run([args.cli, "generate", "--dataset", "shepp-logan", "--size", "64", "--output", phantom_vti],
+               check=True, capture_output=True)
+reader = XMLImageDataReader(FileName=[phantom_vti])
+reader.UpdatePipeline()
+array = reader.PointData.keys()[0]
+value_range = reader.PointData[array].GetRange()
+bounds = reader.GetDataInformation().GetBounds()
+
+
+def screenshot(view, name):
+    path = os.path.join(args.workdir, name + ".png")
+    SaveScreenshot(path, view, ImageResolution=list(SIZE))
+    return read_png_rgb(path)
+
+
+def stats(display):
+    display.SMProxy.UpdatePropertyInformation()
+    return {name: display.GetPropertyValue(name) for name in
+            ("LastBricks", "LastTextureMB", "LastPlan", "LastFrameMilliseconds", "LastEstimatedError")}
+
+
+# ---- Offered for image data only ---------------------------------------------------
+view = make_view()
+display = Show(reader, view)
+t.check(HYBRID in display.GetProperty("Representation").Available,
+        "'%s' offered for image data: %s" % (HYBRID, display.GetProperty("Representation").Available))
+grid = Tetrahedralize(Input=Wavelet(WholeExtent=[0, 4, 0, 4, 0, 4]))
+grid_display = Show(grid, view)
+t.check(HYBRID not in grid_display.GetProperty("Representation").Available,
+        "'%s' not offered for an unstructured grid" % HYBRID)
+Hide(grid, view)
+Hide(reader, view)
+empty = screenshot(view, "empty")
+
+# ---- Baseline: ParaView's own volume representation ---------------------------------
+baseline_display = show_volume(reader, view, array, "Volume", value_range)
+look_at(view, bounds)
+baseline = screenshot(view, "baseline-volume")
+t.check(rmse(baseline, empty) > 0.02, "the baseline shows the volume (RMSE to empty %.4f)" % rmse(baseline, empty))
+
+# ---- Hybrid Octree Volume at the default budget -------------------------------------
+display = show_volume(reader, view, array, HYBRID, value_range)
+t.check(display.TextureBudgetMB == 64.0, "default budget 64 MB: %s" % display.TextureBudgetMB)
+look_at(view, bounds)
+full = screenshot(view, "hybrid-64MB")
+error_full = rmse(full, baseline)
+report("Hybrid Octree Volume, 64 MB: RMSE %.4f against ParaView's Volume representation" % error_full)
+t.check(error_full <= 0.03, "64 MB: RMSE %.4f against the baseline (threshold 0.03)" % error_full)
+s = stats(display)
+report("statistics at 64 MB: %s" % s)
+t.check(s["LastBricks"] > 0, "bricks drawn: %s" % s["LastBricks"])
+t.check(0.0 < s["LastTextureMB"] <= 64.0, "texture MB within the budget: %s" % s["LastTextureMB"])
+t.check(s["LastPlan"] == "volume", "plan 'volume': %r" % s["LastPlan"])
+t.check(s["LastFrameMilliseconds"] > 0.0, "frame ms: %s" % s["LastFrameMilliseconds"])
+t.check(0.0 <= s["LastEstimatedError"] <= 1.0, "estimated error: %s" % s["LastEstimatedError"])
+
+# ---- A small budget: coarser bricks, within the budget, further from the baseline ----
+display.TextureBudgetMB = 0.05
+Render(view)
+small = screenshot(view, "hybrid-0.05MB")
+s_small = stats(display)
+report("statistics at 0.05 MB: %s, RMSE %.4f" % (s_small, rmse(small, baseline)))
+t.check(0.0 < s_small["LastTextureMB"] <= 0.05, "0.05 MB budget kept: %s MB" % s_small["LastTextureMB"])
+t.check(s_small["LastEstimatedError"] >= s["LastEstimatedError"],
+        "a smaller budget does not lower the estimated error")
+t.check(rmse(small, baseline) > error_full, "a smaller budget is further from the baseline")
+display.TextureBudgetMB = 64.0
+
+# ---- Isosurface: the planner's passes -------------------------------------------------
+display.ShowIsosurface = 1
+display.OctreeIsovalue = value_range[0] + 0.5 * (value_range[1] - value_range[0])
+display.IsosurfaceOpacity = 0.5
+Render(view)
+t.check(stats(display)["LastPlan"] == "surface-in-slabs,volume",
+        "translucent surface plan: %r" % stats(display)["LastPlan"])
+display.IsosurfaceOpacity = 1.0
+Render(view)
+surface_image = screenshot(view, "hybrid-opaque-surface")
+t.check(stats(display)["LastPlan"] == "surface-opaque,volume",
+        "opaque surface plan: %r" % stats(display)["LastPlan"])
+t.check(rmse(surface_image, full) > 0.01, "the opaque surface changes the picture")
+display.ShowIsosurface = 0
+
+# ---- Visibility -------------------------------------------------------------------------
+Hide(reader, view)
+hidden = screenshot(view, "hidden")
+t.check(rmse(hidden, empty) < 1e-6, "hidden: only the background (RMSE %.6f)" % rmse(hidden, empty))
+Show(reader, view)
+
+# ---- State file: every Hybrid Octree property, and the picture ---------------------------
+SETTINGS = {"TextureBudgetMB": 12.5, "InteractiveTextureBudgetMB": 3.25, "OctreeErrorTolerance": 0.02,
+            "UseRegionOfInterest": 1, "RegionOfInterestCenter": [20.0, 30.0, 40.0],
+            "RegionOfInterestRadius": 9.5, "ShowIsosurface": 1,
+            "OctreeIsovalue": value_range[0] + 0.4 * (value_range[1] - value_range[0]),
+            "IsosurfaceColor": [0.9, 0.6, 0.3], "IsosurfaceOpacity": 0.35, "OctreeLeafSize": 8}
+for name, value in SETTINGS.items():
+    display.SetPropertyWithName(name, value)
+Render(view)
+before_state = screenshot(view, "before-state")
+state_file = os.path.join(args.workdir, "hybrid.pvsm")
+SaveState(state_file)
+ResetSession()
+LoadState(state_file)
+loaded_view = GetActiveViewOrCreate("RenderView")
+loaded_reader = FindSource("XMLImageDataReader1") or list(GetSources().values())[0]
+loaded = GetDisplayProperties(loaded_reader, loaded_view)
+t.check(loaded.Representation == HYBRID, "state keeps the representation type: %r" % loaded.Representation)
+
+
+def numbers(proxy, name):
+    """A property's values as numbers, whatever its domain (enumeration, boolean)."""
+    helper = servermanager.vtkSMPropertyHelper(proxy.SMProxy, name)
+    return [helper.GetAsDouble(i) for i in range(helper.GetNumberOfElements())]
+
+
+for name, value in SETTINGS.items():
+    expected = value if isinstance(value, list) else [value]
+    got = numbers(loaded, name)
+    t.check(len(got) == len(expected) and all(abs(a - b) < 1e-9 for a, b in zip(got, expected)),
+            "state keeps %s: %r, saved %r" % (name, got, expected))
+loaded_view.ViewSize = list(SIZE)
+Render(loaded_view)
+after_state = screenshot(loaded_view, "after-state")
+t.check(rmse(after_state, before_state) < 0.002,
+        "the loaded state draws the same picture (RMSE %.5f)" % rmse(after_state, before_state))
+
+# ---- Python trace: record the pipeline as the GUI does, replay it ----------------------------
+# The GUI's Apply wraps its property changes in a PropertiesModified trace
+# item (pqProxyWidget); plain Python assignments are not traced.
+def edit_as_gui(proxy, **values):
+    item = smtrace.PropertiesModified(proxy)
+    for name, value in values.items():
+        proxy.SetPropertyWithName(name, value)
+    item.finalize()
+
+
+ResetSession()
+smtrace.start_trace()
+traced_reader = XMLImageDataReader(FileName=[phantom_vti])
+traced_view = CreateView("RenderView")
+edit_as_gui(traced_view, ViewSize=list(SIZE), OrientationAxesVisibility=0, UseColorPaletteForBackground=0,
+            Background=[0.1, 0.1, 0.15])
+traced = Show(traced_reader, traced_view)
+traced.SetRepresentationType(HYBRID)
+ColorBy(traced, ("POINTS", array))
+lut = GetColorTransferFunction(array)
+pwf = GetOpacityTransferFunction(array)
+lo, hi = value_range
+edit_as_gui(lut, RGBPoints=[lo, 0.2, 0.3, 0.8, hi, 0.9, 0.2, 0.1], AutomaticRescaleRangeMode="Never")
+edit_as_gui(pwf, Points=[lo, 0.0, 0.5, 0.0, hi, 0.2, 0.5, 0.0])
+edit_as_gui(traced, TextureBudgetMB=16.0, OctreeErrorTolerance=0.01, ShowIsosurface=1,
+            OctreeIsovalue=lo + 0.5 * (hi - lo), IsosurfaceOpacity=0.6)
+look_at(traced_view, bounds)
+trace = smtrace.stop_trace()
+with open(os.path.join(args.workdir, "trace.py"), "w") as f:
+    f.write(trace)
+traced_image = screenshot(traced_view, "traced")
+for text in (HYBRID, "TextureBudgetMB = 16.0", "ShowIsosurface = 1", "IsosurfaceOpacity = 0.6"):
+    t.check(text in trace, "the trace has %r" % text)
+ResetSession()
+exec(compile(trace, "trace.py", "exec"), {})
+replay_view = GetActiveView()
+Render(replay_view)
+replayed = screenshot(replay_view, "replayed")
+replayed_display = GetDisplayProperties(GetActiveSource(), replay_view)
+t.check(replayed_display.TextureBudgetMB == 16.0, "replayed budget: %s" % replayed_display.TextureBudgetMB)
+t.check(rmse(replayed, traced_image) < 0.002,
+        "the replayed trace draws the same picture (RMSE %.5f)" % rmse(replayed, traced_image))
+
+# ---- Bad input through ParaView: the mapper's error, and pvbatch keeps going ------------------
+ResetSession()
+import numpy as np  # noqa: E402  (pvbatch ships numpy)
+from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter  # noqa: E402
+
+values = np.linspace(0.0, 1.0, 16 ** 3).astype(np.float32)
+values[100] = np.nan
+img = vtkImageData()
+img.SetDimensions(16, 16, 16)
+scalars = numpy_to_vtk(values, deep=1)
+scalars.SetName("f")
+img.GetPointData().SetScalars(scalars)
+nan_vti = os.path.join(args.workdir, "nan.vti")
+writer = vtkXMLImageDataWriter()
+writer.SetFileName(nan_vti)
+writer.SetInputData(img)
+writer.Write()
+bad_view = make_view()
+bad_reader = XMLImageDataReader(FileName=[nan_vti])
+logged_before = len(t.logged())
+show_volume(bad_reader, bad_view, "f", HYBRID, (0.0, 1.0))
+look_at(bad_view, bad_reader.GetDataInformation().GetBounds())
+bad_image = screenshot(bad_view, "nan")
+new_output = t.logged()[logged_before:]
+t.check("non-finite sample(s) (NaN or infinity)" in new_output,
+        "NaN volume: the mapper's error in the output: %r" % new_output[-300:])
+bad_empty = make_view()
+t.check(rmse(bad_image, screenshot(bad_empty, "nan-empty")) < 1e-6, "NaN volume: nothing drawn")
+
+good_reader = XMLImageDataReader(FileName=[phantom_vti])
+zero = show_volume(good_reader, bad_view, array, HYBRID, value_range)
+Hide(bad_reader, bad_view)
+zero.TextureBudgetMB = 0.0
+logged_before = len(t.logged())
+Render(bad_view)
+t.check("the texture budget is 0 MB" in t.logged()[logged_before:], "budget 0: the mapper's error")
+zero.TextureBudgetMB = 64.0
+Render(bad_view)
+t.check(stats(zero)["LastBricks"] > 0, "after the errors pvbatch renders the phantom again")
+
+t.finish()
