@@ -3,6 +3,7 @@
 #   -DBUILD_DIR=<this build> -DSOURCE_DIR=<tests/consumer> -DWORK_DIR=<scratch>
 #   -DVTK_DIR=<VTK package dir> [-DBUILD_TYPE=Release]
 #   [-DPVPYTHON=<pvpython> -DPYTHON_DESTINATION=<lib/python3.x/site-packages>]
+#   [-DPVBATCH=<pvbatch> -DPLUGIN_SUBDIR=<lib/paraview-5.11/plugins>]
 foreach (var IN ITEMS BUILD_DIR SOURCE_DIR WORK_DIR VTK_DIR)
   if (NOT DEFINED ${var})
     message(FATAL_ERROR "${var} is required")
@@ -51,5 +52,23 @@ if (PVPYTHON AND PYTHON_DESTINATION)
     "${CMAKE_COMMAND}" -E env "PYTHONPATH=${site}"
     "${PVPYTHON}" -c
     "import hybrid_octree as h; assert h.__file__.startswith('${site}'), h.__file__; m = h.vtkHybridOctreeVolumeMapper(); m.SetBudgetMB(3); assert m.GetBudgetMB() == 3; h.vtkHybridOctreeFilter(); print('python OK:', h.__file__)")
+  message(STATUS "${step_output}")
+endif ()
+
+# The installed ParaView plugin, auto-loaded from the prefix both ways the
+# README gives: PV_PLUGIN_PATH (the plugin's folder) and PV_PLUGIN_CONFIG_FILE
+# (the plugins XML installed beside it).
+if (PVBATCH AND PLUGIN_SUBDIR)
+  set(plugins "${prefix}/${PLUGIN_SUBDIR}")
+  if (NOT EXISTS "${plugins}/HybridOctree/HybridOctree.so" OR NOT EXISTS "${plugins}/HybridOctree.plugins.xml")
+    message(FATAL_ERROR "the install has no ${PLUGIN_SUBDIR}/HybridOctree/HybridOctree.so and HybridOctree.plugins.xml")
+  endif ()
+  run_step("pvbatch with PV_PLUGIN_PATH=${plugins}/HybridOctree"
+    "${CMAKE_COMMAND}" -E env "PV_PLUGIN_PATH=${plugins}/HybridOctree"
+    "${PVBATCH}" "${SOURCE_DIR}/plugin_check.py")
+  message(STATUS "${step_output}")
+  run_step("pvbatch with PV_PLUGIN_CONFIG_FILE=${plugins}/HybridOctree.plugins.xml"
+    "${CMAKE_COMMAND}" -E env "PV_PLUGIN_CONFIG_FILE=${plugins}/HybridOctree.plugins.xml"
+    "${PVBATCH}" "${SOURCE_DIR}/plugin_check.py")
   message(STATUS "${step_output}")
 endif ()
