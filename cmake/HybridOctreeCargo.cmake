@@ -69,11 +69,20 @@ add_custom_target(hybrid_octree_cargo ALL
   USES_TERMINAL
   COMMENT "cargo build --release --locked (hybrid-octree crate)")
 
+# The bridge header includes the crate's own C++ headers as
+# "hybrid-octree/cpp/<file>" (cxx's crate-relative include!): a copy of each
+# under <build>/cxx-crate/hybrid-octree/cpp makes that path resolve.
+set(_hybrid_octree_crate_include_dir "${CMAKE_BINARY_DIR}/cxx-crate")
+foreach (_header IN ITEMS vtkHybridOctreeBuildProgress.h)
+  configure_file("${PROJECT_SOURCE_DIR}/cpp/${_header}"
+    "${_hybrid_octree_crate_include_dir}/hybrid-octree/cpp/${_header}" COPYONLY)
+endforeach ()
+
 find_package(Threads REQUIRED)
 add_library(HybridOctree::rust STATIC IMPORTED GLOBAL)
 set_target_properties(HybridOctree::rust PROPERTIES
   IMPORTED_LOCATION "${_hybrid_octree_rust_lib}"
-  INTERFACE_INCLUDE_DIRECTORIES "${_hybrid_octree_cxxbridge_dir}"
+  INTERFACE_INCLUDE_DIRECTORIES "${_hybrid_octree_cxxbridge_dir};${_hybrid_octree_crate_include_dir}"
   INTERFACE_LINK_LIBRARIES
     "-Wl,@${HYBRID_OCTREE_RUST_LINK_FILE};Threads::Threads;${CMAKE_DL_LIBS};m")
 add_dependencies(HybridOctree::rust hybrid_octree_cargo)

@@ -185,11 +185,47 @@ VolumeOctree::~VolumeOctree() = default;
 std::unique_ptr<VolumeOctree> VolumeOctree::Build(const void* bytes, std::size_t byteCount,
   const GridDescription& grid, unsigned int leafSize, std::string& error)
 {
+  return Build(bytes, byteCount, grid, leafSize, [](double) { return true; }, error);
+}
+
+namespace
+{
+/// The Rust build's progress sink over a std::function (never throws into Rust).
+class FunctionProgress final : public hybrid_octree::BuildProgress
+{
+public:
+  explicit FunctionProgress(const std::function<bool(double)>& f)
+    : Function(f)
+  {
+  }
+  bool report(double fraction) const noexcept override
+  {
+    try
+    {
+      return this->Function(fraction);
+    }
+    catch (...)
+    {
+      return false;
+    }
+  }
+
+private:
+  const std::function<bool(double)>& Function;
+};
+}
+
+std::unique_ptr<VolumeOctree> VolumeOctree::Build(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, unsigned int leafSize, const std::function<bool(double)>& progress,
+  std::string& error)
+{
   std::unique_ptr<VolumeOctree> result;
+  const FunctionProgress sink(progress);
   Guarded(error, [&] {
     const hybrid_octree::GridDesc desc = ToRust(grid);
     rust::Box<hybrid_octree::VolumeOctreeHandle> handle =
-      hybrid_octree::build_volume_octree(ToSlice(bytes, byteCount), desc, leafSize);
+      hybrid_octree::build_volume_octree_with_progress(
+        ToSlice(bytes, byteCount), desc, leafSize, sink);
     result = std::unique_ptr<VolumeOctree>(
       new VolumeOctree(std::unique_ptr<Internals>(new Internals(std::move(handle)))));
   });

@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -245,6 +246,16 @@ public:
    */
   static std::unique_ptr<VolumeOctree> Build(const void* bytes, std::size_t byteCount,
     const GridDescription& grid, unsigned int leafSize, std::string& error);
+
+  /**
+   * Build() reporting progress: `progress(fraction)` is called on this
+   * thread between chunks of leaf bricks, fractions increasing to 1; its
+   * false cancels the build (nullptr, `error` names the cancel, nothing is
+   * kept). An exception from `progress` cancels too.
+   */
+  static std::unique_ptr<VolumeOctree> Build(const void* bytes, std::size_t byteCount,
+    const GridDescription& grid, unsigned int leafSize,
+    const std::function<bool(double)>& progress, std::string& error);
 
   /// Node counts, levels, memory and build time. False and `error` on failure.
   bool GetSummary(OctreeSummary& summary, std::string& error) const;

@@ -82,6 +82,11 @@ bool FitsInt(const std::vector<std::uint32_t>& ids)
     [](std::uint32_t id) { return id <= static_cast<std::uint32_t>(VTK_INT_MAX); });
 }
 
+/// Progress of a request: the octree build reports 0 .. BuildShare, the
+/// surface extraction starts at SurfaceShare, the end is 1.
+constexpr double BuildShare = 0.8;
+constexpr double SurfaceShare = 0.9;
+
 constexpr const char* NodeIdTooLarge =
   "the octree has more than 2^31 nodes, whose ids do not fit the int cell array 'node'; use a "
   "larger LeafSize";
@@ -188,11 +193,26 @@ bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scal
   }
 
   std::string error;
+  // Progress 0 .. BuildShare of the request; the abort flag is read after
+  // each report (ParaView sets it from its progress handler).
+  const auto progress = [this](double fraction) {
+    this->UpdateProgress(BuildShare * fraction);
+    return !this->GetAbortExecute();
+  };
   cache.Octree = vtkHybridOctreeBridge::VolumeOctree::Build(Bytes(scalars), ByteCount(scalars),
-    grid, static_cast<unsigned int>(this->LeafSize), error);
+    grid, static_cast<unsigned int>(this->LeafSize), progress, error);
   if (!cache.Octree)
   {
-    vtkErrorMacro(<< error);
+    if (this->GetAbortExecute())
+    {
+      this->BuildCancelled = true;
+      vtkWarningMacro("the Hybrid Octree build was cancelled (abort): the outputs are empty; "
+                      "modify the filter (ParaView: Apply) to build again");
+    }
+    else
+    {
+      vtkErrorMacro(<< error);
+    }
     return false;
   }
   ++this->OctreeBuildCount;
@@ -346,14 +366,21 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
     vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
     return 0;
   }
+  this->BuildCancelled = false;
   vtkDataArray* scalars = this->GetScalars(input, inputVector);
-  if (!scalars || !this->UpdateOctree(input, scalars) || !this->UpdateSurface(scalars) ||
-    !this->FillBoxes(boxes))
+  if (!scalars || !this->UpdateOctree(input, scalars))
+  {
+    // A cancel is the user's request, not a failure: the request completes, empty.
+    return this->BuildCancelled ? 1 : 0;
+  }
+  this->UpdateProgress(SurfaceShare);
+  if (!this->UpdateSurface(scalars) || !this->FillBoxes(boxes))
   {
     boxes->Initialize();
     return 0;
   }
   surface->ShallowCopy(this->Internals->Surface);
+  this->UpdateProgress(1.0);
   return 1;
 }
 

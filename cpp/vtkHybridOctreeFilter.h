@@ -61,6 +61,14 @@
  * Errors (no image, no point scalars, unsupported type, NaN samples, a 1-wide
  * axis, a non-finite Isovalue, ...) are reported with vtkErrorMacro and fail
  * the request with both outputs empty.
+ *
+ * Progress (vtkCommand::ProgressEvent, ParaView's progress bar): the octree
+ * build reports 0 .. 0.8 as its leaf bricks are done, the surface 0.9, the
+ * end 1. Abort (SetAbortExecute(1), ParaView's abort button) is honoured
+ * between chunks of leaf bricks: the build stops, nothing of it is kept, and
+ * the request ends with both outputs empty and a warning. As with VTK's
+ * other filters, the empty outputs then stand until the filter or its input
+ * is modified (ParaView: change a property and Apply).
  */
 #ifndef vtkHybridOctreeFilter_h
 #define vtkHybridOctreeFilter_h
@@ -186,6 +194,8 @@ protected:
   vtkTypeBool MeasureSurfaceDistance = 1;
   vtkIdType OctreeBuildCount = 0;
   vtkIdType SurfaceExtractCount = 0;
+  /// The last request was cancelled (abort) before the octree was built.
+  bool BuildCancelled = false;
 
 private:
   vtkHybridOctreeFilter(const vtkHybridOctreeFilter&) = delete;
@@ -193,7 +203,8 @@ private:
 
   /// The scalar array to build from, or nullptr after reporting why not.
   vtkDataArray* GetScalars(vtkImageData* image, vtkInformationVector** inputVector);
-  /// Builds the octree unless the cached one was built from the same inputs.
+  /// Builds the octree unless the cached one was built from the same inputs,
+  /// reporting progress and honouring abort (BuildCancelled on abort).
   bool UpdateOctree(vtkImageData* image, vtkDataArray* scalars);
   /// Extracts the surface unless the cached one has the same octree and settings.
   bool UpdateSurface(vtkDataArray* scalars);

@@ -227,14 +227,32 @@ mod bridge {
         opaque_triangles: usize,
     }
 
+    // ---- C++ types for Rust ------------------------------------------------
+
+    unsafe extern "C++" {
+        include!("hybrid-octree/cpp/vtkHybridOctreeBuildProgress.h");
+        /// The build's progress sink (cpp/vtkHybridOctreeBuildProgress.h).
+        type BuildProgress;
+        /// `fraction` of the build done, in (0, 1]; false asks the build to stop.
+        fn report(self: &BuildProgress, fraction: f64) -> bool;
+    }
+
     // ---- Rust types and functions for C++ --------------------------------
 
     extern "Rust" {
         /// A built Volume Octree, owned by the C++ filter.
         type VolumeOctreeHandle;
 
-        /// Builds the Volume Octree of the borrowed image.
-        fn build_volume_octree(bytes: &[u8], desc: &GridDesc, leaf_size: u32) -> Result<Box<VolumeOctreeHandle>>;
+        /// Builds the Volume Octree of the borrowed image, reporting progress
+        /// to `progress` between chunks of leaf bricks (on the calling
+        /// thread); its `false` cancels the build (the error names the
+        /// cancel; nothing is kept).
+        fn build_volume_octree_with_progress(
+            bytes: &[u8],
+            desc: &GridDesc,
+            leaf_size: u32,
+            progress: &BuildProgress,
+        ) -> Result<Box<VolumeOctreeHandle>>;
         /// Node counts, levels, memory and build time.
         fn summary(self: &VolumeOctreeHandle) -> Result<OctreeSummary>;
         /// The cut at normalised tolerance `tolerance` (the first nodes from the
@@ -398,14 +416,37 @@ pub(crate) fn grid_unscanned<'a>(bytes: &'a [u8], desc: &GridDesc) -> crate::err
     Grid::unscanned(samples, shape, desc.components, usize::try_from(desc.component).ok())
 }
 
+/// Builds without progress (the bridge tests' entry point).
+#[cfg(test)]
 pub(crate) fn build_volume_octree(
     bytes: &[u8],
     desc: &GridDesc,
     leaf_size: u32,
 ) -> Result<Box<VolumeOctreeHandle>, String> {
+    build_with(bytes, desc, leaf_size, &mut |_| true)
+}
+
+pub(crate) fn build_volume_octree_with_progress(
+    bytes: &[u8],
+    desc: &GridDesc,
+    leaf_size: u32,
+    progress: &bridge::BuildProgress,
+) -> Result<Box<VolumeOctreeHandle>, String> {
+    build_with(bytes, desc, leaf_size, &mut |fraction| progress.report(fraction))
+}
+
+/// Builds through [`VolumeOctree::build_with_progress`]: `progress(fraction)`
+/// between chunks of leaf bricks, `false` cancels.
+fn build_with(
+    bytes: &[u8],
+    desc: &GridDesc,
+    leaf_size: u32,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<Box<VolumeOctreeHandle>, String> {
     guarded(|| {
         let grid = grid_of(bytes, desc)?;
-        let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: leaf_size as usize })?;
+        let options = BuildOptions { leaf_size: leaf_size as usize };
+        let octree = VolumeOctree::build_with_progress(&grid, &options, progress)?;
         let id = NEXT_OCTREE_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         Ok(Box::new(VolumeOctreeHandle { octree, shape: *grid.shape(), input_bytes: grid.input_bytes(), id }))
     })
@@ -551,5 +592,54 @@ mod tests {
         assert_eq!(cut.bounds[..6], [0.0, 2.0, 0.0, 4.0, 0.0, 6.0]);
         let bad = GridDesc { component: 3, ..desc };
         assert!(build_volume_octree(bytes, &bad, 2).unwrap_err().contains("component 3"));
+    }
+
+    /// A 64^3 ramp (4096 leaf bricks of 4: 16 progress chunks of 256).
+    fn ramp64() -> (Vec<f32>, GridDesc) {
+        let data: Vec<f32> = (0..64 * 64 * 64).map(|i| (i % 977) as f32).collect();
+        let desc = GridDesc {
+            scalar_type: ScalarType::F32,
+            dims: [64, 64, 64],
+            spacing: [1.0; 3],
+            origin: [0.0; 3],
+            components: 1,
+            component: -1,
+        };
+        (data, desc)
+    }
+
+    fn as_bytes(data: &[f32]) -> &[u8] {
+        // SAFETY: f32 has no padding; the byte view covers exactly the slice's storage.
+        unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, std::mem::size_of_val(data)) }
+    }
+
+    #[test]
+    fn progress_increases_to_one_and_the_build_is_unchanged() {
+        let (data, desc) = ramp64();
+        let mut seen = Vec::new();
+        let h = build_with(as_bytes(&data), &desc, 4, &mut |f| {
+            seen.push(f);
+            true
+        })
+        .unwrap();
+        assert_eq!(seen.len(), 16, "one report per chunk of 256 leaves: {seen:?}");
+        assert!(seen.windows(2).all(|w| w[0] < w[1]) && seen[0] > 0.0, "{seen:?}");
+        assert_eq!(*seen.last().unwrap(), 1.0);
+        let plain = build_volume_octree(as_bytes(&data), &desc, 4).unwrap();
+        assert_eq!(h.summary().unwrap().node_count, plain.summary().unwrap().node_count);
+        assert_eq!(h.cut_boxes(0.0).unwrap().bounds, plain.cut_boxes(0.0).unwrap().bounds);
+    }
+
+    #[test]
+    fn a_false_report_cancels_at_once_with_a_clear_error() {
+        let (data, desc) = ramp64();
+        let mut calls = 0;
+        let err = build_with(as_bytes(&data), &desc, 4, &mut |_| {
+            calls += 1;
+            calls < 3
+        })
+        .expect_err("a cancelled build returns no octree");
+        assert_eq!(calls, 3, "no report after the one that said stop");
+        assert!(err.contains("cancelled") && err.contains("nothing was produced"), "{err}");
     }
 }

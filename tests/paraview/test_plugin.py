@@ -157,6 +157,56 @@ for leaf, tolerance in [(8, 0.01), (4, 0.0), (16, 0.05)]:
     o, _ = compare_with_cli("sphere leaf %d tol %g" % (leaf, tolerance), sphere, sphere_vti, leaf, tolerance)
     Delete(o)
 
+# ---- Progress and abort --------------------------------------------------------
+# ParaView's progress bar and abort button act on the VTK object: its
+# ProgressEvent, and SetAbortExecute from the progress handler.
+big = Wavelet(WholeExtent=[0, 95, 0, 95, 0, 95])
+big.UpdatePipeline()
+watched = HybridOctree(Input=big, LeafSize=4, MeasureSurfaceDistance=0)
+vtk_filter = watched.GetClientSideObject()
+progress_values = []
+abort_first = [False]
+
+
+def on_progress(obj, event):
+    progress_values.append(obj.GetProgress())
+    if abort_first[0] and len(progress_values) == 1:
+        obj.SetAbortExecute(1)
+
+
+vtk_filter.AddObserver("ProgressEvent", on_progress)
+watched.UpdatePipeline()
+inside = [v for v in progress_values if 0.0 < v < 1.0]
+check(len(inside) >= 20 and inside == sorted(inside), "the build reports progress: %d values" % len(inside))
+check(progress_values and progress_values[-1] == 1.0, "progress ends at 1")
+_, full = field_data(watched)
+
+Delete(watched)
+watched = HybridOctree(Input=big, LeafSize=4, MeasureSurfaceDistance=0)
+vtk_filter = watched.GetClientSideObject()
+vtk_filter.AddObserver("ProgressEvent", on_progress)
+progress_values.clear()
+abort_first[0] = True
+watched.UpdatePipeline()
+cancelled_data, cancelled = field_data(watched)
+check(len([v for v in progress_values if 0.0 < v < 1.0]) <= 1, "an abort stops the build at once: %s"
+      % progress_values)
+check(cancelled_data.GetNumberOfPoints() == 0 and not cancelled, "the cancelled request's output is empty")
+check("cancelled" in logged_errors(), "the cancel is reported in the output messages")
+abort_first[0] = False
+vtk_filter.SetAbortExecute(0)
+watched.ErrorTolerance = 0.02  # what a user does after an abort: change a property, Apply
+watched.UpdatePipeline()
+check(field_data(watched)[0].GetNumberOfPoints() > 0, "after the abort, Apply builds")
+watched.ErrorTolerance = 0.01
+watched.UpdatePipeline()
+_, again = field_data(watched)
+check(again.get("node_count") == full["node_count"] and again.get("cut_count") == full["cut_count"],
+      "after the abort the next update builds the same octree: %s vs %s"
+      % (again.get("node_count"), full["node_count"]))
+Delete(watched)
+Delete(big)
+
 # ---- The isosurface on output port 1 -------------------------------------------
 SURFACE_EXACT = ["polygons", "faces", "triangles", "uncompressed_triangles", "vertices", "boundary_edges"]
 
