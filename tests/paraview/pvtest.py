@@ -82,3 +82,13 @@ def rmse(a, b):
     if a.shape != b.shape:
         return float("inf")
     return float(np.sqrt(((a - b) ** 2).mean()))
+
+
+def generate_phantom(cli, workdir, size):
+    """Writes the CLI's size^3 Shepp-Logan phantom (f32) to workdir; returns the path."""
+    import subprocess
+
+    path = os.path.join(workdir, "phantom%d.vti" % size)
+    subprocess.run([cli, "generate", "--dataset", "shepp-logan", "--size", str(size), "--output", path],
+                   check=True, capture_output=True)
+    return path

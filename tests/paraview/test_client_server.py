@@ -25,7 +25,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from paraview.simple import *  # noqa: E402,F401,F403
-from pvtest import Checks, read_png_rgb, report, rmse  # noqa: E402
+from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
 from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
 
 parser = argparse.ArgumentParser()
@@ -37,9 +37,7 @@ args = parser.parse_args()
 os.makedirs(args.workdir, exist_ok=True)
 t = Checks("HybridOctree client-server test")
 
-data = os.path.join(args.workdir, "phantom64.vti")
-subprocess.run([args.cli, "generate", "--dataset", "shepp-logan", "--size", "64", "--output", data],
-               check=True, capture_output=True)
+data = generate_phantom(args.cli, args.workdir, 64)
 
 
 def free_port():

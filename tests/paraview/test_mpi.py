@@ -27,7 +27,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from pvtest import Checks, read_png_rgb, report, rmse  # noqa: E402
+from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--plugin", required=True)
@@ -39,9 +39,7 @@ args = parser.parse_args()
 os.makedirs(args.workdir, exist_ok=True)
 t = Checks("HybridOctree MPI test")
 
-data = os.path.join(args.workdir, "phantom96.vti")
-subprocess.run([args.cli, "generate", "--dataset", "shepp-logan", "--size", "96", "--output", data],
-               check=True, capture_output=True)
+data = generate_phantom(args.cli, args.workdir, 96)
 scene = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mpi_scene.py")
 mpiexec = shutil.which(args.mpiexec) or args.mpiexec
 # pvpython runs as an MPI singleton: its OMPI_/PMIX_ variables would make

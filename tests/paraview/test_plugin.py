@@ -20,10 +20,12 @@ import os
 import subprocess
 import sys
 
-from paraview import servermanager
-from paraview.simple import *  # noqa: F401,F403 (pvbatch scripting API)
-from paraview.vtk.util.numpy_support import numpy_to_vtk
-from vtkmodules.vtkCommonCore import vtkFileOutputWindow, vtkOutputWindow
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from paraview import servermanager  # noqa: E402
+from paraview.simple import *  # noqa: E402,F401,F403 (pvbatch scripting API)
+from paraview.vtk.util.numpy_support import numpy_to_vtk  # noqa: E402
+from pvtest import Checks, report  # noqa: E402
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--cli", required=True)
@@ -33,37 +35,8 @@ parser.add_argument("--autoload", action="store_true")
 args = parser.parse_args()
 os.makedirs(args.workdir, exist_ok=True)
 
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        report("FAILED: " + what)
-
-
-def report(text):
-    """Writes to the process's stdout: pvbatch routes sys.stderr (and Python
-    tracebacks) through vtkOutputWindow, which this script redirects."""
-    os.write(1, (text + "\n").encode())
-
-
-def finish():
-    if failures:
-        report("%d check(s) failed" % len(failures))
-        sys.exit(1)
-    report("HybridOctree plugin test passed")
-    sys.exit(0)
-
-
-def on_exception(kind, value, tb):
-    import traceback
-    report("".join(traceback.format_exception(kind, value, tb)))
-    report("VTK output window log:\n" + logged_errors()[-2000:])
-    os._exit(1)
-
-
-sys.excepthook = on_exception
+t = Checks("HybridOctree plugin test")
+check, finish = t.check, t.finish
 
 
 # ---- Loading ------------------------------------------------------------------
@@ -76,20 +49,8 @@ else:
     check("HybridOctree" in globals(), "LoadPlugin defines HybridOctree")
 
 # Errors of the filters go to this file, so the script can read them.
-error_log = os.path.join(args.workdir, "vtk-errors.txt")
-if os.path.exists(error_log):
-    os.remove(error_log)
-log_window = vtkFileOutputWindow()
-log_window.SetFileName(error_log)
-log_window.SetFlush(1)
-vtkOutputWindow.SetInstance(log_window)
-
-
-def logged_errors():
-    if not os.path.exists(error_log):
-        return ""
-    with open(error_log) as f:
-        return f.read()
+t.log_vtk_output(os.path.join(args.workdir, "vtk-errors.txt"))
+logged_errors = t.logged
 
 
 def field_data(proxy, port=0):

@@ -24,14 +24,13 @@ the mapper's clear error while pvbatch keeps rendering.
 """
 import argparse
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from paraview import servermanager, smtrace  # noqa: E402
 from paraview.simple import *  # noqa: E402,F401,F403
-from pvtest import Checks, read_png_rgb, report, rmse  # noqa: E402
+from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
 from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
 
 parser = argparse.ArgumentParser()
@@ -46,9 +45,7 @@ LoadPlugin(args.plugin, remote=False, ns=globals())
 t.log_vtk_output(os.path.join(args.workdir, "vtk-output.txt"))
 
 HYBRID = "Hybrid Octree Volume"
-phantom_vti = os.path.join(args.workdir, "phantom64.vti")
-subprocess.run([args.cli, "generate", "--dataset", "shepp-logan", "--size", "64", "--output", phantom_vti],
-               check=True, capture_output=True)
+phantom_vti = generate_phantom(args.cli, args.workdir, 64)
 reader = XMLImageDataReader(FileName=[phantom_vti])
 reader.UpdatePipeline()
 array = reader.PointData.keys()[0]
