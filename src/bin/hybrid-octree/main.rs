@@ -16,6 +16,7 @@
 
 mod bench;
 mod build;
+mod ftb;
 mod generate;
 mod info;
 mod input;
@@ -48,6 +49,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Write a built-in dataset to a VTK XML image file (.vti).
     Generate(generate::GenerateArgs),
+    /// Display the binary octree of an isovalue front to back with blocking quadtrees, against back to front.
+    Ftb(ftb::FtbArgs),
     /// Benchmarks that print a table.
     Bench {
         #[command(subcommand)]
@@ -63,6 +66,7 @@ fn main() -> ExitCode {
         Command::Surface(args) => surface::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
+        Command::Ftb(args) => ftb::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     };
     match result {

@@ -1,0 +1,231 @@
+//! `ftb`: display the binary octree of an isovalue (or a label) front to
+//! back with blocking quadtrees and back to front (Meagher), compare the two
+//! depth images, write the FTB depth and shaded images, and print the
+//! paper's table II counters and times per view.
+
+use crate::input::InputArgs;
+use crate::pool::with_threads;
+use clap::Args;
+use hybrid_octree::ftb::{
+    back_to_front as btf, front_to_back as ftb, shade, BinaryOctree, Counters, Display, Inside, View, ViewCase,
+};
+use hybrid_octree::render::image::Image;
+use hybrid_octree::{Error, Result};
+use serde::Serialize;
+use std::time::Instant;
+
+/// The paper's four views of the skull (table II).
+const PAPER_VPNS: [[f64; 3]; 4] = [[1.0, -2.0, 1.0], [-1.0, -2.0, 1.0], [1.0, -1.0, 0.0], [0.0, -1.0, 0.0]];
+
+/// Arguments of `ftb`.
+#[derive(Args, Debug)]
+pub struct FtbArgs {
+    #[command(flatten)]
+    input: InputArgs,
+    /// Inside the object: value at or above this isovalue.
+    #[arg(long, allow_negative_numbers = true, conflicts_with = "label", required_unless_present = "label")]
+    isovalue: Option<f64>,
+    /// Inside the object: value equal to this label (label volumes).
+    #[arg(long, allow_negative_numbers = true)]
+    label: Option<f64>,
+    /// View plane normal X,Y,Z (towards the viewer); without it the paper's four views.
+    #[arg(long, value_parser = vpn, allow_hyphen_values = true)]
+    vpn: Option<[f64; 3]>,
+    /// Image side in pixels.
+    #[arg(long, default_value_t = 512)]
+    image_size: usize,
+    /// Timed runs of each display; the median is reported.
+    #[arg(long, default_value_t = 3)]
+    repeats: usize,
+    /// Image file prefix: writes PREFIX-depth-<vpn>.png and PREFIX-shaded-<vpn>.png.
+    #[arg(long, default_value = "hybrid-octree-ftb")]
+    output: String,
+    /// Print one JSON object per view on stdout instead of the table.
+    #[arg(long)]
+    json: bool,
+}
+
+fn vpn(s: &str) -> std::result::Result<[f64; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!("expected X,Y,Z, got '{s}'"));
+    }
+    let mut out = [0.0; 3];
+    for (o, p) in out.iter_mut().zip(&parts) {
+        *o = p.parse().map_err(|_| format!("'{p}' is not a number in '{s}'"))?;
+    }
+    Ok(out)
+}
+
+/// One view's row. Key names are a contract (issue 7): keep them.
+#[derive(Debug, Serialize)]
+struct FtbRow {
+    input: String,
+    vpn: [f64; 3],
+    view_case: ViewCase,
+    resolution: u32,
+    white_octants: usize,
+    black_octants: usize,
+    gray_octants: usize,
+    octree_build_ms: f64,
+    btf_ms: f64,
+    ftb_ms: f64,
+    /// `100 (btf_ms - ftb_ms) / btf_ms`.
+    reduction_pct: f64,
+    depth_identical: bool,
+    painted_pixels: usize,
+    bitmap_bytes: usize,
+    btf: Counters,
+    ftb: Counters,
+    depth_png: String,
+    shaded_png: String,
+}
+
+/// Builds the octree and displays it along each view.
+pub fn run(args: &FtbArgs) -> Result<()> {
+    if args.image_size < 8 || args.image_size > 8192 {
+        return Err(Error::InvalidArgument(format!(
+            "--image-size {} is out of range: use 8 to 8192 pixels",
+            args.image_size
+        )));
+    }
+    if args.repeats == 0 {
+        return Err(Error::InvalidArgument("--repeats must be at least 1".into()));
+    }
+    let inside = match (args.isovalue, args.label) {
+        (Some(v), None) => Inside::AtOrAbove(v),
+        (None, Some(l)) => Inside::Label(l),
+        _ => return Err(Error::InvalidArgument("give --isovalue V or --label L".into())),
+    };
+    let vpns: Vec<[f64; 3]> = args.vpn.map_or_else(|| PAPER_VPNS.to_vec(), |v| vec![v]);
+    let views = vpns.iter().map(|&v| View::new(v)).collect::<Result<Vec<_>>>()?;
+    let volume = args.input.load()?;
+    let grid = args.input.grid(&volume)?;
+    let started = Instant::now();
+    let octree = with_threads(args.input.threads, || BinaryOctree::from_grid(&grid, inside))?;
+    let build_ms = started.elapsed().as_secs_f64() * 1e3;
+    let counts = octree.counts();
+    if !args.json {
+        println!(
+            "{}: binary octree n = {} ({}^3), {} W, {} B, {} G octants, built in {:.1} ms",
+            args.input.describe(),
+            octree.n,
+            octree.side(),
+            counts.white,
+            counts.black,
+            counts.gray,
+            build_ms
+        );
+        println!(
+            "{:<14} {:>5} {:>10} {:>10} {:>9} {:>11} {:>11} {:>9} {:>9} {:>8} {:>11} {:>11} {:>10} {:>6}",
+            "vpn",
+            "case",
+            "BTF ms",
+            "FTB ms",
+            "reduct %",
+            "BTF faces",
+            "FTB faces",
+            "FTB B vis",
+            "FTB W vis",
+            "FTB G",
+            "BTF pixels",
+            "FTB pixels",
+            "bitmap B",
+            "same"
+        );
+    }
+    for view in &views {
+        let b = median_run(args.repeats, || btf::display(&octree, view, args.image_size));
+        let (f, bytes) = {
+            let mut bytes = 0;
+            let d = median_run(args.repeats, || {
+                let (d, by) = ftb::display(&octree, view, args.image_size);
+                bytes = by;
+                d
+            });
+            (d, bytes)
+        };
+        let identical = f.image.identical(&b.image);
+        let tag = vpn_tag(view.vpn);
+        let depth_png = format!("{}-depth-{tag}.png", args.output);
+        let shaded_png = format!("{}-shaded-{tag}.png", args.output);
+        depth_picture(&f).to_png(&depth_png)?;
+        shade::shade(&f.image, view).to_png(&shaded_png)?;
+        let row = FtbRow {
+            input: args.input.describe(),
+            vpn: view.vpn,
+            view_case: view.case(),
+            resolution: octree.n,
+            white_octants: counts.white,
+            black_octants: counts.black,
+            gray_octants: counts.gray,
+            octree_build_ms: build_ms,
+            btf_ms: b.ms,
+            ftb_ms: f.ms,
+            reduction_pct: 100.0 * (b.ms - f.ms) / b.ms,
+            depth_identical: identical,
+            painted_pixels: f.image.painted(),
+            bitmap_bytes: bytes,
+            btf: b.counters,
+            ftb: f.counters,
+            depth_png,
+            shaded_png,
+        };
+        if args.json {
+            let line = serde_json::to_string(&row).map_err(|e| Error::Internal(format!("JSON output: {e}")))?;
+            println!("{line}");
+        } else {
+            println!(
+                "{:<14} {:>5} {:>10.2} {:>10.2} {:>9.1} {:>11} {:>11} {:>9} {:>9} {:>8} {:>11} {:>11} {:>10} {:>6}",
+                tag,
+                format!("{:?}", row.view_case),
+                row.btf_ms,
+                row.ftb_ms,
+                row.reduction_pct,
+                row.btf.faces,
+                row.ftb.faces,
+                row.ftb.black_visited,
+                row.ftb.white_visited,
+                row.ftb.gray_visited,
+                row.btf.pixels,
+                row.ftb.pixels,
+                row.bitmap_bytes,
+                if identical { "yes" } else { "NO" }
+            );
+        }
+        if !identical {
+            return Err(Error::Internal(format!(
+                "the FTB and BTF depth images differ for vpn {:?}: please report it",
+                view.vpn
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Runs `display` `repeats` times; returns the run with the median time.
+fn median_run(repeats: usize, mut display: impl FnMut() -> Display) -> Display {
+    let mut runs: Vec<Display> = (0..repeats).map(|_| display()).collect();
+    runs.sort_by(|a, b| a.ms.total_cmp(&b.ms));
+    runs.swap_remove(repeats / 2)
+}
+
+/// `1,-2,1` for file names and the table.
+fn vpn_tag(v: [f64; 3]) -> String {
+    v.iter().map(|c| format!("{c}")).collect::<Vec<_>>().join(",")
+}
+
+/// The depth image as grey: near white, far dark, unpainted transparent.
+fn depth_picture(d: &Display) -> Image {
+    let finite = d.image.depth.iter().copied().filter(|z| z.is_finite());
+    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| (lo.min(z), hi.max(z)));
+    let range = if hi > lo { hi - lo } else { 1.0 };
+    let mut out = Image::new(d.image.size, d.image.size);
+    for (px, &z) in out.rgba.iter_mut().zip(&d.image.depth) {
+        if z.is_finite() {
+            let g = (1.0 - 0.85 * (z - lo) / range) as f32;
+            *px = [g, g, g, 1.0];
+        }
+    }
+    out
+}

@@ -1,0 +1,146 @@
+//! Blocking bitmaps (paper 2, sections 3.2 and 4): a blocking quadtree kept
+//! as the complete quadtree of its resolution, every node 2 bits (W, B or G),
+//! level by level, left to right. Node `card` of depth `d` (its cardinal
+//! number, `0 <= card < 4^d`) has index
+//!
+//! ```text
+//! ind_num = ind_tab[d] + card,          ind_tab[d] = (4^d - 1) / 3      (1)
+//! ```
+//!
+//! stored in byte `ind_num div 4` at bit pair `ind_num mod 4` (2). Its
+//! children are `ind_tab[d + 1] + 4 card + j`, `j = 0..3` (3), and the face of
+//! axis `i` of suboctant `oct` has cardinal number
+//! `4 card + quad_tab[oct][i]` (4), `quad_tab` the paper's Table I.
+//!
+//! Three bitmaps of resolution `n` take `3 * 2/8 * (4^(n+1) - 1)/3 < 4^n` bytes
+//! (the paper's bound).
+
+/// The paper's Table I: `QUAD_TAB[oct][axis]` is the quadrant (0..3) of the
+/// `axis` face of suboctant `oct` within its parent's face.
+pub const QUAD_TAB: [[u8; 3]; 8] =
+    [[1, 2, 0], [1, 3, 1], [3, 2, 2], [3, 3, 3], [0, 0, 0], [0, 1, 1], [2, 0, 2], [2, 1, 3]];
+
+/// A node colour in a blocking quadtree.
+pub const WHITE: u8 = 0;
+/// Blocked.
+pub const BLACK: u8 = 1;
+/// Mixed: look at the four children.
+pub const GRAY: u8 = 2;
+
+/// The blocking quadtrees of one display (one per used axis), each a
+/// complete-quadtree bitmap of depth `n`, packed one after the other in one
+/// byte array: tree `tree`'s node `index` is bit pair `tree * nodes + index`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockingBitmaps {
+    bits: Vec<u8>,
+    /// Nodes of one complete quadtree, `(4^(n+1) - 1) / 3`.
+    nodes: usize,
+    /// `ind_tab[d]`: index of the first node of depth `d`.
+    ind_tab: Vec<usize>,
+}
+
+impl BlockingBitmaps {
+    /// `trees` bitmaps of depths `0..=n`, every node white.
+    pub fn new(trees: usize, n: u32) -> BlockingBitmaps {
+        let ind_tab: Vec<usize> = (0..=n + 1).map(|d| ((1usize << (2 * d)) - 1) / 3).collect();
+        let nodes = ind_tab[n as usize + 1];
+        BlockingBitmaps { bits: vec![0; (trees * nodes).div_ceil(4)], nodes, ind_tab }
+    }
+
+    /// Bytes of the bitmaps.
+    pub fn bytes(&self) -> usize {
+        self.bits.len()
+    }
+
+    /// Index of node `card` at depth `depth`: formula (1).
+    #[inline]
+    pub fn index(&self, depth: u32, card: usize) -> usize {
+        self.ind_tab[depth as usize] + card
+    }
+
+    /// Colour of node `index` of tree `tree`: formula (2).
+    #[inline]
+    pub fn get(&self, tree: usize, index: usize) -> u8 {
+        let i = tree * self.nodes + index;
+        (self.bits[i >> 2] >> ((i & 3) * 2)) & 3
+    }
+
+    /// Sets node `index` of tree `tree` to `colour`.
+    #[inline]
+    pub fn set(&mut self, tree: usize, index: usize, colour: u8) {
+        let i = tree * self.nodes + index;
+        let shift = (i & 3) * 2;
+        let byte = &mut self.bits[i >> 2];
+        *byte = (*byte & !(3 << shift)) | (colour << shift);
+    }
+
+    /// Refine: a W or B node `card` of depth `depth` becomes G with four
+    /// children of its colour; a G node is left as it is.
+    #[inline]
+    pub fn refine(&mut self, tree: usize, depth: u32, card: usize) {
+        let index = self.index(depth, card);
+        let colour = self.get(tree, index);
+        if colour != GRAY {
+            let first = self.index(depth + 1, 4 * card);
+            for j in 0..4 {
+                self.set(tree, first + j, colour);
+            }
+            self.set(tree, index, GRAY);
+        }
+    }
+
+    /// Compact: node `card` of depth `depth` becomes B when its four children are B.
+    #[inline]
+    pub fn compact(&mut self, tree: usize, depth: u32, card: usize) {
+        let first = self.index(depth + 1, 4 * card);
+        if (0..4).all(|j| self.get(tree, first + j) == BLACK) {
+            let index = self.index(depth, card);
+            self.set(tree, index, BLACK);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn indexing_and_bound() {
+        let b = BlockingBitmaps::new(3, 8);
+        assert_eq!(b.index(0, 0), 0);
+        assert_eq!(b.index(1, 3), 4);
+        assert_eq!(b.index(2, 0), 5);
+        // Three bitmaps of a 256^3 octree take 4^8 = 65536 bytes (the paper's bound).
+        assert_eq!(b.bytes(), 1 << 16);
+    }
+
+    #[test]
+    fn refine_and_compact() {
+        let mut b = BlockingBitmaps::new(2, 3);
+        b.set(1, 0, BLACK);
+        b.refine(1, 0, 0);
+        assert_eq!(b.get(1, 0), GRAY);
+        assert!((1..5).all(|i| b.get(1, i) == BLACK));
+        assert!((0..5).all(|i| b.get(0, i) == WHITE), "tree 0 untouched");
+        b.set(1, 2, WHITE);
+        b.compact(1, 0, 0);
+        assert_eq!(b.get(1, 0), GRAY);
+        b.set(1, 2, BLACK);
+        b.compact(1, 0, 0);
+        assert_eq!(b.get(1, 0), BLACK);
+    }
+
+    #[test]
+    #[allow(clippy::needless_range_loop)]
+    fn quad_tab_maps_the_four_octants_of_a_face_column_to_distinct_quadrants() {
+        // For each axis, the four suboctants on one side of it take the four quadrants.
+        for axis in 0..3 {
+            for side in 0..2 {
+                let mut seen: Vec<u8> =
+                    (0..8).filter(|oct| (oct >> axis) & 1 == side).map(|oct| QUAD_TAB[oct][axis]).collect();
+                seen.sort();
+                assert_eq!(seen, vec![0, 1, 2, 3], "axis {axis} side {side}");
+            }
+        }
+    }
+}
