@@ -194,16 +194,17 @@ bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scal
 
   std::string error;
   // Progress 0 .. BuildShare of the request; the abort flag is read after
-  // each report (ParaView sets it from its progress handler).
+  // each report with CheckAbort(), which also marks the outputs ABORTED for
+  // the executive (VTK's abort protocol).
   const auto progress = [this](double fraction) {
     this->UpdateProgress(BuildShare * fraction);
-    return !this->GetAbortExecute();
+    return !this->CheckAbort();
   };
   cache.Octree = vtkHybridOctreeBridge::VolumeOctree::Build(Bytes(scalars), ByteCount(scalars),
     grid, static_cast<unsigned int>(this->LeafSize), progress, error);
   if (!cache.Octree)
   {
-    if (this->GetAbortExecute())
+    if (this->GetAbortOutput())
     {
       this->BuildCancelled = true;
       vtkWarningMacro("the Hybrid Octree build was cancelled (abort): the outputs are empty; "

@@ -64,11 +64,12 @@
  *
  * Progress (vtkCommand::ProgressEvent, ParaView's progress bar): the octree
  * build reports 0 .. 0.8 as its leaf bricks are done, the surface 0.9, the
- * end 1. Abort (SetAbortExecute(1), ParaView's abort button) is honoured
+ * end 1. Abort (SetAbortExecute(1), read with CheckAbort()) is honoured
  * between chunks of leaf bricks: the build stops, nothing of it is kept, and
- * the request ends with both outputs empty and a warning. As with VTK's
- * other filters, the empty outputs then stand until the filter or its input
- * is modified (ParaView: change a property and Apply).
+ * the request ends with both outputs empty, marked ABORTED, and a warning.
+ * ParaView 5.11's abort button does not reach filters (its
+ * pqProgressManager only emits a Qt signal nothing listens to), so there the
+ * abort comes from code, e.g. a progress observer.
  */
 #ifndef vtkHybridOctreeFilter_h
 #define vtkHybridOctreeFilter_h

@@ -150,8 +150,10 @@ progress_values.clear()
 abort_first[0] = True
 watched.UpdatePipeline()
 cancelled_data, cancelled = field_data(watched)
-check(len([v for v in progress_values if 0.0 < v < 1.0]) <= 1, "an abort stops the build at once: %s"
-      % progress_values)
+# ParaView may run the aborted filter more than once (an ABORTED output is out
+# of date); every run must stop at its first chunk of leaf bricks.
+inside = [v for v in progress_values if 0.0 < v < 1.0]
+check(inside and max(inside) <= 0.02, "an abort stops the build at once: %s" % progress_values)
 check(cancelled_data.GetNumberOfPoints() == 0 and not cancelled, "the cancelled request's output is empty")
 check("cancelled" in logged_errors(), "the cancel is reported in the output messages")
 abort_first[0] = False
