@@ -30,10 +30,12 @@ pub enum Error {
     BadLeafSize { leaf_size: usize },
     /// A byte buffer is not aligned for its scalar type.
     Misaligned { type_name: &'static str },
-    /// The caller stopped a long build (ParaView's abort button, Ctrl-C).
+    /// The caller stopped a long build (a VTK abort, Ctrl-C).
     Cancelled,
     /// A malformed or unsupported input file.
     Format { path: String, message: String },
+    /// An output file that could not be written.
+    Write { path: String, message: String },
     /// Any other bad argument, with its explanation.
     InvalidArgument(String),
     /// A bug: a panic caught at the bridge. Reported instead of aborting the host.
@@ -91,6 +93,7 @@ impl fmt::Display for Error {
             ),
             Error::Cancelled => write!(f, "the Hybrid Octree build was cancelled; nothing was produced"),
             Error::Format { path, message } => write!(f, "cannot read '{path}': {message}"),
+            Error::Write { path, message } => write!(f, "cannot write '{path}': {message}"),
             Error::InvalidArgument(message) => write!(f, "{message}"),
             Error::Internal(message) => write!(
                 f,

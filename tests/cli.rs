@@ -424,3 +424,76 @@ fn bench_render_compares_octree_and_uniform_at_equal_bytes() {
     assert_eq!(&std::fs::read(&plot).unwrap()[..4], b"\x89PNG");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn ftb_runs_the_papers_four_views_with_identical_depth() {
+    let prefix = temp("ftb-phantom");
+    let out = run(&[
+        "ftb",
+        "--dataset",
+        "shepp-logan",
+        "--size",
+        "48",
+        "--isovalue",
+        "0.5",
+        "--image-size",
+        "64",
+        "--repeats",
+        "1",
+        "--output",
+        prefix.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Vec<Value> =
+        stdout(&out).lines().map(|l| serde_json::from_str(l).expect("one JSON object a line")).collect();
+    assert_eq!(rows.len(), 4, "the paper's four VPNs");
+    let vpns: Vec<Value> = rows.iter().map(|r| r["vpn"].clone()).collect();
+    assert_eq!(vpns[3], serde_json::json!([0.0, -1.0, 0.0]));
+    for r in &rows {
+        for key in ["vpn", "btf_ms", "ftb_ms", "reduction_pct", "depth_identical", "btf", "ftb", "bitmap_bytes"] {
+            assert!(r.get(key).is_some(), "key {key} missing in {r}");
+        }
+        assert_eq!(r["depth_identical"], true);
+        assert!(r["ftb"]["faces"].as_u64().unwrap() < r["btf"]["faces"].as_u64().unwrap());
+        assert!(r["bitmap_bytes"].as_u64().unwrap() <= 1 << (2 * r["resolution"].as_u64().unwrap()));
+        for png in ["depth_png", "shaded_png"] {
+            let path = r[png].as_str().unwrap();
+            let bytes = std::fs::read(path).expect("the PNG is written");
+            assert_eq!(&bytes[1..4], b"PNG");
+        }
+    }
+}
+
+#[test]
+fn ftb_one_view_and_a_label() {
+    let out = run(&[
+        "ftb",
+        "--dataset",
+        "sphere",
+        "--size",
+        "20",
+        "--label",
+        "1",
+        "--vpn",
+        "1,-1,1",
+        "--image-size",
+        "32",
+        "--repeats",
+        "1",
+        "--output",
+        temp("ftb-label").to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(stdout(&out).lines().count(), 1);
+}
+
+#[test]
+fn ftb_refuses_a_zero_vpn_and_a_missing_isovalue() {
+    let out = run(&["ftb", "--dataset", "sphere", "--size", "8", "--isovalue", "0.5", "--vpn", "0,0,0"]);
+    assert_clean_failure(&out, "(0, 0, 0)");
+    let out = run(&["ftb", "--dataset", "sphere", "--size", "8"]);
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("--isovalue") || stderr(&out).contains("--label"), "{}", stderr(&out));
+}

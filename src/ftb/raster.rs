@@ -190,7 +190,8 @@ impl Projector {
             return;
         }
         // The non-horizontal edges, top end first, each with its stepped numerator.
-        let mut edges: Vec<EdgeStep> = Vec::with_capacity(4);
+        let mut edge_store = [EdgeStep::EMPTY; 4];
+        let mut count = 0;
         for n in 0..4 {
             let (mut a, mut b) = (corners[n], corners[(n + 1) % 4]);
             if a[1] == b[1] {
@@ -199,18 +200,20 @@ impl Projector {
             if a[1] > b[1] {
                 std::mem::swap(&mut a, &mut b);
             }
-            edges.push(EdgeStep::new(a, b, first));
+            edge_store[count] = EdgeStep::new(a, b, first);
+            count += 1;
         }
+        let edges = &mut edge_store[..count];
         for py in first..last {
             let yc = py * SUBPIXEL + SUBPIXEL / 2;
             let mut span = [i64::MAX, i64::MIN];
-            for e in &edges {
+            for e in edges.iter() {
                 if e.top <= yc && yc < e.bottom {
                     let x = e.first_pixel();
                     span = [span[0].min(x), span[1].max(x)];
                 }
             }
-            for e in &mut edges {
+            for e in edges.iter_mut() {
                 e.step();
             }
             if span[0] > span[1] {
@@ -240,6 +243,7 @@ impl Projector {
 /// the first pixel whose centre is at or right of the edge at scanline
 /// centre `yc` is `ceil(t / (den SUBPIXEL))` with
 /// `t = (xa - SUBPIXEL / 2) den + (yc - ya)(xb - xa)`, `den = yb - ya`.
+#[derive(Clone, Copy)]
 struct EdgeStep {
     top: i64,
     bottom: i64,
@@ -249,6 +253,8 @@ struct EdgeStep {
 }
 
 impl EdgeStep {
+    const EMPTY: EdgeStep = EdgeStep { top: 0, bottom: 0, t: 0, dt: 0, div: 1 };
+
     fn new(a: [i64; 2], b: [i64; 2], first_row: i64) -> EdgeStep {
         let den = (b[1] - a[1]) as i128;
         let yc = (first_row * SUBPIXEL + SUBPIXEL / 2) as i128;

@@ -57,10 +57,9 @@ impl Image {
     /// Writes the picture over `background` as an 8-bit RGB PNG.
     pub fn to_png_over(&self, path: impl AsRef<Path>, background: [f32; 3]) -> Result<()> {
         let path = path.as_ref();
-        let fail = |message: String| Error::Format { path: path.display().to_string(), message };
+        let fail = |message: String| Error::Write { path: path.display().to_string(), message };
         let bytes = self.png_bytes(background).map_err(|e| fail(format!("cannot encode the PNG: {e}")))?;
-        std::fs::write(path, bytes)
-            .map_err(|e| fail(format!("cannot write the PNG: {e}; check the folder exists and is writable")))
+        std::fs::write(path, bytes).map_err(|e| fail(format!("{e}; check the folder exists and is writable")))
     }
 
     /// The PNG file: signature, IHDR, IDAT, IEND.

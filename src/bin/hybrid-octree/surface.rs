@@ -143,8 +143,7 @@ fn print_text(r: &SurfaceReport) {
 
 /// Writes `s` as a legacy ASCII VTK polydata file in world coordinates, with normals.
 fn write_vtk(path: &PathBuf, s: &Surface, shape: &hybrid_octree::grid::GridShape) -> Result<()> {
-    let fail =
-        |e: std::io::Error| Error::Format { path: path.display().to_string(), message: format!("cannot write: {e}") };
+    let fail = |e: std::io::Error| Error::Write { path: path.display().to_string(), message: e.to_string() };
     let mut f = std::io::BufWriter::new(std::fs::File::create(path).map_err(fail)?);
     let mut text = String::new();
     text.push_str("# vtk DataFile Version 3.0\nHybrid Octree isosurface\nASCII\nDATASET POLYDATA\n");
