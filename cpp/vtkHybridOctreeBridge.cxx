@@ -468,4 +468,39 @@ bool Selection::Composite(const VolumeOctree& octree, const CameraDescription& c
   });
 }
 
+bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const FtbOptions& options, FtbResult& result, std::string& error)
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::GridDesc desc = ToRust(grid);
+    hybrid_octree::FtbDesc o;
+    o.isovalue = options.Isovalue;
+    o.use_label = options.UseLabel;
+    o.label = options.Label;
+    o.vpn = { options.Vpn[0], options.Vpn[1], options.Vpn[2] };
+    o.image_size = options.ImageSize;
+    o.back_to_front = options.BackToFront;
+    const hybrid_octree::FtbImage image =
+      hybrid_octree::ftb_display(ToSlice(bytes, byteCount), desc, o);
+    result.Size = image.size;
+    CopyInto(image.depth, result.Depth);
+    CopyInto(image.face, result.Face);
+    CopyInto(image.shaded, result.Shaded);
+    result.WhiteVisited = image.white_visited;
+    result.BlackVisited = image.black_visited;
+    result.GrayVisited = image.gray_visited;
+    result.Faces = image.faces;
+    result.Scanlines = image.scanlines;
+    result.Pixels = image.pixels;
+    result.DisplayMs = image.display_ms;
+    result.BuildMs = image.build_ms;
+    result.BitmapBytes = image.bitmap_bytes;
+    result.WhiteOctants = image.white_octants;
+    result.BlackOctants = image.black_octants;
+    result.GrayOctants = image.gray_octants;
+    result.Resolution = image.resolution;
+    result.ViewCase = std::string(image.view_case);
+  });
+}
+
 } // namespace vtkHybridOctreeBridge

@@ -373,6 +373,41 @@ private:
   std::unique_ptr<Internals> Impl;
 };
 
+/// What FtbDisplay() draws (issue 7; see FtbDesc in src/ffi.rs).
+struct FtbOptions
+{
+  double Isovalue = 0.0;      ///< inside: value >= Isovalue ...
+  bool UseLabel = false;      ///< ... or value == Label
+  double Label = 0.0;
+  double Vpn[3] = { 1.0, -1.0, 1.0 }; ///< view plane normal, towards the viewer
+  std::size_t ImageSize = 512;
+  bool BackToFront = false;   ///< Meagher's display instead of FTB with blocking quadtrees
+};
+
+/// A depth image of the binary octree and what drawing it took.
+struct FtbResult
+{
+  std::size_t Size = 0;
+  std::vector<float> Depth;         ///< rows from the top; NaN where nothing was painted
+  std::vector<std::uint8_t> Face;   ///< 0 nothing, 1 + axis of the face painted
+  std::vector<std::uint8_t> Shaded; ///< RGB
+  std::size_t WhiteVisited = 0, BlackVisited = 0, GrayVisited = 0;
+  std::size_t Faces = 0, Scanlines = 0, Pixels = 0;
+  double DisplayMs = 0.0, BuildMs = 0.0;
+  std::size_t BitmapBytes = 0;
+  std::size_t WhiteOctants = 0, BlackOctants = 0, GrayOctants = 0;
+  unsigned int Resolution = 0;
+  std::string ViewCase;
+};
+
+/**
+ * Builds the binary octree of `byteCount` bytes at `bytes` laid out as
+ * `grid` and draws its depth image. False and `error` on failure (a zero VPN,
+ * a non-finite isovalue, an image size outside 8..8192, bad samples).
+ */
+bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const FtbOptions& options, FtbResult& result, std::string& error);
+
 } // namespace vtkHybridOctreeBridge
 
 #endif

@@ -73,7 +73,6 @@ namespace
 using vtkHybridOctreeImageInput::ByteCount;
 using vtkHybridOctreeImageInput::Bytes;
 using vtkHybridOctreeImageInput::DescribeGrid;
-using vtkHybridOctreeImageInput::ToBridgeType;
 
 /// True when every octree node id fits the int cell array "node".
 bool FitsInt(const std::vector<std::uint32_t>& ids)
@@ -139,37 +138,11 @@ vtkDataArray* vtkHybridOctreeFilter::GetScalars(
 {
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
-  const bool cellArraysOnly = image->GetPointData()->GetNumberOfArrays() == 0 &&
-    image->GetCellData()->GetNumberOfArrays() > 0;
-  if ((scalars && association != vtkDataObject::FIELD_ASSOCIATION_POINTS) ||
-    (!scalars && cellArraysOnly))
-  {
-    vtkErrorMacro("the input image has cell data only: point scalars required; use Cell Data to "
-                  "Point Data (vtkCellDataToPointData) before the Hybrid Octree");
-    return nullptr;
-  }
+  std::string error;
+  scalars = vtkHybridOctreeImageInput::CheckPointScalars(image, scalars, association, error);
   if (!scalars)
   {
-    vtkErrorMacro("the input image has no point scalars to build the Hybrid Octree from; select a "
-                  "point array with SetInputArrayToProcess (ParaView: 'Scalars')");
-    return nullptr;
-  }
-  vtkHybridOctreeBridge::ScalarType type;
-  if (!ToBridgeType(scalars->GetDataType(), type))
-  {
-    vtkErrorMacro("point array '" << (scalars->GetName() ? scalars->GetName() : "(unnamed)")
-                                  << "' has scalar type '" << scalars->GetDataTypeAsString()
-                                  << "', which the Hybrid Octree does not read; cast it to float, "
-                                     "double or a 8/16/32-bit integer type first (vtkImageCast, "
-                                     "ParaView's Calculator with a result array type)");
-    return nullptr;
-  }
-  if (!scalars->HasStandardMemoryLayout())
-  {
-    vtkErrorMacro("point array '" << (scalars->GetName() ? scalars->GetName() : "(unnamed)")
-                                  << "' does not store its values contiguously (array of "
-                                     "structures); deep copy it into a vtkAOSDataArrayTemplate");
-    return nullptr;
+    vtkErrorMacro(<< error);
   }
   return scalars;
 }

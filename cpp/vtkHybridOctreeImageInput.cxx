@@ -1,7 +1,10 @@
 #include "vtkHybridOctreeImageInput.h"
 
 #include "vtkDataArray.h"
+#include "vtkCellData.h"
+#include "vtkDataObject.h"
 #include "vtkImageData.h"
+#include "vtkPointData.h"
 
 namespace vtkHybridOctreeImageInput
 {
@@ -83,5 +86,42 @@ bool SameGrid(const GridDescription& a, const GridDescription& b)
     }
   }
   return a.Type == b.Type && a.Components == b.Components && a.Component == b.Component;
+}
+
+vtkDataArray* CheckPointScalars(
+  vtkImageData* image, vtkDataArray* scalars, int association, std::string& error)
+{
+  const bool cellArraysOnly = image->GetPointData()->GetNumberOfArrays() == 0 &&
+    image->GetCellData()->GetNumberOfArrays() > 0;
+  const std::string name = scalars && scalars->GetName() ? scalars->GetName() : "(unnamed)";
+  vtkHybridOctreeBridge::ScalarType type;
+  if ((scalars && association != vtkDataObject::FIELD_ASSOCIATION_POINTS) ||
+    (!scalars && cellArraysOnly))
+  {
+    error = "the input image has cell data only: point scalars required; use Cell Data to "
+            "Point Data (vtkCellDataToPointData) before the Hybrid Octree";
+  }
+  else if (!scalars)
+  {
+    error = "the input image has no point scalars to build the Hybrid Octree from; select a "
+            "point array with SetInputArrayToProcess (ParaView: 'Scalars')";
+  }
+  else if (!ToBridgeType(scalars->GetDataType(), type))
+  {
+    error = "point array '" + name + "' has scalar type '" + scalars->GetDataTypeAsString() +
+      "', which the Hybrid Octree does not read; cast it to float, double or a 8/16/32-bit "
+      "integer type first (vtkImageCast, ParaView's Calculator with a result array type)";
+  }
+  else if (!scalars->HasStandardMemoryLayout())
+  {
+    error = "point array '" + name +
+      "' does not store its values contiguously (array of structures); deep copy it into a "
+      "vtkAOSDataArrayTemplate";
+  }
+  else
+  {
+    return scalars;
+  }
+  return nullptr;
 }
 }

@@ -13,6 +13,7 @@
 #include "vtkHybridOctreeBridge.h"
 
 #include <cstddef>
+#include <string>
 
 class vtkDataArray;
 class vtkImageData;
@@ -36,6 +37,15 @@ const void* Bytes(vtkDataArray* scalars);
  */
 vtkHybridOctreeBridge::GridDescription DescribeGrid(
   vtkImageData* image, vtkDataArray* scalars, int component);
+
+/**
+ * `scalars` (the algorithm's selected input array, with its `association`)
+ * if the core can read it as the image's point samples; else nullptr and
+ * `error` saying what to do (cell data, no array, an unsupported type, a
+ * non-contiguous array).
+ */
+vtkDataArray* CheckPointScalars(
+  vtkImageData* image, vtkDataArray* scalars, int association, std::string& error);
 
 /// Same dims, spacing, origin, type and component choice.
 bool SameGrid(const vtkHybridOctreeBridge::GridDescription& a,

@@ -84,6 +84,49 @@ mod bridge {
         max: Vec<f64>,
     }
 
+    /// What `ftb_display` draws (issue 7).
+    struct FtbDesc {
+        /// Inside: value >= isovalue (unless `use_label`).
+        isovalue: f64,
+        /// Inside: value == label instead.
+        use_label: bool,
+        label: f64,
+        /// View plane normal, towards the viewer.
+        vpn: [f64; 3],
+        /// Image side in pixels.
+        image_size: usize,
+        /// Meagher's back-to-front display instead of front to back with blocking quadtrees.
+        back_to_front: bool,
+    }
+
+    /// A depth image and what drawing it took.
+    #[derive(Debug)]
+    struct FtbImage {
+        size: usize,
+        /// Per pixel, rows from the top: distance from the view plane (smaller
+        /// is nearer), NaN where nothing was painted.
+        depth: Vec<f32>,
+        /// Per pixel: 0 nothing, 1 + the axis of the face painted.
+        face: Vec<u8>,
+        /// Per pixel: the shaded picture, RGB, 0 where nothing was painted.
+        shaded: Vec<u8>,
+        white_visited: usize,
+        black_visited: usize,
+        gray_visited: usize,
+        faces: usize,
+        scanlines: usize,
+        pixels: usize,
+        display_ms: f64,
+        build_ms: f64,
+        bitmap_bytes: usize,
+        white_octants: usize,
+        black_octants: usize,
+        gray_octants: usize,
+        resolution: u32,
+        /// "XYZ", "XY", ... (the view case).
+        view_case: String,
+    }
+
     /// Which isosurface the Hybrid Octree keeps.
     #[derive(Debug)]
     enum SurfaceMode {
@@ -270,6 +313,11 @@ mod bridge {
             measure_distance: bool,
         ) -> Result<SurfaceOutput>;
 
+        /// The binary octree of the borrowed image drawn along `options.vpn`
+        /// (errors: a zero or non-finite VPN, a non-finite isovalue or label,
+        /// an image size outside 8..=8192).
+        fn ftb_display(bytes: &[u8], desc: &GridDesc, options: &FtbDesc) -> Result<FtbImage>;
+
         /// A selection of the octree's nodes and texture levels, for drawing.
         type SelectionHandle;
 
@@ -353,10 +401,11 @@ mod bridge {
     }
 }
 
+use crate::ffi_ftb::ftb_display;
 pub use crate::ffi_render::{SelectionHandle, SurfaceHandle};
 pub use bridge::{
-    CameraDesc, CutBoxes, DrawListOutput, GridDesc, OctreeSummary, ScalarType, SelectDesc, SelectionSummary,
-    SurfaceMode, SurfaceOutput,
+    CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbImage, GridDesc, OctreeSummary, ScalarType, SelectDesc,
+    SelectionSummary, SurfaceMode, SurfaceOutput,
 };
 
 /// A Volume Octree together with the geometry needed to place its boxes.

@@ -26,6 +26,7 @@ pub mod datasets;
 pub mod error;
 #[allow(missing_docs)]
 pub mod ffi;
+mod ffi_ftb;
 mod ffi_render;
 pub mod ftb;
 pub mod grid;

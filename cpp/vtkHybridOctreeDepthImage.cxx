@@ -1,0 +1,201 @@
+#include "vtkHybridOctreeDepthImage.h"
+
+#include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeImageInput.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <string>
+
+vtkStandardNewMacro(vtkHybridOctreeDepthImage);
+
+vtkHybridOctreeDepthImage::vtkHybridOctreeDepthImage()
+{
+  // The point scalars by default (ParaView's 'Scalars' property).
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+vtkHybridOctreeDepthImage::~vtkHybridOctreeDepthImage() = default;
+
+int vtkHybridOctreeDepthImage::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port != 0)
+  {
+    return 0;
+  }
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkHybridOctreeDepthImage::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // The output is the picture, whatever the input's extent.
+  vtkInformation* out = outputVector->GetInformationObject(0);
+  const int extent[6] = { 0, this->ImageSize - 1, 0, this->ImageSize - 1, 0, 0 };
+  out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  const double spacing[3] = { 1.0, 1.0, 1.0 };
+  const double origin[3] = { 0.0, 0.0, 0.0 };
+  out->Set(vtkDataObject::SPACING(), spacing, 3);
+  out->Set(vtkDataObject::ORIGIN(), origin, 3);
+  return 1;
+}
+
+int vtkHybridOctreeDepthImage::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* in = inputVector[0]->GetInformationObject(0);
+  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  return 1;
+}
+
+namespace
+{
+template <typename T>
+void AddField(vtkFieldData* fd, const char* name, T value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(static_cast<double>(value));
+  fd->AddArray(a);
+}
+}
+
+int vtkHybridOctreeDepthImage::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (!output)
+  {
+    vtkErrorMacro("the output is not vtkImageData");
+    return 0;
+  }
+  output->Initialize();
+  if (!input)
+  {
+    vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
+    return 0;
+  }
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  std::string error;
+  vtkDataArray* scalars = vtkHybridOctreeImageInput::CheckPointScalars(
+    input, this->GetInputArrayToProcess(0, inputVector, association), association, error);
+  if (!scalars)
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  vtkHybridOctreeBridge::FtbOptions options;
+  options.Isovalue = this->Isovalue;
+  options.UseLabel = this->UseLabel != 0;
+  options.Label = this->Label;
+  for (int a = 0; a < 3; ++a)
+  {
+    options.Vpn[a] = this->ViewPlaneNormal[a];
+  }
+  options.ImageSize = static_cast<std::size_t>(this->ImageSize);
+  options.BackToFront = this->Method == BACK_TO_FRONT;
+  vtkHybridOctreeBridge::FtbResult result;
+  if (!vtkHybridOctreeBridge::FtbDisplay(vtkHybridOctreeImageInput::Bytes(scalars),
+        vtkHybridOctreeImageInput::ByteCount(scalars),
+        vtkHybridOctreeImageInput::DescribeGrid(input, scalars, this->Component), options, result,
+        error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  const std::size_t n = result.Size;
+  if (n == 0 || result.Depth.size() != n * n || result.Face.size() != n * n ||
+    result.Shaded.size() != 3 * n * n)
+  {
+    vtkErrorMacro("internal error: the core returned an inconsistent depth image; please report it");
+    return 0;
+  }
+  output->SetExtent(0, static_cast<int>(n) - 1, 0, static_cast<int>(n) - 1, 0, 0);
+  output->SetSpacing(1.0, 1.0, 1.0);
+  output->SetOrigin(0.0, 0.0, 0.0);
+  vtkNew<vtkFloatArray> depth;
+  depth->SetName("depth");
+  depth->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
+  vtkNew<vtkUnsignedCharArray> face;
+  face->SetName("face");
+  face->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
+  vtkNew<vtkUnsignedCharArray> shaded;
+  shaded->SetName("shaded");
+  shaded->SetNumberOfComponents(3);
+  shaded->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
+  // The core's rows go top down; VTK's images bottom up.
+  for (std::size_t row = 0; row < n; ++row)
+  {
+    const std::size_t from = (n - 1 - row) * n;
+    for (std::size_t x = 0; x < n; ++x)
+    {
+      const vtkIdType to = static_cast<vtkIdType>(row * n + x);
+      depth->SetValue(to, result.Depth[from + x]);
+      face->SetValue(to, result.Face[from + x]);
+      for (int c = 0; c < 3; ++c)
+      {
+        shaded->SetTypedComponent(to, c, result.Shaded[3 * (from + x) + c]);
+      }
+    }
+  }
+  output->GetPointData()->SetScalars(depth);
+  output->GetPointData()->AddArray(face);
+  output->GetPointData()->AddArray(shaded);
+
+  vtkFieldData* fd = output->GetFieldData();
+  AddField(fd, "white_visited", result.WhiteVisited);
+  AddField(fd, "black_visited", result.BlackVisited);
+  AddField(fd, "gray_visited", result.GrayVisited);
+  AddField(fd, "faces", result.Faces);
+  AddField(fd, "scanlines", result.Scanlines);
+  AddField(fd, "pixels", result.Pixels);
+  AddField(fd, "display_ms", result.DisplayMs);
+  AddField(fd, "build_ms", result.BuildMs);
+  AddField(fd, "bitmap_bytes", result.BitmapBytes);
+  AddField(fd, "white_octants", result.WhiteOctants);
+  AddField(fd, "black_octants", result.BlackOctants);
+  AddField(fd, "gray_octants", result.GrayOctants);
+  AddField(fd, "resolution", result.Resolution);
+  vtkNew<vtkStringArray> viewCase;
+  viewCase->SetName("view_case");
+  viewCase->InsertNextValue(result.ViewCase);
+  fd->AddArray(viewCase);
+  vtkNew<vtkStringArray> method;
+  method->SetName("method");
+  method->InsertNextValue(this->Method == BACK_TO_FRONT ? "back-to-front" : "front-to-back");
+  fd->AddArray(method);
+  return 1;
+}
+
+void vtkHybridOctreeDepthImage::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Isovalue: " << this->Isovalue << "\n";
+  os << indent << "UseLabel: " << this->UseLabel << "\n";
+  os << indent << "Label: " << this->Label << "\n";
+  os << indent << "ViewPlaneNormal: " << this->ViewPlaneNormal[0] << ", "
+     << this->ViewPlaneNormal[1] << ", " << this->ViewPlaneNormal[2] << "\n";
+  os << indent << "ImageSize: " << this->ImageSize << "\n";
+  os << indent << "Method: " << (this->Method == BACK_TO_FRONT ? "BackToFront" : "FrontToBack")
+     << "\n";
+  os << indent << "Component: " << this->Component << "\n";
+}
