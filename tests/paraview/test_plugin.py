@@ -170,6 +170,41 @@ check(again.get("node_count") == full["node_count"] and again.get("cut_count") =
 Delete(watched)
 Delete(big)
 
+# ---- The depth image of the binary octree (issue 7) -------------------------------
+# Same counters as the CLI on the same file, and the same depth front to back
+# and back to front.
+depth_inputs = XMLImageDataReader(FileName=[sphere_vti])
+depth_inputs.UpdatePipeline()
+sphere_array = ["POINTS", depth_inputs.PointData.keys()[0]]
+ftb_proxy = HybridOctreeDepthImage(Input=depth_inputs, Scalars=sphere_array, Isovalue=0.5,
+                                   ViewPlaneNormal=[1, -2, 1], ImageSize=64)
+ftb_proxy.UpdatePipeline()
+ftb_image = servermanager.Fetch(ftb_proxy)
+btf_proxy = HybridOctreeDepthImage(Input=depth_inputs, Scalars=sphere_array, Isovalue=0.5,
+                                   ViewPlaneNormal=[1, -2, 1], ImageSize=64, Method="Back To Front")
+btf_proxy.UpdatePipeline()
+btf_image = servermanager.Fetch(btf_proxy)
+check(ftb_image.GetDimensions() == (64, 64, 1), "the depth image is 64 x 64: %s" % (ftb_image.GetDimensions(),))
+from paraview.vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
+ftb_depth = vtk_to_numpy(ftb_image.GetPointData().GetArray("depth"))
+btf_depth = vtk_to_numpy(btf_image.GetPointData().GetArray("depth"))
+check(ftb_depth.tobytes() == btf_depth.tobytes(), "front to back and back to front give the same depth")
+import numpy  # noqa: E402  (pvbatch ships numpy)
+check(int((~numpy.isnan(ftb_depth)).sum()) > 100, "the sphere is seen in the depth image")
+cli_rows = subprocess.run(
+    [args.cli, "ftb", "--file", sphere_vti, "--isovalue", "0.5", "--vpn", "1,-2,1", "--image-size", "64",
+     "--repeats", "1", "--output", os.path.join(args.workdir, "ftb"), "--json"],
+    check=True, capture_output=True, text=True).stdout
+cli_row = json.loads(cli_rows.splitlines()[0])
+ftb_fd = ftb_image.GetFieldData()
+for key in ["faces", "scanlines", "pixels", "black_visited", "white_visited", "gray_visited"]:
+    check(ftb_fd.GetArray(key).GetValue(0) == cli_row["ftb"][key],
+          "depth image %s = %s, the CLI says %s" % (key, ftb_fd.GetArray(key).GetValue(0), cli_row["ftb"][key]))
+    check(btf_image.GetFieldData().GetArray(key).GetValue(0) == cli_row["btf"][key], "BTF %s matches the CLI" % key)
+Delete(btf_proxy)
+Delete(ftb_proxy)
+Delete(depth_inputs)
+
 # ---- The isosurface on output port 1 -------------------------------------------
 SURFACE_EXACT = ["polygons", "faces", "triangles", "uncompressed_triangles", "vertices", "boundary_edges"]
 
