@@ -608,6 +608,19 @@ impl VolumeOctreeHandle {
     }
 }
 
+/// The bytes of an f32 slice, as the C++ side hands them over (tests).
+#[cfg(test)]
+pub(crate) fn as_bytes(data: &[f32]) -> &[u8] {
+    // SAFETY: f32 has no padding; the byte view covers exactly the slice's storage.
+    unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, std::mem::size_of_val(data)) }
+}
+
+/// A single-component f32 grid of `dims` with unit spacing at the origin (tests).
+#[cfg(test)]
+pub(crate) fn f32_desc(dims: [usize; 3]) -> GridDesc {
+    GridDesc { scalar_type: ScalarType::F32, dims, spacing: [1.0; 3], origin: [0.0; 3], components: 1, component: -1 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -646,20 +659,7 @@ mod tests {
     /// A 64^3 ramp (4096 leaf bricks of 4: 16 progress chunks of 256).
     fn ramp64() -> (Vec<f32>, GridDesc) {
         let data: Vec<f32> = (0..64 * 64 * 64).map(|i| (i % 977) as f32).collect();
-        let desc = GridDesc {
-            scalar_type: ScalarType::F32,
-            dims: [64, 64, 64],
-            spacing: [1.0; 3],
-            origin: [0.0; 3],
-            components: 1,
-            component: -1,
-        };
-        (data, desc)
-    }
-
-    fn as_bytes(data: &[f32]) -> &[u8] {
-        // SAFETY: f32 has no padding; the byte view covers exactly the slice's storage.
-        unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, std::mem::size_of_val(data)) }
+        (data, f32_desc([64; 3]))
     }
 
     #[test]

@@ -64,7 +64,7 @@ fn display(bytes: &[u8], desc: &GridDesc, options: &FtbDesc) -> Result<FtbImage>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ffi::ScalarType;
+    use crate::ffi::{as_bytes, f32_desc};
 
     fn ball() -> (Vec<f32>, GridDesc) {
         let n = 20;
@@ -75,20 +75,7 @@ mod tests {
                 (x * x + y * y + z * z).sqrt()
             })
             .collect();
-        let desc = GridDesc {
-            scalar_type: ScalarType::F32,
-            dims: [n; 3],
-            spacing: [1.0; 3],
-            origin: [0.0; 3],
-            components: 1,
-            component: -1,
-        };
-        (data, desc)
-    }
-
-    fn as_bytes(d: &[f32]) -> &[u8] {
-        // SAFETY: f32 has no padding; the byte view covers exactly the slice.
-        unsafe { std::slice::from_raw_parts(d.as_ptr() as *const u8, std::mem::size_of_val(d)) }
+        (data, f32_desc([n; 3]))
     }
 
     #[test]
