@@ -74,6 +74,48 @@ impl BlockingBitmaps {
         *byte = (*byte & !(3 << shift)) | (colour << shift);
     }
 
+    /// Where node `card` of depth `depth` of tree `tree` lives: the global
+    /// bit-pair index that [`Self::get_at`] and the other `_at` calls take
+    /// (formula (1) plus the tree's offset).
+    #[inline]
+    pub fn node(&self, tree: usize, depth: u32, card: usize) -> usize {
+        tree * self.nodes + self.ind_tab[depth as usize] + card
+    }
+
+    /// Colour at global index `g`: formula (2).
+    #[inline]
+    pub fn get_at(&self, g: usize) -> u8 {
+        (self.bits[g >> 2] >> ((g & 3) * 2)) & 3
+    }
+
+    /// Sets global index `g` to `colour`.
+    #[inline]
+    pub fn set_at(&mut self, g: usize, colour: u8) {
+        let shift = (g & 3) * 2;
+        let byte = &mut self.bits[g >> 2];
+        *byte = (*byte & !(3 << shift)) | (colour << shift);
+    }
+
+    /// Refine at global index `g` whose first child is at global index `first`.
+    #[inline]
+    pub fn refine_at(&mut self, g: usize, first: usize) {
+        let colour = self.get_at(g);
+        if colour != GRAY {
+            for j in 0..4 {
+                self.set_at(first + j, colour);
+            }
+            self.set_at(g, GRAY);
+        }
+    }
+
+    /// Compact at global index `g` whose first child is at global index `first`.
+    #[inline]
+    pub fn compact_at(&mut self, g: usize, first: usize) {
+        if (0..4).all(|j| self.get_at(first + j) == BLACK) {
+            self.set_at(g, BLACK);
+        }
+    }
+
     /// Refine: a W or B node `card` of depth `depth` becomes G with four
     /// children of its colour; a G node is left as it is.
     #[inline]

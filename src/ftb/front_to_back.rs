@@ -27,12 +27,25 @@ use std::time::Instant;
 /// The depth image of `octree` seen along `view` on a `size x size` image,
 /// and the bytes of the blocking bitmaps it used.
 pub fn display(octree: &BinaryOctree, view: &View, size: usize) -> (Display, usize) {
+    match view.axes.len() {
+        3 => run::<3>(octree, view, size),
+        2 => run::<2>(octree, view, size),
+        _ => run::<1>(octree, view, size),
+    }
+}
+
+/// The display with `N` used axes (the view case's bitmaps), so the per-axis
+/// loops are unrolled.
+fn run<const N: usize>(octree: &BinaryOctree, view: &View, size: usize) -> (Display, usize) {
     let started = Instant::now();
-    let mut run = Run {
+    let axes: [usize; N] = std::array::from_fn(|ii| view.axes[ii]);
+    let mut run = Run::<N> {
         octree,
         view,
+        axes,
+        quad: std::array::from_fn(|oct| std::array::from_fn(|ii| QUAD_TAB[oct][axes[ii]] as usize)),
         projector: Projector::new(view, octree.side(), size),
-        bitmaps: BlockingBitmaps::new(view.axes.len(), octree.n),
+        bitmaps: BlockingBitmaps::new(N, octree.n),
     };
     let root = octree.root();
     match root.colour {
@@ -43,44 +56,49 @@ pub fn display(octree: &BinaryOctree, view: &View, size: usize) -> (Display, usi
                 run.projector.face([0; 3], octree.side(), axis, view.high_face[axis], Paint::Unpainted);
             }
         }
-        Colour::Gray => run.gray(root, 0, [0; 3], [0; 3], octree.side()),
+        Colour::Gray => run.gray(root, 0, [0; N], [0; 3], octree.side()),
     }
     let bytes = run.bitmaps.bytes();
     let ms = started.elapsed().as_secs_f64() * 1e3;
     (Display { image: run.projector.image, counters: run.projector.counters, ms }, bytes)
 }
 
-struct Run<'a> {
+struct Run<'a, const N: usize> {
     octree: &'a BinaryOctree,
     view: &'a View,
+    /// The used axes (`axis` of the paper), in X, Y, Z order.
+    axes: [usize; N],
+    /// `quad_tab[oct][axes[ii]]`: Table I restricted to the used axes.
+    quad: [[usize; N]; 8],
     projector: Projector,
-    /// One bitmap per used axis, in the order of `view.axes`.
+    /// One bitmap per used axis, in the order of `axes`.
     bitmaps: BlockingBitmaps,
 }
 
-impl Run<'_> {
-    /// Whether every face node of the octant (`card` per used axis) is B.
-    fn blocked(&self, depth: u32, card: &[usize; 3]) -> bool {
-        let b = &self.bitmaps;
-        (0..self.view.axes.len()).all(|ii| b.get(ii, b.index(depth, card[ii])) == BLACK)
+impl<const N: usize> Run<'_, N> {
+    /// `ind_num` per used axis (as global bitmap indices): formula (1).
+    #[inline]
+    fn ind_num(&self, depth: u32, card: &[usize; N]) -> [usize; N] {
+        std::array::from_fn(|ii| self.bitmaps.node(ii, depth, card[ii]))
     }
 
     /// Procedure "Process a G Octant".
-    fn gray(&mut self, node: Node, depth: u32, card: [usize; 3], origin: [usize; 3], size: usize) {
+    fn gray(&mut self, node: Node, depth: u32, card: [usize; N], origin: [usize; 3], size: usize) {
         self.projector.counters.gray_visited += 1;
-        if self.blocked(depth, &card) {
-            return;
+        let ind = self.ind_num(depth, &card);
+        if ind.iter().all(|&g| self.bitmaps.get_at(g) == BLACK) {
+            return; // blocked: discarded with its subtree
         }
-        for (ii, &c) in card.iter().enumerate().take(self.view.axes.len()) {
-            self.bitmaps.refine(ii, depth, c);
+        // ind_num_son[i][0] = ind_tab[depth + 1] + 4 card_num[i]: formula (3).
+        let son: [usize; N] = std::array::from_fn(|ii| self.bitmaps.node(ii, depth + 1, 4 * card[ii]));
+        for ii in 0..N {
+            self.bitmaps.refine_at(ind[ii], son[ii]);
         }
         let half = size / 2;
         for k in 0..8 {
             let oct = self.view.ftb_order[k];
-            let mut card_son = [0usize; 3];
-            for (ii, &axis) in self.view.axes.iter().enumerate() {
-                card_son[ii] = 4 * card[ii] + QUAD_TAB[oct][axis] as usize;
-            }
+            // card_num_son[i] = 4 card_num[i] + quad_tab[oct][i]: formula (4).
+            let card_son: [usize; N] = std::array::from_fn(|ii| 4 * card[ii] + self.quad[oct][ii]);
             let o = [origin[0] + half * (oct & 1), origin[1] + half * ((oct >> 1) & 1), origin[2] + half * (oct >> 2)];
             let child = self.octree.child(node, oct);
             if child.colour == Colour::Gray {
@@ -89,29 +107,29 @@ impl Run<'_> {
                 self.white_or_black(child.colour, depth + 1, card_son, o, half);
             }
         }
-        for (ii, &c) in card.iter().enumerate().take(self.view.axes.len()) {
-            self.bitmaps.compact(ii, depth, c);
+        for ii in 0..N {
+            self.bitmaps.compact_at(ind[ii], son[ii]);
         }
     }
 
     /// Procedure "Process a W or B Octant".
-    fn white_or_black(&mut self, colour: Colour, depth: u32, card: [usize; 3], origin: [usize; 3], size: usize) {
+    fn white_or_black(&mut self, colour: Colour, depth: u32, card: [usize; N], origin: [usize; 3], size: usize) {
         if colour == Colour::Black {
             self.projector.counters.black_visited += 1;
         } else {
             self.projector.counters.white_visited += 1;
         }
-        if self.blocked(depth, &card) {
-            return;
+        let ind = self.ind_num(depth, &card);
+        if ind.iter().all(|&g| self.bitmaps.get_at(g) == BLACK) {
+            return; // blocked
         }
         let value = if colour == Colour::Black { BLACK } else { WHITE };
-        for (ii, &c) in card.iter().enumerate().take(self.view.axes.len()) {
-            let index = self.bitmaps.index(depth, c);
-            if colour == Colour::Black && self.bitmaps.get(ii, index) != BLACK {
-                let axis = self.view.axes[ii];
+        for ii in 0..N {
+            if colour == Colour::Black && self.bitmaps.get_at(ind[ii]) != BLACK {
+                let axis = self.axes[ii];
                 self.projector.face(origin, size, axis, self.view.high_face[axis], Paint::Unpainted);
             }
-            self.bitmaps.set(ii, index, value);
+            self.bitmaps.set_at(ind[ii], value);
         }
     }
 }
