@@ -124,12 +124,11 @@ impl<const N: usize> Run<'_, N> {
             return; // blocked
         }
         let value = if colour == Colour::Black { BLACK } else { WHITE };
-        for ii in 0..N {
-            if colour == Colour::Black && self.bitmaps.get_at(ind[ii]) != BLACK {
-                let axis = self.axes[ii];
+        for (&g, &axis) in ind.iter().zip(&self.axes) {
+            if colour == Colour::Black && self.bitmaps.get_at(g) != BLACK {
                 self.projector.face(origin, size, axis, self.view.high_face[axis], Paint::Unpainted);
             }
-            self.bitmaps.set_at(ind[ii], value);
+            self.bitmaps.set_at(g, value);
         }
     }
 }
