@@ -179,7 +179,6 @@ bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scal
   {
     if (this->GetAbortOutput())
     {
-      this->BuildCancelled = true;
       vtkWarningMacro("the Hybrid Octree build was cancelled (abort): the outputs are empty; "
                       "modify the filter (ParaView: Apply) to build again");
     }
@@ -340,12 +339,16 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
     vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
     return 0;
   }
-  this->BuildCancelled = false;
   vtkDataArray* scalars = this->GetScalars(input, inputVector);
-  if (!scalars || !this->UpdateOctree(input, scalars))
+  if (!scalars)
   {
-    // A cancel is the user's request, not a failure: the request completes, empty.
-    return this->BuildCancelled ? 1 : 0;
+    return 0;
+  }
+  if (!this->UpdateOctree(input, scalars))
+  {
+    // A cancel (CheckAbort() said so) is the user's request, not a failure:
+    // the request completes, empty.
+    return this->GetAbortOutput() ? 1 : 0;
   }
   this->UpdateProgress(SurfaceShare);
   if (!this->UpdateSurface(scalars) || !this->FillBoxes(boxes))

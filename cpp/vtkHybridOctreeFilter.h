@@ -195,8 +195,6 @@ protected:
   vtkTypeBool MeasureSurfaceDistance = 1;
   vtkIdType OctreeBuildCount = 0;
   vtkIdType SurfaceExtractCount = 0;
-  /// The last request was cancelled (abort) before the octree was built.
-  bool BuildCancelled = false;
 
 private:
   vtkHybridOctreeFilter(const vtkHybridOctreeFilter&) = delete;
@@ -205,7 +203,7 @@ private:
   /// The scalar array to build from, or nullptr after reporting why not.
   vtkDataArray* GetScalars(vtkImageData* image, vtkInformationVector** inputVector);
   /// Builds the octree unless the cached one was built from the same inputs,
-  /// reporting progress and honouring abort (BuildCancelled on abort).
+  /// reporting progress and honouring abort (GetAbortOutput() then true).
   bool UpdateOctree(vtkImageData* image, vtkDataArray* scalars);
   /// Extracts the surface unless the cached one has the same octree and settings.
   bool UpdateSurface(vtkDataArray* scalars);
