@@ -648,8 +648,8 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
     }
     // Ray-marched boxes keep only the faces rays leave by (see
     // vtkHybridOctreeBrickDrawer::EmitBox); a mirroring model matrix turns
-    // their winding over.
-    vtkOpenGLState::ScopedglEnableDisable frontFace(state, GL_CULL_FACE);
+    // their winding over. Culling is restored before the target is blended.
+    vtkOpenGLState::ScopedglEnableDisable brickCulling(state, GL_CULL_FACE);
     state->vtkglCullFace(GL_BACK);
     glFrontFace(in.Model->Determinant() < 0.0 ? GL_CW : GL_CCW);
     for (std::size_t i = 0; i < bricks; ++i)
