@@ -65,6 +65,15 @@ impl DepthImage {
         DepthImage { size, depth: vec![f64::INFINITY; size * size], face: vec![0; size * size] }
     }
 
+    /// The nearest painted depth and the depth extent of the painted pixels
+    /// (1 when they are all at one depth or none is painted), for pictures
+    /// that map depth to brightness.
+    pub fn depth_span(&self) -> (f64, f64) {
+        let painted = self.depth.iter().copied().filter(|z| z.is_finite());
+        let (lo, hi) = painted.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| (lo.min(z), hi.max(z)));
+        (lo, if hi > lo { hi - lo } else { 1.0 })
+    }
+
     /// Painted pixels.
     pub fn painted(&self) -> usize {
         self.face.iter().filter(|&&f| f != 0).count()

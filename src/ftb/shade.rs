@@ -14,9 +14,7 @@ use crate::render::image::Image;
 
 /// The shaded picture of `image` seen along `view`.
 pub fn shade(image: &DepthImage, view: &View) -> Image {
-    let painted = image.depth.iter().copied().filter(|z| z.is_finite());
-    let (lo, hi) = painted.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| (lo.min(z), hi.max(z)));
-    let range = if hi > lo { hi - lo } else { 1.0 };
+    let (lo, range) = image.depth_span();
     let mut out = Image::new(image.size, image.size);
     for (i, px) in out.rgba.iter_mut().enumerate() {
         let face = image.face[i];

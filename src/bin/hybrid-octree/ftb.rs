@@ -217,9 +217,7 @@ fn vpn_tag(v: [f64; 3]) -> String {
 
 /// The depth image as grey: near white, far dark, unpainted transparent.
 fn depth_picture(d: &Display) -> Image {
-    let finite = d.image.depth.iter().copied().filter(|z| z.is_finite());
-    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| (lo.min(z), hi.max(z)));
-    let range = if hi > lo { hi - lo } else { 1.0 };
+    let (lo, range) = d.image.depth_span();
     let mut out = Image::new(d.image.size, d.image.size);
     for (px, &z) in out.rgba.iter_mut().zip(&d.image.depth) {
         if z.is_finite() {
