@@ -38,7 +38,7 @@ fn display(bytes: &[u8], desc: &GridDesc, options: &FtbDesc) -> Result<FtbImage>
     Ok(FtbImage {
         size: shown.image.size,
         depth: shown.image.depth.iter().map(|&z| if z.is_finite() { z as f32 } else { f32::NAN }).collect(),
-        face: shown.image.face.clone(),
+        face: shown.image.face,
         shaded: picture
             .over([0.0; 3])
             .iter()
