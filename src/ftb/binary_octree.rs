@@ -84,21 +84,18 @@ impl BinaryOctree {
                 "the isovalue or label {v} is not a finite number: give a value within the data range"
             )));
         }
-        let dims = grid.dims();
-        let mut voxels = vec![false; dims[0] * dims[1] * dims[2]];
-        voxels.par_chunks_mut(dims[0] * dims[1]).enumerate().for_each(|(k, slice)| {
-            for j in 0..dims[1] {
-                for i in 0..dims[0] {
-                    slice[i + dims[0] * j] = inside.contains(grid.value(i, j, k));
-                }
-            }
-        });
-        Ok(BinaryOctree::from_voxels(dims, &voxels))
+        Ok(BinaryOctree::from_fn(grid.dims(), |i, j, k| inside.contains(grid.value(i, j, k))))
     }
 
     /// The octree of the voxels `inside[i + dims[0] * (j + dims[1] * k)]`.
     pub fn from_voxels(dims: [usize; 3], inside: &[bool]) -> BinaryOctree {
         assert_eq!(inside.len(), dims[0] * dims[1] * dims[2], "one flag per voxel");
+        BinaryOctree::from_fn(dims, |i, j, k| inside[i + dims[0] * (j + dims[1] * k)])
+    }
+
+    /// The octree of the voxels `(i, j, k)` of a `dims` grid for which
+    /// `inside(i, j, k)` holds (read once each, in parallel by z slices).
+    fn from_fn(dims: [usize; 3], inside: impl Fn(usize, usize, usize) -> bool + Sync) -> BinaryOctree {
         let largest = dims.iter().copied().max().unwrap_or(1).max(1);
         let n = largest.next_power_of_two().trailing_zeros();
         let pyramid = Pyramid::new(n, dims, inside);
@@ -228,14 +225,14 @@ struct Pyramid {
 }
 
 impl Pyramid {
-    fn new(n: u32, dims: [usize; 3], inside: &[bool]) -> Pyramid {
+    fn new(n: u32, dims: [usize; 3], inside: impl Fn(usize, usize, usize) -> bool + Sync) -> Pyramid {
         let side = 1usize << n;
         let mut finest = vec![Colour::White; side * side * side];
         finest.par_chunks_mut(side * side).enumerate().for_each(|(k, slice)| {
             if k < dims[2] {
                 for j in 0..dims[1] {
                     for i in 0..dims[0] {
-                        if inside[i + dims[0] * (j + dims[1] * k)] {
+                        if inside(i, j, k) {
                             slice[i + side * j] = Colour::Black;
                         }
                     }
