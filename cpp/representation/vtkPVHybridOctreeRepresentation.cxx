@@ -5,7 +5,6 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
-#include "vtkPVLODVolume.h"
 #include "vtkScalarsToColors.h"
 #include "vtkVolumeProperty.h"
 
