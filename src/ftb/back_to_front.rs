@@ -4,15 +4,21 @@
 //! painted later (nearer).
 
 use super::binary_octree::{BinaryOctree, Colour, Node};
-use super::raster::{Paint, Projector};
+use super::raster::{DepthImage, Paint, Projector};
 use super::view::View;
 use super::Display;
 use std::time::Instant;
 
 /// The depth image of `octree` seen along `view` on a `size x size` image.
 pub fn display(octree: &BinaryOctree, view: &View, size: usize) -> Display {
+    display_into(octree, view, DepthImage::new(size))
+}
+
+/// [`display`] into `image` (cleared first; its size is the image size).
+/// The time covers clearing, traversal and scan conversion.
+pub fn display_into(octree: &BinaryOctree, view: &View, image: DepthImage) -> Display {
     let started = Instant::now();
-    let mut projector = Projector::new(view, octree.side(), size);
+    let mut projector = Projector::reusing(view, octree.side(), image);
     let order = view.btf_order();
     visit(octree, view, &order, &mut projector, octree.root(), [0; 3], octree.side());
     let ms = started.elapsed().as_secs_f64() * 1e3;
@@ -39,10 +45,11 @@ fn visit(
         Colour::Gray => {
             projector.counters.gray_visited += 1;
             let half = size / 2;
+            let octant = octree.gray_octant(node);
             for &oct in order {
                 let o =
                     [origin[0] + half * (oct & 1), origin[1] + half * ((oct >> 1) & 1), origin[2] + half * (oct >> 2)];
-                visit(octree, view, order, projector, octree.child(node, oct), o, half);
+                visit(octree, view, order, projector, BinaryOctree::suboctant(octant, oct), o, half);
             }
         }
     }

@@ -12,17 +12,29 @@ use crate::error::{Error, Result};
 use crate::grid::Grid;
 use rayon::prelude::*;
 use serde::Serialize;
-use std::collections::VecDeque;
 
 /// The colour of an octant.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[repr(u8)]
 pub enum Colour {
     /// No voxel inside the object.
-    White,
+    White = 0,
     /// Every voxel inside the object.
-    Black,
+    Black = 1,
     /// Mixed: eight suboctants.
-    Gray,
+    Gray = 2,
+}
+
+impl Colour {
+    /// The colour of 2-bit code `code & 3` (0 W, 1 B, otherwise G).
+    #[inline]
+    fn from_code(code: u16) -> Colour {
+        match code & 3 {
+            0 => Colour::White,
+            1 => Colour::Black,
+            _ => Colour::Gray,
+        }
+    }
 }
 
 /// Which voxels are inside the object.
@@ -44,13 +56,42 @@ impl Inside {
     }
 }
 
-/// One octant: its colour and, for a gray one, where its eight suboctants start.
+/// A gray octant as stored: the colours of its eight suboctants and where
+/// its gray suboctants are. White and black octants are not stored: their
+/// parent's `child_colours` says all there is to know about them, so a
+/// display reads memory only for gray octants.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GrayOctant {
+    /// Colour of suboctant `oct` in bits `2 oct .. 2 oct + 2` (0 W, 1 B, 2 G).
+    pub child_colours: u16,
+    /// Index in [`BinaryOctree::gray`] of the first gray suboctant; the gray
+    /// suboctants follow one another in label order.
+    pub first_gray: u32,
+}
+
+impl GrayOctant {
+    /// Colour of suboctant `oct`.
+    #[inline]
+    pub fn child_colour(self, oct: usize) -> Colour {
+        Colour::from_code(self.child_colours >> (2 * oct))
+    }
+
+    /// Gray suboctants with a label below `oct` (bit `2 j` set for each gray `j`, counted).
+    #[inline]
+    fn gray_below(self, oct: usize) -> u32 {
+        let grays = (self.child_colours >> 1) & 0x5555;
+        (grays & ((1u16 << (2 * oct)) - 1)).count_ones()
+    }
+}
+
+/// One octant met in a traversal: its colour and, for a gray one, its index
+/// in [`BinaryOctree::gray`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Node {
     /// W, B or G.
     pub colour: Colour,
-    /// Index of suboctant 0 in [`BinaryOctree::nodes`] (suboctants `first .. first + 8`, by label); 0 unless gray.
-    pub first_child: u32,
+    /// Index in [`BinaryOctree::gray`]; 0 unless gray.
+    pub gray: u32,
 }
 
 /// Octants of each colour.
@@ -69,8 +110,13 @@ pub struct OctantCounts {
 pub struct BinaryOctree {
     /// Resolution: the octree space is `2^n` voxels per axis.
     pub n: u32,
-    /// Octants in breadth-first order; the root is node 0.
-    pub nodes: Vec<Node>,
+    /// Colour of the root octant.
+    pub root_colour: Colour,
+    /// The gray octants, the root first when it is gray, depth first: a gray
+    /// octant's gray suboctants are appended together, and the subtree of
+    /// each follows before its next gray sibling's, so a display walks this
+    /// array forwards.
+    pub gray: Vec<GrayOctant>,
     /// Samples per axis of the grid the octree was built from.
     pub dims: [usize; 3],
 }
@@ -99,25 +145,36 @@ impl BinaryOctree {
         let largest = dims.iter().copied().max().unwrap_or(1).max(1);
         let n = largest.next_power_of_two().trailing_zeros();
         let pyramid = Pyramid::new(n, dims, inside);
-        // Breadth first: a gray octant's eight suboctants are appended together.
-        let mut nodes = vec![Node { colour: pyramid.colour(0, [0; 3]), first_child: 0 }];
-        let mut queue = VecDeque::new();
-        if nodes[0].colour == Colour::Gray {
-            queue.push_back((0usize, 0u32, [0usize; 3]));
+        let root_colour = pyramid.colour(0, [0; 3]);
+        let mut gray = Vec::new();
+        let mut stack = Vec::new();
+        if root_colour == Colour::Gray {
+            gray.push(GrayOctant { child_colours: 0, first_gray: 0 });
+            stack.push((0usize, 0u32, [0usize; 3]));
         }
-        while let Some((index, level, cell)) = queue.pop_front() {
-            let first = nodes.len();
-            nodes[index].first_child = u32::try_from(first).expect("fewer than 2^32 octants");
+        while let Some((index, level, cell)) = stack.pop() {
+            let first_gray = gray.len();
+            let mut child_colours = 0u16;
+            let mut gray_cells = [(0usize, [0usize; 3]); 8];
+            let mut grays = 0;
             for oct in 0..8 {
                 let child = [2 * cell[0] + (oct & 1), 2 * cell[1] + ((oct >> 1) & 1), 2 * cell[2] + (oct >> 2)];
                 let colour = pyramid.colour(level + 1, child);
-                nodes.push(Node { colour, first_child: 0 });
+                child_colours |= (colour as u16) << (2 * oct);
                 if colour == Colour::Gray {
-                    queue.push_back((first + oct, level + 1, child));
+                    gray_cells[grays] = (gray.len(), child);
+                    gray.push(GrayOctant { child_colours: 0, first_gray: 0 });
+                    grays += 1;
                 }
             }
+            let first_gray = u32::try_from(first_gray).expect("fewer than 2^32 gray octants");
+            gray[index] = GrayOctant { child_colours, first_gray };
+            // Pushed last to first so the first gray suboctant's subtree is laid out first.
+            for &(child_index, child) in gray_cells[..grays].iter().rev() {
+                stack.push((child_index, level + 1, child));
+            }
         }
-        BinaryOctree { n, nodes, dims }
+        BinaryOctree { n, root_colour, gray, dims }
     }
 
     /// Voxels per axis of the octree space.
@@ -127,30 +184,48 @@ impl BinaryOctree {
 
     /// The root octant.
     pub fn root(&self) -> Node {
-        self.nodes[0]
+        Node { colour: self.root_colour, gray: 0 }
+    }
+
+    /// The stored gray octant `node`.
+    #[inline]
+    pub fn gray_octant(&self, node: Node) -> GrayOctant {
+        self.gray[node.gray as usize]
+    }
+
+    /// Suboctant `oct` of gray octant `parent`: its colour, and its index
+    /// when it is gray (`first_gray` plus the gray suboctants before it).
+    #[inline]
+    pub fn suboctant(parent: GrayOctant, oct: usize) -> Node {
+        match parent.child_colour(oct) {
+            Colour::Gray => Node { colour: Colour::Gray, gray: parent.first_gray + parent.gray_below(oct) },
+            leaf => Node { colour: leaf, gray: 0 },
+        }
     }
 
     /// Suboctant `oct` of gray node `node`.
     pub fn child(&self, node: Node, oct: usize) -> Node {
-        self.nodes[node.first_child as usize + oct]
+        BinaryOctree::suboctant(self.gray_octant(node), oct)
     }
 
     /// Octants of each colour.
     pub fn counts(&self) -> OctantCounts {
         let mut c = OctantCounts::default();
-        for node in &self.nodes {
-            match node.colour {
-                Colour::White => c.white += 1,
-                Colour::Black => c.black += 1,
-                Colour::Gray => c.gray += 1,
-            }
+        let mut add = |colour| match colour {
+            Colour::White => c.white += 1,
+            Colour::Black => c.black += 1,
+            Colour::Gray => c.gray += 1,
+        };
+        add(self.root_colour);
+        for g in &self.gray {
+            (0..8).for_each(|oct| add(g.child_colour(oct)));
         }
         c
     }
 
-    /// Bytes the octree takes (its node array).
+    /// Bytes the octree takes (its gray octants).
     pub fn bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node>()
+        self.gray.len() * std::mem::size_of::<GrayOctant>()
     }
 
     /// Checks the structure: every gray octant has eight suboctants, not all
@@ -159,41 +234,40 @@ impl BinaryOctree {
     /// children.
     pub fn validate(&self) -> Result<()> {
         let fail = |m: String| Err(Error::Internal(format!("invalid binary octree: {m}")));
-        if self.nodes.is_empty() {
-            return fail("no root".into());
+        if (self.root_colour == Colour::Gray) == self.gray.is_empty() {
+            return fail(format!("a {:?} root with {} gray octants", self.root_colour, self.gray.len()));
         }
-        let mut reached = vec![false; self.nodes.len()];
-        reached[0] = true;
-        let mut stack = vec![(0usize, 0u32)];
+        let mut reached = vec![false; self.gray.len()];
+        let mut stack = if self.gray.is_empty() { vec![] } else { vec![(0usize, 0u32)] };
+        if let Some(root) = reached.first_mut() {
+            *root = true;
+        }
         while let Some((index, depth)) = stack.pop() {
-            let node = self.nodes[index];
-            if node.colour != Colour::Gray {
-                if node.first_child != 0 {
-                    return fail(format!("leaf octant {index} has children"));
-                }
-                continue;
-            }
+            let octant = self.gray[index];
             if depth >= self.n {
                 return fail(format!("gray octant {index} at voxel depth {depth}"));
             }
-            let first = node.first_child as usize;
-            if first + 8 > self.nodes.len() || first <= index {
-                return fail(format!("gray octant {index} has suboctants out of range at {first}"));
+            let colours: Vec<u16> = (0..8).map(|oct| (octant.child_colours >> (2 * oct)) & 3).collect();
+            if colours.contains(&3) {
+                return fail(format!("gray octant {index} has a suboctant of no colour"));
             }
-            let children = &self.nodes[first..first + 8];
-            if children.iter().all(|c| c.colour == Colour::White) || children.iter().all(|c| c.colour == Colour::Black)
-            {
+            if colours.iter().all(|&c| c == 0) || colours.iter().all(|&c| c == 1) {
                 return fail(format!("gray octant {index} has eight suboctants of one colour"));
             }
-            for k in 0..8 {
-                if std::mem::replace(&mut reached[first + k], true) {
-                    return fail(format!("octant {} is the child of two octants", first + k));
+            let grays = colours.iter().filter(|&&c| c == 2).count();
+            let first = octant.first_gray as usize;
+            if grays > 0 && (first + grays > self.gray.len() || first <= index) {
+                return fail(format!("gray octant {index} has gray suboctants out of range at {first}"));
+            }
+            for (k, seen) in reached.iter_mut().enumerate().skip(first).take(grays) {
+                if std::mem::replace(seen, true) {
+                    return fail(format!("gray octant {k} is the child of two octants"));
                 }
-                stack.push((first + k, depth + 1));
+                stack.push((k, depth + 1));
             }
         }
         if let Some(orphan) = reached.iter().position(|r| !r) {
-            return fail(format!("octant {orphan} is not reached from the root"));
+            return fail(format!("gray octant {orphan} is not reached from the root"));
         }
         Ok(())
     }
@@ -301,7 +375,7 @@ mod tests {
 
     #[test]
     fn uniform_volumes_are_one_octant() {
-        assert_eq!(BinaryOctree::from_voxels([4, 4, 4], &[true; 64]).nodes.len(), 1);
+        assert!(BinaryOctree::from_voxels([4, 4, 4], &[true; 64]).gray.is_empty());
         assert_eq!(BinaryOctree::from_voxels([4, 4, 4], &[false; 64]).root().colour, Colour::White);
         // A 3^3 block inside a 4^3 space is not uniform: the padding is white.
         let t = BinaryOctree::from_voxels([3, 3, 3], &[true; 27]);

@@ -96,22 +96,57 @@ impl BlockingBitmaps {
         *byte = (*byte & !(3 << shift)) | (colour << shift);
     }
 
-    /// Refine at global index `g` whose first child is at global index `first`.
+    /// Global index of the first of the four children of global index `g` of
+    /// tree `tree`: formula (3), `ind_tab[d + 1] + 4 card`, which is
+    /// `4 ind_num + 1` because `ind_tab[d + 1] = 4 ind_tab[d] + 1`.
+    #[inline]
+    pub fn first_son_at(&self, tree: usize, g: usize) -> usize {
+        4 * g + 1 - 3 * tree * self.nodes
+    }
+
+    /// The four children starting at global index `first`, as one byte
+    /// (child `j` in bits `2j..2j + 2`). Siblings are consecutive bit pairs,
+    /// so they are one or two bytes of the bitmap.
+    #[inline]
+    fn sons_at(&self, first: usize) -> u8 {
+        let (byte, shift) = (first >> 2, (first & 3) * 2);
+        if shift == 0 {
+            self.bits[byte]
+        } else {
+            (u16::from_le_bytes([self.bits[byte], self.bits[byte + 1]]) >> shift) as u8
+        }
+    }
+
+    /// Sets the four children starting at global index `first` to `sons` (as [`Self::sons_at`] reads them).
+    #[inline]
+    fn set_sons_at(&mut self, first: usize, sons: u8) {
+        let (byte, shift) = (first >> 2, (first & 3) * 2);
+        if shift == 0 {
+            self.bits[byte] = sons;
+        } else {
+            let old = u16::from_le_bytes([self.bits[byte], self.bits[byte + 1]]);
+            let [lo, hi] = ((old & !(0xff << shift)) | (u16::from(sons) << shift)).to_le_bytes();
+            self.bits[byte] = lo;
+            self.bits[byte + 1] = hi;
+        }
+    }
+
+    /// Refine at global index `g` whose first child is at global index
+    /// `first`: a W or B node becomes G with four children of its colour.
     #[inline]
     pub fn refine_at(&mut self, g: usize, first: usize) {
         let colour = self.get_at(g);
         if colour != GRAY {
-            for j in 0..4 {
-                self.set_at(first + j, colour);
-            }
+            self.set_sons_at(first, colour * 0b0101_0101);
             self.set_at(g, GRAY);
         }
     }
 
-    /// Compact at global index `g` whose first child is at global index `first`.
+    /// Compact at global index `g` whose first child is at global index
+    /// `first`: the node becomes B when its four children are B.
     #[inline]
     pub fn compact_at(&mut self, g: usize, first: usize) {
-        if (0..4).all(|j| self.get_at(first + j) == BLACK) {
+        if self.sons_at(first) == BLACK * 0b0101_0101 {
             self.set_at(g, BLACK);
         }
     }
@@ -170,6 +205,41 @@ mod tests {
         b.set(1, 2, BLACK);
         b.compact(1, 0, 0);
         assert_eq!(b.get(1, 0), BLACK);
+    }
+
+    #[test]
+    fn first_son_and_sibling_bytes_agree_with_the_paper_formulas() {
+        // Every node of every tree of a depth-4 bitmap set: formula (3) as
+        // `first_son_at`, and refine/compact through the packed sibling
+        // bytes equal to four single bit-pair writes.
+        let trees = 3;
+        let n = 4;
+        for tree in 0..trees {
+            for depth in 0..n {
+                for card in 0..1usize << (2 * depth) {
+                    let mut b = BlockingBitmaps::new(trees, n);
+                    let g = b.node(tree, depth, card);
+                    let first = b.node(tree, depth + 1, 4 * card);
+                    assert_eq!(b.first_son_at(tree, g), first);
+                    let after = (first + 4).min(trees * b.nodes - 1);
+                    b.set_at(first - 1, GRAY);
+                    b.set_at(after, GRAY);
+                    b.set_at(g, BLACK);
+                    b.refine_at(g, first);
+                    assert_eq!(b.get_at(g), GRAY);
+                    assert!((0..4).all(|j| b.get_at(first + j) == BLACK));
+                    if after == first + 4 {
+                        assert_eq!((b.get_at(first - 1), b.get_at(after)), (GRAY, GRAY), "neighbours kept");
+                    }
+                    b.set_at(first + 3, WHITE);
+                    b.compact_at(g, first);
+                    assert_eq!(b.get_at(g), GRAY, "three black children do not compact");
+                    b.set_at(first + 3, BLACK);
+                    b.compact_at(g, first);
+                    assert_eq!(b.get_at(g), BLACK);
+                }
+            }
+        }
     }
 
     #[test]

@@ -16,10 +16,14 @@
 //!
 //! Only the axes whose faces the view can see are used (the view case), so
 //! the XY, X, ... cases touch two or one bitmap.
+//!
+//! The procedures here take `ind_num` itself rather than `card_num`: a
+//! suboctant's `ind_num` is `ind_num_son[i][0] + quad_tab[oct][i]` (formulas
+//! (3) and (4) added), so no octant looks `ind_tab` up.
 
 use super::binary_octree::{BinaryOctree, Colour, Node};
 use super::bitmap::{BlockingBitmaps, BLACK, QUAD_TAB, WHITE};
-use super::raster::{Paint, Projector};
+use super::raster::{DepthImage, Paint, Projector};
 use super::view::View;
 use super::Display;
 use std::time::Instant;
@@ -27,16 +31,22 @@ use std::time::Instant;
 /// The depth image of `octree` seen along `view` on a `size x size` image,
 /// and the bytes of the blocking bitmaps it used.
 pub fn display(octree: &BinaryOctree, view: &View, size: usize) -> (Display, usize) {
+    display_into(octree, view, DepthImage::new(size))
+}
+
+/// [`display`] into `image` (cleared first; its size is the image size).
+/// The time covers clearing, the bitmaps, traversal and scan conversion.
+pub fn display_into(octree: &BinaryOctree, view: &View, image: DepthImage) -> (Display, usize) {
     match view.axes.len() {
-        3 => run::<3>(octree, view, size),
-        2 => run::<2>(octree, view, size),
-        _ => run::<1>(octree, view, size),
+        3 => run::<3>(octree, view, image),
+        2 => run::<2>(octree, view, image),
+        _ => run::<1>(octree, view, image),
     }
 }
 
 /// The display with `N` used axes (the view case's bitmaps), so the per-axis
 /// loops are unrolled.
-fn run<const N: usize>(octree: &BinaryOctree, view: &View, size: usize) -> (Display, usize) {
+fn run<const N: usize>(octree: &BinaryOctree, view: &View, image: DepthImage) -> (Display, usize) {
     let started = Instant::now();
     let axes: [usize; N] = std::array::from_fn(|ii| view.axes[ii]);
     let mut run = Run::<N> {
@@ -44,7 +54,7 @@ fn run<const N: usize>(octree: &BinaryOctree, view: &View, size: usize) -> (Disp
         view,
         axes,
         quad: std::array::from_fn(|oct| std::array::from_fn(|ii| QUAD_TAB[oct][axes[ii]] as usize)),
-        projector: Projector::new(view, octree.side(), size),
+        projector: Projector::reusing(view, octree.side(), image),
         bitmaps: BlockingBitmaps::new(N, octree.n),
     };
     let root = octree.root();
@@ -56,7 +66,10 @@ fn run<const N: usize>(octree: &BinaryOctree, view: &View, size: usize) -> (Disp
                 run.projector.face([0; 3], octree.side(), axis, view.high_face[axis], Paint::Unpainted);
             }
         }
-        Colour::Gray => run.gray(root, 0, [0; N], [0; 3], octree.side()),
+        Colour::Gray => {
+            let ind: [usize; N] = std::array::from_fn(|ii| run.bitmaps.node(ii, 0, 0));
+            run.gray(root, ind, [0; 3], octree.side())
+        }
     }
     let bytes = run.bitmaps.bytes();
     let ms = started.elapsed().as_secs_f64() * 1e3;
@@ -76,35 +89,30 @@ struct Run<'a, const N: usize> {
 }
 
 impl<const N: usize> Run<'_, N> {
-    /// `ind_num` per used axis (as global bitmap indices): formula (1).
-    #[inline]
-    fn ind_num(&self, depth: u32, card: &[usize; N]) -> [usize; N] {
-        std::array::from_fn(|ii| self.bitmaps.node(ii, depth, card[ii]))
-    }
-
-    /// Procedure "Process a G Octant".
-    fn gray(&mut self, node: Node, depth: u32, card: [usize; N], origin: [usize; 3], size: usize) {
+    /// Procedure "Process a G Octant", given the octant's `ind_num` (global
+    /// bitmap indices of its face nodes, one per used axis).
+    fn gray(&mut self, node: Node, ind: [usize; N], origin: [usize; 3], size: usize) {
         self.projector.counters.gray_visited += 1;
-        let ind = self.ind_num(depth, &card);
         if ind.iter().all(|&g| self.bitmaps.get_at(g) == BLACK) {
             return; // blocked: discarded with its subtree
         }
         // ind_num_son[i][0] = ind_tab[depth + 1] + 4 card_num[i]: formula (3).
-        let son: [usize; N] = std::array::from_fn(|ii| self.bitmaps.node(ii, depth + 1, 4 * card[ii]));
+        let son: [usize; N] = std::array::from_fn(|ii| self.bitmaps.first_son_at(ii, ind[ii]));
         for ii in 0..N {
             self.bitmaps.refine_at(ind[ii], son[ii]);
         }
         let half = size / 2;
+        let octant = self.octree.gray_octant(node);
         for k in 0..8 {
             let oct = self.view.ftb_order[k];
             // card_num_son[i] = 4 card_num[i] + quad_tab[oct][i]: formula (4).
-            let card_son: [usize; N] = std::array::from_fn(|ii| 4 * card[ii] + self.quad[oct][ii]);
+            let ind_son: [usize; N] = std::array::from_fn(|ii| son[ii] + self.quad[oct][ii]);
             let o = [origin[0] + half * (oct & 1), origin[1] + half * ((oct >> 1) & 1), origin[2] + half * (oct >> 2)];
-            let child = self.octree.child(node, oct);
+            let child = BinaryOctree::suboctant(octant, oct);
             if child.colour == Colour::Gray {
-                self.gray(child, depth + 1, card_son, o, half);
+                self.gray(child, ind_son, o, half);
             } else {
-                self.white_or_black(child.colour, depth + 1, card_son, o, half);
+                self.white_or_black(child.colour, ind_son, o, half);
             }
         }
         for ii in 0..N {
@@ -112,23 +120,24 @@ impl<const N: usize> Run<'_, N> {
         }
     }
 
-    /// Procedure "Process a W or B Octant".
-    fn white_or_black(&mut self, colour: Colour, depth: u32, card: [usize; N], origin: [usize; 3], size: usize) {
+    /// Procedure "Process a W or B Octant", given its `ind_num`.
+    fn white_or_black(&mut self, colour: Colour, ind: [usize; N], origin: [usize; 3], size: usize) {
         if colour == Colour::Black {
             self.projector.counters.black_visited += 1;
         } else {
             self.projector.counters.white_visited += 1;
         }
-        let ind = self.ind_num(depth, &card);
-        if ind.iter().all(|&g| self.bitmaps.get_at(g) == BLACK) {
+        let nodes: [u8; N] = std::array::from_fn(|ii| self.bitmaps.get_at(ind[ii]));
+        if nodes.iter().all(|&c| c == BLACK) {
             return; // blocked
         }
         let value = if colour == Colour::Black { BLACK } else { WHITE };
-        for (&g, &axis) in ind.iter().zip(&self.axes) {
-            if colour == Colour::Black && self.bitmaps.get_at(g) != BLACK {
+        for ii in 0..N {
+            if colour == Colour::Black && nodes[ii] != BLACK {
+                let axis = self.axes[ii];
                 self.projector.face(origin, size, axis, self.view.high_face[axis], Paint::Unpainted);
             }
-            self.bitmaps.set_at(g, value);
+            self.bitmaps.set_at(ind[ii], value);
         }
     }
 }

@@ -61,7 +61,8 @@ pub struct DepthImage {
 }
 
 impl DepthImage {
-    fn new(size: usize) -> DepthImage {
+    /// A `size x size` image with nothing painted.
+    pub fn new(size: usize) -> DepthImage {
         DepthImage { size, depth: vec![f64::INFINITY; size * size], face: vec![0; size * size] }
     }
 
@@ -72,6 +73,12 @@ impl DepthImage {
         let painted = self.depth.iter().copied().filter(|z| z.is_finite());
         let (lo, hi) = painted.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| (lo.min(z), hi.max(z)));
         (lo, if hi > lo { hi - lo } else { 1.0 })
+    }
+
+    /// Every pixel back to not painted (infinite depth, no face), keeping the buffers.
+    pub fn clear(&mut self) {
+        self.depth.fill(f64::INFINITY);
+        self.face.fill(0);
     }
 
     /// Painted pixels.
@@ -116,6 +123,14 @@ impl Projector {
     /// A projector for an octree space of `side` voxels per axis on a `size`
     /// pixel square image, the whole space in view.
     pub fn new(view: &View, side: usize, size: usize) -> Projector {
+        Projector::reusing(view, side, DepthImage::new(size))
+    }
+
+    /// A projector that paints into `image`, cleared first (a display run
+    /// after run reuses its z-buffer instead of allocating a fresh one).
+    pub fn reusing(view: &View, side: usize, mut image: DepthImage) -> Projector {
+        image.clear();
+        let size = image.size;
         let half = side as f64 / 2.0;
         // The space's bounding sphere fills 98 % of the image.
         let scale = 0.98 * size as f64 / (side as f64 * 3f64.sqrt());
@@ -143,15 +158,7 @@ impl Projector {
             // Depth at image point (x, y) on plane k: -k / w_a + half / w_a - centre (dzdx + dzdy) + dzdx x + dzdy y.
             depth_k[a] = [-1.0 / view.w[a], half / view.w[a] - centre * (dzdx + dzdy)];
         }
-        Projector {
-            size,
-            origin,
-            axis_step,
-            depth_gradient,
-            depth_k,
-            image: DepthImage::new(size),
-            counters: Counters::default(),
-        }
+        Projector { size, origin, axis_step, depth_gradient, depth_k, image, counters: Counters::default() }
     }
 
     /// Fixed-point image position of lattice point `p`.

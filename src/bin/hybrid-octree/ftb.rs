@@ -7,7 +7,8 @@ use crate::input::InputArgs;
 use crate::pool::with_threads;
 use clap::Args;
 use hybrid_octree::ftb::{
-    back_to_front as btf, front_to_back as ftb, shade, BinaryOctree, Counters, Display, Inside, View, ViewCase,
+    back_to_front as btf, front_to_back as ftb, shade, BinaryOctree, Counters, DepthImage, Display, Inside, View,
+    ViewCase,
 };
 use hybrid_octree::render::image::Image;
 use hybrid_octree::{Error, Result};
@@ -135,16 +136,17 @@ pub fn run(args: &FtbArgs) -> Result<()> {
         );
     }
     for view in &views {
-        let b = median_run(args.repeats, || btf::display(&octree, view, args.image_size));
-        let (f, bytes) = {
-            let mut bytes = 0;
-            let d = median_run(args.repeats, || {
-                let (d, by) = ftb::display(&octree, view, args.image_size);
+        let mut bytes = 0;
+        let (b, f) = median_runs(
+            args.repeats,
+            args.image_size,
+            |image| btf::display_into(&octree, view, image),
+            |image| {
+                let (d, by) = ftb::display_into(&octree, view, image);
                 bytes = by;
                 d
-            });
-            (d, bytes)
-        };
+            },
+        );
         let identical = f.image.identical(&b.image);
         let tag = vpn_tag(view.vpn);
         let depth_png = format!("{}-depth-{tag}.png", args.output);
@@ -203,11 +205,32 @@ pub fn run(args: &FtbArgs) -> Result<()> {
     Ok(())
 }
 
-/// Runs `display` `repeats` times; returns the run with the median time.
-fn median_run(repeats: usize, mut display: impl FnMut() -> Display) -> Display {
-    let mut runs: Vec<Display> = (0..repeats).map(|_| display()).collect();
-    runs.sort_by(|a, b| a.ms.total_cmp(&b.ms));
-    runs.swap_remove(repeats / 2)
+/// Runs the baseline and the display under test alternately, `repeats`
+/// times each (so a slow spell of the machine falls on both), each reusing
+/// its own `size x size` z-buffer from run to run; returns the last run of
+/// each (every run paints the same image and counts the same work) with the
+/// median time.
+fn median_runs(
+    repeats: usize,
+    size: usize,
+    mut baseline: impl FnMut(DepthImage) -> Display,
+    mut display: impl FnMut(DepthImage) -> Display,
+) -> (Display, Display) {
+    let (mut base, mut test) = (baseline(DepthImage::new(size)), display(DepthImage::new(size)));
+    let (mut base_ms, mut test_ms) = (vec![base.ms], vec![test.ms]);
+    for _ in 1..repeats {
+        base = baseline(base.image);
+        base_ms.push(base.ms);
+        test = display(test.image);
+        test_ms.push(test.ms);
+    }
+    let median = |ms: &mut Vec<f64>| {
+        ms.sort_by(f64::total_cmp);
+        ms[ms.len() / 2]
+    };
+    base.ms = median(&mut base_ms);
+    test.ms = median(&mut test_ms);
+    (base, test)
 }
 
 /// `1,-2,1` for file names and the table.
