@@ -53,7 +53,8 @@ fn run<const N: usize>(octree: &BinaryOctree, view: &View, image: DepthImage) ->
         octree,
         view,
         axes,
-        quad: std::array::from_fn(|oct| std::array::from_fn(|ii| QUAD_TAB[oct][axes[ii]] as usize)),
+        order: view.ftb_order,
+        quad: std::array::from_fn(|k| std::array::from_fn(|ii| QUAD_TAB[view.ftb_order[k]][axes[ii]] as usize)),
         projector: Projector::reusing(view, octree.side(), image),
         bitmaps: BlockingBitmaps::new(N, octree.n),
     };
@@ -81,7 +82,10 @@ struct Run<'a, const N: usize> {
     view: &'a View,
     /// The used axes (`axis` of the paper), in X, Y, Z order.
     axes: [usize; N],
-    /// `quad_tab[oct][axes[ii]]`: Table I restricted to the used axes.
+    /// The suboctant labels in FTB order.
+    order: [usize; 8],
+    /// `quad[k][ii] = quad_tab[order[k]][axes[ii]]`: Table I restricted to
+    /// the used axes, in FTB order.
     quad: [[usize; N]; 8],
     projector: Projector,
     /// One bitmap per used axis, in the order of `axes`.
@@ -104,9 +108,9 @@ impl<const N: usize> Run<'_, N> {
         let half = size / 2;
         let octant = self.octree.gray_octant(node);
         for k in 0..8 {
-            let oct = self.view.ftb_order[k];
+            let oct = self.order[k];
             // card_num_son[i] = 4 card_num[i] + quad_tab[oct][i]: formula (4).
-            let ind_son: [usize; N] = std::array::from_fn(|ii| son[ii] + self.quad[oct][ii]);
+            let ind_son: [usize; N] = std::array::from_fn(|ii| son[ii] + self.quad[k][ii]);
             let o = [origin[0] + half * (oct & 1), origin[1] + half * ((oct >> 1) & 1), origin[2] + half * (oct >> 2)];
             let child = BinaryOctree::suboctant(octant, oct);
             if child.colour == Colour::Gray {
@@ -122,22 +126,25 @@ impl<const N: usize> Run<'_, N> {
 
     /// Procedure "Process a W or B Octant", given its `ind_num`.
     fn white_or_black(&mut self, colour: Colour, ind: [usize; N], origin: [usize; 3], size: usize) {
-        if colour == Colour::Black {
-            self.projector.counters.black_visited += 1;
-        } else {
-            self.projector.counters.white_visited += 1;
-        }
+        let black = colour == Colour::Black;
+        self.projector.counters.black_visited += usize::from(black);
+        self.projector.counters.white_visited += usize::from(!black);
         let nodes: [u8; N] = std::array::from_fn(|ii| self.bitmaps.get_at(ind[ii]));
         if nodes.iter().all(|&c| c == BLACK) {
             return; // blocked
         }
-        let value = if colour == Colour::Black { BLACK } else { WHITE };
-        for ii in 0..N {
-            if colour == Colour::Black && nodes[ii] != BLACK {
-                let axis = self.axes[ii];
-                self.projector.face(origin, size, axis, self.view.high_face[axis], Paint::Unpainted);
+        if black {
+            for ii in 0..N {
+                if nodes[ii] != BLACK {
+                    let axis = self.axes[ii];
+                    self.projector.face(origin, size, axis, self.view.high_face[axis], Paint::Unpainted);
+                    self.bitmaps.set_at(ind[ii], BLACK);
+                }
             }
-            self.bitmaps.set_at(ind[ii], value);
+        } else {
+            for ii in 0..N {
+                self.bitmaps.set_at(ind[ii], WHITE);
+            }
         }
     }
 }
