@@ -142,8 +142,8 @@ impl<const N: usize> Run<'_, N> {
                 }
             }
         } else {
-            for ii in 0..N {
-                self.bitmaps.set_at(ind[ii], WHITE);
+            for g in ind {
+                self.bitmaps.set_at(g, WHITE);
             }
         }
     }
