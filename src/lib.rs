@@ -35,6 +35,7 @@ pub mod io;
 pub mod octree;
 pub mod order;
 pub mod plan;
+pub mod points;
 pub mod render;
 pub mod select;
 pub mod slab;

@@ -1,0 +1,239 @@
+//! Point generation (paper 3, section 3.1): the error grid of the
+//! low-resolution volume's trilinear reconstruction, and points where it is
+//! large.
+//!
+//! For a grid `f` and factor `s`, the low-resolution volume is T_s (the grid
+//! every `s` samples, see [`crate::octree::trilinear`]: what a uniform
+//! stride-`s` texture holds and the renderer interpolates). At every sample
+//!
+//! ```text
+//! e(x) = f(x) - T_s(x)
+//! ```
+//!
+//! and a point is inserted where `|e(x)| > threshold * (max f - min f)`
+//! ([`PointSelect::Threshold`]), or at the `K` samples of largest `|e|`
+//! ([`PointSelect::Budget`]; ties by grid order). Samples where `e = 0` (the
+//! low-resolution samples themselves among them) never get a point. Each
+//! point keeps its value, its error and the direction of the central-
+//! difference gradient of `f` (the shading normal), quantised as
+//! [`super::Point`] says. Slices of the grid run in parallel and are joined
+//! in grid order, so the points do not depend on the number of threads.
+
+use super::{normals, Point, PointSet};
+use crate::error::{Error, Result};
+use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::octree::trilinear;
+use rayon::prelude::*;
+
+/// Which samples become points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PointSelect {
+    /// `|e| > threshold * data range` (threshold in `[0, 1]`).
+    Threshold(f64),
+    /// The `K` largest `|e|` (a point budget).
+    Budget(usize),
+}
+
+/// What to generate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointOptions {
+    /// Low-resolution factor: 2, 4 or 8.
+    pub factor: usize,
+    /// Which samples become points.
+    pub select: PointSelect,
+}
+
+/// The points completing T_`factor` of `grid` (see the module documentation).
+///
+/// # Errors
+///
+/// [`Error::InvalidArgument`] for a factor other than 2, 4 or 8, a factor
+/// not smaller than every axis, a threshold outside `[0, 1]`, or an axis of
+/// more than 65,536 samples.
+pub fn generate(grid: &Grid<'_>, options: &PointOptions) -> Result<PointSet> {
+    let dims = grid.dims();
+    let s = options.factor;
+    if ![2, 4, 8].contains(&s) {
+        return Err(Error::InvalidArgument(format!("the low-resolution factor {s} is not supported: use 2, 4 or 8")));
+    }
+    if dims.iter().any(|&n| n <= s) {
+        return Err(Error::InvalidArgument(format!(
+            "a {}x{}x{} grid is too small for factor {s}: every axis needs more than {s} samples",
+            dims[0], dims[1], dims[2]
+        )));
+    }
+    if dims.iter().any(|&n| n > 1 << 16) {
+        return Err(Error::InvalidArgument(format!(
+            "a {}x{}x{} grid has an axis over 65,536 samples: point coordinates are 16 bits; crop the grid",
+            dims[0], dims[1], dims[2]
+        )));
+    }
+    if let PointSelect::Threshold(t) = options.select {
+        if !(0.0..=1.0).contains(&t) {
+            return Err(Error::InvalidArgument(format!(
+                "the point threshold {t} is not a fraction of the data range: use a value in [0, 1]"
+            )));
+        }
+    }
+    grid.visit(Generate { options: *options })
+}
+
+struct Generate {
+    options: PointOptions,
+}
+
+/// A candidate: `|e|`, its linear sample index, `e`.
+type Candidate = (f64, usize, f64);
+
+impl GridVisitor for Generate {
+    type Output = Result<PointSet>;
+
+    fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Result<PointSet> {
+        let dims = g.dims;
+        let s = self.options.factor;
+        let (lo, hi) = (0..dims[2])
+            .into_par_iter()
+            .map(|k| {
+                let mut r = (f64::INFINITY, f64::NEG_INFINITY);
+                for j in 0..dims[1] {
+                    for i in 0..dims[0] {
+                        let v = g.at(i, j, k);
+                        r = (r.0.min(v), r.1.max(v));
+                    }
+                }
+                r
+            })
+            .reduce(|| (f64::INFINITY, f64::NEG_INFINITY), |a, b| (a.0.min(b.0), a.1.max(b.1)));
+        let floor = match self.options.select {
+            PointSelect::Threshold(t) => t * (hi - lo),
+            PointSelect::Budget(_) => 0.0,
+        };
+        // Candidates per z slice, joined in grid order.
+        let mut candidates: Vec<Candidate> = (0..dims[2])
+            .into_par_iter()
+            .flat_map_iter(|k| {
+                let mut out = Vec::new();
+                for j in 0..dims[1] {
+                    for i in 0..dims[0] {
+                        let e = g.at(i, j, k) - trilinear::eval(&g, s, i, j, k);
+                        if e.abs() > floor {
+                            out.push((e.abs(), i + dims[0] * (j + dims[1] * k), e));
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
+        if let PointSelect::Budget(budget) = self.options.select {
+            if candidates.len() > budget {
+                // Largest |e| first, ties by grid order: a total order, so the K chosen are unique.
+                let order = |a: &Candidate, b: &Candidate| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
+                if budget > 0 {
+                    candidates.select_nth_unstable_by(budget - 1, order);
+                }
+                candidates.truncate(budget);
+                candidates.sort_by_key(|c| c.1);
+            }
+        }
+        let error_scale = candidates.iter().map(|c| c.0).fold(0.0, f64::max);
+        let range = hi - lo;
+        let points = candidates
+            .par_iter()
+            .map(|&(_, index, e)| {
+                let ijk = [index % dims[0], index / dims[0] % dims[1], index / (dims[0] * dims[1])];
+                let value = g.at(ijk[0], ijk[1], ijk[2]);
+                Point {
+                    ijk: ijk.map(|c| c as u16),
+                    normal: normals::quantise(gradient(&g, ijk)),
+                    error: if error_scale > 0.0 { (e / error_scale * 127.0).round() as i8 } else { 0 },
+                    value: if range > 0.0 { ((value - lo) / range * 255.0).round() as u8 } else { 0 },
+                }
+            })
+            .collect();
+        Ok(PointSet { dims, factor: s, value_range: [lo, hi], error_scale, points })
+    }
+}
+
+/// Central differences (one-sided at the grid's faces), in index space.
+fn gradient<T: Sample>(g: &TypedGrid<'_, T>, ijk: [usize; 3]) -> [f64; 3] {
+    std::array::from_fn(|a| {
+        let mut lo = ijk;
+        let mut hi = ijk;
+        lo[a] = ijk[a].saturating_sub(1);
+        hi[a] = (ijk[a] + 1).min(g.dims[a] - 1);
+        (g.at(hi[0], hi[1], hi[2]) - g.at(lo[0], lo[1], lo[2])) / (hi[a] - lo[a]) as f64
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::datasets::{generate as dataset, Dataset};
+    use crate::grid::ScalarType;
+
+    fn options(select: PointSelect) -> PointOptions {
+        PointOptions { factor: 2, select }
+    }
+
+    #[test]
+    fn points_sit_where_the_low_resolution_error_exceeds_the_threshold() {
+        let v = dataset(Dataset::SheppLogan, 33, ScalarType::F32);
+        let grid = v.grid(None).unwrap();
+        let set = generate(&grid, &options(PointSelect::Threshold(0.1))).unwrap();
+        assert!(!set.points.is_empty());
+        let range = set.value_range[1] - set.value_range[0];
+        let exact = |p: &Point| {
+            let [i, j, k] = p.ijk.map(usize::from);
+            grid.value(i, j, k)
+        };
+        for p in &set.points {
+            // Every point's error exceeds the threshold, and its stored value is within half a quantisation step.
+            assert!(set.error(p).abs() > 0.1 * range - set.error_scale / 254.0, "{p:?}");
+            assert!((set.value(p) - exact(p)).abs() <= range / 510.0 + 1e-12);
+            // Low-resolution samples (even coordinates on every axis) are reconstructed exactly: no point.
+            assert!(p.ijk.iter().any(|c| c % 2 == 1), "a point on a low-resolution sample: {p:?}");
+        }
+        // A lower threshold keeps every point of a higher one.
+        let more = generate(&grid, &options(PointSelect::Threshold(0.05))).unwrap();
+        assert!(more.points.len() > set.points.len());
+        assert!(set.points.iter().all(|p| more.points.iter().any(|q| q.ijk == p.ijk)));
+    }
+
+    #[test]
+    fn a_budget_keeps_the_largest_errors_and_is_deterministic() {
+        let v = dataset(Dataset::MarschnerLobb, 33, ScalarType::F32);
+        let grid = v.grid(None).unwrap();
+        let all = generate(&grid, &options(PointSelect::Threshold(0.0))).unwrap();
+        let some = generate(&grid, &options(PointSelect::Budget(500))).unwrap();
+        assert_eq!(some.points.len(), 500);
+        assert_eq!(some.error_scale, all.error_scale, "the largest error is always kept");
+        // Same points on one thread and on all.
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        assert_eq!(pool.install(|| generate(&grid, &options(PointSelect::Budget(500))).unwrap()), some);
+        let none = generate(&grid, &options(PointSelect::Budget(0))).unwrap();
+        assert!(none.points.is_empty());
+    }
+
+    #[test]
+    fn constant_fields_need_no_points_and_bad_options_are_clear_errors() {
+        let v = dataset(Dataset::SheppLogan, 17, ScalarType::F32);
+        let grid = v.grid(None).unwrap();
+        for (factor, select, says) in [
+            (3, PointSelect::Threshold(0.1), "factor 3"),
+            (2, PointSelect::Threshold(1.5), "threshold 1.5"),
+            (2, PointSelect::Threshold(f64::NAN), "threshold NaN"),
+        ] {
+            let e = generate(&grid, &PointOptions { factor, select }).unwrap_err().to_string();
+            assert!(e.contains(says), "{e}");
+        }
+        let small = dataset(Dataset::SheppLogan, 5, ScalarType::F32);
+        let e = generate(&small.grid(None).unwrap(), &PointOptions { factor: 8, select: PointSelect::Budget(1) })
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("too small"), "{e}");
+        let flat = vec![2.5f32; 9 * 9 * 9];
+        let g = Grid::scalar(crate::grid::Samples::F32(&flat), [9, 9, 9]).unwrap();
+        let set = generate(&g, &PointOptions { factor: 4, select: PointSelect::Threshold(0.0) }).unwrap();
+        assert!(set.points.is_empty() && set.error_scale == 0.0);
+    }
+}
