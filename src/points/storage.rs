@@ -76,7 +76,7 @@ pub fn decode(bytes: &[u8], path: &str) -> Result<PointSet> {
     let factor = u32_at(28) as usize;
     let (lo, hi, error_scale) = (f64_at(32), f64_at(40), f64_at(48));
     let count = u64::from_le_bytes(bytes[56..64].try_into().expect("8 bytes"));
-    if dims.iter().any(|&n| n < 2 || n > 1 << 16) {
+    if dims.iter().any(|&n| !(2..=1 << 16).contains(&n)) {
         return Err(bad(format!(
             "grid dimensions {dims:?} are out of range (2 to 65,536 per axis): the header is corrupt"
         )));
