@@ -83,6 +83,19 @@ pub struct BrickDraw {
     pub slices: Vec<f64>,
     /// Surface batches (translucent surfaces only), back to front.
     pub batches: Vec<Batch>,
+    /// Points of the hybrid representation in the brick, by slab, back to
+    /// front (empty without points; see [`crate::points::draw`]).
+    pub points: Vec<PointBucket>,
+}
+
+/// Points drawn between two slices of a brick (paper 3, section 4: "slices
+/// of points are drawn interleaved with each pair of volumetric planes").
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PointBucket {
+    /// Slab index within the brick, as [`Batch::slab`].
+    pub slab: usize,
+    /// Indices into the [`PointSet`](crate::points::PointSet)'s points, in grid order.
+    pub points: Vec<u32>,
 }
 
 /// What every renderer executes: bricks in compositing order (back to
@@ -190,7 +203,7 @@ pub fn draw_list(
                 Some(b) if !b.is_empty() => crate::slab::assign_batches(camera, &slices, b),
                 _ => Vec::new(),
             };
-            BrickDraw { brick, world_lo, world_hi, slice_spacing, slices, batches }
+            BrickDraw { brick, world_lo, world_hi, slice_spacing, slices, batches, points: Vec::new() }
         })
         .collect();
     let opaque_triangles = match (plan.surface, scene.surface) {

@@ -12,10 +12,12 @@
 //! - [`storage`]: the binary point file, 6 bytes a point on grids up to
 //!   256^3 (9 beyond), with a versioned header (section 3.3).
 
+pub mod draw;
 pub mod generate;
 pub mod normals;
 pub mod storage;
 
+pub use draw::{add_points, Footprint};
 pub use generate::{generate, PointOptions, PointSelect};
 pub use storage::{read_points, write_points};
 

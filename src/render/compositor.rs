@@ -50,6 +50,11 @@
 //! within the batch's clip range `near <= depth < far`, are blended after
 //! slices `0 .. s` and before slice `s` (slab `n` after the last), back to
 //! front; walked in reverse like the slices.
+//! Points of the hybrid representation ([`crate::points::draw`]): each
+//! point of slab `s` of a brick is splatted onto the pixels of its footprint
+//! before the frame, and blended in that slab like a batch hit (after slices
+//! `0 .. s`, before slice `s`), nearest last within the slab; a pixel whose
+//! ray misses the brick's box blends the brick's points it still sees.
 //! Bands of rows run in parallel; every pixel is computed on its own, so the picture
 //! does not depend on the number of threads.
 
@@ -66,6 +71,8 @@ use crate::camera::Ray;
 use crate::error::Result;
 use crate::grid::{Grid, GridShape};
 use crate::plan::{BrickDraw, DrawList};
+use crate::points::draw::{footprint, point_opacity, project, Footprint};
+use crate::points::PointSet;
 use crate::surface::Surface;
 use crate::vec3::dot;
 use rayon::prelude::*;
@@ -133,16 +140,50 @@ pub fn composite_textures(
     height: usize,
     surface: Option<(&Surface, [f32; 4])>,
 ) -> Result<Image> {
+    composite_with_points(textures, list, tf, width, height, surface, None)
+}
+
+/// [`composite_textures`] with the points of the hybrid representation that
+/// `list` buckets ([`crate::points::add_points`]), drawn with `footprint`.
+///
+/// # Errors
+///
+/// As [`composite_textures`], and [`crate::Error::InvalidArgument`] when the
+/// list draws points but none are given, or names a point the set does not have.
+pub fn composite_with_points(
+    textures: &Textures,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+    surface: Option<(&Surface, [f32; 4])>,
+    points: Option<(&PointSet, Footprint)>,
+) -> Result<Image> {
     check_size(width, height)?;
     check_list(list, &textures.shape, surface.map(|s| s.0))?;
+    check_points(list, points.map(|p| p.0))?;
     textures.check(list)?;
     Ok(match &textures.texels {
-        Texels::F32(t) => execute(t, &textures.shape, list, tf, width, height, surface)?,
-        Texels::F64(t) => execute(t, &textures.shape, list, tf, width, height, surface)?,
+        Texels::F32(t) => execute(t, &textures.shape, list, tf, width, height, surface, points)?,
+        Texels::F64(t) => execute(t, &textures.shape, list, tf, width, height, surface, points)?,
     })
 }
 
-/// [`composite_textures`] on checked inputs, textures stored as `S`.
+/// Every point the list draws exists in `points`.
+fn check_points(list: &DrawList, points: Option<&PointSet>) -> Result<()> {
+    let count = points.map_or(0, |p| p.points.len());
+    let named = list.bricks.iter().flat_map(|b| b.points.iter()).flat_map(|k| k.points.iter()).copied().max();
+    match named {
+        Some(i) if i as usize >= count => Err(crate::Error::InvalidArgument(format!(
+            "the DrawList draws point {i} but {} given: pass the point set the list was made with",
+            if points.is_some() { format!("only {count} points are") } else { "no points are".to_string() }
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// [`composite_with_points`] on checked inputs, textures stored as `S`.
+#[allow(clippy::too_many_arguments)]
 fn execute<S: Texel>(
     textures: &[Texture<S>],
     shape: &GridShape,
@@ -151,6 +192,7 @@ fn execute<S: Texel>(
     width: usize,
     height: usize,
     surface: Option<(&Surface, [f32; 4])>,
+    points: Option<(&PointSet, Footprint)>,
 ) -> Result<Image> {
     let shape = *shape;
     let d0 = list.reference_spacing;
@@ -180,9 +222,12 @@ fn execute<S: Texel>(
         let ids = (0..s.polygon_count() as u32).filter(|&t| table.start[t as usize] < table.start[t as usize + 1]);
         translucent = TriangleGrid::new(s, &shape, ids).map(|g| (s, g, colour, table));
     }
+    let lut = Lut::new(tf);
+    let splats = points.map(|(set, kind)| splat(list, &shape, &lut, set, kind, width, height));
     let executor = Executor {
         list,
-        lut: Lut::new(tf),
+        splats: splats.as_ref(),
+        lut,
         width,
         height,
         shape,
@@ -217,8 +262,67 @@ fn batches(list: &DrawList, surface: &Surface) -> Batches {
     Batches { start, entries }
 }
 
+/// One point's share of a pixel: `(brick position, slab, depth, straight colour, opacity)`.
+type Splat = (u32, u32, f64, [f64; 3], f64);
+
+/// The points' footprints, by pixel: pixel `p`'s entries are
+/// `entries[start[p] .. start[p + 1]]`.
+struct Splats {
+    start: Vec<u32>,
+    entries: Vec<Splat>,
+}
+
+/// Splats every point `list` draws (see the module documentation and
+/// [`crate::points::draw`]), in list order, so the table does not depend on threads.
+fn splat(
+    list: &DrawList,
+    shape: &GridShape,
+    lut: &Lut<'_>,
+    set: &PointSet,
+    kind: Footprint,
+    width: usize,
+    height: usize,
+) -> Splats {
+    let d0 = list.reference_spacing;
+    let mut hits: Vec<(u32, Splat)> = Vec::new();
+    for (b, draw) in list.bricks.iter().enumerate() {
+        for bucket in &draw.points {
+            for &i in &bucket.points {
+                let p = &set.points[i as usize];
+                let value = set.value(p);
+                let [r, g, bl, a_t] = lut.eval(value);
+                let a_p = point_opacity(a_t, lut.eval(value - set.error(p))[3]);
+                if a_p <= 0.0 {
+                    continue;
+                }
+                let world = shape.world(p.ijk.map(f64::from));
+                let Some((centre, s)) = project(&list.camera, width, height, world, d0) else { continue };
+                let depth = list.camera.depth(world);
+                footprint(kind, centre, s, width, height, |x, y, w| {
+                    hits.push(((x + y * width) as u32, (b as u32, bucket.slab as u32, depth, [r, g, bl], a_p * w)));
+                });
+            }
+        }
+    }
+    let mut start = vec![0u32; width * height + 1];
+    for h in &hits {
+        start[h.0 as usize + 1] += 1;
+    }
+    for i in 1..start.len() {
+        start[i] += start[i - 1];
+    }
+    let mut at = start.clone();
+    let mut entries = vec![(0, 0, 0.0, [0.0; 3], 0.0); hits.len()];
+    for (pixel, e) in hits {
+        entries[at[pixel as usize] as usize] = e;
+        at[pixel as usize] += 1;
+    }
+    Splats { start, entries }
+}
+
 struct Executor<'a, S> {
     list: &'a DrawList,
+    splats: Option<&'a Splats>,
     /// The transfer function, tabulated.
     lut: Lut<'a>,
     width: usize,
@@ -271,6 +375,8 @@ impl<S: Texel> Executor<'_, S> {
 /// A pixel's ray: `cos = direction . forward`, `z_origin = depth(origin)`,
 /// and the depth of the opaque surface (infinite without one).
 struct PixelRay {
+    /// Pixel index `x + y width`.
+    pixel: usize,
     ray: Ray,
     cos: f64,
     z_origin: f64,
@@ -290,6 +396,7 @@ impl<S: Texel> Executor<'_, S> {
         let camera = &self.list.camera;
         let ray = camera.ray(x, y, self.width, self.height);
         let mut pr = PixelRay {
+            pixel: x + y * self.width,
             ray,
             cos: dot(ray.direction, camera.forward()),
             z_origin: camera.depth(ray.origin),
@@ -328,8 +435,14 @@ impl<S: Texel> Executor<'_, S> {
     /// to back, stopping once `acc` is [`OPAQUE`].
     fn brick(&self, b: usize, pr: &PixelRay, mut acc: Rgba, scratch: &mut Scratch) -> Rgba {
         let brick = &self.bricks[b];
-        let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else { return acc };
         self.batch_events(b, pr, scratch);
+        let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else {
+            // Footprints reach past the box's silhouette: its points still show.
+            for &(_, _, c, a) in scratch.events.iter().rev() {
+                acc = under(acc, c, a);
+            }
+            return acc;
+        };
         let (za, zb) = (pr.depth(ta), pr.depth(tb));
         let tol = 1e-9 * (1.0 + za.abs().max(zb.abs()));
         let slices = &brick.draw.slices;
@@ -380,9 +493,25 @@ impl<S: Texel> Executor<'_, S> {
     }
 
     /// The pixel's hits of brick `b`'s batch triangles in front of the
-    /// opaque depth and inside their batch's clip range, by slab, back to front.
+    /// opaque depth and inside their batch's clip range, and its points'
+    /// footprints in front of that depth, by slab, back to front.
     fn batch_events(&self, b: usize, pr: &PixelRay, scratch: &mut Scratch) {
         scratch.events.clear();
+        let index = self.bricks[b].index as u32;
+        if let Some(splats) = self.splats {
+            let at = &splats.entries[splats.start[pr.pixel] as usize..splats.start[pr.pixel + 1] as usize];
+            for &(_, slab, z, c, a) in at.iter().filter(|e| e.0 == index) {
+                if z < pr.limit {
+                    scratch.events.push((slab as usize, z, c, a));
+                }
+            }
+        }
+        self.surface_events(b, pr, scratch);
+        scratch.events.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.total_cmp(&a.1)));
+    }
+
+    /// Brick `b`'s batch hits (see [`Self::batch_events`]), unsorted.
+    fn surface_events(&self, b: usize, pr: &PixelRay, scratch: &mut Scratch) {
         let Some((surface, tris, colour, table)) = self.translucent else { return };
         let draw = self.bricks[b].draw;
         if draw.batches.is_empty() {
@@ -407,6 +536,5 @@ impl<S: Texel> Executor<'_, S> {
                 scratch.events.push((batch.slab, z, rgb, colour[3] as f64));
             }
         }
-        scratch.events.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.total_cmp(&a.1)));
     }
 }

@@ -44,7 +44,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
             let world_hi = shape.world(brick.hi.map(|v| v as f64));
             let slice_spacing = brick.stride as f64 * d0;
             let slices = slice_depths(camera, world_lo, world_hi, slice_spacing);
-            BrickDraw { brick, world_lo, world_hi, slice_spacing, slices, batches: Vec::new() }
+            BrickDraw { brick, world_lo, world_hi, slice_spacing, slices, batches: Vec::new(), points: Vec::new() }
         })
         .collect();
     let centre = |d: &BrickDraw| camera.depth([0, 1, 2].map(|a| 0.5 * (d.world_lo[a] + d.world_hi[a])));

@@ -327,6 +327,7 @@ mod tests {
                 slice_spacing: 1.0,
                 slices: Vec::new(),
                 batches: Vec::new(),
+                points: Vec::new(),
             }],
             opaque_triangles: Vec::new(),
             reference_spacing: 1.0,

@@ -73,7 +73,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let started = Instant::now();
         let selection = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
         let select_ms = started.elapsed().as_secs_f64() * 1e3;
-        let f = frame(&grid, &scene, &selection, &args.scene)?;
+        let f = frame(&grid, &scene, &selection, &args.scene, None)?;
         f.image.to_png(&args.output)?;
         let (mut rmse, mut psnr, mut ssim, mut reference_ms) = (None, None, None, None);
         if let Some(path) = &args.reference {

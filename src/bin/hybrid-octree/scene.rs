@@ -10,7 +10,8 @@ use hybrid_octree::camera::Camera;
 use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::{draw_list, plan, DrawList, Scene, SurfacePass};
-use hybrid_octree::render::compositor::composite_textures;
+use hybrid_octree::points::{add_points, Footprint, PointSet};
+use hybrid_octree::render::compositor::composite_with_points;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference, ReferenceOptions};
 use hybrid_octree::render::texture::upload;
@@ -113,7 +114,7 @@ pub struct Frame {
     /// SlabPolygons time (the selection's surface batches, translucent
     /// surfaces only; once per selection), ms.
     pub slab_polygons_ms: f64,
-    /// DrawList time (the per-view part: order, slices, batches into slabs, plan), ms.
+    /// DrawList time (the per-view part: order, slices, batches and points into slabs, plan), ms.
     pub drawlist_ms: f64,
     /// Texture upload time (the bricks' textures copied once per DrawList), ms.
     pub upload_ms: f64,
@@ -122,8 +123,14 @@ pub struct Frame {
 }
 
 /// Makes the SlabPolygons (translucent surface) and the DrawList for
-/// `selection`, and composites it.
-pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &SceneArgs) -> Result<Frame> {
+/// `selection` (with `points` in its slabs), and composites it.
+pub fn frame(
+    grid: &Grid<'_>,
+    scene: &Loaded,
+    selection: &Selection,
+    args: &SceneArgs,
+    points: Option<(&PointSet, Footprint)>,
+) -> Result<Frame> {
     let view = Scene { surface: scene.surface.as_ref(), surface_opacity: args.surface_opacity, shading: false };
     let started = Instant::now();
     let polygons = match (plan(selection, &view).surface, &scene.surface) {
@@ -132,7 +139,10 @@ pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &Scen
     };
     let slab_polygons_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
-    let list = draw_list(&scene.octree, grid.shape(), selection, &scene.camera, &view, polygons.as_ref())?;
+    let mut list = draw_list(&scene.octree, grid.shape(), selection, &scene.camera, &view, polygons.as_ref())?;
+    if let Some((set, _)) = points {
+        add_points(&mut list, grid.shape(), set)?;
+    }
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let textures = upload(grid, &list)?;
@@ -140,7 +150,7 @@ pub fn frame(grid: &Grid<'_>, scene: &Loaded, selection: &Selection, args: &Scen
     let started = Instant::now();
     let colour = surface_colour(args);
     let surface = scene.surface.as_ref().map(|s| (s, colour));
-    let image = composite_textures(&textures, &list, &scene.tf, args.width, args.height, surface)?;
+    let image = composite_with_points(&textures, &list, &scene.tf, args.width, args.height, surface, points)?;
     let composite_ms = started.elapsed().as_secs_f64() * 1e3;
     Ok(Frame { list, image, slab_polygons_ms, drawlist_ms, upload_ms, composite_ms })
 }

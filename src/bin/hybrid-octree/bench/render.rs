@@ -6,6 +6,11 @@
 //! frame compared with the full-resolution reference ray caster.
 //! Prints a table (or JSON rows), the RMSE ratio octree / uniform at equal
 //! bytes, and with `--plot` a PNG of RMSE against time and against memory.
+//!
+//! With `--points`, the hybrid point/volume representation (paper 3) too:
+//! each uniform stride with the points of each `--point-thresholds`
+//! threshold, and, at the bytes of each finer stride, the next coarser
+//! stride plus as many points as those bytes buy (method "points").
 
 use crate::input::InputArgs;
 use crate::output::print_report;
@@ -14,6 +19,7 @@ use crate::pool::with_threads;
 use crate::scene::{frame, load, reference_image, visible, Loaded, SceneArgs};
 use clap::Args;
 use hybrid_octree::grid::Grid;
+use hybrid_octree::points::{generate, Footprint, PointOptions, PointSelect, PointSet};
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::metrics::compare;
 use hybrid_octree::select::{select, uniform, SelectOptions, Selection};
@@ -41,19 +47,40 @@ pub struct BenchRenderArgs {
     /// Print the rows as a JSON array instead of a table.
     #[arg(long)]
     json: bool,
+    /// Add rows of the hybrid representation: a uniform stride plus error points.
+    #[arg(long)]
+    points: bool,
+    /// Point thresholds (|error| as a fraction of the data range) of the `--points` rows.
+    #[arg(long, value_delimiter = ',', default_value = "0.2,0.1,0.05")]
+    point_thresholds: Vec<f64>,
+    /// Footprint of the points: square or gaussian.
+    #[arg(long, default_value = "square")]
+    footprint: Footprint,
 }
 
 /// One row.
 #[derive(Debug, Serialize)]
 struct Row {
-    /// "octree" or "uniform".
+    /// "octree", "uniform" or "points" (uniform stride plus error points).
     method: &'static str,
     /// Eu (octree rows); null for uniform rows.
     tolerance: Option<f64>,
-    /// Uniform stride (uniform rows); null for octree rows.
+    /// Uniform stride (uniform and points rows); null for octree rows.
     stride: Option<usize>,
+    /// Point threshold (points rows chosen by threshold).
+    point_threshold: Option<f64>,
+    /// Point budget (points rows at the bytes of a finer stride).
+    point_budget: Option<usize>,
     budget_bytes: usize,
     texture_bytes: usize,
+    /// Points drawn with the volume.
+    points: usize,
+    /// Bytes of the points as stored (6 or 9 a point).
+    point_bytes: usize,
+    /// Texture plus point bytes.
+    total_bytes: usize,
+    /// Point generation (error grid and selection), ms; once per data set and threshold.
+    points_ms: f64,
     bricks: usize,
     select_ms: f64,
     /// The selection's SlabPolygons (translucent surface only), ms.
@@ -62,6 +89,8 @@ struct Row {
     drawlist_ms: f64,
     upload_ms: f64,
     composite_ms: f64,
+    /// Per frame: DrawList plus compositing, ms.
+    ms: f64,
     rmse: f64,
     psnr: f64,
     ssim: f64,
@@ -87,23 +116,51 @@ struct Bench<'a, 'g> {
 }
 
 /// Which method made a selection, for the row.
+#[derive(Default)]
 struct Method {
     method: &'static str,
     tolerance: Option<f64>,
     stride: Option<usize>,
+    point_threshold: Option<f64>,
+    point_budget: Option<usize>,
+}
+
+/// The points of a row and what making them took.
+struct Points<'a> {
+    set: &'a PointSet,
+    footprint: Footprint,
+    ms: f64,
 }
 
 fn measure(b: &Bench<'_, '_>, m: Method, selection: Selection, select_ms: f64) -> Result<Row> {
-    let Method { method, tolerance, stride } = m;
+    measure_with(b, m, selection, select_ms, None)
+}
+
+fn measure_with(
+    b: &Bench<'_, '_>,
+    m: Method,
+    selection: Selection,
+    select_ms: f64,
+    points: Option<Points<'_>>,
+) -> Result<Row> {
+    let Method { method, tolerance, stride, point_threshold, point_budget } = m;
     let (grid, scene, args, truth) = (b.grid, b.scene, b.args, b.truth);
-    let f = frame(grid, scene, &selection, args)?;
+    let f = frame(grid, scene, &selection, args, points.as_ref().map(|p| (p.set, p.footprint)))?;
     let metrics = compare(&f.image, truth)?;
+    let point_bytes = points.as_ref().map_or(0, |p| p.set.bytes());
     Ok(Row {
         method,
         tolerance,
         stride,
+        point_threshold,
+        point_budget,
         budget_bytes: selection.budget_bytes,
         texture_bytes: selection.texture_bytes,
+        points: points.as_ref().map_or(0, |p| p.set.points.len()),
+        point_bytes,
+        total_bytes: selection.texture_bytes + point_bytes,
+        points_ms: points.as_ref().map_or(0.0, |p| p.ms),
+        ms: f.drawlist_ms + f.composite_ms,
         bricks: selection.bricks.len(),
         select_ms,
         slab_polygons_ms: f.slab_polygons_ms,
@@ -138,7 +195,7 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
             largest = largest.max(bytes);
             rows.push(measure(
                 &bench,
-                Method { method: "uniform", tolerance: None, stride: Some(stride) },
+                Method { method: "uniform", stride: Some(stride), ..Method::default() },
                 u,
                 select_ms,
             )?);
@@ -146,7 +203,12 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
             let started = Instant::now();
             let s = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
             let select_ms = started.elapsed().as_secs_f64() * 1e3;
-            rows.push(measure(&bench, Method { method: "octree", tolerance: Some(0.0), stride: None }, s, select_ms)?);
+            rows.push(measure(
+                &bench,
+                Method { method: "octree", tolerance: Some(0.0), ..Method::default() },
+                s,
+                select_ms,
+            )?);
         }
         for &tolerance in &args.tolerances {
             let options = SelectOptions { roi: args.scene.roi, ..SelectOptions::new(largest, tolerance) };
@@ -155,10 +217,13 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
             let select_ms = started.elapsed().as_secs_f64() * 1e3;
             rows.push(measure(
                 &bench,
-                Method { method: "octree", tolerance: Some(tolerance), stride: None },
+                Method { method: "octree", tolerance: Some(tolerance), ..Method::default() },
                 s,
                 select_ms,
             )?);
+        }
+        if args.points {
+            rows.extend(point_rows(&bench, args)?);
         }
         Ok(rows)
     })?;
@@ -183,14 +248,62 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
     print_report(&rows, args.json, |rows| print_table(rows))
 }
 
+/// The `--points` rows (see the module documentation).
+fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>> {
+    let mut rows = Vec::new();
+    let generate_timed = |factor: usize, select: PointSelect| -> Result<(PointSet, f64)> {
+        let started = Instant::now();
+        let set = generate(bench.grid, &PointOptions { factor, select })?;
+        Ok((set, started.elapsed().as_secs_f64() * 1e3))
+    };
+    let mut strides: Vec<usize> = args.strides.iter().copied().filter(|s| [2, 4, 8].contains(s)).collect();
+    strides.sort_unstable();
+    strides.dedup();
+    let mut bytes = Vec::new();
+    for &stride in &strides {
+        let u = uniform(&bench.scene.octree, stride, 4)?;
+        bytes.push(u.texture_bytes);
+        for &threshold in &args.point_thresholds {
+            let (set, ms) = generate_timed(stride, PointSelect::Threshold(threshold))?;
+            let m = Method {
+                method: "points",
+                stride: Some(stride),
+                point_threshold: Some(threshold),
+                ..Method::default()
+            };
+            rows.push(measure_with(
+                bench,
+                m,
+                u.clone(),
+                0.0,
+                Some(Points { set: &set, footprint: args.footprint, ms }),
+            )?);
+        }
+    }
+    // At the bytes of stride `fine`: the next coarser stride and the points the difference buys.
+    for k in 1..strides.len() {
+        let (fine, coarse) = (bytes[k - 1], strides[k]);
+        let u = uniform(&bench.scene.octree, coarse, 4)?;
+        let per_point = if bench.grid.dims().iter().all(|&n| n <= 256) { 6 } else { 9 };
+        let budget = fine.saturating_sub(u.texture_bytes) / per_point;
+        let (set, ms) = generate_timed(coarse, PointSelect::Budget(budget))?;
+        let m = Method { method: "points", stride: Some(coarse), point_budget: Some(budget), ..Method::default() };
+        rows.push(measure_with(bench, m, u, 0.0, Some(Points { set: &set, footprint: args.footprint, ms }))?);
+    }
+    Ok(rows)
+}
+
 fn print_table(rows: &[Row]) {
     println!(
-        "{:>8} {:>9} {:>6} {:>11} {:>11} {:>7} {:>9} {:>9} {:>9} {:>10} {:>8} {:>8} {:>7} {:>8}",
+        "{:>8} {:>9} {:>6} {:>9} {:>11} {:>11} {:>9} {:>10} {:>7} {:>9} {:>9} {:>9} {:>10} {:>8} {:>8} {:>7} {:>8}",
         "method",
         "tolerance",
         "stride",
+        "points t",
         "budget B",
         "texture B",
+        "points",
+        "total B",
         "bricks",
         "select",
         "slabpoly",
@@ -203,12 +316,19 @@ fn print_table(rows: &[Row]) {
     );
     for r in rows {
         println!(
-            "{:>8} {:>9} {:>6} {:>11} {:>11} {:>7} {:>9.2} {:>9.2} {:>9.2} {:>10.1} {:>8.5} {:>8.2} {:>7.4} {:>8.4}",
+            "{:>8} {:>9} {:>6} {:>9} {:>11} {:>11} {:>9} {:>10} {:>7} {:>9.2} {:>9.2} {:>9.2} {:>10.1} {:>8.5} {:>8.2} {:>7.4} {:>8.4}",
             r.method,
             r.tolerance.map_or("-".into(), |t| format!("{t}")),
             r.stride.map_or("-".into(), |s| s.to_string()),
+            match (r.point_threshold, r.point_budget) {
+                (Some(t), _) => format!("{t}"),
+                (_, Some(_)) => "budget".into(),
+                _ => "-".into(),
+            },
             r.budget_bytes,
             r.texture_bytes,
+            r.points,
+            r.total_bytes,
             r.bricks,
             r.select_ms,
             r.slab_polygons_ms,
@@ -229,6 +349,34 @@ fn print_table(rows: &[Row]) {
                     u.texture_bytes as f64 / 1e6,
                     u.stride.unwrap_or(0),
                     o.rmse / u.rmse.max(1e-12)
+                );
+            }
+        }
+    }
+    // Points rows: against the same stride alone, and (budget rows) against the finer stride of equal bytes.
+    let uniform_at = |stride: usize| rows.iter().find(|r| r.method == "uniform" && r.stride == Some(stride));
+    for r in rows.iter().filter(|r| r.method == "points") {
+        let Some(stride) = r.stride else { continue };
+        if let Some(u) = uniform_at(stride) {
+            println!(
+                "stride {stride} + {} points ({}): RMSE {:.5} vs {:.5} alone ({:+.1} %), {:.2} MB vs {:.2} MB",
+                r.points,
+                r.point_threshold.map_or("budget".into(), |t| format!("threshold {t}")),
+                r.rmse,
+                u.rmse,
+                100.0 * (r.rmse / u.rmse.max(1e-12) - 1.0),
+                r.total_bytes as f64 / 1e6,
+                u.texture_bytes as f64 / 1e6
+            );
+        }
+        if r.point_budget.is_some() {
+            if let Some(fine) = rows.iter().find(|u| u.method == "uniform" && u.stride == Some(stride / 2)) {
+                println!(
+                    "at {:.2} MB: stride {stride} + {} points RMSE / stride {} alone RMSE = {:.3}",
+                    fine.texture_bytes as f64 / 1e6,
+                    r.points,
+                    stride / 2,
+                    r.rmse / fine.rmse.max(1e-12)
                 );
             }
         }
