@@ -12,17 +12,20 @@
 //!
 //! and a point is inserted where `|e(x)| > threshold * (max f - min f)`
 //! ([`PointSelect::Threshold`]), or at the `K` samples of largest `|e|`
-//! ([`PointSelect::Budget`]; ties by grid order). Samples where `e = 0` (the
+//! ([`PointSelect::Budget`]; ties by grid order); with
+//! [`PointOptions::underestimates_only`], only where `e > 0`. Samples where `e = 0` (the
 //! low-resolution samples themselves among them) never get a point. Each
 //! point keeps its value, its error and the direction of the central-
 //! difference gradient of `f` (the shading normal), quantised as
 //! [`super::Point`] says. Slices of the grid run in parallel and are joined
 //! in grid order, so the points do not depend on the number of threads.
 
+use super::lowres::low_resolution;
 use super::{normals, Point, PointSet};
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear;
+use crate::volume::Volume;
 use rayon::prelude::*;
 
 /// Which samples become points.
@@ -41,16 +44,72 @@ pub struct PointOptions {
     pub factor: usize,
     /// Which samples become points.
     pub select: PointSelect,
+    /// Only where the low resolution underestimates (`e > 0`). Points only
+    /// add opacity (paper 3, sections 3.2 and 4.1), so under a transfer
+    /// function whose opacity grows with the value a point where `e < 0`
+    /// changes nothing; this spends a point budget on the points that can.
+    /// Off: the paper's `|e|`.
+    pub underestimates_only: bool,
+    /// The optimized representation's bound (paper 3, section 3.2): the low
+    /// resolution may overestimate the data by at most this fraction of the
+    /// data range ([`super::lowres`]); `None`: plain subsampling.
+    pub max_overestimate: Option<f64>,
 }
 
-/// The points completing T_`factor` of `grid` (see the module documentation).
+impl PointOptions {
+    /// Factor `factor`, points chosen by `select` on `|e|` (the paper's rule).
+    pub fn new(factor: usize, select: PointSelect) -> PointOptions {
+        PointOptions { factor, select, underestimates_only: false, max_overestimate: None }
+    }
+}
+
+/// The points completing T_`factor` of `grid` (see the module
+/// documentation), and, with [`PointOptions::max_overestimate`], the
+/// optimized low-resolution volume they complete (textures must then be
+/// made from it, not from `grid`).
 ///
 /// # Errors
 ///
 /// [`Error::InvalidArgument`] for a factor other than 2, 4 or 8, a factor
-/// not smaller than every axis, a threshold outside `[0, 1]`, or an axis of
-/// more than 65,536 samples.
+/// not smaller than every axis, a threshold or bound outside `[0, 1]`, or an
+/// axis of more than 65,536 samples.
+pub fn generate_hybrid(grid: &Grid<'_>, options: &PointOptions) -> Result<(PointSet, Option<Volume>)> {
+    check(grid, options)?;
+    let (lo, hi) = value_range(grid);
+    let low = match options.max_overestimate {
+        Some(b) if (0.0..=1.0).contains(&b) => Some(low_resolution(grid, options.factor, b * (hi - lo))?),
+        Some(b) => {
+            return Err(Error::InvalidArgument(format!(
+                "the overestimation bound {b} is not a fraction of the data range: use a value in [0, 1]"
+            )))
+        }
+        None => None,
+    };
+    let low_grid = low.as_ref().map(|v| v.grid(None)).transpose()?;
+    let mut set = grid.visit(Generate { options: *options, range: (lo, hi), low: low_grid.as_ref() })?;
+    set.max_overestimate = options.max_overestimate.map_or(f64::INFINITY, |b| b * (hi - lo));
+    Ok((set, low))
+}
+
+/// The points completing plain T_`factor` of `grid` ([`generate_hybrid`]
+/// without [`PointOptions::max_overestimate`]).
+///
+/// # Errors
+///
+/// As [`generate_hybrid`], and when `options` asks for the optimized
+/// representation (use [`generate_hybrid`], which returns its volume).
 pub fn generate(grid: &Grid<'_>, options: &PointOptions) -> Result<PointSet> {
+    if options.max_overestimate.is_some() {
+        return Err(Error::InvalidArgument(
+            "the optimized representation changes the low-resolution volume: use generate_hybrid, which returns it"
+                .into(),
+        ));
+    }
+    Ok(generate_hybrid(grid, options)?.0)
+}
+
+/// The options checked against the grid.
+fn check(grid: &Grid<'_>, options: &PointOptions) -> Result<()> {
     let dims = grid.dims();
     let s = options.factor;
     if ![2, 4, 8].contains(&s) {
@@ -75,35 +134,64 @@ pub fn generate(grid: &Grid<'_>, options: &PointOptions) -> Result<PointSet> {
             )));
         }
     }
-    grid.visit(Generate { options: *options })
+    Ok(())
 }
 
-struct Generate {
+/// Smallest and largest sample, in parallel by z slices.
+fn value_range(grid: &Grid<'_>) -> (f64, f64) {
+    let d = grid.dims();
+    (0..d[2])
+        .into_par_iter()
+        .map(|k| {
+            let mut r = (f64::INFINITY, f64::NEG_INFINITY);
+            for j in 0..d[1] {
+                for i in 0..d[0] {
+                    let v = grid.value(i, j, k);
+                    r = (r.0.min(v), r.1.max(v));
+                }
+            }
+            r
+        })
+        .reduce(|| (f64::INFINITY, f64::NEG_INFINITY), |a, b| (a.0.min(b.0), a.1.max(b.1)))
+}
+
+/// T_s at sample `(i, j, k)` of the samples `at` gives: the formula and
+/// evaluation order of [`trilinear::eval`] (bracket, then z, y, x lerps).
+fn t_s(at: impl Fn(usize, usize, usize) -> f64, dims: [usize; 3], s: usize, i: usize, j: usize, k: usize) -> f64 {
+    let (x0, x1, tx) = trilinear::bracket(i, s, dims[0]);
+    let (y0, y1, ty) = trilinear::bracket(j, s, dims[1]);
+    let (z0, z1, tz) = trilinear::bracket(k, s, dims[2]);
+    let w = |xa| {
+        let v0 = trilinear::lerp(at(xa, y0, z0), at(xa, y0, z1), tz);
+        let v1 = trilinear::lerp(at(xa, y1, z0), at(xa, y1, z1), tz);
+        trilinear::lerp(v0, v1, ty)
+    };
+    trilinear::lerp(w(x0), w(x1), tx)
+}
+
+struct Generate<'a> {
     options: PointOptions,
+    /// The data range.
+    range: (f64, f64),
+    /// The optimized low-resolution volume, if any (else T_s of the grid itself).
+    low: Option<&'a Grid<'a>>,
 }
 
 /// A candidate: `|e|`, its linear sample index, `e`.
 type Candidate = (f64, usize, f64);
 
-impl GridVisitor for Generate {
+impl GridVisitor for Generate<'_> {
     type Output = Result<PointSet>;
 
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Result<PointSet> {
         let dims = g.dims;
         let s = self.options.factor;
-        let (lo, hi) = (0..dims[2])
-            .into_par_iter()
-            .map(|k| {
-                let mut r = (f64::INFINITY, f64::NEG_INFINITY);
-                for j in 0..dims[1] {
-                    for i in 0..dims[0] {
-                        let v = g.at(i, j, k);
-                        r = (r.0.min(v), r.1.max(v));
-                    }
-                }
-                r
-            })
-            .reduce(|| (f64::INFINITY, f64::NEG_INFINITY), |a, b| (a.0.min(b.0), a.1.max(b.1)));
+        let (lo, hi) = self.range;
+        let low = self.low;
+        let approx = |i, j, k| match low {
+            Some(l) => t_s(|x, y, z| l.value(x, y, z), dims, s, i, j, k),
+            None => trilinear::eval(&g, s, i, j, k),
+        };
         let floor = match self.options.select {
             PointSelect::Threshold(t) => t * (hi - lo),
             PointSelect::Budget(_) => 0.0,
@@ -115,8 +203,8 @@ impl GridVisitor for Generate {
                 let mut out = Vec::new();
                 for j in 0..dims[1] {
                     for i in 0..dims[0] {
-                        let e = g.at(i, j, k) - trilinear::eval(&g, s, i, j, k);
-                        if e.abs() > floor {
+                        let e = g.at(i, j, k) - approx(i, j, k);
+                        if e.abs() > floor && (e > 0.0 || !self.options.underestimates_only) {
                             out.push((e.abs(), i + dims[0] * (j + dims[1] * k), e));
                         }
                     }
@@ -150,7 +238,7 @@ impl GridVisitor for Generate {
                 }
             })
             .collect();
-        Ok(PointSet { dims, factor: s, value_range: [lo, hi], error_scale, points })
+        Ok(PointSet { dims, factor: s, value_range: [lo, hi], error_scale, max_overestimate: f64::INFINITY, points })
     }
 }
 
@@ -172,7 +260,7 @@ mod tests {
     use crate::grid::ScalarType;
 
     fn options(select: PointSelect) -> PointOptions {
-        PointOptions { factor: 2, select }
+        PointOptions::new(2, select)
     }
 
     #[test]
@@ -223,17 +311,51 @@ mod tests {
             (2, PointSelect::Threshold(1.5), "threshold 1.5"),
             (2, PointSelect::Threshold(f64::NAN), "threshold NaN"),
         ] {
-            let e = generate(&grid, &PointOptions { factor, select }).unwrap_err().to_string();
+            let e = generate(&grid, &PointOptions::new(factor, select)).unwrap_err().to_string();
             assert!(e.contains(says), "{e}");
         }
         let small = dataset(Dataset::SheppLogan, 5, ScalarType::F32);
-        let e = generate(&small.grid(None).unwrap(), &PointOptions { factor: 8, select: PointSelect::Budget(1) })
+        let e = generate(&small.grid(None).unwrap(), &PointOptions::new(8, PointSelect::Budget(1)))
             .unwrap_err()
             .to_string();
         assert!(e.contains("too small"), "{e}");
         let flat = vec![2.5f32; 9 * 9 * 9];
         let g = Grid::scalar(crate::grid::Samples::F32(&flat), [9, 9, 9]).unwrap();
-        let set = generate(&g, &PointOptions { factor: 4, select: PointSelect::Threshold(0.0) }).unwrap();
+        let set = generate(&g, &PointOptions::new(4, PointSelect::Threshold(0.0))).unwrap();
         assert!(set.points.is_empty() && set.error_scale == 0.0);
+    }
+
+    #[test]
+    fn the_optimized_representation_turns_overestimates_into_points() {
+        let v = dataset(Dataset::SheppLogan, 33, ScalarType::F32);
+        let grid = v.grid(None).unwrap();
+        let plain = generate(&grid, &options(PointSelect::Threshold(0.05))).unwrap();
+        let opts = PointOptions { max_overestimate: Some(0.02), ..options(PointSelect::Threshold(0.05)) };
+        let (set, low) = generate_hybrid(&grid, &opts).unwrap();
+        assert!(low.is_some());
+        let range = set.value_range[1] - set.value_range[0];
+        assert!((set.max_overestimate - 0.02 * range).abs() < 1e-12);
+        // No point's error is below -bound (it would be an overestimate beyond it).
+        assert!(set.points.iter().all(|p| set.error(p) >= -0.02 * range - set.error_scale / 254.0));
+        assert!(plain.points.iter().any(|p| plain.error(p) < -0.02 * range), "plain has large overestimates");
+        assert!(generate(&grid, &opts).unwrap_err().to_string().contains("generate_hybrid"));
+        let bad = PointOptions { max_overestimate: Some(2.0), ..opts };
+        assert!(generate_hybrid(&grid, &bad).unwrap_err().to_string().contains("bound 2"));
+    }
+
+    #[test]
+    fn underestimates_only_keeps_the_points_of_positive_error() {
+        let v = dataset(Dataset::SheppLogan, 33, ScalarType::F32);
+        let grid = v.grid(None).unwrap();
+        let all = generate(&grid, &options(PointSelect::Threshold(0.05))).unwrap();
+        let under =
+            generate(&grid, &PointOptions { underestimates_only: true, ..options(PointSelect::Threshold(0.05)) })
+                .unwrap();
+        assert!(!under.points.is_empty() && under.points.len() < all.points.len());
+        assert!(under.points.iter().all(|p| p.error > 0));
+        let budget =
+            generate(&grid, &PointOptions { underestimates_only: true, ..options(PointSelect::Budget(50)) }).unwrap();
+        assert_eq!(budget.points.len(), 50);
+        assert!(budget.points.iter().all(|p| p.error > 0));
     }
 }

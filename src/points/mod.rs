@@ -7,6 +7,8 @@
 //!   the texture of a uniform stride-`f` selection); the error grid is
 //!   `e(x) = f(x) - T_f(x)` at every sample; points go where `|e|` exceeds a
 //!   threshold, or at the K largest `|e|` for a point budget (section 3.1).
+//! - [`lowres`]: the optimized low-resolution volume, which overestimates
+//!   the data by at most a bound (section 3.2).
 //! - [`normals`]: the table of 256 directions a point's normal is quantised
 //!   to (section 3.3).
 //! - [`storage`]: the binary point file, 6 bytes a point on grids up to
@@ -14,11 +16,13 @@
 
 pub mod draw;
 pub mod generate;
+pub mod lowres;
 pub mod normals;
 pub mod storage;
 
 pub use draw::{add_points, Footprint};
-pub use generate::{generate, PointOptions, PointSelect};
+pub use generate::{generate, generate_hybrid, PointOptions, PointSelect};
+pub use lowres::low_resolution;
 pub use storage::{read_points, write_points};
 
 /// One stored point (quantised as in the file).
@@ -45,6 +49,9 @@ pub struct PointSet {
     pub value_range: [f64; 2],
     /// Largest `|error|` among the points: the error of `error = +-127`.
     pub error_scale: f64,
+    /// The optimized representation's bound on how much the low-resolution
+    /// volume overestimates (data units, [`lowres`]); infinite: plain subsampling.
+    pub max_overestimate: f64,
     /// The points, in grid order (x fastest).
     pub points: Vec<Point>,
 }

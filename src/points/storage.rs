@@ -12,6 +12,7 @@
 //! factor       u32      low-resolution factor (2, 4 or 8)
 //! value range  2 x f64  min, max: value = min + q / 255 (max - min)
 //! error scale  f64      error = q / 127 * scale
+//! overestimate f64      the low-resolution volume's bound (infinite: plain subsampling)
 //! count        u64      points
 //! points       count x (x, y, z: coord bytes each; normal u8; error i8; value u8)
 //! ```
@@ -25,7 +26,7 @@ use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"HOPOINTS";
 const VERSION: u32 = 1;
-const HEADER: usize = 8 + 4 + 4 + 12 + 4 + 16 + 8 + 8;
+const HEADER: usize = 8 + 4 + 4 + 12 + 4 + 16 + 8 + 8 + 8;
 
 /// The file's bytes for `set`.
 pub fn encode(set: &PointSet) -> Vec<u8> {
@@ -38,7 +39,7 @@ pub fn encode(set: &PointSet) -> Vec<u8> {
         out.extend_from_slice(&(n as u32).to_le_bytes());
     }
     out.extend_from_slice(&(set.factor as u32).to_le_bytes());
-    for v in [set.value_range[0], set.value_range[1], set.error_scale] {
+    for v in [set.value_range[0], set.value_range[1], set.error_scale, set.max_overestimate] {
         out.extend_from_slice(&v.to_le_bytes());
     }
     out.extend_from_slice(&(set.points.len() as u64).to_le_bytes());
@@ -74,8 +75,8 @@ pub fn decode(bytes: &[u8], path: &str) -> Result<PointSet> {
     let coord = u32_at(12) as usize;
     let dims = [u32_at(16), u32_at(20), u32_at(24)].map(|n| n as usize);
     let factor = u32_at(28) as usize;
-    let (lo, hi, error_scale) = (f64_at(32), f64_at(40), f64_at(48));
-    let count = u64::from_le_bytes(bytes[56..64].try_into().expect("8 bytes"));
+    let (lo, hi, error_scale, max_overestimate) = (f64_at(32), f64_at(40), f64_at(48), f64_at(56));
+    let count = u64::from_le_bytes(bytes[64..72].try_into().expect("8 bytes"));
     if dims.iter().any(|&n| !(2..=1 << 16).contains(&n)) {
         return Err(bad(format!(
             "grid dimensions {dims:?} are out of range (2 to 65,536 per axis): the header is corrupt"
@@ -95,6 +96,9 @@ pub fn decode(bytes: &[u8], path: &str) -> Result<PointSet> {
         return Err(bad(format!(
             "value range [{lo}, {hi}] or error scale {error_scale} is not finite and ordered: the header is corrupt"
         )));
+    }
+    if max_overestimate.is_nan() || max_overestimate < 0.0 {
+        return Err(bad(format!("overestimation bound {max_overestimate} is negative or NaN: the header is corrupt")));
     }
     let record = 3 * coord + 3;
     let body = bytes.len() - HEADER;
@@ -118,7 +122,7 @@ pub fn decode(bytes: &[u8], path: &str) -> Result<PointSet> {
         let q = &r[3 * coord..];
         points.push(Point { ijk, normal: q[0], error: q[1] as i8, value: q[2] });
     }
-    Ok(PointSet { dims, factor, value_range: [lo, hi], error_scale, points })
+    Ok(PointSet { dims, factor, value_range: [lo, hi], error_scale, max_overestimate, points })
 }
 
 /// Writes `set` to `path`.
@@ -144,7 +148,7 @@ mod tests {
 
     fn sample(size: usize) -> PointSet {
         let v = dataset(Dataset::SheppLogan, size, ScalarType::F32);
-        generate(&v.grid(None).unwrap(), &PointOptions { factor: 4, select: PointSelect::Threshold(0.05) }).unwrap()
+        generate(&v.grid(None).unwrap(), &PointOptions::new(4, PointSelect::Threshold(0.05))).unwrap()
     }
 
     #[test]

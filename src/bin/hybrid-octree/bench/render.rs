@@ -19,10 +19,11 @@ use crate::pool::with_threads;
 use crate::scene::{frame, load, reference_image, visible, Loaded, SceneArgs};
 use clap::Args;
 use hybrid_octree::grid::Grid;
-use hybrid_octree::points::{generate, Footprint, PointOptions, PointSelect, PointSet};
+use hybrid_octree::points::{generate_hybrid, Footprint, PointOptions, PointSelect, PointSet};
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::metrics::compare;
 use hybrid_octree::select::{select, uniform, SelectOptions, Selection};
+use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -53,6 +54,15 @@ pub struct BenchRenderArgs {
     /// Point thresholds (|error| as a fraction of the data range) of the `--points` rows.
     #[arg(long, value_delimiter = ',', default_value = "0.2,0.1,0.05")]
     point_thresholds: Vec<f64>,
+    /// Points only where the low resolution underestimates (the only errors an
+    /// additive point corrects under an increasing opacity ramp); default: |error|, as the paper.
+    #[arg(long)]
+    underestimates_only: bool,
+    /// The optimized representation (paper 3, section 3.2) for the `--points`
+    /// rows: the low resolution overestimates the data by at most this
+    /// fraction of the data range; default: plain subsampling.
+    #[arg(long)]
+    max_overestimate: Option<f64>,
     /// Footprint of the points: square or gaussian.
     #[arg(long, default_value = "square")]
     footprint: Footprint,
@@ -125,9 +135,11 @@ struct Method {
     point_budget: Option<usize>,
 }
 
-/// The points of a row and what making them took.
+/// The points of a row, the low-resolution volume they complete (when
+/// optimized; else the grid's own T_s) and what making them took.
 struct Points<'a> {
     set: &'a PointSet,
+    low: Option<&'a Grid<'a>>,
     footprint: Footprint,
     ms: f64,
 }
@@ -145,7 +157,8 @@ fn measure_with(
 ) -> Result<Row> {
     let Method { method, tolerance, stride, point_threshold, point_budget } = m;
     let (grid, scene, args, truth) = (b.grid, b.scene, b.args, b.truth);
-    let f = frame(grid, scene, &selection, args, points.as_ref().map(|p| (p.set, p.footprint)))?;
+    let textures_from = points.as_ref().and_then(|p| p.low).unwrap_or(grid);
+    let f = frame(textures_from, scene, &selection, args, points.as_ref().map(|p| (p.set, p.footprint)))?;
     let metrics = compare(&f.image, truth)?;
     let point_bytes = points.as_ref().map_or(0, |p| p.set.bytes());
     Ok(Row {
@@ -251,10 +264,16 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
 /// The `--points` rows (see the module documentation).
 fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>> {
     let mut rows = Vec::new();
-    let generate_timed = |factor: usize, select: PointSelect| -> Result<(PointSet, f64)> {
+    let generate_timed = |factor: usize, select: PointSelect| -> Result<(PointSet, Option<Volume>, f64)> {
+        let options = PointOptions {
+            factor,
+            select,
+            underestimates_only: args.underestimates_only,
+            max_overestimate: args.max_overestimate,
+        };
         let started = Instant::now();
-        let set = generate(bench.grid, &PointOptions { factor, select })?;
-        Ok((set, started.elapsed().as_secs_f64() * 1e3))
+        let (set, low) = generate_hybrid(bench.grid, &options)?;
+        Ok((set, low, started.elapsed().as_secs_f64() * 1e3))
     };
     let mut strides: Vec<usize> = args.strides.iter().copied().filter(|s| [2, 4, 8].contains(s)).collect();
     strides.sort_unstable();
@@ -264,20 +283,16 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
         let u = uniform(&bench.scene.octree, stride, 4)?;
         bytes.push(u.texture_bytes);
         for &threshold in &args.point_thresholds {
-            let (set, ms) = generate_timed(stride, PointSelect::Threshold(threshold))?;
+            let (set, low, ms) = generate_timed(stride, PointSelect::Threshold(threshold))?;
+            let low = low.as_ref().map(|v| v.grid(None)).transpose()?;
             let m = Method {
                 method: "points",
                 stride: Some(stride),
                 point_threshold: Some(threshold),
                 ..Method::default()
             };
-            rows.push(measure_with(
-                bench,
-                m,
-                u.clone(),
-                0.0,
-                Some(Points { set: &set, footprint: args.footprint, ms }),
-            )?);
+            let p = Points { set: &set, low: low.as_ref(), footprint: args.footprint, ms };
+            rows.push(measure_with(bench, m, u.clone(), 0.0, Some(p))?);
         }
     }
     // At the bytes of stride `fine`: the next coarser stride and the points the difference buys.
@@ -286,9 +301,11 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
         let u = uniform(&bench.scene.octree, coarse, 4)?;
         let per_point = if bench.grid.dims().iter().all(|&n| n <= 256) { 6 } else { 9 };
         let budget = fine.saturating_sub(u.texture_bytes) / per_point;
-        let (set, ms) = generate_timed(coarse, PointSelect::Budget(budget))?;
+        let (set, low, ms) = generate_timed(coarse, PointSelect::Budget(budget))?;
+        let low = low.as_ref().map(|v| v.grid(None)).transpose()?;
         let m = Method { method: "points", stride: Some(coarse), point_budget: Some(budget), ..Method::default() };
-        rows.push(measure_with(bench, m, u, 0.0, Some(Points { set: &set, footprint: args.footprint, ms }))?);
+        let p = Points { set: &set, low: low.as_ref(), footprint: args.footprint, ms };
+        rows.push(measure_with(bench, m, u, 0.0, Some(p))?);
     }
     Ok(rows)
 }
