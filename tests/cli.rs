@@ -497,3 +497,89 @@ fn ftb_refuses_a_zero_vpn_and_a_missing_isovalue() {
     assert!(!out.status.success());
     assert!(stderr(&out).contains("--isovalue") || stderr(&out).contains("--label"), "{}", stderr(&out));
 }
+
+#[test]
+fn points_writes_a_file_that_reads_back_and_draws_the_difference_pictures() {
+    let file = temp("points.hop");
+    let prefix = temp("points");
+    let prefix = prefix.to_str().unwrap();
+    let r = json_of(
+        "points",
+        &[
+            "--dataset",
+            "shepp-logan",
+            "--size",
+            "33",
+            "--factor",
+            "2",
+            "--threshold",
+            "0.1",
+            "--output",
+            file.to_str().unwrap(),
+            "--render",
+            prefix,
+            "--width",
+            "48",
+            "--height",
+            "48",
+        ],
+    );
+    let points = r["points"].as_u64().unwrap();
+    assert!(points > 0, "{r}");
+    // 6 bytes a point on a 33^3 grid, plus the 72-byte header in the file.
+    assert_eq!(r["point_bytes"].as_u64().unwrap(), 6 * points);
+    assert_eq!(r["file_bytes"].as_u64().unwrap(), 6 * points + 72);
+    assert_eq!(r["total_bytes"].as_u64().unwrap(), r["texture_bytes"].as_u64().unwrap() + 6 * points);
+    // Both pictures are measured (what points buy is tested in tests/hybrid_points.rs).
+    assert!(r["hybrid_rmse"].as_f64().unwrap() > 0.0 && r["lowres_rmse"].as_f64().unwrap() > 0.0, "{r}");
+    assert_eq!(r["passes"], serde_json::json!(["volume", "points"]));
+    for name in ["lowres", "hybrid", "reference", "lowres-diff", "hybrid-diff"] {
+        let png = format!("{prefix}-{name}.png");
+        assert!(std::fs::metadata(&png).map(|m| m.len() > 100).unwrap_or(false), "{png}");
+        std::fs::remove_file(png).ok();
+    }
+    std::fs::remove_file(&file).ok();
+    // Bad options are clear errors.
+    let out =
+        run(&["points", "--dataset", "sphere", "--size", "17", "--factor", "3", "--budget", "5", "--output", "x.hop"]);
+    assert_clean_failure(&out, "factor 3");
+    let out = run(&["points", "--dataset", "sphere", "--size", "17", "--output", "x.hop"]);
+    assert_clean_failure(&out, "--threshold");
+}
+
+#[test]
+fn bench_render_points_rows_carry_bytes_and_error() {
+    let out = run(&[
+        "bench",
+        "render",
+        "--dataset",
+        "shepp-logan",
+        "--size",
+        "33",
+        "--width",
+        "32",
+        "--height",
+        "32",
+        "--strides",
+        "2,4",
+        "--tolerances",
+        "0.1",
+        "--leaf-size",
+        "8",
+        "--points",
+        "--point-thresholds",
+        "0.1",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let points: Vec<&Value> = rows.as_array().unwrap().iter().filter(|r| r["method"] == "points").collect();
+    assert_eq!(points.len(), 3, "one threshold row per stride and one equal-bytes row");
+    for r in points {
+        for key in ["texture_bytes", "point_bytes", "total_bytes", "points", "ms", "rmse", "ssim"] {
+            assert!(r.get(key).is_some(), "missing {key} in {r}");
+        }
+        let t = r["texture_bytes"].as_u64().unwrap() + r["point_bytes"].as_u64().unwrap();
+        assert_eq!(r["total_bytes"].as_u64().unwrap(), t);
+    }
+}

@@ -71,7 +71,7 @@ use crate::camera::Ray;
 use crate::error::Result;
 use crate::grid::{Grid, GridShape};
 use crate::plan::{BrickDraw, DrawList};
-use crate::points::draw::{footprint, point_opacity, project, Footprint};
+use crate::points::draw::{footprint, point_colour, point_opacity, project, Footprint};
 use crate::points::PointSet;
 use crate::surface::Surface;
 use crate::vec3::dot;
@@ -290,11 +290,13 @@ fn splat(
             for &i in &bucket.points {
                 let p = &set.points[i as usize];
                 let value = set.value(p);
-                let [r, g, bl, a_t] = lut.eval(value);
-                let a_p = point_opacity(a_t, lut.eval(value - set.error(p))[3]);
+                let [r_t, g_t, b_t, a_t] = lut.eval(value);
+                let [r_v, g_v, b_v, a_v] = lut.eval(value - set.error(p));
+                let a_p = point_opacity(a_t, a_v);
                 if a_p <= 0.0 {
                     continue;
                 }
+                let [r, g, bl] = point_colour([r_t, g_t, b_t], a_t, [r_v, g_v, b_v], a_v);
                 let world = shape.world(p.ijk.map(f64::from));
                 let Some((centre, s)) = project(&list.camera, width, height, world, d0) else { continue };
                 let depth = list.camera.depth(world);

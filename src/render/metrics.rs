@@ -87,6 +87,29 @@ fn ssim(a: &[f64], b: &[f64], width: usize, height: usize) -> f64 {
     total / windows as f64
 }
 
+/// The difference picture `gain |a - b|` per channel (both shown over
+/// [`super::image::BACKGROUND`]), opaque: black where they agree.
+///
+/// # Errors
+///
+/// [`Error::InvalidArgument`] for pictures of different sizes.
+pub fn difference(a: &Image, b: &Image, gain: f32) -> Result<Image> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return Err(Error::InvalidArgument(format!(
+            "cannot difference a {}x{} picture with a {}x{} one: render both at the same size",
+            a.width, a.height, b.width, b.height
+        )));
+    }
+    let (sa, sb) = (a.over(super::image::BACKGROUND), b.over(super::image::BACKGROUND));
+    let rgba = sa
+        .iter()
+        .zip(&sb)
+        .map(|(p, q)| [0, 1, 2].map(|k| (gain * (p[k] - q[k]).abs()).min(1.0)))
+        .map(|[r, g, b]| [r, g, b, 1.0])
+        .collect();
+    Ok(Image { width: a.width, height: a.height, rgba })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -22,6 +22,7 @@ mod info;
 mod input;
 mod output;
 mod plot;
+mod points;
 mod pool;
 mod render;
 mod scene;
@@ -51,6 +52,8 @@ enum Command {
     Generate(generate::GenerateArgs),
     /// Display the binary octree of an isovalue front to back with blocking quadtrees, against back to front.
     Ftb(ftb::FtbArgs),
+    /// The hybrid point/volume representation: points where the low resolution is wrong, written to a file and drawn.
+    Points(Box<points::PointsArgs>),
     /// Benchmarks that print a table.
     Bench {
         #[command(subcommand)]
@@ -67,6 +70,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Ftb(args) => ftb::run(&args),
+        Command::Points(args) => points::run(&args),
         Command::Bench { bench } => bench::run(&bench),
     };
     match result {

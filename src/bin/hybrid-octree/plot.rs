@@ -29,9 +29,10 @@ pub fn error_plot(path: &Path, title: &str, series: &[(&str, Vec<Point>)]) -> Re
     let panels = root.split_evenly((1, 2));
     let all: Vec<Point> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
     let max = |f: fn(&Point) -> f64| all.iter().map(f).fold(0.0f64, f64::max) * 1.1 + 1e-9;
-    let colours = [RED, BLUE, GREEN, MAGENTA, CYAN];
+    let colours = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK];
     type Axis = (fn(&Point) -> f64, &'static str);
-    let axes: [Axis; 2] = [(|p| p.ms, "time per frame (ms)"), (|p| p.mb, "texture memory (MB)")];
+    let axes: [Axis; 2] =
+        [(|p| p.ms, "time per frame (ms)"), (|p| p.mb, "memory (MB: textures, plus points where drawn)")];
     for (panel, (x_of, x_desc)) in panels.iter().zip(axes) {
         let mut chart = ChartBuilder::on(panel)
             .margin(15)
@@ -50,7 +51,13 @@ pub fn error_plot(path: &Path, title: &str, series: &[(&str, Vec<Point>)]) -> Re
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
             chart.draw_series(line.iter().map(|&p| Circle::new(p, 4, colour.filled()))).map_err(err)?;
         }
-        chart.configure_series_labels().background_style(WHITE).border_style(BLACK).draw().map_err(err)?;
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE)
+            .border_style(BLACK)
+            .draw()
+            .map_err(err)?;
     }
     root.present().map_err(err)?;
     Ok(())

@@ -241,22 +241,41 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
         Ok(rows)
     })?;
     if let Some(path) = &args.plot {
-        let series = |method: &str| -> Vec<Point> {
+        let series = |keep: &dyn Fn(&Row) -> bool| -> Vec<Point> {
             rows.iter()
-                .filter(|r| r.method == method)
+                .filter(|r| keep(r))
                 .map(|r| Point {
                     ms: r.select_ms + r.slab_polygons_ms + r.drawlist_ms + r.composite_ms,
-                    mb: r.texture_bytes as f64 / 1e6,
+                    mb: r.total_bytes as f64 / 1e6,
                     rmse: r.rmse,
                 })
                 .collect()
         };
         let title = format!("{}: image RMSE against the full-resolution reference", args.input.describe());
-        error_plot(
-            path,
-            &title,
-            &[("octree (budget / tolerance sweep)", series("octree")), ("uniform downsampling", series("uniform"))],
-        )?;
+        let mut lines: Vec<(String, Vec<Point>)> = vec![
+            ("octree (budget / tolerance sweep)".into(), series(&|r| r.method == "octree")),
+            ("uniform downsampling".into(), series(&|r| r.method == "uniform")),
+        ];
+        let mut point_strides: Vec<usize> = rows
+            .iter()
+            .filter(|r| r.method == "points" && r.point_threshold.is_some())
+            .filter_map(|r| r.stride)
+            .collect();
+        point_strides.dedup();
+        for s in point_strides {
+            lines.push((
+                format!("stride {s} + points (threshold sweep)"),
+                series(&|r| r.method == "points" && r.stride == Some(s) && r.point_threshold.is_some()),
+            ));
+        }
+        if rows.iter().any(|r| r.point_budget.is_some()) {
+            lines.push((
+                "coarser stride + points at a finer stride's bytes".into(),
+                series(&|r| r.method == "points" && r.point_budget.is_some()),
+            ));
+        }
+        let named: Vec<(&str, Vec<Point>)> = lines.iter().map(|(n, p)| (n.as_str(), p.clone())).collect();
+        error_plot(path, &title, &named)?;
     }
     print_report(&rows, args.json, |rows| print_table(rows))
 }
