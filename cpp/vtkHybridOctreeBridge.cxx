@@ -503,4 +503,30 @@ bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription&
   });
 }
 
+bool GeneratePoints(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const PointsOptions& options, PointsResult& result, std::string& error)
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::GridDesc desc = ToRust(grid);
+    hybrid_octree::PointsDesc o;
+    o.factor = options.Factor;
+    o.threshold = options.Threshold;
+    o.use_budget = options.UseBudget;
+    o.budget = options.Budget;
+    o.underestimates_only = options.UnderestimatesOnly;
+    o.max_overestimate = options.MaxOverestimate;
+    o.file_name = rust::String(options.FileName);
+    const hybrid_octree::PointsOutput points =
+      hybrid_octree::generate_points(ToSlice(bytes, byteCount), desc, o);
+    CopyInto(points.ijk, result.Ijk);
+    CopyInto(points.value, result.Value);
+    CopyInto(points.error, result.Error);
+    CopyInto(points.normal, result.Normal);
+    result.Factor = points.factor;
+    result.PointBytes = points.point_bytes;
+    result.Underestimates = points.underestimates;
+    result.GenerateMs = points.generate_ms;
+  });
+}
+
 } // namespace vtkHybridOctreeBridge

@@ -408,6 +408,39 @@ struct FtbResult
 bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription& grid,
   const FtbOptions& options, FtbResult& result, std::string& error);
 
+/// What GeneratePoints() makes (issue 8; see PointsDesc in src/ffi.rs).
+struct PointsOptions
+{
+  std::size_t Factor = 4;          ///< low resolution: every 2, 4 or 8 samples
+  double Threshold = 0.1;          ///< |error| above this fraction of the data range ...
+  bool UseBudget = false;          ///< ... or the Budget largest errors
+  std::size_t Budget = 0;
+  bool UnderestimatesOnly = false; ///< only where the low resolution underestimates
+  double MaxOverestimate = -1.0;   ///< optimized low resolution's bound (fraction); < 0: off
+  std::string FileName;            ///< also write the point file (empty: do not)
+};
+
+/// The points, dequantised as stored.
+struct PointsResult
+{
+  std::vector<std::uint32_t> Ijk; ///< 3 per point
+  std::vector<float> Value;
+  std::vector<float> Error;
+  std::vector<float> Normal; ///< 3 per point
+  std::size_t Factor = 0;
+  std::size_t PointBytes = 0;
+  std::size_t Underestimates = 0;
+  double GenerateMs = 0.0;
+};
+
+/**
+ * The points completing the stride-`Factor` low resolution of `byteCount`
+ * bytes at `bytes` laid out as `grid`. False and `error` on failure (a bad
+ * factor, threshold or bound, a grid too small, a file not written).
+ */
+bool GeneratePoints(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const PointsOptions& options, PointsResult& result, std::string& error);
+
 } // namespace vtkHybridOctreeBridge
 
 #endif

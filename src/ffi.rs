@@ -127,6 +127,42 @@ mod bridge {
         view_case: String,
     }
 
+    /// What `generate_points` makes (issue 8; see `crate::points`).
+    struct PointsDesc {
+        /// Low-resolution factor: 2, 4 or 8.
+        factor: usize,
+        /// Points where |error| exceeds this fraction of the data range ...
+        threshold: f64,
+        /// ... or, when `use_budget`, the `budget` largest errors.
+        use_budget: bool,
+        budget: usize,
+        /// Only where the low resolution underestimates (e > 0).
+        underestimates_only: bool,
+        /// The optimized low resolution's bound (fraction of the data range); negative: plain subsampling.
+        max_overestimate: f64,
+        /// Also write the point file here (empty: do not).
+        file_name: String,
+    }
+
+    /// The points of the hybrid representation, dequantised as stored.
+    #[derive(Debug)]
+    struct PointsOutput {
+        /// Grid index of each point, 3 per point.
+        ijk: Vec<u32>,
+        /// Original value (quantised to 8 bits over the data range, as stored).
+        value: Vec<f32>,
+        /// Error f - T_f (quantised to 8 bits, as stored).
+        error: Vec<f32>,
+        /// Unit normal from the 256-direction table, 3 per point.
+        normal: Vec<f32>,
+        factor: usize,
+        /// Bytes of the points as stored (6 or 9 a point).
+        point_bytes: usize,
+        /// Points with e > 0.
+        underestimates: usize,
+        generate_ms: f64,
+    }
+
     /// Which isosurface the Hybrid Octree keeps.
     #[derive(Debug)]
     enum SurfaceMode {
@@ -318,6 +354,11 @@ mod bridge {
         /// an image size outside 8..=8192).
         fn ftb_display(bytes: &[u8], desc: &GridDesc, options: &FtbDesc) -> Result<FtbImage>;
 
+        /// The points completing the borrowed image's low resolution (errors:
+        /// a factor other than 2, 4 or 8, a threshold or bound outside [0, 1],
+        /// a grid too small for the factor, a file that cannot be written).
+        fn generate_points(bytes: &[u8], desc: &GridDesc, options: &PointsDesc) -> Result<PointsOutput>;
+
         /// A selection of the octree's nodes and texture levels, for drawing.
         type SelectionHandle;
 
@@ -402,10 +443,11 @@ mod bridge {
 }
 
 use crate::ffi_ftb::ftb_display;
+use crate::ffi_points::generate_points;
 pub use crate::ffi_render::{SelectionHandle, SurfaceHandle};
 pub use bridge::{
-    CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbImage, GridDesc, OctreeSummary, ScalarType, SelectDesc,
-    SelectionSummary, SurfaceMode, SurfaceOutput,
+    CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbImage, GridDesc, OctreeSummary, PointsDesc, PointsOutput,
+    ScalarType, SelectDesc, SelectionSummary, SurfaceMode, SurfaceOutput,
 };
 
 /// A Volume Octree together with the geometry needed to place its boxes.

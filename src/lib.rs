@@ -27,6 +27,7 @@ pub mod error;
 #[allow(missing_docs)]
 pub mod ffi;
 mod ffi_ftb;
+mod ffi_points;
 mod ffi_render;
 pub mod ftb;
 pub mod grid;

@@ -203,6 +203,28 @@ for key in ["faces", "scanlines", "pixels", "black_visited", "white_visited", "g
     check(btf_image.GetFieldData().GetArray(key).GetValue(0) == cli_row["btf"][key], "BTF %s matches the CLI" % key)
 Delete(btf_proxy)
 Delete(ftb_proxy)
+
+# ---- Hybrid Octree Points: the same points as the CLI's point file ----------------
+points_file = os.path.join(args.workdir, "sphere-points.hop")
+points_proxy = HybridOctreePoints(Input=depth_inputs, Scalars=sphere_array, Factor=4, Threshold=0.01,
+                                  FileName=points_file)
+points_proxy.UpdatePipeline()
+point_cloud = servermanager.Fetch(points_proxy)
+n_points = point_cloud.GetNumberOfPoints()
+check(n_points > 0, "Hybrid Octree Points makes points: %d" % n_points)
+check(point_cloud.GetPointData().GetArray("error") is not None, "the points carry their error")
+check(point_cloud.GetFieldData().GetArray("point_bytes").GetValue(0) == 6 * n_points, "6 bytes a point")
+cli_points = json.loads(subprocess.run(
+    [args.cli, "points", "--file", sphere_vti, "--factor", "4", "--threshold", "0.01",
+     "--output", os.path.join(args.workdir, "sphere-cli.hop"), "--json"],
+    check=True, capture_output=True, text=True).stdout)
+check(cli_points["points"] == n_points, "the CLI makes %d points, the proxy %d" % (cli_points["points"], n_points))
+with open(points_file, "rb") as a, open(os.path.join(args.workdir, "sphere-cli.hop"), "rb") as b:
+    check(a.read() == b.read(), "the proxy's point file equals the CLI's, byte for byte")
+points_proxy.Factor = 3
+points_proxy.UpdatePipeline()
+check(servermanager.Fetch(points_proxy).GetNumberOfPoints() == 0, "factor 3 fails with an empty output")
+Delete(points_proxy)
 Delete(depth_inputs)
 
 # ---- The isosurface on output port 1 -------------------------------------------

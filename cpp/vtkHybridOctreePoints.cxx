@@ -1,0 +1,206 @@
+#include "vtkHybridOctreePoints.h"
+
+#include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeImageInput.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+vtkStandardNewMacro(vtkHybridOctreePoints);
+
+vtkHybridOctreePoints::vtkHybridOctreePoints()
+{
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+vtkHybridOctreePoints::~vtkHybridOctreePoints() = default;
+
+void vtkHybridOctreePoints::SetFileName(const std::string& name)
+{
+  if (this->FileName != name)
+  {
+    this->FileName = name;
+    this->Modified();
+  }
+}
+
+int vtkHybridOctreePoints::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port != 0)
+  {
+    return 0;
+  }
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkHybridOctreePoints::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* in = inputVector[0]->GetInformationObject(0);
+  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  return 1;
+}
+
+namespace
+{
+void AddField(vtkFieldData* fd, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+
+/// Texels of the stride-`factor` low resolution of `dims` samples, 4 bytes each.
+double LowResolutionBytes(const int dims[3], int factor)
+{
+  double texels = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    texels *= static_cast<double>((dims[a] - 1 + factor - 1) / factor + 1);
+  }
+  return 4.0 * texels;
+}
+}
+
+int vtkHybridOctreePoints::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (!output)
+  {
+    vtkErrorMacro("the output is not vtkPolyData");
+    return 0;
+  }
+  output->Initialize();
+  if (!input)
+  {
+    vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
+    return 0;
+  }
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  std::string error;
+  vtkDataArray* scalars = vtkHybridOctreeImageInput::CheckPointScalars(
+    input, this->GetInputArrayToProcess(0, inputVector, association), association, error);
+  if (!scalars)
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  if (this->Factor != 2 && this->Factor != 4 && this->Factor != 8)
+  {
+    vtkErrorMacro("the low-resolution factor " << this->Factor
+                                               << " is not supported: use 2, 4 or 8");
+    return 0;
+  }
+  vtkHybridOctreeBridge::PointsOptions options;
+  options.Factor = static_cast<std::size_t>(this->Factor);
+  options.Threshold = this->Threshold;
+  options.UseBudget = this->PointBudget > 0;
+  options.Budget = static_cast<std::size_t>(this->PointBudget);
+  options.UnderestimatesOnly = this->UnderestimatesOnly != 0;
+  options.MaxOverestimate = this->MaxOverestimate;
+  options.FileName = this->FileName;
+  vtkHybridOctreeBridge::PointsResult result;
+  if (!vtkHybridOctreeBridge::GeneratePoints(vtkHybridOctreeImageInput::Bytes(scalars),
+        vtkHybridOctreeImageInput::ByteCount(scalars),
+        vtkHybridOctreeImageInput::DescribeGrid(input, scalars, this->Component), options, result,
+        error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  const std::size_t n = result.Value.size();
+  if (result.Ijk.size() != 3 * n || result.Normal.size() != 3 * n || result.Error.size() != n)
+  {
+    vtkErrorMacro("internal error: the core returned inconsistent points; please report it");
+    return 0;
+  }
+  int extent[6];
+  input->GetExtent(extent);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  vtkNew<vtkFloatArray> value;
+  value->SetName("value");
+  value->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  vtkNew<vtkFloatArray> err;
+  err->SetName("error");
+  err->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    // Grid index (from the extent's start) to the physical point, direction matrix included.
+    const int ijk[3] = { extent[0] + static_cast<int>(result.Ijk[3 * i]),
+      extent[2] + static_cast<int>(result.Ijk[3 * i + 1]),
+      extent[4] + static_cast<int>(result.Ijk[3 * i + 2]) };
+    double xyz[3];
+    input->TransformIndexToPhysicalPoint(ijk, xyz);
+    const vtkIdType id = static_cast<vtkIdType>(i);
+    points->SetPoint(id, xyz);
+    value->SetValue(id, result.Value[i]);
+    err->SetValue(id, result.Error[i]);
+    normals->SetTypedTuple(id, &result.Normal[3 * i]);
+  }
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(n); ++i)
+  {
+    connectivity->SetValue(i, i);
+  }
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(1, connectivity);
+  output->SetPoints(points);
+  output->SetVerts(verts);
+  output->GetPointData()->SetScalars(value);
+  output->GetPointData()->AddArray(err);
+  output->GetPointData()->SetNormals(normals);
+
+  int dims[3];
+  input->GetDimensions(dims);
+  const double lowBytes = LowResolutionBytes(dims, this->Factor);
+  vtkFieldData* fd = output->GetFieldData();
+  AddField(fd, "points", static_cast<double>(n));
+  AddField(fd, "point_bytes", static_cast<double>(result.PointBytes));
+  AddField(fd, "underestimates", static_cast<double>(result.Underestimates));
+  AddField(fd, "factor", static_cast<double>(result.Factor));
+  AddField(fd, "generate_ms", result.GenerateMs);
+  AddField(fd, "low_resolution_bytes", lowBytes);
+  AddField(fd, "total_bytes", lowBytes + static_cast<double>(result.PointBytes));
+  return 1;
+}
+
+void vtkHybridOctreePoints::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Factor: " << this->Factor << "\n";
+  os << indent << "Threshold: " << this->Threshold << "\n";
+  os << indent << "PointBudget: " << this->PointBudget << "\n";
+  os << indent << "UnderestimatesOnly: " << this->UnderestimatesOnly << "\n";
+  os << indent << "MaxOverestimate: " << this->MaxOverestimate << "\n";
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "Component: " << this->Component << "\n";
+}
