@@ -31,9 +31,17 @@
 //! is deterministic. Nodes whose value range the caller's `visible` test
 //! rejects (fully transparent under the transfer function) cost nothing and
 //! are never refined.
+//!
+//! With the points of the hybrid representation ([`select_with_points`],
+//! paper 3), a brick whose stride is the points' factor offers a third step:
+//! take its points, removing the squared error of those it can correct
+//! ([`crate::points::mass`]) for their bytes; a brick that has its points can
+//! still be raised or split (its points are then dropped). The budget covers
+//! texture and point bytes together.
 
 use crate::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
+use crate::points::PointMass;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -94,6 +102,10 @@ pub struct Brick {
     pub error: f32,
     /// Imp(n).
     pub importance: f64,
+    /// Points of the hybrid representation the brick draws (0: none; see [`select_with_points`]).
+    pub point_count: usize,
+    /// Their bytes.
+    pub point_bytes: usize,
 }
 
 impl Brick {
@@ -112,8 +124,10 @@ pub struct Selection {
     /// The bricks, by node id; their boxes tile the grid exactly once (the
     /// transparent nodes excepted).
     pub bricks: Vec<Brick>,
-    /// Sum of the bricks' bytes.
+    /// Sum of the bricks' texture bytes.
     pub texture_bytes: usize,
+    /// Sum of the bricks' point bytes (0 without points).
+    pub point_bytes: usize,
     /// The budget asked for.
     pub budget_bytes: usize,
     /// Largest weighted error Imp(n) e_p(n) of the bricks.
@@ -144,6 +158,8 @@ fn make_brick(octree: &VolumeOctree, n: &NodeRef<'_>, p: usize, importance: f64,
         bytes: texels.iter().product::<usize>() * bytes_per_texel,
         error: n.error(p),
         importance,
+        point_count: 0,
+        point_bytes: 0,
     }
 }
 
@@ -179,6 +195,8 @@ struct Step {
     node: NodeId,
     /// The node's p when the step was queued (stale steps are skipped).
     p: usize,
+    /// The node's point count when the step was queued (likewise).
+    points: usize,
 }
 
 impl PartialEq for Step {
@@ -286,6 +304,26 @@ type Memo = std::cell::RefCell<std::collections::HashMap<(NodeId, usize), (Vec<B
 /// `visible(min, max)` says whether a node with that value range shows under
 /// the transfer function; return `true` to keep every node.
 pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f64, f64) -> bool) -> Result<Selection> {
+    select_impl(octree, options, &visible, None)
+}
+
+/// [`select`] where bricks of stride `points.factor` may also take their
+/// points (see the module documentation); the budget covers both.
+pub fn select_with_points(
+    octree: &VolumeOctree,
+    options: &SelectOptions,
+    visible: impl Fn(f64, f64) -> bool,
+    points: &PointMass,
+) -> Result<Selection> {
+    select_impl(octree, options, &visible, Some(points))
+}
+
+fn select_impl(
+    octree: &VolumeOctree,
+    options: &SelectOptions,
+    visible: &dyn Fn(f64, f64) -> bool,
+    points: Option<&PointMass>,
+) -> Result<Selection> {
     if options.budget_bytes == 0 {
         return Err(Error::InvalidArgument(
             "the texture budget is 0 bytes: give a budget of at least a few kilobytes".into(),
@@ -318,7 +356,14 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
     };
     // The best next step of a brick in the cut, if it still violates the tolerance.
     // The error mass of a brick: Imp(n) Q_p(n), its squared error summed over its samples.
-    let mass = |b: &Brick| b.importance * octree.node(b.node).squared_error(b.p) as f64;
+    // With points taken, the squared error they correct is gone.
+    let removed = |b: &Brick| match points {
+        Some(pm) if b.point_count > 0 => pm.in_box(b.lo, b.hi).2,
+        _ => 0.0,
+    };
+    let mass = |b: &Brick| b.importance * (octree.node(b.node).squared_error(b.p) as f64 - removed(b)).max(0.0);
+    // Bytes a brick holds: its texture and its points.
+    let cost = |b: &Brick| b.bytes + b.point_bytes;
     let memo = Memo::default();
     let next_step = |b: &Brick| -> Option<(Step, Vec<Brick>, usize)> {
         if weighted(b) <= options.tolerance || b.error == 0.0 {
@@ -333,7 +378,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
             .map(|q| {
                 let (up, hidden) = cheapest(octree, &n, q, &brick_of, &max_p, &visible, &memo);
                 let (up_bytes, up_mass) = (up.iter().map(|u| u.bytes).sum::<usize>(), up.iter().map(mass).sum::<f64>());
-                (gain(mass(b) - up_mass, up_bytes as f64 - b.bytes as f64), up, hidden)
+                (gain(mass(b) - up_mass, up_bytes as f64 - cost(b) as f64), up, hidden)
             })
             .max_by(|x, y| x.0.total_cmp(&y.0));
         // Split: the children at the same stride (p - 1), each in its
@@ -350,7 +395,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
             let (children, hidden, added) =
                 children_forms(octree, &n, b.p, usize::MAX, &brick_of, &max_p, &visible, &memo);
             let after: f64 = children.iter().map(mass).sum();
-            let split_bytes = added as f64 - b.bytes as f64;
+            let split_bytes = added as f64 - cost(b) as f64;
             let direct = gain(mass(b) - after, split_bytes);
             let ahead = children
                 .iter()
@@ -360,7 +405,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
                 })
                 .map(|(c, cn, q)| {
                     let (up, _) = cheapest(octree, &cn, q, &brick_of, &max_p, &visible, &memo);
-                    let up_bytes = up.iter().map(|u| u.bytes).sum::<usize>() as f64 - c.bytes as f64;
+                    let up_bytes = up.iter().map(|u| u.bytes).sum::<usize>() as f64 - cost(c) as f64;
                     let removed = mass(b) - after + mass(c) - up.iter().map(mass).sum::<f64>();
                     if removed > 0.0 {
                         removed / (split_bytes + up_bytes).max(1.0)
@@ -371,11 +416,22 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
                 .fold(0.0, f64::max);
             (direct.max(ahead), children, hidden)
         });
-        let best = match (raise, split) {
+        // Take the brick's points: their removable squared error for their bytes.
+        let take_points = points.filter(|pm| b.stride == pm.factor && b.point_count == 0).and_then(|pm| {
+            let (count, _, removable) = pm.in_box(b.lo, b.hi);
+            let bytes = count * pm.point_bytes;
+            (count > 0 && removable > 0.0).then(|| {
+                let with = Brick { point_count: count, point_bytes: bytes, ..*b };
+                (gain(b.importance * removable, bytes as f64), vec![with], 0)
+            })
+        });
+        let better = |x: Option<(f64, Vec<Brick>, usize)>, y: Option<(f64, Vec<Brick>, usize)>| match (x, y) {
             (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
             (r, s) => r.or(s),
         };
-        best.filter(|s| s.0 > 0.0).map(|(gain, bricks, hidden)| (Step { gain, node: b.node, p: b.p }, bricks, hidden))
+        let best = better(better(raise, split), take_points);
+        best.filter(|s| s.0 > 0.0)
+            .map(|(gain, bricks, hidden)| (Step { gain, node: b.node, p: b.p, points: b.point_count }, bricks, hidden))
     };
 
     // Greedy refinement of a starting cut (its bricks, its transparent nodes)
@@ -385,7 +441,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
         let mut bytes = 0usize;
         let mut queue = BinaryHeap::new();
         for b in start {
-            bytes += b.bytes;
+            bytes += cost(&b);
             cut.insert(b.node, b);
             if let Some((s, _, _)) = next_step(&b) {
                 queue.push(s);
@@ -393,15 +449,15 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
         }
         while let Some(step) = queue.pop() {
             let Some(current) = cut.get(&step.node).copied() else { continue };
-            if current.p != step.p {
+            if current.p != step.p || step.points != current.point_count {
                 continue; // stale
             }
             let Some((_, replacement, hidden)) = next_step(&current) else { continue };
-            let added: usize = replacement.iter().map(|r| r.bytes).sum();
-            if bytes - current.bytes + added > options.budget_bytes {
+            let added: usize = replacement.iter().map(cost).sum();
+            if bytes - cost(&current) + added > options.budget_bytes {
                 continue; // does not fit; cheaper steps of other nodes may
             }
-            bytes = bytes - current.bytes + added;
+            bytes = bytes - cost(&current) + added;
             cut.remove(&step.node);
             skipped += hidden;
             for r in replacement {
@@ -419,6 +475,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
         return Ok(Selection {
             bricks: Vec::new(),
             texture_bytes: 0,
+            point_bytes: 0,
             budget_bytes: options.budget_bytes,
             max_error: 0.0,
             skipped: 1,
@@ -448,7 +505,7 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
     // A start from the root that meets the tolerance needs no other (it spends the fewest bytes).
     let meets = from_root.0.values().all(|b| weighted(b) <= options.tolerance);
     let other = if meets { None } else { fine.map(|(bricks, hidden)| grow(bricks, hidden)) };
-    let (cut, bytes, skipped) = match other {
+    let (cut, _, skipped) = match other {
         Some(other) if total_mass(&other.0) < total_mass(&from_root.0) => other,
         _ => from_root,
     };
@@ -461,7 +518,32 @@ pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f
             options.budget_bytes, max_error, options.tolerance
         ));
     }
-    Ok(Selection { bricks, texture_bytes: bytes, budget_bytes: options.budget_bytes, max_error, skipped, warning })
+    let texture_bytes = bricks.iter().map(|b| b.bytes).sum();
+    let point_bytes = bricks.iter().map(|b| b.point_bytes).sum();
+    Ok(Selection {
+        bricks,
+        texture_bytes,
+        point_bytes,
+        budget_bytes: options.budget_bytes,
+        max_error,
+        skipped,
+        warning,
+    })
+}
+
+/// Every brick of `selection` whose stride is the points' factor takes all
+/// its points (what drawing a uniform stride with its points costs; the
+/// budget is not consulted). [`crate::points::add_points`] draws points only
+/// in bricks that took them.
+pub fn take_all_points(selection: &mut Selection, points: &PointMass) {
+    for b in &mut selection.bricks {
+        if b.stride == points.factor {
+            let (count, _, _) = points.in_box(b.lo, b.hi);
+            b.point_count = count;
+            b.point_bytes = count * points.point_bytes;
+        }
+    }
+    selection.point_bytes = selection.bricks.iter().map(|b| b.point_bytes).sum();
 }
 
 /// Uniform downsampling at one stride, what a mapper does when a volume does
@@ -491,6 +573,7 @@ pub fn uniform(octree: &VolumeOctree, stride: usize, bytes_per_texel: usize) -> 
     Ok(Selection {
         bricks: vec![brick],
         texture_bytes: brick.bytes,
+        point_bytes: 0,
         budget_bytes: brick.bytes,
         max_error,
         skipped: 0,

@@ -8,7 +8,11 @@
 //! transparent and are not drawn. Points complete T_f, the volume sampled
 //! every `f` samples: they are drawn only in bricks of stride `f` (a finer
 //! brick already shows their detail, a coarser one misses more than they
-//! hold). Its slab is [`crate::slab::slab_of`] of its view depth.
+//! hold) that took their points in the selection
+//! ([`crate::select::select_with_points`], or
+//! [`crate::select::take_all_points`] for every such brick), so the points
+//! drawn are the points paid for. Its slab is [`crate::slab::slab_of`] of
+//! its view depth.
 //!
 //! Opacity (section 3.3: "the error value indicates how much the opacity
 //! should be scaled so that, when combined with the volumetric data, the
@@ -72,6 +76,10 @@ pub fn add_points(list: &mut DrawList, shape: &GridShape, set: &PointSet) -> Res
         )));
     }
     let owner = BrickMap::new(list, shape.dims);
+    let draws = |b: usize| {
+        let brick = &list.bricks[b].brick;
+        brick.stride == set.factor && brick.point_count > 0
+    };
     // Per point: (brick position, slab), in grid order, in parallel.
     let placed: Vec<Option<(usize, usize)>> = set
         .points
@@ -79,7 +87,7 @@ pub fn add_points(list: &mut DrawList, shape: &GridShape, set: &PointSet) -> Res
         .map(|p| {
             let ijk = p.ijk.map(usize::from);
             let b = owner.brick(ijk)?;
-            if list.bricks[b].brick.stride != set.factor {
+            if !draws(b) {
                 return None;
             }
             let depth = list.camera.depth(shape.world(ijk.map(|c| c as f64)));

@@ -17,12 +17,14 @@
 pub mod draw;
 pub mod generate;
 pub mod lowres;
+pub mod mass;
 pub mod normals;
 pub mod storage;
 
 pub use draw::{add_points, Footprint};
 pub use generate::{generate, generate_hybrid, PointOptions, PointSelect};
 pub use lowres::low_resolution;
+pub use mass::PointMass;
 pub use storage::{read_points, write_points};
 
 /// One stored point (quantised as in the file).

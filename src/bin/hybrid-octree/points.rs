@@ -9,9 +9,11 @@ use crate::output::print_report;
 use crate::pool::with_threads;
 use crate::scene::{frame, load, reference_image, SceneArgs};
 use clap::Args;
-use hybrid_octree::points::{generate_hybrid, read_points, write_points, Footprint, PointOptions, PointSelect};
+use hybrid_octree::points::{
+    generate_hybrid, read_points, write_points, Footprint, PointMass, PointOptions, PointSelect,
+};
 use hybrid_octree::render::metrics::{compare, difference};
-use hybrid_octree::select::uniform;
+use hybrid_octree::select::{take_all_points, uniform};
 use hybrid_octree::{Error, Result};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -128,7 +130,8 @@ pub fn run(args: &PointsArgs) -> Result<()> {
             passes: None,
         };
         let scene = load(&grid, &args.scene)?;
-        let selection = uniform(&scene.octree, args.factor, 4)?;
+        let mut selection = uniform(&scene.octree, args.factor, 4)?;
+        take_all_points(&mut selection, &PointMass::new(&set, scene.octree.layout().leaf_size()));
         report.texture_bytes = selection.texture_bytes;
         report.total_bytes += selection.texture_bytes;
         if let Some(prefix) = &args.render {

@@ -19,10 +19,10 @@ use crate::pool::with_threads;
 use crate::scene::{frame, load, reference_image, visible, Loaded, SceneArgs};
 use clap::Args;
 use hybrid_octree::grid::Grid;
-use hybrid_octree::points::{generate_hybrid, Footprint, PointOptions, PointSelect, PointSet};
+use hybrid_octree::points::{generate_hybrid, Footprint, PointMass, PointOptions, PointSelect, PointSet};
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::metrics::compare;
-use hybrid_octree::select::{select, uniform, SelectOptions, Selection};
+use hybrid_octree::select::{select, select_with_points, take_all_points, uniform, SelectOptions, Selection};
 use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
 use serde::Serialize;
@@ -71,7 +71,8 @@ pub struct BenchRenderArgs {
 /// One row.
 #[derive(Debug, Serialize)]
 struct Row {
-    /// "octree", "uniform" or "points" (uniform stride plus error points).
+    /// "octree", "uniform", "points" (uniform stride plus error points) or
+    /// "octree+points" (the selection may buy points instead of refining).
     method: &'static str,
     /// Eu (octree rows); null for uniform rows.
     tolerance: Option<f64>,
@@ -157,10 +158,16 @@ fn measure_with(
 ) -> Result<Row> {
     let Method { method, tolerance, stride, point_threshold, point_budget } = m;
     let (grid, scene, args, truth) = (b.grid, b.scene, b.args, b.truth);
+    let mut selection = selection;
+    if let (Some(p), "points") = (points.as_ref(), method) {
+        // A uniform stride with all its points.
+        take_all_points(&mut selection, &PointMass::new(p.set, scene.octree.layout().leaf_size()));
+    }
     let textures_from = points.as_ref().and_then(|p| p.low).unwrap_or(grid);
     let f = frame(textures_from, scene, &selection, args, points.as_ref().map(|p| (p.set, p.footprint)))?;
     let metrics = compare(&f.image, truth)?;
-    let point_bytes = points.as_ref().map_or(0, |p| p.set.bytes());
+    let point_count = selection.bricks.iter().map(|b| b.point_count).sum();
+    let point_bytes = selection.point_bytes;
     Ok(Row {
         method,
         tolerance,
@@ -169,7 +176,7 @@ fn measure_with(
         point_budget,
         budget_bytes: selection.budget_bytes,
         texture_bytes: selection.texture_bytes,
-        points: points.as_ref().map_or(0, |p| p.set.points.len()),
+        points: point_count,
         point_bytes,
         total_bytes: selection.texture_bytes + point_bytes,
         points_ms: points.as_ref().map_or(0.0, |p| p.ms),
@@ -268,6 +275,12 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
                 series(&|r| r.method == "points" && r.stride == Some(s) && r.point_threshold.is_some()),
             ));
         }
+        for f in [2, 4] {
+            let keep = |r: &Row| r.method == "octree+points" && r.stride == Some(f);
+            if rows.iter().any(keep) {
+                lines.push((format!("octree + factor-{f} points (selection buys them)"), series(&keep)));
+            }
+        }
         if rows.iter().any(|r| r.point_budget.is_some()) {
             lines.push((
                 "coarser stride + points at a finer stride's bytes".into(),
@@ -312,6 +325,34 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
             };
             let p = Points { set: &set, low: low.as_ref(), footprint: args.footprint, ms };
             rows.push(measure_with(bench, m, u.clone(), 0.0, Some(p))?);
+        }
+    }
+    // The octree selection at each uniform stride's bytes, where bricks of
+    // stride f (2 or 4) may take their points instead of refining (method
+    // "octree+points", `stride` = f). The points on offer: e > 0.05 of the
+    // data range (those that can correct the picture).
+    for factor in [2, 4] {
+        let started = Instant::now();
+        let offer =
+            PointOptions { underestimates_only: true, ..PointOptions::new(factor, PointSelect::Threshold(0.05)) };
+        let set = hybrid_octree::points::generate(bench.grid, &offer)?;
+        let ms = started.elapsed().as_secs_f64() * 1e3;
+        let mass = PointMass::new(&set, bench.scene.octree.layout().leaf_size());
+        for &budget in &bytes {
+            let options = SelectOptions { roi: bench.args.roi, ..SelectOptions::new(budget, 0.0) };
+            let started = Instant::now();
+            let s =
+                select_with_points(&bench.scene.octree, &options, visible(bench.scene, bench.args.isovalue), &mass)?;
+            let select_ms = started.elapsed().as_secs_f64() * 1e3;
+            let m = Method {
+                method: "octree+points",
+                tolerance: Some(0.0),
+                stride: Some(factor),
+                point_threshold: Some(0.05),
+                ..Method::default()
+            };
+            let p = Points { set: &set, low: None, footprint: args.footprint, ms };
+            rows.push(measure_with(bench, m, s, select_ms, Some(p))?);
         }
     }
     // At the bytes of stride `fine`: the next coarser stride and the points the difference buys.
@@ -387,6 +428,26 @@ fn print_table(rows: &[Row]) {
                     o.rmse / u.rmse.max(1e-12)
                 );
             }
+        }
+    }
+    // Octree + points rows: against the octree alone and uniform downsampling at the same budget.
+    for r in rows.iter().filter(|r| r.method == "octree+points") {
+        let same = |m: &str| {
+            rows.iter().find(|o| o.method == m && o.budget_bytes == r.budget_bytes && o.tolerance == Some(0.0))
+        };
+        if let (Some(o), Some(u)) =
+            (same("octree"), rows.iter().find(|u| u.method == "uniform" && u.texture_bytes == r.budget_bytes))
+        {
+            println!(
+                "at {:.2} MB: octree + factor-{} points ({} points, {:.2} MB of them) RMSE {:.5}: / octree {:.3}, / uniform {:.3}",
+                r.budget_bytes as f64 / 1e6,
+                r.stride.unwrap_or(0),
+                r.points,
+                r.point_bytes as f64 / 1e6,
+                r.rmse,
+                r.rmse / o.rmse.max(1e-12),
+                r.rmse / u.rmse.max(1e-12)
+            );
         }
     }
     // Points rows: against the same stride alone, and (budget rows) against the finer stride of equal bytes.
