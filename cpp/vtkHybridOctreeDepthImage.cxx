@@ -57,12 +57,7 @@ int vtkHybridOctreeDepthImage::RequestInformation(
 int vtkHybridOctreeDepthImage::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  vtkInformation* in = inputVector[0]->GetInformationObject(0);
-  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
-  }
+  vtkHybridOctreeImageInput::RequestWholeExtent(inputVector);
   return 1;
 }
 

@@ -1,10 +1,17 @@
 #include "vtkHybridOctreeImageInput.h"
 
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
 #include "vtkDataArray.h"
 #include "vtkCellData.h"
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 namespace vtkHybridOctreeImageInput
 {
@@ -124,4 +131,15 @@ vtkDataArray* CheckPointScalars(
   }
   return nullptr;
 }
+
+void RequestWholeExtent(vtkInformationVector** inputVector)
+{
+  vtkInformation* in = inputVector[0]->GetInformationObject(0);
+  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+}
+
 }

@@ -17,6 +17,7 @@
 
 class vtkDataArray;
 class vtkImageData;
+class vtkInformationVector;
 
 namespace vtkHybridOctreeImageInput
 {
@@ -46,6 +47,10 @@ vtkHybridOctreeBridge::GridDescription DescribeGrid(
  */
 vtkDataArray* CheckPointScalars(
   vtkImageData* image, vtkDataArray* scalars, int association, std::string& error);
+
+/// Asks input 0 for its whole extent (the core reads the whole image,
+/// whatever part of the output is asked for): RequestUpdateExtent's body.
+void RequestWholeExtent(vtkInformationVector** inputVector);
 
 /// Same dims, spacing, origin, type and component choice.
 bool SameGrid(const vtkHybridOctreeBridge::GridDescription& a,

@@ -51,12 +51,7 @@ int vtkHybridOctreePoints::FillInputPortInformation(int port, vtkInformation* in
 int vtkHybridOctreePoints::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  vtkInformation* in = inputVector[0]->GetInformationObject(0);
-  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
-  }
+  vtkHybridOctreeImageInput::RequestWholeExtent(inputVector);
   return 1;
 }
 

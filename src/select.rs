@@ -163,6 +163,26 @@ fn make_brick(octree: &VolumeOctree, n: &NodeRef<'_>, p: usize, importance: f64,
     }
 }
 
+/// A brick over the index box `[lo, hi]` sampled every `stride` cells, for
+/// tests that make DrawLists by hand.
+#[cfg(test)]
+pub(crate) fn test_brick(node: u32, lo: [usize; 3], hi: [usize; 3], stride: usize) -> Brick {
+    Brick {
+        node: NodeId(node),
+        level: 0,
+        p: 0,
+        lo,
+        hi,
+        stride,
+        texels: texels(lo, hi, stride),
+        bytes: 0,
+        error: 0.0,
+        importance: 1.0,
+        point_count: 0,
+        point_bytes: 0,
+    }
+}
+
 /// Imp(n) (see the module documentation).
 pub fn importance(roi: Option<&Roi>, lo: [usize; 3], hi: [usize; 3]) -> f64 {
     let Some(roi) = roi else { return 1.0 };

@@ -9,28 +9,14 @@ use super::transfer::TransferFunction;
 use crate::camera::{Camera, Projection};
 use crate::datasets::{generate, Dataset};
 use crate::grid::{Grid, GridShape, ScalarType};
-use crate::octree::{BuildOptions, NodeId, VolumeOctree};
+use crate::octree::{BuildOptions, VolumeOctree};
 use crate::plan::{Batch, BrickDraw, DrawList, Plan, SurfacePass};
 use crate::select::Brick;
 use crate::surface::{Surface, SurfaceOptions};
 
 /// A brick over the index box `[lo, hi]` sampled every `stride` cells.
 fn brick(node: u32, lo: [usize; 3], hi: [usize; 3], stride: usize) -> Brick {
-    let texels = [0, 1, 2].map(|a| (hi[a] - lo[a]).div_ceil(stride) + 1);
-    Brick {
-        node: NodeId(node),
-        level: 0,
-        p: 0,
-        lo,
-        hi,
-        stride,
-        texels,
-        bytes: 0,
-        error: 0.0,
-        importance: 1.0,
-        point_count: 0,
-        point_bytes: 0,
-    }
+    crate::select::test_brick(node, lo, hi, stride)
 }
 
 /// Slice depths `k d` (integer k) with `near <= k d < far`, `near` and `far`

@@ -249,25 +249,10 @@ mod tests {
     use super::*;
     use crate::grid::{Grid, Samples};
     use crate::octree::trilinear;
-    use crate::octree::NodeId;
     use crate::render::sample::trilinear as grid_trilinear;
 
     fn brick(lo: [usize; 3], hi: [usize; 3], stride: usize) -> Brick {
-        let texels = [0, 1, 2].map(|a| (hi[a] - lo[a]).div_ceil(stride) + 1);
-        Brick {
-            node: NodeId(0),
-            level: 0,
-            p: 0,
-            lo,
-            hi,
-            stride,
-            texels,
-            bytes: 0,
-            error: 0.0,
-            importance: 1.0,
-            point_count: 0,
-            point_bytes: 0,
-        }
+        crate::select::test_brick(0, lo, hi, stride)
     }
 
     const BRICKS: [([usize; 3], [usize; 3], usize); 4] = [
