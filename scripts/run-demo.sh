@@ -4,7 +4,9 @@
 # Octree and its isosurface (DiscMC with face compression, and what that costs
 # in accuracy), renders it under an 8 MB texture budget with a translucent
 # isosurface (hybrid-octree-render.png, against the full-resolution reference
-# hybrid-octree-reference.png), then pvbatch loads the ParaView plugin, applies the Hybrid
+# hybrid-octree-reference.png), keeps it at every 4th sample plus error points
+# (hybrid-octree-points-{lowres,hybrid,reference}.png and their 4x difference
+# pictures -lowres-diff, -hybrid-diff), then pvbatch loads the ParaView plugin, applies the Hybrid
 # Octree filter to the same volume, and renders its node boxes and isosurface
 # to hybrid-octree-demo.png, and vtkHybridOctreeVolumeMapper (OpenGL, from
 # Python) draws the volume and translucent isosurface at the default 64 MB
@@ -28,6 +30,10 @@ echo "== hybrid-octree surface --dataset shepp-logan --size $size --isovalue 0.5
 echo "== hybrid-octree render --dataset shepp-logan --size $size --budget-mb 8 (translucent isosurface, vs the reference) =="
 "$cli" render --dataset shepp-logan --size "$size" --budget-mb 8 --isovalue 0.5 --surface-opacity 0.4 \
   --output hybrid-octree-render.png --reference hybrid-octree-reference.png
+
+echo "== hybrid-octree points --dataset shepp-logan --size $size --factor 4 --threshold 0.1 (low resolution + error points, vs the reference) =="
+"$cli" points --dataset shepp-logan --size "$size" --factor 4 --threshold 0.1 \
+  --output hybrid-octree-points.hop --render hybrid-octree-points
 
 echo "== ParaView (pvbatch) with the HybridOctree plugin =="
 vti=$(mktemp --suffix=.vti)
