@@ -108,7 +108,7 @@ impl BlockingBitmaps {
     /// (child `j` in bits `2j..2j + 2`). Siblings are consecutive bit pairs,
     /// so they are one or two bytes of the bitmap.
     #[inline]
-    fn sons_at(&self, first: usize) -> u8 {
+    pub fn sons_at(&self, first: usize) -> u8 {
         let (byte, shift) = (first >> 2, (first & 3) * 2);
         if shift == 0 {
             self.bits[byte]
@@ -119,7 +119,7 @@ impl BlockingBitmaps {
 
     /// Sets the four children starting at global index `first` to `sons` (as [`Self::sons_at`] reads them).
     #[inline]
-    fn set_sons_at(&mut self, first: usize, sons: u8) {
+    pub fn set_sons_at(&mut self, first: usize, sons: u8) {
         let (byte, shift) = (first >> 2, (first & 3) * 2);
         if shift == 0 {
             self.bits[byte] = sons;

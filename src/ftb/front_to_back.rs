@@ -21,7 +21,7 @@
 //! suboctant's `ind_num` is `ind_num_son[i][0] + quad_tab[oct][i]` (formulas
 //! (3) and (4) added), so no octant looks `ind_tab` up.
 
-use super::binary_octree::{BinaryOctree, Colour, Node};
+use super::binary_octree::{BinaryOctree, Colour, GrayOctant, Node};
 use super::bitmap::{BlockingBitmaps, BLACK, QUAD_TAB, WHITE};
 use super::raster::{DepthImage, Paint, Projector};
 use super::view::View;
@@ -107,6 +107,10 @@ impl<const N: usize> Run<'_, N> {
         }
         let half = size / 2;
         let octant = self.octree.gray_octant(node);
+        if half == 1 && (octant.child_colours >> 1) & 0x5555 == 0 {
+            self.voxels(octant, ind, son, origin);
+            return;
+        }
         for k in 0..8 {
             let oct = self.order[k];
             // card_num_son[i] = 4 card_num[i] + quad_tab[oct][i]: formula (4).
@@ -121,6 +125,42 @@ impl<const N: usize> Run<'_, N> {
         }
         for ii in 0..N {
             self.bitmaps.compact_at(ind[ii], son[ii]);
+        }
+    }
+
+    /// The eight voxels of a gray octant of size 2 (all W or B), each by
+    /// procedure "Process a W or B Octant", then the compaction of step 5.
+    /// Their face nodes are the four sons of the octant's nodes (`quad_tab`
+    /// picks one per voxel and axis), so each axis' sons are read into one
+    /// byte, processed there, and written back once: the same reads and
+    /// writes as the general path, in a register instead of the bitmap.
+    fn voxels(&mut self, octant: GrayOctant, ind: [usize; N], son: [usize; N], origin: [usize; 3]) {
+        let mut sons: [u8; N] = std::array::from_fn(|ii| self.bitmaps.sons_at(son[ii]));
+        for k in 0..8 {
+            let oct = self.order[k];
+            let black = octant.child_colour(oct) == Colour::Black;
+            self.projector.counters.black_visited += usize::from(black);
+            self.projector.counters.white_visited += usize::from(!black);
+            let shift: [usize; N] = std::array::from_fn(|ii| 2 * self.quad[k][ii]);
+            let nodes: [u8; N] = std::array::from_fn(|ii| (sons[ii] >> shift[ii]) & 3);
+            if nodes.iter().all(|&c| c == BLACK) {
+                continue; // blocked
+            }
+            let value = if black { BLACK } else { WHITE };
+            for ii in 0..N {
+                if black && nodes[ii] != BLACK {
+                    let axis = self.axes[ii];
+                    let o = [origin[0] + (oct & 1), origin[1] + ((oct >> 1) & 1), origin[2] + (oct >> 2)];
+                    self.projector.face(o, 1, axis, self.view.high_face[axis], Paint::Unpainted);
+                }
+                sons[ii] = (sons[ii] & !(3 << shift[ii])) | (value << shift[ii]);
+            }
+        }
+        for ii in 0..N {
+            self.bitmaps.set_sons_at(son[ii], sons[ii]);
+            if sons[ii] == BLACK * 0b0101_0101 {
+                self.bitmaps.set_at(ind[ii], BLACK);
+            }
         }
     }
 
