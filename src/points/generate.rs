@@ -344,6 +344,34 @@ mod tests {
     }
 
     #[test]
+    fn extreme_fields_give_finite_points_and_nan_is_refused() {
+        // A checkerboard of +-1e30 on odd samples: every odd sample is off by 1e30 from T_2.
+        let n = 9;
+        let data: Vec<f64> = (0..n * n * n)
+            .map(|i| {
+                let (x, y, z) = (i % n, i / n % n, i / (n * n));
+                if x % 2 == 1 && y % 2 == 1 && z % 2 == 1 {
+                    if (x + y + z) % 4 == 1 {
+                        1e30
+                    } else {
+                        -1e30
+                    }
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let g = Grid::scalar(crate::grid::Samples::F64(&data), [n; 3]).unwrap();
+        let set = generate(&g, &options(PointSelect::Threshold(0.1))).unwrap();
+        assert_eq!(set.points.len(), 4 * 4 * 4, "every odd sample");
+        assert!(set.error_scale.is_finite() && set.points.iter().all(|p| set.value(p).is_finite()));
+        assert!(set.points.iter().all(|p| (set.value(p).abs() - 1e30).abs() < 1e28));
+        let mut bad = data.clone();
+        bad[5] = f64::NAN;
+        assert!(Grid::scalar(crate::grid::Samples::F64(&bad), [n; 3]).is_err(), "NaN samples never reach the points");
+    }
+
+    #[test]
     fn underestimates_only_keeps_the_points_of_positive_error() {
         let v = dataset(Dataset::SheppLogan, 33, ScalarType::F32);
         let grid = v.grid(None).unwrap();
