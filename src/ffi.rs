@@ -163,6 +163,21 @@ mod bridge {
         generate_ms: f64,
     }
 
+    /// Points kept for drawing, as the renderer needs them.
+    #[derive(Debug)]
+    struct PointsDrawing {
+        /// 3 per point: the sample's world position (the grid's frame).
+        position: Vec<f32>,
+        /// Original value f (dequantised as stored).
+        value: Vec<f32>,
+        /// Error e = f - T_f (dequantised as stored): the volume shows f - e there.
+        error: Vec<f32>,
+        /// The low-resolution factor the points complete.
+        factor: usize,
+        /// Bytes of all the points as stored (6 or 9 a point).
+        point_bytes: usize,
+    }
+
     /// Which isosurface the Hybrid Octree keeps.
     #[derive(Debug)]
     enum SurfaceMode {
@@ -244,6 +259,10 @@ mod bridge {
         /// "" when none (else: the budget is below the coarsest representation,
         /// or the tolerance was not reached).
         warning: String,
+        /// Points of the hybrid representation bought within the budget (0 without points).
+        points: usize,
+        /// Their bytes (counted in the budget with the textures).
+        point_bytes: usize,
     }
 
     /// A camera as vtkCamera gives it (world coordinates).
@@ -304,6 +323,16 @@ mod bridge {
         batch_clip: Vec<f64>,
         /// Opaque surface: the surface pass draws triangles 0 .. this first (0 otherwise).
         opaque_triangles: usize,
+        /// Points (a selection made with points): brick i's point buckets are
+        /// buckets bucket_offsets[i] .. bucket_offsets[i + 1], back to front
+        /// (empty lists without points).
+        bucket_offsets: Vec<usize>,
+        /// Per bucket: the slab within its brick, as batch_slab.
+        bucket_slab: Vec<usize>,
+        /// Bucket k's points are bucket_points[bucket_point_offsets[k] .. bucket_point_offsets[k + 1]].
+        bucket_point_offsets: Vec<usize>,
+        /// Point ids (into the PointsHandle's points), in grid order within a bucket.
+        bucket_points: Vec<u32>,
     }
 
     // ---- C++ types for Rust ------------------------------------------------
@@ -359,8 +388,33 @@ mod bridge {
         /// a grid too small for the factor, a file that cannot be written).
         fn generate_points(bytes: &[u8], desc: &GridDesc, options: &PointsDesc) -> Result<PointsOutput>;
 
+        /// Points of the hybrid representation kept for drawing with a selection.
+        type PointsHandle;
+
+        /// The points completing the borrowed image's stride-`factor`
+        /// textures (plain subsampling: `max_overestimate` must be < 0, the
+        /// textures being the image itself), kept for `select_bricks_with_points`.
+        fn points_for_drawing(
+            self: &VolumeOctreeHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            options: &PointsDesc,
+        ) -> Result<Box<PointsHandle>>;
+        /// The kept points' positions, values and errors.
+        fn drawing(self: &PointsHandle) -> Result<PointsDrawing>;
+
         /// A selection of the octree's nodes and texture levels, for drawing.
         type SelectionHandle;
+
+        /// As `select_bricks`, spending the budget on textures and on
+        /// `points` (made from this octree's image): a brick at the points'
+        /// stride takes its points when they remove more error per byte than
+        /// refining it. Its DrawLists then bucket the bought points into the slabs.
+        fn select_bricks_with_points(
+            self: &VolumeOctreeHandle,
+            options: &SelectDesc,
+            points: &PointsHandle,
+        ) -> Result<Box<SelectionHandle>>;
 
         /// Selects bricks within the budget (errors: budget 0, a tolerance
         /// that is not a number >= 0, a bad ROI or opacity points).
@@ -383,7 +437,9 @@ mod bridge {
         /// `camera` (volume only), `width x height`, premultiplied RGBA
         /// (4 floats per pixel, rows from the top), with the transfer function
         /// of `colors` ((value, r, g, b) flattened) and `opacities` ((value,
-        /// opacity) flattened), over the image the octree was built from.
+        /// opacity) flattened), over the image the octree was built from;
+        /// a selection made with points draws them, with Gaussian footprints
+        /// when `gaussian_points`, else square ones.
         #[allow(clippy::too_many_arguments)]
         fn composite(
             self: &SelectionHandle,
@@ -393,6 +449,7 @@ mod bridge {
             desc: &GridDesc,
             colors: &[f64],
             opacities: &[f64],
+            gaussian_points: bool,
             width: usize,
             height: usize,
         ) -> Result<Vec<f32>>;
@@ -409,6 +466,7 @@ mod bridge {
             desc: &GridDesc,
             colors: &[f64],
             opacities: &[f64],
+            gaussian_points: bool,
             surface: &SurfaceHandle,
             surface_rgba: &[f64],
             width: usize,
@@ -444,10 +502,11 @@ mod bridge {
 
 use crate::ffi_ftb::ftb_display;
 use crate::ffi_points::generate_points;
+pub use crate::ffi_points::PointsHandle;
 pub use crate::ffi_render::{SelectionHandle, SurfaceHandle};
 pub use bridge::{
-    CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbImage, GridDesc, OctreeSummary, PointsDesc, PointsOutput,
-    ScalarType, SelectDesc, SelectionSummary, SurfaceMode, SurfaceOutput,
+    CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbImage, GridDesc, OctreeSummary, PointsDesc, PointsDrawing,
+    PointsOutput, ScalarType, SelectDesc, SelectionSummary, SurfaceMode, SurfaceOutput,
 };
 
 /// A Volume Octree together with the geometry needed to place its boxes.

@@ -1,10 +1,90 @@
 //! The bridge's hybrid point/volume representation (issue 8): the body
-//! behind `ffi::generate_points`, for `vtkHybridOctreePoints`.
+//! behind `ffi::generate_points`, for `vtkHybridOctreePoints`, and the
+//! points the volume mapper draws ([`PointsHandle`]).
 
-use crate::error::Result;
-use crate::ffi::{grid_of, guarded, GridDesc, PointsDesc, PointsOutput};
-use crate::points::{generate_hybrid, normals, write_points, PointOptions, PointSelect};
+use crate::error::{Error, Result};
+use crate::ffi::{grid_of, guarded, GridDesc, PointsDesc, PointsDrawing, PointsOutput, VolumeOctreeHandle};
+use crate::grid::GridShape;
+use crate::points::mass::PointMass;
+use crate::points::{
+    generate as generate_set, generate_hybrid, normals, write_points, PointOptions, PointSelect, PointSet,
+};
+use std::sync::Arc;
 use std::time::Instant;
+
+/// Points kept for drawing: the set, and its per-block mass for the selection.
+#[derive(Debug)]
+pub struct PointsHandle {
+    pub(crate) set: Arc<PointSet>,
+    pub(crate) mass: PointMass,
+    pub(crate) octree_id: u64,
+    shape: GridShape,
+}
+
+impl VolumeOctreeHandle {
+    pub(crate) fn points_for_drawing(
+        &self,
+        bytes: &[u8],
+        desc: &GridDesc,
+        options: &PointsDesc,
+    ) -> std::result::Result<Box<PointsHandle>, String> {
+        guarded(|| {
+            let grid = grid_of(bytes, desc)?;
+            if grid.shape() != &self.shape {
+                return Err(Error::InvalidArgument(
+                    "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
+                ));
+            }
+            let point_options = point_options(options);
+            if point_options.max_overestimate.is_some() {
+                return Err(Error::InvalidArgument(
+                    "drawn points complete textures of the image itself: the optimized low resolution \
+                     (max_overestimate >= 0) cannot be drawn; set it below 0"
+                        .into(),
+                ));
+            }
+            let set = generate_set(&grid, &point_options)?;
+            if !options.file_name.is_empty() {
+                write_points(&set, std::path::Path::new(&options.file_name))?;
+            }
+            let mass = PointMass::new(&set, self.octree.layout().leaf_size());
+            Ok(Box::new(PointsHandle { set: Arc::new(set), mass, octree_id: self.id, shape: self.shape }))
+        })
+    }
+}
+
+impl PointsHandle {
+    pub(crate) fn drawing(&self) -> std::result::Result<PointsDrawing, String> {
+        guarded(|| Ok(drawing(&self.set, &self.shape)))
+    }
+}
+
+/// `set`'s world positions (on the grid of `shape`), values and errors.
+fn drawing(set: &PointSet, shape: &GridShape) -> PointsDrawing {
+    PointsDrawing {
+        position: set.points.iter().flat_map(|p| shape.world(p.ijk.map(f64::from)).map(|c| c as f32)).collect(),
+        value: set.points.iter().map(|p| set.value(p) as f32).collect(),
+        error: set.points.iter().map(|p| set.error(p) as f32).collect(),
+        factor: set.factor,
+        point_bytes: set.bytes(),
+    }
+}
+
+/// The generation options of `options` (a negative bound: plain subsampling).
+fn point_options(options: &PointsDesc) -> PointOptions {
+    let select = if options.use_budget {
+        PointSelect::Budget(options.budget)
+    } else {
+        PointSelect::Threshold(options.threshold)
+    };
+    PointOptions {
+        factor: options.factor,
+        select,
+        underestimates_only: options.underestimates_only,
+        max_overestimate: (options.max_overestimate >= 0.0 || options.max_overestimate.is_nan())
+            .then_some(options.max_overestimate),
+    }
+}
 
 /// The points completing the borrowed image's stride-`factor` low resolution.
 pub(crate) fn generate_points(
@@ -17,18 +97,7 @@ pub(crate) fn generate_points(
 
 fn generate(bytes: &[u8], desc: &GridDesc, options: &PointsDesc) -> Result<PointsOutput> {
     let grid = grid_of(bytes, desc)?;
-    let select = if options.use_budget {
-        PointSelect::Budget(options.budget)
-    } else {
-        PointSelect::Threshold(options.threshold)
-    };
-    let point_options = PointOptions {
-        factor: options.factor,
-        select,
-        underestimates_only: options.underestimates_only,
-        max_overestimate: (options.max_overestimate >= 0.0 || options.max_overestimate.is_nan())
-            .then_some(options.max_overestimate),
-    };
+    let point_options = point_options(options);
     let started = Instant::now();
     let (set, _low) = generate_hybrid(&grid, &point_options)?;
     let generate_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -120,5 +189,101 @@ mod tests {
         let o = PointsDesc { file_name: "/nonexistent-dir/x.hop".into(), ..options() };
         let e = generate_points(as_bytes(&data), &desc, &o).unwrap_err();
         assert!(e.contains("/nonexistent-dir/x.hop"), "{e}");
+    }
+
+    fn select_desc(budget_bytes: usize) -> crate::ffi::SelectDesc {
+        crate::ffi::SelectDesc {
+            budget_bytes,
+            tolerance: 0.0,
+            has_roi: false,
+            roi_center: [0.0; 3],
+            roi_radius: 1.0,
+            opacity_points: Vec::new(),
+            has_isovalue: false,
+            isovalue: 0.0,
+        }
+    }
+
+    fn camera() -> crate::ffi::CameraDesc {
+        crate::ffi::CameraDesc {
+            position: [40.0, 30.0, 50.0],
+            focal_point: [10.0; 3],
+            view_up: [0.0, 1.0, 0.0],
+            parallel: false,
+            parallel_scale: 1.0,
+            view_angle: 30.0,
+        }
+    }
+
+    #[test]
+    fn a_selection_with_points_buys_them_and_its_draw_list_buckets_them() {
+        use crate::ffi::build_volume_octree;
+        use crate::points::draw::Footprint;
+        use crate::render::compositor::composite_with_points;
+        use crate::render::transfer::TransferFunction;
+        let (data, desc) = ball();
+        let octree = build_volume_octree(as_bytes(&data), &desc, 4).unwrap();
+        let o = PointsDesc { factor: 2, underestimates_only: true, ..options() };
+        let points = octree.points_for_drawing(as_bytes(&data), &desc, &o).unwrap();
+        let drawing = points.drawing().unwrap();
+        let n = drawing.value.len();
+        assert!(n > 0 && drawing.position.len() == 3 * n && drawing.error.iter().all(|&e| e > 0.0));
+        assert_eq!((drawing.factor, drawing.point_bytes), (2, 6 * n));
+        // A budget between stride 2 and full resolution: some bricks stay at stride 2 and take points.
+        let s = octree.select_bricks_with_points(&select_desc(14_000), &points).unwrap();
+        let sum = s.summary().unwrap();
+        assert!(sum.points > 0 && sum.point_bytes == 6 * sum.points, "{sum:?}");
+        assert!(sum.texture_bytes + sum.point_bytes <= 14_000, "{sum:?}");
+        let list = s.draw_list(&octree, &camera()).unwrap();
+        assert!(list.passes.ends_with("points"), "{}", list.passes);
+        let bricks = list.brick.len();
+        assert_eq!(list.bucket_offsets.len(), bricks + 1);
+        let buckets = *list.bucket_offsets.last().unwrap();
+        assert_eq!((list.bucket_slab.len(), list.bucket_point_offsets.len()), (buckets, buckets + 1));
+        assert_eq!(list.bucket_points.len(), sum.points, "every point bought is drawn once");
+        for i in 0..bricks {
+            let slabs = list.slice_offsets[i + 1] - list.slice_offsets[i];
+            let mine = &list.bucket_slab[list.bucket_offsets[i]..list.bucket_offsets[i + 1]];
+            assert!(mine.windows(2).all(|w| w[0] < w[1]) && mine.iter().all(|&k| k <= slabs));
+            assert!(mine.is_empty() || list.stride[i] == 2, "points only in bricks of their stride");
+        }
+        // The CPU picture through the bridge draws them: the compositor's own, with the same points.
+        let colors = [0.0, 0.2, 0.3, 0.4, 1.0, 1.0, 0.9, 0.8];
+        let opacities = [0.0, 0.0, 1.0, 0.3];
+        let tf =
+            TransferFunction::new(vec![(0.0, [0.2, 0.3, 0.4]), (1.0, [1.0, 0.9, 0.8])], vec![(0.0, 0.0), (1.0, 0.3)])
+                .unwrap();
+        let grid = grid_of(as_bytes(&data), &desc).unwrap();
+        let direct_list = s.list(&octree, &camera(), None).unwrap();
+        let textures = crate::render::texture::upload(&grid, &direct_list).unwrap();
+        for (gaussian, kind) in [(false, Footprint::Square), (true, Footprint::Gaussian)] {
+            let bridged =
+                s.composite(&octree, &camera(), as_bytes(&data), &desc, &colors, &opacities, gaussian, 48, 40);
+            let direct =
+                composite_with_points(&textures, &direct_list, &tf, 48, 40, None, Some((&points.set, kind))).unwrap();
+            assert_eq!(bridged.unwrap(), direct.rgba.iter().flatten().copied().collect::<Vec<f32>>());
+        }
+        let without = octree.select_bricks(&select_desc(14_000)).unwrap();
+        assert_eq!(without.summary().unwrap().points, 0);
+        assert!(without.draw_list(&octree, &camera()).unwrap().bucket_offsets.is_empty());
+    }
+
+    #[test]
+    fn points_for_drawing_refuse_what_cannot_be_drawn() {
+        use crate::ffi::build_volume_octree;
+        let (data, desc) = ball();
+        let octree = build_volume_octree(as_bytes(&data), &desc, 4).unwrap();
+        let other = build_volume_octree(as_bytes(&data), &desc, 4).unwrap();
+        let o = PointsDesc { max_overestimate: 0.1, ..options() };
+        let e = octree.points_for_drawing(as_bytes(&data), &desc, &o).map(|_| ()).unwrap_err();
+        assert!(e.contains("max_overestimate"), "{e}");
+        let e = octree.points_for_drawing(as_bytes(&data), &desc, &PointsDesc { factor: 5, ..options() });
+        assert!(e.map(|_| ()).unwrap_err().contains("factor 5"));
+        let small = f32_desc([11; 3]);
+        let e = octree.points_for_drawing(as_bytes(&data[..11 * 11 * 11]), &small, &options()).map(|_| ());
+        assert!(e.unwrap_err().contains("rebuild"));
+        let points = other.points_for_drawing(as_bytes(&data), &desc, &options()).unwrap();
+        let e = octree.select_bricks_with_points(&select_desc(14_000), &points).map(|_| ()).unwrap_err();
+        assert!(e.contains("another octree"), "{e}");
     }
 }

@@ -15,15 +15,19 @@ use crate::ffi::{
     grid_of, guarded, CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary, SurfaceMode, SurfaceOutput,
     VolumeOctreeHandle,
 };
+use crate::ffi_points::PointsHandle;
 use crate::grid::GridShape;
 use crate::plan::{draw_list, plan, DrawList, Scene, SurfacePass};
+use crate::points::draw::Footprint;
+use crate::points::mass::PointMass;
+use crate::points::{add_points, PointSet};
 use crate::render::texture::brick_texels_f32;
 use crate::render::transfer::TransferFunction;
-use crate::select::{select, Roi, SelectOptions, Selection};
+use crate::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::slab::SlabPolygons;
 use crate::surface::Surface;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// What a bridge function returns: an error crosses as its message.
 type Bridged<T> = std::result::Result<T, String>;
@@ -36,6 +40,8 @@ pub struct SelectionHandle {
     shape: GridShape,
     /// The SlabPolygons of the last translucent surface drawn, with its id.
     polygons: Mutex<Option<(u64, SlabPolygons)>>,
+    /// The points the selection spent bytes on (a selection made with points).
+    points: Option<Arc<PointSet>>,
 }
 
 /// An isosurface kept for drawing, with the octree it was extracted from.
@@ -85,8 +91,13 @@ fn opacity_function(desc: &SelectDesc) -> Result<Option<TransferFunction>> {
 }
 
 /// The CLI's visibility test (`scene::visible`): a node shows unless the
-/// opacity is 0 over its whole range, or when it holds the isovalue.
-pub(crate) fn select_with(octree: &VolumeOctreeHandle, desc: &SelectDesc) -> Result<Selection> {
+/// opacity is 0 over its whole range, or when it holds the isovalue; with
+/// `points`, bytes go to textures or points ([`select_with_points`]).
+pub(crate) fn select_with(
+    octree: &VolumeOctreeHandle,
+    desc: &SelectDesc,
+    points: Option<&PointMass>,
+) -> Result<Selection> {
     let options = select_options(&octree.shape, desc)?;
     let tf = opacity_function(desc)?;
     let iso = desc.has_isovalue.then_some(desc.isovalue);
@@ -96,7 +107,10 @@ pub(crate) fn select_with(octree: &VolumeOctreeHandle, desc: &SelectDesc) -> Res
     let visible = |min: f64, max: f64| {
         tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max)) || iso.is_some_and(|v| min < v && v <= max)
     };
-    select(&octree.octree, &options, visible)
+    match points {
+        Some(mass) => select_with_points(&octree.octree, &options, visible, mass),
+        None => select(&octree.octree, &options, visible),
+    }
 }
 
 /// The checked camera of `desc`.
@@ -131,9 +145,25 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         batch_end: Vec::new(),
         batch_clip: Vec::new(),
         opaque_triangles: list.opaque_triangles.len(),
+        bucket_offsets: Vec::new(),
+        bucket_slab: Vec::new(),
+        bucket_point_offsets: Vec::new(),
+        bucket_points: Vec::new(),
     };
     out.slice_offsets.push(0);
     out.batch_offsets.push(0);
+    if list.plan.passes.iter().any(|p| p == "points") {
+        out.bucket_offsets.push(0);
+        out.bucket_point_offsets.push(0);
+        for d in &list.bricks {
+            for bucket in &d.points {
+                out.bucket_slab.push(bucket.slab);
+                out.bucket_points.extend_from_slice(&bucket.points);
+                out.bucket_point_offsets.push(out.bucket_points.len());
+            }
+            out.bucket_offsets.push(out.bucket_slab.len());
+        }
+    }
     for d in &list.bricks {
         // Bricks are sorted by node id in the selection.
         let index = selection.bricks.binary_search_by_key(&d.brick.node, |b| b.node).expect("a selected brick");
@@ -159,15 +189,47 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
     out
 }
 
+/// The footprint the bridge's flag names.
+fn footprint(gaussian: bool) -> Footprint {
+    if gaussian {
+        Footprint::Gaussian
+    } else {
+        Footprint::Square
+    }
+}
+
 impl VolumeOctreeHandle {
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
-            let selection = select_with(self, desc)?;
+            let selection = select_with(self, desc, None)?;
             Ok(Box::new(SelectionHandle {
                 selection,
                 octree_id: self.id,
                 shape: self.shape,
                 polygons: Mutex::new(None),
+                points: None,
+            }))
+        })
+    }
+
+    pub(crate) fn select_bricks_with_points(
+        &self,
+        desc: &SelectDesc,
+        points: &PointsHandle,
+    ) -> Bridged<Box<SelectionHandle>> {
+        guarded(|| {
+            if points.octree_id != self.id {
+                return Err(Error::InvalidArgument(
+                    "the points were made for another octree: make them again from this one".into(),
+                ));
+            }
+            let selection = select_with(self, desc, Some(&points.mass))?;
+            Ok(Box::new(SelectionHandle {
+                selection,
+                octree_id: self.id,
+                shape: self.shape,
+                polygons: Mutex::new(None),
+                points: Some(Arc::clone(&points.set)),
             }))
         })
     }
@@ -219,12 +281,29 @@ impl SelectionHandle {
                 max_error: s.max_error,
                 skipped: s.skipped,
                 warning: s.warning.clone().unwrap_or_default(),
+                points: s.bricks.iter().map(|b| b.point_count).sum(),
+                point_bytes: s.point_bytes,
             })
         })
     }
 
-    /// The DrawList itself (for the bridge and the tests), with `surface` at an opacity.
+    /// The DrawList itself (for the bridge and the tests), with `surface`
+    /// at an opacity, and the points bought bucketed into the slabs.
     pub(crate) fn list(
+        &self,
+        octree: &VolumeOctreeHandle,
+        camera_desc: &CameraDesc,
+        surface: Option<(&SurfaceHandle, f64)>,
+    ) -> Result<DrawList> {
+        let mut list = self.volume_list(octree, camera_desc, surface)?;
+        if let Some(set) = &self.points {
+            add_points(&mut list, &octree.shape, set)?;
+        }
+        Ok(list)
+    }
+
+    /// [`Self::list`] without the points.
+    fn volume_list(
         &self,
         octree: &VolumeOctreeHandle,
         camera_desc: &CameraDesc,
@@ -280,10 +359,14 @@ impl SelectionHandle {
         desc: &GridDesc,
         colors: &[f64],
         opacities: &[f64],
+        gaussian_points: bool,
         width: usize,
         height: usize,
     ) -> Bridged<Vec<f32>> {
-        guarded(|| self.composite_scene(octree, camera_desc, bytes, desc, (colors, opacities), None, width, height))
+        guarded(|| {
+            let tf = (colors, opacities);
+            self.composite_scene(octree, camera_desc, bytes, desc, tf, footprint(gaussian_points), None, width, height)
+        })
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -295,6 +378,7 @@ impl SelectionHandle {
         desc: &GridDesc,
         colors: &[f64],
         opacities: &[f64],
+        gaussian_points: bool,
         surface: &SurfaceHandle,
         surface_rgba: &[f64],
         width: usize,
@@ -308,12 +392,14 @@ impl SelectionHandle {
                 ))
             })?;
             let surface = Some((surface, rgba));
-            self.composite_scene(octree, camera_desc, bytes, desc, (colors, opacities), surface, width, height)
+            let (tf, kind) = ((colors, opacities), footprint(gaussian_points));
+            self.composite_scene(octree, camera_desc, bytes, desc, tf, kind, surface, width, height)
         })
     }
 
     /// The CPU compositor on this selection's DrawList: the transfer function
-    /// from `(colors, opacities)` tuples, `surface` with its `[r, g, b, opacity]`.
+    /// from `(colors, opacities)` tuples, the points bought drawn with
+    /// `footprint`, `surface` with its `[r, g, b, opacity]`.
     #[allow(clippy::too_many_arguments)]
     fn composite_scene(
         &self,
@@ -322,6 +408,7 @@ impl SelectionHandle {
         bytes: &[u8],
         desc: &GridDesc,
         (colors, opacities): (&[f64], &[f64]),
+        footprint: Footprint,
         surface: Option<(&SurfaceHandle, [f64; 4])>,
         width: usize,
         height: usize,
@@ -344,7 +431,10 @@ impl SelectionHandle {
         let tf = TransferFunction::new(c, o)?;
         let list = self.list(octree, camera_desc, surface.map(|(s, rgba)| (s, rgba[3])))?;
         let drawn = surface.map(|(s, rgba)| (&s.surface, rgba.map(|v| v as f32)));
-        let image = crate::render::compositor::composite(&grid, &list, &tf, width, height, drawn)?;
+        let textures = crate::render::texture::upload(&grid, &list)?;
+        let points = self.points.as_deref().map(|set| (set, footprint));
+        let image =
+            crate::render::compositor::composite_with_points(&textures, &list, &tf, width, height, drawn, points)?;
         Ok(image.rgba.iter().flatten().copied().collect())
     }
 
@@ -718,14 +808,26 @@ mod tests {
         .unwrap();
         let grid = grid_of(bytes(&d), &desc()).unwrap();
         for c in cameras() {
-            let volume = s.composite(&h, &c, bytes(&d), &desc(), &colors, &opacities, 40, 30).unwrap();
+            let volume = s.composite(&h, &c, bytes(&d), &desc(), &colors, &opacities, false, 40, 30).unwrap();
             let direct = composite(&grid, &s.list(&h, &c, None).unwrap(), &tf, 40, 30, None).unwrap();
             assert_eq!(volume, direct.rgba.iter().flatten().copied().collect::<Vec<f32>>());
             assert!(volume.iter().any(|&v| v > 0.0), "the ball shows");
             for opacity in [0.4, 1.0] {
                 let rgba = [0.9, 0.5, 0.1, opacity];
                 let with = s
-                    .composite_with_surface(&h, &c, bytes(&d), &desc(), &colors, &opacities, &surface, &rgba, 40, 30)
+                    .composite_with_surface(
+                        &h,
+                        &c,
+                        bytes(&d),
+                        &desc(),
+                        &colors,
+                        &opacities,
+                        false,
+                        &surface,
+                        &rgba,
+                        40,
+                        30,
+                    )
                     .unwrap();
                 let list = s.list(&h, &c, Some((&surface, opacity))).unwrap();
                 let drawn = Some((&surface.surface, rgba.map(|v| v as f32)));
@@ -736,9 +838,12 @@ mod tests {
         }
         let c = &cameras()[0];
         let e = s
-            .composite_with_surface(&h, c, bytes(&d), &desc(), &colors, &opacities, &surface, &[1.0; 3], 8, 8)
+            .composite_with_surface(&h, c, bytes(&d), &desc(), &colors, &opacities, false, &surface, &[1.0; 3], 8, 8)
             .unwrap_err();
         assert!(e.contains("surface colour"), "{e}");
-        assert!(s.composite(&h, c, bytes(&d), &desc(), &colors[..3], &opacities, 8, 8).unwrap_err().contains("tuples"));
+        assert!(s
+            .composite(&h, c, bytes(&d), &desc(), &colors[..3], &opacities, false, 8, 8)
+            .unwrap_err()
+            .contains("tuples"));
     }
 }
