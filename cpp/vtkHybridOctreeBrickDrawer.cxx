@@ -18,8 +18,14 @@
 
 namespace
 {
-/// Floats per vertex: position, normal, clip interval (near, far), surface flag.
+/// Floats per vertex: position, normal, clip interval (near, far), kind.
+/// Kinds: 0 a slice, 1 a surface triangle, 2 a ray-marched box, 3 a square
+/// point, 4 a Gaussian point. A point's six vertices all hold its centre,
+/// (value, error, 0) in the normal and their quad corner (+-1, +-1) in the
+/// clip interval.
 constexpr std::size_t Stride = 9;
+constexpr float SquarePoint = 3.0f;
+constexpr float GaussianPoint = 4.0f;
 /// An unbounded clip side (the shader's clip distances stay finite).
 constexpr float Unbounded = 1.0e30f;
 
@@ -31,14 +37,64 @@ in float surfaceMC;
 uniform mat4 MCDC;
 uniform vec3 eye;
 uniform vec3 forward;
+uniform vec2 viewportSize;
+uniform vec3 pointUp;
+uniform float pointSpacing;
 out vec3 positionMC;
 out vec3 normal;
 flat out float isSurface;
+flat out vec4 pointFrame;
+flat out vec3 pointShape;
 void main()
 {
   positionMC = vertexMC;
   normal = normalMC;
   isSurface = surfaceMC;
+  pointFrame = vec4(0.0);
+  pointShape = vec3(0.0);
+  if (surfaceMC > 2.5)
+  {
+    // A point: its footprint, s = d0 / pixel pixels across at its depth,
+    // as a quad of whole pixels in window coordinates (see the header).
+    vec4 c = MCDC * vec4(vertexMC, 1.0);
+    vec4 c2 = MCDC * vec4(vertexMC + pointSpacing * pointUp, 1.0);
+    vec2 centre = (c.xy / c.w * 0.5 + 0.5) * viewportSize;
+    float s = length((c2.xy / c2.w * 0.5 + 0.5) * viewportSize - centre);
+    vec2 lo;
+    vec2 hi;
+    float weight;
+    float sigma = 0.0;
+    float radius = 0.0;
+    if (surfaceMC < 3.5)
+    {
+      float side = max(ceil(s), 1.0);
+      weight = min(s * s / (side * side), 1.0);
+      lo = floor(centre - 0.5 * side + 0.5);
+      hi = lo + side;
+    }
+    else
+    {
+      sigma = max(0.5 * s, 0.5);
+      radius = ceil(3.0 * sigma);
+      vec2 f = floor(centre);
+      lo = f - radius;
+      hi = f + radius + 1.0;
+      vec2 sum = vec2(0.0);
+      for (float k = -radius; k <= radius; k += 1.0)
+      {
+        vec2 d = f + k + 0.5 - centre;
+        sum += exp(-d * d / (2.0 * sigma * sigma));
+      }
+      weight = s * s / (sum.x * sum.y);
+    }
+    vec2 corner = mix(lo, hi, clipMC * 0.5 + 0.5);
+    gl_Position = vec4((corner / viewportSize * 2.0 - 1.0) * c.w, c.z, c.w);
+    pointFrame = vec4(centre, sigma, radius);
+    pointShape = vec3(normalMC.x, normalMC.y, weight);
+    gl_ClipDistance[0] = 1.0;
+    gl_ClipDistance[1] = 1.0;
+    return;
+  }
   float z = dot(vertexMC - eye, forward);
   gl_ClipDistance[0] = z - clipMC.x;
   gl_ClipDistance[1] = clipMC.y - z;
@@ -50,6 +106,8 @@ const char* FragmentShader = R"(//VTK::System::Dec
 in vec3 positionMC;
 in vec3 normal;
 flat in float isSurface;
+flat in vec4 pointFrame;
+flat in vec3 pointShape;
 uniform sampler3D brickTexture;
 uniform sampler2D transferTable;
 uniform sampler2D opaqueDepth;
@@ -84,6 +142,13 @@ vec4 sampleAt(vec3 p)
   return vec4(clamp(c.rgb, 0.0, 1.0), a);
 }
 
+// The table's colour and opacity of `value` (uncorrected: one sample spacing d0).
+vec4 tableAt(float value)
+{
+  vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
+  return clamp(c, 0.0, 1.0);
+}
+
 // The view depth (x - eye) . forward of the point at this pixel and depth-buffer value d.
 float viewDepth(float d)
 {
@@ -94,7 +159,7 @@ float viewDepth(float d)
 void main()
 {
   float opaque = texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy), 0).r;
-  if (isSurface > 1.5)
+  if (isSurface > 1.5 && isSurface < 2.5)
   {
     // A ray-marched brick: this fragment is on the exit face of its box; the
     // samples are the slice lattice z = k d between entry and exit (the same
@@ -136,6 +201,33 @@ void main()
   if (gl_FragCoord.z > opaque)
   {
     discard;
+  }
+  if (isSurface > 2.5)
+  {
+    // A point (paper 3 section 4): a_p = (a_t - a_v) / (1 - a_v) of the
+    // original value over the textures' f - e, in the colour that makes the
+    // pair show the original, times the footprint's coverage.
+    float w = pointShape.z;
+    if (isSurface > 3.5)
+    {
+      vec2 f = floor(pointFrame.xy);
+      if (any(greaterThan(abs(floor(gl_FragCoord.xy) - f), vec2(pointFrame.w))))
+      {
+        discard;
+      }
+      vec2 d = gl_FragCoord.xy - pointFrame.xy;
+      w = min(exp(-dot(d, d) / (2.0 * pointFrame.z * pointFrame.z)) * w, 1.0);
+    }
+    vec4 t = tableAt(pointShape.x);
+    vec4 v = tableAt(pointShape.x - pointShape.y);
+    if (t.a <= v.a || v.a >= 1.0 || w <= 0.0)
+    {
+      discard;
+    }
+    float a = (t.a - v.a) / (1.0 - v.a) * w;
+    vec3 rgb = clamp((t.a * t.rgb - v.a * v.rgb) / (t.a - v.a), 0.0, 1.0);
+    gl_FragData[0] = vec4(rgb * a, a);
+    return;
   }
   if (isSurface > 0.5)
   {
@@ -198,12 +290,60 @@ void vtkHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
   }
 }
 
+void vtkHybridOctreeBrickDrawer::EmitPoints(const vtkHybridOctreeBridge::DrawList& list,
+  std::size_t bucket, const PointData& points, const double eye[3], std::vector<Ordered>& order)
+{
+  const vtkHybridOctreeBridge::PointsDrawing& d = *points.Drawing;
+  const std::size_t count = d.Value.size();
+  order.clear();
+  for (std::size_t k = list.BucketPointOffsets[bucket]; k < list.BucketPointOffsets[bucket + 1];
+       ++k)
+  {
+    const std::uint32_t id = list.BucketPoints[k];
+    if (id >= count)
+    {
+      continue;
+    }
+    const float* p = &d.Position[3 * static_cast<std::size_t>(id)];
+    double z = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      z += (p[a] - eye[a]) * list.Forward[a];
+    }
+    order.emplace_back(z, id);
+  }
+  // Far first (blended back to front), ties in grid order: the CPU compositor's order.
+  std::stable_sort(order.begin(), order.end(),
+    [](const Ordered& a, const Ordered& b) { return a.first > b.first; });
+  const float kind = points.Gaussian ? GaussianPoint : SquarePoint;
+  static const float corners[6][2] = { { -1, -1 }, { 1, -1 }, { 1, 1 }, { -1, -1 }, { 1, 1 },
+    { -1, 1 } };
+  for (const Ordered& o : order)
+  {
+    const float* p = &d.Position[3 * static_cast<std::size_t>(o.second)];
+    const float shape[3] = { d.Value[o.second], d.Error[o.second], 0.0f };
+    for (const auto& c : corners)
+    {
+      this->Emit(p, shape, c[0], c[1], kind);
+    }
+  }
+  this->PointsPlaced += order.size();
+}
+
 std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawList& list,
   const std::vector<double>& bounds, const std::vector<char>& drawn, const double eye[3],
-  const double viewUp[3], const SurfaceData& surface)
+  const double viewUp[3], const SurfaceData& surface, const PointData& points)
 {
   double right[3], up[3];
   vtkHybridOctreeSliceGeometry::ViewBasis(list.Forward, viewUp, right, up);
+  for (int a = 0; a < 3; ++a)
+  {
+    this->PointUp[a] = static_cast<float>(up[a]);
+  }
+  this->PointSpacing = static_cast<float>(list.ReferenceSpacing);
+  this->PointsPlaced = 0;
+  const bool withPoints = points.Drawing && list.BucketOffsets.size() == list.GetNumberOfBricks() + 1;
+  std::vector<Ordered> order;
   this->VertexData.clear();
   this->Boxes.clear();
   this->RayMarched.clear();
@@ -280,7 +420,10 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
       placedTotal += placed.size();
     }
     this->Boxes.insert(this->Boxes.end(), &bounds[6 * i], &bounds[6 * i] + 6);
-    if (placed.empty())
+    // Brick i's point buckets, by slab: [bucket, lastBucket).
+    std::size_t bucket = withPoints ? list.BucketOffsets[i] : 0;
+    const std::size_t lastBucket = withPoints ? list.BucketOffsets[i + 1] : 0;
+    if (placed.empty() && bucket == lastBucket)
     {
       // No triangles between its slices: the brick is ray-marched, drawn as its box.
       if (drawn[i] && n > 0)
@@ -303,6 +446,11 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
           const float* p = sv + 6 * std::min<std::size_t>(v, vertexCount - 1);
           this->Emit(p, p + 3, placed[next].Near, placed[next].Far, 1.0f);
         }
+      }
+      // Points after the slab's triangles, before the slice in front of them.
+      for (; bucket < lastBucket && list.BucketSlab[bucket] <= s; ++bucket)
+      {
+        this->EmitPoints(list, bucket, points, eye, order);
       }
       if (s < n && drawn[i])
       {
@@ -403,6 +551,8 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
   this->Program->SetUniform3f("forward", f);
   this->Program->SetUniformi("parallel", parallel ? 1 : 0);
   this->Program->SetUniform4f("surfaceColor", c);
+  this->Program->SetUniform3f("pointUp", this->PointUp);
+  this->Program->SetUniformf("pointSpacing", this->PointSpacing);
   return true;
 }
 

@@ -29,6 +29,25 @@
  * slab 1's triangles, slice 1, ..., slab n's triangles (OpenGL keeps primitive
  * order within a draw). Surface fragments are shaded as in the CPU
  * compositor: headlight Lambert `rgb = colour |n . d|`, blended `(rgb a, a)`.
+ *
+ * Points of the hybrid representation (paper 3 section 4, "slices of points
+ * are drawn interleaved with each pair of volumetric planes") are drawn in
+ * the slab the DrawList buckets them into, after the slab's triangles, far
+ * first; a brick holding points is drawn as slices. Each point is a quad of
+ * whole pixels around its projected centre c (window coordinates), its size
+ * s = the projection of d0 (pixels), as the CPU compositor splats it
+ * (crate::points::draw):
+ *
+ *     square:   S = ceil(s) pixels across, from round(c - S/2), coverage s^2 / S^2
+ *     Gaussian: sigma = max(s/2, 0.5), pixels within r = ceil(3 sigma) of floor(c),
+ *               coverage exp(-|x - c|^2 / 2 sigma^2) s^2 / sum (the sum over those pixels)
+ *
+ * and its opacity and colour over the textures' value f - e (the table's
+ * opacities, one sample d0 thick):
+ *
+ *     a_p = (a_t - a_v) / (1 - a_v),   c_p = (a_t c_t - a_v c_v) / (a_t - a_v)
+ *
+ * drawn `(c_p a_p w, a_p w)` with coverage w; nothing where a_t <= a_v.
  */
 #ifndef vtkHybridOctreeBrickDrawer_h
 #define vtkHybridOctreeBrickDrawer_h
@@ -37,7 +56,9 @@
 #include "vtkSmartPointer.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkMatrix4x4;
@@ -61,17 +82,28 @@ public:
   vtkHybridOctreeBrickDrawer();
   ~vtkHybridOctreeBrickDrawer();
 
+  /// The points the list's buckets name, and their footprint.
+  struct PointData
+  {
+    const vtkHybridOctreeBridge::PointsDrawing* Drawing = nullptr;
+    bool Gaussian = false;
+  };
+
   /**
    * The vertices of every brick of `list` for a camera at `eye` with
    * `viewUp` (model coordinates), on the CPU: brick i's slices clipped to
    * `bounds[6i .. 6i+6]` (inside its box; none where `drawn[i]` is 0), and,
    * when `surface` is given and the list has batches, the brick's surface
-   * triangles in their slabs. Returns the surface triangles placed (copies
-   * in several slabs counted each time).
+   * triangles in their slabs, and when `points` are given and the list has
+   * buckets, its points in their slabs. Returns the surface triangles placed
+   * (copies in several slabs counted each time).
    */
   std::size_t Build(const vtkHybridOctreeBridge::DrawList& list, const std::vector<double>& bounds,
     const std::vector<char>& drawn, const double eye[3], const double viewUp[3],
-    const SurfaceData& surface);
+    const SurfaceData& surface, const PointData& points);
+
+  /// Points placed by the last Build().
+  std::size_t GetPointsPlaced() const { return this->PointsPlaced; }
 
   /**
    * Makes the program current: `mcdc` the model-to-clip matrix, `table` the
@@ -109,8 +141,14 @@ private:
   /// Appends the 12 triangles of a box (flag 2: a ray-marched brick).
   void EmitBox(const double bounds[6]);
 
-  /// Appends one vertex: position, normal, clip interval, surface flag.
+  /// Appends one vertex: position, normal, clip interval, kind.
   void Emit(const float position[3], const float normal[3], float near, float far, float surface);
+
+  /// (view depth, point id).
+  using Ordered = std::pair<double, std::uint32_t>;
+  /// Appends the quads of `list`'s bucket `bucket`, far first (`order`: scratch).
+  void EmitPoints(const vtkHybridOctreeBridge::DrawList& list, std::size_t bucket,
+    const PointData& points, const double eye[3], std::vector<Ordered>& order);
 
   std::vector<float> VertexData;
   /// Brick i's vertices: BrickFirst[i] .. BrickFirst[i + 1].
@@ -119,6 +157,10 @@ private:
   std::vector<char> RayMarched;
   /// Brick i's drawn box (its visible blocks): Boxes[6i .. 6i+6].
   std::vector<double> Boxes;
+  /// The view's up (model coordinates, perpendicular to forward) and d0: a point's size.
+  float PointUp[3] = { 0.0f, 1.0f, 0.0f };
+  float PointSpacing = 1.0f;
+  std::size_t PointsPlaced = 0;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

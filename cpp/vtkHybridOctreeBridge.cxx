@@ -163,6 +163,45 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   CopyInto(out.batch_end, list.BatchEnd);
   CopyInto(out.batch_clip, list.BatchClip);
   list.OpaqueTriangles = out.opaque_triangles;
+  CopyInto(out.bucket_offsets, list.BucketOffsets);
+  CopyInto(out.bucket_slab, list.BucketSlab);
+  CopyInto(out.bucket_point_offsets, list.BucketPointOffsets);
+  CopyInto(out.bucket_points, list.BucketPoints);
+}
+
+/// The bridge's select options.
+hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
+{
+  hybrid_octree::SelectDesc desc;
+  desc.budget_bytes = options.BudgetBytes;
+  desc.tolerance = options.Tolerance;
+  desc.has_roi = options.HasRoi;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    desc.roi_center[axis] = options.RoiCenter[axis];
+  }
+  desc.roi_radius = options.RoiRadius;
+  for (double v : options.OpacityPoints)
+  {
+    desc.opacity_points.push_back(v);
+  }
+  desc.has_isovalue = options.HasIsovalue;
+  desc.isovalue = options.Isovalue;
+  return desc;
+}
+
+/// The bridge's point options.
+hybrid_octree::PointsDesc ToRust(const PointsOptions& options)
+{
+  hybrid_octree::PointsDesc o;
+  o.factor = options.Factor;
+  o.threshold = options.Threshold;
+  o.use_budget = options.UseBudget;
+  o.budget = options.Budget;
+  o.underestimates_only = options.UnderestimatesOnly;
+  o.max_overestimate = options.MaxOverestimate;
+  o.file_name = rust::String(options.FileName);
+  return o;
 }
 } // namespace
 
@@ -335,22 +374,62 @@ std::unique_ptr<Selection> VolumeOctree::Select(
 {
   std::unique_ptr<Selection> result;
   Guarded(error, [&] {
-    hybrid_octree::SelectDesc desc;
-    desc.budget_bytes = options.BudgetBytes;
-    desc.tolerance = options.Tolerance;
-    desc.has_roi = options.HasRoi;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      desc.roi_center[axis] = options.RoiCenter[axis];
-    }
-    desc.roi_radius = options.RoiRadius;
-    for (double v : options.OpacityPoints)
-    {
-      desc.opacity_points.push_back(v);
-    }
-    desc.has_isovalue = options.HasIsovalue;
-    desc.isovalue = options.Isovalue;
-    rust::Box<hybrid_octree::SelectionHandle> handle = this->Impl->Handle->select_bricks(desc);
+    rust::Box<hybrid_octree::SelectionHandle> handle =
+      this->Impl->Handle->select_bricks(ToRust(options));
+    result = std::unique_ptr<Selection>(
+      new Selection(std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
+  });
+  return result;
+}
+
+struct Points::Internals
+{
+  explicit Internals(rust::Box<hybrid_octree::PointsHandle> handle)
+    : Handle(std::move(handle))
+  {
+  }
+  rust::Box<hybrid_octree::PointsHandle> Handle;
+};
+
+Points::Points(std::unique_ptr<Internals> internals)
+  : Impl(std::move(internals))
+{
+}
+
+Points::~Points() = default;
+
+std::unique_ptr<Points> VolumeOctree::MakePoints(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, const PointsOptions& options, std::string& error) const
+{
+  std::unique_ptr<Points> result;
+  Guarded(error, [&] {
+    rust::Box<hybrid_octree::PointsHandle> handle = this->Impl->Handle->points_for_drawing(
+      ToSlice(bytes, byteCount), ToRust(grid), ToRust(options));
+    result = std::unique_ptr<Points>(
+      new Points(std::unique_ptr<Points::Internals>(new Points::Internals(std::move(handle)))));
+  });
+  return result;
+}
+
+bool Points::GetDrawing(PointsDrawing& drawing, std::string& error) const
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::PointsDrawing d = this->Impl->Handle->drawing();
+    CopyInto(d.position, drawing.Position);
+    CopyInto(d.value, drawing.Value);
+    CopyInto(d.error, drawing.Error);
+    drawing.Factor = d.factor;
+    drawing.PointBytes = d.point_bytes;
+  });
+}
+
+std::unique_ptr<Selection> VolumeOctree::Select(
+  const SelectDescription& options, const Points& points, std::string& error) const
+{
+  std::unique_ptr<Selection> result;
+  Guarded(error, [&] {
+    rust::Box<hybrid_octree::SelectionHandle> handle =
+      this->Impl->Handle->select_bricks_with_points(ToRust(options), *points.Impl->Handle);
     result = std::unique_ptr<Selection>(
       new Selection(std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
   });
@@ -374,6 +453,8 @@ bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
     summary.MaxError = s.max_error;
     summary.Skipped = s.skipped;
     summary.Warning = std::string(s.warning);
+    summary.Points = s.points;
+    summary.PointBytes = s.point_bytes;
   });
 }
 
@@ -459,11 +540,11 @@ bool Selection::Composite(const VolumeOctree& octree, const CameraDescription& c
       scene.OpacityPoints.data(), scene.OpacityPoints.size());
     const rust::Vec<float> out = scene.SurfaceToDraw
       ? this->Impl->Handle->composite_with_surface(*octree.Impl->Handle, ToRust(camera),
-          ToSlice(bytes, byteCount), desc, colors, opacities,
+          ToSlice(bytes, byteCount), desc, colors, opacities, scene.GaussianPoints,
           *scene.SurfaceToDraw->Impl->Handle,
           rust::Slice<const double>(scene.SurfaceRGBA, 4), width, height)
       : this->Impl->Handle->composite(*octree.Impl->Handle, ToRust(camera),
-          ToSlice(bytes, byteCount), desc, colors, opacities, width, height);
+          ToSlice(bytes, byteCount), desc, colors, opacities, scene.GaussianPoints, width, height);
     CopyInto(out, rgba);
   });
 }
@@ -507,17 +588,8 @@ bool GeneratePoints(const void* bytes, std::size_t byteCount, const GridDescript
   const PointsOptions& options, PointsResult& result, std::string& error)
 {
   return Guarded(error, [&] {
-    const hybrid_octree::GridDesc desc = ToRust(grid);
-    hybrid_octree::PointsDesc o;
-    o.factor = options.Factor;
-    o.threshold = options.Threshold;
-    o.use_budget = options.UseBudget;
-    o.budget = options.Budget;
-    o.underestimates_only = options.UnderestimatesOnly;
-    o.max_overestimate = options.MaxOverestimate;
-    o.file_name = rust::String(options.FileName);
     const hybrid_octree::PointsOutput points =
-      hybrid_octree::generate_points(ToSlice(bytes, byteCount), desc, o);
+      hybrid_octree::generate_points(ToSlice(bytes, byteCount), ToRust(grid), ToRust(options));
     CopyInto(points.ijk, result.Ijk);
     CopyInto(points.value, result.Value);
     CopyInto(points.error, result.Error);

@@ -148,6 +148,8 @@ struct SelectionSummary
   double MaxError = 0.0; ///< largest weighted error, fraction of the data range
   std::uint64_t Skipped = 0; ///< nodes left out as fully transparent
   std::string Warning;       ///< empty when none
+  std::uint64_t Points = 0;     ///< points of the hybrid representation bought (0 without)
+  std::uint64_t PointBytes = 0; ///< their bytes, counted in the budget with the textures
 };
 
 /// A camera as vtkCamera describes it (see DescribeCamera()).
@@ -201,6 +203,15 @@ struct DrawList
   std::vector<std::uint32_t> BatchEnd;
   std::vector<double> BatchClip; ///< 2 per batch
   std::size_t OpaqueTriangles = 0;
+  /// Points (a selection made with points; empty lists otherwise): brick i's
+  /// buckets are BucketOffsets[i] .. BucketOffsets[i + 1] (bricks + 1
+  /// values), bucket k lies in slab BucketSlab[k] of its brick (as
+  /// BatchSlab) and draws the points BucketPoints[BucketPointOffsets[k] ..
+  /// BucketPointOffsets[k + 1]] (ids into Points::GetDrawing()'s arrays).
+  std::vector<std::size_t> BucketOffsets;
+  std::vector<std::size_t> BucketSlab;
+  std::vector<std::size_t> BucketPointOffsets;
+  std::vector<std::uint32_t> BucketPoints;
 
   std::size_t GetNumberOfBricks() const { return this->Brick.size(); }
 };
@@ -214,6 +225,17 @@ struct CompositeScene
   std::vector<double> OpacityPoints; ///< (value, opacity) flattened
   const Surface* SurfaceToDraw = nullptr; ///< the isosurface, or none
   double SurfaceRGBA[4] = { 1.0, 1.0, 1.0, 1.0 }; ///< its colour and opacity
+  bool GaussianPoints = false; ///< footprint of the selection's points: Gaussian, else square
+};
+
+/// Points of the hybrid representation as the renderer draws them.
+struct PointsDrawing
+{
+  std::vector<float> Position; ///< 3 per point: the sample's world position (the grid's frame)
+  std::vector<float> Value;    ///< original value f
+  std::vector<float> Error;    ///< e = f - T_f: the textures show f - e there
+  std::size_t Factor = 0;      ///< the texture stride the points complete
+  std::size_t PointBytes = 0;  ///< all the points as stored
 };
 
 /// The camera's position, focal point, view up, projection, parallel scale
@@ -230,6 +252,8 @@ CameraDescription DescribeCamera(vtkCamera* camera);
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function);
 
 class Selection;
+class Points;
+struct PointsOptions;
 
 /// A Volume Octree owned on the C++ side (it owns the Rust handle).
 class VolumeOctree
@@ -285,6 +309,24 @@ public:
   std::unique_ptr<Selection> Select(const SelectDescription& options, std::string& error) const;
 
   /**
+   * Select() spending the budget on textures and on `points` (made from this
+   * octree by MakePoints()): a brick at the points' stride takes its points
+   * when they remove more error per byte than refining it; the selection's
+   * DrawLists bucket the points bought into their slabs.
+   */
+  std::unique_ptr<Selection> Select(
+    const SelectDescription& options, const Points& points, std::string& error) const;
+
+  /**
+   * The points completing stride-`options.Factor` textures of the image the
+   * octree was built from (`bytes`, `byteCount`, `grid` as in Build()),
+   * kept for Select(). `options.MaxOverestimate` must be < 0 (the textures
+   * are the image itself). Returns nullptr and sets `error` on failure.
+   */
+  std::unique_ptr<Points> MakePoints(const void* bytes, std::size_t byteCount,
+    const GridDescription& grid, const PointsOptions& options, std::string& error) const;
+
+  /**
    * Extracts the isosurface (as ExtractSurface(), without the distance) and
    * keeps it for drawing with a Selection. Returns nullptr and sets `error`
    * on failure.
@@ -295,6 +337,7 @@ public:
 private:
   friend class Selection;
   friend class Surface;
+  friend class Points;
   struct Internals;
   explicit VolumeOctree(std::unique_ptr<Internals> internals);
   std::unique_ptr<Internals> Impl;
@@ -370,6 +413,24 @@ private:
   friend class Selection;
   struct Internals;
   explicit Surface(std::unique_ptr<Internals> internals);
+  std::unique_ptr<Internals> Impl;
+};
+
+/// Points of the hybrid representation kept for drawing (it owns the Rust handle).
+class Points
+{
+public:
+  ~Points();
+  Points(const Points&) = delete;
+  Points& operator=(const Points&) = delete;
+
+  /// Positions, values and errors. False and `error` on failure.
+  bool GetDrawing(PointsDrawing& drawing, std::string& error) const;
+
+private:
+  friend class VolumeOctree;
+  struct Internals;
+  explicit Points(std::unique_ptr<Internals> internals);
   std::unique_ptr<Internals> Impl;
 };
 

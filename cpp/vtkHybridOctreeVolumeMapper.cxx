@@ -77,6 +77,13 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   unsigned long OctreeGeneration = 0;
   vtkDataArray* Scalars = nullptr;
 
+  // The points, made again when the octree or their settings change.
+  std::unique_ptr<Points> PointSet;
+  PointsDrawing Drawing;
+  unsigned long PointsGeneration = 0;
+  std::vector<double> PointsKey;
+  unsigned long PointsVersion = 0;
+
   // The selection, made again when its inputs change.
   std::unique_ptr<Selection> Selected;
   SelectionSummary Summary;
@@ -223,6 +230,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   }
   in.Selected.reset();
   in.Iso.reset();
+  in.PointSet.reset();
   in.Octree.reset();
   std::string error;
   in.Octree = VolumeOctree::Build(
@@ -314,6 +322,44 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   return true;
 }
 
+bool vtkHybridOctreeVolumeMapper::UpdatePoints()
+{
+  vtkInternals& in = *this->Internals;
+  if (!this->UsePoints)
+  {
+    in.PointSet.reset();
+    in.Drawing = PointsDrawing();
+    return true;
+  }
+  const std::vector<double> key = { static_cast<double>(this->PointFactor), this->PointThreshold,
+    static_cast<double>(this->PointBudget) };
+  if (in.PointSet && in.PointsGeneration == in.OctreeGeneration && in.PointsKey == key)
+  {
+    return true;
+  }
+  in.PointSet.reset();
+  PointsOptions options;
+  options.Factor = static_cast<std::size_t>(this->PointFactor);
+  options.Threshold = this->PointThreshold;
+  options.UseBudget = this->PointBudget > 0;
+  options.Budget = static_cast<std::size_t>(this->PointBudget);
+  options.UnderestimatesOnly = true;
+  options.MaxOverestimate = -1.0;
+  std::string error;
+  std::unique_ptr<Points> made =
+    in.Octree->MakePoints(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, options, error);
+  if (!made || !made->GetDrawing(in.Drawing, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.PointSet = std::move(made);
+  in.PointsGeneration = in.OctreeGeneration;
+  in.PointsKey = key;
+  ++in.PointsVersion;
+  return true;
+}
+
 bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkRenderer* ren, vtkVolumeProperty* property)
 {
   vtkInternals& in = *this->Internals;
@@ -334,14 +380,16 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkRenderer* ren, vtkVolumePro
   select.Isovalue = this->Isovalue;
   const std::vector<double> key = { static_cast<double>(select.BudgetBytes), select.Tolerance,
     select.HasRoi ? 1.0 : 0.0, select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2],
-    select.RoiRadius, select.HasIsovalue ? 1.0 : 0.0, select.Isovalue };
+    select.RoiRadius, select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
+    in.PointSet ? static_cast<double>(in.PointsVersion) : -1.0 };
   if (in.Selected && in.SelectedGeneration == in.OctreeGeneration && in.SelectedKey == key &&
     in.SelectedOpacity == select.OpacityPoints)
   {
     return true;
   }
   std::string error;
-  in.Selected = in.Octree->Select(select, error);
+  in.Selected = in.PointSet ? in.Octree->Select(select, *in.PointSet, error)
+                            : in.Octree->Select(select, error);
   if (!in.Selected || !in.Selected->GetSummary(in.Summary, error))
   {
     in.Selected.reset();
@@ -424,8 +472,8 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
     return false;
   }
   this->UpdateModelMatrix(image, vol);
-  return this->UpdateTransferFunction(property) && this->UpdateSelection(ren, property) &&
-    this->UpdateSurface();
+  return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
+    this->UpdateSelection(ren, property) && this->UpdateSurface();
 }
 
 CameraDescription vtkHybridOctreeVolumeMapper::ModelCamera(vtkRenderer* ren) const
@@ -475,6 +523,8 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastBricks = 0;
   this->LastSlices = 0;
   this->LastSurfaceTriangles = 0;
+  this->LastPoints = 0;
+  this->LastPointBytes = 0;
   this->LastUploadedBytes = 0;
   this->LastPlan.clear();
   this->LastInteractive = this->IsInteractive(ren);
@@ -498,6 +548,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   this->LastPlan = list.Passes;
   this->LastEstimatedError = in.Summary.MaxError;
+  this->LastPointBytes = static_cast<vtkTypeInt64>(in.Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
   this->LastUploadedBytes = static_cast<vtkTypeInt64>(in.Bricks.GetUploadedBytes());
   this->LastFrameMilliseconds =
@@ -512,7 +563,9 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   const std::size_t bricks = list.GetNumberOfBricks();
 
   // Brick textures: resident ones reused, the rest uploaded within the budget.
-  in.Bricks.BeginFrame(static_cast<std::size_t>(this->BudgetMB * 1.0e6));
+  // The points bought share the budget: the textures get the rest.
+  const double textureBudget = this->BudgetMB * 1.0e6 - static_cast<double>(in.Summary.PointBytes);
+  in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   std::vector<vtkTextureObject*> textures(bricks, nullptr);
   // Per brick the box its slices are clipped to: its visible blocks (empty: not drawn).
   std::vector<double> drawBounds(6 * bricks, 0.0);
@@ -573,8 +626,15 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
     translucent.Vertices = &in.SurfaceDrawer.GetVertexData();
     translucent.Triangles = &in.SurfaceDrawer.GetIndexData();
   }
+  vtkHybridOctreeBrickDrawer::PointData points;
+  if (in.PointSet && !list.BucketOffsets.empty())
+  {
+    points.Drawing = &in.Drawing;
+    points.Gaussian = this->PointFootprint == 1;
+  }
   this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(
-    in.Drawer.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp, translucent));
+    in.Drawer.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp, translucent, points));
+  this->LastPoints = static_cast<vtkTypeInt64>(in.Drawer.GetPointsPlaced());
   for (std::size_t i = 0; i < bricks; ++i)
   {
     if (drawn[i])
@@ -697,6 +757,7 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
     return false;
   }
   CompositeScene scene = in.Transfer;
+  scene.GaussianPoints = this->PointFootprint == 1;
   if (in.Iso && this->ShowSurface && this->SurfaceOpacity > 0.0)
   {
     scene.SurfaceToDraw = in.Iso.get();
@@ -757,6 +818,11 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceColor: (" << this->SurfaceColor[0] << ", " << this->SurfaceColor[1]
      << ", " << this->SurfaceColor[2] << ")\n";
   os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
+  os << indent << "UsePoints: " << this->UsePoints << "\n";
+  os << indent << "PointFactor: " << this->PointFactor << "\n";
+  os << indent << "PointThreshold: " << this->PointThreshold << "\n";
+  os << indent << "PointBudget: " << this->PointBudget << "\n";
+  os << indent << "PointFootprint: " << (this->PointFootprint == 1 ? "Gaussian" : "square") << "\n";
   os << indent << "LeafSize: " << this->LeafSize << "\n";
   os << indent << "Component: " << this->Component << "\n";
   os << indent << "TableSize: " << this->TableSize << "\n";
@@ -765,6 +831,8 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastUploadedBytes: " << this->LastUploadedBytes << "\n";
   os << indent << "LastSlices: " << this->LastSlices << "\n";
   os << indent << "LastSurfaceTriangles: " << this->LastSurfaceTriangles << "\n";
+  os << indent << "LastPoints: " << this->LastPoints << "\n";
+  os << indent << "LastPointBytes: " << this->LastPointBytes << "\n";
   os << indent << "LastPlan: " << this->LastPlan << "\n";
   os << indent << "LastFrameMilliseconds: " << this->LastFrameMilliseconds << "\n";
   os << indent << "LastEstimatedError: " << this->LastEstimatedError << "\n";

@@ -25,9 +25,8 @@
  * CompositeOnCPU() runs the Rust CPU compositor on the same DrawList and
  * table: the reference the OpenGL picture is tested against.
  *
- * Limitations of this first version: volume only (no isosurface, ROI or
- * interactive budget yet); the vtkVolume's matrix and the image's direction
- * matrix are ignored (identity assumed).
+ * With UsePoints, the points of the hybrid representation share the budget
+ * and are drawn in the slabs between the slices (see SetUsePoints()).
  */
 #ifndef vtkHybridOctreeVolumeMapper_h
 #define vtkHybridOctreeVolumeMapper_h
@@ -118,6 +117,38 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Points of the hybrid representation (paper 3): with UsePoints on, the
+   * mapper also makes points where textures sampled every PointFactor (2, 4
+   * or 8) samples underestimate the data by more than PointThreshold (a
+   * fraction of the data range), or at the PointBudget largest such errors
+   * when PointBudget > 0. The selection then spends BudgetMB on textures
+   * and points together: a brick of stride PointFactor takes its points
+   * when they remove more error per byte than refining it (6 bytes a point
+   * on grids up to 256 samples per axis, 9 beyond). Points are drawn in the
+   * slabs between their brick's slices, as squares of whole pixels
+   * (PointFootprint 0, default) or Gaussian splats (1), with the opacity
+   * that, over the textures, gives the data's own (see
+   * vtkHybridOctreeBrickDrawer). Off by default. Only points where the
+   * textures underestimate are made: elsewhere a point could only add
+   * opacity the data does not have.
+   */
+  vtkSetMacro(UsePoints, bool);
+  vtkGetMacro(UsePoints, bool);
+  vtkBooleanMacro(UsePoints, bool);
+  vtkSetClampMacro(PointFactor, int, 2, 8);
+  vtkGetMacro(PointFactor, int);
+  vtkSetClampMacro(PointThreshold, double, 0.0, 1.0);
+  vtkGetMacro(PointThreshold, double);
+  vtkSetClampMacro(PointBudget, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(PointBudget, vtkIdType);
+  vtkSetClampMacro(PointFootprint, int, 0, 1);
+  vtkGetMacro(PointFootprint, int);
+  void SetPointFootprintToSquare() { this->SetPointFootprint(0); }
+  void SetPointFootprintToGaussian() { this->SetPointFootprint(1); }
+  ///@}
+
+  ///@{
   /// Cells per axis of a leaf brick; default 16.
   vtkSetClampMacro(LeafSize, int, 2, 128);
   vtkGetMacro(LeafSize, int);
@@ -149,6 +180,9 @@ public:
   vtkGetMacro(LastUploadedBytes, vtkTypeInt64);
   vtkGetMacro(LastSlices, vtkTypeInt64);
   vtkGetMacro(LastSurfaceTriangles, vtkTypeInt64);
+  /// Points drawn in the last frame, and the bytes of the points the selection bought.
+  vtkGetMacro(LastPoints, vtkTypeInt64);
+  vtkGetMacro(LastPointBytes, vtkTypeInt64);
   const char* GetLastPlan() const { return this->LastPlan.c_str(); }
   vtkGetMacro(LastFrameMilliseconds, double);
   vtkGetMacro(LastEstimatedError, double);
@@ -196,6 +230,11 @@ protected:
   double Isovalue = 0.0;
   double SurfaceColor[3] = { 1.0, 1.0, 1.0 };
   double SurfaceOpacity = 1.0;
+  bool UsePoints = false;
+  int PointFactor = 2;
+  double PointThreshold = 0.1;
+  vtkIdType PointBudget = 0;
+  int PointFootprint = 0;
   int LeafSize = 16;
   int Component = -1;
   int TableSize = 1024;
@@ -204,6 +243,8 @@ protected:
   vtkTypeInt64 LastUploadedBytes = 0;
   vtkTypeInt64 LastSlices = 0;
   vtkTypeInt64 LastSurfaceTriangles = 0;
+  vtkTypeInt64 LastPoints = 0;
+  vtkTypeInt64 LastPointBytes = 0;
   std::string LastPlan;
   double LastFrameMilliseconds = 0.0;
   double LastEstimatedError = 0.0;
@@ -221,6 +262,7 @@ private:
   bool UpdateOctree(vtkImageData* image, vtkDataArray* scalars);
   void UpdateModelMatrix(vtkImageData* image, vtkVolume* vol);
   bool UpdateTransferFunction(vtkVolumeProperty* property);
+  bool UpdatePoints();
   bool UpdateSelection(vtkRenderer* ren, vtkVolumeProperty* property);
   bool UpdateSurface();
   /// The active camera in the octree's frame (through the inverse model matrix).
