@@ -22,9 +22,11 @@
  *                representation's points (factor 2) bought within the same
  *                budget and drawn in the slabs, square or Gaussian
  *                footprints, against the CPU compositor splatting the same
- *                points: RMSE < 0.006; and the points change the picture.
- *                The wavelet gets one-sample lines at its maximum, which
- *                stride-2 textures lose and the points bring back.
+ *                points: RMSE < 0.004; the points change the picture
+ *                (RMSE > 0.005 against it without them) and bring it closer
+ *                to the full resolution (RMSE at most 0.8 times).
+ *                The wavelet gets bars 3 samples wide at its maximum,
+ *                which stride-2 textures smear and the points sharpen.
  *   gpu_reference: at a budget holding the full volume, against VTK's
  *                vtkGPUVolumeRayCastMapper (rays every spacing, not slices):
  *                RMSE < 0.03.
@@ -133,28 +135,35 @@ int CpuMatch(const std::string& scenario)
   }
   const bool points = scenario == "points_square" || scenario == "points_gaussian";
   std::vector<double> withoutPoints;
-  vtkNew<vtkImageData> lined;
+  vtkNew<vtkImageData> bars;
   if (points)
   {
-    // Fine detail stride-2 textures lose: one-sample lines along z at x, y
-    // = 5 mod 8 (odd samples, which T_2 interpolates from the background) at
-    // the data's maximum.
-    lined->DeepCopy(scene.Wavelet->GetOutput());
-    vtkDataArray* values = lined->GetPointData()->GetScalars();
+    // Fine detail stride-2 textures smear: bars along z, 3 samples square
+    // (x, y = 5, 6, 7 mod 16), at the data's maximum. T_2 keeps their middle
+    // sample only and halves the two beside it; the points restore those.
+    // (One-sample lines at odd samples, which T_2 loses entirely, are
+    // over-corrected instead: under this steep opacity the full resolution's
+    // trilinear line is narrower than the one-voxel square a point draws,
+    // and the picture gets 3 % worse; see docs/BENCHMARKS.md.)
+    bars->DeepCopy(scene.Wavelet->GetOutput());
+    vtkDataArray* values = bars->GetPointData()->GetScalars();
     int dims[3];
-    lined->GetDimensions(dims);
+    bars->GetDimensions(dims);
     for (int z = 0; z < dims[2]; ++z)
     {
-      for (int y = 5; y < dims[1]; y += 8)
+      for (int y = 0; y < dims[1]; ++y)
       {
-        for (int x = 5; x < dims[0]; x += 8)
+        for (int x = 0; x < dims[0]; ++x)
         {
-          values->SetComponent(x + dims[0] * (y + static_cast<vtkIdType>(dims[1]) * z), 0,
-            scene.Range[1]);
+          if ((x + 11) % 16 < 3 && (y + 11) % 16 < 3)
+          {
+            values->SetComponent(x + dims[0] * (y + static_cast<vtkIdType>(dims[1]) * z), 0,
+              scene.Range[1]);
+          }
         }
       }
     }
-    mapper->SetInputData(lined);
+    mapper->SetInputData(bars);
     scene.Window->Render();
     withoutPoints = Grab(scene.Window);
     mapper->UsePointsOn();
@@ -165,27 +174,43 @@ int CpuMatch(const std::string& scenario)
       mapper->SetPointFootprintToGaussian();
     }
     plan = "volume,points";
-    threshold = 0.006;
+    threshold = 0.004;
   }
   CompareWithCpu(check, scene, mapper, threshold, errors);
-  if (points)
-  {
-    const double change = Rmse(Grab(scene.Window), withoutPoints);
-    std::cout << "points drawn " << mapper->GetLastPoints() << ", point bytes "
-              << mapper->GetLastPointBytes() << ", RGB RMSE with vs without points " << change
-              << "\n";
-    check.Check(mapper->GetLastPoints() > 0, "points drawn");
-    check.Check(mapper->GetLastPointBytes() > 0 &&
-        mapper->GetLastTextureBytes() + mapper->GetLastPointBytes() <= 120000,
-      "points bought within the budget with the textures");
-    check.Check(change > 0.001, "the points change the picture");
-  }
   check.Check(mapper->GetLastBricks() > 8, "many bricks");
   check.Check(mapper->GetLastPlan() == plan, "plan '" + plan + "'");
   check.Check(mapper->GetLastTextureBytes() <= 120000, "texture bytes within the budget");
   if (plan.find("surface") != std::string::npos)
   {
     check.Check(mapper->GetLastSurfaceTriangles() > 0, "surface triangles drawn");
+  }
+  if (points)
+  {
+    const std::vector<double> withPoints = Grab(scene.Window);
+    const double change = Rmse(withPoints, withoutPoints);
+    std::cout << "points drawn " << mapper->GetLastPoints() << ", point bytes "
+              << mapper->GetLastPointBytes() << ", RGB RMSE with vs without points " << change
+              << "\n";
+    const vtkTypeInt64 drawn = mapper->GetLastPoints();
+    const vtkTypeInt64 bytes = mapper->GetLastPointBytes();
+    check.Check(drawn > 0, "points drawn");
+    check.Check(bytes > 0 && mapper->GetLastTextureBytes() + bytes <= 120000,
+      "points bought within the budget with the textures");
+    check.Check(change > 0.005, "the points change the picture");
+    // Against the full resolution (the whole volume in the budget, no points):
+    // the points bring the picture closer.
+    mapper->UsePointsOff();
+    mapper->SetBudgetMB(4.0);
+    scene.Window->Render();
+    const std::vector<double> full = Grab(scene.Window);
+    const double before = Rmse(withoutPoints, full);
+    const double after = Rmse(withPoints, full);
+    std::cout << "RGB RMSE against the full resolution: without points " << before
+              << ", with points " << after << "\n";
+    check.Check(after < 0.8 * before, "the points remove at least 20 % of the error");
+    check.Check(mapper->GetLastPoints() == 0 && mapper->GetLastPointBytes() == 0 &&
+        std::string(mapper->GetLastPlan()) == "volume",
+      "points off: none drawn, plan 'volume'");
   }
   return check.Result();
 }
