@@ -8,6 +8,8 @@
 #include "vtkScalarsToColors.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
+
 vtkStandardNewMacro(vtkPVHybridOctreeRepresentation);
 
 vtkPVHybridOctreeRepresentation::vtkPVHybridOctreeRepresentation()
@@ -104,6 +106,31 @@ void vtkPVHybridOctreeRepresentation::SetLeafSize(int cells)
   this->Mapper()->SetLeafSize(cells);
 }
 
+void vtkPVHybridOctreeRepresentation::SetUsePoints(bool use)
+{
+  this->Mapper()->SetUsePoints(use);
+}
+
+void vtkPVHybridOctreeRepresentation::SetPointFactor(int factor)
+{
+  this->Mapper()->SetPointFactor(factor);
+}
+
+void vtkPVHybridOctreeRepresentation::SetPointThreshold(double threshold)
+{
+  this->Mapper()->SetPointThreshold(threshold);
+}
+
+void vtkPVHybridOctreeRepresentation::SetPointBudget(int points)
+{
+  this->Mapper()->SetPointBudget(points);
+}
+
+void vtkPVHybridOctreeRepresentation::SetPointFootprint(int footprint)
+{
+  this->Mapper()->SetPointFootprint(footprint);
+}
+
 // ---- Statistics -----------------------------------------------------------------
 
 int vtkPVHybridOctreeRepresentation::GetLastBricks()
@@ -125,6 +152,11 @@ const char* vtkPVHybridOctreeRepresentation::GetLastPlan()
 double vtkPVHybridOctreeRepresentation::GetLastFrameMilliseconds()
 {
   return this->Mapper()->GetLastFrameMilliseconds();
+}
+
+int vtkPVHybridOctreeRepresentation::GetLastPoints()
+{
+  return static_cast<int>(std::min<vtkTypeInt64>(this->Mapper()->GetLastPoints(), VTK_INT_MAX));
 }
 
 double vtkPVHybridOctreeRepresentation::GetLastEstimatedError()

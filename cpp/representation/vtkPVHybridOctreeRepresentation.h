@@ -46,6 +46,11 @@ public:
   void SetSurfaceColor(double r, double g, double b);
   void SetSurfaceOpacity(double opacity);
   void SetLeafSize(int cells);
+  void SetUsePoints(bool use);
+  void SetPointFactor(int factor);
+  void SetPointThreshold(double threshold);
+  void SetPointBudget(int points);
+  void SetPointFootprint(int footprint);
   ///@}
 
   ///@{
@@ -55,6 +60,7 @@ public:
   const char* GetLastPlan();
   double GetLastFrameMilliseconds();
   double GetLastEstimatedError();
+  int GetLastPoints();
   ///@}
 
   /// The mapper (for tests and Python).

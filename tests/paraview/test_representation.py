@@ -110,6 +110,26 @@ t.check(0.0 < s_small["LastTextureMB"] <= 0.05, "0.05 MB budget kept: %s MB" % s
 t.check(s_small["LastEstimatedError"] >= s["LastEstimatedError"],
         "a smaller budget does not lower the estimated error")
 t.check(rmse(small, baseline) > error_full, "a smaller budget is further from the baseline")
+# ---- Hybrid points: paid from the same budget, drawn between the slices ---------------
+display.HybridPoints = 1
+display.PointFactor = 4
+display.PointThreshold = 0.05
+for footprint in ("Square", "Gaussian"):
+    display.PointFootprint = footprint
+    Render(view)
+    with_points = screenshot(view, "hybrid-0.05MB-points-" + footprint.lower())
+    display.SMProxy.UpdatePropertyInformation()
+    s_points = stats(display)
+    points = display.GetPropertyValue("LastPoints")
+    report("%s points at 0.05 MB: %d drawn, %s; RMSE to 64 MB %.4f (without points %.4f)"
+           % (footprint, points, s_points, rmse(with_points, full), rmse(small, full)))
+    t.check(s_points["LastPlan"] == "volume,points", "plan with points: %r" % s_points["LastPlan"])
+    t.check(points > 0, "%s points drawn: %d" % (footprint, points))
+    t.check(0.0 < s_points["LastTextureMB"] <= 0.05, "textures within the budget: %s MB" % s_points["LastTextureMB"])
+    t.check(rmse(with_points, small) > 0.001, "the points change the picture")
+display.HybridPoints = 0
+Render(view)
+t.check(stats(display)["LastPlan"] == "volume", "points off: plan 'volume'")
 display.TextureBudgetMB = 64.0
 
 # ---- Isosurface: the planner's passes -------------------------------------------------
