@@ -402,6 +402,18 @@ mod bridge {
         ) -> Result<Box<PointsHandle>>;
         /// The kept points' positions, values and errors.
         fn drawing(self: &PointsHandle) -> Result<PointsDrawing>;
+        /// What each point adds under the transfer function of `colors`
+        /// ((value, r, g, b) flattened) and `opacities` ((value, opacity)):
+        /// 4 floats a point, straight colour and opacity, averaged over its
+        /// voxel (see `points::shade`); `bytes` and `desc`: the image the
+        /// points were made from.
+        fn shades(
+            self: &PointsHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            colors: &[f64],
+            opacities: &[f64],
+        ) -> Result<Vec<f32>>;
 
         /// A selection of the octree's nodes and texture levels, for drawing.
         type SelectionHandle;

@@ -57,6 +57,27 @@ impl PointsHandle {
     pub(crate) fn drawing(&self) -> std::result::Result<PointsDrawing, String> {
         guarded(|| Ok(drawing(&self.set, &self.shape)))
     }
+
+    pub(crate) fn shades(
+        &self,
+        bytes: &[u8],
+        desc: &GridDesc,
+        colors: &[f64],
+        opacities: &[f64],
+    ) -> std::result::Result<Vec<f32>, String> {
+        guarded(|| {
+            // Only the low resolution's lattice samples are read (NaN was refused at generation).
+            let grid = crate::ffi::grid_unscanned(bytes, desc)?;
+            if grid.shape() != &self.shape {
+                return Err(Error::InvalidArgument(
+                    "the image changed since the points were made (dims, spacing or origin); make them again".into(),
+                ));
+            }
+            let tf = crate::ffi_render::transfer_function(colors, opacities)?;
+            let shades = crate::points::shade(&grid, &self.set, &tf)?;
+            Ok(shades.iter().flat_map(|s| [s.rgb[0], s.rgb[1], s.rgb[2], s.alpha]).collect())
+        })
+    }
 }
 
 /// `set`'s world positions (on the grid of `shape`), values and errors.
@@ -259,10 +280,19 @@ mod tests {
         for (gaussian, kind) in [(false, Footprint::Square), (true, Footprint::Gaussian)] {
             let bridged =
                 s.composite(&octree, &camera(), as_bytes(&data), &desc, &colors, &opacities, gaussian, 48, 40);
-            let direct =
-                composite_with_points(&textures, &direct_list, &tf, 48, 40, None, Some((&points.set, kind))).unwrap();
+            let shades = crate::points::shade(&grid, &points.set, &tf).unwrap();
+            let drawn = Some((&*points.set, shades.as_slice(), kind));
+            let direct = composite_with_points(&textures, &direct_list, &tf, 48, 40, None, drawn).unwrap();
             assert_eq!(bridged.unwrap(), direct.rgba.iter().flatten().copied().collect::<Vec<f32>>());
         }
+        // The shades the mapper draws are the compositor's.
+        let bridged = points.shades(as_bytes(&data), &desc, &colors, &opacities).unwrap();
+        let direct = crate::points::shade(&grid, &points.set, &tf).unwrap();
+        let flat: Vec<f32> = direct.iter().flat_map(|s| [s.rgb[0], s.rgb[1], s.rgb[2], s.alpha]).collect();
+        assert_eq!(bridged, flat);
+        assert!(direct.iter().any(|s| s.alpha > 0.0));
+        let e = points.shades(as_bytes(&data), &desc, &colors[..3], &opacities).unwrap_err();
+        assert!(e.contains("tuples"), "{e}");
         let without = octree.select_bricks(&select_desc(14_000)).unwrap();
         assert_eq!(without.summary().unwrap().points, 0);
         assert!(without.draw_list(&octree, &camera()).unwrap().bucket_offsets.is_empty());

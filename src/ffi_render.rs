@@ -189,6 +189,20 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
     out
 }
 
+/// The transfer function of `(value, r, g, b)` and `(value, opacity)` tuples, flattened.
+pub(crate) fn transfer_function(colors: &[f64], opacities: &[f64]) -> Result<TransferFunction> {
+    if colors.len() % 4 != 0 || opacities.len() % 2 != 0 {
+        return Err(Error::InvalidArgument(format!(
+            "{} colour and {} opacity values: give (value, r, g, b) and (value, opacity) tuples, flattened",
+            colors.len(),
+            opacities.len()
+        )));
+    }
+    let c = colors.chunks(4).map(|v| (v[0], [v[1] as f32, v[2] as f32, v[3] as f32])).collect();
+    let o = opacities.chunks(2).map(|v| (v[0], v[1] as f32)).collect();
+    TransferFunction::new(c, o)
+}
+
 /// The footprint the bridge's flag names.
 fn footprint(gaussian: bool) -> Footprint {
     if gaussian {
@@ -419,20 +433,15 @@ impl SelectionHandle {
                 "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
             ));
         }
-        if colors.len() % 4 != 0 || opacities.len() % 2 != 0 {
-            return Err(Error::InvalidArgument(format!(
-                "{} colour and {} opacity values: give (value, r, g, b) and (value, opacity) tuples, flattened",
-                colors.len(),
-                opacities.len()
-            )));
-        }
-        let c = colors.chunks(4).map(|v| (v[0], [v[1] as f32, v[2] as f32, v[3] as f32])).collect();
-        let o = opacities.chunks(2).map(|v| (v[0], v[1] as f32)).collect();
-        let tf = TransferFunction::new(c, o)?;
+        let tf = transfer_function(colors, opacities)?;
         let list = self.list(octree, camera_desc, surface.map(|(s, rgba)| (s, rgba[3])))?;
         let drawn = surface.map(|(s, rgba)| (&s.surface, rgba.map(|v| v as f32)));
         let textures = crate::render::texture::upload(&grid, &list)?;
-        let points = self.points.as_deref().map(|set| (set, footprint));
+        let shades = match self.points.as_deref() {
+            Some(set) => crate::points::shade(&grid, set, &tf)?,
+            None => Vec::new(),
+        };
+        let points = self.points.as_deref().map(|set| (set, shades.as_slice(), footprint));
         let image =
             crate::render::compositor::composite_with_points(&textures, &list, &tf, width, height, drawn, points)?;
         Ok(image.rgba.iter().flatten().copied().collect())

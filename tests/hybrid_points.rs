@@ -8,7 +8,7 @@ use hybrid_octree::datasets::{generate as dataset, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::octree::{BuildOptions, VolumeOctree};
 use hybrid_octree::plan::{draw_list, DrawList, Scene};
-use hybrid_octree::points::{add_points, generate, Footprint, PointMass, PointOptions, PointSelect, PointSet};
+use hybrid_octree::points::{add_points, generate, shade, Footprint, PointMass, PointOptions, PointSelect, PointSet};
 use hybrid_octree::render::compositor::composite_with_points;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::metrics::compare;
@@ -53,7 +53,9 @@ fn list(f: &Fixture, grid: &Grid<'_>, stride: usize, points: Option<&PointSet>) 
 fn render(f: &Fixture, grid: &Grid<'_>, stride: usize, points: Option<(&PointSet, Footprint)>) -> Image {
     let l = list(f, grid, stride, points.map(|p| p.0));
     let textures = upload(grid, &l).unwrap();
-    composite_with_points(&textures, &l, &f.tf, SIZE, SIZE, None, points).unwrap()
+    let shades = points.map(|(p, _)| shade(grid, p, &f.tf).unwrap()).unwrap_or_default();
+    let drawn = points.map(|(p, kind)| (p, shades.as_slice(), kind));
+    composite_with_points(&textures, &l, &f.tf, SIZE, SIZE, None, drawn).unwrap()
 }
 
 fn truth(f: &Fixture, grid: &Grid<'_>) -> Image {
@@ -95,10 +97,12 @@ fn points_reduce_the_error_of_the_low_resolution_volume() {
 }
 
 /// Spending a point budget only where the low resolution underestimates
-/// (the points that can add what is missing) gives the same picture as the
-/// paper's |e| rule with fewer points. Measured (65^3, stride 4, threshold
-/// 0.1): 32,563 points with |e| and 9,700 with e > 0, RMSE 0.0353 both.
-/// Bounds: fewer than half the points, RMSE within 2 %.
+/// (the points that can add what is missing) gives nearly the same picture
+/// as the paper's |e| rule with far fewer points. Measured (65^3, stride 4,
+/// threshold 0.1): 32,563 points with |e| give RMSE 0.0222, the 9,700 with
+/// e > 0 give 0.0235 (the |e| set also lowers its neighbours' voxel
+/// averages where the low resolution overshoots, see `points::shade`).
+/// Bounds: fewer than half the points, RMSE within 8 %.
 #[test]
 fn underestimates_buy_as_much_with_fewer_bytes() {
     let f = fixture(Dataset::SheppLogan, false, 30.0, 20.0);
@@ -115,7 +119,7 @@ fn underestimates_buy_as_much_with_fewer_bytes() {
         both.points.len(),
         under.points.len()
     );
-    assert!((r_under - r_both).abs() < 0.02 * r_both, "{r_under} vs {r_both}");
+    assert!((r_under - r_both).abs() < 0.08 * r_both, "{r_under} vs {r_both}");
 }
 
 /// The plan says when points are drawn; a list without points has no such pass.
@@ -212,9 +216,9 @@ fn the_selection_buys_points_where_they_beat_refining() {
         }
         let drawn: usize = l.bricks.iter().flat_map(|b| &b.points).map(|k| k.points.len()).sum();
         let textures = upload(&grid, &l).unwrap();
-        let image =
-            composite_with_points(&textures, &l, &f.tf, SIZE, SIZE, None, points.map(|p| (p, Footprint::Square)))
-                .unwrap();
+        let shades = points.map(|p| shade(&grid, p, &f.tf).unwrap()).unwrap_or_default();
+        let shaded = points.map(|p| (p, shades.as_slice(), Footprint::Square));
+        let image = composite_with_points(&textures, &l, &f.tf, SIZE, SIZE, None, shaded).unwrap();
         (compare(&image, &truth).unwrap().rmse, drawn)
     };
     let (alone, _) = draw(&plain, None);

@@ -11,6 +11,8 @@
 //!   the data by at most a bound (section 3.2).
 //! - [`normals`]: the table of 256 directions a point's normal is quantised
 //!   to (section 3.3).
+//! - [`shade`]: the colour and opacity each point adds under a transfer
+//!   function, averaged over its voxel (section 4.1).
 //! - [`storage`]: the binary point file, 6 bytes a point on grids up to
 //!   256^3 (9 beyond), with a versioned header (section 3.3).
 
@@ -19,12 +21,14 @@ pub mod generate;
 pub mod lowres;
 pub mod mass;
 pub mod normals;
+pub mod shade;
 pub mod storage;
 
 pub use draw::{add_points, Footprint};
 pub use generate::{generate, generate_hybrid, PointOptions, PointSelect};
 pub use lowres::low_resolution;
 pub use mass::PointMass;
+pub use shade::{shade, PointShade};
 pub use storage::{read_points, write_points};
 
 /// One stored point (quantised as in the file).

@@ -71,8 +71,8 @@ use crate::camera::Ray;
 use crate::error::Result;
 use crate::grid::{Grid, GridShape};
 use crate::plan::{BrickDraw, DrawList};
-use crate::points::draw::{footprint, point_colour, point_opacity, project, Footprint};
-use crate::points::PointSet;
+use crate::points::draw::{footprint, project, Footprint};
+use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
 use crate::vec3::dot;
 use rayon::prelude::*;
@@ -144,7 +144,8 @@ pub fn composite_textures(
 }
 
 /// [`composite_textures`] with the points of the hybrid representation that
-/// `list` buckets ([`crate::points::add_points`]), drawn with `footprint`.
+/// `list` buckets ([`crate::points::add_points`]), each adding its shade
+/// ([`crate::points::shade`], one per point of the set), drawn with `footprint`.
 ///
 /// # Errors
 ///
@@ -157,11 +158,11 @@ pub fn composite_with_points(
     width: usize,
     height: usize,
     surface: Option<(&Surface, [f32; 4])>,
-    points: Option<(&PointSet, Footprint)>,
+    points: Option<DrawnPoints<'_>>,
 ) -> Result<Image> {
     check_size(width, height)?;
     check_list(list, &textures.shape, surface.map(|s| s.0))?;
-    check_points(list, points.map(|p| p.0))?;
+    check_points(list, points.map(|p| (p.0, p.1)))?;
     textures.check(list)?;
     Ok(match &textures.texels {
         Texels::F32(t) => execute(t, &textures.shape, list, tf, width, height, surface, points)?,
@@ -169,8 +170,22 @@ pub fn composite_with_points(
     })
 }
 
-/// Every point the list draws exists in `points`.
-fn check_points(list: &DrawList, points: Option<&PointSet>) -> Result<()> {
+/// The points a DrawList draws: the set, each point's shade (one per point
+/// of the set) and the footprint.
+pub type DrawnPoints<'a> = (&'a PointSet, &'a [PointShade], Footprint);
+
+/// Every point the list draws exists in `points`, and each has a shade.
+fn check_points(list: &DrawList, points: Option<(&PointSet, &[PointShade])>) -> Result<()> {
+    if let Some((set, shades)) = points {
+        if shades.len() != set.points.len() {
+            return Err(crate::Error::InvalidArgument(format!(
+                "{} point shades for {} points: shade the point set the list was made with",
+                shades.len(),
+                set.points.len()
+            )));
+        }
+    }
+    let points = points.map(|p| p.0);
     let count = points.map_or(0, |p| p.points.len());
     let named = list.bricks.iter().flat_map(|b| b.points.iter()).flat_map(|k| k.points.iter()).copied().max();
     match named {
@@ -192,7 +207,7 @@ fn execute<S: Texel>(
     width: usize,
     height: usize,
     surface: Option<(&Surface, [f32; 4])>,
-    points: Option<(&PointSet, Footprint)>,
+    points: Option<DrawnPoints<'_>>,
 ) -> Result<Image> {
     let shape = *shape;
     let d0 = list.reference_spacing;
@@ -223,7 +238,7 @@ fn execute<S: Texel>(
         translucent = TriangleGrid::new(s, &shape, ids).map(|g| (s, g, colour, table));
     }
     let lut = Lut::new(tf);
-    let splats = points.map(|(set, kind)| splat(list, &shape, &lut, set, kind, width, height));
+    let splats = points.map(|(set, shades, kind)| splat(list, &shape, set, shades, kind, width, height));
     let executor = Executor {
         list,
         splats: splats.as_ref(),
@@ -277,8 +292,8 @@ struct Splats {
 fn splat(
     list: &DrawList,
     shape: &GridShape,
-    lut: &Lut<'_>,
     set: &PointSet,
+    shades: &[PointShade],
     kind: Footprint,
     width: usize,
     height: usize,
@@ -289,14 +304,12 @@ fn splat(
         for bucket in &draw.points {
             for &i in &bucket.points {
                 let p = &set.points[i as usize];
-                let value = set.value(p);
-                let [r_t, g_t, b_t, a_t] = lut.eval(value);
-                let [r_v, g_v, b_v, a_v] = lut.eval(value - set.error(p));
-                let a_p = point_opacity(a_t, a_v);
+                let shade = shades[i as usize];
+                let a_p = f64::from(shade.alpha);
                 if a_p <= 0.0 {
                     continue;
                 }
-                let [r, g, bl] = point_colour([r_t, g_t, b_t], a_t, [r_v, g_v, b_v], a_v);
+                let [r, g, bl] = shade.rgb.map(f64::from);
                 let world = shape.world(p.ijk.map(f64::from));
                 let Some((centre, s)) = project(&list.camera, width, height, world, d0) else { continue };
                 let depth = list.camera.depth(world);

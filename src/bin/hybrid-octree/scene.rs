@@ -10,7 +10,7 @@ use hybrid_octree::camera::Camera;
 use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::{draw_list, plan, DrawList, Scene, SurfacePass};
-use hybrid_octree::points::{add_points, Footprint, PointSet};
+use hybrid_octree::points::{add_points, shade, Footprint, PointSet};
 use hybrid_octree::render::compositor::composite_with_points;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference, ReferenceOptions};
@@ -116,7 +116,8 @@ pub struct Frame {
     pub slab_polygons_ms: f64,
     /// DrawList time (the per-view part: order, slices, batches and points into slabs, plan), ms.
     pub drawlist_ms: f64,
-    /// Texture upload time (the bricks' textures copied once per DrawList), ms.
+    /// Texture upload time (the bricks' textures copied once per DrawList) and the points'
+    /// shading (once per transfer function), ms.
     pub upload_ms: f64,
     /// Compositing time (the frame drawn from the uploaded textures), ms.
     pub composite_ms: f64,
@@ -146,11 +147,16 @@ pub fn frame(
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let textures = upload(grid, &list)?;
+    let shades = match points {
+        Some((set, _)) => shade(grid, set, &scene.tf)?,
+        None => Vec::new(),
+    };
     let upload_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let colour = surface_colour(args);
     let surface = scene.surface.as_ref().map(|s| (s, colour));
-    let image = composite_with_points(&textures, &list, &scene.tf, args.width, args.height, surface, points)?;
+    let drawn = points.map(|(set, kind)| (set, shades.as_slice(), kind));
+    let image = composite_with_points(&textures, &list, &scene.tf, args.width, args.height, surface, drawn)?;
     let composite_ms = started.elapsed().as_secs_f64() * 1e3;
     Ok(Frame { list, image, slab_polygons_ms, drawlist_ms, upload_ms, composite_ms })
 }

@@ -1,0 +1,223 @@
+//! The colour and opacity each point adds (paper 3, sections 3.3 and 4.1),
+//! averaged over the point's voxel.
+//!
+//! A point stands for the error of one sample, but a renderer's rays do not
+//! pass through samples: they see the trilinear field between them. The
+//! representation's field is the low resolution plus the points' errors,
+//! each spread by the trilinear tent of its sample,
+//!
+//! ```text
+//! f~(x) = T_f(x) + sum_q e_q prod_a max(0, 1 - |x_a - q_a|)      (q: the points)
+//! ```
+//!
+//! and a point is drawn over its voxel, the cube `C_p` of one sample spacing
+//! around it (its footprint is that cube's projection, see
+//! [`super::draw`]). Over that cube, a ray one sample long picks up on
+//! average
+//!
+//! ```text
+//! A_t = mean over C_p of alpha(f~),   C_t = mean over C_p of alpha(f~) c(f~)   (premultiplied)
+//! A_v = mean over C_p of alpha(T_f),  C_v = mean over C_p of alpha(T_f) c(T_f)
+//! ```
+//!
+//! (the midpoint rule on 3 x 3 x 3 sub-cubes), and the point adds
+//!
+//! ```text
+//! a_p = max(0, (A_t - A_v) / (1 - A_v)),    c_p = (C_t - C_v) / (A_t - A_v)  clamped to [0, 1]
+//! ```
+//!
+//! ([`super::draw::point_opacity`], [`super::draw::point_colour`]), so that
+//! the volume and the point together show the representation's own opacity
+//! over the voxel. Taking `alpha(f(p))` at the sample alone over-corrects
+//! structures about a voxel thin under a steep transfer function: the
+//! trilinear field of a one-sample line is at its peak only on the line, and
+//! a whole voxel of the peak's opacity is too much (RMSE against the full
+//! resolution 3 % worse than without points on the mapper's test lines).
+//!
+//! Only what the representation holds is used: the lattice samples of T_f
+//! and the points' dequantised errors.
+
+use super::draw::{point_colour, point_opacity};
+use super::PointSet;
+use crate::error::{Error, Result};
+use crate::grid::Grid;
+use crate::octree::trilinear::lerp;
+use crate::render::transfer::TransferFunction;
+use rayon::prelude::*;
+
+/// What a point adds: straight colour and opacity (0: nothing, not drawn).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointShade {
+    /// Straight colour `c_p`.
+    pub rgb: [f32; 3],
+    /// Opacity `a_p` over one sample spacing.
+    pub alpha: f32,
+}
+
+/// Sub-cube centres per axis, in sample spacings from the point.
+const OFFSETS: [f64; 3] = [-1.0 / 3.0, 0.0, 1.0 / 3.0];
+
+/// The shade of every point of `set` (see the module documentation) under
+/// `tf`, from the lattice samples of `grid` (the grid the points were made
+/// from). Parallel over points; each is computed on its own.
+///
+/// # Errors
+///
+/// [`Error::InvalidArgument`] when `grid` is not the grid of `set`.
+pub fn shade(grid: &Grid<'_>, set: &PointSet, tf: &TransferFunction) -> Result<Vec<PointShade>> {
+    let dims = grid.shape().dims;
+    if dims != set.dims {
+        return Err(Error::InvalidArgument(format!(
+            "the points were made for a {:?} grid, not this {:?} one: generate them from this grid",
+            set.dims, dims
+        )));
+    }
+    // The points' linear indices, increasing (grid order), for neighbour lookups.
+    let index = |ijk: [usize; 3]| ijk[0] + dims[0] * (ijk[1] + dims[1] * ijk[2]);
+    let linear: Vec<usize> = set.points.iter().map(|p| index(p.ijk.map(usize::from))).collect();
+    let error_at = |ijk: [usize; 3]| linear.binary_search(&index(ijk)).ok().map(|k| set.error(&set.points[k]));
+    let low = |x: [f64; 3]| t_f(grid, set.factor, x);
+    // Premultiplied colour and opacity of a value.
+    let rgba = |v: f64| {
+        let [r, g, b, a] = tf.eval(v).map(f64::from);
+        [r * a, g * a, b * a, a]
+    };
+    Ok(set
+        .points
+        .par_iter()
+        .map(|p| {
+            let c = p.ijk.map(usize::from);
+            // The points among the 27 samples around p, with their errors.
+            let mut near: Vec<([f64; 3], f64)> = Vec::with_capacity(27);
+            for dz in -1i64..=1 {
+                for dy in -1i64..=1 {
+                    for dx in -1i64..=1 {
+                        let q = [dx, dy, dz];
+                        let ok = (0..3).all(|a| (0..dims[a] as i64).contains(&(c[a] as i64 + q[a])));
+                        if !ok {
+                            continue;
+                        }
+                        let qi: [usize; 3] = std::array::from_fn(|a| (c[a] as i64 + q[a]) as usize);
+                        if let Some(e) = error_at(qi) {
+                            near.push((qi.map(|v| v as f64), e));
+                        }
+                    }
+                }
+            }
+            let (mut t, mut v) = ([0.0f64; 4], [0.0f64; 4]);
+            for oz in OFFSETS {
+                for oy in OFFSETS {
+                    for ox in OFFSETS {
+                        let o = [ox, oy, oz];
+                        let x: [f64; 3] =
+                            std::array::from_fn(|a| (c[a] as f64 + o[a]).clamp(0.0, (dims[a] - 1) as f64));
+                        let base = low(x);
+                        let excess: f64 = near
+                            .iter()
+                            .map(|(q, e)| e * (0..3).map(|a| (1.0 - (x[a] - q[a]).abs()).max(0.0)).product::<f64>())
+                            .sum();
+                        let (st, sv) = (rgba(base + excess), rgba(base));
+                        for k in 0..4 {
+                            t[k] += st[k] / 27.0;
+                            v[k] += sv[k] / 27.0;
+                        }
+                    }
+                }
+            }
+            let alpha = point_opacity(t[3], v[3]);
+            if alpha <= 0.0 {
+                return PointShade { rgb: [0.0; 3], alpha: 0.0 };
+            }
+            let straight = |s: [f64; 4]| [0, 1, 2].map(|k| if s[3] > 0.0 { s[k] / s[3] } else { 0.0 });
+            let rgb = point_colour(straight(t), t[3], straight(v), v[3]);
+            PointShade { rgb: rgb.map(|c| c as f32), alpha: alpha as f32 }
+        })
+        .collect())
+}
+
+/// T_f at the fractional index `x` (inside the grid): the trilinear
+/// interpolation of the stride-`f` lattice, the last lattice node of an
+/// axis clamped to its last sample (as [`crate::octree::trilinear`]).
+fn t_f(grid: &Grid<'_>, f: usize, x: [f64; 3]) -> f64 {
+    let dims = grid.shape().dims;
+    let bracket = |a: usize| {
+        let x0 = ((x[a] / f as f64).floor() as usize * f).min(dims[a] - 1);
+        (x0, (x0 + f).min(dims[a] - 1), (x[a] - x0 as f64) / f as f64)
+    };
+    let (x0, x1, tx) = bracket(0);
+    let (y0, y1, ty) = bracket(1);
+    let (z0, z1, tz) = bracket(2);
+    let w = |xa| {
+        let v0 = lerp(grid.value(xa, y0, z0), grid.value(xa, y0, z1), tz);
+        let v1 = lerp(grid.value(xa, y1, z0), grid.value(xa, y1, z1), tz);
+        lerp(v0, v1, ty)
+    };
+    lerp(w(x0), w(x1), tx)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::{GridShape, Samples};
+    use crate::points::draw::point_opacity;
+    use crate::points::{generate, PointOptions, PointSelect};
+
+    fn grid(data: &[f32], n: usize) -> Grid<'_> {
+        let shape = GridShape { dims: [n; 3], spacing: [1.0; 3], origin: [0.0; 3] };
+        Grid::new(Samples::F32(data), shape, 1, None).unwrap()
+    }
+
+    fn ramp() -> TransferFunction {
+        TransferFunction::new(vec![(0.0, [0.2, 0.4, 0.6]), (1.0, [1.0, 0.8, 0.2])], vec![(0.0, 0.0), (1.0, 0.5)])
+            .unwrap()
+    }
+
+    #[test]
+    fn a_plane_of_points_shades_as_its_voxel_mean() {
+        // Every odd plane x = 2i + 1 raised by 0.5 over a background of 0.25:
+        // T_2 misses the raise entirely and every sample of those planes is
+        // a point. Around an inner point, f~ is uniform along y and z (its
+        // neighbours' tents sum to 1) and falls off along x as the tent.
+        let n = 9;
+        let data: Vec<f32> = (0..n * n * n).map(|i| if (i % n) % 2 == 1 { 0.75 } else { 0.25 }).collect();
+        let g = grid(&data, n);
+        let set = generate(&g, &PointOptions::new(2, PointSelect::Threshold(0.1))).unwrap();
+        assert_eq!(set.points.len(), 4 * n * n);
+        let shades = shade(&g, &set, &ramp()).unwrap();
+        // A linear opacity ramp: the voxel mean of alpha is alpha of the voxel mean.
+        // Across x, f~ falls linearly from 0.75 to 0.25 + 0.5 / 3 at the sub-cube centres +-1/3.
+        let mean = (0.75 + 2.0 * (0.25 + 0.5 * (1.0 - 1.0 / 3.0))) / 3.0;
+        let expected = point_opacity(0.5 * mean, 0.5 * 0.25);
+        for (p, s) in set.points.iter().zip(&shades) {
+            if p.ijk.iter().all(|&c| c > 0 && usize::from(c) < n - 1) {
+                assert!((f64::from(s.alpha) - expected).abs() < 1e-5, "{:?}: {} vs {expected}", p.ijk, s.alpha);
+            }
+        }
+    }
+
+    #[test]
+    fn a_one_sample_spike_adds_less_than_its_peak() {
+        // One sample at 1 in a field of 0: the trilinear field is at its peak
+        // only at the sample; the voxel mean of a steep opacity is far below it.
+        let n = 9;
+        let mut data = vec![0.0f32; n * n * n];
+        data[5 + n * (5 + n * 5)] = 1.0;
+        let g = grid(&data, n);
+        let set = generate(&g, &PointOptions::new(2, PointSelect::Threshold(0.1))).unwrap();
+        assert_eq!(set.points.len(), 1);
+        let steep = TransferFunction::new(vec![(0.0, [1.0; 3])], vec![(0.0, 0.0), (0.5, 0.0), (1.0, 0.8)]).unwrap();
+        let s = shade(&g, &set, &steep).unwrap()[0];
+        assert!(s.alpha > 0.0 && f64::from(s.alpha) < 0.25 * 0.8, "{s:?}");
+        assert!(s.rgb.iter().all(|&c| (0.0..=1.0).contains(&c)));
+    }
+
+    #[test]
+    fn points_of_another_grid_are_refused() {
+        let data = vec![0.0f32; 5 * 5 * 5];
+        let mut spike = vec![0.0f32; 9 * 9 * 9];
+        spike[5 + 9 * (5 + 9 * 5)] = 1.0;
+        let set = generate(&grid(&spike, 9), &PointOptions::new(2, PointSelect::Threshold(0.1))).unwrap();
+        let e = shade(&grid(&data, 5), &set, &ramp()).unwrap_err().to_string();
+        assert!(e.contains("generate them from this grid"), "{e}");
+    }
+}
