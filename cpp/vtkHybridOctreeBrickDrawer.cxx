@@ -18,12 +18,12 @@
 
 namespace
 {
-/// Floats per vertex: position, normal, clip interval (near, far), kind.
-/// Kinds: 0 a slice, 1 a surface triangle, 2 a ray-marched box, 3 a square
-/// point, 4 a Gaussian point. A point's six vertices all hold its centre,
-/// (value, error, 0) in the normal and their quad corner (+-1, +-1) in the
-/// clip interval.
-constexpr std::size_t Stride = 9;
+/// Floats per vertex: position, normal, clip interval (near, far), kind,
+/// point opacity. Kinds: 0 a slice, 1 a surface triangle, 2 a ray-marched
+/// box, 3 a square point, 4 a Gaussian point. A point's six vertices all
+/// hold its centre, its straight colour in the normal, their quad corner
+/// (+-1, +-1) in the clip interval, and its opacity a_p.
+constexpr std::size_t Stride = 10;
 constexpr float SquarePoint = 3.0f;
 constexpr float GaussianPoint = 4.0f;
 /// An unbounded clip side (the shader's clip distances stay finite).
@@ -34,6 +34,7 @@ in vec3 vertexMC;
 in vec3 normalMC;
 in vec2 clipMC;
 in float surfaceMC;
+in float alphaMC;
 uniform mat4 MCDC;
 uniform vec3 eye;
 uniform vec3 forward;
@@ -44,14 +45,16 @@ out vec3 positionMC;
 out vec3 normal;
 flat out float isSurface;
 flat out vec4 pointFrame;
-flat out vec3 pointShape;
+flat out vec4 pointColor;
+flat out float pointWeight;
 void main()
 {
   positionMC = vertexMC;
   normal = normalMC;
   isSurface = surfaceMC;
   pointFrame = vec4(0.0);
-  pointShape = vec3(0.0);
+  pointColor = vec4(normalMC, alphaMC);
+  pointWeight = 0.0;
   if (surfaceMC > 2.5)
   {
     // A point: its footprint, s = d0 / pixel pixels across at its depth,
@@ -90,7 +93,7 @@ void main()
     vec2 corner = mix(lo, hi, clipMC * 0.5 + 0.5);
     gl_Position = vec4((corner / viewportSize * 2.0 - 1.0) * c.w, c.z, c.w);
     pointFrame = vec4(centre, sigma, radius);
-    pointShape = vec3(normalMC.x, normalMC.y, weight);
+    pointWeight = weight;
     gl_ClipDistance[0] = 1.0;
     gl_ClipDistance[1] = 1.0;
     return;
@@ -107,7 +110,8 @@ in vec3 positionMC;
 in vec3 normal;
 flat in float isSurface;
 flat in vec4 pointFrame;
-flat in vec3 pointShape;
+flat in vec4 pointColor;
+flat in float pointWeight;
 uniform sampler3D brickTexture;
 uniform sampler2D transferTable;
 uniform sampler2D opaqueDepth;
@@ -140,13 +144,6 @@ vec4 sampleAt(vec3 p)
     a = 1.0 - exp(opacityRatio * log(1.0 - a));
   }
   return vec4(clamp(c.rgb, 0.0, 1.0), a);
-}
-
-// The table's colour and opacity of `value` (uncorrected: one sample spacing d0).
-vec4 tableAt(float value)
-{
-  vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
-  return clamp(c, 0.0, 1.0);
 }
 
 // The view depth (x - eye) . forward of the point at this pixel and depth-buffer value d.
@@ -204,10 +201,9 @@ void main()
   }
   if (isSurface > 2.5)
   {
-    // A point (paper 3 section 4): a_p = (a_t - a_v) / (1 - a_v) of the
-    // original value over the textures' f - e, in the colour that makes the
-    // pair show the original, times the footprint's coverage.
-    float w = pointShape.z;
+    // A point (paper 3 section 4): its colour and opacity a_p (see the
+    // header) times the footprint's coverage.
+    float w = pointWeight;
     if (isSurface > 3.5)
     {
       vec2 f = floor(pointFrame.xy);
@@ -218,15 +214,12 @@ void main()
       vec2 d = gl_FragCoord.xy - pointFrame.xy;
       w = min(exp(-dot(d, d) / (2.0 * pointFrame.z * pointFrame.z)) * w, 1.0);
     }
-    vec4 t = tableAt(pointShape.x);
-    vec4 v = tableAt(pointShape.x - pointShape.y);
-    if (t.a <= v.a || v.a >= 1.0 || w <= 0.0)
+    float a = pointColor.a * w;
+    if (a <= 0.0)
     {
       discard;
     }
-    float a = (t.a - v.a) / (1.0 - v.a) * w;
-    vec3 rgb = clamp((t.a * t.rgb - v.a * v.rgb) / (t.a - v.a), 0.0, 1.0);
-    gl_FragData[0] = vec4(rgb * a, a);
+    gl_FragData[0] = vec4(pointColor.rgb * a, a);
     return;
   }
   if (isSurface > 0.5)
@@ -260,12 +253,12 @@ struct Placed
 vtkHybridOctreeBrickDrawer::vtkHybridOctreeBrickDrawer() = default;
 vtkHybridOctreeBrickDrawer::~vtkHybridOctreeBrickDrawer() = default;
 
-void vtkHybridOctreeBrickDrawer::Emit(
-  const float position[3], const float normal[3], float near, float far, float surface)
+void vtkHybridOctreeBrickDrawer::Emit(const float position[3], const float normal[3],
+  float near, float far, float surface, float alpha)
 {
   this->VertexData.insert(this->VertexData.end(),
     { position[0], position[1], position[2], normal[0], normal[1], normal[2], near, far,
-      surface });
+      surface, alpha });
 }
 
 void vtkHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
@@ -294,7 +287,8 @@ void vtkHybridOctreeBrickDrawer::EmitPoints(const vtkHybridOctreeBridge::DrawLis
   std::size_t bucket, const PointData& points, const double eye[3], std::vector<Ordered>& order)
 {
   const vtkHybridOctreeBridge::PointsDrawing& d = *points.Drawing;
-  const std::size_t count = d.Value.size();
+  const std::vector<float>& shades = *points.Shades;
+  const std::size_t count = std::min(d.Value.size(), shades.size() / 4);
   order.clear();
   for (std::size_t k = list.BucketPointOffsets[bucket]; k < list.BucketPointOffsets[bucket + 1];
        ++k)
@@ -321,13 +315,17 @@ void vtkHybridOctreeBrickDrawer::EmitPoints(const vtkHybridOctreeBridge::DrawLis
   for (const Ordered& o : order)
   {
     const float* p = &d.Position[3 * static_cast<std::size_t>(o.second)];
-    const float shape[3] = { d.Value[o.second], d.Error[o.second], 0.0f };
+    const float* shade = &shades[4 * static_cast<std::size_t>(o.second)];
+    if (!(shade[3] > 0.0f))
+    {
+      continue; // adds nothing
+    }
     for (const auto& c : corners)
     {
-      this->Emit(p, shape, c[0], c[1], kind);
+      this->Emit(p, shade, c[0], c[1], kind, shade[3]);
     }
+    ++this->PointsPlaced;
   }
-  this->PointsPlaced += order.size();
 }
 
 std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawList& list,
@@ -342,7 +340,8 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
   }
   this->PointSpacing = static_cast<float>(list.ReferenceSpacing);
   this->PointsPlaced = 0;
-  const bool withPoints = points.Drawing && list.BucketOffsets.size() == list.GetNumberOfBricks() + 1;
+  const bool withPoints = points.Drawing && points.Shades &&
+    list.BucketOffsets.size() == list.GetNumberOfBricks() + 1;
   std::vector<Ordered> order;
   this->VertexData.clear();
   this->Boxes.clear();
@@ -507,6 +506,8 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
       !this->Vao->AddAttributeArray(
         this->Program, this->Vertices, "clipMC", 6 * sizeof(float), stride, VTK_FLOAT, 2, false) ||
       !this->Vao->AddAttributeArray(this->Program, this->Vertices, "surfaceMC", 8 * sizeof(float),
+        stride, VTK_FLOAT, 1, false) ||
+      !this->Vao->AddAttributeArray(this->Program, this->Vertices, "alphaMC", 9 * sizeof(float),
         stride, VTK_FLOAT, 1, false)))
   {
     error = "could not bind the brick vertices";

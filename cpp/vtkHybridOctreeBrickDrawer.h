@@ -42,12 +42,13 @@
  *     Gaussian: sigma = max(s/2, 0.5), pixels within r = ceil(3 sigma) of floor(c),
  *               coverage exp(-|x - c|^2 / 2 sigma^2) s^2 / sum (the sum over those pixels)
  *
- * and its opacity and colour over the textures' value f - e (the table's
- * opacities, one sample d0 thick):
+ * and its colour c_p and opacity a_p, what it adds over the textures
+ * averaged over its voxel (crate::points::shade, computed in Rust per
+ * transfer function, the CPU compositor's own):
  *
- *     a_p = (a_t - a_v) / (1 - a_v),   c_p = (a_t c_t - a_v c_v) / (a_t - a_v)
+ *     a_p = (A_t - A_v) / (1 - A_v),   c_p = (C_t - C_v) / (A_t - A_v)
  *
- * drawn `(c_p a_p w, a_p w)` with coverage w; nothing where a_t <= a_v.
+ * drawn `(c_p a_p w, a_p w)` with coverage w; points adding nothing are not drawn.
  */
 #ifndef vtkHybridOctreeBrickDrawer_h
 #define vtkHybridOctreeBrickDrawer_h
@@ -82,10 +83,12 @@ public:
   vtkHybridOctreeBrickDrawer();
   ~vtkHybridOctreeBrickDrawer();
 
-  /// The points the list's buckets name, and their footprint.
+  /// The points the list's buckets name, what each adds (4 floats a
+  /// point: straight colour, opacity a_p; Points::GetShades()) and their footprint.
   struct PointData
   {
     const vtkHybridOctreeBridge::PointsDrawing* Drawing = nullptr;
+    const std::vector<float>* Shades = nullptr;
     bool Gaussian = false;
   };
 
@@ -141,8 +144,9 @@ private:
   /// Appends the 12 triangles of a box (flag 2: a ray-marched brick).
   void EmitBox(const double bounds[6]);
 
-  /// Appends one vertex: position, normal, clip interval, kind.
-  void Emit(const float position[3], const float normal[3], float near, float far, float surface);
+  /// Appends one vertex: position, normal, clip interval, kind, point opacity.
+  void Emit(const float position[3], const float normal[3], float near, float far, float surface,
+    float alpha = 0.0f);
 
   /// (view depth, point id).
   using Ordered = std::pair<double, std::uint32_t>;

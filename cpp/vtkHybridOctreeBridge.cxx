@@ -423,6 +423,18 @@ bool Points::GetDrawing(PointsDrawing& drawing, std::string& error) const
   });
 }
 
+bool Points::GetShades(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const std::vector<double>& colorPoints, const std::vector<double>& opacityPoints,
+  std::vector<float>& shades, std::string& error) const
+{
+  return Guarded(error, [&] {
+    const rust::Vec<float> out = this->Impl->Handle->shades(ToSlice(bytes, byteCount),
+      ToRust(grid), rust::Slice<const double>(colorPoints.data(), colorPoints.size()),
+      rust::Slice<const double>(opacityPoints.data(), opacityPoints.size()));
+    CopyInto(out, shades);
+  });
+}
+
 std::unique_ptr<Selection> VolumeOctree::Select(
   const SelectDescription& options, const Points& points, std::string& error) const
 {

@@ -427,6 +427,18 @@ public:
   /// Positions, values and errors. False and `error` on failure.
   bool GetDrawing(PointsDrawing& drawing, std::string& error) const;
 
+  /**
+   * What each point adds under the transfer function of `colorPoints`
+   * ((value, r, g, b) flattened) and `opacityPoints` ((value, opacity)
+   * flattened): 4 floats a point into `shades`, its straight colour and
+   * opacity, averaged over its voxel (see src/points/shade.rs). `bytes`,
+   * `byteCount` and `grid`: the image the points were made from. False and
+   * `error` on failure.
+   */
+  bool GetShades(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    const std::vector<double>& colorPoints, const std::vector<double>& opacityPoints,
+    std::vector<float>& shades, std::string& error) const;
+
 private:
   friend class VolumeOctree;
   struct Internals;

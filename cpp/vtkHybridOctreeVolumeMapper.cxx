@@ -83,6 +83,11 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   unsigned long PointsGeneration = 0;
   std::vector<double> PointsKey;
   unsigned long PointsVersion = 0;
+  // What each point adds under the transfer function, for that version and table.
+  std::vector<float> Shades;
+  unsigned long ShadesVersion = 0;
+  std::vector<double> ShadesColors;
+  std::vector<double> ShadesOpacities;
 
   // The selection, made again when its inputs change.
   std::unique_ptr<Selection> Selected;
@@ -335,7 +340,7 @@ bool vtkHybridOctreeVolumeMapper::UpdatePoints()
     static_cast<double>(this->PointBudget) };
   if (in.PointSet && in.PointsGeneration == in.OctreeGeneration && in.PointsKey == key)
   {
-    return true;
+    return this->UpdatePointShades();
   }
   in.PointSet.reset();
   PointsOptions options;
@@ -357,6 +362,28 @@ bool vtkHybridOctreeVolumeMapper::UpdatePoints()
   in.PointsGeneration = in.OctreeGeneration;
   in.PointsKey = key;
   ++in.PointsVersion;
+  return this->UpdatePointShades();
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdatePointShades()
+{
+  vtkInternals& in = *this->Internals;
+  if (in.ShadesVersion == in.PointsVersion && in.ShadesColors == in.Transfer.ColorPoints &&
+    in.ShadesOpacities == in.Transfer.OpacityPoints)
+  {
+    return true;
+  }
+  std::string error;
+  if (!in.PointSet->GetShades(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+        in.Transfer.ColorPoints, in.Transfer.OpacityPoints, in.Shades, error))
+  {
+    in.ShadesVersion = 0;
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.ShadesVersion = in.PointsVersion;
+  in.ShadesColors = in.Transfer.ColorPoints;
+  in.ShadesOpacities = in.Transfer.OpacityPoints;
   return true;
 }
 
@@ -630,6 +657,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   if (in.PointSet && !list.BucketOffsets.empty())
   {
     points.Drawing = &in.Drawing;
+    points.Shades = &in.Shades;
     points.Gaussian = this->PointFootprint == 1;
   }
   this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(

@@ -128,10 +128,10 @@ public:
    * on grids up to 256 samples per axis, 9 beyond). Points are drawn in the
    * slabs between their brick's slices, as squares of whole pixels
    * (PointFootprint 0, default) or Gaussian splats (1), with the opacity
-   * that, over the textures, gives the data's own (see
-   * vtkHybridOctreeBrickDrawer). Off by default. Only points where the
-   * textures underestimate are made: elsewhere a point could only add
-   * opacity the data does not have.
+   * that, over the textures, gives the representation's own averaged over
+   * the point's voxel (see vtkHybridOctreeBrickDrawer). Off by default.
+   * Only points where the textures underestimate are made: elsewhere a
+   * point could only add opacity the data does not have.
    */
   vtkSetMacro(UsePoints, bool);
   vtkGetMacro(UsePoints, bool);
@@ -263,6 +263,8 @@ private:
   void UpdateModelMatrix(vtkImageData* image, vtkVolume* vol);
   bool UpdateTransferFunction(vtkVolumeProperty* property);
   bool UpdatePoints();
+  /// The points' shades for the current transfer function table.
+  bool UpdatePointShades();
   bool UpdateSelection(vtkRenderer* ren, vtkVolumeProperty* property);
   bool UpdateSurface();
   /// The active camera in the octree's frame (through the inverse model matrix).

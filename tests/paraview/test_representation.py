@@ -113,7 +113,7 @@ t.check(rmse(small, baseline) > error_full, "a smaller budget is further from th
 # ---- Hybrid points: paid from the same budget, drawn between the slices ---------------
 display.HybridPoints = 1
 display.PointFactor = 4
-display.PointThreshold = 0.05
+display.PointThreshold = 0.4
 for footprint in ("Square", "Gaussian"):
     display.PointFootprint = footprint
     Render(view)
@@ -127,6 +127,10 @@ for footprint in ("Square", "Gaussian"):
     t.check(points > 0, "%s points drawn: %d" % (footprint, points))
     t.check(0.0 < s_points["LastTextureMB"] <= 0.05, "textures within the budget: %s MB" % s_points["LastTextureMB"])
     t.check(rmse(with_points, small) > 0.001, "the points change the picture")
+    # At equal bytes the points buy more than textures would here (measured
+    # 0.0584 square, against 0.0640 without; docs/BENCHMARKS.md).
+    t.check(rmse(with_points, full) <= 1.02 * rmse(small, full),
+            "%s points: no further from the 64 MB picture than without them" % footprint)
 display.HybridPoints = 0
 Render(view)
 t.check(stats(display)["LastPlan"] == "volume", "points off: plan 'volume'")
