@@ -66,8 +66,7 @@ impl PointsHandle {
         opacities: &[f64],
     ) -> std::result::Result<Vec<f32>, String> {
         guarded(|| {
-            // Only the low resolution's lattice samples are read (NaN was refused at generation).
-            let grid = crate::ffi::grid_unscanned(bytes, desc)?;
+            let grid = grid_of(bytes, desc)?;
             if grid.shape() != &self.shape {
                 return Err(Error::InvalidArgument(
                     "the image changed since the points were made (dims, spacing or origin); make them again".into(),

@@ -2,40 +2,36 @@
 //! averaged over the point's voxel.
 //!
 //! A point stands for the error of one sample, but a renderer's rays do not
-//! pass through samples: they see the trilinear field between them. The
-//! representation's field is the low resolution plus the points' errors,
-//! each spread by the trilinear tent of its sample,
+//! pass through samples: they see the trilinear field between them. A point
+//! is drawn over its voxel, the cube `C_p` of one sample spacing around it
+//! (its footprint is one sample spacing across, see [`super::draw`]), so
+//! what it must add is what the data's field has there beyond the low
+//! resolution's, on average over the cube:
 //!
 //! ```text
-//! f~(x) = T_f(x) + sum_q e_q prod_a max(0, 1 - |x_a - q_a|)      (q: the points)
-//! ```
-//!
-//! and a point is drawn over its voxel, the cube `C_p` of one sample spacing
-//! around it (its footprint is that cube's projection, see
-//! [`super::draw`]). Over that cube, a ray one sample long picks up on
-//! average
-//!
-//! ```text
-//! A_t = mean over C_p of alpha(f~),   C_t = mean over C_p of alpha(f~) c(f~)   (premultiplied)
+//! A_t = mean over C_p of alpha(f),    C_t = mean over C_p of alpha(f) c(f)      (premultiplied)
 //! A_v = mean over C_p of alpha(T_f),  C_v = mean over C_p of alpha(T_f) c(T_f)
 //! ```
 //!
-//! (the midpoint rule on 3 x 3 x 3 sub-cubes), and the point adds
+//! (`f` the full-resolution trilinear field, the midpoint rule on 3 x 3 x 3
+//! sub-cubes), and the point adds
 //!
 //! ```text
 //! a_p = max(0, (A_t - A_v) / (1 - A_v)),    c_p = (C_t - C_v) / (A_t - A_v)  clamped to [0, 1]
 //! ```
 //!
-//! ([`super::draw::point_opacity`], [`super::draw::point_colour`]), so that
-//! the volume and the point together show the representation's own opacity
-//! over the voxel. Taking `alpha(f(p))` at the sample alone over-corrects
-//! structures about a voxel thin under a steep transfer function: the
-//! trilinear field of a one-sample line is at its peak only on the line, and
-//! a whole voxel of the peak's opacity is too much (RMSE against the full
-//! resolution 3 % worse than without points on the mapper's test lines).
+//! ([`super::draw::point_opacity`], [`super::draw::point_colour`]). Taking
+//! `alpha(f(p))` at the sample alone (section 4.1 read literally)
+//! over-corrects structures about a voxel thin under a steep transfer
+//! function: the field of a one-sample line is at its peak only on the line,
+//! and a whole voxel of the peak's opacity is too much. Measured
+//! (docs/BENCHMARKS.md): on the 64^3 phantom the voxel mean takes stride 4 +
+//! points from 8 % to 45 % below stride 4 alone, on the mapper's test bars
+//! from 40 % to 55 %; on the 256^3 phantom at 512 x 512 it reads 10 % above
+//! the sample rule (40 % instead of 46 % below stride 4 alone).
 //!
-//! Only what the representation holds is used: the lattice samples of T_f
-//! and the points' dequantised errors.
+//! The shade depends on the transfer function, so renderers compute it per
+//! table, from the grid the points were made from.
 
 use super::draw::{point_colour, point_opacity};
 use super::PointSet;
@@ -58,8 +54,8 @@ pub struct PointShade {
 const OFFSETS: [f64; 3] = [-1.0 / 3.0, 0.0, 1.0 / 3.0];
 
 /// The shade of every point of `set` (see the module documentation) under
-/// `tf`, from the lattice samples of `grid` (the grid the points were made
-/// from). Parallel over points; each is computed on its own.
+/// `tf`, from `grid` (the grid the points were made from). Parallel over
+/// points; each is computed on its own.
 ///
 /// # Errors
 ///
@@ -72,10 +68,6 @@ pub fn shade(grid: &Grid<'_>, set: &PointSet, tf: &TransferFunction) -> Result<V
             set.dims, dims
         )));
     }
-    // The points' linear indices, increasing (grid order), for neighbour lookups.
-    let index = |ijk: [usize; 3]| ijk[0] + dims[0] * (ijk[1] + dims[1] * ijk[2]);
-    let linear: Vec<usize> = set.points.iter().map(|p| index(p.ijk.map(usize::from))).collect();
-    let error_at = |ijk: [usize; 3]| linear.binary_search(&index(ijk)).ok().map(|k| set.error(&set.points[k]));
     let low = |x: [f64; 3]| t_f(grid, set.factor, x);
     // Premultiplied colour and opacity of a value.
     let rgba = |v: f64| {
@@ -87,23 +79,6 @@ pub fn shade(grid: &Grid<'_>, set: &PointSet, tf: &TransferFunction) -> Result<V
         .par_iter()
         .map(|p| {
             let c = p.ijk.map(usize::from);
-            // The points among the 27 samples around p, with their errors.
-            let mut near: Vec<([f64; 3], f64)> = Vec::with_capacity(27);
-            for dz in -1i64..=1 {
-                for dy in -1i64..=1 {
-                    for dx in -1i64..=1 {
-                        let q = [dx, dy, dz];
-                        let ok = (0..3).all(|a| (0..dims[a] as i64).contains(&(c[a] as i64 + q[a])));
-                        if !ok {
-                            continue;
-                        }
-                        let qi: [usize; 3] = std::array::from_fn(|a| (c[a] as i64 + q[a]) as usize);
-                        if let Some(e) = error_at(qi) {
-                            near.push((qi.map(|v| v as f64), e));
-                        }
-                    }
-                }
-            }
             let (mut t, mut v) = ([0.0f64; 4], [0.0f64; 4]);
             for oz in OFFSETS {
                 for oy in OFFSETS {
@@ -111,12 +86,7 @@ pub fn shade(grid: &Grid<'_>, set: &PointSet, tf: &TransferFunction) -> Result<V
                         let o = [ox, oy, oz];
                         let x: [f64; 3] =
                             std::array::from_fn(|a| (c[a] as f64 + o[a]).clamp(0.0, (dims[a] - 1) as f64));
-                        let base = low(x);
-                        let excess: f64 = near
-                            .iter()
-                            .map(|(q, e)| e * (0..3).map(|a| (1.0 - (x[a] - q[a]).abs()).max(0.0)).product::<f64>())
-                            .sum();
-                        let (st, sv) = (rgba(base + excess), rgba(base));
+                        let (st, sv) = (rgba(t_f(grid, 1, x)), rgba(low(x)));
                         for k in 0..4 {
                             t[k] += st[k] / 27.0;
                             v[k] += sv[k] / 27.0;
@@ -176,8 +146,8 @@ mod tests {
     fn a_plane_of_points_shades_as_its_voxel_mean() {
         // Every odd plane x = 2i + 1 raised by 0.5 over a background of 0.25:
         // T_2 misses the raise entirely and every sample of those planes is
-        // a point. Around an inner point, f~ is uniform along y and z (its
-        // neighbours' tents sum to 1) and falls off along x as the tent.
+        // a point. Around an inner point, f is uniform along y and z and
+        // falls off linearly along x to the planes beside it.
         let n = 9;
         let data: Vec<f32> = (0..n * n * n).map(|i| if (i % n) % 2 == 1 { 0.75 } else { 0.25 }).collect();
         let g = grid(&data, n);
@@ -185,7 +155,7 @@ mod tests {
         assert_eq!(set.points.len(), 4 * n * n);
         let shades = shade(&g, &set, &ramp()).unwrap();
         // A linear opacity ramp: the voxel mean of alpha is alpha of the voxel mean.
-        // Across x, f~ falls linearly from 0.75 to 0.25 + 0.5 / 3 at the sub-cube centres +-1/3.
+        // Across x, f falls linearly from 0.75 to 0.25 + 0.5 / 3 at the sub-cube centres +-1/3.
         let mean = (0.75 + 2.0 * (0.25 + 0.5 * (1.0 - 1.0 / 3.0))) / 3.0;
         let expected = point_opacity(0.5 * mean, 0.5 * 0.25);
         for (p, s) in set.points.iter().zip(&shades) {
