@@ -36,8 +36,9 @@
 use super::draw::{point_colour, point_opacity};
 use super::PointSet;
 use crate::error::{Error, Result};
-use crate::grid::Grid;
+use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear::lerp;
+use crate::render::lut::Lut;
 use crate::render::transfer::TransferFunction;
 use rayon::prelude::*;
 
@@ -68,58 +69,72 @@ pub fn shade(grid: &Grid<'_>, set: &PointSet, tf: &TransferFunction) -> Result<V
             set.dims, dims
         )));
     }
-    let low = |x: [f64; 3]| t_f(grid, set.factor, x);
-    // Premultiplied colour and opacity of a value.
-    let rgba = |v: f64| {
-        let [r, g, b, a] = tf.eval(v).map(f64::from);
-        [r * a, g * a, b * a, a]
-    };
-    Ok(set
-        .points
-        .par_iter()
-        .map(|p| {
-            let c = p.ijk.map(usize::from);
-            let (mut t, mut v) = ([0.0f64; 4], [0.0f64; 4]);
-            for oz in OFFSETS {
-                for oy in OFFSETS {
-                    for ox in OFFSETS {
-                        let o = [ox, oy, oz];
-                        let x: [f64; 3] =
-                            std::array::from_fn(|a| (c[a] as f64 + o[a]).clamp(0.0, (dims[a] - 1) as f64));
-                        let (st, sv) = (rgba(t_f(grid, 1, x)), rgba(low(x)));
-                        for k in 0..4 {
-                            t[k] += st[k] / 27.0;
-                            v[k] += sv[k] / 27.0;
+    Ok(grid.visit(Kernel { set, lut: &Lut::new(tf) }))
+}
+
+/// The shading of every point, on the typed grid.
+struct Kernel<'a> {
+    set: &'a PointSet,
+    lut: &'a Lut<'a>,
+}
+
+impl GridVisitor for Kernel<'_> {
+    type Output = Vec<PointShade>;
+
+    fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<PointShade> {
+        let (set, dims) = (self.set, g.dims);
+        // Premultiplied colour and opacity of a value.
+        let rgba = |v: f64| {
+            let [r, gr, b, a] = self.lut.eval(v);
+            [r * a, gr * a, b * a, a]
+        };
+        let at = |i, j, k| g.at(i, j, k);
+        set.points
+            .par_iter()
+            .map(|p| {
+                let c = p.ijk.map(usize::from);
+                let (mut t, mut v) = ([0.0f64; 4], [0.0f64; 4]);
+                for oz in OFFSETS {
+                    for oy in OFFSETS {
+                        for ox in OFFSETS {
+                            let o = [ox, oy, oz];
+                            let x: [f64; 3] =
+                                std::array::from_fn(|a| (c[a] as f64 + o[a]).clamp(0.0, (dims[a] - 1) as f64));
+                            let (st, sv) = (rgba(t_s(&at, dims, 1, x)), rgba(t_s(&at, dims, set.factor, x)));
+                            for k in 0..4 {
+                                t[k] += st[k] / 27.0;
+                                v[k] += sv[k] / 27.0;
+                            }
                         }
                     }
                 }
-            }
-            let alpha = point_opacity(t[3], v[3]);
-            if alpha <= 0.0 {
-                return PointShade { rgb: [0.0; 3], alpha: 0.0 };
-            }
-            let straight = |s: [f64; 4]| [0, 1, 2].map(|k| if s[3] > 0.0 { s[k] / s[3] } else { 0.0 });
-            let rgb = point_colour(straight(t), t[3], straight(v), v[3]);
-            PointShade { rgb: rgb.map(|c| c as f32), alpha: alpha as f32 }
-        })
-        .collect())
+                let alpha = point_opacity(t[3], v[3]);
+                if alpha <= 0.0 {
+                    return PointShade { rgb: [0.0; 3], alpha: 0.0 };
+                }
+                let straight = |s: [f64; 4]| [0, 1, 2].map(|k| if s[3] > 0.0 { s[k] / s[3] } else { 0.0 });
+                let rgb = point_colour(straight(t), t[3], straight(v), v[3]);
+                PointShade { rgb: rgb.map(|c| c as f32), alpha: alpha as f32 }
+            })
+            .collect()
+    }
 }
 
-/// T_f at the fractional index `x` (inside the grid): the trilinear
-/// interpolation of the stride-`f` lattice, the last lattice node of an
-/// axis clamped to its last sample (as [`crate::octree::trilinear`]).
-fn t_f(grid: &Grid<'_>, f: usize, x: [f64; 3]) -> f64 {
-    let dims = grid.shape().dims;
+/// T_s at the fractional index `x` (inside the grid of `dims` whose samples
+/// `at` gives): the trilinear interpolation of the stride-`s` lattice, the
+/// last lattice node of an axis clamped to its last sample (as
+/// [`crate::octree::trilinear`]); `s = 1` is the full-resolution field.
+fn t_s(at: &impl Fn(usize, usize, usize) -> f64, dims: [usize; 3], s: usize, x: [f64; 3]) -> f64 {
     let bracket = |a: usize| {
-        let x0 = ((x[a] / f as f64).floor() as usize * f).min(dims[a] - 1);
-        (x0, (x0 + f).min(dims[a] - 1), (x[a] - x0 as f64) / f as f64)
+        let x0 = ((x[a] / s as f64).floor() as usize * s).min(dims[a] - 1);
+        (x0, (x0 + s).min(dims[a] - 1), (x[a] - x0 as f64) / s as f64)
     };
     let (x0, x1, tx) = bracket(0);
     let (y0, y1, ty) = bracket(1);
     let (z0, z1, tz) = bracket(2);
     let w = |xa| {
-        let v0 = lerp(grid.value(xa, y0, z0), grid.value(xa, y0, z1), tz);
-        let v1 = lerp(grid.value(xa, y1, z0), grid.value(xa, y1, z1), tz);
+        let v0 = lerp(at(xa, y0, z0), at(xa, y0, z1), tz);
+        let v1 = lerp(at(xa, y1, z0), at(xa, y1, z1), tz);
         lerp(v0, v1, ty)
     };
     lerp(w(x0), w(x1), tx)

@@ -17,7 +17,7 @@ mod check;
 pub mod compositor;
 mod geometry;
 pub mod image;
-mod lut;
+pub(crate) mod lut;
 pub mod metrics;
 pub mod reference;
 mod sample;
