@@ -11,7 +11,10 @@
  * hidden: volume only), `transparent` (a
  * vtkPiecewiseFunction that is 0 everywhere: no brick), `errors` (budget 0,
  * NaN tolerance, bad ROI, camera at its focal point, brick out of range,
- * another octree's selection: clear messages, no crash).
+ * another octree's selection: clear messages, no crash), `points` (the
+ * hybrid representation's points kept for drawing: positions, shades, a
+ * selection that buys them within the budget, their buckets in the
+ * DrawList, and the errors).
  */
 #include "vtkHybridOctreeBridge.h"
 
@@ -517,6 +520,115 @@ int Errors()
     "another image: '" + error + "'");
   return check.Result();
 }
+int Points()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  B::PointsOptions options;
+  options.Factor = 2;
+  options.UseBudget = true;
+  options.Budget = 300; // the 300 largest underestimates of stride-2 textures
+  options.UnderestimatesOnly = true;
+  std::string error;
+  std::unique_ptr<B::Points> points =
+    f.Octree->MakePoints(f.Bytes(), f.ByteCount(), f.Grid, options, error);
+  if (!check.Check(points != nullptr, "make points: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  B::PointsDrawing drawing;
+  check.Check(points->GetDrawing(drawing, error), "drawing: " + error);
+  const std::size_t n = drawing.Value.size();
+  check.Check(n == 300 && drawing.Position.size() == 3 * n && drawing.Error.size() == n &&
+      drawing.Factor == 2 && drawing.PointBytes == 6 * n,
+    "300 points, 6 bytes each, with positions, values and errors");
+  bool inside = true, positive = true;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = drawing.Position[3 * i + a];
+      const double lo = f.Grid.Origin[a];
+      const double hi = lo + f.Grid.Spacing[a] * static_cast<double>(f.Grid.Dims[a] - 1);
+      inside = inside && x >= lo - 1e-4 && x <= hi + 1e-4;
+    }
+    positive = positive && drawing.Error[i] > 0.0f;
+  }
+  check.Check(inside, "points inside the image");
+  check.Check(positive, "underestimates only");
+  // Shades for a ramp: 4 floats a point, colours and opacities in [0, 1].
+  const std::vector<double> colors = { 30.0, 0.1, 0.2, 0.9, 280.0, 0.9, 0.1, 0.1 };
+  const std::vector<double> opacities = { 30.0, 0.0, 280.0, 0.6 };
+  std::vector<float> shades;
+  check.Check(points->GetShades(f.Bytes(), f.ByteCount(), f.Grid, colors, opacities, shades, error),
+    "shades: " + error);
+  bool ranged = shades.size() == 4 * n;
+  std::size_t adding = 0;
+  for (std::size_t i = 0; ranged && i < shades.size(); ++i)
+  {
+    ranged = shades[i] >= 0.0f && shades[i] <= 1.0f;
+    adding += (i % 4 == 3 && shades[i] > 0.0f) ? 1 : 0;
+  }
+  check.Check(ranged && adding > 0, "shades in [0, 1], some points add opacity");
+  // A budget between stride 2 and full resolution: the selection buys points.
+  B::SelectDescription select;
+  select.BudgetBytes = 12000;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(select, *points, error);
+  if (!check.Check(selection != nullptr, "select with points: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  B::SelectionSummary summary;
+  check.Check(selection->GetSummary(summary, error), "summary: " + error);
+  std::cout << "points bought " << summary.Points << " (" << summary.PointBytes
+            << " bytes), texture bytes " << summary.TextureBytes << "\n";
+  check.Check(summary.Points > 0 && summary.PointBytes == 6 * summary.Points &&
+      summary.TextureBytes + summary.PointBytes <= 12000,
+    "points bought within the budget with the textures");
+  vtkNew<vtkCamera> camera;
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double diagonal[3] = { 1.0, 0.7, 0.4 };
+  Aim(camera, centre, diagonal, false);
+  B::DrawList list;
+  check.Check(selection->GetDrawList(*f.Octree, B::DescribeCamera(camera), list, error),
+    "draw list: " + error);
+  const std::size_t bricks = list.GetNumberOfBricks();
+  check.Check(list.BucketOffsets.size() == bricks + 1 &&
+      list.BucketPointOffsets.size() == list.BucketSlab.size() + 1 &&
+      list.BucketPoints.size() == summary.Points,
+    "every point bought is in one bucket");
+  check.Check(list.Passes == "volume,points", "plan 'volume,points': '" + list.Passes + "'");
+  bool strides = true;
+  for (std::size_t i = 0; i < bricks; ++i)
+  {
+    strides = strides && (list.BucketOffsets[i] == list.BucketOffsets[i + 1] || list.Stride[i] == 2);
+  }
+  check.Check(strides, "points only in bricks of stride 2");
+  // Errors.
+  B::PointsOptions optimized = options;
+  optimized.MaxOverestimate = 0.1;
+  check.Check(!f.Octree->MakePoints(f.Bytes(), f.ByteCount(), f.Grid, optimized, error) &&
+      error.find("max_overestimate") != std::string::npos,
+    "the optimized low resolution cannot be drawn: '" + error + "'");
+  B::PointsOptions odd = options;
+  odd.Factor = 3;
+  check.Check(!f.Octree->MakePoints(f.Bytes(), f.ByteCount(), f.Grid, odd, error) &&
+      error.find("factor 3") != std::string::npos,
+    "factor 3: '" + error + "'");
+  check.Check(!points->GetShades(f.Bytes(), f.ByteCount(), f.Grid, { 0.0, 1.0 }, opacities,
+                shades, error) &&
+      error.find("tuples") != std::string::npos,
+    "bad colour points: '" + error + "'");
+  Fixture other;
+  check.Check(!other.Octree->Select(select, *points, error) &&
+      error.find("another octree") != std::string::npos,
+    "points of another octree: '" + error + "'");
+  return check.Result();
+}
 } // namespace
 
 int TestHybridOctreeBridge(int argc, char* argv[])
@@ -541,6 +653,10 @@ int TestHybridOctreeBridge(int argc, char* argv[])
   if (scenario == "errors")
   {
     return Errors();
+  }
+  if (scenario == "points")
+  {
+    return Points();
   }
   std::cerr << "unknown scenario '" << scenario
             << "': use draw_list, texels, surface, transparent or errors\n";
