@@ -734,6 +734,21 @@ pub(crate) fn f32_desc(dims: [usize; 3]) -> GridDesc {
     GridDesc { scalar_type: ScalarType::F32, dims, spacing: [1.0; 3], origin: [0.0; 3], components: 1, component: -1 }
 }
 
+/// Select options of the bridge tests: `budget_bytes`, no tolerance, ROI, opacity or isovalue.
+#[cfg(test)]
+pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
+    SelectDesc {
+        budget_bytes,
+        tolerance: 0.0,
+        has_roi: false,
+        roi_center: [0.0; 3],
+        roi_radius: 1.0,
+        opacity_points: Vec::new(),
+        has_isovalue: false,
+        isovalue: 0.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -147,7 +147,7 @@ fn generate(bytes: &[u8], desc: &GridDesc, options: &PointsDesc) -> Result<Point
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ffi::{as_bytes, f32_desc};
+    use crate::ffi::{as_bytes, f32_desc, select_desc};
 
     fn ball() -> (Vec<f32>, GridDesc) {
         let n = 21;
@@ -209,19 +209,6 @@ mod tests {
         let o = PointsDesc { file_name: "/nonexistent-dir/x.hop".into(), ..options() };
         let e = generate_points(as_bytes(&data), &desc, &o).unwrap_err();
         assert!(e.contains("/nonexistent-dir/x.hop"), "{e}");
-    }
-
-    fn select_desc(budget_bytes: usize) -> crate::ffi::SelectDesc {
-        crate::ffi::SelectDesc {
-            budget_bytes,
-            tolerance: 0.0,
-            has_roi: false,
-            roi_center: [0.0; 3],
-            roi_radius: 1.0,
-            opacity_points: Vec::new(),
-            has_isovalue: false,
-            isovalue: 0.0,
-        }
     }
 
     fn camera() -> crate::ffi::CameraDesc {

@@ -512,16 +512,7 @@ mod tests {
     }
 
     fn options(budget_bytes: usize) -> SelectDesc {
-        SelectDesc {
-            budget_bytes,
-            tolerance: 0.0,
-            has_roi: false,
-            roi_center: [0.0; 3],
-            roi_radius: 1.0,
-            opacity_points: Vec::new(),
-            has_isovalue: false,
-            isovalue: 0.0,
-        }
+        crate::ffi::select_desc(budget_bytes)
     }
 
     fn cameras() -> Vec<CameraDesc> {
