@@ -283,20 +283,19 @@ void vtkHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
   }
 }
 
-void vtkHybridOctreeBrickDrawer::EmitPoints(const vtkHybridOctreeBridge::DrawList& list,
-  std::size_t bucket, const PointData& points, const double eye[3], std::vector<Ordered>& order)
+void vtkHybridOctreeBrickDrawer::CollectPoints(const vtkHybridOctreeBridge::DrawList& list,
+  std::size_t bucket, const PointData& points, const double eye[3], std::vector<SlabItem>& items)
 {
   const vtkHybridOctreeBridge::PointsDrawing& d = *points.Drawing;
   const std::vector<float>& shades = *points.Shades;
   const std::size_t count = std::min(d.Value.size(), shades.size() / 4);
-  order.clear();
   for (std::size_t k = list.BucketPointOffsets[bucket]; k < list.BucketPointOffsets[bucket + 1];
        ++k)
   {
     const std::uint32_t id = list.BucketPoints[k];
-    if (id >= count)
+    if (id >= count || !(shades[4 * static_cast<std::size_t>(id) + 3] > 0.0f))
     {
-      continue;
+      continue; // not in the set, or adds nothing
     }
     const float* p = &d.Position[3 * static_cast<std::size_t>(id)];
     double z = 0.0;
@@ -304,28 +303,22 @@ void vtkHybridOctreeBrickDrawer::EmitPoints(const vtkHybridOctreeBridge::DrawLis
     {
       z += (p[a] - eye[a]) * list.Forward[a];
     }
-    order.emplace_back(z, id);
+    items.push_back({ z, id, true });
   }
-  // Far first (blended back to front), ties in grid order: the CPU compositor's order.
-  std::stable_sort(order.begin(), order.end(),
-    [](const Ordered& a, const Ordered& b) { return a.first > b.first; });
-  const float kind = points.Gaussian ? GaussianPoint : SquarePoint;
+}
+
+void vtkHybridOctreeBrickDrawer::EmitPoint(const PointData& points, std::uint32_t id)
+{
   static const float corners[6][2] = { { -1, -1 }, { 1, -1 }, { 1, 1 }, { -1, -1 }, { 1, 1 },
     { -1, 1 } };
-  for (const Ordered& o : order)
+  const float kind = points.Gaussian ? GaussianPoint : SquarePoint;
+  const float* p = &points.Drawing->Position[3 * static_cast<std::size_t>(id)];
+  const float* shade = &(*points.Shades)[4 * static_cast<std::size_t>(id)];
+  for (const auto& c : corners)
   {
-    const float* p = &d.Position[3 * static_cast<std::size_t>(o.second)];
-    const float* shade = &shades[4 * static_cast<std::size_t>(o.second)];
-    if (!(shade[3] > 0.0f))
-    {
-      continue; // adds nothing
-    }
-    for (const auto& c : corners)
-    {
-      this->Emit(p, shade, c[0], c[1], kind, shade[3]);
-    }
-    ++this->PointsPlaced;
+    this->Emit(p, shade, c[0], c[1], kind, shade[3]);
   }
+  ++this->PointsPlaced;
 }
 
 std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawList& list,
@@ -342,7 +335,7 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
   this->PointsPlaced = 0;
   const bool withPoints = points.Drawing && points.Shades &&
     list.BucketOffsets.size() == list.GetNumberOfBricks() + 1;
-  std::vector<Ordered> order;
+  std::vector<SlabItem> items;
   this->VertexData.clear();
   this->Boxes.clear();
   this->RayMarched.clear();
@@ -436,20 +429,47 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
     std::size_t next = 0;
     for (std::size_t s = 0; s <= n; ++s)
     {
+      // The slab's triangles and points, far first (the CPU compositor
+      // sorts a pixel's hits in a slab by depth): a triangle at its
+      // centroid's depth within its clip interval, ties in list order.
+      items.clear();
       for (; next < placed.size() && placed[next].Slab == s; ++next)
       {
+        double z = 0.0;
         for (int c = 0; c < 3; ++c)
         {
           const unsigned int v =
             (*surface.Triangles)[3 * static_cast<std::size_t>(placed[next].Triangle) + c];
           const float* p = sv + 6 * std::min<std::size_t>(v, vertexCount - 1);
-          this->Emit(p, p + 3, placed[next].Near, placed[next].Far, 1.0f);
+          for (int a = 0; a < 3; ++a)
+          {
+            z += (p[a] - e[a]) * static_cast<double>(f[a]) / 3.0;
+          }
         }
+        z = std::min(std::max(z, static_cast<double>(placed[next].Near)),
+          static_cast<double>(placed[next].Far));
+        items.push_back({ z, static_cast<std::uint32_t>(next), false });
       }
-      // Points after the slab's triangles, before the slice in front of them.
       for (; bucket < lastBucket && list.BucketSlab[bucket] <= s; ++bucket)
       {
-        this->EmitPoints(list, bucket, points, eye, order);
+        this->CollectPoints(list, bucket, points, eye, items);
+      }
+      std::stable_sort(items.begin(), items.end(),
+        [](const SlabItem& a, const SlabItem& b) { return a.Depth > b.Depth; });
+      for (const SlabItem& item : items)
+      {
+        if (item.Point)
+        {
+          this->EmitPoint(points, item.Id);
+          continue;
+        }
+        const Placed& t = placed[item.Id];
+        for (int c = 0; c < 3; ++c)
+        {
+          const unsigned int v = (*surface.Triangles)[3 * static_cast<std::size_t>(t.Triangle) + c];
+          const float* p = sv + 6 * std::min<std::size_t>(v, vertexCount - 1);
+          this->Emit(p, p + 3, t.Near, t.Far, 1.0f);
+        }
       }
       if (s < n && drawn[i])
       {

@@ -32,8 +32,9 @@
  *
  * Points of the hybrid representation (paper 3 section 4, "slices of points
  * are drawn interleaved with each pair of volumetric planes") are drawn in
- * the slab the DrawList buckets them into, after the slab's triangles, far
- * first; a brick holding points is drawn as slices. Each point is a quad of
+ * the slab the DrawList buckets them into, with the slab's triangles, far
+ * first (points at their depth, triangles at their centroid's); a brick
+ * holding points is drawn as slices. Each point is a quad of
  * whole pixels around its projected centre c (window coordinates), its size
  * s = the projection of d0 (pixels), as the CPU compositor splats it
  * (crate::points::draw):
@@ -148,11 +149,19 @@ private:
   void Emit(const float position[3], const float normal[3], float near, float far, float surface,
     float alpha = 0.0f);
 
-  /// (view depth, point id).
-  using Ordered = std::pair<double, std::uint32_t>;
-  /// Appends the quads of `list`'s bucket `bucket`, far first (`order`: scratch).
-  void EmitPoints(const vtkHybridOctreeBridge::DrawList& list, std::size_t bucket,
-    const PointData& points, const double eye[3], std::vector<Ordered>& order);
+  /// A triangle copy (index into the brick's placed triangles) or a point
+  /// (point id) of a slab, at its view depth.
+  struct SlabItem
+  {
+    double Depth;
+    std::uint32_t Id;
+    bool Point;
+  };
+  /// Appends the points of `list`'s bucket `bucket` that add something to `items`.
+  void CollectPoints(const vtkHybridOctreeBridge::DrawList& list, std::size_t bucket,
+    const PointData& points, const double eye[3], std::vector<SlabItem>& items);
+  /// Appends point `id`'s quad (two triangles).
+  void EmitPoint(const PointData& points, std::uint32_t id);
 
   std::vector<float> VertexData;
   /// Brick i's vertices: BrickFirst[i] .. BrickFirst[i + 1].
