@@ -37,7 +37,6 @@ use super::draw::{point_colour, point_opacity};
 use super::PointSet;
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
-use crate::octree::trilinear::lerp;
 use crate::render::lut::Lut;
 use crate::render::transfer::TransferFunction;
 use rayon::prelude::*;
@@ -82,30 +81,24 @@ impl GridVisitor for Kernel<'_> {
     type Output = Vec<PointShade>;
 
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<PointShade> {
-        let (set, dims) = (self.set, g.dims);
+        let set = self.set;
         // Premultiplied colour and opacity of a value.
         let rgba = |v: f64| {
             let [r, gr, b, a] = self.lut.eval(v);
             [r * a, gr * a, b * a, a]
         };
-        let at = |i, j, k| g.at(i, j, k);
         set.points
             .par_iter()
             .map(|p| {
                 let c = p.ijk.map(usize::from);
+                // The field at the 27 sub-cube centres, full resolution and T_f.
+                let (full, low) = (sub_cube_values(&g, c, 1), sub_cube_values(&g, c, set.factor));
                 let (mut t, mut v) = ([0.0f64; 4], [0.0f64; 4]);
-                for oz in OFFSETS {
-                    for oy in OFFSETS {
-                        for ox in OFFSETS {
-                            let o = [ox, oy, oz];
-                            let x: [f64; 3] =
-                                std::array::from_fn(|a| (c[a] as f64 + o[a]).clamp(0.0, (dims[a] - 1) as f64));
-                            let (st, sv) = (rgba(t_s(&at, dims, 1, x)), rgba(t_s(&at, dims, set.factor, x)));
-                            for k in 0..4 {
-                                t[k] += st[k] / 27.0;
-                                v[k] += sv[k] / 27.0;
-                            }
-                        }
+                for (&fv, &lv) in full.iter().zip(&low) {
+                    let (st, sv) = (rgba(fv), rgba(lv));
+                    for k in 0..4 {
+                        t[k] += st[k] / 27.0;
+                        v[k] += sv[k] / 27.0;
                     }
                 }
                 let alpha = point_opacity(t[3], v[3]);
@@ -120,24 +113,53 @@ impl GridVisitor for Kernel<'_> {
     }
 }
 
-/// T_s at the fractional index `x` (inside the grid of `dims` whose samples
-/// `at` gives): the trilinear interpolation of the stride-`s` lattice, the
-/// last lattice node of an axis clamped to its last sample (as
-/// [`crate::octree::trilinear`]); `s = 1` is the full-resolution field.
-fn t_s(at: &impl Fn(usize, usize, usize) -> f64, dims: [usize; 3], s: usize, x: [f64; 3]) -> f64 {
-    let bracket = |a: usize| {
-        let x0 = ((x[a] / s as f64).floor() as usize * s).min(dims[a] - 1);
-        (x0, (x0 + s).min(dims[a] - 1), (x[a] - x0 as f64) / s as f64)
-    };
-    let (x0, x1, tx) = bracket(0);
-    let (y0, y1, ty) = bracket(1);
-    let (z0, z1, tz) = bracket(2);
-    let w = |xa| {
-        let v0 = lerp(at(xa, y0, z0), at(xa, y0, z1), tz);
-        let v1 = lerp(at(xa, y1, z0), at(xa, y1, z1), tz);
-        lerp(v0, v1, ty)
-    };
-    lerp(w(x0), w(x1), tx)
+/// One axis of T_s at the sub-cube centres `c + OFFSETS[o]` (clamped to
+/// the axis): the (at most 3) lattice nodes involved, clamped to the last
+/// sample as [`crate::octree::trilinear`] clamps them, and per offset the
+/// weight of each node, `1 - t` and `t` on its bracket `[x0, x0 + s]`.
+fn axis(c: usize, s: usize, n: usize) -> ([usize; 3], [[f64; 3]; 3]) {
+    let x = |o: f64| (c as f64 + o).clamp(0.0, (n - 1) as f64);
+    let base = (x(OFFSETS[0]) / s as f64).floor() as usize * s;
+    let nodes = [0, 1, 2].map(|i| (base + i * s).min(n - 1));
+    let mut weights = [[0.0; 3]; 3];
+    for (o, w) in OFFSETS.iter().zip(&mut weights) {
+        let x = x(*o);
+        let x0 = (x / s as f64).floor() as usize * s;
+        let t = (x - x0 as f64) / s as f64;
+        let i = (x0 - base) / s;
+        w[i] += 1.0 - t;
+        w[i + 1] += t;
+    }
+    (nodes, weights)
+}
+
+/// T_s (s = 1: the full-resolution field) at the 27 sub-cube centres of the
+/// voxel of sample `c`, x fastest: the trilinear interpolation of the
+/// stride-`s` lattice, as a separable sum over at most 3 x 3 x 3 nodes.
+fn sub_cube_values<T: Sample>(g: &TypedGrid<'_, T>, c: [usize; 3], s: usize) -> [f64; 27] {
+    let [(nx, wx), (ny, wy), (nz, wz)] = [0, 1, 2].map(|a| axis(c[a], s, g.dims[a]));
+    // Contract z, then y, then x.
+    let mut zs = [[[0.0; 3]; 3]; 3]; // [oz][j][i]
+    for (k, &z) in nz.iter().enumerate() {
+        for (j, &y) in ny.iter().enumerate() {
+            for (i, &x) in nx.iter().enumerate() {
+                let value = g.at(x, y, z);
+                for oz in 0..3 {
+                    zs[oz][j][i] += wz[oz][k] * value;
+                }
+            }
+        }
+    }
+    let mut out = [0.0; 27];
+    for oz in 0..3 {
+        for oy in 0..3 {
+            let row: [f64; 3] = std::array::from_fn(|i| (0..3).map(|j| wy[oy][j] * zs[oz][j][i]).sum());
+            for ox in 0..3 {
+                out[ox + 3 * (oy + 3 * oz)] = (0..3).map(|i| wx[ox][i] * row[i]).sum();
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -194,6 +216,56 @@ mod tests {
         let s = shade(&g, &set, &steep).unwrap()[0];
         assert!(s.alpha > 0.0 && f64::from(s.alpha) < 0.25 * 0.8, "{s:?}");
         assert!(s.rgb.iter().all(|&c| (0.0..=1.0).contains(&c)));
+    }
+
+    /// T_s at a fractional index the direct way: bracket each axis, 8 lerps.
+    fn t_s_direct(g: &Grid<'_>, s: usize, x: [f64; 3]) -> f64 {
+        let dims = g.shape().dims;
+        let b = |a: usize| {
+            let x0 = (x[a] / s as f64).floor() as usize * s;
+            (x0, (x0 + s).min(dims[a] - 1), (x[a] - x0 as f64) / s as f64)
+        };
+        let ((x0, x1, tx), (y0, y1, ty), (z0, z1, tz)) = (b(0), b(1), b(2));
+        let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
+        let w = |xa| {
+            let v0 = lerp(g.value(xa, y0, z0), g.value(xa, y0, z1), tz);
+            let v1 = lerp(g.value(xa, y1, z0), g.value(xa, y1, z1), tz);
+            lerp(v0, v1, ty)
+        };
+        lerp(w(x0), w(x1), tx)
+    }
+
+    struct SubCube([usize; 3], usize);
+    impl GridVisitor for SubCube {
+        type Output = [f64; 27];
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> [f64; 27] {
+            sub_cube_values(&g, self.0, self.1)
+        }
+    }
+
+    #[test]
+    fn sub_cube_values_are_the_trilinear_field() {
+        // 10 x 7 x 9 samples (not multiples of the strides), a non-linear field.
+        let dims = [10usize, 7, 9];
+        let data: Vec<f32> = (0..dims[0] * dims[1] * dims[2])
+            .map(|i| {
+                let (x, y, z) = (i % dims[0], i / dims[0] % dims[1], i / (dims[0] * dims[1]));
+                ((x * x + 3 * y) as f32).sin() + (z as f32 * 0.7).cos()
+            })
+            .collect();
+        let shape = GridShape { dims, spacing: [1.0; 3], origin: [0.0; 3] };
+        let g = Grid::new(Samples::F32(&data), shape, 1, None).unwrap();
+        for s in [1, 2, 4, 8] {
+            for c in [[0, 0, 0], [9, 6, 8], [4, 3, 4], [8, 1, 5], [1, 5, 7]] {
+                let got = g.visit(SubCube(c, s));
+                for (n, v) in got.iter().enumerate() {
+                    let o = [n % 3, n / 3 % 3, n / 9].map(|k| OFFSETS[k]);
+                    let x = std::array::from_fn(|a| (c[a] as f64 + o[a]).clamp(0.0, (dims[a] - 1) as f64));
+                    let want = t_s_direct(&g, s, x);
+                    assert!((v - want).abs() < 1e-12, "s {s} c {c:?} offset {o:?}: {v} vs {want}");
+                }
+            }
+        }
     }
 
     #[test]
