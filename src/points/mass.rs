@@ -5,12 +5,21 @@
 //! The selection ranks steps by the squared error they remove per byte,
 //! `Q_p(n) = sum over the node's samples of (f - T_p)^2 / range^2`. Points
 //! complete T_f, so a brick of stride `f` that takes its points removes the
-//! squared error of those it can correct (points only add opacity, so the
-//! samples where the low resolution underestimates, `e > 0`):
+//! squared error of those it can correct. A point drawn with its voxel-mean
+//! shade ([`super::shade`]) adds back `m`, the mean of `e = f - T_f` over its
+//! voxel, so of the voxel's squared error `sum e_i^2` it leaves
+//! `sum (e_i - m)^2`: it removes one sample's worth of `m^2` (points only
+//! add opacity, so only `m > 0` counts):
 //!
 //! ```text
-//! removed(n) = sum over the points of n with e > 0 of (e / range)^2,   bytes(n) = point bytes x count(n)
+//! removed(n) = sum over the points of n with m > 0 of (m / range)^2,   bytes(n) = point bytes x count(n)
 //! ```
+//!
+//! ([`PointMass::with_errors`] with [`super::shade::voxel_mean_errors`];
+//! [`PointMass::new`] takes `m = e`, the point's own sample). Counting `e^2`
+//! overrates points on thin structures, where `m` is about half of `e`: the
+//! selection then traded texture for points that made the picture worse
+//! (docs/BENCHMARKS.md).
 //!
 //! A point at sample `x` belongs to the node whose half-open box holds it,
 //! that is whose cells hold cell `min(x, dims - 2)` (the convention of
@@ -19,6 +28,7 @@
 //! above the leaf level) is answered in O(1).
 
 use super::PointSet;
+use crate::error::{Error, Result};
 
 /// Per-block point counts and removable squared error, as summed-area tables.
 #[derive(Debug, Clone)]
@@ -37,8 +47,33 @@ pub struct PointMass {
 }
 
 impl PointMass {
-    /// The tables of `set` on blocks of `block` cells (the octree's leaf size).
+    /// The tables of `set` on blocks of `block` cells (the octree's leaf
+    /// size), each point correcting its own sample's error.
     pub fn new(set: &PointSet, block: usize) -> PointMass {
+        let errors: Vec<f64> = set.points.iter().map(|p| set.error(p)).collect();
+        PointMass::tables(set, block, &errors)
+    }
+
+    /// [`PointMass::new`] with the error each point corrects given, one per
+    /// point of `set` ([`super::shade::voxel_mean_errors`] for points drawn
+    /// with their voxel-mean shade); only positive ones are removable.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] when there are not as many errors as points.
+    pub fn with_errors(set: &PointSet, block: usize, errors: &[f64]) -> Result<PointMass> {
+        if errors.len() != set.points.len() {
+            return Err(Error::InvalidArgument(format!(
+                "{} errors for {} points: give one per point of the set",
+                errors.len(),
+                set.points.len()
+            )));
+        }
+        Ok(PointMass::tables(set, block, errors))
+    }
+
+    /// The tables, one error per point.
+    fn tables(set: &PointSet, block: usize, errors: &[f64]) -> PointMass {
         let block = block.max(1);
         let cells = set.dims.map(|n| n.saturating_sub(1).max(1));
         let blocks = cells.map(|c| c.div_ceil(block));
@@ -48,11 +83,10 @@ impl PointMass {
         let mut positive = vec![0u64; count.len()];
         let mut removable = vec![0.0f64; count.len()];
         let range = set.value_range[1] - set.value_range[0];
-        for p in &set.points {
+        for (p, &e) in set.points.iter().zip(errors) {
             let b: [usize; 3] = std::array::from_fn(|a| usize::from(p.ijk[a]).min(cells[a] - 1) / block);
             let slot = at(b[0] + 1, b[1] + 1, b[2] + 1);
             count[slot] += 1;
-            let e = set.error(p);
             if e > 0.0 && range > 0.0 {
                 positive[slot] += 1;
                 removable[slot] += (e / range) * (e / range);

@@ -71,6 +71,27 @@ pub fn shade(grid: &Grid<'_>, set: &PointSet, tf: &TransferFunction) -> Result<V
     Ok(grid.visit(Kernel { set, lut: &Lut::new(tf) }))
 }
 
+/// The error each point corrects: the mean of `f - T_f` over its voxel (the
+/// 27 sub-cube centres), what its voxel-mean shade adds back.
+pub fn voxel_mean_errors(grid: &Grid<'_>, set: &PointSet) -> Vec<f64> {
+    struct Means<'a>(&'a PointSet);
+    impl GridVisitor for Means<'_> {
+        type Output = Vec<f64>;
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f64> {
+            let set = self.0;
+            set.points
+                .par_iter()
+                .map(|p| {
+                    let c = p.ijk.map(usize::from);
+                    let (full, low) = (sub_cube_values(&g, c, 1), sub_cube_values(&g, c, set.factor));
+                    full.iter().zip(&low).map(|(f, t)| f - t).sum::<f64>() / 27.0
+                })
+                .collect()
+        }
+    }
+    grid.visit(Means(set))
+}
+
 /// The shading of every point, on the typed grid.
 struct Kernel<'a> {
     set: &'a PointSet,
