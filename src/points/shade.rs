@@ -224,6 +224,28 @@ mod tests {
     }
 
     #[test]
+    fn a_voxel_mean_error_is_the_tent_averaged_error() {
+        // The planes of the test above: e = 0.5 on the plane, falling to 0
+        // at the planes beside it; over the voxel (x offsets 0, +-1/3) the
+        // mean is (0.5 + 2 * 0.5 * 2/3) / 3. A rating of e^2 would be 1.65x m^2.
+        let n = 9;
+        let data: Vec<f32> = (0..n * n * n).map(|i| if (i % n) % 2 == 1 { 0.75 } else { 0.25 }).collect();
+        let g = grid(&data, n);
+        let set = generate(&g, &PointOptions::new(2, PointSelect::Threshold(0.1))).unwrap();
+        let means = voxel_mean_errors(&g, &set);
+        let want = (0.5 + 2.0 * 0.5 * 2.0 / 3.0) / 3.0;
+        for (p, m) in set.points.iter().zip(&means) {
+            assert!((m - want).abs() < 1e-9, "{:?}: {m} vs {want}", p.ijk);
+        }
+        let mass = crate::points::PointMass::with_errors(&set, 4, &means).unwrap();
+        let (count, positive, removable) = mass.in_box([0; 3], [n - 1; 3]);
+        assert_eq!((count, positive), (set.points.len(), set.points.len()));
+        assert!((removable - set.points.len() as f64 * want * want / 0.25).abs() < 1e-6, "{removable}");
+        let e = crate::points::PointMass::with_errors(&set, 4, &means[1..]).unwrap_err().to_string();
+        assert!(e.contains("one per point"), "{e}");
+    }
+
+    #[test]
     fn a_one_sample_spike_adds_less_than_its_peak() {
         // One sample at 1 in a field of 0: the trilinear field is at its peak
         // only at the sample; the voxel mean of a steep opacity is far below it.
