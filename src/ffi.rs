@@ -571,6 +571,18 @@ pub(crate) fn grid_of<'a>(bytes: &'a [u8], desc: &GridDesc) -> crate::error::Res
     Grid::new(samples, shape, desc.components, component)
 }
 
+/// `grid` is the image of `shape`, the one the octree (and its selections
+/// and points) was made from: same dims, spacing and origin.
+pub(crate) fn same_image(shape: &GridShape, grid: &Grid<'_>) -> crate::error::Result<()> {
+    if grid.shape() == shape {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument(
+            "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
+        ))
+    }
+}
+
 /// As [`grid_of`] without the non-finite scan (see [`Grid::unscanned`]).
 pub(crate) fn grid_unscanned<'a>(bytes: &'a [u8], desc: &GridDesc) -> crate::error::Result<Grid<'a>> {
     let samples = Samples::from_bytes(bytes, scalar_type(desc.scalar_type)?)?;
@@ -638,11 +650,7 @@ impl VolumeOctreeHandle {
 
     /// The isosurface of `grid` (checked to be the image the octree was built from).
     pub(crate) fn extract(&self, grid: &Grid<'_>, isovalue: f64, mode: SurfaceMode) -> crate::error::Result<Surface> {
-        if grid.shape() != &self.shape {
-            return Err(Error::InvalidArgument(
-                "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
-            ));
-        }
+        same_image(&self.shape, grid)?;
         let options = match mode {
             SurfaceMode::Discretized => SurfaceOptions::discretized(isovalue),
             SurfaceMode::Interpolated => SurfaceOptions::interpolated(isovalue),

@@ -3,7 +3,7 @@
 //! points the volume mapper draws ([`PointsHandle`]).
 
 use crate::error::{Error, Result};
-use crate::ffi::{grid_of, guarded, GridDesc, PointsDesc, PointsDrawing, PointsOutput, VolumeOctreeHandle};
+use crate::ffi::{grid_of, guarded, same_image, GridDesc, PointsDesc, PointsDrawing, PointsOutput, VolumeOctreeHandle};
 use crate::grid::GridShape;
 use crate::points::mass::PointMass;
 use crate::points::{
@@ -30,11 +30,7 @@ impl VolumeOctreeHandle {
     ) -> std::result::Result<Box<PointsHandle>, String> {
         guarded(|| {
             let grid = grid_of(bytes, desc)?;
-            if grid.shape() != &self.shape {
-                return Err(Error::InvalidArgument(
-                    "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
-                ));
-            }
+            same_image(&self.shape, &grid)?;
             let point_options = point_options(options);
             if point_options.max_overestimate.is_some() {
                 return Err(Error::InvalidArgument(
@@ -69,11 +65,7 @@ impl PointsHandle {
     ) -> std::result::Result<Vec<f32>, String> {
         guarded(|| {
             let grid = grid_of(bytes, desc)?;
-            if grid.shape() != &self.shape {
-                return Err(Error::InvalidArgument(
-                    "the image changed since the points were made (dims, spacing or origin); make them again".into(),
-                ));
-            }
+            same_image(&self.shape, &grid)?;
             let tf = crate::ffi_render::transfer_function(colors, opacities)?;
             let shades = crate::points::shade(&grid, &self.set, &tf)?;
             Ok(shades.iter().flat_map(|s| [s.rgb[0], s.rgb[1], s.rgb[2], s.alpha]).collect())

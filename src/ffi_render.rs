@@ -12,8 +12,8 @@
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::ffi::{
-    grid_of, guarded, CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary, SurfaceMode, SurfaceOutput,
-    VolumeOctreeHandle,
+    grid_of, guarded, same_image, CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary, SurfaceMode,
+    SurfaceOutput, VolumeOctreeHandle,
 };
 use crate::ffi_points::PointsHandle;
 use crate::grid::GridShape;
@@ -214,15 +214,17 @@ fn footprint(gaussian: bool) -> Footprint {
 
 impl VolumeOctreeHandle {
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
-        guarded(|| {
-            let selection = select_with(self, desc, None)?;
-            Ok(Box::new(SelectionHandle {
-                selection,
-                octree_id: self.id,
-                shape: self.shape,
-                polygons: Mutex::new(None),
-                points: None,
-            }))
+        guarded(|| Ok(self.selection_handle(select_with(self, desc, None)?, None)))
+    }
+
+    /// `selection` of this octree kept for drawing, with the points it bought.
+    fn selection_handle(&self, selection: Selection, points: Option<Arc<PointSet>>) -> Box<SelectionHandle> {
+        Box::new(SelectionHandle {
+            selection,
+            octree_id: self.id,
+            shape: self.shape,
+            polygons: Mutex::new(None),
+            points,
         })
     }
 
@@ -238,13 +240,7 @@ impl VolumeOctreeHandle {
                 ));
             }
             let selection = select_with(self, desc, Some(&points.mass))?;
-            Ok(Box::new(SelectionHandle {
-                selection,
-                octree_id: self.id,
-                shape: self.shape,
-                polygons: Mutex::new(None),
-                points: Some(Arc::clone(&points.set)),
-            }))
+            Ok(self.selection_handle(selection, Some(Arc::clone(&points.set))))
         })
     }
 }
@@ -428,11 +424,7 @@ impl SelectionHandle {
         height: usize,
     ) -> Result<Vec<f32>> {
         let grid = grid_of(bytes, desc)?;
-        if grid.shape() != &self.shape {
-            return Err(Error::InvalidArgument(
-                "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
-            ));
-        }
+        same_image(&self.shape, &grid)?;
         let tf = transfer_function(colors, opacities)?;
         let list = self.list(octree, camera_desc, surface.map(|(s, rgba)| (s, rgba[3])))?;
         let drawn = surface.map(|(s, rgba)| (&s.surface, rgba.map(|v| v as f32)));
@@ -453,11 +445,7 @@ impl SelectionHandle {
             // would cost a full pass each; the octree's build scanned it, and
             // only this brick's texels are checked here.
             let grid = crate::ffi::grid_unscanned(bytes, desc)?;
-            if grid.shape() != &self.shape {
-                return Err(Error::InvalidArgument(
-                    "the image changed since the octree was built (dims, spacing or origin); rebuild it".into(),
-                ));
-            }
+            same_image(&self.shape, &grid)?;
             let Some(b) = self.selection.bricks.get(brick) else {
                 return Err(Error::InvalidArgument(format!(
                     "brick {brick} does not exist: the selection has {} bricks",
