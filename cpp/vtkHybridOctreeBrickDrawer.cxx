@@ -288,7 +288,7 @@ void vtkHybridOctreeBrickDrawer::CollectPoints(const vtkHybridOctreeBridge::Draw
 {
   const vtkHybridOctreeBridge::PointsDrawing& d = *points.Drawing;
   const std::vector<float>& shades = *points.Shades;
-  const std::size_t count = std::min(d.Value.size(), shades.size() / 4);
+  const std::size_t count = std::min(d.Position.size() / 3, shades.size() / 4);
   for (std::size_t k = list.BucketPointOffsets[bucket]; k < list.BucketPointOffsets[bucket + 1];
        ++k)
   {

@@ -195,6 +195,16 @@ mod tests {
         Grid::new(Samples::F32(data), shape, 1, None).unwrap()
     }
 
+    /// Samples per axis of [`planes`].
+    const PLANES_N: usize = 9;
+
+    /// Every odd plane x = 2i + 1 at 0.75 over a background of 0.25, 9^3
+    /// samples: T_2 misses the planes entirely.
+    fn planes() -> Vec<f32> {
+        let n = PLANES_N;
+        (0..n * n * n).map(|i| if (i % n) % 2 == 1 { 0.75 } else { 0.25 }).collect()
+    }
+
     fn ramp() -> TransferFunction {
         TransferFunction::new(vec![(0.0, [0.2, 0.4, 0.6]), (1.0, [1.0, 0.8, 0.2])], vec![(0.0, 0.0), (1.0, 0.5)])
             .unwrap()
@@ -206,8 +216,7 @@ mod tests {
         // T_2 misses the raise entirely and every sample of those planes is
         // a point. Around an inner point, f is uniform along y and z and
         // falls off linearly along x to the planes beside it.
-        let n = 9;
-        let data: Vec<f32> = (0..n * n * n).map(|i| if (i % n) % 2 == 1 { 0.75 } else { 0.25 }).collect();
+        let (n, data) = (PLANES_N, planes());
         let g = grid(&data, n);
         let set = generate(&g, &PointOptions::new(2, PointSelect::Threshold(0.1))).unwrap();
         assert_eq!(set.points.len(), 4 * n * n);
@@ -228,8 +237,7 @@ mod tests {
         // The planes of the test above: e = 0.5 on the plane, falling to 0
         // at the planes beside it; over the voxel (x offsets 0, +-1/3) the
         // mean is (0.5 + 2 * 0.5 * 2/3) / 3. A rating of e^2 would be 1.65x m^2.
-        let n = 9;
-        let data: Vec<f32> = (0..n * n * n).map(|i| if (i % n) % 2 == 1 { 0.75 } else { 0.25 }).collect();
+        let (n, data) = (PLANES_N, planes());
         let g = grid(&data, n);
         let set = generate(&g, &PointOptions::new(2, PointSelect::Threshold(0.1))).unwrap();
         let means = voxel_mean_errors(&g, &set);
