@@ -10,7 +10,8 @@
  *   interactive: a window asking for 30 frames a second gets the interactive
  *                budget; a still frame after it refines to the full budget;
  *                PrintSelf shows every setting and statistic.
- *   no_input, not_image, budget_zero, multi_component, empty_image, nan:
+ *   no_input, not_image, budget_zero, point_factor, multi_component,
+ *   empty_image, nan:
  *                a clear vtkErrorMacro, nothing drawn, no crash, no OpenGL
  *                error left behind.
  */
@@ -144,6 +145,14 @@ int BadInput(const std::string& scenario)
     mapper->SetInputConnection(scene.Wavelet->GetOutputPort());
     mapper->SetBudgetMB(0.0);
     expected = "budget";
+  }
+  else if (scenario == "point_factor")
+  {
+    // Points completing stride-3 textures: the octree's strides are powers of two.
+    mapper->SetInputConnection(scene.Wavelet->GetOutputPort());
+    mapper->UsePointsOn();
+    mapper->SetPointFactor(3);
+    expected = "factor 3";
   }
   else if (scenario == "multi_component")
   {

@@ -131,6 +131,14 @@ for footprint in ("Square", "Gaussian"):
     # 0.0595 square, 0.0593 Gaussian, against 0.0640 without; docs/BENCHMARKS.md).
     t.check(rmse(with_points, full) <= 1.02 * rmse(small, full),
             "%s points: no further from the 64 MB picture than without them" % footprint)
+# A point budget: at most that many points made, so at most that many drawn.
+display.PointBudget = 500
+Render(view)
+display.SMProxy.UpdatePropertyInformation()
+budgeted = display.GetPropertyValue("LastPoints")
+report("Point Budget 500 at 0.05 MB: %d points drawn" % budgeted)
+t.check(0 < budgeted <= 500, "Point Budget 500: %d points drawn" % budgeted)
+display.PointBudget = 0
 display.HybridPoints = 0
 Render(view)
 t.check(stats(display)["LastPlan"] == "volume", "points off: plan 'volume'")
