@@ -144,7 +144,7 @@ fn generated_vti_builds_like_the_dataset() {
 #[test]
 fn unknown_dataset_lists_the_names() {
     let out = run(&["build", "--dataset", "teapot", "--size", "9"]);
-    assert_clean_failure(&out, "shepp-logan, marschner-lobb, sphere, ramp, constant");
+    assert_clean_failure(&out, "shepp-logan, marschner-lobb, sphere, ramp, constant, vessels");
 }
 
 #[test]

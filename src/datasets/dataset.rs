@@ -15,12 +15,20 @@ pub enum Dataset {
     Ramp,
     /// The constant 0.5 ([`super::constant`]).
     Constant,
+    /// A synthetic angiogram: thin vessels in faint tissue ([`super::vessels`]).
+    Vessels,
 }
 
 impl Dataset {
     /// Every dataset, in the order the CLI lists them.
-    pub const ALL: [Dataset; 5] =
-        [Dataset::SheppLogan, Dataset::MarschnerLobb, Dataset::Sphere, Dataset::Ramp, Dataset::Constant];
+    pub const ALL: [Dataset; 6] = [
+        Dataset::SheppLogan,
+        Dataset::MarschnerLobb,
+        Dataset::Sphere,
+        Dataset::Ramp,
+        Dataset::Constant,
+        Dataset::Vessels,
+    ];
 
     /// The name used by `--dataset` and as the array name of the generated volume.
     pub fn name(self) -> &'static str {
@@ -30,6 +38,7 @@ impl Dataset {
             Dataset::Sphere => "sphere",
             Dataset::Ramp => "ramp",
             Dataset::Constant => "constant",
+            Dataset::Vessels => "vessels",
         }
     }
 
@@ -50,6 +59,7 @@ impl Dataset {
             Dataset::Sphere => super::sphere::value(t),
             Dataset::Ramp => super::ramp::value(t),
             Dataset::Constant => super::constant::value(t),
+            Dataset::Vessels => super::vessels::value(t),
         }
     }
 }

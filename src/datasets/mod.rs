@@ -17,6 +17,7 @@ pub mod marschner_lobb;
 pub mod ramp;
 pub mod shepp_logan;
 pub mod sphere;
+pub mod vessels;
 
 pub use dataset::Dataset;
 pub use generate::{generate, generate_dims, to_type_range};

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 /// Arguments of `generate`.
 #[derive(Args, Debug)]
 pub struct GenerateArgs {
-    /// Built-in dataset: shepp-logan, marschner-lobb, sphere, ramp, constant.
+    /// Built-in dataset: shepp-logan, marschner-lobb, sphere, ramp, constant, vessels.
     #[arg(long)]
     dataset: String,
     /// Samples per axis.
