@@ -6,7 +6,8 @@
 # isosurface (hybrid-octree-render.png, against the full-resolution reference
 # hybrid-octree-reference.png), keeps it at every 4th sample plus error points
 # (hybrid-octree-points-{lowres,hybrid,reference}.png and their 4x difference
-# pictures -lowres-diff, -hybrid-diff), then pvbatch loads the ParaView plugin, applies the Hybrid
+# pictures -lowres-diff, -hybrid-diff), does the same on the built-in vessels
+# angiogram with the optimized low resolution (hybrid-octree-vessels-*.png), then pvbatch loads the ParaView plugin, applies the Hybrid
 # Octree filter to the same volume, and renders its node boxes and isosurface
 # to hybrid-octree-demo.png, and vtkHybridOctreeVolumeMapper (OpenGL, from
 # Python) draws the volume and translucent isosurface at the default 64 MB
@@ -34,6 +35,10 @@ echo "== hybrid-octree render --dataset shepp-logan --size $size --budget-mb 8 (
 echo "== hybrid-octree points --dataset shepp-logan --size $size --factor 4 --threshold 0.1 (low resolution + error points, vs the reference) =="
 "$cli" points --dataset shepp-logan --size "$size" --factor 4 --threshold 0.1 \
   --output hybrid-octree-points.hop --render hybrid-octree-points
+
+echo "== hybrid-octree points --dataset vessels --size $size --factor 4 --threshold 0.1 --max-overestimate 0.1 (fine detail: optimized low resolution + points) =="
+"$cli" points --dataset vessels --size "$size" --factor 4 --threshold 0.1 --max-overestimate 0.1 \
+  --output hybrid-octree-vessels.hop --render hybrid-octree-vessels
 
 echo "== ParaView (pvbatch) with the HybridOctree plugin =="
 vti=$(mktemp --suffix=.vti)
