@@ -9,7 +9,9 @@ use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::octree::{BuildOptions, VolumeOctree};
 use hybrid_octree::plan::{draw_list, DrawList, Scene};
 use hybrid_octree::points::shade::voxel_mean_errors;
-use hybrid_octree::points::{add_points, generate, generate_hybrid, shade, Footprint, PointMass, PointOptions, PointSelect, PointSet};
+use hybrid_octree::points::{
+    add_points, generate, generate_hybrid, shade, Footprint, PointMass, PointOptions, PointSelect, PointSet,
+};
 use hybrid_octree::render::compositor::composite_with_points;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::metrics::compare;
