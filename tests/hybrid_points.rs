@@ -18,7 +18,7 @@ use hybrid_octree::render::metrics::compare;
 use hybrid_octree::render::reference::{reference, ReferenceOptions};
 use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
-use hybrid_octree::select::{take_all_points, uniform};
+use hybrid_octree::select::{take_all_points, uniform, Selection};
 
 const SIZE: usize = 128;
 
@@ -68,6 +68,28 @@ fn render(f: &Fixture, grid: &Grid<'_>, stride: usize, points: Option<(&PointSet
 
 fn truth(f: &Fixture, grid: &Grid<'_>) -> Image {
     reference(grid, &f.tf, &f.camera, SIZE, SIZE, &ReferenceOptions::default()).unwrap()
+}
+
+/// A selection's picture (with the points it bought, square footprints):
+/// its RMSE against `truth` and the points drawn.
+fn draw_selection(
+    f: &Fixture,
+    grid: &Grid<'_>,
+    truth: &Image,
+    s: &Selection,
+    points: Option<&PointSet>,
+) -> (f64, usize) {
+    let scene = Scene { surface: None, surface_opacity: 1.0, shading: false };
+    let mut l = draw_list(&f.octree, grid.shape(), s, &f.camera, &scene, None).unwrap();
+    if let Some(p) = points {
+        add_points(&mut l, grid.shape(), p).unwrap();
+    }
+    let drawn: usize = l.bricks.iter().flat_map(|b| &b.points).map(|k| k.points.len()).sum();
+    let textures = upload(grid, &l).unwrap();
+    let shades = points.map(|p| shade(grid, p, &f.tf).unwrap()).unwrap_or_default();
+    let shaded = points.map(|p| (p, shades.as_slice(), Footprint::Square));
+    let image = composite_with_points(&textures, &l, &f.tf, SIZE, SIZE, None, shaded).unwrap();
+    (compare(&image, truth).unwrap().rmse, drawn)
 }
 
 /// Points bring the low-resolution picture closer to the full-resolution
@@ -215,19 +237,7 @@ fn the_selection_buys_points_where_they_beat_refining() {
     assert!(bought > 0, "no brick took its points");
     assert_eq!(hybrid.point_bytes, 6 * bought);
     assert!(hybrid.bricks.iter().all(|b| b.point_count == 0 || b.stride == 2));
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: false };
-    let draw = |s: &hybrid_octree::select::Selection, points: Option<&PointSet>| {
-        let mut l = draw_list(&f.octree, grid.shape(), s, &f.camera, &scene, None).unwrap();
-        if let Some(p) = points {
-            add_points(&mut l, grid.shape(), p).unwrap();
-        }
-        let drawn: usize = l.bricks.iter().flat_map(|b| &b.points).map(|k| k.points.len()).sum();
-        let textures = upload(&grid, &l).unwrap();
-        let shades = points.map(|p| shade(&grid, p, &f.tf).unwrap()).unwrap_or_default();
-        let shaded = points.map(|p| (p, shades.as_slice(), Footprint::Square));
-        let image = composite_with_points(&textures, &l, &f.tf, SIZE, SIZE, None, shaded).unwrap();
-        (compare(&image, &truth).unwrap().rmse, drawn)
-    };
+    let draw = |s: &Selection, points: Option<&PointSet>| draw_selection(&f, &grid, &truth, s, points);
     let (alone, _) = draw(&plain, None);
     let (with, drawn) = draw(&hybrid, Some(&set));
     eprintln!("octree alone {alone:.4}; octree + {bought} points ({drawn} drawn) {with:.4}");
@@ -288,18 +298,7 @@ fn the_selection_with_points_is_never_worse_than_without() {
     let f = fixture_of_size(Dataset::Vessels, 256, false, 30.0, 20.0);
     let grid = f.volume.grid(None).unwrap();
     let truth = truth(&f, &grid);
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: false };
-    let draw = |s: &hybrid_octree::select::Selection, points: Option<&PointSet>| {
-        let mut l = draw_list(&f.octree, grid.shape(), s, &f.camera, &scene, None).unwrap();
-        if let Some(p) = points {
-            add_points(&mut l, grid.shape(), p).unwrap();
-        }
-        let textures = upload(&grid, &l).unwrap();
-        let shades = points.map(|p| shade(&grid, p, &f.tf).unwrap()).unwrap_or_default();
-        let shaded = points.map(|p| (p, shades.as_slice(), Footprint::Square));
-        let image = composite_with_points(&textures, &l, &f.tf, SIZE, SIZE, None, shaded).unwrap();
-        compare(&image, &truth).unwrap().rmse
-    };
+    let draw = |s: &Selection, points: Option<&PointSet>| draw_selection(&f, &grid, &truth, s, points).0;
     let mut bought_anywhere = 0;
     for factor in [2, 4] {
         let offer =
