@@ -26,8 +26,8 @@ each render the representation's LastPoints and LastTextureMB are read back.
 Printed: one row per (budget, factor, threshold): points drawn, texture MB
 with points, RMSE without and with points, and their ratio (with / without;
 below 1: the points help); then "N of M cells at or below the picture
-without points" and the worst ratio. --json prints one JSON object per row
-instead of the table.
+without points" (and how many of them draw points at all), the worst ratio
+and the run time. --json prints one JSON object per row instead of the table.
 """
 import argparse
 import json
@@ -128,7 +128,8 @@ else:
             r["rmse_without"], r["rmse_with"], r["ratio"]))
     better = sum(r["rmse_with"] <= r["rmse_without"] for r in rows)
     worst = max(rows, key=lambda r: r["ratio"])
-    report("%d of %d cells at or below the picture without points; worst ratio %.3f (%g MB, factor %d, "
-           "threshold %g); %.1f s" % (better, len(rows), worst["ratio"], worst["budget_mb"], worst["factor"],
-                                      worst["threshold"], time.perf_counter() - started))
+    drawn = sum(r["points"] > 0 for r in rows)
+    report("%d of %d cells at or below the picture without points (%d draw points); worst ratio %.3f "
+           "(%g MB, factor %d, threshold %g); %.1f s" % (better, len(rows), drawn, worst["ratio"], worst["budget_mb"],
+                                                        worst["factor"], worst["threshold"], time.perf_counter() - started))
 # No sys.exit(): pvbatch 5.11 can crash in its teardown after one (pvtest.Checks.finish).
