@@ -215,9 +215,9 @@ fn mismatched_points_are_refused() {
 /// stay within the budget, the points drawn are those bought, and the
 /// picture is closer to the full resolution than the octree alone at the
 /// same budget. Measured (65^3 phantom, 128x128, 140 kB, points rated at
-/// half their voxel-mean error, `POINT_EFFICIENCY`): octree alone 0.0227,
-/// with 1,196 factor-2 points 0.0209 (8 % lower; counting all of it, 4,351
-/// points and 0.0162; bound: at least 3 % lower).
+/// `1 / sqrt(2)` of their voxel-mean error, `point_efficiency`): octree
+/// alone 0.0227, with 2,794 factor-2 points 0.0177 (22 % lower; counting
+/// all of it, 4,351 points and 0.0162; bound: at least 3 % lower).
 #[test]
 fn the_selection_buys_points_where_they_beat_refining() {
     use hybrid_octree::select::{select, select_with_points, SelectOptions};
@@ -286,12 +286,12 @@ fn on_fine_detail_points_beat_the_low_resolution_at_equal_bytes() {
 /// Points never make the octree's picture worse: on the 256^3 angiogram
 /// the selection with points is at or below the octree alone at every
 /// budget and factor tried. Measured (leaf size 8, 128x128): octree 0.00619
-/// at 0.14 MB, with 1,057 factor-2 points 0.00587, with 132 factor-4
-/// points 0.00613; at 1.10 MB two points, the same picture. Rating each
-/// point at all its voxel-mean error (`POINT_EFFICIENCY` 1 instead of 1/2)
-/// the selection bought 1,679 factor-4 points at 0.14 MB in place of
-/// refinement and drew 0.00682 (+10 %), failing this test. Bound: at most
-/// the octree's RMSE + 0.5 %, and points bought somewhere.
+/// at 0.14 MB, with 1,928 factor-2 points 0.00568, with 132 factor-4
+/// points 0.00613; at 1.10 MB a few points, the same picture. Rating each
+/// point at all its voxel-mean error (`point_efficiency` 1 instead of
+/// `1 / sqrt(f)`) the selection bought 1,679 factor-4 points at 0.14 MB in
+/// place of refinement and drew 0.00682 (+10 %), failing this test. Bound:
+/// at most the octree's RMSE + 0.5 %, and points bought somewhere.
 #[test]
 fn the_selection_with_points_is_never_worse_than_without() {
     use hybrid_octree::select::{select, select_with_points, SelectOptions};

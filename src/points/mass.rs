@@ -12,26 +12,23 @@
 //! add opacity, so only `m > 0` counts):
 //!
 //! ```text
-//! removed(n) = eta x sum over the points of n with m > 0 of (m / range)^2,   bytes(n) = point bytes x count(n)
+//! removed(n) = eta_f x sum over the points of n with m > 0 of (m / range)^2,   bytes(n) = point bytes x count(n)
+//! eta_f      = 1 / sqrt(f)
 //! ```
 //!
-//! `eta` ([`POINT_EFFICIENCY`], 1/2) is the share of that data-space error a
-//! splatted point removes from the picture, against a texel refined in
-//! place: measured, not derived. A point corrects only where the low
-//! resolution underestimates, and does so with a footprint of whole pixels
-//! around its centre, not the texture's trilinear profile; on the
-//! `vessels` angiogram at 256^3 (`bench render --points`, 1.10 MB) the
-//! selection with `eta = 1` bought 1,464 factor-4 points in place of
-//! refinement and drew a picture 12 % worse than the octree alone; with
-//! `eta = 1/2` it buys 112 and is 1 % better, and no octree+points row of
-//! docs/BENCHMARKS.md is worse than the octree alone (at 1/4 the gains
-//! shrink: 0.14 MB vessels 0.84 -> 0.95 of the octree).
-//!
-//! ([`PointMass::with_errors`] with [`super::shade::voxel_mean_errors`];
-//! [`PointMass::new`] takes `m = e`, the point's own sample). Counting `e^2`
-//! overrates points on thin structures, where `m` is about half of `e`: the
-//! selection then traded texture for points that made the picture worse
-//! (docs/BENCHMARKS.md).
+//! `eta_f` ([`point_efficiency`]) is the share of that data-space error a
+//! point removes from the picture, measured, not derived. A point corrects
+//! the underestimate on a fine structure and leaves T_f's overestimate
+//! beside it, spread over a region that grows with `f`; a ray integrates
+//! that spread error, so the picture weighs it more than its squared sum
+//! says. Counting all of `m^2` (`eta = 1`), the selection bought factor-4
+//! points in place of refinement that made the `vessels` angiogram's
+//! picture 10-12 % worse than the octree alone (`bench render --points`
+//! at 1.10 MB; `tests/hybrid_points.rs` at 0.14 MB); `eta = 1/2` for every
+//! factor cut the mapper's gain on its 3-sample bars from 47 % to 17 %.
+//! `1 / sqrt(f)` (0.71, 0.5, 0.35) keeps every octree+points row of
+//! docs/BENCHMARKS.md, the 24 cells of `bench/representation_points.py`
+//! and the mapper's bars at or below the picture without points.
 //!
 //! A point at sample `x` belongs to the node whose half-open box holds it,
 //! that is whose cells hold cell `min(x, dims - 2)` (the convention of
@@ -42,9 +39,12 @@
 use super::PointSet;
 use crate::error::{Error, Result};
 
-/// `eta`: the share of a point's removable data-space squared error the
-/// selection counts (see the module documentation for the measurement).
-pub const POINT_EFFICIENCY: f64 = 0.5;
+/// `eta_f = 1 / sqrt(f)`: the share of a factor-`f` point's removable
+/// data-space squared error the selection counts (see the module
+/// documentation for the measurement).
+pub fn point_efficiency(factor: usize) -> f64 {
+    1.0 / (factor.max(1) as f64).sqrt()
+}
 
 /// Per-block point counts and removable squared error, as summed-area tables.
 #[derive(Debug, Clone)]
@@ -56,7 +56,7 @@ pub struct PointMass {
     block: usize,
     /// Blocks per axis.
     blocks: [usize; 3],
-    /// Summed-area tables over `(blocks + 1)^3`: all points, and (e > 0 only) their count and `eta (e / range)^2`.
+    /// Summed-area tables over `(blocks + 1)^3`: all points, and (e > 0 only) their count and `eta_f (e / range)^2`.
     count: Vec<u64>,
     positive: Vec<u64>,
     removable: Vec<f64>,
@@ -99,13 +99,14 @@ impl PointMass {
         let mut positive = vec![0u64; count.len()];
         let mut removable = vec![0.0f64; count.len()];
         let range = set.value_range[1] - set.value_range[0];
+        let eta = point_efficiency(set.factor);
         for (p, &e) in set.points.iter().zip(errors) {
             let b: [usize; 3] = std::array::from_fn(|a| usize::from(p.ijk[a]).min(cells[a] - 1) / block);
             let slot = at(b[0] + 1, b[1] + 1, b[2] + 1);
             count[slot] += 1;
             if e > 0.0 && range > 0.0 {
                 positive[slot] += 1;
-                removable[slot] += POINT_EFFICIENCY * (e / range) * (e / range);
+                removable[slot] += eta * (e / range) * (e / range);
             }
         }
         // Prefix sums along each axis in turn.
@@ -131,7 +132,7 @@ impl PointMass {
     }
 
     /// For the node with cell box `[lo, hi)` (samples `lo ..= hi`): its
-    /// points, those with `e > 0`, and their removable squared error (`eta` included).
+    /// points, those with `e > 0`, and their removable squared error (`eta_f` included).
     pub fn in_box(&self, lo: [usize; 3], hi: [usize; 3]) -> (usize, usize, f64) {
         let b0: [usize; 3] = std::array::from_fn(|a| (lo[a] / self.block).min(self.blocks[a]));
         let b1: [usize; 3] = std::array::from_fn(|a| hi[a].div_ceil(self.block).min(self.blocks[a]).max(b0[a]));
@@ -182,7 +183,7 @@ mod tests {
                     let e = set.error(p);
                     if e > 0.0 {
                         expect.1 += 1;
-                        expect.2 += POINT_EFFICIENCY * (e / range) * (e / range);
+                        expect.2 += point_efficiency(2) * (e / range) * (e / range);
                     }
                 }
             }

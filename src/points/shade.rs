@@ -248,7 +248,7 @@ mod tests {
         let mass = crate::points::PointMass::with_errors(&set, 4, &means).unwrap();
         let (count, positive, removable) = mass.in_box([0; 3], [n - 1; 3]);
         assert_eq!((count, positive), (set.points.len(), set.points.len()));
-        let eta = crate::points::mass::POINT_EFFICIENCY;
+        let eta = crate::points::mass::point_efficiency(2);
         assert!((removable - eta * set.points.len() as f64 * want * want / 0.25).abs() < 1e-6, "{removable}");
         let e = crate::points::PointMass::with_errors(&set, 4, &means[1..]).unwrap_err().to_string();
         assert!(e.contains("one per point"), "{e}");

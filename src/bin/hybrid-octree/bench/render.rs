@@ -269,9 +269,13 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
             .filter_map(|r| r.stride)
             .collect();
         point_strides.dedup();
+        let low = match args.max_overestimate {
+            Some(b) => format!(", optimized low resolution (overestimates <= {b})"),
+            None => String::new(),
+        };
         for s in point_strides {
             lines.push((
-                format!("stride {s} + points (threshold sweep)"),
+                format!("stride {s} + points (threshold sweep{low})"),
                 series(&|r| r.method == "points" && r.stride == Some(s) && r.point_threshold.is_some()),
             ));
         }
@@ -283,7 +287,7 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
         }
         if rows.iter().any(|r| r.point_budget.is_some()) {
             lines.push((
-                "coarser stride + points at a finer stride's bytes".into(),
+                format!("coarser stride + points at a finer stride's bytes{low}"),
                 series(&|r| r.method == "points" && r.point_budget.is_some()),
             ));
         }
