@@ -538,6 +538,37 @@ fn points_writes_a_file_that_reads_back_and_draws_the_difference_pictures() {
         assert!(std::fs::metadata(&png).map(|m| m.len() > 100).unwrap_or(false), "{png}");
         std::fs::remove_file(png).ok();
     }
+    assert!(r["subsampled_rmse"].is_null(), "plain subsampling is the low resolution itself: {r}");
+    // The optimized low resolution: plain subsampling alone is drawn too, for comparison.
+    let r = json_of(
+        "points",
+        &[
+            "--dataset",
+            "vessels",
+            "--size",
+            "33",
+            "--factor",
+            "4",
+            "--threshold",
+            "0.1",
+            "--max-overestimate",
+            "0.1",
+            "--output",
+            file.to_str().unwrap(),
+            "--render",
+            prefix,
+            "--width",
+            "48",
+            "--height",
+            "48",
+        ],
+    );
+    assert!(r["subsampled_rmse"].as_f64().unwrap() > 0.0, "{r}");
+    for name in ["lowres", "hybrid", "reference", "lowres-diff", "hybrid-diff", "subsampled", "subsampled-diff"] {
+        let png = format!("{prefix}-{name}.png");
+        assert!(std::fs::metadata(&png).map(|m| m.len() > 100).unwrap_or(false), "{png}");
+        std::fs::remove_file(png).ok();
+    }
     std::fs::remove_file(&file).ok();
     // Bad options are clear errors.
     let out =
