@@ -28,6 +28,10 @@ with points, RMSE without and with points, and their ratio (with / without;
 below 1: the points help); then "N of M cells at or below the picture
 without points" (and how many of them draw points at all), the worst ratio
 and the run time. --json prints one JSON object per row instead of the table.
+--check (CTest HybridOctree.Bench.representation_points) fails the run unless
+every cell is at or below the picture without points (issue 8's "points never
+make the picture worse"), some cell draws points, and every picture keeps its
+textures within the budget.
 """
 import argparse
 import json
@@ -41,7 +45,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "paraview"))
 
 from paraview.simple import LoadPlugin, SaveScreenshot, XMLImageDataReader  # noqa: E402
-from pvtest import generate_phantom, read_png_rgb, report, rmse  # noqa: E402
+from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
 from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
 
 
@@ -59,6 +63,7 @@ parser.add_argument("--factors", type=lambda s: [int(v) for v in s.split(",")], 
 parser.add_argument("--thresholds", type=floats, default=[0.05, 0.1, 0.2, 0.4])
 parser.add_argument("--workdir", help="where the volume and the pictures go (default: a temporary folder)")
 parser.add_argument("--json", action="store_true", help="one JSON object per row instead of the table")
+parser.add_argument("--check", action="store_true", help="fail unless points never make a picture worse")
 args = parser.parse_args()
 workdir = args.workdir or tempfile.mkdtemp(prefix="representation-points-")
 os.makedirs(workdir, exist_ok=True)
@@ -132,4 +137,13 @@ else:
     report("%d of %d cells at or below the picture without points (%d draw points); worst ratio %.3f "
            "(%g MB, factor %d, threshold %g); %.1f s" % (better, len(rows), drawn, worst["ratio"], worst["budget_mb"],
                                                         worst["factor"], worst["threshold"], time.perf_counter() - started))
+if args.check:
+    t = Checks("representation_points")
+    for r in rows:
+        cell = "%g MB, factor %d, threshold %g" % (r["budget_mb"], r["factor"], r["threshold"])
+        t.check(r["rmse_with"] <= r["rmse_without"],
+                "%s: with points %.5f <= without %.5f" % (cell, r["rmse_with"], r["rmse_without"]))
+        t.check(0.0 < r["texture_mb"] <= r["budget_mb"], "%s: texture %.4f MB within the budget" % (cell, r["texture_mb"]))
+    t.check(any(r["points"] > 0 for r in rows), "some cell draws points")
+    t.finish()
 # No sys.exit(): pvbatch 5.11 can crash in its teardown after one (pvtest.Checks.finish).
