@@ -498,32 +498,22 @@ fn ftb_refuses_a_zero_vpn_and_a_missing_isovalue() {
     assert!(stderr(&out).contains("--isovalue") || stderr(&out).contains("--label"), "{}", stderr(&out));
 }
 
+/// `points` on a 33^3 volume at threshold 0.1, written to `file` and drawn
+/// at 48x48 as `prefix-*.png`, with `options` (dataset, factor, ...); its JSON.
+fn points_json(options: &[&str], file: &std::path::Path, prefix: &str) -> Value {
+    let common = ["--size", "33", "--threshold", "0.1", "--width", "48", "--height", "48", "--render", prefix];
+    let mut args: Vec<&str> = options.to_vec();
+    args.extend(common);
+    args.extend(["--output", file.to_str().unwrap()]);
+    json_of("points", &args)
+}
+
 #[test]
 fn points_writes_a_file_that_reads_back_and_draws_the_difference_pictures() {
     let file = temp("points.hop");
     let prefix = temp("points");
     let prefix = prefix.to_str().unwrap();
-    let r = json_of(
-        "points",
-        &[
-            "--dataset",
-            "shepp-logan",
-            "--size",
-            "33",
-            "--factor",
-            "2",
-            "--threshold",
-            "0.1",
-            "--output",
-            file.to_str().unwrap(),
-            "--render",
-            prefix,
-            "--width",
-            "48",
-            "--height",
-            "48",
-        ],
-    );
+    let r = points_json(&["--dataset", "shepp-logan", "--factor", "2"], &file, prefix);
     let points = r["points"].as_u64().unwrap();
     assert!(points > 0, "{r}");
     // 6 bytes a point on a 33^3 grid, plus the 72-byte header in the file.
@@ -540,29 +530,7 @@ fn points_writes_a_file_that_reads_back_and_draws_the_difference_pictures() {
     }
     assert!(r["subsampled_rmse"].is_null(), "plain subsampling is the low resolution itself: {r}");
     // The optimized low resolution: plain subsampling alone is drawn too, for comparison.
-    let r = json_of(
-        "points",
-        &[
-            "--dataset",
-            "vessels",
-            "--size",
-            "33",
-            "--factor",
-            "4",
-            "--threshold",
-            "0.1",
-            "--max-overestimate",
-            "0.1",
-            "--output",
-            file.to_str().unwrap(),
-            "--render",
-            prefix,
-            "--width",
-            "48",
-            "--height",
-            "48",
-        ],
-    );
+    let r = points_json(&["--dataset", "vessels", "--factor", "4", "--max-overestimate", "0.1"], &file, prefix);
     assert!(r["subsampled_rmse"].as_f64().unwrap() > 0.0, "{r}");
     for name in ["lowres", "hybrid", "reference", "lowres-diff", "hybrid-diff", "subsampled", "subsampled-diff"] {
         let png = format!("{prefix}-{name}.png");

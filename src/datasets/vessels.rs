@@ -28,6 +28,7 @@
 //! Each subtree carries its bounding box, so a sample far from a branch
 //! skips all of it: the field costs a few segment distances a sample.
 
+use crate::vec3::{add, cross, dot, normalize, scale, sub};
 use std::sync::OnceLock;
 
 /// Generations of the tree (root = 1): 2^6 - 1 = 63 segments.
@@ -143,25 +144,6 @@ fn perpendiculars(d: [f64; 3]) -> ([f64; 3], [f64; 3]) {
 /// `v` rotated by `angle` about the unit `axis` (Rodrigues' formula; `axis` is perpendicular to `v`).
 fn rotate(v: [f64; 3], axis: [f64; 3], angle: f64) -> [f64; 3] {
     add(scale(v, angle.cos()), scale(cross(axis, v), angle.sin()))
-}
-
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-fn normalize(a: [f64; 3]) -> [f64; 3] {
-    scale(a, 1.0 / dot(a, a).sqrt())
 }
 
 #[cfg(test)]
