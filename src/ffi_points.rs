@@ -43,9 +43,7 @@ impl VolumeOctreeHandle {
             if !options.file_name.is_empty() {
                 write_points(&set, std::path::Path::new(&options.file_name))?;
             }
-            // What each point removes, drawn with its voxel-mean shade.
-            let errors = crate::points::shade::voxel_mean_errors(&grid, &set);
-            let mass = PointMass::with_errors(&set, self.octree.layout().leaf_size(), &errors)?;
+            let mass = PointMass::voxel_means(&grid, &set, self.octree.layout().leaf_size());
             Ok(Box::new(PointsHandle { set: Arc::new(set), mass, octree_id: self.id, shape: self.shape }))
         })
     }

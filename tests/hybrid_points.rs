@@ -8,7 +8,6 @@ use hybrid_octree::datasets::{generate as dataset, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::octree::{BuildOptions, VolumeOctree};
 use hybrid_octree::plan::{draw_list, DrawList, Scene};
-use hybrid_octree::points::shade::voxel_mean_errors;
 use hybrid_octree::points::{
     add_points, generate, generate_hybrid, shade, Footprint, PointMass, PointOptions, PointSelect, PointSet,
 };
@@ -226,8 +225,7 @@ fn the_selection_buys_points_where_they_beat_refining() {
     let truth = truth(&f, &grid);
     let offer = PointOptions { underestimates_only: true, ..PointOptions::new(2, PointSelect::Threshold(0.05)) };
     let set = generate(&grid, &offer).unwrap();
-    let errors = voxel_mean_errors(&grid, &set);
-    let mass = PointMass::with_errors(&set, f.octree.layout().leaf_size(), &errors).unwrap();
+    let mass = PointMass::voxel_means(&grid, &set, f.octree.layout().leaf_size());
     let budget = 140_000;
     let options = SelectOptions::new(budget, 0.0);
     let plain = select(&f.octree, &options, |_, _| true).unwrap();
@@ -304,8 +302,7 @@ fn the_selection_with_points_is_never_worse_than_without() {
         let offer =
             PointOptions { underestimates_only: true, ..PointOptions::new(factor, PointSelect::Threshold(0.05)) };
         let set = generate(&grid, &offer).unwrap();
-        let errors = voxel_mean_errors(&grid, &set);
-        let mass = PointMass::with_errors(&set, f.octree.layout().leaf_size(), &errors).unwrap();
+        let mass = PointMass::voxel_means(&grid, &set, f.octree.layout().leaf_size());
         for budget in [1_098_500, 143_748] {
             let options = SelectOptions::new(budget, 0.0);
             let alone = draw(&select(&f.octree, &options, |_, _| true).unwrap(), None);

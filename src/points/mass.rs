@@ -31,6 +31,9 @@
 //! octree+points row of docs/BENCHMARKS.md at or below the picture without
 //! points, but one 0.07 % above (phantom, factor 4, 8.59 MB).
 //!
+//! ([`PointMass::voxel_means`]; [`PointMass::new`] takes `m = e`, the
+//! point's own sample, and [`PointMass::with_errors`] any given `m`.)
+//!
 //! A point at sample `x` belongs to the node whose half-open box holds it,
 //! that is whose cells hold cell `min(x, dims - 2)` (the convention of
 //! `Q_p`). Counts and sums are kept on a lattice of `block`-cell blocks with
@@ -69,6 +72,14 @@ impl PointMass {
     pub fn new(set: &PointSet, block: usize) -> PointMass {
         let errors: Vec<f64> = set.points.iter().map(|p| set.error(p)).collect();
         PointMass::tables(set, block, &errors)
+    }
+
+    /// The tables of `set` on blocks of `block` cells, each point rated at
+    /// what its voxel-mean shade removes ([`super::shade::voxel_mean_errors`]
+    /// over `grid`, the grid the points were made from): what the renderers
+    /// draw, so what the selection should count.
+    pub fn voxel_means(grid: &crate::grid::Grid<'_>, set: &PointSet, block: usize) -> PointMass {
+        PointMass::tables(set, block, &super::shade::voxel_mean_errors(grid, set))
     }
 
     /// [`PointMass::new`] with the error each point corrects given, one per

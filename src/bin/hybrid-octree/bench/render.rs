@@ -341,9 +341,7 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
             PointOptions { underestimates_only: true, ..PointOptions::new(factor, PointSelect::Threshold(0.05)) };
         let set = hybrid_octree::points::generate(bench.grid, &offer)?;
         let ms = started.elapsed().as_secs_f64() * 1e3;
-        // What each point removes, drawn with its voxel-mean shade.
-        let errors = hybrid_octree::points::shade::voxel_mean_errors(bench.grid, &set);
-        let mass = PointMass::with_errors(&set, bench.scene.octree.layout().leaf_size(), &errors)?;
+        let mass = PointMass::voxel_means(bench.grid, &set, bench.scene.octree.layout().leaf_size());
         for &budget in &bytes {
             let options = SelectOptions { roi: bench.args.roi, ..SelectOptions::new(budget, 0.0) };
             let started = Instant::now();
