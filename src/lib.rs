@@ -33,6 +33,7 @@ pub mod ftb;
 pub mod grid;
 pub mod hybrid;
 pub mod io;
+pub mod limits;
 pub mod octree;
 pub mod order;
 pub mod plan;
