@@ -147,8 +147,12 @@ fn read_compressed(
                 out.truncate(before + n);
             }
         }
-        if out.len() - before != size {
-            return Err(corrupt(&format!("it inflates to {} bytes, not {size}", out.len() - before)));
+        let inflated = out.len() - before;
+        if inflated > size {
+            return Err(corrupt(&format!("it inflates to more than the {size} bytes its header declares")));
+        }
+        if inflated < size {
+            return Err(corrupt(&format!("it inflates to {inflated} bytes, not the {size} its header declares")));
         }
     }
     Ok(out)

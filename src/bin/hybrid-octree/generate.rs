@@ -1,5 +1,6 @@
 //! `generate`: write a built-in dataset to a `.vti` file.
 
+use crate::extension::require_extension;
 use crate::pool::with_threads;
 use clap::Args;
 use hybrid_octree::datasets::{generate, Dataset};
@@ -30,6 +31,7 @@ pub struct GenerateArgs {
 
 /// Generates the dataset and writes it.
 pub fn run(args: &GenerateArgs) -> Result<()> {
+    require_extension(&args.output, "--output", &[".vti"], "VTK XML image data")?;
     let dataset = Dataset::parse(&args.dataset)?;
     let scalar_type = ScalarType::parse(&args.scalar_type)?;
     if args.size < 2 {
