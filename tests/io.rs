@@ -704,7 +704,7 @@ fn damaged_nifti_gz_is_refused_by_its_trailer() {
             Err(_) => errors += 1,
         }
     }
-    assert!(errors >= n - 8 - 10 - 1, "{errors} of {} flips refused", n - 18);
+    assert!(errors * 10 >= (n - 18) * 9, "only {errors} of {} flips refused", n - 18);
 }
 
 #[test]
