@@ -210,11 +210,11 @@ fn hopoints_reader_survives_mutations() {
     });
 }
 
-/// Writes the seed corpus to `fuzz/corpus/<target>/` for `cargo fuzz`.
+/// Writes the seed corpus to `fuzz/seeds/<target>/` for `cargo fuzz`.
 #[test]
 #[ignore = "writes files into the source tree; run by hand"]
 fn write_seed_corpus() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/seeds");
     for target in seeds::TARGETS {
         std::fs::create_dir_all(root.join(target)).unwrap();
     }

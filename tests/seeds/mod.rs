@@ -1,7 +1,7 @@
 //! The fuzzing seed corpus: one small valid file (a 5x4x3 volume, or a point
 //! set) per reader and encoding, built here byte by byte so that the corpus
 //! is reproducible (`cargo test --release --test fuzz_readers -- --ignored
-//! write_seed_corpus` writes it to `fuzz/corpus/<target>/`).
+//! write_seed_corpus` writes it to `fuzz/seeds/<target>/`).
 
 use hybrid_octree::datasets::{generate_dims, Dataset};
 use hybrid_octree::grid::ScalarType;
