@@ -650,3 +650,14 @@ fn terminal_escapes_in_a_file_name_are_not_printed() {
     assert_clean_failure(&out, "no-such-\\u{1b}[2J.vti");
     assert!(!stderr(&out).contains('\x1b'));
 }
+
+#[test]
+fn a_built_in_dataset_too_large_for_memory_is_refused_up_front() {
+    let out = run_capped("64M", &["info", "--dataset", "sphere", "--size", "1000", "--type", "f32"]);
+    assert_clean_failure(&out, "the 1000^3 f32 sphere volume needs 3.7 GiB of memory");
+    let path = temp("big.vti");
+    let out =
+        run_capped("64M", &["generate", "--dataset", "ramp", "--size", "4000", "--output", path.to_str().unwrap()]);
+    assert_clean_failure(&out, "give a smaller --size");
+    assert!(!path.exists());
+}

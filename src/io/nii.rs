@@ -121,9 +121,14 @@ fn read_volume(
             human_bytes(u128::from(header.data_bytes()))
         )));
     }
-    let name = file_name.trim_end_matches(".gz").trim_end_matches(".GZ");
-    let name = name.strip_suffix(".nii").or_else(|| name.strip_suffix(".NII")).unwrap_or(name);
-    Ok(Volume { samples, shape, components: 1, name: name.to_string() })
+    Ok(Volume { samples, shape, components: 1, name: stem(file_name).to_string() })
+}
+
+/// `file_name` without `.nii` or `.nii.gz` (any case).
+fn stem(file_name: &str) -> &str {
+    let lower = file_name.to_ascii_lowercase();
+    let cut = [".nii.gz", ".nii"].iter().find(|ext| lower.ends_with(*ext)).map_or(0, |ext| ext.len());
+    &file_name[..file_name.len() - cut]
 }
 
 /// The type of the volume: the stored type, or `f32` (`f64` for `f64` data)
@@ -156,4 +161,16 @@ fn read_samples(stream: &mut impl Read, header: &NiftiHeader, target: ScalarType
         left -= n;
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stem;
+
+    #[test]
+    fn the_name_drops_the_extension_in_any_case() {
+        assert_eq!(stem("head.nii.gz"), "head");
+        assert_eq!(stem("HEAD.NII.GZ"), "HEAD");
+        assert_eq!(stem("a.b.Nii"), "a.b");
+    }
 }
