@@ -828,13 +828,13 @@ fn legacy_binary_and_other_attributes_are_read() {
     f.extend((0..24).flat_map(|i| (i as f32).to_be_bytes()));
     f.extend(b"\nFIELD FieldData 1\nids 1 8 int\n");
     f.extend((0..8).flat_map(|i: i32| i.to_be_bytes()));
-    f.extend(b"\nSCALARS s short 1\nLOOKUP_TABLE default\n");
-    f.extend((0..8).flat_map(|i: i16| (i * 3).to_be_bytes()));
+    f.extend(b"\nSCALARS s short 1\n"); // no LOOKUP_TABLE: the values follow at once
+    f.extend((0..8).flat_map(|i: i16| (i * 3 + 10).to_be_bytes()));
     f.extend(b"\nCELL_DATA 1\nSCALARS c float\nLOOKUP_TABLE default\n");
     f.extend(1f32.to_be_bytes());
     let v = read_bytes("binary.vtk", &f).unwrap();
     assert_eq!((v.name.as_str(), v.components), ("s", 1));
-    assert_eq!(v.samples, SampleBuf::I16((0..8).map(|i| i * 3).collect()));
+    assert_eq!(v.samples, SampleBuf::I16((0..8).map(|i| i * 3 + 10).collect()));
     assert_eq!((v.shape.origin, v.shape.spacing), ([1.0, 2.0, 3.0], [1.0, 1.0, 2.0]));
     let e = bytes_error("short.vtk", &f[..f.len() - 60]);
     assert!(e.contains("truncated"), "{e}");

@@ -196,6 +196,7 @@ fn attribute(c: &mut Cursor, keyword: &str, n: usize, binary: bool) -> Parse<Opt
             if upper(c.peek_word()) == "LOOKUP_TABLE" {
                 c.word();
                 c.word();
+                c.end_line();
             }
             (array_name, type_name, components)
         }
@@ -235,8 +236,8 @@ fn attribute(c: &mut Cursor, keyword: &str, n: usize, binary: bool) -> Parse<Opt
     if components == 0 {
         return Err(format!("the {keyword} '{}' has zero components; the file is corrupt", excerpt(&array_name)));
     }
-    if binary {
-        c.end_line();
+    if binary && keyword != "SCALARS" {
+        c.end_line(); // SCALARS ended its own lines
     }
     let start = c.pos();
     let values = n.checked_mul(components).ok_or_else(|| too_many(keyword))?;
