@@ -842,3 +842,18 @@ fn legacy_binary_and_other_attributes_are_read() {
     let e = bytes_error("huge.vtk", huge.as_bytes());
     assert!(e.contains("POINT_DATA 8 does not match"), "{e}");
 }
+
+#[test]
+fn nifti_vox_offset_near_the_float_maximum_is_beyond_the_file() {
+    let (_, bytes) = i16_data();
+    for name in ["max.nii", "max.nii.gz"] {
+        let mut file = nifti_at(f32::MAX, &bytes);
+        if name.ends_with(".gz") {
+            file = gzip(&file);
+        }
+        let e = bytes_error(name, &file);
+        // Refused up front by the data's end, which must not wrap around.
+        let says = if name.ends_with(".gz") { "cannot inflate past" } else { "the file has 472 bytes" };
+        assert!(e.contains("the header puts the voxel data at bytes") && e.contains(says), "{e}");
+    }
+}

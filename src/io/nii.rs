@@ -39,7 +39,7 @@ pub fn read_nifti_bytes(label: &str, file_name: &str, bytes: &[u8], gz: bool) ->
     let volume = if gz {
         let mut stream = flate2::read::MultiGzDecoder::new(bytes);
         let header = read_header(&mut stream).map_err(fail)?;
-        let end = header.vox_offset + header.data_bytes();
+        let end = header.data_end();
         let most = (bytes.len() as u64).saturating_mul(MAX_DEFLATE_RATIO);
         if end > most {
             return Err(fail(format!(
@@ -80,7 +80,7 @@ fn read_volume(
     let fail = |m: String| format_error(label, m);
     let shape = GridShape { dims: header.dims, spacing: header.spacing, origin: header.origin };
     shape.check(1).map_err(|e| fail(e.to_string()))?;
-    let data_end = header.vox_offset + header.data_bytes();
+    let data_end = header.data_end();
     if let Some(len) = file_len {
         if data_end > len {
             return Err(fail(format!(

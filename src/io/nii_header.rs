@@ -46,6 +46,12 @@ impl NiftiHeader {
     pub fn data_bytes(&self) -> u64 {
         self.count() as u64 * self.stored.size() as u64
     }
+
+    /// The byte just past the voxel data (saturating: a `vox_offset` near
+    /// `u64::MAX` is simply beyond any file).
+    pub fn data_end(&self) -> u64 {
+        self.vox_offset.saturating_add(self.data_bytes())
+    }
 }
 
 /// Parses and checks the first [`HEADER_BYTES`] of `bytes`. Errors are
