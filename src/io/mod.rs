@@ -27,6 +27,7 @@ pub mod vti_data;
 pub mod vti_write;
 pub mod vti_xml;
 pub mod vtk;
+pub mod vtk_attributes;
 pub mod vtk_tokens;
 
 pub use options::{RawOptions, ReadOptions};

@@ -24,25 +24,12 @@
 //! passes them on as values.
 
 use super::read::format_error;
-use super::vtk_tokens::Cursor;
+use super::vtk_attributes::{attribute, skip_field, skip_metadata, Array};
+use super::vtk_tokens::{number, parse_number, triple, upper, Cursor, Parse};
 use crate::error::Result;
 use crate::grid::{GridShape, ScalarType};
 use crate::limits::{check_memory, excerpt, excerpt_bytes};
 use crate::volume::{SampleBuf, Volume};
-
-type Parse<T> = std::result::Result<T, String>;
-
-/// One point or cell attribute: where its values start and how many.
-#[derive(Debug, Clone)]
-struct Array {
-    name: String,
-    scalars: bool,
-    type_name: String,
-    /// Values per tuple.
-    components: usize,
-    /// Byte offset of the first value.
-    start: usize,
-}
 
 /// Reads the legacy `.vtk` file `bytes` (`label` names it in errors).
 pub fn read_vtk_bytes(label: &str, bytes: &[u8]) -> Result<Volume> {
@@ -52,7 +39,7 @@ pub fn read_vtk_bytes(label: &str, bytes: &[u8]) -> Result<Volume> {
         .checked_mul(array.components)
         .ok_or("too many values")
         .map_err(|m| format_error(label, m.to_string()))?;
-    let ty = scalar_type(&array)?.ok_or_else(|| {
+    let ty = scalar_type(&array).ok_or_else(|| {
         format_error(
             label,
             format!(
@@ -176,142 +163,9 @@ fn geometry(c: &mut Cursor, binary: bool) -> Parse<GridShape> {
     Ok(GridShape { dims, spacing, origin })
 }
 
-/// Parses one attribute after its keyword, for `n` tuples, and moves past its
-/// values. `Some` for the attributes that can be the volume, `None` for those
-/// skipped (FIELD, LOOKUP_TABLE).
-fn attribute(c: &mut Cursor, keyword: &str, n: usize, binary: bool) -> Parse<Option<Array>> {
-    let name = |c: &mut Cursor| -> Parse<String> {
-        c.word().map(|w| String::from_utf8_lossy(w).into_owned()).ok_or_else(|| truncated(keyword))
-    };
-    let (array_name, type_name, components) = match keyword {
-        "SCALARS" => {
-            let line = c.line().ok_or_else(|| truncated(keyword))?;
-            let mut words = line.split(u8::is_ascii_whitespace).filter(|w| !w.is_empty());
-            let array_name = String::from_utf8_lossy(words.next().ok_or_else(|| truncated(keyword))?).into_owned();
-            let type_name = String::from_utf8_lossy(words.next().ok_or_else(|| truncated(keyword))?).into_owned();
-            let components = match words.next() {
-                None => 1,
-                Some(w) => parse_number::<usize>(w, "the SCALARS component count")?,
-            };
-            if upper(c.peek_word()) == "LOOKUP_TABLE" {
-                c.word();
-                c.word();
-                c.end_line();
-            }
-            (array_name, type_name, components)
-        }
-        "VECTORS" | "NORMALS" => (name(c)?, name(c)?, 3),
-        "TENSORS" => (name(c)?, name(c)?, 9),
-        "TENSORS6" => (name(c)?, name(c)?, 6),
-        "TEXTURE_COORDINATES" => {
-            let array_name = name(c)?;
-            let dim = number::<usize>(c, keyword)?;
-            (array_name, name(c)?, dim)
-        }
-        "COLOR_SCALARS" => {
-            let array_name = name(c)?;
-            let components = number::<usize>(c, keyword)?;
-            (array_name, if binary { "unsigned_char" } else { "float" }.to_string(), components)
-        }
-        "GLOBAL_IDS" | "PEDIGREE_IDS" => {
-            let _ = name(c)?;
-            let type_name = name(c)?;
-            skip_values(c, &type_name, n, binary, keyword)?;
-            return Ok(None);
-        }
-        "LOOKUP_TABLE" => {
-            let _ = name(c)?;
-            let size = number::<usize>(c, keyword)?;
-            let values = size.checked_mul(4).ok_or_else(|| too_many(keyword))?;
-            let type_name = if binary { "unsigned_char" } else { "float" };
-            skip_values(c, type_name, values, binary, keyword)?;
-            return Ok(None);
-        }
-        "FIELD" => {
-            skip_field(c, binary)?;
-            return Ok(None);
-        }
-        other => return Err(format!("unknown attribute '{}'; the file is corrupt", excerpt(other))),
-    };
-    if components == 0 {
-        return Err(format!("the {keyword} '{}' has zero components; the file is corrupt", excerpt(&array_name)));
-    }
-    if binary && keyword != "SCALARS" {
-        c.end_line(); // SCALARS ended its own lines
-    }
-    let start = c.pos();
-    let values = n.checked_mul(components).ok_or_else(|| too_many(keyword))?;
-    skip_values(c, &type_name, values, binary, keyword)?;
-    Ok(Some(Array { name: array_name, scalars: keyword == "SCALARS", type_name, components, start }))
-}
-
-/// Skips `FIELD name count` and its arrays (`name components tuples type`
-/// and the values).
-fn skip_field(c: &mut Cursor, binary: bool) -> Parse<()> {
-    c.word().ok_or_else(|| truncated("FIELD"))?;
-    let arrays = number::<usize>(c, "FIELD")?;
-    for _ in 0..arrays {
-        let array_name = c.word().ok_or_else(|| truncated("FIELD"))?;
-        if upper(Some(array_name)) == "NULL_ARRAY" {
-            continue;
-        }
-        let components = number::<usize>(c, "FIELD array")?;
-        let tuples = number::<usize>(c, "FIELD array")?;
-        let type_name = String::from_utf8_lossy(c.word().ok_or_else(|| truncated("FIELD"))?).into_owned();
-        if binary {
-            c.end_line();
-        }
-        let values = components.checked_mul(tuples).ok_or_else(|| too_many("FIELD array"))?;
-        skip_values(c, &type_name, values, binary, "FIELD array")?;
-    }
-    Ok(())
-}
-
-/// Moves past `values` values of `type_name`.
-fn skip_values(c: &mut Cursor, type_name: &str, values: usize, binary: bool, what: &str) -> Parse<()> {
-    let ok = if binary {
-        let bytes = match type_name.to_ascii_lowercase().as_str() {
-            "bit" => Some(values.div_ceil(8)),
-            t => type_size(t).and_then(|s| values.checked_mul(s)),
-        };
-        let bytes = bytes.ok_or_else(|| {
-            format!("the {what} has the unknown or unsupported type '{}'; the file is corrupt", excerpt(type_name))
-        })?;
-        c.take(bytes).is_some()
-    } else {
-        c.skip_words(values)
-    };
-    if ok {
-        Ok(())
-    } else {
-        Err(format!("the file ends inside the values of a {what}; it is truncated"))
-    }
-}
-
-/// Skips a METADATA block: lines up to the first empty one.
-fn skip_metadata(c: &mut Cursor) {
-    c.end_line();
-    while let Some(line) = c.line() {
-        if line.iter().all(u8::is_ascii_whitespace) {
-            break;
-        }
-    }
-}
-
-/// Bytes of one binary value of a legacy type name (lowercase).
-fn type_size(type_name: &str) -> Option<usize> {
-    Some(match type_name {
-        "char" | "unsigned_char" | "signed_char" => 1,
-        "short" | "unsigned_short" => 2,
-        "int" | "unsigned_int" | "float" | "vtkidtype" => 4,
-        "long" | "unsigned_long" | "double" | "vtktypeint64" | "vtktypeuint64" => 8,
-        _ => return None,
-    })
-}
-
 /// The scalar type of `array`, `None` when the Hybrid Octree does not take it.
-fn scalar_type(array: &Array) -> Result<Option<ScalarType>> {
-    Ok(match array.type_name.to_ascii_lowercase().as_str() {
+fn scalar_type(array: &Array) -> Option<ScalarType> {
+    match array.type_name.to_ascii_lowercase().as_str() {
         "unsigned_char" => Some(ScalarType::U8),
         "char" | "signed_char" => Some(ScalarType::I8),
         "unsigned_short" => Some(ScalarType::U16),
@@ -321,7 +175,7 @@ fn scalar_type(array: &Array) -> Result<Option<ScalarType>> {
         "float" => Some(ScalarType::F32),
         "double" => Some(ScalarType::F64),
         _ => None,
-    })
+    }
 }
 
 /// `count` big-endian values of `ty`.
@@ -350,41 +204,4 @@ fn read_ascii(c: &mut Cursor, ty: ScalarType, count: usize) -> Parse<SampleBuf> 
         ScalarType::F32 => SampleBuf::F32(values(c, count)?),
         ScalarType::F64 => SampleBuf::F64(values(c, count)?),
     })
-}
-
-/// A word as a number of type `T` (Rust's syntax: floats take `nan`, `inf`,
-/// `infinity` in any case, with a sign).
-fn parse_number<T: std::str::FromStr>(word: &[u8], what: &str) -> Parse<T> {
-    std::str::from_utf8(word)
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .ok_or_else(|| format!("{what} '{}' is not a number of its type; the file is corrupt", excerpt_bytes(word)))
-}
-
-/// The next word as a number.
-fn number<T: std::str::FromStr>(c: &mut Cursor, what: &str) -> Parse<T> {
-    parse_number(c.word().ok_or_else(|| truncated(what))?, &format!("the {what} count"))
-}
-
-/// Three numbers after a keyword.
-fn triple<T: std::str::FromStr + Copy + Default>(c: &mut Cursor, what: &str) -> Parse<[T; 3]> {
-    let mut out = [T::default(); 3];
-    for v in &mut out {
-        let word = c.word().ok_or_else(|| truncated(what))?;
-        *v = parse_number(word, &format!("the {what} value"))?;
-    }
-    Ok(out)
-}
-
-/// A word in upper case, `""` at the end of the file.
-fn upper(word: Option<&[u8]>) -> String {
-    String::from_utf8_lossy(word.unwrap_or_default()).to_ascii_uppercase()
-}
-
-fn truncated(what: &str) -> String {
-    format!("the file ends inside its {what} line; it is truncated")
-}
-
-fn too_many(what: &str) -> String {
-    format!("the {what} declares more values than can be addressed; the file is corrupt")
 }

@@ -1,5 +1,8 @@
 //! A cursor over a legacy VTK file: whitespace-separated words for the
-//! keywords and ASCII data, raw byte runs for BINARY data.
+//! keywords and ASCII data, raw byte runs for BINARY data; numbers and
+//! keywords read from it.
+
+use crate::limits::excerpt_bytes;
 
 /// A position in the file's bytes.
 #[derive(Debug, Clone)]
@@ -59,6 +62,48 @@ impl<'a> Cursor<'a> {
     pub fn skip_words(&mut self, n: usize) -> bool {
         (0..n).all(|_| self.word().is_some())
     }
+}
+
+/// A parse result whose error is a message for [`crate::Error::Format`].
+pub type Parse<T> = std::result::Result<T, String>;
+
+/// A word as a number of type `T` (Rust's syntax: floats take `nan`, `inf`,
+/// `infinity` in any case, with a sign).
+pub fn parse_number<T: std::str::FromStr>(word: &[u8], what: &str) -> Parse<T> {
+    std::str::from_utf8(word)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .ok_or_else(|| format!("{what} '{}' is not a number of its type; the file is corrupt", excerpt_bytes(word)))
+}
+
+/// The next word as a number.
+pub fn number<T: std::str::FromStr>(c: &mut Cursor, what: &str) -> Parse<T> {
+    parse_number(c.word().ok_or_else(|| truncated(what))?, &format!("the {what} count"))
+}
+
+/// Three numbers after a keyword.
+pub fn triple<T: std::str::FromStr + Copy + Default>(c: &mut Cursor, what: &str) -> Parse<[T; 3]> {
+    let mut out = [T::default(); 3];
+    for v in &mut out {
+        let word = c.word().ok_or_else(|| truncated(what))?;
+        *v = parse_number(word, &format!("the {what} value"))?;
+    }
+    Ok(out)
+}
+
+/// A word in upper case, `""` at the end of the file.
+pub fn upper(word: Option<&[u8]>) -> String {
+    String::from_utf8_lossy(word.unwrap_or_default()).to_ascii_uppercase()
+}
+
+/// The message for a file that ends inside a `what` line.
+pub fn truncated(what: &str) -> String {
+    format!("the file ends inside its {what} line; it is truncated")
+}
+
+/// The message for a `what` whose value count overflows.
+pub fn too_many(what: &str) -> String {
+    format!("the {what} declares more values than can be addressed; the file is corrupt")
 }
 
 #[cfg(test)]
