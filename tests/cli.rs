@@ -582,3 +582,82 @@ fn bench_render_points_rows_carry_bytes_and_error() {
         assert_eq!(r["total_bytes"].as_u64().unwrap(), t);
     }
 }
+
+/// Runs the CLI with `HYBRID_OCTREE_MAX_MEMORY` set to `cap`.
+fn run_capped(cap: &str, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hybrid-octree"))
+        .args(args)
+        .env("HYBRID_OCTREE_MAX_MEMORY", cap)
+        .output()
+        .expect("the CLI starts")
+}
+
+#[test]
+fn raw_files_are_checked_against_memory_before_reading() {
+    // A sparse 256 MiB file: its layout is right, its size too much for a 64 MiB cap.
+    let path = temp("big.raw");
+    std::fs::File::create(&path).unwrap().set_len(256 << 20).unwrap();
+    let file = path.to_str().unwrap();
+    let out = run_capped("64M", &["info", "--file", file, "--dims", "1024,512,512", "--type", "u8"]);
+    std::fs::remove_file(&path).unwrap();
+    assert_clean_failure(&out, "needs 512.0 MiB of memory");
+    assert!(stderr(&out).contains("1024x512x512 u8") && stderr(&out).contains("HYBRID_OCTREE_MAX_MEMORY"));
+}
+
+#[test]
+fn a_named_pipe_is_refused_not_waited_on() {
+    let fifo = temp("pipe.vti");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let out = run(&["info", "--file", fifo.to_str().unwrap()]);
+    std::fs::remove_file(&fifo).unwrap();
+    assert_clean_failure(&out, "named pipe (FIFO), not a regular file");
+}
+
+#[test]
+fn writers_refuse_extensions_they_do_not_write_before_working() {
+    let dir = temp("ext");
+    std::fs::create_dir_all(&dir).unwrap();
+    let at = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let input = ["--dataset", "sphere", "--size", "9"];
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (vec!["generate".into(), "--output".into(), at("x.vtk")], ".vti"),
+        (vec!["generate".into(), "--output".into(), at("x.nii")], ".vti"),
+        (vec!["render".into(), "--output".into(), at("x.jpg")], ".png"),
+        (vec!["render".into(), "--output".into(), at("x.png"), "--reference".into(), at("r.bmp")], ".png"),
+        (vec!["surface".into(), "--isovalue".into(), "0.5".into(), "--output".into(), at("s.obj")], ".vtk"),
+        (vec!["points".into(), "--threshold".into(), "0.1".into(), "--output".into(), at("p.png")], ".hop"),
+        (vec!["bench".into(), "render".into(), "--plot".into(), at("plot.svg")], ".png"),
+    ];
+    for (args, supported) in cases {
+        let mut all: Vec<&str> = args.iter().map(String::as_str).collect();
+        if all[0] != "generate" {
+            all.extend(input);
+        } else {
+            all.extend(["--dataset", "sphere", "--size", "9"]);
+        }
+        let out = run(&all);
+        assert_clean_failure(&out, supported);
+        assert!(stderr(&out).contains("writes"), "{all:?}: {}", stderr(&out));
+    }
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(left.is_empty(), "files written: {left:?}");
+}
+
+#[test]
+fn terminal_escapes_in_a_file_name_are_not_printed() {
+    let out = run(&["info", "--file", "no-such-\x1b[2J.vti"]);
+    assert_clean_failure(&out, "no-such-\\u{1b}[2J.vti");
+    assert!(!stderr(&out).contains('\x1b'));
+}
+
+#[test]
+fn a_built_in_dataset_too_large_for_memory_is_refused_up_front() {
+    let out = run_capped("64M", &["info", "--dataset", "sphere", "--size", "1000", "--type", "f32"]);
+    assert_clean_failure(&out, "the 1000^3 f32 sphere volume needs 3.7 GiB of memory");
+    let path = temp("big.vti");
+    let out =
+        run_capped("64M", &["generate", "--dataset", "ramp", "--size", "4000", "--output", path.to_str().unwrap()]);
+    assert_clean_failure(&out, "give a smaller --size");
+    assert!(!path.exists());
+}

@@ -634,3 +634,226 @@ fn damaged_vti_files_never_panic() {
     }
     std::fs::remove_file(&path).unwrap();
 }
+
+// ---- hostile input: every bad file is a clear error, checked before allocating ----
+
+/// The error of reading `bytes` as a file named `name` in memory.
+fn bytes_error(name: &str, bytes: &[u8]) -> String {
+    hybrid_octree::io::read_volume_bytes(name, bytes, &ReadOptions::default()).unwrap_err().to_string()
+}
+
+/// [`nifti_bytes`] with the voxel data at `vox_offset` (filler before them).
+fn nifti_at(vox_offset: f32, data: &[u8]) -> Vec<u8> {
+    let mut f = nifti_bytes([3, 4, 5], 4, 16, &[], 0.0, 0.0);
+    f[108..112].copy_from_slice(&vox_offset.to_le_bytes());
+    if vox_offset.is_finite() && vox_offset >= 352.0 && vox_offset < 1e6 {
+        f.resize(vox_offset as usize, 0xEE);
+    }
+    f.extend_from_slice(data);
+    f
+}
+
+fn gzip(bytes: &[u8]) -> Vec<u8> {
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    gz.write_all(bytes).unwrap();
+    gz.finish().unwrap()
+}
+
+#[test]
+fn nifti_vox_offset_is_honoured_and_checked() {
+    let (values, bytes) = i16_data();
+    for file in [nifti_at(1024.0, &bytes), gzip(&nifti_at(1024.0, &bytes))] {
+        let name = if file[0] == 0x1f { "far.nii.gz" } else { "far.nii" };
+        let v = hybrid_octree::io::read_volume_bytes(name, &file, &ReadOptions::default()).unwrap();
+        assert_eq!(v.samples, SampleBuf::I16(values.clone()), "{name}");
+    }
+    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY, 348.0, 352.5] {
+        let e = bytes_error("bad.nii", &nifti_at(bad, &bytes));
+        assert!(e.contains("vox_offset") && e.contains("352"), "{bad}: {e}");
+    }
+    // Beyond the data: for .nii from the file size, for .nii.gz from what gzip can hold.
+    let e = bytes_error("beyond.nii", &nifti_at(1e9, &bytes));
+    assert!(e.contains("vox_offset") && e.contains("truncated"), "{e}");
+    let e = bytes_error("beyond.nii.gz", &gzip(&nifti_at(1e9, &bytes)));
+    assert!(e.contains("cannot inflate past"), "{e}");
+}
+
+#[test]
+fn damaged_nifti_gz_is_refused_by_its_trailer() {
+    let (_, bytes) = i16_data();
+    let good = gzip(&nifti_bytes([3, 4, 5], 4, 16, &bytes, 0.0, 0.0));
+    hybrid_octree::io::read_volume_bytes("ok.nii.gz", &good, &ReadOptions::default()).unwrap();
+    let n = good.len();
+    let mut crc = good.clone();
+    crc[n - 8] ^= 1;
+    let mut isize = good.clone();
+    isize[n - 2] ^= 1;
+    for (what, bad) in [("CRC", crc), ("ISIZE", isize)] {
+        let e = bytes_error("bad.nii.gz", &bad);
+        assert!(e.contains("corrupt"), "{what}: {e}");
+    }
+    // A flipped bit anywhere in the deflate data: an error, or (a padding
+    // bit after the last block) the same volume; never a different picture.
+    let volume = hybrid_octree::io::read_volume_bytes("ok.nii.gz", &good, &ReadOptions::default()).unwrap();
+    let mut errors = 0;
+    for i in 10..n - 8 {
+        let mut bad = good.clone();
+        bad[i] ^= 0x10;
+        match hybrid_octree::io::read_volume_bytes("flip.nii.gz", &bad, &ReadOptions::default()) {
+            Ok(v) => assert_eq!((v.samples, v.shape), (volume.samples.clone(), volume.shape.clone()), "flip at {i}"),
+            Err(_) => errors += 1,
+        }
+    }
+    assert!(errors * 10 >= (n - 18) * 9, "only {errors} of {} flips refused", n - 18);
+}
+
+#[test]
+fn nifti_gz_inflation_stops_at_the_declared_size() {
+    let (_, bytes) = i16_data();
+    // 16 MiB of zeros after the declared voxels (compresses to ~16 KiB).
+    let mut body = nifti_bytes([3, 4, 5], 4, 16, &bytes, 0.0, 0.0);
+    body.resize(body.len() + (16 << 20), 0);
+    let e = bytes_error("bomb.nii.gz", &gzip(&body));
+    assert!(e.contains("follow the") && e.contains("does not describe"), "{e}");
+    // A header declaring far more than this machine has: refused before reading.
+    let mut huge = nifti_bytes([3, 4, 5], 64, 64, &[], 0.0, 0.0);
+    for a in 1..=3 {
+        huge[40 + 2 * a..42 + 2 * a].copy_from_slice(&30000i16.to_le_bytes());
+    }
+    huge.resize(huge.len() + (1 << 20), 0);
+    let e = bytes_error("huge.nii", &huge);
+    assert!(e.contains("truncated"), "{e}");
+    let e = bytes_error("huge.nii.gz", &gzip(&huge));
+    assert!(e.contains("cannot inflate past") || e.contains("of memory"), "{e}");
+}
+
+#[test]
+fn nifti_bitpix_mismatch_has_a_nifti_message() {
+    let (_, bytes) = i16_data();
+    let e = bytes_error("bitpix.nii", &nifti_bytes([3, 4, 5], 4, 8, &bytes, 0.0, 0.0));
+    assert!(e.contains("bitpix 8") && e.contains("datatype 4") && !e.contains("--dims"), "{e}");
+}
+
+#[test]
+fn vti_bombs_are_refused_by_their_declared_sizes() {
+    // 2048^3 Float32 in one ZLib block: the extent needs 32 GiB, refused before inflating.
+    let attrs = r#"header_type="UInt64" compressor="vtkZLibDataCompressor""#;
+    let block = zlib(&vec![0u8; 1 << 20]);
+    let need = 4u64 << 30 << 3;
+    let head = words(&[1, need, need, block.len() as u64], true, false);
+    let file = String::from_utf8(vti_file(attrs, r#"format="appended" offset="0""#, "", None)).unwrap();
+    let file = file.replace(EXTENT, "0 2047 0 2047 0 2047").into_bytes();
+    let mut file = file[..file.len() - "</VTKFile>\n".len()].to_vec();
+    file.extend(b"  <AppendedData encoding=\"raw\">\n   _");
+    file.extend([head, block.clone()].concat());
+    file.extend(b"\n  </AppendedData>\n</VTKFile>\n");
+    let e = bytes_error("bomb.vti", &file);
+    assert!(e.contains("needs 32.0 GiB of memory"), "{e}");
+    // A block that inflates past its declared 32 bytes.
+    let head = words(&[2, 32, 16, block.len() as u64, block.len() as u64], true, false);
+    let raw = [head, block.clone(), block].concat();
+    let e = bytes_error("inflates.vti", &vti_file(attrs, r#"format="appended" offset="0""#, "", Some(("raw", &raw))));
+    assert!(e.contains("more than the 32 bytes its header declares"), "{e}");
+}
+
+#[test]
+fn only_regular_files_are_read() {
+    let zero = temp("zero.vti");
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let e = message(read_volume(&zero, &ReadOptions::default()).unwrap_err());
+    std::fs::remove_file(&zero).unwrap();
+    assert!(e.contains("a device, not a regular file"), "{e}");
+    let fifo = temp("pipe.nii");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let e = message(read_volume(&fifo, &ReadOptions::default()).unwrap_err());
+    std::fs::remove_file(&fifo).unwrap();
+    assert!(e.contains("named pipe"), "{e}");
+}
+
+#[test]
+fn echoed_file_text_is_cut_and_escaped() {
+    let inline = b64(&uncompressed(true, false));
+    let file = String::from_utf8(vti_file(UINT64_LE, r#"format="binary""#, &inline, None)).unwrap();
+    let long = file.replace(r#"Spacing="0.5 2 4""#, &format!("Spacing=\"{}\"", "9".repeat(1 << 20)));
+    let e = bytes_error("long.vti", long.as_bytes());
+    assert!(e.len() < 400 && e.contains("Spacing") && e.contains("1048576 characters"), "{e}");
+    let escape = file.replace(r#"Spacing="0.5 2 4""#, "Spacing=\"\x1b[2J\x1b]0;owned\x07\"");
+    let e = bytes_error("escape.vti", escape.as_bytes());
+    assert!(!e.contains('\x1b') && !e.contains('\x07') && e.contains("\\u{1b}[2J"), "{e}");
+    let e = message(read_volume(&temp("evil\x1b[31m.vti"), &ReadOptions::default()).unwrap_err());
+    assert!(!e.contains('\x1b') && e.contains("evil\\u{1b}[31m"), "{e}");
+}
+
+fn uncompressed_vti() -> Vec<u8> {
+    vti_file(UINT64_LE, r#"format="appended" offset="0""#, "", Some(("raw", &uncompressed(true, false))))
+}
+
+#[test]
+fn a_failed_write_says_write_and_other_extensions_are_refused() {
+    let v = generate_dims(Dataset::Sphere, [3, 3, 3], ScalarType::U8);
+    let e = write_vti(&temp("no-such-dir").join("x.vti"), &v).unwrap_err();
+    assert!(matches!(e, Error::Write { .. }) && e.to_string().starts_with("cannot write"), "{e}");
+    let path = temp("x.vtk");
+    let e = write_vti(&path, &v).unwrap_err();
+    assert!(e.to_string().contains(".vti") && !path.exists(), "{e}");
+}
+
+#[test]
+fn extensions_are_case_insensitive() {
+    let legacy = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n\
+                  POINT_DATA 8\nSCALARS s float\n0 1 2 3 4 5 6 7\n";
+    read_bytes("UPPER.VTK", legacy.as_bytes()).unwrap();
+    let (values, bytes) = i16_data();
+    let v = read_bytes("UPPER.NII.GZ", &gzip(&nifti_bytes([3, 4, 5], 4, 16, &bytes, 0.0, 0.0))).unwrap();
+    assert_eq!(v.samples, SampleBuf::I16(values));
+    check_test_image(&read_bytes("UPPER.Vti", &uncompressed_vti()).unwrap());
+}
+
+#[test]
+fn legacy_ascii_takes_nan_and_inf_spellings() {
+    let text = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n\
+                ORIGIN 0 0 0\nSPACING 1 1 1\nPOINT_DATA 8\nSCALARS s double 1\nLOOKUP_TABLE default\n\
+                nan NaN -nan inf -inf Infinity 1e3 -2.5\n";
+    let v = read_bytes("nan.vtk", text.as_bytes()).unwrap();
+    let SampleBuf::F64(s) = v.samples else { panic!("doubles") };
+    assert!(s[..3].iter().all(|x| x.is_nan()), "{s:?}");
+    assert_eq!(&s[3..], &[f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, 1e3, -2.5]);
+}
+
+#[test]
+fn legacy_binary_and_other_attributes_are_read() {
+    let mut f = b"# vtk DataFile Version 3.0\nbinary\nBINARY\nDATASET STRUCTURED_POINTS\nSPACING 1 1 2\n\
+                  DIMENSIONS 2 2 2\nORIGIN 1 2 3\nPOINT_DATA 8\nVECTORS v float\n"
+        .to_vec();
+    f.extend((0..24).flat_map(|i| (i as f32).to_be_bytes()));
+    f.extend(b"\nFIELD FieldData 1\nids 1 8 int\n");
+    f.extend((0..8).flat_map(|i: i32| i.to_be_bytes()));
+    f.extend(b"\nSCALARS s short 1\n"); // no LOOKUP_TABLE: the values follow at once
+    f.extend((0..8).flat_map(|i: i16| (i * 3 + 10).to_be_bytes()));
+    f.extend(b"\nCELL_DATA 1\nSCALARS c float\nLOOKUP_TABLE default\n");
+    f.extend(1f32.to_be_bytes());
+    let v = read_bytes("binary.vtk", &f).unwrap();
+    assert_eq!((v.name.as_str(), v.components), ("s", 1));
+    assert_eq!(v.samples, SampleBuf::I16((0..8).map(|i| i * 3 + 10).collect()));
+    assert_eq!((v.shape.origin, v.shape.spacing), ([1.0, 2.0, 3.0], [1.0, 1.0, 2.0]));
+    let e = bytes_error("short.vtk", &f[..f.len() - 60]);
+    assert!(e.contains("truncated"), "{e}");
+    let huge = String::from_utf8_lossy(&f).replace("DIMENSIONS 2 2 2", "DIMENSIONS 4000 4000 4000");
+    let e = bytes_error("huge.vtk", huge.as_bytes());
+    assert!(e.contains("POINT_DATA 8 does not match"), "{e}");
+}
+
+#[test]
+fn nifti_vox_offset_near_the_float_maximum_is_beyond_the_file() {
+    let (_, bytes) = i16_data();
+    for name in ["max.nii", "max.nii.gz"] {
+        let mut file = nifti_at(f32::MAX, &bytes);
+        if name.ends_with(".gz") {
+            file = gzip(&file);
+        }
+        let e = bytes_error(name, &file);
+        // Refused up front by the data's end, which must not wrap around.
+        let says = if name.ends_with(".gz") { "cannot inflate past" } else { "the file has 472 bytes" };
+        assert!(e.contains("the header puts the voxel data at bytes") && e.contains(says), "{e}");
+    }
+}

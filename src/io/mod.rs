@@ -4,22 +4,32 @@
 //! | extension          | format                                   | module   |
 //! |--------------------|------------------------------------------|----------|
 //! | `.vti`             | VTK XML ImageData (one piece; appended raw or base64, binary, ascii; ZLib, LZ4, LZMA) | [`vti`] |
-//! | `.vtk`             | legacy VTK STRUCTURED_POINTS             | [`vtk`]  |
+//! | `.vtk`             | legacy VTK STRUCTURED_POINTS (ASCII, BINARY) | [`vtk`]  |
 //! | `.nii`, `.nii.gz`  | NIfTI-1 (3D, one volume)                 | [`nii`]  |
 //! | `.raw`, `.bin`, or any file with [`RawOptions`] | headerless samples | [`raw`] |
 //!
-//! Every failure is an [`crate::Error::Format`] naming the file and what to do.
+//! Extensions are matched in any case. Every failure is an
+//! [`crate::Error::Format`] naming the file and what to do, or an
+//! [`crate::Error::InvalidArgument`] when the volume would need more memory
+//! than the process may use ([`crate::limits::check_memory`], checked from
+//! the header before anything is allocated). Only regular files are read
+//! ([`source`]); [`read_volume_bytes`] reads the same formats from memory.
 
 pub mod nii;
+pub mod nii_header;
 pub mod options;
 pub mod raw;
 pub mod read;
+pub mod sample_sink;
+pub mod source;
 pub mod vti;
 pub mod vti_data;
 pub mod vti_write;
 pub mod vti_xml;
 pub mod vtk;
+pub mod vtk_attributes;
+pub mod vtk_tokens;
 
 pub use options::{RawOptions, ReadOptions};
-pub use read::read_volume;
+pub use read::{read_volume, read_volume_bytes, FileKind};
 pub use vti_write::write_vti;

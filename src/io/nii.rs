@@ -1,112 +1,176 @@
-//! NIfTI-1 (`.nii`, `.nii.gz`) through the `nifti` crate: one 3D volume.
+//! NIfTI-1 single files (`.nii`, `.nii.gz`): one 3D volume.
 //!
-//! Geometry: spacing `pixdim[1..=3]`, origin the qform offset
-//! `(qoffset_x, qoffset_y, qoffset_z)` when `qform_code > 0`, else the sform
-//! translation `(srow_x[3], srow_y[3], srow_z[3])` when `sform_code > 0`,
-//! else 0. Rotations and the RAS orientation are not applied: the volume is
-//! in voxel order, as VTK image data. When `scl_slope` is set (not 0, and not
-//! the identity 1, 0) the stored values are rescaled,
-//! `v = scl_slope * stored + scl_inter`, into `f32` (`f64` data stays `f64`).
+//! The header ([`super::nii_header`]) is read and checked first; the memory
+//! for the voxels it declares is checked next; only then are the voxel data
+//! read, from `vox_offset`, exactly as many bytes as declared, converted while
+//! they are read (no second copy). A `.nii.gz` is decompressed as a stream
+//! that stops at the declared size: what follows the data may be at most
+//! [`TRAILING_SLACK`] bytes, and the gzip trailer (CRC-32 and length) is
+//! verified, so a damaged or inflated file is an error, never a picture.
+//!
+//! Geometry: spacing `pixdim[1..=3]`, origin the qform offset when
+//! `qform_code > 0`, else the sform translation when `sform_code > 0`, else 0.
+//! Rotations and the RAS orientation are not applied: the volume is in voxel
+//! order, as VTK image data. When `scl_slope` is set (not 0, and not the
+//! identity 1, 0) the stored values are rescaled, `v = scl_slope * stored +
+//! scl_inter`, into `f32` (`f64` data stay `f64`).
 
+use super::nii_header::{parse, NiftiHeader, HEADER_BYTES};
 use super::read::format_error;
+use super::sample_sink;
 use crate::error::Result;
-use crate::grid::GridShape;
+use crate::grid::{GridShape, ScalarType};
+use crate::limits::{check_memory, human_bytes};
 use crate::volume::{SampleBuf, Volume};
-use nifti::{DataElement, NiftiObject, NiftiType, ReaderOptions};
-use std::path::Path;
+use std::io::Read;
 
-/// Reads a `.nii` or `.nii.gz` file.
-pub fn read_nifti(path: &Path) -> Result<Volume> {
-    let object = ReaderOptions::new().read_file(path).map_err(|e| {
-        format_error(path, format!("not a readable NIfTI-1 file ({e}); the file may be truncated or corrupt"))
-    })?;
-    let header = object.header().clone();
-    let ndim = header.dim[0] as usize;
-    if !(1..=7).contains(&ndim) {
-        return Err(format_error(path, format!("invalid NIfTI dim[0] = {ndim}; the header is corrupt")));
-    }
-    let dims = [1, 2, 3].map(|a| if a <= ndim { (header.dim[a] as usize).max(1) } else { 1 });
-    let extra: usize = (4..=ndim).map(|a| (header.dim[a] as usize).max(1)).product();
-    if extra > 1 {
-        return Err(format_error(
-            path,
-            format!(
-                "the image has {ndim} dimensions with {extra} volumes; the Hybrid Octree takes one 3D volume \
-                 (extract one first, e.g. fslroi or nibabel)"
-            ),
-        ));
-    }
-    let spacing = [1, 2, 3].map(|a| f64::from(header.pixdim[a]).abs());
-    let origin = if header.qform_code > 0 {
-        [header.quatern_x, header.quatern_y, header.quatern_z].map(f64::from)
-    } else if header.sform_code > 0 {
-        [header.srow_x[3], header.srow_y[3], header.srow_z[3]].map(f64::from)
-    } else {
-        [0.0; 3]
-    };
-    let datatype = header.data_type().map_err(|e| format_error(path, format!("unknown NIfTI datatype: {e}")))?;
-    let raw = object.into_volume();
-    let samples = typed(path, raw, datatype)?;
-    let samples = rescale(samples, header.scl_slope, header.scl_inter);
-    let shape = GridShape { dims, spacing, origin };
-    shape.check(1).map_err(|e| format_error(path, e.to_string()))?;
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().trim_end_matches(".gz").trim_end_matches(".nii").to_string())
-        .unwrap_or_else(|| "scalars".into());
-    Ok(Volume { samples, shape, components: 1, name })
-}
+/// Bytes allowed after the voxel data (padding some writers add); more means
+/// the header does not describe the file.
+pub const TRAILING_SLACK: u64 = 64 * 1024;
 
-fn typed(path: &Path, volume: nifti::InMemNiftiVolume, datatype: NiftiType) -> Result<SampleBuf> {
-    fn get<T: DataElement>(path: &Path, v: nifti::InMemNiftiVolume) -> Result<Vec<T>> {
-        v.into_nifti_typed_data::<T>()
-            .map_err(|e| format_error(path, format!("cannot decode the voxel data ({e}); the file may be corrupt")))
-    }
-    Ok(match datatype {
-        NiftiType::Uint8 => SampleBuf::U8(get(path, volume)?),
-        NiftiType::Int8 => SampleBuf::I8(get(path, volume)?),
-        NiftiType::Uint16 => SampleBuf::U16(get(path, volume)?),
-        NiftiType::Int16 => SampleBuf::I16(get(path, volume)?),
-        NiftiType::Uint32 => SampleBuf::U32(get(path, volume)?),
-        NiftiType::Int32 => SampleBuf::I32(get(path, volume)?),
-        NiftiType::Float32 => SampleBuf::F32(get(path, volume)?),
-        NiftiType::Float64 => SampleBuf::F64(get(path, volume)?),
-        other => {
-            return Err(format_error(
-                path,
-                format!(
-                    "NIfTI datatype {other:?} is not supported; convert the image to an 8/16/32-bit integer \
-                     or float type"
-                ),
-            ))
+/// Deflate's largest ratio of output to input, about 1032:1: a gzip file of
+/// `n` bytes cannot inflate to more than `n * MAX_DEFLATE_RATIO`.
+const MAX_DEFLATE_RATIO: u64 = 1032;
+
+/// Reads the NIfTI-1 file `bytes` (gzip-compressed when `gz`) named
+/// `file_name`; `label` names it in errors.
+pub fn read_nifti_bytes(label: &str, file_name: &str, bytes: &[u8], gz: bool) -> Result<Volume> {
+    let fail = |m: String| format_error(label, m);
+    let volume = if gz {
+        let mut stream = flate2::read::MultiGzDecoder::new(bytes);
+        let header = read_header(&mut stream).map_err(fail)?;
+        let end = header.data_end();
+        let most = (bytes.len() as u64).saturating_mul(MAX_DEFLATE_RATIO);
+        if end > most {
+            return Err(fail(format!(
+                "the header puts the voxel data at bytes {} to {end}, but {} of gzip data cannot inflate past \
+                 {most} bytes; the header is corrupt",
+                header.vox_offset,
+                human_bytes(bytes.len() as u128)
+            )));
         }
-    })
+        read_volume(label, file_name, &header, &mut stream, None)?
+    } else {
+        let header = parse(bytes).map_err(fail)?;
+        let mut rest = bytes.get(HEADER_BYTES..).unwrap_or_default();
+        read_volume(label, file_name, &header, &mut rest, Some(bytes.len() as u64))?
+    };
+    Ok(volume)
 }
 
-/// Applies `v = slope * stored + inter` unless the scaling is absent (slope 0)
-/// or the identity.
-fn rescale(samples: SampleBuf, slope: f32, inter: f32) -> SampleBuf {
-    if slope == 0.0 || !slope.is_finite() || !inter.is_finite() || (slope == 1.0 && inter == 0.0) {
-        return samples;
-    }
-    if let SampleBuf::F64(v) = samples {
-        let (s, i) = (f64::from(slope), f64::from(inter));
-        return SampleBuf::F64(v.into_iter().map(|x| s * x + i).collect());
-    }
-    let (s, i) = (f64::from(slope), f64::from(inter));
-    let values: Vec<f32> = (0..samples.len()).map(|n| (s * sample_f64(&samples, n) + i) as f32).collect();
-    SampleBuf::F32(values)
+/// The header from the first bytes of `stream`.
+fn read_header(stream: &mut impl Read) -> std::result::Result<NiftiHeader, String> {
+    let mut head = Vec::with_capacity(HEADER_BYTES);
+    stream
+        .take(HEADER_BYTES as u64)
+        .read_to_end(&mut head)
+        .map_err(|e| format!("the gzip data do not decompress ({e}); the file is corrupt"))?;
+    parse(&head)
 }
 
-fn sample_f64(samples: &SampleBuf, n: usize) -> f64 {
-    match samples {
-        SampleBuf::U8(v) => f64::from(v[n]),
-        SampleBuf::I8(v) => f64::from(v[n]),
-        SampleBuf::U16(v) => f64::from(v[n]),
-        SampleBuf::I16(v) => f64::from(v[n]),
-        SampleBuf::U32(v) => f64::from(v[n]),
-        SampleBuf::I32(v) => f64::from(v[n]),
-        SampleBuf::F32(v) => f64::from(v[n]),
-        SampleBuf::F64(v) => v[n],
+/// The volume from `stream`, positioned just after the header; `file_len`
+/// is the whole file's length when known (uncompressed files).
+fn read_volume(
+    label: &str,
+    file_name: &str,
+    header: &NiftiHeader,
+    stream: &mut impl Read,
+    file_len: Option<u64>,
+) -> Result<Volume> {
+    let fail = |m: String| format_error(label, m);
+    let shape = GridShape { dims: header.dims, spacing: header.spacing, origin: header.origin };
+    shape.check(1).map_err(|e| fail(e.to_string()))?;
+    let data_end = header.data_end();
+    if let Some(len) = file_len {
+        if data_end > len {
+            return Err(fail(format!(
+                "the header puts the voxel data at bytes {} to {data_end}, but the file has {len} bytes; \
+                 it is truncated or corrupt (or its vox_offset is wrong)",
+                header.vox_offset
+            )));
+        }
+    }
+    let target = target_type(header);
+    let [x, y, z] = header.dims;
+    check_memory(
+        header.count() as u128 * target.size() as u128,
+        &format!("the {x}x{y}x{z} {} volume of '{label}'", target.name()),
+        "crop or subsample the volume, or free memory",
+    )?;
+    let short = |what: &str, e: std::io::Error| {
+        fail(format!("the file ends before the end of the {what} ({e}); it is truncated or corrupt"))
+    };
+    let skip = header.vox_offset - HEADER_BYTES as u64;
+    let skipped = std::io::copy(&mut stream.take(skip), &mut std::io::sink()).map_err(|e| short("extension", e))?;
+    if skipped != skip {
+        return Err(fail(format!(
+            "the file ends at byte {}, before the voxel data at vox_offset {}; it is truncated or its vox_offset \
+             is wrong",
+            HEADER_BYTES as u64 + skipped,
+            header.vox_offset
+        )));
+    }
+    let samples = read_samples(stream, header, target).map_err(|e| short("voxel data", e))?;
+    let trailing = std::io::copy(&mut stream.take(TRAILING_SLACK + 1), &mut std::io::sink())
+        .map_err(|e| fail(format!("the gzip data after the voxels do not decompress ({e}); the file is corrupt")))?;
+    if trailing > TRAILING_SLACK {
+        return Err(fail(format!(
+            "more than {} follow the {} of voxel data the header declares; the header does not describe \
+             the file (wrong dims or datatype)",
+            human_bytes(u128::from(TRAILING_SLACK)),
+            human_bytes(u128::from(header.data_bytes()))
+        )));
+    }
+    Ok(Volume { samples, shape, components: 1, name: stem(file_name).to_string() })
+}
+
+/// `file_name` without `.nii` or `.nii.gz` (any case).
+fn stem(file_name: &str) -> &str {
+    let lower = file_name.to_ascii_lowercase();
+    let cut = [".nii.gz", ".nii"].iter().find(|ext| lower.ends_with(*ext)).map_or(0, |ext| ext.len());
+    &file_name[..file_name.len() - cut]
+}
+
+/// The type of the volume: the stored type, or `f32` (`f64` for `f64` data)
+/// when the values are rescaled.
+fn target_type(header: &NiftiHeader) -> ScalarType {
+    match (header.scaling, header.stored) {
+        (None, stored) => stored,
+        (Some(_), ScalarType::F64) => ScalarType::F64,
+        (Some(_), _) => ScalarType::F32,
+    }
+}
+
+/// Reads the `header.count()` stored values from `stream` in chunks, converted
+/// (and rescaled) into `target` as they arrive.
+fn read_samples(stream: &mut impl Read, header: &NiftiHeader, target: ScalarType) -> std::io::Result<SampleBuf> {
+    const CHUNK_VALUES: usize = 1 << 16;
+    let size = header.stored.size();
+    let mut out = sample_sink::with_capacity(target, header.count());
+    let mut chunk = vec![0u8; CHUNK_VALUES * size];
+    let mut left = header.count();
+    while left > 0 {
+        let n = left.min(CHUNK_VALUES);
+        let bytes = &mut chunk[..n * size];
+        stream.read_exact(bytes)?;
+        let values = SampleBuf::from_bytes(bytes, header.stored, header.big_endian);
+        match header.scaling {
+            None => sample_sink::append(&mut out, values),
+            Some((slope, inter)) => sample_sink::append_scaled(&mut out, &values, slope, inter),
+        }
+        left -= n;
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stem;
+
+    #[test]
+    fn the_name_drops_the_extension_in_any_case() {
+        assert_eq!(stem("head.nii.gz"), "head");
+        assert_eq!(stem("HEAD.NII.GZ"), "HEAD");
+        assert_eq!(stem("a.b.Nii"), "a.b");
     }
 }

@@ -4,31 +4,55 @@ use super::options::RawOptions;
 use super::read::format_error;
 use crate::error::Result;
 use crate::grid::GridShape;
+use crate::limits::{check_memory, human_bytes};
 use crate::volume::{SampleBuf, Volume};
-use std::path::Path;
 
-/// Reads `path` with the layout `raw`. The file must hold exactly
-/// `nx * ny * nz * components * size_of(type)` bytes.
-pub fn read_raw(path: &Path, raw: &RawOptions) -> Result<Volume> {
+/// The bytes the layout `raw` needs, after checking the dims.
+fn expected_bytes(label: &str, raw: &RawOptions) -> Result<usize> {
     let shape = GridShape { dims: raw.dims, spacing: raw.spacing, origin: raw.origin };
-    let values = shape.check(raw.components).map_err(|e| format_error(path, e.to_string()))?;
-    let size = raw.scalar_type.size();
-    let expected = values * size;
-    let actual = std::fs::metadata(path).map_err(|e| format_error(path, e.to_string()))?.len();
+    let values = shape.check(raw.components).map_err(|e| format_error(label, e.to_string()))?;
+    values
+        .checked_mul(raw.scalar_type.size())
+        .ok_or_else(|| format_error(label, "the layout's byte count overflows; check --dims, --type and --components"))
+}
+
+/// Checks that a raw file of `actual` bytes holds exactly the layout `raw`,
+/// and that the volume fits in memory, before anything is read.
+pub fn check_raw_size(label: &str, raw: &RawOptions, actual: u64) -> Result<()> {
+    let expected = expected_bytes(label, raw)?;
     if actual != expected as u64 {
         let [x, y, z] = raw.dims;
         return Err(format_error(
-            path,
+            label,
             format!(
-                "the raw file has {actual} bytes but {x}x{y}x{z} points x {} component(s) x {size} bytes ({}) \
+                "the raw file has {actual} bytes but {x}x{y}x{z} points x {} component(s) x {} bytes ({}) \
                  need {expected} bytes; check --dims, --type and --components",
                 raw.components,
+                raw.scalar_type.size(),
                 raw.scalar_type.name()
             ),
         ));
     }
-    let bytes = std::fs::read(path).map_err(|e| format_error(path, format!("cannot read the file: {e}")))?;
-    let samples = SampleBuf::from_bytes(&bytes, raw.scalar_type, raw.big_endian);
-    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scalars".into());
+    let [x, y, z] = raw.dims;
+    check_memory(
+        expected as u128 * 2,
+        &format!(
+            "the {x}x{y}x{z} {} raw volume of '{label}' ({} on disk, read and converted)",
+            raw.scalar_type.name(),
+            human_bytes(expected as u128)
+        ),
+        "crop or subsample the volume, or free memory",
+    )
+}
+
+/// The raw volume in `bytes` (a file named `file_name`, `label` in errors)
+/// with the layout `raw`: exactly `nx * ny * nz * components * size_of(type)`
+/// bytes.
+pub fn read_raw_bytes(label: &str, file_name: &str, bytes: &[u8], raw: &RawOptions) -> Result<Volume> {
+    check_raw_size(label, raw, bytes.len() as u64)?;
+    let samples = SampleBuf::from_bytes(bytes, raw.scalar_type, raw.big_endian);
+    let shape = GridShape { dims: raw.dims, spacing: raw.spacing, origin: raw.origin };
+    let stem = file_name.rsplit_once('.').map_or(file_name, |(stem, _)| stem);
+    let name = if stem.is_empty() { "scalars".to_string() } else { stem.to_string() };
     Ok(Volume { samples, shape, components: raw.components, name })
 }

@@ -1,6 +1,10 @@
-//! [`read_volume`]: the one entry point, dispatching on the file extension.
+//! [`read_volume`] and [`read_volume_bytes`]: the entry points, dispatching on
+//! the file extension (case-insensitive). The path-based reader checks the
+//! file (a regular file, memory for its bytes) and then hands its bytes to the
+//! same code as the in-memory one, so both behave alike.
 
 use super::options::ReadOptions;
+use super::source::{display_path, escape_controls, read_regular_file, regular_file_len};
 use crate::error::{Error, Result};
 use crate::volume::Volume;
 use std::path::Path;
@@ -8,47 +12,99 @@ use std::path::Path;
 /// The extensions [`read_volume`] understands, for messages.
 pub const SUPPORTED: &str = ".vti, .vtk, .nii, .nii.gz, .raw, .bin";
 
-/// `Error::Format` for `path` with `message`.
-pub(crate) fn format_error(path: &Path, message: impl Into<String>) -> Error {
-    Error::Format { path: path.display().to_string(), message: message.into() }
+/// `Error::Format` for the file `label` (already fit to print) with
+/// `message`, whose control characters are escaped.
+pub(crate) fn format_error(label: &str, message: impl Into<String>) -> Error {
+    Error::Format { path: label.to_string(), message: escape_controls(&message.into()) }
+}
+
+/// The file formats, by extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileKind {
+    /// `.vti`
+    Vti,
+    /// `.vtk`
+    LegacyVtk,
+    /// `.nii`
+    Nifti,
+    /// `.nii.gz`
+    NiftiGz,
+    /// `.raw`, `.bin`: needs a layout.
+    Raw,
+}
+
+impl FileKind {
+    /// The kind of `file_name` by its extension, any case; `None` when unknown.
+    pub fn of(file_name: &str) -> Option<FileKind> {
+        let name = file_name.to_ascii_lowercase();
+        [
+            (".vti", FileKind::Vti),
+            (".vtk", FileKind::LegacyVtk),
+            (".nii.gz", FileKind::NiftiGz),
+            (".nii", FileKind::Nifti),
+            (".raw", FileKind::Raw),
+            (".bin", FileKind::Raw),
+        ]
+        .into_iter()
+        .find(|(ext, _)| name.ends_with(ext))
+        .map(|(_, kind)| kind)
+    }
 }
 
 /// Reads the volume in `path`: raw when `options.raw` is given, otherwise by
 /// extension (`.vti`, `.vtk`, `.nii`, `.nii.gz`; `.raw` and `.bin` need
-/// `options.raw`). The volume is checked for consistent dims and length, not
-/// yet for non-finite values (that is [`Volume::grid`]'s job).
+/// `options.raw`). Only regular files are read, never past their size. The
+/// volume is checked for consistent dims and length, not yet for non-finite
+/// values (that is [`Volume::grid`]'s job).
 pub fn read_volume(path: &Path, options: &ReadOptions) -> Result<Volume> {
-    match std::fs::metadata(path) {
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            return Err(format_error(path, "the file does not exist; check the path"))
+    let label = display_path(path);
+    let len = regular_file_len(path, &label)?;
+    let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    match &options.raw {
+        Some(raw) => super::raw::check_raw_size(&label, raw, len)?,
+        None => {
+            kind(&label, &file_name, options)?;
         }
-        Err(e) => return Err(format_error(path, format!("cannot access the file: {e}"))),
-        Ok(m) if m.is_dir() => return Err(format_error(path, "this is a directory; give a volume file")),
-        Ok(_) => {}
     }
+    let bytes = read_regular_file(path, &label, len)?;
+    read_labelled(&label, &file_name, &bytes, options)
+}
+
+/// Reads a volume from `bytes`, the contents of a file named `file_name`
+/// (whose extension chooses the format, as in [`read_volume`]).
+pub fn read_volume_bytes(file_name: &str, bytes: &[u8], options: &ReadOptions) -> Result<Volume> {
+    read_labelled(&escape_controls(file_name), file_name, bytes, options)
+}
+
+fn read_labelled(label: &str, file_name: &str, bytes: &[u8], options: &ReadOptions) -> Result<Volume> {
     if let Some(raw) = &options.raw {
-        return super::raw::read_raw(path, raw);
+        return super::raw::read_raw_bytes(label, file_name, bytes, raw);
     }
-    let name = path.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    if name.ends_with(".vti") {
-        super::vti::read_vti(path)
-    } else if name.ends_with(".vtk") {
-        super::vtk::read_vtk(path)
-    } else if name.ends_with(".nii") || name.ends_with(".nii.gz") {
-        super::nii::read_nifti(path)
-    } else if name.ends_with(".raw") || name.ends_with(".bin") {
-        Err(format_error(
-            path,
+    match kind(label, file_name, options)? {
+        FileKind::Vti => super::vti::read_vti_bytes(label, bytes),
+        FileKind::LegacyVtk => super::vtk::read_vtk_bytes(label, bytes),
+        FileKind::Nifti => super::nii::read_nifti_bytes(label, file_name, bytes, false),
+        FileKind::NiftiGz => super::nii::read_nifti_bytes(label, file_name, bytes, true),
+        FileKind::Raw => unreachable!("kind() refuses raw files without a layout"),
+    }
+}
+
+/// The format of `file_name`, or the error for an unknown extension or a raw
+/// file without its layout.
+fn kind(label: &str, file_name: &str, options: &ReadOptions) -> Result<FileKind> {
+    match FileKind::of(file_name) {
+        Some(FileKind::Raw) if options.raw.is_none() => Err(format_error(
+            label,
             "a raw file has no header: give its layout with --dims X,Y,Z and --type T \
              (and --components, --spacing, --origin, --big-endian as needed)",
-        ))
-    } else {
-        Err(format_error(
-            path,
+        )),
+        Some(kind) => Ok(kind),
+        None => Err(format_error(
+            label,
             format!(
-                "unknown file extension: supported are {SUPPORTED}; for a headerless raw file give \
+                "unknown file extension: supported are {SUPPORTED} (any case); for a headerless raw file give \
                  --dims X,Y,Z and --type T"
             ),
-        ))
+        )),
     }
 }

@@ -21,14 +21,13 @@ use super::vti_data::decode_array;
 use super::vti_xml::{parse_header, VtiHeader};
 use crate::error::Result;
 use crate::grid::GridShape;
+use crate::limits::excerpt;
 use crate::volume::Volume;
-use std::path::Path;
 
-/// Reads a `.vti` file.
-pub fn read_vti(path: &Path) -> Result<Volume> {
-    let bytes = std::fs::read(path).map_err(|e| format_error(path, format!("cannot read the file: {e}")))?;
-    let header = parse_header(&bytes).map_err(|m| format_error(path, m))?;
-    volume_from(&bytes, &header).map_err(|m| format_error(path, m))
+/// Reads the `.vti` file `bytes` (`label` names it in errors).
+pub fn read_vti_bytes(label: &str, bytes: &[u8]) -> Result<Volume> {
+    let header = parse_header(bytes).map_err(|m| format_error(label, m))?;
+    volume_from(bytes, &header).map_err(|m| format_error(label, m))
 }
 
 fn volume_from(bytes: &[u8], header: &VtiHeader) -> std::result::Result<Volume, String> {
@@ -41,8 +40,9 @@ fn volume_from(bytes: &[u8], header: &VtiHeader) -> std::result::Result<Volume, 
         }
         other => {
             return Err(format!(
-                "the file holds VTK XML '{other}', not image data (ImageData); resample it to an image first \
-                 (ParaView: Resample To Image)"
+                "the file holds VTK XML '{}', not image data (ImageData); resample it to an image first \
+                 (ParaView: Resample To Image)",
+                excerpt(other)
             ))
         }
     }
@@ -68,7 +68,8 @@ fn volume_from(bytes: &[u8], header: &VtiHeader) -> std::result::Result<Volume, 
     };
     if let Some(source) = &piece.source {
         return Err(format!(
-            "the image piece is stored in another file ('{source}'); open that .vti piece file itself"
+            "the image piece is stored in another file ('{}'); open that .vti piece file itself",
+            excerpt(source)
         ));
     }
     let extent = piece

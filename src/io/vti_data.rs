@@ -32,28 +32,37 @@
 
 use super::vti_xml::{AppendedEncoding, ArrayData, ArrayHeader, ByteOrder, Compressor, VtiHeader};
 use crate::grid::ScalarType;
+use crate::limits::{check_memory, excerpt};
 use crate::volume::SampleBuf;
 use std::io::Read;
 
 /// Decodes `array` of the file `bytes` (whose header is `header`), which must
 /// hold exactly `count` values (points times components).
 pub fn decode_array(bytes: &[u8], header: &VtiHeader, array: &ArrayHeader, count: usize) -> Result<SampleBuf, String> {
-    let ty = value_type(&array.type_name, &array.name)?;
+    let name = &excerpt(&array.name);
+    let ty = value_type(&array.type_name, name)?;
+    let need = count.checked_mul(ty.size()).ok_or("the array is too large")?;
+    check_memory(
+        need as u128,
+        &format!("the point array '{name}' ({count} {} values)", ty.name()),
+        "crop or subsample the volume, or free memory",
+    )
+    .map_err(|e| e.to_string())?;
     let mut stream = match &array.data {
-        ArrayData::Ascii(text) => return parse_ascii(text, ty, count, &array.name),
+        ArrayData::Ascii(text) => return parse_ascii(text, ty, count, name),
         ArrayData::Binary(text) => Stream::Base64 { text: text.as_bytes(), pos: 0, pending: Vec::new() },
         ArrayData::Appended(offset) => {
             let (encoding, start) = header.appended.ok_or_else(|| {
                 format!(
                     "the array '{}' is appended but the file has no AppendedData section; it is truncated or corrupt",
-                    array.name
+                    name
                 )
             })?;
             let at = usize::try_from(*offset).ok().and_then(|o| o.checked_add(start)).filter(|&at| at <= bytes.len());
             let at = at.ok_or_else(|| {
                 format!(
                     "the array '{}' starts at appended offset {offset}, past the end of the file; it is truncated or corrupt",
-                    array.name
+                    name
                 )
             })?;
             match encoding {
@@ -62,17 +71,16 @@ pub fn decode_array(bytes: &[u8], header: &VtiHeader, array: &ArrayHeader, count
             }
         }
     };
-    let need = count.checked_mul(ty.size()).ok_or("the array is too large")?;
     let words = Words { u64: header.header_u64, order: header.byte_order };
     let data = match header.compressor {
         None => {
-            let nbytes = words.read(&mut stream, 1, &array.name)?[0];
+            let nbytes = words.read(&mut stream, 1, name)?[0];
             if nbytes != need as u64 {
-                return Err(size_mismatch(&array.name, nbytes, need, count));
+                return Err(size_mismatch(name, nbytes, need, count));
             }
-            stream.take(need, &array.name)?
+            stream.take(need, name)?
         }
-        Some(compressor) => read_compressed(&mut stream, words, compressor, need, count, &array.name)?,
+        Some(compressor) => read_compressed(&mut stream, words, compressor, need, count, name)?,
     };
     Ok(SampleBuf::from_bytes(&data, ty, header.byte_order == ByteOrder::Big))
 }
@@ -109,7 +117,7 @@ fn read_compressed(
         ));
     }
     let sizes = words.read(stream, nblocks_usize, name)?;
-    let mut out = Vec::new();
+    let mut out = Vec::with_capacity(need);
     for (i, &csize) in sizes.iter().enumerate() {
         let size = if i + 1 == sizes.len() && last_size != 0 { last_size } else { block_size } as usize;
         let csize = usize::try_from(csize).map_err(|_| format!("block {i} of the array '{name}' is too large"))?;
@@ -139,8 +147,12 @@ fn read_compressed(
                 out.truncate(before + n);
             }
         }
-        if out.len() - before != size {
-            return Err(corrupt(&format!("it inflates to {} bytes, not {size}", out.len() - before)));
+        let inflated = out.len() - before;
+        if inflated > size {
+            return Err(corrupt(&format!("it inflates to more than the {size} bytes its header declares")));
+        }
+        if inflated < size {
+            return Err(corrupt(&format!("it inflates to {inflated} bytes, not the {size} its header declares")));
         }
     }
     Ok(out)
@@ -285,25 +297,27 @@ fn value_type(type_name: &str, name: &str) -> Result<ScalarType, String> {
                  convert them to float, double or a 32-bit integer type (ParaView: Calculator with result type)"
             ))
         }
-        other => return Err(format!("the point array '{name}' has the unsupported type '{other}'")),
+        other => return Err(format!("the point array '{name}' has the unsupported type '{}'", excerpt(other))),
     })
 }
 
 /// `count` whitespace-separated numbers of type `ty`.
 fn parse_ascii(text: &str, ty: ScalarType, count: usize, name: &str) -> Result<SampleBuf, String> {
     fn parse<T: std::str::FromStr>(text: &str, count: usize, name: &str) -> Result<Vec<T>, String> {
-        let values = text
-            .split_ascii_whitespace()
-            .map(|s| {
-                s.parse()
-                    .map_err(|_| format!("the ascii array '{name}' holds '{s}', which is not a number of its type"))
-            })
-            .collect::<Result<Vec<T>, String>>()?;
-        if values.len() != count {
+        let mut words = text.split_ascii_whitespace();
+        let mut values = Vec::with_capacity(count);
+        for s in words.by_ref().take(count) {
+            let value = s.parse().map_err(|_| {
+                format!("the ascii array '{name}' holds '{}', which is not a number of its type", excerpt(s))
+            })?;
+            values.push(value);
+        }
+        let more = words.count();
+        if values.len() != count || more > 0 {
             return Err(format!(
                 "the ascii array '{name}' holds {} values but the extent and components need {count}; \
                  the file is truncated or corrupt",
-                values.len()
+                values.len() + more
             ));
         }
         Ok(values)

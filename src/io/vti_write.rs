@@ -4,8 +4,8 @@
 //! `0 nx-1 0 ny-1 0 nz-1`, origin and spacing (written as `f32`, vtkio's
 //! precision).
 
-use super::read::format_error;
-use crate::error::Result;
+use super::source::display_path;
+use crate::error::{Error, Result};
 use crate::volume::{SampleBuf, Volume};
 use std::io::Write;
 use std::path::Path;
@@ -14,11 +14,18 @@ use vtkio::model::{
     Version, Vtk,
 };
 
-/// Writes `volume` to `path` (any extension; `.vti` is the convention).
+/// Writes `volume` to `path`, which must end in `.vti` (any case): this
+/// writer writes nothing else, and a file named for another format would be
+/// misread later.
 pub fn write_vti(path: &Path, volume: &Volume) -> Result<()> {
-    volume.shape.check(volume.components).map_err(|e| format_error(path, e.to_string()))?;
+    let label = display_path(path);
+    let fail = |message: String| Error::Write { path: label.clone(), message };
+    if !path.to_string_lossy().to_ascii_lowercase().ends_with(".vti") {
+        return Err(fail("a volume is written as VTK XML image data only: name the file .vti".into()));
+    }
+    volume.shape.check(volume.components).map_err(|e| fail(format!("{e}; nothing written")))?;
     if volume.samples.len() != volume.shape.point_count() * volume.components {
-        return Err(format_error(path, "the volume's sample count does not match its dims; nothing written"));
+        return Err(fail("the volume's sample count does not match its dims; nothing written".into()));
     }
     let [nx, ny, nz] = volume.shape.dims.map(|d| d as i32 - 1);
     let extent = Extent::Ranges([0..=nx, 0..=ny, 0..=nz]);
@@ -44,12 +51,11 @@ pub fn write_vti(path: &Path, volume: &Volume) -> Result<()> {
             pieces: vec![Piece::Inline(Box::new(piece))],
         },
     };
-    let file = std::fs::File::create(path).map_err(|e| {
-        format_error(path, format!("cannot create the file: {e}; check the folder exists and is writable"))
-    })?;
+    let file = std::fs::File::create(path)
+        .map_err(|e| fail(format!("cannot create the file: {e}; check the folder exists and is writable")))?;
     let mut out = std::io::BufWriter::new(file);
-    vtk.write_xml(&mut out).map_err(|e| format_error(path, format!("cannot write VTK XML: {e}")))?;
-    out.flush().map_err(|e| format_error(path, format!("cannot write the file: {e}")))
+    vtk.write_xml(&mut out).map_err(|e| fail(format!("cannot write VTK XML: {e}")))?;
+    out.flush().map_err(|e| fail(format!("cannot write the file: {e}")))
 }
 
 fn to_io_buffer(samples: &SampleBuf) -> IOBuffer {

@@ -34,6 +34,7 @@
 //! raw binary, which is not XML. How array bytes are laid out is described in
 //! [`super::vti_data`].
 
+use crate::limits::{excerpt, excerpt_bytes};
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
@@ -141,15 +142,16 @@ pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
     loop {
         let event = reader.read_event().map_err(|e| {
             format!(
-                "the XML header is malformed near byte {} ({e}); the file is truncated or corrupt",
-                reader.buffer_position()
+                "the XML header is malformed near byte {} ({}); the file is truncated or corrupt",
+                reader.buffer_position(),
+                excerpt(&e.to_string())
             )
         })?;
         match event {
             Event::Start(e) | Event::Empty(e) if header.is_none() && e.local_name().as_ref() != b"VTKFile" => {
                 return Err(format!(
                     "this is not a VTK XML file: the first element is <{}>, not <VTKFile>",
-                    String::from_utf8_lossy(e.name().as_ref())
+                    excerpt_bytes(e.name().as_ref())
                 ));
             }
             Event::Start(ref e) | Event::Empty(ref e) => {
@@ -202,7 +204,8 @@ pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
                             Some("base64") => AppendedEncoding::Base64,
                             Some(other) => {
                                 return Err(format!(
-                                    "unknown AppendedData encoding '{other}' (VTK writes 'raw' or 'base64')"
+                                    "unknown AppendedData encoding '{}' (VTK writes 'raw' or 'base64')",
+                                    excerpt(other)
                                 ))
                             }
                         };
@@ -229,7 +232,9 @@ pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
                 if let Some((_, text)) =
                     array.as_mut().filter(|_| stack.last().map(Vec::as_slice) == Some(b"DataArray"))
                 {
-                    let t = t.unescape().map_err(|e| format!("bad text in a DataArray ({e}); the file is corrupt"))?;
+                    let t = t.unescape().map_err(|e| {
+                        format!("bad text in a DataArray ({}); the file is corrupt", excerpt(&e.to_string()))
+                    })?;
                     text.push_str(&t);
                 }
             }
@@ -256,7 +261,7 @@ pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
     if !stack.is_empty() && header.appended.is_none() {
         return Err(format!(
             "the XML ends inside <{}>; the file is truncated or corrupt",
-            String::from_utf8_lossy(stack.last().map(Vec::as_slice).unwrap_or_default())
+            excerpt_bytes(stack.last().map(Vec::as_slice).unwrap_or_default())
         ));
     }
     Ok(header)
@@ -266,12 +271,14 @@ fn vtk_file(e: &BytesStart) -> Result<VtiHeader, String> {
     let byte_order = match attr(e, "byte_order")?.as_deref() {
         Some("LittleEndian") | None => ByteOrder::Little,
         Some("BigEndian") => ByteOrder::Big,
-        Some(other) => return Err(format!("unknown byte_order '{other}' (expected LittleEndian or BigEndian)")),
+        Some(other) => {
+            return Err(format!("unknown byte_order '{}' (expected LittleEndian or BigEndian)", excerpt(other)))
+        }
     };
     let header_u64 = match attr(e, "header_type")?.as_deref() {
         Some("UInt32") | None => false,
         Some("UInt64") => true,
-        Some(other) => return Err(format!("unknown header_type '{other}' (expected UInt32 or UInt64)")),
+        Some(other) => return Err(format!("unknown header_type '{}' (expected UInt32 or UInt64)", excerpt(other))),
     };
     let compressor = match attr(e, "compressor")?.as_deref() {
         None | Some("") => None,
@@ -280,9 +287,10 @@ fn vtk_file(e: &BytesStart) -> Result<VtiHeader, String> {
         Some("vtkLZMADataCompressor") => Some(Compressor::Lzma),
         Some(other) => {
             return Err(format!(
-                "the data are compressed with '{other}', which is not supported (supported: \
+                "the data are compressed with '{}', which is not supported (supported: \
                  vtkZLibDataCompressor, vtkLZ4DataCompressor, vtkLZMADataCompressor); \
-                 save the file again uncompressed or with ZLib"
+                 save the file again uncompressed or with ZLib",
+                excerpt(other)
             ))
         }
     };
@@ -301,7 +309,8 @@ fn vtk_file(e: &BytesStart) -> Result<VtiHeader, String> {
 }
 
 fn data_array(e: &BytesStart) -> Result<ArrayHeader, String> {
-    let name = attr(e, "Name")?.unwrap_or_default();
+    let full_name = attr(e, "Name")?.unwrap_or_default();
+    let name = excerpt(&full_name);
     let type_name = attr(e, "type")?.ok_or_else(|| format!("the DataArray '{name}' has no type attribute"))?;
     let components = match attr(e, "NumberOfComponents")? {
         None => 1,
@@ -310,7 +319,7 @@ fn data_array(e: &BytesStart) -> Result<ArrayHeader, String> {
             .parse::<usize>()
             .ok()
             .filter(|&c| c > 0)
-            .ok_or_else(|| format!("the DataArray '{name}' has a bad NumberOfComponents '{v}'"))?,
+            .ok_or_else(|| format!("the DataArray '{name}' has a bad NumberOfComponents '{}'", excerpt(&v)))?,
     };
     let data = match attr(e, "format")?.as_deref() {
         Some("ascii") => ArrayData::Ascii(String::new()),
@@ -318,16 +327,20 @@ fn data_array(e: &BytesStart) -> Result<ArrayHeader, String> {
         Some("appended") => {
             let offset = attr(e, "offset")?.ok_or_else(|| format!("the appended DataArray '{name}' has no offset"))?;
             ArrayData::Appended(
-                offset.trim().parse().map_err(|_| format!("the DataArray '{name}' has a bad offset '{offset}'"))?,
+                offset
+                    .trim()
+                    .parse()
+                    .map_err(|_| format!("the DataArray '{name}' has a bad offset '{}'", excerpt(&offset)))?,
             )
         }
         other => {
             return Err(format!(
-                "the DataArray '{name}' has format {other:?}; expected 'ascii', 'binary' or 'appended'"
+                "the DataArray '{name}' has format {:?}; expected 'ascii', 'binary' or 'appended'",
+                other.map(excerpt)
             ))
         }
     };
-    Ok(ArrayHeader { name, type_name, components, data })
+    Ok(ArrayHeader { name: full_name, type_name, components, data })
 }
 
 /// Stores a point array with its text (for `ascii` and `binary` arrays).
@@ -345,10 +358,12 @@ fn push_array(header: &mut Option<VtiHeader>, mut array: ArrayHeader, text: Stri
 fn attr(e: &BytesStart, key: &str) -> Result<Option<String>, String> {
     for a in e.attributes() {
         let a = a.map_err(|err| {
-            format!("a malformed attribute in <{}> ({err})", String::from_utf8_lossy(e.name().as_ref()))
+            format!("a malformed attribute in <{}> ({})", excerpt_bytes(e.name().as_ref()), excerpt(&err.to_string()))
         })?;
         if a.key.as_ref() == key.as_bytes() {
-            let v = a.unescape_value().map_err(|err| format!("a malformed value of attribute {key} ({err})"))?;
+            let v = a
+                .unescape_value()
+                .map_err(|err| format!("a malformed value of attribute {key} ({})", excerpt(&err.to_string())))?;
             return Ok(Some(v.into_owned()));
         }
     }
@@ -357,7 +372,7 @@ fn attr(e: &BytesStart, key: &str) -> Result<Option<String>, String> {
 
 /// Exactly `N` whitespace-separated numbers.
 fn numbers<T: std::str::FromStr, const N: usize>(text: &str, what: &str) -> Result<[T; N], String> {
-    let bad = || format!("the attribute {what}=\"{text}\" must hold {N} numbers");
+    let bad = || format!("the attribute {what}=\"{}\" must hold {N} numbers", excerpt(text));
     let values: Vec<T> =
         text.split_ascii_whitespace().map(|s| s.parse().map_err(|_| bad())).collect::<Result<_, _>>()?;
     values.try_into().map_err(|_| bad())

@@ -22,6 +22,7 @@
 
 use super::{Point, PointSet};
 use crate::error::{Error, Result};
+use crate::io::source::{display_path, escape_controls, read_regular_file, regular_file_len};
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"HOPOINTS";
@@ -52,7 +53,8 @@ pub fn encode(set: &PointSet) -> Vec<u8> {
     out
 }
 
-/// The point set in `bytes` (a file's contents; `path` names it in errors).
+/// The point set in `bytes` (a file's contents; `path`, fit to print, names
+/// it in errors).
 pub fn decode(bytes: &[u8], path: &str) -> Result<PointSet> {
     let bad = |message: String| Error::Format { path: path.to_string(), message };
     if bytes.len() < HEADER {
@@ -127,16 +129,21 @@ pub fn decode(bytes: &[u8], path: &str) -> Result<PointSet> {
 
 /// Writes `set` to `path`.
 pub fn write_points(set: &PointSet, path: &Path) -> Result<()> {
-    std::fs::write(path, encode(set))
-        .map_err(|e| Error::Write { path: path.display().to_string(), message: e.to_string() })
+    std::fs::write(path, encode(set)).map_err(|e| Error::Write { path: display_path(path), message: e.to_string() })
 }
 
-/// Reads the point file at `path`.
+/// Reads the point file at `path`: a regular file (a pipe or a device is
+/// refused), read up to its size, then [`decode`]d.
 pub fn read_points(path: &Path) -> Result<PointSet> {
-    let name = path.display().to_string();
-    let bytes = std::fs::read(path)
-        .map_err(|e| Error::Format { path: name.clone(), message: format!("cannot read it: {e}") })?;
-    decode(&bytes, &name)
+    let label = display_path(path);
+    let len = regular_file_len(path, &label)?;
+    decode(&read_regular_file(path, &label, len)?, &label)
+}
+
+/// The point set in the bytes of a point file named `file_name` (in errors):
+/// the in-memory form of [`read_points`].
+pub fn from_bytes(bytes: &[u8], file_name: &str) -> Result<PointSet> {
+    decode(bytes, &escape_controls(file_name))
 }
 
 #[cfg(test)]

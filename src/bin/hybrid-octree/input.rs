@@ -4,6 +4,7 @@ use clap::Args;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::io::{read_volume, RawOptions, ReadOptions};
+use hybrid_octree::limits::check_memory;
 use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
 use std::path::PathBuf;
@@ -44,6 +45,20 @@ pub struct InputArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
+}
+
+/// Refuses a built-in dataset of `size`^3 `scalar_type` samples that is
+/// smaller than 2 a side or larger than the memory this process may use.
+pub fn check_dataset_size(dataset: Dataset, size: usize, scalar_type: ScalarType) -> Result<()> {
+    if size < 2 {
+        return Err(Error::InvalidArgument(format!("--size {size} is too small: use at least 2")));
+    }
+    let bytes = (size as u128).pow(3) * scalar_type.size() as u128;
+    check_memory(
+        bytes,
+        &format!("the {size}^3 {} {} volume", scalar_type.name(), dataset.name()),
+        "give a smaller --size",
+    )
 }
 
 /// Parses `X,Y,Z` (clap value parser).
@@ -92,10 +107,9 @@ impl InputArgs {
             .as_deref()
             .ok_or_else(|| Error::InvalidArgument("give an input: --dataset NAME --size N, or --file PATH".into()))?;
         let dataset = Dataset::parse(name)?;
-        if self.size < 2 {
-            return Err(Error::InvalidArgument(format!("--size {} is too small: use at least 2", self.size)));
-        }
-        Ok(generate(dataset, self.size, self.scalar_type_or(ScalarType::F32)?))
+        let scalar_type = self.scalar_type_or(ScalarType::F32)?;
+        check_dataset_size(dataset, self.size, scalar_type)?;
+        Ok(generate(dataset, self.size, scalar_type))
     }
 
     /// A short name of the input: the file name, or the dataset and size.

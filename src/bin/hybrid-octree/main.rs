@@ -16,6 +16,7 @@
 
 mod bench;
 mod build;
+mod extension;
 mod ftb;
 mod generate;
 mod info;

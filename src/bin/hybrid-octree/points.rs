@@ -4,6 +4,7 @@
 //! its points and at full resolution, with the difference pictures and how
 //! far each is from the full-resolution reference.
 
+use crate::extension::require_extension;
 use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::pool::with_threads;
@@ -86,6 +87,7 @@ struct PointsReport {
 
 /// Generates, writes, reads back, and optionally draws.
 pub fn run(args: &PointsArgs) -> Result<()> {
+    require_extension(&args.output, "--output", &[".hop"], "HOPOINTS point files")?;
     let select = match (args.threshold, args.budget) {
         (Some(t), None) => PointSelect::Threshold(t),
         (None, Some(k)) => PointSelect::Budget(k),

@@ -2,6 +2,7 @@
 //! as a PNG, with what it cost (bricks, bytes, step times, the plan) and,
 //! with `--reference`, how far it is from the full-resolution ray caster.
 
+use crate::extension::require_extension;
 use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::pool::with_threads;
@@ -64,6 +65,10 @@ struct RenderReport {
 
 /// Renders and reports.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    require_extension(&args.output, "--output", &[".png"], "PNG pictures")?;
+    if let Some(path) = &args.reference {
+        require_extension(path, "--reference", &[".png"], "PNG pictures")?;
+    }
     let budget_bytes = crate::bench::render::budget_bytes(args.budget_mb)?;
     let report = with_threads(args.input.threads, || {
         let volume = args.input.load()?;

@@ -4,6 +4,7 @@
 //! interpolated one; `--output` writes it as a legacy VTK polydata file.
 
 use crate::build::build_octree;
+use crate::extension::require_extension;
 use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::pool::with_threads;
@@ -71,6 +72,9 @@ struct SurfaceReport {
 
 /// Extracts and reports.
 pub fn run(args: &SurfaceArgs) -> Result<()> {
+    if let Some(path) = &args.output {
+        require_extension(path, "--output", &[".vtk"], "legacy VTK polydata")?;
+    }
     let mode = SurfaceMode::parse(&args.mode)?;
     let options = match mode {
         SurfaceMode::Discretized => {

@@ -12,6 +12,7 @@
 //! threshold, and, at the bytes of each finer stride, the next coarser
 //! stride plus as many points as those bytes buy (method "points").
 
+use crate::extension::require_extension;
 use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::plot::{error_plot, Point};
@@ -196,6 +197,9 @@ fn measure_with(
 
 /// Runs the benchmark.
 pub fn run(args: &BenchRenderArgs) -> Result<()> {
+    if let Some(path) = &args.plot {
+        require_extension(path, "--plot", &[".png"], "PNG plots")?;
+    }
     if args.strides.is_empty() {
         return Err(Error::InvalidArgument("--strides needs at least one stride".into()));
     }
