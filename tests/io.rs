@@ -667,7 +667,12 @@ fn nifti_vox_offset_is_honoured_and_checked() {
         let v = hybrid_octree::io::read_volume_bytes(name, &file, &ReadOptions::default()).unwrap();
         assert_eq!(v.samples, SampleBuf::I16(values.clone()), "{name}");
     }
-    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY, 348.0, 352.5] {
+    // An unset vox_offset (0) means 352, as nibabel reads it.
+    let mut unset = nifti_at(352.0, &bytes);
+    unset[108..112].copy_from_slice(&0f32.to_le_bytes());
+    let v = hybrid_octree::io::read_volume_bytes("unset.nii", &unset, &ReadOptions::default()).unwrap();
+    assert_eq!(v.samples, SampleBuf::I16(values.clone()), "vox_offset 0");
+    for bad in [-1.0, f32::NAN, f32::INFINITY, 348.0, 1.0, 352.5] {
         let e = bytes_error("bad.nii", &nifti_at(bad, &bytes));
         assert!(e.contains("vox_offset") && e.contains("352"), "{bad}: {e}");
     }

@@ -179,12 +179,17 @@ fn data_type(code: i16) -> Result<(ScalarType, i32), String> {
     })
 }
 
-/// A valid single-file `vox_offset`: finite, whole, at least 352.
+/// The start of the voxel data of a single-file `.nii`: `vox_offset` when it
+/// is finite, whole and at least 352; 0, the value of an unset field (written
+/// by older tools, and read as 352 by nibabel and niftilib), is 352.
 fn vox_offset(value: f64) -> Result<u64, String> {
+    if value == 0.0 {
+        return Ok(MIN_VOX_OFFSET);
+    }
     if !value.is_finite() || value.fract() != 0.0 || value < MIN_VOX_OFFSET as f64 {
         return Err(format!(
             "the NIfTI vox_offset {value} is not a whole number of bytes of at least 352 (where the voxel data \
-             of a single-file .nii start); the header is corrupt"
+             of a single-file .nii start) nor 0 (unset: the data start at 352); the header is corrupt"
         ));
     }
     Ok(value as u64)
