@@ -17,7 +17,9 @@
 //! low-resolution samples themselves among them) never get a point. Each
 //! point keeps its value, its error and the direction of the central-
 //! difference gradient of `f` (the shading normal), quantised as
-//! [`super::Point`] says. Slices of the grid run in parallel and are joined
+//! [`super::Point`] says. NaN is no data: where `f` or `T_s` is NaN, `e` is
+//! NaN and no point is made (no comparison holds for NaN), and the gradient
+//! leaves NaN neighbours out. Slices of the grid run in parallel and are joined
 //! in grid order, so the points do not depend on the number of threads.
 
 use super::lowres::low_resolution;
@@ -242,14 +244,25 @@ impl GridVisitor for Generate<'_> {
     }
 }
 
-/// Central differences (one-sided at the grid's faces), in index space.
+/// Central differences (one-sided at the grid's faces and beside a NaN
+/// neighbour, 0 with NaN on both sides), in index space.
 fn gradient<T: Sample>(g: &TypedGrid<'_, T>, ijk: [usize; 3]) -> [f64; 3] {
+    let at = |p: [usize; 3]| g.at(p[0], p[1], p[2]);
     std::array::from_fn(|a| {
         let mut lo = ijk;
         let mut hi = ijk;
         lo[a] = ijk[a].saturating_sub(1);
         hi[a] = (ijk[a] + 1).min(g.dims[a] - 1);
-        (g.at(hi[0], hi[1], hi[2]) - g.at(lo[0], lo[1], lo[2])) / (hi[a] - lo[a]) as f64
+        if at(lo).is_nan() {
+            lo = ijk;
+        }
+        if at(hi).is_nan() {
+            hi = ijk;
+        }
+        if hi[a] == lo[a] {
+            return 0.0;
+        }
+        (at(hi) - at(lo)) / (hi[a] - lo[a]) as f64
     })
 }
 

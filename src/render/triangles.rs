@@ -244,7 +244,8 @@ impl TriangleGrid {
                 n[a] += w[k] * normal[a] as f64;
             }
         }
-        if dot(n, n) < 1e-24 {
+        // `!(>=)`: a NaN normal (none is made, but a surface may come from outside) takes the face's.
+        if !(dot(n, n) >= 1e-24) {
             let t = &self.world[i];
             n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
         }
