@@ -25,6 +25,11 @@
  * CompositeOnCPU() runs the Rust CPU compositor on the same DrawList and
  * table: the reference the OpenGL picture is tested against.
  *
+ * NaN samples are no data: a sample whose linear filter touches a NaN texel
+ * is NaN and the shader skips it (transparent, as in the CPU compositor);
+ * ranges and the blocks' occupancy leave NaN out. Infinite samples and an
+ * image of NaN only are errors (reported, nothing drawn).
+ *
  * With UsePoints, the points of the hybrid representation share the budget
  * and are drawn in the slabs between the slices (see SetUsePoints()).
  */

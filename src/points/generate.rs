@@ -357,7 +357,7 @@ mod tests {
     }
 
     #[test]
-    fn extreme_fields_give_finite_points_and_nan_is_refused() {
+    fn extreme_fields_give_finite_points_and_nan_gives_none() {
         // A checkerboard of +-1e30 on odd samples: every odd sample is off by 1e30 from T_2.
         let n = 9;
         let data: Vec<f64> = (0..n * n * n)
@@ -379,9 +379,14 @@ mod tests {
         assert_eq!(set.points.len(), 4 * 4 * 4, "every odd sample");
         assert!(set.error_scale.is_finite() && set.points.iter().all(|p| set.value(p).is_finite()));
         assert!(set.points.iter().all(|p| (set.value(p).abs() - 1e30).abs() < 1e28));
-        let mut bad = data.clone();
-        bad[5] = f64::NAN;
-        assert!(Grid::scalar(crate::grid::Samples::F64(&bad), [n; 3]).is_err(), "NaN samples never reach the points");
+        // A NaN lattice sample (4, 0, 0) is a corner of T_2 at (3, 1, 1) and (5, 1, 1): no data, no point.
+        let mut holed = data.clone();
+        holed[4] = f64::NAN;
+        let g = Grid::scalar(crate::grid::Samples::F64(&holed), [n; 3]).unwrap();
+        let set = generate(&g, &options(PointSelect::Threshold(0.1))).unwrap();
+        assert_eq!(set.points.len(), 4 * 4 * 4 - 2);
+        assert!(set.points.iter().all(|p| p.ijk[1] != 1 || p.ijk[2] != 1 || ![3, 5].contains(&p.ijk[0])));
+        assert!(set.error_scale.is_finite() && set.points.iter().all(|p| set.value(p).is_finite()));
     }
 
     #[test]
