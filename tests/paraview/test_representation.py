@@ -315,8 +315,9 @@ def draw(path, name):
 
 # NaN is no data: a ball of NaN in a bright cube draws without a message and
 # is transparent: its picture is closer to that of a ball of 0 (transparent
-# under the opacity) than to the cube without a hole. (Not equal: the NaN
-# ball's boundary cells are dropped, the air ball's blend 0 with the cube.)
+# under the opacity) than to the cube without a hole (measured: 0.0051 and
+# 0.0188; bound: half). Not equal: the NaN ball's boundary cells are
+# dropped, the air ball's blend 0 with the cube.
 N = 32
 z, y, x = np.mgrid[0:N, 0:N, 0:N]
 whole = (0.3 + 0.7 * x / (N - 1)).astype(np.float32).ravel()
