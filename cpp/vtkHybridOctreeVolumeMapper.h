@@ -191,6 +191,8 @@ public:
   const char* GetLastPlan() const { return this->LastPlan.c_str(); }
   vtkGetMacro(LastFrameMilliseconds, double);
   vtkGetMacro(LastEstimatedError, double);
+  /// NaN samples (no data: transparent) of the image drawn last.
+  vtkGetMacro(LastNaNSamples, vtkTypeInt64);
   vtkGetMacro(LastInteractive, bool);
   vtkGetMacro(LastRenderOK, bool);
   ///@}
@@ -253,6 +255,7 @@ protected:
   std::string LastPlan;
   double LastFrameMilliseconds = 0.0;
   double LastEstimatedError = 0.0;
+  vtkTypeInt64 LastNaNSamples = 0;
   bool LastInteractive = false;
   bool LastRenderOK = false;
   /// Unsupported settings are warned about once each.
