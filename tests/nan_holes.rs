@@ -208,6 +208,29 @@ fn ranges_and_errors_equal_the_brute_force_skipping_nan() {
     }
 }
 
+/// Constant bricks take a shortcut in the kernel (errors from the brick's
+/// corners): with NaN on the coarse lattice around them every sample is a
+/// hole at the strides that reach it, as the brute force says.
+#[test]
+fn constant_bricks_beside_nan_equal_the_brute_force() {
+    let n = 17;
+    let data: Vec<f32> =
+        (0..n * n * n).map(|i| if i % n < 3 && i / n % n < 3 && i / (n * n) < 3 { f32::NAN } else { 5.0 }).collect();
+    let g = Grid::scalar(Samples::F32(&data), [n; 3]).unwrap();
+    let o = octree(&g, 2);
+    let mut holes = 0;
+    for id in (0..o.layout().node_slots() as u32).map(NodeId) {
+        let node = o.node(id);
+        assert_eq!(node.errors.to_vec(), brute_force::nodal_errors(&g, &o, id), "node {id:?}");
+        for (&fast, slow) in node.squared_errors.iter().zip(brute_force::squared_errors(&g, &o, id)) {
+            assert!((fast as f64 - slow).abs() <= 1e-5 * slow + 1e-9, "node {id:?}: {fast} vs {slow}");
+        }
+        holes += node.errors.iter().filter(|&&e| e == 1.0).count();
+    }
+    assert!(holes > 0, "some coarse picture loses data next to the NaN block");
+    assert!(!o.node(o.root()).is_homogeneous());
+}
+
 /// A trilinear field is homogeneous (one brick, any stride). One NaN
 /// sample on the coarse lattice makes the coarse picture lose the data in
 /// the eight cells around it: the errors count it as the full range, and

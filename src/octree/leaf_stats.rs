@@ -187,6 +187,42 @@ fn trilinear_squared_sum(e: [f64; 8], lo: [usize; 3], hi: [usize; 3], dims: [usi
     total.max(0.0)
 }
 
+/// `(raw, squared)` of a brick of constant value `c` with closed box `[lo, hi]`:
+/// every in-brick stride reproduces it exactly. For a stride larger than the
+/// brick, T_s is trilinear over the brick, so `|c - T_s|` is largest at one of
+/// the brick's eight corners. `None` when a corner's T_s is NaN: the lattice
+/// cells the brick's samples interpolate are those its corners do (per axis
+/// the cell of `lo`, and of `hi` when `hi` is on the coarse lattice), but not
+/// every sample touches the NaN one, so the caller takes the general path.
+fn constant_brick<T: Sample>(
+    g: &TypedGrid<'_, T>,
+    layout: &Layout,
+    c: f64,
+    lo: [usize; 3],
+    hi: [usize; 3],
+) -> Option<(Vec<f64>, Vec<f64>)> {
+    let strides = layout.root_log2 as usize;
+    let mut raw = vec![0.0f64; strides];
+    let mut squared = vec![0.0f64; strides];
+    let first_coarse = layout.leaf_log2 as usize + 1;
+    for (j, (r, q)) in raw.iter_mut().zip(squared.iter_mut()).enumerate().skip(first_coarse - 1) {
+        let s = 1usize << (j + 1);
+        let mut e = [0.0f64; 8];
+        for (corner, ec) in e.iter_mut().enumerate() {
+            let x = if corner & 1 == 0 { lo[0] } else { hi[0] };
+            let y = if corner & 2 == 0 { lo[1] } else { hi[1] };
+            let z = if corner & 4 == 0 { lo[2] } else { hi[2] };
+            *ec = c - super::trilinear::eval(g, s, x, y, z);
+            if ec.is_nan() {
+                return None;
+            }
+            *r = r.max(ec.abs());
+        }
+        *q = trilinear_squared_sum(e, lo, hi, g.dims);
+    }
+    Some((raw, squared))
+}
+
 /// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`.
 pub fn leaf_stats<T: Sample>(
     g: &TypedGrid<'_, T>,
@@ -218,33 +254,12 @@ pub fn leaf_stats<T: Sample>(
     let mut raw = vec![0.0f64; strides];
     let mut squared = vec![0.0f64; strides];
     let mut holes = vec![0.0f64; strides];
-    let first_coarse = layout.leaf_log2 as usize + 1;
     let summed = [0, 1, 2].map(|a| summed_count(lo[a], hi[a], g.dims[a]));
     if min == max && !has_nan {
-        // A constant brick: every in-brick stride reproduces it exactly. For a
-        // stride larger than the brick, T_s is trilinear over the brick, so
-        // |c - T_s| is largest at one of the brick's eight corners. Every
-        // T_s(v) of the brick touches the same 8 lattice corners: when one is
-        // NaN, every sample is a hole.
-        for (j, ((r, q), h)) in
-            raw.iter_mut().zip(squared.iter_mut()).zip(holes.iter_mut()).enumerate().skip(first_coarse - 1)
-        {
-            let s = 1usize << (j + 1);
-            let mut e = [0.0f64; 8];
-            for (corner, ec) in e.iter_mut().enumerate() {
-                let x = if corner & 1 == 0 { lo[0] } else { hi[0] };
-                let y = if corner & 2 == 0 { lo[1] } else { hi[1] };
-                let z = if corner & 4 == 0 { lo[2] } else { hi[2] };
-                *ec = min - super::trilinear::eval(g, s, x, y, z);
-                *r = r.max(ec.abs());
-            }
-            if e.iter().any(|x| x.is_nan()) {
-                (*r, *q, *h) = (HOLE, 0.0, summed.iter().map(|&c| c as f64).product());
-            } else {
-                *q = trilinear_squared_sum(e, lo, hi, g.dims);
-            }
+        if let Some((raw, squared)) = constant_brick(g, layout, min, lo, hi) {
+            let holes = vec![0.0f64; strides];
+            return LeafStats { min, max, raw, squared, holes };
         }
-        return LeafStats { min, max, raw, squared, holes };
     }
     let Scratch { brick, v, w, t, xs, ys, frac, cells } = scratch;
     t.resize(wx, 0.0);
