@@ -132,11 +132,18 @@ uniform vec2 viewportSize;
 uniform float nearDepth;
 //VTK::Output::Dec
 
-// Opacity a' of the sample at model position p, and its colour.
+// Opacity a' of the sample at model position p, and its colour. NaN texels
+// are no data: the linear filter of a sample touching one is NaN (every
+// corner is weighed, 0 * NaN = NaN), and such a sample is transparent black,
+// as in the CPU compositor.
 vec4 sampleAt(vec3 p)
 {
   vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
   float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
+  if (isnan(value))
+  {
+    return vec4(0.0);
+  }
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
   float a = clamp(c.a, 0.0, 1.0);
   if (opacityRatio != 1.0 && a > 0.0 && a < 1.0)

@@ -19,7 +19,8 @@ void vtkHybridOctreeOpacityTable::Set(const std::vector<float>& rgba, double lo,
 bool vtkHybridOctreeOpacityTable::AnyVisible(double a, double b) const
 {
   const std::size_t n = this->NonZero.size() - 1;
-  if (n == 0)
+  // The empty range (+inf, -inf) of a block of NaN only, and NaN bounds: no data.
+  if (n == 0 || !(a <= b))
   {
     return false;
   }
@@ -76,6 +77,10 @@ void vtkHybridOctreeBrickOccupancy::Measure(
         std::size_t bx[2];
         const std::size_t nx = blocksOf(x, dims[0], bx);
         const float v = texels[x + dims[0] * (y + dims[1] * z)];
+        if (std::isnan(v))
+        {
+          continue; // no data: left out of the range
+        }
         for (std::size_t k = 0; k < nz; ++k)
         {
           for (std::size_t j = 0; j < ny; ++j)

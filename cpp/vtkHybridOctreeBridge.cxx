@@ -286,6 +286,7 @@ bool VolumeOctree::GetSummary(OctreeSummary& summary, std::string& error) const
     summary.BuildMilliseconds = s.build_ms;
     summary.ValueMin = s.value_min;
     summary.ValueMax = s.value_max;
+    summary.NaNSamples = s.nan_samples;
   });
 }
 

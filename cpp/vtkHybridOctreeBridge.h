@@ -68,6 +68,7 @@ struct OctreeSummary
   double BuildMilliseconds = 0.0;
   double ValueMin = 0.0;
   double ValueMax = 0.0;
+  std::uint64_t NaNSamples = 0; ///< NaN samples: no data (transparent, outside every isosurface)
 };
 
 /// The boxes of an octree cut, one entry per node, in world coordinates.

@@ -24,7 +24,8 @@
  * "gray_octants", "resolution" and the string "view_case".
  *
  * Errors (no point scalars, a view plane normal of (0, 0, 0), a non-finite
- * isovalue, an image size out of 8..8192, NaN samples) are reported with
+ * isovalue, an image size out of 8..8192, infinite samples or NaN only; a NaN
+ * sample is no data, never inside) are reported with
  * vtkErrorMacro and fail the request with an empty output.
  */
 #ifndef vtkHybridOctreeDepthImage_h

@@ -455,6 +455,7 @@ bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
   AddFieldValue<vtkDoubleArray>(fieldData, "build_ms", summary.BuildMilliseconds);
   AddFieldValue<vtkDoubleArray>(fieldData, "value_min", summary.ValueMin);
   AddFieldValue<vtkDoubleArray>(fieldData, "value_max", summary.ValueMax);
+  AddFieldValue<vtkTypeInt64Array>(fieldData, "nan_samples", summary.NaNSamples);
   AddFieldValue<vtkTypeInt64Array>(fieldData, "cut_count", boxCount);
   output->SetFieldData(fieldData);
   return true;

@@ -17,9 +17,14 @@
  * the 12 lines of a box: "node" (id of the octree node in the level-by-level
  * numbering, as on the surface output), "level"
  * (0 = root), "nodal_error" (E_0 / data range), "min", "max" (scalar range of
- * the node). Field data: "node_count", "terminal_count", "homogeneous_count",
- * "levels", "leaf_size", "root_size", "octree_bytes", "input_bytes",
- * "build_ms", "value_min", "value_max", "cut_count".
+ * the node, NaN left out; NaN for a box of NaN only). Field data:
+ * "node_count", "terminal_count", "homogeneous_count", "levels", "leaf_size",
+ * "root_size", "octree_bytes", "input_bytes", "build_ms", "value_min",
+ * "value_max", "nan_samples" (NaN samples: no data), "cut_count".
+ *
+ * NaN samples are no data: transparent, left out of ranges and errors,
+ * outside the isosurface (cells touching NaN have no facets). Infinite
+ * samples and an image of NaN only ("no data") are errors.
  *
  * Output port 1 ("Surface"): the isosurface at Isovalue that the Hybrid
  * Octree keeps, extracted per terminal node (The Hybrid Octree, section 2.2).
@@ -58,7 +63,7 @@
  * MeasureSurfaceDistance changed (see GetSurfaceExtractCount()), not when
  * only ErrorTolerance changed.
  *
- * Errors (no image, no point scalars, unsupported type, NaN samples, a 1-wide
+ * Errors (no image, no point scalars, unsupported type, infinite samples, a 1-wide
  * axis, a non-finite Isovalue, ...) are reported with vtkErrorMacro and fail
  * the request with both outputs empty.
  *
@@ -130,7 +135,7 @@ public:
   ///@{
   /**
    * Isovalue of the surface on output port 1 (default 0). A value outside the
-   * data range gives an empty surface; NaN or infinity makes RequestData fail.
+   * data range gives an empty surface; a NaN or infinite isovalue makes RequestData fail.
    */
   vtkSetMacro(Isovalue, double);
   vtkGetMacro(Isovalue, double);

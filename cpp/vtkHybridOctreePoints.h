@@ -23,7 +23,8 @@
  * the low resolution loses detail.
  *
  * Errors (no point scalars, a factor other than 2, 4 or 8, a threshold or
- * bound outside [0, 1], an image too small for the factor, NaN samples, a
+ * bound outside [0, 1], an image too small for the factor, infinite samples
+ * or NaN only (NaN samples are no data: no point there), a
  * file that cannot be written) are reported with vtkErrorMacro and fail the
  * request with an empty output.
  */

@@ -74,6 +74,8 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   vtkMTimeType ArrayMTime = 0;
   GridDescription Grid;
   int LeafSize = 0;
+  /// NaN samples (no data) of the image the octree was built from.
+  vtkTypeInt64 NaNSamples = 0;
   unsigned long OctreeGeneration = 0;
   vtkDataArray* Scalars = nullptr;
 
@@ -231,6 +233,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   if (in.Octree && in.Array == scalars && in.ArrayMTime == scalars->GetMTime() &&
     vtkHybridOctreeImageInput::SameGrid(in.Grid, grid) && in.LeafSize == this->LeafSize)
   {
+    this->LastNaNSamples = in.NaNSamples;
     return true;
   }
   in.Selected.reset();
@@ -240,11 +243,15 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   std::string error;
   in.Octree = VolumeOctree::Build(
     Bytes(scalars), ByteCount(scalars), grid, static_cast<unsigned int>(this->LeafSize), error);
-  if (!in.Octree)
+  vtkHybridOctreeBridge::OctreeSummary summary;
+  if (!in.Octree || !in.Octree->GetSummary(summary, error))
   {
+    in.Octree.reset();
     vtkErrorMacro(<< error);
     return false;
   }
+  in.NaNSamples = static_cast<vtkTypeInt64>(summary.NaNSamples);
+  this->LastNaNSamples = in.NaNSamples;
   in.Array = scalars;
   in.ArrayMTime = scalars->GetMTime();
   in.Grid = grid;
@@ -553,6 +560,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastPoints = 0;
   this->LastPointBytes = 0;
   this->LastUploadedBytes = 0;
+  this->LastNaNSamples = 0;
   this->LastPlan.clear();
   this->LastInteractive = this->IsInteractive(ren);
   vtkInternals& in = *this->Internals;
@@ -864,6 +872,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastPlan: " << this->LastPlan << "\n";
   os << indent << "LastFrameMilliseconds: " << this->LastFrameMilliseconds << "\n";
   os << indent << "LastEstimatedError: " << this->LastEstimatedError << "\n";
+  os << indent << "LastNaNSamples: " << this->LastNaNSamples << "\n";
   os << indent << "LastInteractive: " << this->LastInteractive << "\n";
   os << indent << "LastRenderOK: " << this->LastRenderOK << "\n";
 }

@@ -25,6 +25,11 @@
  * CompositeOnCPU() runs the Rust CPU compositor on the same DrawList and
  * table: the reference the OpenGL picture is tested against.
  *
+ * NaN samples are no data: a sample whose linear filter touches a NaN texel
+ * is NaN and the shader skips it (transparent, as in the CPU compositor);
+ * ranges and the blocks' occupancy leave NaN out. Infinite samples and an
+ * image of NaN only are errors (reported, nothing drawn).
+ *
  * With UsePoints, the points of the hybrid representation share the budget
  * and are drawn in the slabs between the slices (see SetUsePoints()).
  */
@@ -186,6 +191,8 @@ public:
   const char* GetLastPlan() const { return this->LastPlan.c_str(); }
   vtkGetMacro(LastFrameMilliseconds, double);
   vtkGetMacro(LastEstimatedError, double);
+  /// NaN samples (no data: transparent) of the image drawn last.
+  vtkGetMacro(LastNaNSamples, vtkTypeInt64);
   vtkGetMacro(LastInteractive, bool);
   vtkGetMacro(LastRenderOK, bool);
   ///@}
@@ -248,6 +255,7 @@ protected:
   std::string LastPlan;
   double LastFrameMilliseconds = 0.0;
   double LastEstimatedError = 0.0;
+  vtkTypeInt64 LastNaNSamples = 0;
   bool LastInteractive = false;
   bool LastRenderOK = false;
   /// Unsupported settings are warned about once each.

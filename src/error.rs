@@ -22,8 +22,11 @@ pub enum Error {
     ComponentOutOfRange { component: usize, components: usize },
     /// The array has zero components.
     NoComponents,
-    /// NaN or infinite samples; `first` is the linear point index `i + nx*(j + ny*k)`.
+    /// Infinite samples (NaN is "no data", not an error); `first` is the
+    /// linear point index `i + nx*(j + ny*k)` of the first infinity.
     NonFinite { count: usize, first: usize, first_ijk: [usize; 3] },
+    /// Every one of the `count` samples is NaN: there is nothing to build from.
+    NoData { count: usize },
     /// Spacing must be finite and positive, origin finite.
     BadGeometry { what: String },
     /// The leaf brick size must be a power of two between 2 and 256.
@@ -77,10 +80,14 @@ impl fmt::Display for Error {
             Error::NoComponents => write!(f, "the scalar array has zero components; give an array with values"),
             Error::NonFinite { count, first, first_ijk } => write!(
                 f,
-                "the volume has {count} non-finite sample(s) (NaN or infinity), the first at point index {first} \
-                 (i={}, j={}, k={}); replace them (for example with ParaView's Calculator or numpy.nan_to_num) \
-                 before building the Hybrid Octree",
+                "the volume has {count} infinite sample(s), the first at point index {first} \
+                 (i={}, j={}, k={}); replace them with finite values, or with NaN for \"no data\" \
+                 (for example with ParaView's Calculator or numpy.nan_to_num), before building the Hybrid Octree",
                 first_ijk[0], first_ijk[1], first_ijk[2]
+            ),
+            Error::NoData { count } => write!(
+                f,
+                "no data: all {count} samples are NaN (NaN means \"no data\"); there is nothing to build or draw"
             ),
             Error::BadGeometry { what } => write!(f, "invalid image geometry: {what}"),
             Error::BadLeafSize { leaf_size } => write!(

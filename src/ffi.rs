@@ -65,9 +65,12 @@ mod bridge {
         input_bytes: usize,
         /// Wall-clock build time.
         build_ms: f64,
-        /// Data range, used to normalise nodal errors.
+        /// Data range, used to normalise nodal errors (NaN left out).
         value_min: f64,
         value_max: f64,
+        /// NaN samples of the chosen component: no data, transparent and
+        /// outside every isosurface.
+        nan_samples: usize,
     }
 
     /// The boxes of an octree cut, one entry per node, world coordinates.
@@ -80,6 +83,7 @@ mod bridge {
         level: Vec<u32>,
         /// e_0 of the node normalised by the data range.
         nodal_error: Vec<f32>,
+        /// The node's scalar range, NaN left out; NaN for a box of NaN only.
         min: Vec<f64>,
         max: Vec<f64>,
     }
@@ -527,6 +531,7 @@ pub struct VolumeOctreeHandle {
     pub(crate) octree: VolumeOctree,
     pub(crate) shape: GridShape,
     input_bytes: usize,
+    nan_samples: usize,
     /// Unique per build: a selection remembers the octree it was made from.
     pub(crate) id: u64,
 }
@@ -622,7 +627,13 @@ fn build_with(
         let options = BuildOptions { leaf_size: leaf_size as usize };
         let octree = VolumeOctree::build_with_progress(&grid, &options, progress)?;
         let id = NEXT_OCTREE_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        Ok(Box::new(VolumeOctreeHandle { octree, shape: *grid.shape(), input_bytes: grid.input_bytes(), id }))
+        Ok(Box::new(VolumeOctreeHandle {
+            octree,
+            shape: *grid.shape(),
+            input_bytes: grid.input_bytes(),
+            nan_samples: grid.nan_count(),
+            id,
+        }))
     })
 }
 
@@ -698,6 +709,7 @@ impl VolumeOctreeHandle {
                 build_ms: s.build_ms,
                 value_min: s.value_range.0,
                 value_max: s.value_range.1,
+                nan_samples: self.nan_samples,
             })
         })
     }
@@ -721,8 +733,9 @@ impl VolumeOctreeHandle {
                 out.node_id.push(id.0);
                 out.level.push(node.level as u32);
                 out.nodal_error.push(node.errors.first().copied().unwrap_or(0.0));
-                out.min.push(node.min);
-                out.max.push(node.max);
+                let empty = node.min > node.max; // a box of NaN only: (+inf, -inf)
+                out.min.push(if empty { f64::NAN } else { node.min });
+                out.max.push(if empty { f64::NAN } else { node.max });
             }
             Ok(out)
         })

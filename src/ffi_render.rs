@@ -441,9 +441,10 @@ impl SelectionHandle {
 
     pub(crate) fn brick_texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize) -> Bridged<Vec<f32>> {
         guarded(|| {
-            // One brick of many: scanning the whole image for NaN per brick
-            // would cost a full pass each; the octree's build scanned it, and
-            // only this brick's texels are checked here.
+            // One brick of many: scanning the whole image for infinities per
+            // brick would cost a full pass each; the octree's build scanned it,
+            // and only this brick's texels are checked here. NaN is no data:
+            // it goes to the texture, where the shader skips it.
             let grid = crate::ffi::grid_unscanned(bytes, desc)?;
             same_image(&self.shape, &grid)?;
             let Some(b) = self.selection.bricks.get(brick) else {
@@ -453,9 +454,9 @@ impl SelectionHandle {
                 )));
             };
             let texels = brick_texels_f32(&grid, b)?;
-            if let Some(i) = texels.iter().position(|v| !v.is_finite()) {
+            if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
                 return Err(Error::InvalidArgument(format!(
-                    "brick {brick} holds a NaN or infinite value (texel {i}): the image changed since the \
+                    "brick {brick} holds an infinite value (texel {i}): the image changed since the \
                      octree was built; fix the values and rebuild it"
                 )));
             }
@@ -673,15 +674,18 @@ mod tests {
         assert!(s.brick_texels(bytes(&d), &desc(), n).unwrap_err().contains("does not exist"));
         let moved = GridDesc { origin: [0.0; 3], ..desc() };
         assert!(s.brick_texels(bytes(&d), &moved, 0).unwrap_err().contains("image changed"));
-        // A NaN written after the build: the brick that reads it says so, the others still load.
+        // An infinity written after the build: the brick that reads it says so,
+        // the others still load. A NaN is no data: its texel is NaN.
         let roi = SelectDesc { has_roi: true, roi_center: [0.0, 5.0, 6.0], roi_radius: 1.0, ..options(30_000) };
         let s = h.select_bricks(&roi).unwrap();
         assert!(s.selection.bricks.len() > 1);
         let b = &s.selection.bricks[0];
         let mut changed = d.clone();
         changed[b.lo[0] + N * (b.lo[1] + N * b.lo[2])] = f32::NAN;
+        assert!(s.brick_texels(bytes(&changed), &desc(), 0).unwrap()[0].is_nan());
+        changed[b.lo[0] + N * (b.lo[1] + N * b.lo[2])] = f32::INFINITY;
         let e = s.brick_texels(bytes(&changed), &desc(), 0).unwrap_err();
-        assert!(e.contains("NaN"), "{e}");
+        assert!(e.contains("infinite value (texel 0)"), "{e}");
         let far = s.selection.bricks.iter().position(|o| (0..3).any(|a| o.lo[a] > b.lo[a] || o.hi[a] < b.lo[a]));
         let far = far.expect("a brick away from the NaN");
         assert!(s.brick_texels(bytes(&changed), &desc(), far).is_ok());

@@ -15,8 +15,27 @@
 //!
 //! A [`Grid`] is checked once, when it is made: at least two samples per axis,
 //! a sample count that fits `usize`, a buffer of exactly that length, a chosen
-//! component for multi-component arrays, and no NaN or infinity anywhere. Every
-//! algorithm after that may rely on finite samples.
+//! component for multi-component arrays, no infinity anywhere and at least one
+//! sample that is not NaN.
+//!
+//! # NaN: no data
+//!
+//! A NaN sample is "no data" (a mask, a region outside the scanner's field of
+//! view), not an error. The grid counts them ([`Grid::nan_count`]); every
+//! algorithm after that treats them by one rule:
+//!
+//! - a sample point whose trilinear interpolation touches a NaN corner (any of
+//!   the 8 lattice samples of its cell, whatever its weight) is no data: it is
+//!   transparent in every renderer and outside every isosurface;
+//! - NaN samples are left out of min/max; a box of NaN only has the empty range
+//!   `(+inf, -inf)`;
+//! - the error of approximating a sample is 0 when the fine sample and its
+//!   coarse approximation are both NaN, the full value range when exactly one of
+//!   them is NaN (a hole the other picture does not have), `|f - T|` otherwise
+//!   (see [`crate::octree::build`]).
+//!
+//! Infinities stay an error ([`Error::NonFinite`]): they have no colour and no
+//! place in a value range. A volume of NaN only is [`Error::NoData`].
 
 use crate::error::{Error, Result};
 use rayon::prelude::*;
@@ -29,6 +48,8 @@ pub trait Sample: Copy + Send + Sync + 'static {
     fn to_f64(self) -> f64;
     /// False for NaN and infinities; always true for integers.
     fn is_finite(self) -> bool;
+    /// True for NaN; always false for integers.
+    fn is_nan(self) -> bool;
 }
 
 macro_rules! int_sample {
@@ -42,6 +63,10 @@ macro_rules! int_sample {
             #[inline(always)]
             fn is_finite(self) -> bool {
                 true
+            }
+            #[inline(always)]
+            fn is_nan(self) -> bool {
+                false
             }
         }
     };
@@ -63,6 +88,10 @@ impl Sample for f32 {
     fn is_finite(self) -> bool {
         f32::is_finite(self)
     }
+    #[inline(always)]
+    fn is_nan(self) -> bool {
+        f32::is_nan(self)
+    }
 }
 impl Sample for f64 {
     const NAME: &'static str = "f64";
@@ -73,6 +102,10 @@ impl Sample for f64 {
     #[inline(always)]
     fn is_finite(self) -> bool {
         f64::is_finite(self)
+    }
+    #[inline(always)]
+    fn is_nan(self) -> bool {
+        f64::is_nan(self)
     }
 }
 
@@ -291,6 +324,7 @@ pub struct Grid<'a> {
     shape: GridShape,
     components: usize,
     component: usize,
+    nan_count: usize,
 }
 
 impl<'a> Grid<'a> {
@@ -298,17 +332,19 @@ impl<'a> Grid<'a> {
     /// point, reading component `component` (`None` is allowed only for
     /// single-component arrays).
     ///
-    /// Checks everything listed in the module docs; the non-finite scan is one
-    /// parallel pass over float data and free for integer data.
+    /// Checks everything listed in the module docs and counts the NaN
+    /// samples; the scan is one parallel pass over float data and free for
+    /// integer data.
     pub fn new(samples: Samples<'a>, shape: GridShape, components: usize, component: Option<usize>) -> Result<Self> {
-        let grid = Grid::unscanned(samples, shape, components, component)?;
-        grid.check_finite()?;
+        let mut grid = Grid::unscanned(samples, shape, components, component)?;
+        grid.nan_count = grid.scan()?;
         Ok(grid)
     }
 
-    /// [`Grid::new`] without the non-finite scan, for reading part of a grid
-    /// already checked whole (a selected brick's texels, after the octree was
-    /// built from the same samples): the caller checks the values it reads.
+    /// [`Grid::new`] without the scan, for reading part of a grid already
+    /// checked whole (a selected brick's texels, after the octree was built
+    /// from the same samples): the caller checks the values it reads, and
+    /// [`Grid::nan_count`] is 0 (not counted).
     pub fn unscanned(
         samples: Samples<'a>,
         shape: GridShape,
@@ -325,7 +361,7 @@ impl<'a> Grid<'a> {
             None if components > 1 => return Err(Error::ComponentRequired { components }),
             None => 0,
         };
-        Ok(Grid { samples, shape, components, component })
+        Ok(Grid { samples, shape, components, component, nan_count: 0 })
     }
 
     /// A single-component grid over `samples` (convenience for tests and datasets).
@@ -333,16 +369,27 @@ impl<'a> Grid<'a> {
         Grid::new(samples, GridShape { dims, spacing: [1.0; 3], origin: [0.0; 3] }, 1, None)
     }
 
-    fn check_finite(&self) -> Result<()> {
-        let (count, first) = match self.samples {
-            Samples::F32(s) => count_non_finite(s, self.components, self.component),
-            Samples::F64(s) => count_non_finite(s, self.components, self.component),
-            _ => (0, usize::MAX),
+    /// Refuses infinities and a grid of NaN only; returns the NaN count.
+    fn scan(&self) -> Result<usize> {
+        let scan = match self.samples {
+            Samples::F32(s) => scan_non_finite(s, self.components, self.component),
+            Samples::F64(s) => scan_non_finite(s, self.components, self.component),
+            _ => Scan::default(),
         };
-        if count > 0 {
-            return Err(Error::NonFinite { count, first, first_ijk: self.shape.ijk(first) });
+        if scan.infinite > 0 {
+            let first = scan.first_infinite;
+            return Err(Error::NonFinite { count: scan.infinite, first, first_ijk: self.shape.ijk(first) });
         }
-        Ok(())
+        if scan.nan == self.shape.point_count() {
+            return Err(Error::NoData { count: scan.nan });
+        }
+        Ok(scan.nan)
+    }
+
+    /// Number of NaN samples ("no data", see the module docs) of the chosen
+    /// component; 0 for integer types and for [`Grid::unscanned`] grids.
+    pub fn nan_count(&self) -> usize {
+        self.nan_count
     }
 
     /// Dimensions, spacing, origin.
@@ -446,23 +493,45 @@ impl<'a, T: Sample> TypedGrid<'a, T> {
     }
 }
 
-/// Counts non-finite values of one component; returns `(count, first point index)`.
-fn count_non_finite<T: Sample>(s: &[T], components: usize, component: usize) -> (usize, usize) {
+/// What the scan of one component found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Scan {
+    nan: usize,
+    infinite: usize,
+    /// Point index of the first infinity (`usize::MAX` when there is none).
+    first_infinite: usize,
+}
+
+impl Default for Scan {
+    fn default() -> Self {
+        Scan { nan: 0, infinite: 0, first_infinite: usize::MAX }
+    }
+}
+
+/// Counts the NaN and infinite values of one component and finds the first infinity.
+fn scan_non_finite<T: Sample>(s: &[T], components: usize, component: usize) -> Scan {
     const CHUNK: usize = 1 << 16;
     let points = s.len() / components;
     (0..points.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
-            let (mut count, mut first) = (0usize, usize::MAX);
+            let mut scan = Scan::default();
             for p in c * CHUNK..((c + 1) * CHUNK).min(points) {
-                if !s[p * components + component].is_finite() {
-                    count += 1;
-                    first = first.min(p);
+                let v = s[p * components + component];
+                if v.is_nan() {
+                    scan.nan += 1;
+                } else if !v.is_finite() {
+                    scan.infinite += 1;
+                    scan.first_infinite = scan.first_infinite.min(p);
                 }
             }
-            (count, first)
+            scan
         })
-        .reduce(|| (0, usize::MAX), |a, b| (a.0 + b.0, a.1.min(b.1)))
+        .reduce(Scan::default, |a, b| Scan {
+            nan: a.nan + b.nan,
+            infinite: a.infinite + b.infinite,
+            first_infinite: a.first_infinite.min(b.first_infinite),
+        })
 }
 
 #[cfg(test)]
@@ -515,21 +584,33 @@ mod tests {
     }
 
     #[test]
-    fn non_finite_samples_are_counted_and_located() {
+    fn infinities_are_counted_and_located_nan_is_not_an_error() {
         let mut data = vec![1f64; 27];
-        data[5] = f64::NAN;
+        data[3] = f64::NAN;
+        data[5] = f64::NEG_INFINITY;
         data[20] = f64::INFINITY;
         let e = Grid::scalar(Samples::F64(&data), [3, 3, 3]).unwrap_err();
         assert_eq!(e, Error::NonFinite { count: 2, first: 5, first_ijk: [2, 1, 0] });
-        assert!(e.to_string().contains("2 non-finite"));
+        assert!(e.to_string().contains("2 infinite sample(s)"), "{e}");
+        data[5] = 1.0;
+        data[20] = 1.0;
+        assert_eq!(Grid::scalar(Samples::F64(&data), [3, 3, 3]).unwrap().nan_count(), 1);
     }
 
     #[test]
-    fn nan_in_an_unused_component_is_fine() {
+    fn a_grid_of_nan_only_has_no_data() {
+        let data = vec![f32::NAN; 8];
+        let e = Grid::scalar(Samples::F32(&data), [2, 2, 2]).unwrap_err();
+        assert_eq!(e, Error::NoData { count: 8 });
+        assert!(e.to_string().contains("all 8 samples are NaN"), "{e}");
+    }
+
+    #[test]
+    fn nan_is_counted_in_the_chosen_component_only() {
         let mut data = vec![1f32; 16];
         data[1] = f32::NAN;
-        assert!(Grid::new(Samples::F32(&data), shape([2, 2, 2]), 2, Some(0)).is_ok());
-        assert!(Grid::new(Samples::F32(&data), shape([2, 2, 2]), 2, Some(1)).is_err());
+        assert_eq!(Grid::new(Samples::F32(&data), shape([2, 2, 2]), 2, Some(0)).unwrap().nan_count(), 0);
+        assert_eq!(Grid::new(Samples::F32(&data), shape([2, 2, 2]), 2, Some(1)).unwrap().nan_count(), 1);
     }
 
     #[test]

@@ -42,8 +42,10 @@ impl HybridOctree {
     /// Checks the Volume Octree, then that every polygon belongs to exactly one
     /// terminal node (the node ranges partition the polygons, each range's
     /// polygons name its node), that every polygon lies inside its node's box,
-    /// has at least 3 points and (DiscMC) a non-zero area, and that no edge is used by
-    /// more than two polygons or twice in the same direction.
+    /// has at least 3 points and (DiscMC) a non-zero area, that no edge is used by
+    /// more than two polygons or twice in the same direction, and that the
+    /// edges used once are exactly the reported open ones: on the volume's
+    /// faces and along NaN (no data).
     pub fn validate(&self) -> std::result::Result<(), String> {
         self.volume.validate()?;
         let s = &self.surface;
@@ -100,6 +102,13 @@ impl HybridOctree {
             return Err(format!(
                 "{} edges are used by more than two polygons or twice in one direction",
                 edges.nonmanifold
+            ));
+        }
+        let open = s.stats.boundary_edges + s.stats.nan_boundary_edges;
+        if edges.boundary != open {
+            return Err(format!(
+                "{} edges are used once, but {} lie on the volume's faces and {} along NaN",
+                edges.boundary, s.stats.boundary_edges, s.stats.nan_boundary_edges
             ));
         }
         Ok(())

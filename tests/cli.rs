@@ -177,16 +177,49 @@ fn multi_component_needs_a_component() {
     assert!(ok.status.success(), "{}", stderr(&ok));
 }
 
+/// NaN is no data: `info` and `build` (text and JSON) count it, `surface`
+/// reports the open edges along it; an infinity is refused with its position.
 #[test]
-fn nan_samples_are_reported_as_non_finite() {
+fn nan_samples_are_counted_and_infinity_is_refused() {
     let path = temp("nan.raw");
-    let mut values = [1.0f32; 27];
+    let file = path.to_str().unwrap().to_string();
+    let write = |values: &[f32]| {
+        std::fs::write(&path, values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>()).unwrap()
+    };
+    let mut values: Vec<f32> = (0..9 * 9 * 9)
+        .map(|i| {
+            -(((i % 9) as f32 - 4.0).powi(2) + ((i / 9 % 9) as f32 - 4.0).powi(2) + ((i / 81) as f32 - 4.0).powi(2))
+                .sqrt()
+        })
+        .collect();
     values[13] = f32::NAN;
-    std::fs::write(&path, values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>()).unwrap();
-    let out = run(&["build", "--file", path.to_str().unwrap(), "--dims", "3,3,3", "--type", "f32"]);
+    for z in 0..9 {
+        for y in 0..9 {
+            values[7 + 9 * (y + 9 * z)] = f32::NAN;
+        }
+    }
+    write(&values);
+    let base = ["--file", &file, "--dims", "9,9,9", "--type", "f32"];
+    let info = run(&[&["info"], &base[..]].concat());
+    assert!(info.status.success(), "{}", stderr(&info));
+    assert!(stdout(&info).contains("NaN samples: 82"), "{}", stdout(&info));
+    let text = run(&[&["build", "--leaf-size", "2"], &base[..]].concat());
+    assert!(text.status.success(), "{}", stderr(&text));
+    assert!(stdout(&text).contains("NaN samples:       82"), "{}", stdout(&text));
+    let json = run(&[&["build", "--leaf-size", "2", "--json"], &base[..]].concat());
+    let report: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    assert_eq!(report["nan_samples"], 82);
+    let surface = run(&[&["surface", "--isovalue", "-3.5", "--leaf-size", "2", "--json"], &base[..]].concat());
+    assert!(surface.status.success(), "{}", stderr(&surface));
+    let report: serde_json::Value = serde_json::from_slice(&surface.stdout).unwrap();
+    assert!(report["nan_boundary_edges"].as_u64().unwrap() > 0, "{report}");
+    assert_eq!(report["nonmanifold_edges"], 0);
+    values[13] = f32::INFINITY;
+    write(&values);
+    let out = run(&[&["build"], &base[..]].concat());
     std::fs::remove_file(&path).unwrap();
-    assert_clean_failure(&out, "non-finite");
-    assert!(stderr(&out).contains("i=1, j=1, k=1"));
+    assert_clean_failure(&out, "1 infinite sample(s)");
+    assert!(stderr(&out).contains("i=4, j=1, k=0"), "{}", stderr(&out));
 }
 
 #[test]

@@ -1,12 +1,24 @@
 //! The reference: nodal errors (and squared errors) of one node computed straight from the
 //! definition, sample by sample, with no sharing between nodes or strides.
 //! Slow (O(samples x levels) per node); for tests and for checking a build.
+//! NaN follows the no-data rule of [`super::build`], written out in
+//! [`sample_error`].
 
-use super::build::normalise;
+use super::build::{normalise, squared_error};
 use super::layout::NodeId;
 use super::trilinear::eval;
 use super::volume_octree::VolumeOctree;
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+
+/// The error of one sample: `None` for a hole (exactly one of `f` and `t`
+/// NaN), 0 when both are NaN, `f - t` otherwise.
+pub fn sample_error(f: f64, t: f64) -> Option<f64> {
+    match (f.is_nan(), t.is_nan()) {
+        (true, true) => Some(0.0),
+        (false, false) => Some(f - t),
+        _ => None,
+    }
+}
 
 /// E_p(n), p = 0 .. L-k-1, of node `id`, from the definition
 /// `max over q >= p of max over v in n of |f(v) - T_(2^(L-k-q))(v)| / range`.
@@ -27,7 +39,10 @@ pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f
                 for z in node.lo[2]..=node.hi[2] {
                     for y in node.lo[1]..=node.hi[1] {
                         for x in node.lo[0]..=node.hi[0] {
-                            *r = r.max((g.at(x, y, z) - eval(&g, s, x, y, z)).abs());
+                            *r = match sample_error(g.at(x, y, z), eval(&g, s, x, y, z)) {
+                                Some(d) => r.max(d.abs()),
+                                None => f64::INFINITY,
+                            };
                         }
                     }
                 }
@@ -36,7 +51,7 @@ pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f
             let mut envelope = 0.0f64;
             for p in (0..n).rev() {
                 envelope = envelope.max(raw[p]);
-                out[p] = normalise(envelope, vmax - vmin);
+                out[p] = if envelope == f64::INFINITY { 1.0 } else { normalise(envelope, vmax - vmin) };
             }
             out
         }
@@ -47,7 +62,7 @@ pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f
 /// Q_p(n), p = 0 .. L-k-1, of node `id`, from the definition: the sum of
 /// `(f(v) - T_(2^(L-k-p))(v))^2 / range^2` over the samples v of the node's
 /// half-open box (its max faces belong to the next node, except on the
-/// grid's last samples).
+/// grid's last samples), plus 1 per hole sample.
 pub fn squared_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f64> {
     struct Brute<'o> {
         octree: &'o VolumeOctree,
@@ -64,16 +79,18 @@ pub fn squared_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec
             (0..n)
                 .map(|p| {
                     let s = 1usize << (n - p);
-                    let mut sum = 0.0;
+                    let (mut sum, mut holes) = (0.0, 0.0);
                     for z in node.lo[2]..end(2) {
                         for y in node.lo[1]..end(1) {
                             for x in node.lo[0]..end(0) {
-                                let d = g.at(x, y, z) - eval(&g, s, x, y, z);
-                                sum += d * d;
+                                match sample_error(g.at(x, y, z), eval(&g, s, x, y, z)) {
+                                    Some(d) => sum += d * d,
+                                    None => holes += 1.0,
+                                }
                             }
                         }
                     }
-                    sum / range2
+                    squared_error(sum, holes, range2) as f64
                 })
                 .collect()
         }

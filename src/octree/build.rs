@@ -30,11 +30,25 @@
 //!
 //! summed over the half-open boxes of n's leaves (each sample counted once).
 //!
+//! NaN is no data (see [`crate::grid`]). Min and max skip it (a node of NaN
+//! only keeps the empty range `(+inf, -inf)`). A sample that is NaN in exactly
+//! one of `f` and `T_s` is a hole one picture has and the other has not: the
+//! coarse picture shows a hole where data exists, or data where there is none.
+//! It counts as the full value range, so that the selection refines there:
+//!
+//! ```text
+//! E_p(n) = 1                        some sample of n is a hole at a stride of level >= p
+//! Q_p(n) = (sum of finite (f - T_s)^2) / (max f - min f)^2 + (hole samples of n at stride s)
+//! ```
+//!
+//! and a sample NaN in both counts nothing. A node whose coarse picture has
+//! the same holes as its data and is trilinear elsewhere is homogeneous.
+//!
 //! Determinism: each leaf is computed alone and maxima are exact, so the
 //! result is bit-identical on any number of threads.
 
 use super::layout::Layout;
-use super::leaf_stats::{leaf_stats, LeafStats, Scratch};
+use super::leaf_stats::{leaf_stats, LeafStats, Scratch, HOLE};
 use super::volume_octree::VolumeOctree;
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
@@ -129,6 +143,8 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
     let mut raw = vec![0.0f64; slots * strides];
     // squared[id * strides + j - 1]: squared error of stride 2^j, summed over the node's leaves.
     let mut squared = vec![0.0f64; slots * strides];
+    // holes[id * strides + j - 1]: hole samples of stride 2^j, summed over the node's leaves.
+    let mut holes = vec![0.0f64; slots * strides];
     let leaf = layout.leaf_level();
     let off = layout.level_offset(leaf);
     for (i, s) in leaves.into_iter().enumerate() {
@@ -136,6 +152,7 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
         max[off + i] = s.max;
         raw[(off + i) * strides..(off + i + 1) * strides].copy_from_slice(&s.raw);
         squared[(off + i) * strides..(off + i + 1) * strides].copy_from_slice(&s.squared);
+        holes[(off + i) * strides..(off + i + 1) * strides].copy_from_slice(&s.holes);
     }
     for level in (0..leaf).rev() {
         let d = layout.level_dims(level);
@@ -146,6 +163,7 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
                     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
                     let mut acc = vec![0.0f64; strides];
                     let mut sum = vec![0.0f64; strides];
+                    let mut hole_sum = vec![0.0f64; strides];
                     for (cl, cc) in layout.children(level, [x, y, z]) {
                         let c = layout.id(cl, cc).0 as usize;
                         lo = lo.min(min[c]);
@@ -156,11 +174,15 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
                         for (a, &q) in sum.iter_mut().zip(&squared[c * strides..(c + 1) * strides]) {
                             *a += q;
                         }
+                        for (a, &h) in hole_sum.iter_mut().zip(&holes[c * strides..(c + 1) * strides]) {
+                            *a += h;
+                        }
                     }
                     min[id] = lo;
                     max[id] = hi;
                     raw[id * strides..(id + 1) * strides].copy_from_slice(&acc);
                     squared[id * strides..(id + 1) * strides].copy_from_slice(&sum);
+                    holes[id * strides..(id + 1) * strides].copy_from_slice(&hole_sum);
                 }
             }
         }
@@ -185,16 +207,17 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
         for local in 0..count {
             let r = &raw[(first + local) * strides..(first + local + 1) * strides];
             let q = &squared[(first + local) * strides..(first + local + 1) * strides];
+            let h = &holes[(first + local) * strides..(first + local + 1) * strides];
             let at = error_offset[level] + local * n;
             for (p, e2) in squared_errors[at..at + n].iter_mut().enumerate() {
-                *e2 = (q[n - p - 1] / range2) as f32;
+                *e2 = squared_error(q[n - p - 1], h[n - p - 1], range2);
             }
             let e = &mut errors[error_offset[level] + local * n..error_offset[level] + (local + 1) * n];
             // E_p = max over strides 2^1 ..= 2^(L-k-p), walking p from fine to coarse.
             let mut envelope = 0.0f64;
             for p in (0..n).rev() {
                 envelope = envelope.max(r[n - p - 1]);
-                e[p] = normalise(envelope, range);
+                e[p] = if envelope == HOLE { 1.0 } else { normalise(envelope, range) };
             }
         }
     }
@@ -207,6 +230,12 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
         error_offset,
         started.elapsed().as_secs_f64() * 1e3,
     )
+}
+
+/// `Q = q / range2 + holes`: the squared error of the finite samples
+/// normalised, plus 1 (the full range, squared and normalised) per hole sample.
+pub fn squared_error(q: f64, holes: f64, range2: f64) -> f32 {
+    (q / range2 + holes) as f32
 }
 
 /// `e / range` rounded up to the next `f32` (0 when the range is 0).

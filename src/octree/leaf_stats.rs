@@ -14,7 +14,20 @@
 //!
 //! (half-open: a face shared with the next brick belongs to that brick; the
 //! grid's last samples belong to the last brick), so the bricks partition the
-//! samples and a node's `q_j` is the sum over its leaves. A node's nodal
+//! samples and a node's `q_j` is the sum over its leaves.
+//!
+//! NaN is no data (see [`crate::grid`]): min and max skip it (a brick of NaN
+//! only has the empty range `(+inf, -inf)`), and the error of a sample is
+//!
+//! ```text
+//! d(v) = 0            f(v) and T_s(v) both NaN
+//! d(v) = HOLE         exactly one of them NaN  (r_j = HOLE; counted in h_j, not in q_j)
+//! d(v) = f(v) - T_s   otherwise
+//! ```
+//!
+//! where `T_s(v)` is NaN when any of its 8 lattice corners is. `h_j` counts the
+//! hole samples of the half-open box; [`super::build`] weighs each as the full
+//! value range. A node's nodal
 //! errors are maxima of `r_j` over its leaves (see [`super::build`]). Strides up to the brick size
 //! use coarse cells inside the brick; larger strides use the one coarse cell
 //! that contains the whole brick.
@@ -31,6 +44,10 @@ use super::layout::Layout;
 use super::trilinear::{bracket, lerp};
 use crate::grid::{Sample, TypedGrid};
 
+/// The raw error of a sample that is no data in exactly one of the fine and
+/// the coarse picture: larger than any finite error, and kept by every max.
+pub const HOLE: f64 = f64::INFINITY;
+
 /// Statistics of one leaf brick.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LeafStats {
@@ -40,8 +57,12 @@ pub struct LeafStats {
     pub max: f64,
     /// `raw[j - 1]` = r_j, the raw error of stride `2^j`, `j = 1 ..= L`.
     pub raw: Vec<f64>,
-    /// `squared[j - 1]` = q_j, the squared error of stride `2^j`.
+    /// `squared[j - 1]` = q_j, the squared error of stride `2^j` over the
+    /// samples where the fine and coarse values are both finite.
     pub squared: Vec<f64>,
+    /// `holes[j - 1]` = h_j, the samples of the half-open box where exactly one
+    /// of `f` and `T_(2^j)` is NaN.
+    pub holes: Vec<f64>,
 }
 
 /// Reusable buffers of the kernel (one per worker).
@@ -101,6 +122,32 @@ fn diff_stats(a: &[f64], b: &[f64], summed: usize, init: f64) -> (f64, f64) {
     (m, total)
 }
 
+/// [`diff_stats`] for rows holding NaN: `(max |a - b|, sum of (a - b)^2, holes)`
+/// with the no-data rule of the module docs (the max is [`HOLE`] when the
+/// closed row has a hole; the sum and the hole count cover `i < summed`).
+fn hole_stats(a: &[f64], b: &[f64], summed: usize, init: f64) -> (f64, f64, f64) {
+    let (mut m, mut total, mut holes) = (init, 0.0, 0.0);
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        match (x.is_nan(), y.is_nan()) {
+            (true, true) => {}
+            (false, false) => {
+                let d = x - y;
+                m = m.max(d.abs());
+                if i < summed {
+                    total += d * d;
+                }
+            }
+            _ => {
+                m = HOLE;
+                if i < summed {
+                    holes += 1.0;
+                }
+            }
+        }
+    }
+    (m, total, holes)
+}
+
 /// Half-open extent along an axis: the samples `lo .. hi` of the closed box,
 /// plus `hi` itself when it is the grid's last sample.
 fn summed_count(lo: usize, hi: usize, n: usize) -> usize {
@@ -140,6 +187,42 @@ fn trilinear_squared_sum(e: [f64; 8], lo: [usize; 3], hi: [usize; 3], dims: [usi
     total.max(0.0)
 }
 
+/// `(raw, squared)` of a brick of constant value `c` with closed box `[lo, hi]`:
+/// every in-brick stride reproduces it exactly. For a stride larger than the
+/// brick, T_s is trilinear over the brick, so `|c - T_s|` is largest at one of
+/// the brick's eight corners. `None` when a corner's T_s is NaN: the lattice
+/// cells the brick's samples interpolate are those its corners do (per axis
+/// the cell of `lo`, and of `hi` when `hi` is on the coarse lattice), but not
+/// every sample touches the NaN one, so the caller takes the general path.
+fn constant_brick<T: Sample>(
+    g: &TypedGrid<'_, T>,
+    layout: &Layout,
+    c: f64,
+    lo: [usize; 3],
+    hi: [usize; 3],
+) -> Option<(Vec<f64>, Vec<f64>)> {
+    let strides = layout.root_log2 as usize;
+    let mut raw = vec![0.0f64; strides];
+    let mut squared = vec![0.0f64; strides];
+    let first_coarse = layout.leaf_log2 as usize + 1;
+    for (j, (r, q)) in raw.iter_mut().zip(squared.iter_mut()).enumerate().skip(first_coarse - 1) {
+        let s = 1usize << (j + 1);
+        let mut e = [0.0f64; 8];
+        for (corner, ec) in e.iter_mut().enumerate() {
+            let x = if corner & 1 == 0 { lo[0] } else { hi[0] };
+            let y = if corner & 2 == 0 { lo[1] } else { hi[1] };
+            let z = if corner & 4 == 0 { lo[2] } else { hi[2] };
+            *ec = c - super::trilinear::eval(g, s, x, y, z);
+            if ec.is_nan() {
+                return None;
+            }
+            *r = r.max(ec.abs());
+        }
+        *q = trilinear_squared_sum(e, lo, hi, g.dims);
+    }
+    Some((raw, squared))
+}
+
 /// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`.
 pub fn leaf_stats<T: Sample>(
     g: &TypedGrid<'_, T>,
@@ -160,36 +243,27 @@ pub fn leaf_stats<T: Sample>(
             brick.extend_from_slice(&row);
         }
     }
+    // `v < min` and `v > max` are false for NaN: min and max skip it.
     let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut has_nan = false;
     for &v in brick.iter() {
         min = if v < min { v } else { min };
         max = if v > max { v } else { max };
+        has_nan |= v.is_nan();
     }
     let mut raw = vec![0.0f64; strides];
     let mut squared = vec![0.0f64; strides];
-    let first_coarse = layout.leaf_log2 as usize + 1;
-    if min == max {
-        // A constant brick: every in-brick stride reproduces it exactly. For a
-        // stride larger than the brick, T_s is trilinear over the brick, so
-        // |c - T_s| is largest at one of the brick's eight corners.
-        for (j, (r, q)) in raw.iter_mut().zip(squared.iter_mut()).enumerate().skip(first_coarse - 1) {
-            let s = 1usize << (j + 1);
-            let mut e = [0.0f64; 8];
-            for (corner, ec) in e.iter_mut().enumerate() {
-                let x = if corner & 1 == 0 { lo[0] } else { hi[0] };
-                let y = if corner & 2 == 0 { lo[1] } else { hi[1] };
-                let z = if corner & 4 == 0 { lo[2] } else { hi[2] };
-                *ec = min - super::trilinear::eval(g, s, x, y, z);
-                *r = r.max(ec.abs());
-            }
-            *q = trilinear_squared_sum(e, lo, hi, g.dims);
+    let mut holes = vec![0.0f64; strides];
+    let summed = [0, 1, 2].map(|a| summed_count(lo[a], hi[a], g.dims[a]));
+    if min == max && !has_nan {
+        if let Some((raw, squared)) = constant_brick(g, layout, min, lo, hi) {
+            let holes = vec![0.0f64; strides];
+            return LeafStats { min, max, raw, squared, holes };
         }
-        return LeafStats { min, max, raw, squared };
     }
     let Scratch { brick, v, w, t, xs, ys, frac, cells } = scratch;
     t.resize(wx, 0.0);
-    let summed = [0, 1, 2].map(|a| summed_count(lo[a], hi[a], g.dims[a]));
-    for (j, (r, q)) in raw.iter_mut().zip(squared.iter_mut()).enumerate() {
+    for (j, ((r, q), h)) in raw.iter_mut().zip(squared.iter_mut()).zip(holes.iter_mut()).enumerate() {
         let s = 1usize << (j + 1);
         coarse_positions(lo[0], hi[0], s, g.dims[0], xs);
         coarse_positions(lo[1], hi[1], s, g.dims[1], ys);
@@ -209,6 +283,7 @@ pub fn leaf_stats<T: Sample>(
         }
         let mut err = 0.0f64;
         let mut sq = 0.0f64;
+        let mut hole_count = 0.0f64;
         for z in lo[2]..=hi[2] {
             let (z0, z1, tz) = bracket(z, s, g.dims[2]);
             // v(xa, yb) for every coarse (xa, yb) of this slice.
@@ -218,6 +293,8 @@ pub fn leaf_stats<T: Sample>(
                     v.push(lerp(g.at(xa, yb, z0), g.at(xa, yb, z1), tz));
                 }
             }
+            // NaN in the fine samples or in this slice's coarse values: the rows take the no-data path.
+            let nan_rows = has_nan || v.iter().any(|x| x.is_nan());
             for y in lo[1]..=hi[1] {
                 let (y0, _, ty) = bracket(y, s, g.dims[1]);
                 let yi0 = (y0 - y_first) / s;
@@ -233,13 +310,21 @@ pub fn leaf_stats<T: Sample>(
                 }
                 let start = ((z - lo[2]) * wy + (y - lo[1])) * wx;
                 let in_sum = y - lo[1] < summed[1] && z - lo[2] < summed[2];
-                let (m, row_sq) = diff_stats(&brick[start..start + wx], t, if in_sum { summed[0] } else { 0 }, err);
+                let (row, row_summed) = (&brick[start..start + wx], if in_sum { summed[0] } else { 0 });
+                let (m, row_sq, row_holes) = if nan_rows {
+                    hole_stats(row, t, row_summed, err)
+                } else {
+                    let (m, row_sq) = diff_stats(row, t, row_summed, err);
+                    (m, row_sq, 0.0)
+                };
                 err = m;
                 sq += row_sq;
+                hole_count += row_holes;
             }
         }
         *r = err;
         *q = sq;
+        *h = hole_count;
     }
-    LeafStats { min, max, raw, squared }
+    LeafStats { min, max, raw, squared, holes }
 }

@@ -7,7 +7,8 @@ impl VolumeOctree {
     /// Checks the invariants of a built octree and names the first one broken:
     ///
     /// - array lengths match the layout;
-    /// - every node's `min <= max`, both finite; a parent's min/max are the
+    /// - every node's `min <= max`, both finite, or the empty range
+    ///   `(+inf, -inf)` of a box of NaN only; a parent's min/max are the
     ///   min/max of its children's;
     /// - every E_p is finite, in `[0, 1]`, and non-increasing in p;
     /// - `E_p(parent) = max over children of E_(p-1)(child)` for p >= 1 (the
@@ -40,7 +41,8 @@ impl VolumeOctree {
                     for x in 0..d[0] {
                         let node = self.node(l.id(level, [x, y, z]));
                         let at = format!("node {:?} (level {level}, coords {:?})", node.id, node.coords);
-                        if !(node.min.is_finite() && node.max.is_finite() && node.min <= node.max) {
+                        let empty = node.min == f64::INFINITY && node.max == f64::NEG_INFINITY;
+                        if !(empty || (node.min.is_finite() && node.max.is_finite() && node.min <= node.max)) {
                             return Err(format!("{at}: bad range [{}, {}]", node.min, node.max));
                         }
                         for (p, w) in node.errors.windows(2).enumerate() {

@@ -17,7 +17,9 @@
 //! low-resolution samples themselves among them) never get a point. Each
 //! point keeps its value, its error and the direction of the central-
 //! difference gradient of `f` (the shading normal), quantised as
-//! [`super::Point`] says. Slices of the grid run in parallel and are joined
+//! [`super::Point`] says. NaN is no data: where `f` or `T_s` is NaN, `e` is
+//! NaN and no point is made (no comparison holds for NaN), and the gradient
+//! leaves NaN neighbours out. Slices of the grid run in parallel and are joined
 //! in grid order, so the points do not depend on the number of threads.
 
 use super::lowres::low_resolution;
@@ -242,14 +244,25 @@ impl GridVisitor for Generate<'_> {
     }
 }
 
-/// Central differences (one-sided at the grid's faces), in index space.
+/// Central differences (one-sided at the grid's faces and beside a NaN
+/// neighbour, 0 with NaN on both sides), in index space.
 fn gradient<T: Sample>(g: &TypedGrid<'_, T>, ijk: [usize; 3]) -> [f64; 3] {
+    let at = |p: [usize; 3]| g.at(p[0], p[1], p[2]);
     std::array::from_fn(|a| {
         let mut lo = ijk;
         let mut hi = ijk;
         lo[a] = ijk[a].saturating_sub(1);
         hi[a] = (ijk[a] + 1).min(g.dims[a] - 1);
-        (g.at(hi[0], hi[1], hi[2]) - g.at(lo[0], lo[1], lo[2])) / (hi[a] - lo[a]) as f64
+        if at(lo).is_nan() {
+            lo = ijk;
+        }
+        if at(hi).is_nan() {
+            hi = ijk;
+        }
+        if hi[a] == lo[a] {
+            return 0.0;
+        }
+        (at(hi) - at(lo)) / (hi[a] - lo[a]) as f64
     })
 }
 
@@ -344,7 +357,7 @@ mod tests {
     }
 
     #[test]
-    fn extreme_fields_give_finite_points_and_nan_is_refused() {
+    fn extreme_fields_give_finite_points_and_nan_gives_none() {
         // A checkerboard of +-1e30 on odd samples: every odd sample is off by 1e30 from T_2.
         let n = 9;
         let data: Vec<f64> = (0..n * n * n)
@@ -366,9 +379,14 @@ mod tests {
         assert_eq!(set.points.len(), 4 * 4 * 4, "every odd sample");
         assert!(set.error_scale.is_finite() && set.points.iter().all(|p| set.value(p).is_finite()));
         assert!(set.points.iter().all(|p| (set.value(p).abs() - 1e30).abs() < 1e28));
-        let mut bad = data.clone();
-        bad[5] = f64::NAN;
-        assert!(Grid::scalar(crate::grid::Samples::F64(&bad), [n; 3]).is_err(), "NaN samples never reach the points");
+        // A NaN lattice sample (4, 0, 0) is a corner of T_2 at (3, 1, 1) and (5, 1, 1): no data, no point.
+        let mut holed = data.clone();
+        holed[4] = f64::NAN;
+        let g = Grid::scalar(crate::grid::Samples::F64(&holed), [n; 3]).unwrap();
+        let set = generate(&g, &options(PointSelect::Threshold(0.1))).unwrap();
+        assert_eq!(set.points.len(), 4 * 4 * 4 - 2);
+        assert!(set.points.iter().all(|p| p.ijk[1] != 1 || p.ijk[2] != 1 || ![3, 5].contains(&p.ijk[0])));
+        assert!(set.error_scale.is_finite() && set.points.iter().all(|p| set.value(p).is_finite()));
     }
 
     #[test]

@@ -24,6 +24,9 @@
 //! turns overestimates (which no point corrects) into underestimates (which
 //! points do), at the cost of more points.
 //!
+//! NaN is no data: the minimum skips it and a NaN lattice sample stays NaN
+//! (the low resolution has the grid's holes).
+//!
 //! The result is a copy of the grid, `f32`, with the lattice samples lowered
 //! (rounded down to `f32`) and the others kept: a uniform stride-`s`
 //! selection of it textures exactly this low-resolution volume.
@@ -77,7 +80,7 @@ impl GridVisitor for Lower {
                 for j in 0..ny {
                     for i in 0..nx {
                         let f = g.at(i, j, k);
-                        if !(lattice(i, nx) && lattice(j, ny) && lattice(k, nz)) {
+                        if f.is_nan() || !(lattice(i, nx) && lattice(j, ny) && lattice(k, nz)) {
                             slice.push(f as f32);
                             continue;
                         }
@@ -85,7 +88,7 @@ impl GridVisitor for Lower {
                         for z in window(k, nz) {
                             for y in window(j, ny) {
                                 for x in window(i, nx) {
-                                    low = low.min(g.at(x, y, z));
+                                    low = low.min(g.at(x, y, z)); // f64::min skips NaN
                                 }
                             }
                         }

@@ -72,7 +72,8 @@ pub fn shade(grid: &Grid<'_>, set: &PointSet, tf: &TransferFunction) -> Result<V
 }
 
 /// The error each point corrects: the mean of `f - T_f` over its voxel (the
-/// 27 sub-cube centres), what its voxel-mean shade adds back.
+/// 27 sub-cube centres), what its voxel-mean shade adds back. A centre where
+/// either is NaN (no data) adds 0: a point shades only where both exist.
 pub fn voxel_mean_errors(grid: &Grid<'_>, set: &PointSet) -> Vec<f64> {
     struct Means<'a>(&'a PointSet);
     impl GridVisitor for Means<'_> {
@@ -84,7 +85,7 @@ pub fn voxel_mean_errors(grid: &Grid<'_>, set: &PointSet) -> Vec<f64> {
                 .map(|p| {
                     let c = p.ijk.map(usize::from);
                     let (full, low) = (sub_cube_values(&g, c, 1), sub_cube_values(&g, c, set.factor));
-                    full.iter().zip(&low).map(|(f, t)| f - t).sum::<f64>() / 27.0
+                    full.iter().zip(&low).map(|(f, t)| f - t).filter(|d| !d.is_nan()).sum::<f64>() / 27.0
                 })
                 .collect()
         }

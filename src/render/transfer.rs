@@ -14,6 +14,11 @@
 //!
 //! The opacity is the opacity of a layer one reference spacing `d0` thick
 //! (see [`super::blend::correct_opacity`]).
+//!
+//! NaN is no data (see [`crate::grid`]): `f(NaN)` is `[0, 0, 0, 0]`,
+//! transparent black, whatever the points; a sample that interpolates a NaN
+//! corner is NaN, so this one rule makes it contribute nothing in every
+//! renderer that looks its colour up here.
 
 use crate::error::{Error, Result};
 
@@ -105,21 +110,32 @@ impl TransferFunction {
         &self.opacities
     }
 
-    /// Opacity at `value`.
+    /// Opacity at `value`; 0 for NaN (no data).
     pub fn opacity(&self, value: f64) -> f32 {
+        if value.is_nan() {
+            return 0.0;
+        }
         piecewise(&self.opacities, value, |&(x, a)| (x, [a]))[0]
     }
 
-    /// Straight `[r, g, b, opacity]` at `value`.
+    /// Straight `[r, g, b, opacity]` at `value`; `[0, 0, 0, 0]` for NaN (no data).
     pub fn eval(&self, value: f64) -> [f32; 4] {
+        if value.is_nan() {
+            return [0.0; 4];
+        }
         let [r, g, b] = piecewise(&self.colors, value, |&p| p);
         [r, g, b, self.opacity(value)]
     }
 
     /// True when the opacity is 0 over the whole `[min, max]` (the bounds in
     /// either order). Exact for a piecewise-linear function: its maximum over
-    /// an interval is at an end or at a point inside.
+    /// an interval is at an end or at a point inside. The empty range
+    /// `(+inf, -inf)` of a box of NaN only (and a NaN bound) holds no data:
+    /// transparent.
     pub fn is_transparent_over(&self, min: f64, max: f64) -> bool {
+        if (min == f64::INFINITY && max == f64::NEG_INFINITY) || min.is_nan() || max.is_nan() {
+            return true;
+        }
         let (lo, hi) = if min <= max { (min, max) } else { (max, min) };
         self.opacity(lo) == 0.0
             && self.opacity(hi) == 0.0
@@ -161,6 +177,16 @@ mod tests {
         assert!(!t.is_transparent_over(0.0, 1.0)); // only the point 0.6 inside is opaque
         let spike = TransferFunction::new(vec![(0.0, [1.0; 3])], vec![(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)]).unwrap();
         assert!(!spike.is_transparent_over(0.1, 0.9)); // ends transparent, the point inside is not
+    }
+
+    #[test]
+    fn nan_is_transparent_black_and_an_empty_range_is_transparent() {
+        let opaque = TransferFunction::new(vec![(0.0, [1.0; 3])], vec![(0.0, 1.0)]).unwrap();
+        assert_eq!(opaque.eval(f64::NAN), [0.0; 4]);
+        assert_eq!(opaque.opacity(f64::NAN), 0.0);
+        assert!(opaque.is_transparent_over(f64::INFINITY, f64::NEG_INFINITY));
+        assert!(!opaque.is_transparent_over(f64::NEG_INFINITY, f64::INFINITY));
+        assert!(!opaque.is_transparent_over(0.0, 0.0));
     }
 
     #[test]

@@ -244,7 +244,9 @@ impl TriangleGrid {
                 n[a] += w[k] * normal[a] as f64;
             }
         }
-        if dot(n, n) < 1e-24 {
+        // A vanishing or NaN normal (none is made, but a surface may come from outside) takes the face's.
+        let len2 = dot(n, n);
+        if len2 < 1e-24 || len2.is_nan() {
             let t = &self.world[i];
             n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
         }

@@ -85,8 +85,11 @@ pub struct SurfaceStats {
     pub uncompressed_triangles: usize,
     /// Points in the output.
     pub vertices: usize,
-    /// Edges used by one polygon only (the surface leaves the volume there).
+    /// Edges used by one polygon only where the surface leaves the volume.
     pub boundary_edges: usize,
+    /// Edges used by one polygon only along the no-data region (cells with
+    /// a NaN corner have no facets; [`super::check::nan_boundary_edges`]).
+    pub nan_boundary_edges: usize,
     /// Terminal nodes with surface.
     pub surface_nodes: usize,
     /// Marching time (all nodes, parallel), ms.
@@ -152,7 +155,7 @@ impl Surface {
                 octree.layout().dims
             )));
         }
-        grid.visit(Extraction { octree, options, spacing: grid.shape().spacing })
+        grid.visit(Extraction { octree, options, spacing: grid.shape().spacing, has_nan: grid.nan_count() > 0 })
     }
 }
 
@@ -188,12 +191,14 @@ struct Extraction<'a> {
     octree: &'a VolumeOctree,
     options: &'a SurfaceOptions,
     spacing: [f64; 3],
+    /// The grid has NaN samples (only then are edges along them counted).
+    has_nan: bool,
 }
 
 impl GridVisitor for Extraction<'_> {
     type Output = Result<Surface>;
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Result<Surface> {
-        let Extraction { octree, options, spacing } = self;
+        let Extraction { octree, options, spacing, has_nan } = self;
         let dims = g.dims;
         let iso = options.isovalue;
         // Per node, in parallel: march its cells, then merge its coplanar
@@ -248,6 +253,11 @@ impl GridVisitor for Extraction<'_> {
             uncompressed_triangles,
             vertices: surface.points.len(),
             boundary_edges: super::check::boundary_edges(&surface, dims),
+            nan_boundary_edges: if has_nan {
+                super::check::nan_boundary_edges_with(&surface, dims, |p| g.at(p[0], p[1], p[2]).is_nan())
+            } else {
+                0
+            },
             surface_nodes: nodes.len(),
             extract_ms,
             compress_ms: started.elapsed().as_secs_f64() * 1e3,

@@ -4,10 +4,14 @@
 //! On a closed surface every edge is used by exactly two polygons, once in
 //! each direction. An edge used once lies where the surface leaves the volume
 //! (a boundary edge); more than twice, or twice in the same direction, is a
-//! defect.
+//! defect. NaN is no data (see [`crate::grid`]): cells with a NaN corner have
+//! no facets, so the surface is also open along them. A surface is watertight
+//! when its only edges used once are [`boundary_edges`] plus
+//! [`nan_boundary_edges`].
 
 use super::build::Surface;
 use super::extract::midpoint2;
+use crate::grid::Grid;
 use crate::vec3::{cross, sub};
 
 /// How the edges of a surface are used.
@@ -78,6 +82,55 @@ pub fn boundary_edges(s: &Surface, dims: [usize; 3]) -> usize {
         .map(|i| {
             let p = s.polygon(i);
             (0..p.len()).filter(|&k| faces[p[k] as usize] & faces[p[(k + 1) % p.len()] as usize] != 0).count()
+        })
+        .sum()
+}
+
+/// Polygon edges along the no-data region: edges lying in a face of the grid
+/// whose cell on the other side has a NaN corner (the polygon's own cell has
+/// none, so the edge has no twin there). An edge lies in the grid plane
+/// `x_a = c` when both its vertices' edge midpoints do (`m[a] = 2c` in
+/// doubled coordinates; interior segments of a cell never do); the face is
+/// the square of that plane holding the edge's midpoint `(m1 + m2) / 2`.
+/// Faces on the volume's boundary have no cell across (see [`boundary_edges`]).
+pub fn nan_boundary_edges(s: &Surface, grid: &Grid<'_>) -> usize {
+    let dims = grid.dims();
+    nan_boundary_edges_with(s, dims, |p| grid.value(p[0], p[1], p[2]).is_nan())
+}
+
+/// [`nan_boundary_edges`] with the NaN test of one sample given.
+pub(crate) fn nan_boundary_edges_with(
+    s: &Surface,
+    dims: [usize; 3],
+    is_nan: impl Fn([usize; 3]) -> bool + Sync,
+) -> usize {
+    use rayon::prelude::*;
+    let cell_touches_nan = |c: [usize; 3]| (0..8).any(|k| is_nan([0, 1, 2].map(|a| c[a] + ((k >> a) & 1))));
+    let along_nan = |m1: [i64; 3], m2: [i64; 3]| {
+        let Some(a) = (0..3).find(|&a| m1[a] == m2[a] && m1[a] % 2 == 0) else {
+            return false;
+        };
+        let plane = m1[a] / 2;
+        // The other axes: the cell row holding the midpoint, floor((m1 + m2) / 4).
+        let mut cell = [0i64; 3];
+        for b in (0..3).filter(|&b| b != a) {
+            cell[b] = ((m1[b] + m2[b]) / 4).min(dims[b] as i64 - 2);
+        }
+        [plane - 1, plane].into_iter().filter(|&c| c >= 0 && c <= dims[a] as i64 - 2).any(|c| {
+            cell[a] = c;
+            cell_touches_nan(cell.map(|v| v as usize))
+        })
+    };
+    (0..s.polygon_count())
+        .into_par_iter()
+        .map(|i| {
+            let p = s.polygon(i);
+            (0..p.len())
+                .filter(|&k| {
+                    let (u, v) = (p[k] as usize, p[(k + 1) % p.len()] as usize);
+                    along_nan(midpoint2(s.keys[u], dims), midpoint2(s.keys[v], dims))
+                })
+                .count()
         })
         .sum()
 }

@@ -8,6 +8,10 @@
 //!
 //! Only nodes whose `[min, max]` brackets the isovalue (`min < iso <= max`:
 //! some sample inside, some outside) have cells to visit.
+//!
+//! NaN is no data, outside the isosurface: a cell with a NaN corner gets no
+//! facet, so the surface is open along the no-data region (see
+//! [`super::check::nan_boundary_edges`]).
 
 use super::table::{cases, edge_corners, ON_CELL_FACE};
 use crate::grid::{Sample, TypedGrid};
@@ -148,22 +152,29 @@ pub fn march<T: Sample>(
     // Inside flags (value >= isovalue) of two point slices, z and z + 1: each
     // sample is read and compared once, not once per cell that shares it.
     let plane = w[0] * w[1];
+    // With them, per point: NaN (no data).
     let mut inside = vec![false; 2 * plane];
-    let fill = |slice: &mut [bool], z: usize| {
+    let mut nan = vec![false; 2 * plane];
+    let fill = |slice: &mut [bool], nan: &mut [bool], z: usize| {
         for y in 0..w[1] {
             for x in 0..w[0] {
-                slice[x + w[0] * y] = g.at(lo[0] + x, lo[1] + y, z) >= isovalue;
+                let v = g.at(lo[0] + x, lo[1] + y, z);
+                slice[x + w[0] * y] = v >= isovalue;
+                nan[x + w[0] * y] = v.is_nan();
             }
         }
     };
-    fill(&mut inside[..plane], lo[2]);
+    fill(&mut inside[..plane], &mut nan[..plane], lo[2]);
     let mut ids = [0u32; 12];
     for z in lo[2]..hi[2] {
         let (below, above) = inside.split_at_mut(plane);
+        let (nan_below, nan_above) = nan.split_at_mut(plane);
         if z > lo[2] {
             below.copy_from_slice(above);
+            nan_below.copy_from_slice(nan_above);
         }
-        fill(above, z + 1);
+        fill(above, nan_above, z + 1);
+        let (nan_below, nan_above) = (&*nan_below, &*nan_above);
         for y in lo[1]..hi[1] {
             // The four point rows around the cells of this row: (y, z), (y + 1, z), (y, z + 1), (y + 1, z + 1).
             let r = [
@@ -176,12 +187,17 @@ pub fn march<T: Sample>(
             let corners_at = |i: usize| {
                 usize::from(r[0][i]) | usize::from(r[1][i]) << 2 | usize::from(r[2][i]) << 4 | usize::from(r[3][i]) << 6
             };
+            // A NaN among the four points at x (rows y and y + 1 of slices z and z + 1).
+            let (r0, r1) = (w[0] * (y - lo[1]), w[0] * (y - lo[1] + 1));
+            let nan_at = |i: usize| nan_below[r0 + i] || nan_below[r1 + i] || nan_above[r0 + i] || nan_above[r1 + i];
             let mut right = corners_at(0);
+            let mut nan_right = nan_at(0);
             for x in lo[0]..hi[0] {
-                let left = right;
+                let (left, nan_left) = (right, nan_right);
                 right = corners_at(x - lo[0] + 1);
+                nan_right = nan_at(x - lo[0] + 1);
                 let case = left | right << 1;
-                if case == 0 || case == 255 {
+                if case == 0 || case == 255 || nan_left || nan_right {
                     continue;
                 }
                 let entry = &table[case];

@@ -68,15 +68,24 @@ pub fn interpolated_point<T: Sample>(g: &TypedGrid<'_, T>, key: u64, iso: f64) -
     p
 }
 
-/// Central-difference gradient at point `p` (one-sided on the faces), index units.
+/// Central-difference gradient at point `p` (one-sided on the faces and
+/// beside a NaN neighbour, 0 with NaN on both sides), index units. `p`
+/// itself is finite: it is a corner of a cell that touches no NaN.
 fn gradient<T: Sample>(g: &TypedGrid<'_, T>, p: [usize; 3]) -> [f64; 3] {
+    let at = |q: [usize; 3]| g.at(q[0], q[1], q[2]);
     let mut out = [0.0; 3];
     for (a, o) in out.iter_mut().enumerate() {
         let (mut lo, mut hi) = (p, p);
         lo[a] = p[a].saturating_sub(1);
         hi[a] = (p[a] + 1).min(g.dims[a] - 1);
+        if at(lo).is_nan() {
+            lo = p;
+        }
+        if at(hi).is_nan() {
+            hi = p;
+        }
         let span = (hi[a] - lo[a]) as f64;
-        *o = (g.at(hi[0], hi[1], hi[2]) - g.at(lo[0], lo[1], lo[2])) / span;
+        *o = if span > 0.0 { (at(hi) - at(lo)) / span } else { 0.0 };
     }
     out
 }

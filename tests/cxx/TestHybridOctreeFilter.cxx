@@ -1,5 +1,5 @@
 // Scenarios of vtkHybridOctreeFilter on good input. Usage:
-//   HybridOctreeCxxTests TestHybridOctreeFilter <wavelet|ramp|cache|array>
+//   HybridOctreeCxxTests TestHybridOctreeFilter <wavelet|ramp|cache|array|nan_hole>
 #include "HybridOctreeTestUtilities.h"
 
 #include "vtkCellData.h"
@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <set>
 
 namespace
@@ -320,6 +321,68 @@ int ArraySelection()
   CheckBoxes(t, out, image, filter->GetErrorTolerance());
   return t.Result();
 }
+/// NaN is no data: a wavelet with a NaN ball and a NaN slab on a face builds
+/// without a message; the field data counts the NaN samples, the value range
+/// leaves them out, every box's range is ordered or NaN (a box of NaN only),
+/// and the isosurface has finite points only.
+int NanHole()
+{
+  Checker t;
+  vtkNew<vtkRTAnalyticSource> wavelet; // 21^3 float samples, extent -10..10
+  wavelet->SetWholeExtent(-10, 10, -10, 10, -10, 10);
+  wavelet->Update();
+  vtkNew<vtkImageData> image;
+  image->DeepCopy(wavelet->GetOutput());
+  vtkDataArray* values = image->GetPointData()->GetScalars();
+  vtkIdType nan = 0;
+  double range[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
+  for (vtkIdType id = 0; id < values->GetNumberOfTuples(); ++id)
+  {
+    const int x = static_cast<int>(id % 21) - 10;
+    const int y = static_cast<int>(id / 21 % 21) - 10;
+    const int z = static_cast<int>(id / 441) - 10;
+    if (x < -8 || (x - 3) * (x - 3) + y * y + z * z <= 16)
+    {
+      values->SetComponent(id, 0, std::numeric_limits<double>::quiet_NaN());
+      ++nan;
+      continue;
+    }
+    range[0] = std::min(range[0], values->GetComponent(id, 0));
+    range[1] = std::max(range[1], values->GetComponent(id, 0));
+  }
+  vtkNew<vtkHybridOctreeFilter> filter;
+  filter->SetInputData(image);
+  filter->SetLeafSize(4);
+  filter->SetIsovalue(0.5 * (range[0] + range[1]));
+  vtkNew<ErrorRecorder> errors;
+  errors->Watch(filter);
+  filter->Update();
+  t.Check(errors->Errors.empty(), "NaN is no data, not an error:\n" + errors->AllErrors());
+  vtkPolyData* boxes = filter->GetOutput(0);
+  t.Check(FieldValue(boxes, "nan_samples") == static_cast<double>(nan),
+    "nan_samples counts " + std::to_string(nan));
+  t.Check(FieldValue(boxes, "value_min") == range[0] && FieldValue(boxes, "value_max") == range[1],
+    "the value range leaves NaN out");
+  vtkDataArray* lo = boxes->GetCellData()->GetArray("min");
+  vtkDataArray* hi = boxes->GetCellData()->GetArray("max");
+  bool ordered = lo && hi;
+  for (vtkIdType c = 0; ordered && c < lo->GetNumberOfTuples(); ++c)
+  {
+    const double a = lo->GetTuple1(c), b = hi->GetTuple1(c);
+    ordered = (std::isnan(a) && std::isnan(b)) || a <= b;
+  }
+  t.Check(ordered, "every box's range is ordered, or NaN for a box of NaN only");
+  vtkPolyData* surface = filter->GetOutput(1);
+  t.Check(surface->GetNumberOfPolys() > 50, "the isosurface around the hole");
+  bool finite = true;
+  for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p)
+  {
+    const double* x = surface->GetPoint(p);
+    finite = finite && std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+  }
+  t.Check(finite, "finite surface points");
+  return t.Result();
+}
 } // namespace
 
 int TestHybridOctreeFilter(int argc, char* argv[])
@@ -341,6 +404,10 @@ int TestHybridOctreeFilter(int argc, char* argv[])
   {
     return ArraySelection();
   }
-  std::cerr << "unknown scenario '" << scenario << "': use wavelet, ramp, cache or array\n";
+  if (scenario == "nan_hole")
+  {
+    return NanHole();
+  }
+  std::cerr << "unknown scenario '" << scenario << "': use wavelet, ramp, cache, array or nan_hole\n";
   return EXIT_FAILURE;
 }

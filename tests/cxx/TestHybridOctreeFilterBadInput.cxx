@@ -88,14 +88,22 @@ std::map<std::string, Scenario> Scenarios()
                                    f->SetComponent(2);
                                  },
     "component 2 does not exist" };
-  s["nan"] = { [](vtkHybridOctreeFilter* f) {
-                auto image = MakeImage(5, 5, 5);
-                auto* a = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-                a->SetValue(7, std::numeric_limits<float>::quiet_NaN());
-                a->SetValue(9, std::numeric_limits<float>::infinity());
-                f->SetInputData(image);
-              },
-    "2 non-finite sample(s) (NaN or infinity), the first at point index 7" };
+  // NaN is no data; an infinity is an error naming the first one.
+  s["infinity"] = { [](vtkHybridOctreeFilter* f) {
+                     auto image = MakeImage(5, 5, 5);
+                     auto* a = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+                     a->SetValue(7, std::numeric_limits<float>::quiet_NaN());
+                     a->SetValue(9, std::numeric_limits<float>::infinity());
+                     a->SetValue(11, -std::numeric_limits<float>::infinity());
+                     f->SetInputData(image);
+                   },
+    "2 infinite sample(s), the first at point index 9" };
+  s["all_nan"] = { [](vtkHybridOctreeFilter* f) {
+                    auto image = MakeImage(5, 5, 5);
+                    image->GetPointData()->GetScalars()->Fill(std::numeric_limits<double>::quiet_NaN());
+                    f->SetInputData(image);
+                  },
+    "no data: all 125 samples are NaN" };
   s["one_wide"] = { [](vtkHybridOctreeFilter* f) { f->SetInputData(MakeImage(6, 6, 1)); },
     "image dimensions 6x6x1 are too small" };
   s["empty"] = { [](vtkHybridOctreeFilter* f) {
@@ -122,15 +130,15 @@ std::map<std::string, Scenario> Scenarios()
                       f->SetLeafSize(12);
                     },
     "leaf brick size 12 is not allowed: use a power of two" };
-  s["nan_after_success"] = { [](vtkHybridOctreeFilter* f) {
-                              auto image = MakeImage(9, 9, 9);
-                              f->SetInputData(image);
-                              f->Update(); // builds and caches an octree
-                              image->GetPointData()->GetScalars()->SetTuple1(
-                                3, std::numeric_limits<double>::quiet_NaN());
-                              image->GetPointData()->GetScalars()->Modified();
-                            },
-    "non-finite sample(s)" };
+  s["infinity_after_success"] = { [](vtkHybridOctreeFilter* f) {
+                                   auto image = MakeImage(9, 9, 9);
+                                   f->SetInputData(image);
+                                   f->Update(); // builds and caches an octree
+                                   image->GetPointData()->GetScalars()->SetTuple1(
+                                     3, std::numeric_limits<double>::infinity());
+                                   image->GetPointData()->GetScalars()->Modified();
+                                 },
+    "infinite sample(s)" };
   s["nan_isovalue"] = { [](vtkHybridOctreeFilter* f) {
                          f->SetInputData(MakeImage(9, 9, 9));
                          f->SetIsovalue(std::numeric_limits<double>::quiet_NaN());

@@ -11,9 +11,10 @@
  *                budget; a still frame after it refines to the full budget;
  *                PrintSelf shows every setting and statistic.
  *   no_input, not_image, budget_zero, point_factor, multi_component,
- *   empty_image, nan:
+ *   empty_image, infinity, all_nan:
  *                a clear vtkErrorMacro, nothing drawn, no crash, no OpenGL
- *                error left behind.
+ *                error left behind (NaN is no data: an infinity is an
+ *                error, and so is an image of NaN only, "no data").
  */
 #include "HybridOctreeMapperScene.h"
 #include "HybridOctreeTestUtilities.h"
@@ -169,16 +170,18 @@ int BadInput(const std::string& scenario)
     mapper->SetInputDataObject(empty);
     expected = "empty";
   }
-  else if (scenario == "nan")
+  else if (scenario == "infinity" || scenario == "all_nan")
   {
+    const bool all = scenario == "all_nan";
     values->SetNumberOfTuples(9 * 9 * 9);
     for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
     {
-      values->SetValue(i, i == 100 ? std::numeric_limits<double>::quiet_NaN() : 0.01 * i);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      values->SetValue(i, all || i == 50 ? nan : i == 100 ? -std::numeric_limits<double>::infinity() : 0.01 * i);
     }
     image->GetPointData()->SetScalars(values);
     mapper->SetInputDataObject(image);
-    expected = "NaN";
+    expected = all ? "no data: all 729 samples are NaN" : "1 infinite sample(s), the first at point index 100";
   }
   scene.Window->Render();
   // vtkVolume skips a mapper without input: call Render() directly as well.

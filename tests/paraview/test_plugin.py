@@ -9,8 +9,9 @@ on the same files, the field data of the filter on Wavelet() and on a sphere
 volume the CLI generates; that changing only the tolerance does not rebuild;
 the isosurface on output port 1 in both surface modes against
 `hybrid-octree surface --json`, and that ParaView defaults the Isovalue to the
-middle of the data range; that a NaN volume fails with the core's message
-while pvbatch keeps running; and that the input domain refuses an
+middle of the data range; that NaN samples are no data (the filter builds
+and counts them in the field data "nan_samples") while an infinite sample
+fails with the core's message and pvbatch keeps running; and that the input domain refuses an
 unstructured grid. Exits non-zero after all checks if any failed.
 """
 import argparse
@@ -339,10 +340,30 @@ def expect_failure(name, img, message):
     Delete(source)
 
 
+# NaN is no data: the filter builds, counts them, and leaves them out of the range.
 nan_values = np.linspace(0.0, 1.0, 6 * 6 * 6).astype(np.float32)
 nan_values[10] = np.nan
-expect_failure("NaN volume", image((6, 6, 6), nan_values),
-               "1 non-finite sample(s) (NaN or infinity), the first at point index 10")
+nan_values[20:26] = np.nan
+before = len(logged_errors())
+nan_source = TrivialProducer()
+nan_source.GetClientSideObject().SetOutput(image((6, 6, 6), nan_values))
+nan_source.UpdatePipeline()
+nan_octree = HybridOctree(Input=nan_source)
+nan_octree.UpdatePipeline()
+nan_out, nan_fd = field_data(nan_octree, 0)
+check(len(logged_errors()) == before, "NaN volume: no error: %r" % logged_errors()[before:][-400:])
+check(nan_fd.get("nan_samples") == 7, "NaN volume: nan_samples %r" % nan_fd.get("nan_samples"))
+check(nan_fd.get("value_min") == 0.0 and nan_fd.get("value_max") == 1.0,
+      "NaN volume: the range leaves NaN out: %r .. %r" % (nan_fd.get("value_min"), nan_fd.get("value_max")))
+check(nan_out.GetNumberOfPoints() > 0, "NaN volume: the boxes of the cut")
+Delete(nan_octree)
+Delete(nan_source)
+inf_values = np.linspace(0.0, 1.0, 6 * 6 * 6).astype(np.float32)
+inf_values[5] = np.nan
+inf_values[10] = np.inf
+expect_failure("infinite sample", image((6, 6, 6), inf_values),
+               "1 infinite sample(s), the first at point index 10")
+expect_failure("NaN only", image((6, 6, 6), np.full(216, np.nan, np.float32)), "no data: all 216 samples are NaN")
 expect_failure("no scalars", image((6, 6, 6)), "no point scalars")
 expect_failure("cell scalars only", image((6, 6, 6), cell_values=np.ones(125, np.float32)),
                "cell data only: point scalars required")

@@ -19,8 +19,10 @@ its cut and an opaque sphere shown next to the volume, against the same
 scene with ParaView's Volume representation (RMSE at most 0.03); the last-frame statistics; the plan with an
 opaque and a translucent isosurface; hiding; a state file saved and loaded
 keeps every Hybrid Octree property and the picture; a Python trace of the
-pipeline replays to the same picture; a NaN volume and a zero budget give
-the mapper's clear error while pvbatch keeps rendering.
+pipeline replays to the same picture; a volume with NaN holes (no data)
+draws without a message and shows the holes transparent; an infinite sample
+and a zero budget give the mapper's clear error while pvbatch keeps
+rendering.
 """
 import argparse
 import os
@@ -284,29 +286,67 @@ from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataWriter  # noqa: E402
 
-values = np.linspace(0.0, 1.0, 16 ** 3).astype(np.float32)
-values[100] = np.nan
-img = vtkImageData()
-img.SetDimensions(16, 16, 16)
-scalars = numpy_to_vtk(values, deep=1)
-scalars.SetName("f")
-img.GetPointData().SetScalars(scalars)
-nan_vti = os.path.join(args.workdir, "nan.vti")
-writer = vtkXMLImageDataWriter()
-writer.SetFileName(nan_vti)
-writer.SetInputData(img)
-writer.Write()
-bad_view = make_view()
-bad_reader = XMLImageDataReader(FileName=[nan_vti])
-logged_before = len(t.logged())
-show_volume(bad_reader, bad_view, "f", HYBRID, (0.0, 1.0))
-look_at(bad_view, bad_reader.GetDataInformation().GetBounds())
-bad_image = screenshot(bad_view, "nan")
-new_output = t.logged()[logged_before:]
-t.check("non-finite sample(s) (NaN or infinity)" in new_output,
-        "NaN volume: the mapper's error in the output: %r" % new_output[-300:])
-bad_empty = make_view()
-t.check(rmse(bad_image, screenshot(bad_empty, "nan-empty")) < 1e-6, "NaN volume: nothing drawn")
+
+
+def write_vti(values, n, name):
+    """`values` (x fastest) as point scalars "f" of an n^3 image, written to the workdir."""
+    img = vtkImageData()
+    img.SetDimensions(n, n, n)
+    scalars = numpy_to_vtk(values, deep=1)
+    scalars.SetName("f")
+    img.GetPointData().SetScalars(scalars)
+    path = os.path.join(args.workdir, name)
+    writer = vtkXMLImageDataWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(img)
+    writer.Write()
+    return path
+
+
+def draw(path, name):
+    """The picture of the image at `path` in a new view, and what VTK logged meanwhile."""
+    view = make_view()
+    reader = XMLImageDataReader(FileName=[path])
+    before = len(t.logged())
+    show_volume(reader, view, "f", HYBRID, (0.0, 1.0))
+    look_at(view, reader.GetDataInformation().GetBounds())
+    return view, reader, screenshot(view, name), t.logged()[before:]
+
+
+# NaN is no data: a ball of NaN in a bright cube draws without a message and
+# is transparent: its picture is closer to that of a ball of 0 (transparent
+# under the opacity) than to the cube without a hole (measured: 0.0051 and
+# 0.0188; bound: half). Not equal: the NaN ball's boundary cells are
+# dropped, the air ball's blend 0 with the cube.
+N = 32
+z, y, x = np.mgrid[0:N, 0:N, 0:N]
+whole = (0.3 + 0.7 * x / (N - 1)).astype(np.float32).ravel()
+ball = ((x - 16) ** 2 + (y - 16) ** 2 + (z - 16) ** 2 <= 81).ravel()
+holed = whole.copy()
+holed[ball] = np.nan
+holed[(x < 2).ravel()] = np.nan
+air = whole.copy()
+air[ball] = 0.0
+air[(x < 2).ravel()] = 0.0
+_, _, whole_image, _ = draw(write_vti(whole, N, "whole.vti"), "whole")
+_, _, air_image, _ = draw(write_vti(air, N, "air.vti"), "air")
+bad_view, bad_reader, nan_image, new_output = draw(write_vti(holed, N, "nan.vti"), "nan")
+t.check("ERROR" not in new_output,
+        "NaN holes: no error in the output: %r" % new_output[-300:])
+to_air, to_whole = rmse(nan_image, air_image), rmse(nan_image, whole_image)
+report("NaN holes: RMSE %.4f against the air ball, %.4f against no hole" % (to_air, to_whole))
+t.check(to_whole > 0.01, "the NaN holes show (RMSE %.4f against no hole)" % to_whole)
+t.check(to_air < 0.5 * to_whole, "NaN holes are transparent: RMSE %.4f against the air ball, %.4f against no hole"
+        % (to_air, to_whole))
+
+# An infinite sample is an error: the mapper's message, nothing drawn.
+infinite = whole.copy()
+infinite[100] = np.inf
+inf_view, inf_reader, inf_image, new_output = draw(write_vti(infinite, N, "inf.vti"), "inf")
+t.check("1 infinite sample(s), the first at point index 100" in new_output,
+        "infinite volume: the mapper's error in the output: %r" % new_output[-300:])
+t.check(rmse(inf_image, screenshot(make_view(), "inf-empty")) < 1e-6, "infinite volume: nothing drawn")
+Hide(inf_reader, inf_view)
 
 good_reader = XMLImageDataReader(FileName=[phantom_vti])
 zero = show_volume(good_reader, bad_view, array, HYBRID, value_range)

@@ -11,6 +11,9 @@ pipeline a C++ program builds (tests/consumer), checked end to end.
    (between 5 % and 95 % of the pixels differ from the background).
 3. A mapper with no input: Render() reports the error (captured from the
    ErrorEvent) and nothing is drawn.
+4. NaN is no data: the wavelet with a NaN ball builds in the filter (field
+   data "nan_samples") and draws in the mapper (GetLastNaNSamples) without
+   an error event.
 Exits non-zero, with the reason, on any failed check.
 """
 import sys
@@ -111,6 +114,31 @@ empty.AddObserver(vtkCommand.ErrorEvent, on_error)
 empty.Render(renderer, volume)
 check(not empty.GetLastRenderOK(), "a mapper without input draws nothing")
 check(any("no input" in m for m in messages), f"its error says 'no input': {messages}")
+
+# 4. NaN samples: no data, not an error.
+import numpy as np  # noqa: E402 (pvpython ships numpy)
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+holed = vtkImageData()
+holed.DeepCopy(source.GetOutput())
+values = vtk_to_numpy(holed.GetPointData().GetScalars())  # a view: writes go to the image
+z, y, x = np.mgrid[-32:33, -32:33, -32:33]
+ball = ((x - 10) ** 2 + y ** 2 + z ** 2 <= 100).ravel()
+values[ball] = np.nan
+holed.GetPointData().GetScalars().Modified()
+nan_count = int(ball.sum())
+octree.SetInputData(holed)
+octree.Update()
+counted = octree.GetOutput(0).GetFieldData().GetArray("nan_samples").GetValue(0)
+check(counted == nan_count, f"the filter counts {counted} NaN samples of {nan_count}")
+check(octree.GetOutput(1).GetNumberOfPolys() > 0, "the isosurface around the NaN ball")
+mapper.SetInputData(holed)
+messages.clear()
+mapper.AddObserver(vtkCommand.ErrorEvent, on_error)
+window.Render()
+check(mapper.GetLastRenderOK() and not messages, f"the mapper draws the NaN ball without an error: {messages}")
+check(mapper.GetLastNaNSamples() == nan_count, f"the mapper counts {mapper.GetLastNaNSamples()} NaN samples")
 
 print("PASS" if not failures else f"{len(failures)} check(s) failed")
 sys.exit(1 if failures else 0)

@@ -33,6 +33,8 @@ pub struct BuildReport {
     pub scalar_type: &'static str,
     pub components: usize,
     pub component: usize,
+    /// NaN samples of the component (no data).
+    pub nan_samples: usize,
     pub node_count: usize,
     pub terminal_count: usize,
     pub homogeneous_count: usize,
@@ -101,6 +103,7 @@ pub fn report(grid: &Grid<'_>, octree: &VolumeOctree, tolerance: f64) -> Result<
         scalar_type: grid.samples().scalar_type().name(),
         components: grid.components(),
         component: grid.component(),
+        nan_samples: grid.nan_count(),
         node_count: stats.node_count,
         terminal_count: stats.terminal_count,
         homogeneous_count: stats.homogeneous_count,
@@ -123,6 +126,7 @@ fn print_text(r: &BuildReport) {
     let [x, y, z] = r.dims;
     println!("input:             {x} x {y} x {z} {} (component {} of {})", r.scalar_type, r.component, r.components);
     println!("value range:       {} .. {}", r.value_min, r.value_max);
+    println!("NaN samples:       {} (no data: transparent, outside every isosurface)", r.nan_samples);
     println!("nodes:             {}", r.node_count);
     println!("terminal nodes:    {}", r.terminal_count);
     println!("homogeneous nodes: {}", r.homogeneous_count);

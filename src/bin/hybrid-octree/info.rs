@@ -12,7 +12,7 @@ pub struct InfoArgs {
     input: InputArgs,
 }
 
-/// Prints dims, type, components, spacing, origin, bytes and the value range.
+/// Prints dims, type, components, spacing, origin, bytes, the value range and the NaN count.
 pub fn run(args: &InfoArgs) -> Result<()> {
     with_threads(args.input.threads, || {
         let volume = args.input.load()?;
@@ -31,12 +31,14 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         }
         let grid = args.input.grid(&volume)?;
         let (lo, hi) = value_range(&grid);
-        println!("value range: {lo} .. {hi} (component {})", grid.component());
+        println!("value range: {lo} .. {hi} (component {}; NaN left out)", grid.component());
+        println!("NaN samples: {} (no data)", grid.nan_count());
         Ok(())
     })
 }
 
-/// (min, max) of the grid's component, in parallel over z-slices.
+/// (min, max) of the grid's component, in parallel over z-slices (`f64::min`
+/// and `f64::max` skip NaN).
 fn value_range(grid: &hybrid_octree::grid::Grid<'_>) -> (f64, f64) {
     use rayon::prelude::*;
     let [nx, ny, nz] = grid.dims();

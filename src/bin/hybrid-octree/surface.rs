@@ -57,6 +57,8 @@ struct SurfaceReport {
     uncompressed_triangles: usize,
     vertices: usize,
     boundary_edges: usize,
+    /// Edges used once along NaN (cells touching NaN have no facets).
+    nan_boundary_edges: usize,
     surface_nodes: usize,
     extract_ms: f64,
     compress_ms: f64,
@@ -112,6 +114,7 @@ pub fn run(args: &SurfaceArgs) -> Result<()> {
             uncompressed_triangles: st.uncompressed_triangles,
             vertices: st.vertices,
             boundary_edges: st.boundary_edges,
+            nan_boundary_edges: st.nan_boundary_edges,
             surface_nodes: st.surface_nodes,
             extract_ms: st.extract_ms,
             compress_ms: st.compress_ms,
@@ -135,6 +138,7 @@ fn print_text(r: &SurfaceReport) {
     println!("uncompressed triangles: {}", r.uncompressed_triangles);
     println!("vertices:               {}", r.vertices);
     println!("boundary edges:         {} (where the surface leaves the volume)", r.boundary_edges);
+    println!("NaN boundary edges:     {} (where the surface meets no data)", r.nan_boundary_edges);
     println!("non-manifold edges:     {}", r.nonmanifold_edges);
     println!("surface nodes:          {}", r.surface_nodes);
     println!("area / volume:          {:.6} / {:.6} (index units)", r.area, r.volume);
