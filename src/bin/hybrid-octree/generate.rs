@@ -1,11 +1,12 @@
 //! `generate`: write a built-in dataset to a `.vti` file.
 
+use crate::input::check_size;
 use crate::pool::with_threads;
 use clap::Args;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::ScalarType;
 use hybrid_octree::io::write_vti;
-use hybrid_octree::{Error, Result};
+use hybrid_octree::Result;
 use std::path::PathBuf;
 
 /// Arguments of `generate`.
@@ -32,9 +33,7 @@ pub struct GenerateArgs {
 pub fn run(args: &GenerateArgs) -> Result<()> {
     let dataset = Dataset::parse(&args.dataset)?;
     let scalar_type = ScalarType::parse(&args.scalar_type)?;
-    if args.size < 2 {
-        return Err(Error::InvalidArgument(format!("--size {} is too small: use at least 2", args.size)));
-    }
+    check_size(args.size, scalar_type)?;
     let volume = with_threads(args.threads, || Ok(generate(dataset, args.size, scalar_type)))?;
     write_vti(&args.output, &volume)?;
     eprintln!("wrote {} {}^3 {} to {}", dataset.name(), args.size, scalar_type.name(), args.output.display());

@@ -1,6 +1,7 @@
 //! The input arguments every subcommand shares: a built-in dataset or a file.
 
 use clap::Args;
+use hybrid_octree::datasets::generate::check_generate;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::io::{read_volume, RawOptions, ReadOptions};
@@ -44,6 +45,15 @@ pub struct InputArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
+}
+
+/// Checks `--size N` of a built-in dataset before generating it: at least
+/// 2, and `N^3` values of `scalar_type` within the memory this process may use.
+pub fn check_size(size: usize, scalar_type: ScalarType) -> Result<()> {
+    if size < 2 {
+        return Err(Error::InvalidArgument(format!("--size {size} is too small: use at least 2")));
+    }
+    check_generate([size; 3], scalar_type).map(drop)
 }
 
 /// Parses `X,Y,Z` (clap value parser).
@@ -92,10 +102,9 @@ impl InputArgs {
             .as_deref()
             .ok_or_else(|| Error::InvalidArgument("give an input: --dataset NAME --size N, or --file PATH".into()))?;
         let dataset = Dataset::parse(name)?;
-        if self.size < 2 {
-            return Err(Error::InvalidArgument(format!("--size {} is too small: use at least 2", self.size)));
-        }
-        Ok(generate(dataset, self.size, self.scalar_type_or(ScalarType::F32)?))
+        let scalar_type = self.scalar_type_or(ScalarType::F32)?;
+        check_size(self.size, scalar_type)?;
+        Ok(generate(dataset, self.size, scalar_type))
     }
 
     /// A short name of the input: the file name, or the dataset and size.
