@@ -57,6 +57,19 @@ pub struct Scratch {
     cells: Vec<(usize, usize, usize, usize)>,
 }
 
+impl Scratch {
+    /// The longest of the buffers after a [`leaf_stats`] call: bounded by the
+    /// brick (its samples, rows and coarse positions), whatever the stride,
+    /// so a leaf's work does not grow with the grid's length.
+    pub fn longest_buffer(&self) -> usize {
+        [self.brick.len(), self.v.len(), self.w.len(), self.t.len(), self.xs.len(), self.ys.len(), self.frac.len()]
+            .into_iter()
+            .chain([self.cells.len()])
+            .max()
+            .unwrap_or(0)
+    }
+}
+
 /// Coarse positions of stride `s` covering `[lo, hi]` on an axis of `n`
 /// samples: multiples of s from `floor(lo / s) * s` to the first one past
 /// `hi`, clamped to `n - 1` (the virtual padding), into `out`.
@@ -195,16 +208,18 @@ pub fn leaf_stats<T: Sample>(
         coarse_positions(lo[1], hi[1], s, g.dims[1], ys);
         let (x_first, y_first) = (lo[0] / s * s, lo[1] / s * s);
         let (nxs, nys) = (xs.len(), ys.len());
-        // tx = (x - x0) / s for x - x0 = 0 .. s-1 (exact: s is a power of two).
+        // tx = (x - x0) / s = (x mod s) / s for the brick's x = lo .. hi (exact:
+        // s is a power of two); one entry per sample of the row, not per
+        // stride, so a large stride costs no more than a small one.
         frac.clear();
-        frac.extend((0..s).map(|i| i as f64 / s as f64));
-        // Row segments [a, b) lying in coarse cell xi, and where in `frac` they start.
+        frac.extend((lo[0]..=hi[0]).map(|x| (x % s) as f64 / s as f64));
+        // Row segments [a, b) lying in coarse cell xi (`frac` is indexed like the row).
         cells.clear();
         for xi in 0..nxs {
             let x0 = x_first + xi * s;
             let (a, b) = (x0.max(lo[0]), (x0 + s).min(hi[0] + 1));
             if a < b && x0 < g.dims[0] {
-                cells.push((a - lo[0], b - lo[0], xi, a - x0));
+                cells.push((a - lo[0], b - lo[0], xi, a - lo[0]));
             }
         }
         let mut err = 0.0f64;
