@@ -153,12 +153,16 @@ fn trilinear_squared_sum(e: [f64; 8], lo: [usize; 3], hi: [usize; 3], dims: [usi
     total.max(0.0)
 }
 
-/// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`.
+/// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`:
+/// min and max of the samples `f`, and the errors of `k f`, `k` =
+/// [`super::trilinear::kernel_scale`] of the grid's range (1 unless its
+/// values are extreme).
 pub fn leaf_stats<T: Sample>(
     g: &TypedGrid<'_, T>,
     layout: &Layout,
     lo: [usize; 3],
     hi: [usize; 3],
+    scale: f64,
     scratch: &mut Scratch,
 ) -> LeafStats {
     let strides = layout.root_log2 as usize;
@@ -178,6 +182,9 @@ pub fn leaf_stats<T: Sample>(
         min = if v < min { v } else { min };
         max = if v > max { v } else { max };
     }
+    if scale != 1.0 {
+        brick.iter_mut().for_each(|v| *v *= scale);
+    }
     let mut raw = vec![0.0f64; strides];
     let mut squared = vec![0.0f64; strides];
     let first_coarse = layout.leaf_log2 as usize + 1;
@@ -192,7 +199,7 @@ pub fn leaf_stats<T: Sample>(
                 let x = if corner & 1 == 0 { lo[0] } else { hi[0] };
                 let y = if corner & 2 == 0 { lo[1] } else { hi[1] };
                 let z = if corner & 4 == 0 { lo[2] } else { hi[2] };
-                *ec = min - super::trilinear::eval(g, s, x, y, z);
+                *ec = min * scale - super::trilinear::eval(g, s, x, y, z) * scale;
                 *r = r.max(ec.abs());
             }
             *q = trilinear_squared_sum(e, lo, hi, g.dims);
@@ -230,7 +237,7 @@ pub fn leaf_stats<T: Sample>(
             v.clear();
             for &yb in ys.iter() {
                 for &xa in xs.iter() {
-                    v.push(lerp(g.at(xa, yb, z0), g.at(xa, yb, z1), tz));
+                    v.push(lerp(g.at(xa, yb, z0) * scale, g.at(xa, yb, z1) * scale, tz));
                 }
             }
             for y in lo[1]..=hi[1] {
