@@ -453,6 +453,13 @@ impl SelectionHandle {
                 )));
             };
             let texels = brick_texels_f32(&grid, b)?;
+            if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
+                return Err(Error::InvalidArgument(format!(
+                    "brick {brick} holds a value beyond the range of a GPU texture's 32-bit float \
+                     (|value| above 3.4e38, texel {i}): scale the data into that range (e.g. with \
+                     vtkImageShiftScale), or draw with CompositeOnCPU, which keeps 64-bit values"
+                )));
+            }
             if let Some(i) = texels.iter().position(|v| !v.is_finite()) {
                 return Err(Error::InvalidArgument(format!(
                     "brick {brick} holds a NaN or infinite value (texel {i}): the image changed since the \
@@ -647,6 +654,20 @@ mod tests {
         assert!(s.draw_list(&h, &at_focus).unwrap_err().contains("camera"));
         let zero_scale = CameraDesc { parallel_scale: 0.0, ..cameras().remove(0) };
         assert!(s.draw_list(&h, &zero_scale).unwrap_err().contains("parallel scale"));
+    }
+
+    /// f64 values beyond the f32 range cannot be GPU texels: refused with
+    /// what to do, not handed over as infinities.
+    #[test]
+    fn texels_beyond_f32_are_refused() {
+        let d: Vec<f64> = data().iter().map(|&v| v as f64 * 1e308).collect();
+        // SAFETY: f64 has no padding; the byte view covers exactly the slice's storage.
+        let b = unsafe { std::slice::from_raw_parts(d.as_ptr() as *const u8, std::mem::size_of_val(&d[..])) };
+        let desc = GridDesc { scalar_type: ScalarType::F64, ..desc() };
+        let h = build_volume_octree(b, &desc, 4).unwrap();
+        let s = h.select_bricks(&options(1_000_000)).unwrap();
+        let e = (0..s.selection.bricks.len()).find_map(|i| s.brick_texels(b, &desc, i).err()).unwrap();
+        assert!(e.to_string().contains("32-bit float") && e.to_string().contains("CompositeOnCPU"), "{e}");
     }
 
     #[test]
