@@ -166,6 +166,7 @@ fn integer_extremes_render_like_the_unit_field() {
 /// anisotropic 1:1000 and a 1e-7 axis keep the slices bounded by the samples
 /// (bound: at most 16 sqrt(3) slices per sample along the longest axis per
 /// brick, never 1/spacing), and still match their reference (RMSE <= 0.02).
+/// Subnormal spacings and far corners beyond f64::MAX are refused with why.
 #[test]
 fn spacings_scale_and_anisotropy_stays_bounded() {
     let at = |spacing: [f64; 3]| {
@@ -180,6 +181,11 @@ fn spacings_scale_and_anisotropy_stays_bounded() {
         let e = rmse(&one, &img);
         assert!(e <= 1e-6, "spacing {s}: RMSE {e} against spacing 1");
         assert_eq!(slices(&f.list), slices(&f1.list), "spacing {s}");
+    }
+    for (spacing, why) in [([1e-320; 3], "subnormal"), ([1.0, 1e308, 1.0], "beyond the largest f64")] {
+        let v = volume([17; 3], ScalarType::F32, spacing, ball(0.0, 1.0));
+        let e = v.grid(None).unwrap_err().to_string();
+        assert!(e.contains(why), "{spacing:?}: {e}");
     }
     for spacing in [[1.0, 1.0, 1000.0], [1.0, 1.0, 1e-7], [1e-30, 1.0, 1.0], [1.0, 1e-300, 1.0]] {
         let (_, f) = at(spacing);
