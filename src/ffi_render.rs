@@ -217,8 +217,8 @@ fn check_f32_resolution(scalar_type: crate::grid::ScalarType, (lo, hi): (f64, f6
     let range = hi - lo;
     if matches!(scalar_type, F64 | I32 | U32) && range > 0.0 && m * 2f64.powi(-24) > range / 4096.0 {
         return Err(Error::InvalidArgument(format!(
-            "the values span {range:e} on magnitudes up to {m:e}: a GPU texture's 32-bit float keeps only \
-             {:e} at that magnitude, more than 1/4096 of the range; subtract the offset (e.g. with \
+            "the values span {range:.3e} on magnitudes up to {m:.3e}: a GPU texture's 32-bit float keeps only \
+             {:.3e} at that magnitude, more than 1/4096 of the range; subtract the offset (e.g. with \
              vtkImageShiftScale), or draw with CompositeOnCPU, which keeps 64-bit values",
             m * 2f64.powi(-24)
         )));

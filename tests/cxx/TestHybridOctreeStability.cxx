@@ -19,6 +19,9 @@
  *                refuses with a vtkErrorMacro naming the float range and
  *                what to do, draws nothing, and then draws the ball mapped
  *                to [0, 1] like a fresh mapper (RMSE < 0.005).
+ *   offset:      extreme with a 1e-3 range on a 1e9 offset, which 32-bit
+ *                float texels round to noise: refused the same way, the
+ *                message saying to subtract the offset.
  */
 #include "HybridOctreeMapperScene.h"
 #include "HybridOctreeTestUtilities.h"
@@ -203,10 +206,10 @@ int Direction()
   return check.Result();
 }
 
-int Extreme()
+int Extreme(bool offset)
 {
   Checker check;
-  vtkNew<vtkImageData> extreme = Ball(-1e308, 1e308, 1.0);
+  vtkNew<vtkImageData> extreme = offset ? Ball(1e9, 1e9 + 1e-3, 1.0) : Ball(-1e308, 1e308, 1.0);
   vtkNew<vtkImageData> unit = Ball(0.0, 1.0, 1.0);
   vtkNew<vtkHybridOctreeVolumeMapper> mapper = Ours();
   vtkNew<vtkHybridOctreeVolumeMapper> unitMapper = Ours();
@@ -216,8 +219,9 @@ int Extreme()
   errors->Watch(mapper);
   ours.Window->Render();
   std::cout << "extreme: errors\n" << errors->AllErrors();
-  check.Check(!mapper->GetLastRenderOK(), "the mapper refuses values beyond 32-bit float");
-  check.Check(errors->HasError("32-bit float") && errors->HasError("CompositeOnCPU"),
+  check.Check(!mapper->GetLastRenderOK(), "the mapper refuses what 32-bit float cannot hold");
+  check.Check(errors->HasError("32-bit float") && errors->HasError("CompositeOnCPU") &&
+      (!offset || errors->HasError("subtract the offset")),
     "the error names the float range and what to do");
   check.Check(NoGLError(ours.Window), "no OpenGL error left behind");
   // The same mapper then draws an image within the float range.
@@ -249,9 +253,9 @@ int TestHybridOctreeStability(int argc, char* argv[])
   {
     return Direction();
   }
-  if (scenario == "extreme")
+  if (scenario == "extreme" || scenario == "offset")
   {
-    return Extreme();
+    return Extreme(scenario == "offset");
   }
   std::cerr << "unknown scenario " << scenario << "\n";
   return EXIT_FAILURE;
