@@ -17,7 +17,7 @@
 //! `t = tan(view angle / 2)`.
 
 use crate::error::{Error, Result};
-use crate::vec3::{cross, dot, normalize, sub};
+use crate::vec3::{cross, dot, norm, normalize, sub};
 
 /// How the camera projects.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -65,11 +65,12 @@ impl Camera {
             return bad("position, focal point and view up must be finite numbers");
         }
         let d = sub(focal_point, position);
-        if dot(d, d) == 0.0 {
+        if d.iter().all(|&v| v == 0.0) || !norm(d).is_finite() {
             return bad("the position equals the focal point: move the camera away from the point it looks at");
         }
-        let c = cross(d, view_up);
-        if dot(c, c) <= 1e-24 * dot(d, d) * dot(view_up, view_up) {
+        // On unit vectors: a scene of 1e-300 or 1e300 world units is checked like one of 1.
+        let c = cross(normalize(d), normalize(view_up));
+        if view_up.iter().all(|&v| v == 0.0) || !(dot(c, c) > 1e-24) {
             return bad("view up is zero or parallel to the view direction: choose an up vector across the view");
         }
         match projection {
@@ -89,7 +90,7 @@ impl Camera {
     /// the xy plane, far enough that the whole box is in view.
     pub fn around(lo: [f64; 3], hi: [f64; 3], azimuth_deg: f64, elevation_deg: f64, parallel: bool) -> Result<Camera> {
         let centre = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
-        let radius = 0.5 * dot(sub(hi, lo), sub(hi, lo)).sqrt();
+        let radius = 0.5 * norm(sub(hi, lo));
         let (az, el) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
         let dir = [az.sin() * el.cos(), -az.cos() * el.cos(), el.sin()];
         let angle = 30.0f64;

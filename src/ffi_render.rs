@@ -38,6 +38,8 @@ pub struct SelectionHandle {
     pub(crate) selection: Selection,
     octree_id: u64,
     shape: GridShape,
+    /// The octree's value range (what 32-bit float texels must resolve).
+    value_range: (f64, f64),
     /// The SlabPolygons of the last translucent surface drawn, with its id.
     polygons: Mutex<Option<(u64, SlabPolygons)>>,
     /// The points the selection spent bytes on (a selection made with points).
@@ -203,6 +205,27 @@ pub(crate) fn transfer_function(colors: &[f64], opacities: &[f64]) -> Result<Tra
     TransferFunction::new(c, o)
 }
 
+/// Refuses data whose differences 32-bit float texels cannot resolve: a
+/// value of magnitude `m` is off by up to `m 2^-24` in an `f32`; when that is
+/// more than one cell of a 4096-cell table, `(max - min) / 4096` (e.g. a
+/// `1e-3` range on a `1e9` offset), the GPU picture would be noise. Only
+/// `f64`, `i32` and `u32` grids can be inexact; a constant image has no
+/// differences to lose.
+fn check_f32_resolution(scalar_type: crate::grid::ScalarType, (lo, hi): (f64, f64)) -> Result<()> {
+    use crate::grid::ScalarType::{F64, I32, U32};
+    let m = lo.abs().max(hi.abs());
+    let range = hi - lo;
+    if matches!(scalar_type, F64 | I32 | U32) && range > 0.0 && m * 2f64.powi(-24) > range / 4096.0 {
+        return Err(Error::InvalidArgument(format!(
+            "the values span {range:.3e} on magnitudes up to {m:.3e}: a GPU texture's 32-bit float keeps only \
+             {:.3e} at that magnitude, more than 1/4096 of the range; subtract the offset (e.g. with \
+             vtkImageShiftScale), or draw with CompositeOnCPU, which keeps 64-bit values",
+            m * 2f64.powi(-24)
+        )));
+    }
+    Ok(())
+}
+
 /// The footprint the bridge's flag names.
 fn footprint(gaussian: bool) -> Footprint {
     if gaussian {
@@ -223,6 +246,7 @@ impl VolumeOctreeHandle {
             selection,
             octree_id: self.id,
             shape: self.shape,
+            value_range: self.octree.value_range(),
             polygons: Mutex::new(None),
             points,
         })
@@ -454,11 +478,16 @@ impl SelectionHandle {
                 )));
             };
             let texels = brick_texels_f32(&grid, b)?;
+            check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
             if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
-                return Err(Error::InvalidArgument(format!(
-                    "brick {brick} holds an infinite value (texel {i}): the image changed since the \
-                     octree was built; fix the values and rebuild it"
-                )));
+                let why = if grid.samples().scalar_type() == crate::grid::ScalarType::F64 {
+                    "a value beyond the range of a GPU texture's 32-bit float (|value| above 3.4e38): scale the \
+                     data into that range (e.g. with vtkImageShiftScale), or draw with CompositeOnCPU, which \
+                     keeps 64-bit values"
+                } else {
+                    "an infinite value: the image changed since the octree was built; fix the values and rebuild it"
+                };
+                return Err(Error::InvalidArgument(format!("brick {brick} holds {why} (texel {i})")));
             }
             Ok(texels)
         })
@@ -650,6 +679,41 @@ mod tests {
         assert!(s.draw_list(&h, &zero_scale).unwrap_err().contains("parallel scale"));
     }
 
+    /// f64 values beyond the f32 range cannot be GPU texels: refused with
+    /// what to do, not handed over as infinities.
+    #[test]
+    fn texels_beyond_f32_are_refused() {
+        let d: Vec<f64> = data().iter().map(|&v| v as f64 * 1e308).collect();
+        // SAFETY: f64 has no padding; the byte view covers exactly the slice's storage.
+        let b = unsafe { std::slice::from_raw_parts(d.as_ptr() as *const u8, std::mem::size_of_val(&d[..])) };
+        let desc = GridDesc { scalar_type: ScalarType::F64, ..desc() };
+        let h = build_volume_octree(b, &desc, 4).unwrap();
+        let s = h.select_bricks(&options(1_000_000)).unwrap();
+        let e = (0..s.selection.bricks.len()).find_map(|i| s.brick_texels(b, &desc, i).err()).unwrap();
+        assert!(e.to_string().contains("32-bit float") && e.to_string().contains("CompositeOnCPU"), "{e}");
+    }
+
+    /// A 1e-3 range on a 1e9 offset is noise in 32-bit float: refused with
+    /// what to do; the same range near 0, and f32 data, are drawn.
+    #[test]
+    fn texels_that_f32_cannot_resolve_are_refused() {
+        let texels = |offset: f64, scalar_type: ScalarType| {
+            let d: Vec<f64> = data().iter().map(|&v| offset + v as f64 * 1e-3).collect();
+            let desc = GridDesc { scalar_type, ..desc() };
+            let bytes: Vec<u8> = match scalar_type {
+                ScalarType::F64 => d.iter().flat_map(|v| v.to_ne_bytes()).collect(),
+                _ => d.iter().flat_map(|&v| (v as f32).to_ne_bytes()).collect(),
+            };
+            let h = build_volume_octree(&bytes, &desc, 4).unwrap();
+            let s = h.select_bricks(&options(1_000_000)).unwrap();
+            s.brick_texels(&bytes, &desc, 0).map(drop)
+        };
+        let e = texels(1e9, ScalarType::F64).unwrap_err().to_string();
+        assert!(e.contains("32-bit float") && e.contains("subtract the offset"), "{e}");
+        assert!(texels(0.0, ScalarType::F64).is_ok());
+        assert!(texels(1e3, ScalarType::F32).is_ok());
+    }
+
     #[test]
     fn brick_texels_are_the_image_at_the_texel_positions() {
         let d = data();
@@ -693,7 +757,8 @@ mod tests {
 
     #[test]
     fn f64_texels_are_rounded_to_f32() {
-        let d: Vec<f64> = (0..27).map(|i| 1.0 + i as f64 * 1e-9).collect();
+        // 0.1 steps: not exact in f32, resolved by it (differences far above 2^-24).
+        let d: Vec<f64> = (0..27).map(|i| 1.0 + i as f64 * 0.1).collect();
         // SAFETY: f64 has no padding; the byte view covers exactly the vector's storage.
         let b = unsafe { std::slice::from_raw_parts(d.as_ptr() as *const u8, d.len() * 8) };
         let desc =
@@ -702,8 +767,10 @@ mod tests {
         let s = h.select_bricks(&options(20_000)).unwrap();
         let grid = Grid::scalar(Samples::F64(&d), [3; 3]).unwrap();
         let all: Vec<f32> = (0..s.selection.bricks.len()).flat_map(|i| s.brick_texels(b, &desc, i).unwrap()).collect();
-        assert!(!all.is_empty() && all.iter().all(|&v| v == 1.0f32));
-        assert!(grid.value(2, 2, 2) != 1.0);
+        let b0 = &s.selection.bricks[0];
+        let first: Vec<f32> = b0.texel_positions(0).map(|x| grid.value(x, b0.lo[1], b0.lo[2]) as f32).collect();
+        assert_eq!(&all[..first.len()], &first[..]);
+        assert!(first.iter().zip(b0.texel_positions(0)).any(|(&t, x)| t as f64 != grid.value(x, b0.lo[1], b0.lo[2])));
     }
 
     #[test]

@@ -312,6 +312,27 @@ impl GridShape {
             if !self.origin[a].is_finite() {
                 return Err(Error::BadGeometry { what: format!("origin {:?} must be finite", self.origin) });
             }
+            // A subnormal spacing leaves world positions a few bits; a far
+            // corner beyond f64::MAX leaves none.
+            if !s.is_normal() {
+                return Err(Error::BadGeometry {
+                    what: format!(
+                        "spacing {:?} is below 2.2e-308 (a subnormal number, too few bits for positions): \
+                         scale the geometry up",
+                        self.spacing
+                    ),
+                });
+            }
+            if !(self.origin[a] + (self.dims[a] - 1) as f64 * s).is_finite() {
+                return Err(Error::BadGeometry {
+                    what: format!(
+                        "origin {:?} + {} samples x spacing {:?} is beyond the largest f64: scale the geometry down",
+                        self.origin,
+                        self.dims[a] - 1,
+                        self.spacing
+                    ),
+                });
+            }
         }
         Ok(values)
     }

@@ -41,6 +41,7 @@ pub mod points;
 pub mod render;
 pub mod select;
 pub mod slab;
+pub mod spacing;
 pub mod surface;
 pub mod vec3;
 pub mod volume;

@@ -149,7 +149,7 @@ pub fn plan(selection: &crate::select::Selection, scene: &Scene<'_>) -> Plan {
 
 /// The DrawList for `selection` seen from `camera`: the plan, the bricks back
 /// to front with their slices (every `stride` samples along the view: `d =
-/// stride * min(spacing)`, against `d0 = min(spacing)`), and the surface
+/// min(stride, c) d0`, against `d0`, see [`crate::spacing`]), and the surface
 /// passes the plan asks for.
 ///
 /// Only view-dependent work is done here (order, slices, UpdatePosition of
@@ -172,7 +172,7 @@ pub fn draw_list(
     polygons: Option<&crate::slab::SlabPolygons>,
 ) -> crate::Result<DrawList> {
     let plan = plan(selection, scene);
-    let d0 = shape.spacing.iter().copied().fold(f64::INFINITY, f64::min);
+    let d0 = crate::spacing::reference_spacing(shape);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
     let order = crate::order::brick_order(camera, octree, shape, &ids, true);
     let made;
@@ -197,7 +197,7 @@ pub fn draw_list(
             let brick = selection.bricks[i];
             let world_lo = shape.world(brick.lo.map(|v| v as f64));
             let world_hi = shape.world(brick.hi.map(|v| v as f64));
-            let slice_spacing = brick.stride as f64 * d0;
+            let slice_spacing = crate::spacing::slice_spacing(shape, brick.stride);
             let slices = crate::slab::slice_depths(camera, world_lo, world_hi, slice_spacing);
             let batches = match polygons.map(|p| p.brick(i)) {
                 Some(b) if !b.is_empty() => crate::slab::assign_batches(camera, &slices, b),

@@ -684,13 +684,90 @@ fn terminal_escapes_in_a_file_name_are_not_printed() {
     assert!(!stderr(&out).contains('\x1b'));
 }
 
+/// Sizes are checked from the arguments before anything is generated: a
+/// size whose bytes overflow, or need more memory than there is, is refused
+/// with the bytes it needs, in every command taking `--size` or `--sizes`.
 #[test]
-fn a_built_in_dataset_too_large_for_memory_is_refused_up_front() {
-    let out = run_capped("64M", &["info", "--dataset", "sphere", "--size", "1000", "--type", "f32"]);
-    assert_clean_failure(&out, "the 1000^3 f32 sphere volume needs 3.7 GiB of memory");
-    let path = temp("big.vti");
-    let out =
-        run_capped("64M", &["generate", "--dataset", "ramp", "--size", "4000", "--output", path.to_str().unwrap()]);
-    assert_clean_failure(&out, "give a smaller --size");
-    assert!(!path.exists());
+fn huge_sizes_are_refused_up_front_with_the_bytes_needed() {
+    for size in ["4294967296", "18446744073709551615"] {
+        assert_clean_failure(&run(&["info", "--dataset", "sphere", "--size", size]), "use a smaller --size");
+        assert_clean_failure(&run(&["build", "--dataset", "sphere", "--size", size]), "use a smaller --size");
+    }
+    let cap = [("HYBRID_OCTREE_MAX_MEMORY", "64M")];
+    let capped = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_hybrid-octree")).args(args).envs(cap).output().expect("the CLI starts")
+    };
+    // 100000^3 f32: 4e15 bytes, twice that at the generator's peak.
+    let out = capped(&["render", "--dataset", "sphere", "--size", "100000", "--output", "never.png"]);
+    assert_clean_failure(&out, "needs 7.1 PiB");
+    // 300^3 f64 = 216 MB (432 MB at the peak) is above the 64 MiB cap; 3000^3 far above.
+    let out = capped(&["generate", "--dataset", "sphere", "--size", "300", "--type", "f64", "--output", "never.vti"]);
+    assert_clean_failure(&out, "needs 412.0 MiB");
+    assert_clean_failure(&capped(&["generate", "--dataset", "ramp", "--size", "3000", "--output", "x.vti"]), "GiB");
+    assert_clean_failure(&capped(&["bench", "build", "--sizes", "16,100000", "--repeats", "1"]), "PiB");
+    assert_clean_failure(&capped(&["bench", "surface", "--size", "100000", "--repeats", "1"]), "PiB");
+    assert!(!std::path::Path::new("never.vti").exists() && !std::path::Path::new("never.png").exists());
+}
+
+/// Thread counts beyond the cap are refused before a pool is started, in
+/// single values and in bench lists.
+#[test]
+fn absurd_thread_counts_are_refused() {
+    let huge = "100000000";
+    assert_clean_failure(&run(&["build", "--dataset", "sphere", "--size", "9", "--threads", huge]), "at most 1024");
+    assert_clean_failure(
+        &run(&["generate", "--dataset", "sphere", "--size", "9", "--threads", huge, "--output", "t.vti"]),
+        "at most 1024",
+    );
+    assert_clean_failure(&run(&["bench", "build", "--sizes", "9", "--threads", &format!("1,{huge}")]), "at most 1024");
+    assert_clean_failure(&run(&["bench", "surface", "--size", "9", "--threads", &format!("2,{huge}")]), "at most 1024");
+    assert_clean_failure(&run(&["build", "--dataset", "sphere", "--size", "9", "--threads", "0"]), "at least 1");
+    assert!(run(&["build", "--dataset", "sphere", "--size", "9", "--threads", "1024"]).status.success());
+}
+
+/// Negative numbers are values, not flags, in every subcommand: isovalues
+/// (CT Hounsfield units), ROI centres, camera angles; values out of range
+/// are refused by the command with its reason, not by the parser.
+#[test]
+fn negative_numbers_are_accepted_as_values_everywhere() {
+    let png = temp("neg.png");
+    let png = png.to_str().unwrap();
+    let hu = ["--dataset", "shepp-logan", "--size", "17", "--type", "i16"];
+    let view = ["--width", "24", "--height", "24", "--azimuth", "-30", "--elevation", "-15", "--roi", "-2,-2,-2,40"];
+    let mut render = vec!["render"];
+    render.extend(hu);
+    render.extend(view);
+    render.extend(["--isovalue", "-500", "--output", png]);
+    let out = run(&render);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let mut surface = vec!["surface"];
+    surface.extend(hu);
+    surface.extend(["--isovalue", "-500"]);
+    assert!(run(&surface).status.success());
+    let mut ftb = vec!["ftb"];
+    ftb.extend(hu);
+    ftb.extend(["--isovalue", "-500"]);
+    assert!(run(&ftb).status.success());
+    let mut bench = vec!["bench", "render"];
+    bench.extend(hu);
+    bench.extend(view);
+    bench.extend(["--isovalue", "-500", "--strides", "4", "--tolerances", "0.1"]);
+    let out = run(&bench);
+    assert!(out.status.success(), "{}", stderr(&out));
+    // Refused by the commands' own checks (status 2, their reason), not as unknown arguments.
+    let base = ["--dataset", "sphere", "--size", "9"];
+    let refused: [(&[&str], &str); 5] = [
+        (&["build", "--tolerance", "-0.1"], "must be a finite number >= 0"),
+        (&["render", "--tolerance", "-1", "--output", png], "must be a number >= 0"),
+        (&["render", "--budget-mb", "-1", "--output", png], "positive number of megabytes"),
+        (&["render", "--surface-opacity", "-0.5", "--output", png], "between 0 and 1"),
+        (&["points", "--threshold", "-0.1", "--output", png], "in [0, 1]"),
+    ];
+    for (args, reason) in refused {
+        let mut all = vec![args[0]];
+        all.extend(base);
+        all.extend(&args[1..]);
+        assert_clean_failure(&run(&all), reason);
+    }
+    let _ = std::fs::remove_file(png);
 }

@@ -14,9 +14,42 @@
 //! | f32, f64 | `f`                 | 0 ..= 1          |
 
 use super::dataset::Dataset;
+use crate::error::{Error, Result};
 use crate::grid::{GridShape, ScalarType};
+use crate::limits::check_memory;
 use crate::volume::{SampleBuf, Volume};
 use rayon::prelude::*;
+
+/// Checks, before anything is allocated, that `dims` samples of
+/// `scalar_type` can be generated: at least 2 samples per axis, and the
+/// bytes the generator holds at its peak,
+///
+/// ```text
+/// bytes = 2 * nx * ny * nz * size_of(scalar_type)      (the z-slices and the joined array)
+/// ```
+///
+/// computed without overflow, within the memory this process may use
+/// ([`check_memory`]). Returns the volume's own bytes (half the peak).
+pub fn check_generate(dims: [usize; 3], scalar_type: ScalarType) -> Result<u128> {
+    if let Some(d) = dims.iter().find(|&&d| d < 2) {
+        return Err(Error::InvalidArgument(format!(
+            "a dataset of {d} samples along an axis is too small: use at least 2 samples per axis"
+        )));
+    }
+    let bytes =
+        dims.iter().try_fold(scalar_type.size() as u128, |acc, &d| acc.checked_mul(d as u128)).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "a {} x {} x {} {} dataset needs more than 2^128 bytes of memory: use a smaller --size",
+                dims[0],
+                dims[1],
+                dims[2],
+                scalar_type.name()
+            ))
+        })?;
+    let what = format!("a {} x {} x {} {} dataset", dims[0], dims[1], dims[2], scalar_type.name());
+    check_memory(2 * bytes, &what, "use a smaller --size or a smaller --type")?;
+    Ok(bytes)
+}
 
 /// A cube of `size^3` samples of `dataset`; see [`generate_dims`].
 pub fn generate(dataset: Dataset, size: usize, scalar_type: ScalarType) -> Volume {

@@ -6,7 +6,7 @@
 
 use super::build::{normalise, squared_error};
 use super::layout::NodeId;
-use super::trilinear::eval;
+use super::trilinear::{eval, kernel_scale};
 use super::volume_octree::VolumeOctree;
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 
@@ -20,6 +20,9 @@ pub fn sample_error(f: f64, t: f64) -> Option<f64> {
     }
 }
 
+/// Values are scaled by [`kernel_scale`] of the data range, as the build
+/// scales them (1 unless the values are extreme).
+///
 /// E_p(n), p = 0 .. L-k-1, of node `id`, from the definition
 /// `max over q >= p of max over v in n of |f(v) - T_(2^(L-k-q))(v)| / range`.
 pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f32> {
@@ -32,6 +35,7 @@ pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f
         fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f32> {
             let node = self.octree.node(self.id);
             let (vmin, vmax) = self.octree.value_range();
+            let k = kernel_scale(vmin, vmax);
             let n = self.octree.layout().error_count(node.level);
             let mut raw = vec![0.0f64; n];
             for (p, r) in raw.iter_mut().enumerate() {
@@ -39,7 +43,7 @@ pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f
                 for z in node.lo[2]..=node.hi[2] {
                     for y in node.lo[1]..=node.hi[1] {
                         for x in node.lo[0]..=node.hi[0] {
-                            *r = match sample_error(g.at(x, y, z), eval(&g, s, x, y, z)) {
+                            *r = match sample_error(g.at(x, y, z) * k, eval(&g, s, x, y, z) * k) {
                                 Some(d) => r.max(d.abs()),
                                 None => f64::INFINITY,
                             };
@@ -51,7 +55,7 @@ pub fn nodal_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec<f
             let mut envelope = 0.0f64;
             for p in (0..n).rev() {
                 envelope = envelope.max(raw[p]);
-                out[p] = if envelope == f64::INFINITY { 1.0 } else { normalise(envelope, vmax - vmin) };
+                out[p] = if envelope == f64::INFINITY { 1.0 } else { normalise(envelope, vmax * k - vmin * k) };
             }
             out
         }
@@ -73,7 +77,9 @@ pub fn squared_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec
         fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f64> {
             let node = self.octree.node(self.id);
             let (vmin, vmax) = self.octree.value_range();
-            let range2 = if vmax > vmin { (vmax - vmin) * (vmax - vmin) } else { 1.0 };
+            let k = kernel_scale(vmin, vmax);
+            let range = vmax * k - vmin * k;
+            let range2 = if range > 0.0 { range * range } else { 1.0 };
             let n = self.octree.layout().error_count(node.level);
             let end = |a: usize| if node.hi[a] == g.dims[a] - 1 { node.hi[a] + 1 } else { node.hi[a] };
             (0..n)
@@ -83,7 +89,7 @@ pub fn squared_errors(grid: &Grid<'_>, octree: &VolumeOctree, id: NodeId) -> Vec
                     for z in node.lo[2]..end(2) {
                         for y in node.lo[1]..end(1) {
                             for x in node.lo[0]..end(0) {
-                                match sample_error(g.at(x, y, z), eval(&g, s, x, y, z)) {
+                                match sample_error(g.at(x, y, z) * k, eval(&g, s, x, y, z) * k) {
                                     Some(d) => sum += d * d,
                                     None => holes += 1.0,
                                 }

@@ -44,11 +44,18 @@
 //! and a sample NaN in both counts nothing. A node whose coarse picture has
 //! the same holes as its data and is trilinear elsewhere is homogeneous.
 //!
+//! Extreme values: when the data's largest magnitude is beyond `2^400` or
+//! below `2^-400`, differences `f - T` (near `f64::MAX`) or their squares
+//! would over- or underflow; the leaves are then computed on `k f`, `k` a
+//! power of two ([`super::trilinear::kernel_scale`]), and normalised by the
+//! range of `k f`: the same relative errors, computed without overflow.
+//!
 //! Determinism: each leaf is computed alone and maxima are exact, so the
 //! result is bit-identical on any number of threads.
 
 use super::layout::Layout;
 use super::leaf_stats::{leaf_stats, LeafStats, Scratch, HOLE};
+use super::trilinear::kernel_scale;
 use super::volume_octree::VolumeOctree;
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
@@ -77,6 +84,7 @@ const CHUNK_LEAVES: usize = 256;
 
 struct LeafPass<'p> {
     layout: &'p Layout,
+    scale: f64,
     progress: &'p mut dyn FnMut(f64) -> bool,
 }
 
@@ -96,7 +104,7 @@ impl GridVisitor for LeafPass<'_> {
                 .map_init(Scratch::default, |scratch, i| {
                     let c = [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])];
                     let (lo, hi) = layout.node_box(leaf, c);
-                    leaf_stats(&g, layout, lo, hi, scratch)
+                    leaf_stats(&g, layout, lo, hi, self.scale, scratch)
                 })
                 .collect();
             out.extend(chunk);
@@ -125,8 +133,15 @@ impl VolumeOctree {
     ) -> Result<VolumeOctree> {
         let started = Instant::now();
         let layout = Layout::new(grid.dims(), options.leaf_size)?;
-        let leaves = grid.visit(LeafPass { layout: &layout, progress })?;
-        let octree = reduce(layout, leaves, started);
+        let mut leaves = grid.visit(LeafPass { layout: &layout, scale: 1.0, progress: &mut *progress })?;
+        // Extreme values (beyond 2^400 or below 2^-400 in magnitude): their
+        // differences or squares over- or underflowed; again on k f.
+        let (lo, hi) = leaves.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s.min), b.max(s.max)));
+        let scale = kernel_scale(lo, hi);
+        if scale != 1.0 {
+            leaves = grid.visit(LeafPass { layout: &layout, scale, progress })?;
+        }
+        let octree = reduce(layout, leaves, scale, started);
         debug_assert_eq!(octree.validate(), Ok(()));
         Ok(octree)
     }
@@ -134,7 +149,7 @@ impl VolumeOctree {
 
 /// Reduces the leaf statistics up the tree and stores min, max and the
 /// normalised error envelopes of every node.
-fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOctree {
+fn reduce(layout: Layout, leaves: Vec<LeafStats>, scale: f64, started: Instant) -> VolumeOctree {
     let strides = layout.root_log2 as usize;
     let slots = layout.node_slots();
     let mut min = vec![0.0f64; slots];
@@ -187,8 +202,8 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, started: Instant) -> VolumeOct
             }
         }
     }
-    let value_range = (min[0], max[0]);
-    let range = value_range.1 - value_range.0;
+    // The range of k f, in the units of the raw and squared errors.
+    let range = max[0] * scale - min[0] * scale;
     let mut error_offset = Vec::with_capacity(layout.levels() + 1);
     let mut total = 0usize;
     for level in 0..layout.levels() {

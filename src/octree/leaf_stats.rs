@@ -78,6 +78,19 @@ pub struct Scratch {
     cells: Vec<(usize, usize, usize, usize)>,
 }
 
+impl Scratch {
+    /// The longest of the buffers after a [`leaf_stats`] call: bounded by the
+    /// brick (its samples, rows and coarse positions), whatever the stride,
+    /// so a leaf's work does not grow with the grid's length.
+    pub fn longest_buffer(&self) -> usize {
+        [self.brick.len(), self.v.len(), self.w.len(), self.t.len(), self.xs.len(), self.ys.len(), self.frac.len()]
+            .into_iter()
+            .chain([self.cells.len()])
+            .max()
+            .unwrap_or(0)
+    }
+}
+
 /// Coarse positions of stride `s` covering `[lo, hi]` on an axis of `n`
 /// samples: multiples of s from `floor(lo / s) * s` to the first one past
 /// `hi`, clamped to `n - 1` (the virtual padding), into `out`.
@@ -187,7 +200,7 @@ fn trilinear_squared_sum(e: [f64; 8], lo: [usize; 3], hi: [usize; 3], dims: [usi
     total.max(0.0)
 }
 
-/// `(raw, squared)` of a brick of constant value `c` with closed box `[lo, hi]`:
+/// `(raw, squared)` of `scale` times a brick of constant value `c` with closed box `[lo, hi]`:
 /// every in-brick stride reproduces it exactly. For a stride larger than the
 /// brick, T_s is trilinear over the brick, so `|c - T_s|` is largest at one of
 /// the brick's eight corners. `None` when a corner's T_s is NaN: the lattice
@@ -198,6 +211,7 @@ fn constant_brick<T: Sample>(
     g: &TypedGrid<'_, T>,
     layout: &Layout,
     c: f64,
+    scale: f64,
     lo: [usize; 3],
     hi: [usize; 3],
 ) -> Option<(Vec<f64>, Vec<f64>)> {
@@ -212,7 +226,7 @@ fn constant_brick<T: Sample>(
             let x = if corner & 1 == 0 { lo[0] } else { hi[0] };
             let y = if corner & 2 == 0 { lo[1] } else { hi[1] };
             let z = if corner & 4 == 0 { lo[2] } else { hi[2] };
-            *ec = c - super::trilinear::eval(g, s, x, y, z);
+            *ec = c * scale - super::trilinear::eval(g, s, x, y, z) * scale;
             if ec.is_nan() {
                 return None;
             }
@@ -223,12 +237,16 @@ fn constant_brick<T: Sample>(
     Some((raw, squared))
 }
 
-/// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`.
+/// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`:
+/// min and max of the samples `f`, and the errors of `k f`, `k` =
+/// [`super::trilinear::kernel_scale`] of the grid's range (1 unless its
+/// values are extreme).
 pub fn leaf_stats<T: Sample>(
     g: &TypedGrid<'_, T>,
     layout: &Layout,
     lo: [usize; 3],
     hi: [usize; 3],
+    scale: f64,
     scratch: &mut Scratch,
 ) -> LeafStats {
     let strides = layout.root_log2 as usize;
@@ -251,12 +269,15 @@ pub fn leaf_stats<T: Sample>(
         max = if v > max { v } else { max };
         has_nan |= v.is_nan();
     }
+    if scale != 1.0 {
+        brick.iter_mut().for_each(|v| *v *= scale);
+    }
     let mut raw = vec![0.0f64; strides];
     let mut squared = vec![0.0f64; strides];
     let mut holes = vec![0.0f64; strides];
     let summed = [0, 1, 2].map(|a| summed_count(lo[a], hi[a], g.dims[a]));
     if min == max && !has_nan {
-        if let Some((raw, squared)) = constant_brick(g, layout, min, lo, hi) {
+        if let Some((raw, squared)) = constant_brick(g, layout, min, scale, lo, hi) {
             let holes = vec![0.0f64; strides];
             return LeafStats { min, max, raw, squared, holes };
         }
@@ -269,16 +290,18 @@ pub fn leaf_stats<T: Sample>(
         coarse_positions(lo[1], hi[1], s, g.dims[1], ys);
         let (x_first, y_first) = (lo[0] / s * s, lo[1] / s * s);
         let (nxs, nys) = (xs.len(), ys.len());
-        // tx = (x - x0) / s for x - x0 = 0 .. s-1 (exact: s is a power of two).
+        // tx = (x - x0) / s = (x mod s) / s for the brick's x = lo .. hi (exact:
+        // s is a power of two); one entry per sample of the row, not per
+        // stride, so a large stride costs no more than a small one.
         frac.clear();
-        frac.extend((0..s).map(|i| i as f64 / s as f64));
-        // Row segments [a, b) lying in coarse cell xi, and where in `frac` they start.
+        frac.extend((lo[0]..=hi[0]).map(|x| (x % s) as f64 / s as f64));
+        // Row segments [a, b) lying in coarse cell xi (`frac` is indexed like the row).
         cells.clear();
         for xi in 0..nxs {
             let x0 = x_first + xi * s;
             let (a, b) = (x0.max(lo[0]), (x0 + s).min(hi[0] + 1));
             if a < b && x0 < g.dims[0] {
-                cells.push((a - lo[0], b - lo[0], xi, a - x0));
+                cells.push((a - lo[0], b - lo[0], xi, a - lo[0]));
             }
         }
         let mut err = 0.0f64;
@@ -290,7 +313,7 @@ pub fn leaf_stats<T: Sample>(
             v.clear();
             for &yb in ys.iter() {
                 for &xa in xs.iter() {
-                    v.push(lerp(g.at(xa, yb, z0), g.at(xa, yb, z1), tz));
+                    v.push(lerp(g.at(xa, yb, z0) * scale, g.at(xa, yb, z1) * scale, tz));
                 }
             }
             // NaN in the fine samples or in this slice's coarse values: the rows take the no-data path.

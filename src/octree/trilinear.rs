@@ -20,10 +20,43 @@
 
 use crate::grid::{Sample, TypedGrid};
 
-/// `a + (b - a) * t`, the one interpolation formula used everywhere.
+/// `a + (b - a) * t`, the one interpolation formula used everywhere; when
+/// `b - a` overflows (samples of opposite sign near `f64::MAX`), the same
+/// value as `a (1 - t) + b t`, which does not.
 #[inline(always)]
 pub fn lerp(a: f64, b: f64, t: f64) -> f64 {
-    a + (b - a) * t
+    let d = b - a;
+    if d.is_finite() {
+        a + d * t
+    } else {
+        wide_lerp(a, b, t)
+    }
+}
+
+#[cold]
+fn wide_lerp(a: f64, b: f64, t: f64) -> f64 {
+    a * (1.0 - t) + b * t
+}
+
+/// The kernels' scale `k` for data whose largest magnitude is `m`: 1 for
+/// `2^-400 <= m <= 2^400`, else the power of two that brings `m` into
+/// `[0.5, 2)` (clamped to `2^-1022 ..= 2^1000`). The nodal errors are computed
+/// on `k f`: exact (a power of two), and differences, squares and sums of
+/// squares of `k f` neither overflow (`f` near `f64::MAX`) nor underflow
+/// (subnormal `f`); errors relative to the range are unchanged.
+pub fn kernel_scale(min: f64, max: f64) -> f64 {
+    let m = min.abs().max(max.abs());
+    if !(m.is_finite() && m > 0.0) || (2f64.powi(-400)..=2f64.powi(400)).contains(&m) {
+        return 1.0;
+    }
+    // m = 2^e x with x in [1, 2) (subnormals: e from the leading bit).
+    let e = if m.is_normal() {
+        ((m.to_bits() >> 52) as i32) - 1023
+    } else {
+        -1023 - (m.to_bits().leading_zeros() as i32 - 12)
+    };
+    let k = (-e).clamp(-1022, 1000);
+    f64::from_bits(((1023 + k) as u64) << 52)
 }
 
 /// The bracketing coarse coordinates of `x` for stride `s` on an axis of `n`

@@ -7,7 +7,7 @@
 //! the full grid), front to back:
 //!
 //! ```text
-//! (c, a) = transfer function(value),  a' = 1 - (1 - a)^(l / d0),  d0 = min(spacing)
+//! (c, a) = transfer function(value),  a' = 1 - (1 - a)^(l / d0),  d0 = crate::spacing::reference_spacing
 //! C += (1 - A) a' c,  A += (1 - A) a'              (premultiplied; stop once A > 0.999)
 //! ```
 //!
@@ -38,7 +38,7 @@ pub const EARLY_TERMINATION: f64 = 0.999;
 /// What the reference draws besides the volume, and how finely.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ReferenceOptions<'a> {
-    /// Sample spacing along the ray, world units (> 0); `None`: `min(spacing) / 4`.
+    /// Sample spacing along the ray, world units (> 0); `None`: `d0 / 4` ([`crate::spacing::reference_spacing`]).
     pub step: Option<f64>,
     /// A surface and its `[r, g, b, opacity]`, all in `[0, 1]`.
     pub surface: Option<(&'a Surface, [f32; 4])>,
@@ -56,7 +56,7 @@ pub fn reference(
 ) -> Result<Image> {
     check_size(width, height)?;
     let shape = *grid.shape();
-    let d0 = shape.spacing.iter().copied().fold(f64::INFINITY, f64::min);
+    let d0 = crate::spacing::reference_spacing(&shape);
     let step = options.step.unwrap_or(d0 / 4.0);
     if !(step > 0.0 && step.is_finite()) {
         return Err(Error::InvalidArgument(format!("reference step {step}: give a positive number of world units")));

@@ -35,7 +35,7 @@ fn slice_depths(camera: &Camera, lo: [f64; 3], hi: [f64; 3], d: f64) -> Vec<f64>
 /// back to front by the depth of their centres (a valid order for bricks of
 /// one size under a parallel projection, or for one brick).
 fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: SurfacePass) -> DrawList {
-    let d0 = shape.spacing.iter().copied().fold(f64::INFINITY, f64::min);
+    let d0 = crate::spacing::reference_spacing(shape);
     let mut draws: Vec<BrickDraw> = bricks
         .iter()
         .map(|&brick| {

@@ -40,7 +40,10 @@ fn piecewise<P, const N: usize>(points: &[P], v: f64, get: impl Fn(&P) -> (f64, 
         return get(&points[i - 1]).1;
     }
     let ((x0, y0), (x1, y1)) = (get(&points[i - 1]), get(&points[i]));
-    let t = ((v - x0) / (x1 - x0)) as f32; // x0 <= v < x1, so x1 > x0
+    // x0 <= v < x1, so x1 > x0; halves when x1 - x0 overflows (points of
+    // opposite sign near f64::MAX).
+    let t = if (x1 - x0).is_finite() { (v - x0) / (x1 - x0) } else { (v / 2.0 - x0 / 2.0) / (x1 / 2.0 - x0 / 2.0) };
+    let t = t as f32;
     std::array::from_fn(|k| y0[k] + (y1[k] - y0[k]) * t)
 }
 
@@ -92,7 +95,9 @@ impl TransferFunction {
             (true, true) => (min, max),
             (true, false) => (max, min),
         };
-        let at = |f: f64| lo + f * (hi - lo);
+        // lo + f (hi - lo), or lo (1 - f) + hi f when hi - lo overflows.
+        let at =
+            |f: f64| if (hi - lo).is_finite() { lo + f * (hi - lo) } else { (lo * (1.0 - f) + hi * f).clamp(lo, hi) };
         let opacities = [(0.0, 0.0), (0.15, 0.0), (0.2, 0.002), (0.3, 0.03), (0.6, 0.08), (1.0, 0.12)];
         TransferFunction {
             colors: vec![(lo, [0.3; 3]), (hi, [1.0; 3])],

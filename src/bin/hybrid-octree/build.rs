@@ -19,7 +19,7 @@ pub struct BuildArgs {
     #[arg(long, default_value_t = DEFAULT_LEAF_SIZE)]
     leaf_size: usize,
     /// Error tolerance of the reported cut, as a fraction of the data range.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     tolerance: f64,
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]

@@ -1,7 +1,7 @@
 //! `generate`: write a built-in dataset to a `.vti` file.
 
 use crate::extension::require_extension;
-use crate::input::check_dataset_size;
+use crate::input::check_size;
 use crate::pool::with_threads;
 use clap::Args;
 use hybrid_octree::datasets::{generate, Dataset};
@@ -35,7 +35,7 @@ pub fn run(args: &GenerateArgs) -> Result<()> {
     require_extension(&args.output, "--output", &[".vti"], "VTK XML image data")?;
     let dataset = Dataset::parse(&args.dataset)?;
     let scalar_type = ScalarType::parse(&args.scalar_type)?;
-    check_dataset_size(dataset, args.size, scalar_type)?;
+    check_size(args.size, scalar_type)?;
     let volume = with_threads(args.threads, || Ok(generate(dataset, args.size, scalar_type)))?;
     write_vti(&args.output, &volume)?;
     eprintln!("wrote {} {}^3 {} to {}", dataset.name(), args.size, scalar_type.name(), args.output.display());

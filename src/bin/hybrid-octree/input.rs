@@ -1,10 +1,10 @@
 //! The input arguments every subcommand shares: a built-in dataset or a file.
 
 use clap::Args;
+use hybrid_octree::datasets::generate::check_generate;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::io::{read_volume, RawOptions, ReadOptions};
-use hybrid_octree::limits::check_memory;
 use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
 use std::path::PathBuf;
@@ -47,18 +47,13 @@ pub struct InputArgs {
     pub threads: Option<usize>,
 }
 
-/// Refuses a built-in dataset of `size`^3 `scalar_type` samples that is
-/// smaller than 2 a side or larger than the memory this process may use.
-pub fn check_dataset_size(dataset: Dataset, size: usize, scalar_type: ScalarType) -> Result<()> {
+/// Checks `--size N` of a built-in dataset before generating it: at least
+/// 2, and `N^3` values of `scalar_type` within the memory this process may use.
+pub fn check_size(size: usize, scalar_type: ScalarType) -> Result<()> {
     if size < 2 {
         return Err(Error::InvalidArgument(format!("--size {size} is too small: use at least 2")));
     }
-    let bytes = (size as u128).pow(3) * scalar_type.size() as u128;
-    check_memory(
-        bytes,
-        &format!("the {size}^3 {} {} volume", scalar_type.name(), dataset.name()),
-        "give a smaller --size",
-    )
+    check_generate([size; 3], scalar_type).map(drop)
 }
 
 /// Parses `X,Y,Z` (clap value parser).
@@ -108,7 +103,7 @@ impl InputArgs {
             .ok_or_else(|| Error::InvalidArgument("give an input: --dataset NAME --size N, or --file PATH".into()))?;
         let dataset = Dataset::parse(name)?;
         let scalar_type = self.scalar_type_or(ScalarType::F32)?;
-        check_dataset_size(dataset, self.size, scalar_type)?;
+        check_size(self.size, scalar_type)?;
         Ok(generate(dataset, self.size, scalar_type))
     }
 

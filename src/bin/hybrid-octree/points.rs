@@ -31,7 +31,7 @@ pub struct PointsArgs {
     #[arg(long, default_value_t = 4)]
     factor: usize,
     /// A point wherever |error| exceeds this fraction of the data range.
-    #[arg(long, conflicts_with = "budget")]
+    #[arg(long, conflicts_with = "budget", allow_negative_numbers = true)]
     threshold: Option<f64>,
     /// Or: the points of the largest errors, this many.
     #[arg(long)]
@@ -40,7 +40,7 @@ pub struct PointsArgs {
     #[arg(long)]
     underestimates_only: bool,
     /// The optimized representation: the low resolution may overestimate by at most this fraction of the data range.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     max_overestimate: Option<f64>,
     /// Write the points here (the HOPOINTS file: 6 bytes a point up to 256^3).
     #[arg(long)]

@@ -23,10 +23,10 @@ pub struct RenderArgs {
     #[command(flatten)]
     scene: SceneArgs,
     /// Texture budget in megabytes (10^6 bytes).
-    #[arg(long, default_value_t = 64.0)]
+    #[arg(long, default_value_t = 64.0, allow_negative_numbers = true)]
     budget_mb: f64,
     /// Error tolerance Eu: nodes stop refining at e_p <= Eu / Imp (fraction of the data range).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     tolerance: f64,
     /// The PNG to write.
     #[arg(long)]

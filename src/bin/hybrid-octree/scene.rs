@@ -29,10 +29,10 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = DEFAULT_LEAF_SIZE)]
     pub leaf_size: usize,
     /// Also draw the isosurface at this value (the Hybrid Octree's DiscMC surface).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub isovalue: Option<f64>,
     /// Opacity of the isosurface: 1 opaque (drawn first), below 1 translucent (drawn in the slabs).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub surface_opacity: f64,
     /// Camera azimuth in degrees about +z (0: looking from -y).
     #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]

@@ -10,8 +10,9 @@
 
 use super::median_ms;
 use crate::build::build_octree;
+use crate::input::check_size;
 use crate::output::print_report;
-use crate::pool::with_threads;
+use crate::pool::{check_thread_list, with_threads};
 use clap::Args;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::ScalarType;
@@ -69,6 +70,12 @@ pub fn run(args: &BenchBuildArgs) -> Result<()> {
     let types = args.types.iter().map(|t| ScalarType::parse(t)).collect::<Result<Vec<_>>>()?;
     let datasets = args.datasets.iter().map(|d| Dataset::parse(d)).collect::<Result<Vec<_>>>()?;
     let threads = args.threads.clone().unwrap_or_else(|| vec![rayon::current_num_threads()]);
+    check_thread_list(&threads)?;
+    for &size in &args.sizes {
+        for &scalar_type in &types {
+            check_size(size, scalar_type)?;
+        }
+    }
     let mut rows = Vec::new();
     if !args.json {
         println!(

@@ -41,7 +41,7 @@ pub struct BenchRenderArgs {
     #[arg(long, value_delimiter = ',', default_value = "2,4,8")]
     strides: Vec<usize>,
     /// Error tolerances swept at the largest of those budgets.
-    #[arg(long, value_delimiter = ',', default_value = "0.02,0.05,0.1,0.2")]
+    #[arg(long, value_delimiter = ',', default_value = "0.02,0.05,0.1,0.2", allow_hyphen_values = true)]
     tolerances: Vec<f64>,
     /// Write the plot of RMSE against time and memory here (PNG).
     #[arg(long)]
@@ -53,7 +53,7 @@ pub struct BenchRenderArgs {
     #[arg(long)]
     points: bool,
     /// Point thresholds (|error| as a fraction of the data range) of the `--points` rows.
-    #[arg(long, value_delimiter = ',', default_value = "0.2,0.1,0.05")]
+    #[arg(long, value_delimiter = ',', default_value = "0.2,0.1,0.05", allow_hyphen_values = true)]
     point_thresholds: Vec<f64>,
     /// Points only where the low resolution underestimates (the only errors an
     /// additive point corrects under an increasing opacity ramp); default: |error|, as the paper.
@@ -62,7 +62,7 @@ pub struct BenchRenderArgs {
     /// The optimized representation (paper 3, section 3.2) for the `--points`
     /// rows: the low resolution overestimates the data by at most this
     /// fraction of the data range; default: plain subsampling.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     max_overestimate: Option<f64>,
     /// Footprint of the points: square or gaussian.
     #[arg(long, default_value = "square")]

@@ -6,8 +6,9 @@
 
 use super::median_ms;
 use crate::build::build_octree;
+use crate::input::check_size;
 use crate::output::print_report;
-use crate::pool::with_threads;
+use crate::pool::{check_thread_list, with_threads};
 use clap::Args;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::ScalarType;
@@ -93,6 +94,8 @@ pub fn run(args: &BenchSurfaceArgs) -> Result<()> {
     }
     let cases = args.cases.iter().map(|c| parse_case(c)).collect::<Result<Vec<_>>>()?;
     let threads = args.threads.clone().unwrap_or_else(|| vec![rayon::current_num_threads()]);
+    check_thread_list(&threads)?;
+    check_size(args.size, ScalarType::F32)?;
     if let Some(bad) = args.modes.iter().find(|m| !MODES.contains(&m.as_str())) {
         return Err(Error::InvalidArgument(format!("unknown mode '{bad}': use {}", MODES.join(", "))));
     }
