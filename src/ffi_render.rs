@@ -481,13 +481,17 @@ impl SelectionHandle {
             check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
             if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
                 let why = if grid.samples().scalar_type() == crate::grid::ScalarType::F64 {
-                    "a value beyond the range of a GPU texture's 32-bit float (|value| above 3.4e38): scale the \
-                     data into that range (e.g. with vtkImageShiftScale), or draw with CompositeOnCPU, which \
-                     keeps 64-bit values"
+                    "a value beyond the range of a GPU texture's 32-bit float (|value| above 3.4e38), texel {i}: \
+                     scale the data into that range (e.g. with vtkImageShiftScale), or draw with CompositeOnCPU, \
+                     which keeps 64-bit values"
                 } else {
-                    "an infinite value: the image changed since the octree was built; fix the values and rebuild it"
+                    "an infinite value (texel {i}): the image changed since the octree was built; fix the values \
+                     and rebuild it"
                 };
-                return Err(Error::InvalidArgument(format!("brick {brick} holds {why} (texel {i})")));
+                return Err(Error::InvalidArgument(format!(
+                    "brick {brick} holds {}",
+                    why.replace("{i}", &i.to_string())
+                )));
             }
             Ok(texels)
         })
