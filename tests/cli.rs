@@ -660,4 +660,8 @@ fn a_built_in_dataset_too_large_for_memory_is_refused_up_front() {
         run_capped("64M", &["generate", "--dataset", "ramp", "--size", "4000", "--output", path.to_str().unwrap()]);
     assert_clean_failure(&out, "give a smaller --size");
     assert!(!path.exists());
+    let out = run_capped("64M", &["bench", "build", "--sizes", "2000", "--types", "u8"]);
+    assert_clean_failure(&out, "the 2000^3 u8 shepp-logan volume needs 7.5 GiB");
+    let out = run_capped("64M", &["bench", "surface", "--cases", "sphere:0.5", "--size", "2000"]);
+    assert_clean_failure(&out, "the 2000^3 f32 sphere volume needs 29.8 GiB");
 }

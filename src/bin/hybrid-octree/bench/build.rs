@@ -10,6 +10,7 @@
 
 use super::median_ms;
 use crate::build::build_octree;
+use crate::input::check_dataset_size;
 use crate::output::print_report;
 use crate::pool::with_threads;
 use clap::Args;
@@ -116,6 +117,7 @@ fn measure(
     if size < 2 {
         return Err(Error::InvalidArgument(format!("benchmark size {size} is too small: use at least 2")));
     }
+    check_dataset_size(dataset, size, scalar_type)?;
     let volume = generate(dataset, size, scalar_type);
     let grid = volume.grid(None)?;
     let options = BuildOptions { leaf_size };

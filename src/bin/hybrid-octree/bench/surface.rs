@@ -6,6 +6,7 @@
 
 use super::median_ms;
 use crate::build::build_octree;
+use crate::input::check_dataset_size;
 use crate::output::print_report;
 use crate::pool::with_threads;
 use clap::Args;
@@ -115,6 +116,7 @@ pub fn run(args: &BenchSurfaceArgs) -> Result<()> {
     }
     let mut rows = Vec::new();
     for (dataset, isovalue) in cases {
+        check_dataset_size(dataset, args.size, ScalarType::F32)?;
         let volume = generate(dataset, args.size, ScalarType::F32);
         let grid = volume.grid(None)?;
         for &t in &threads {
