@@ -646,7 +646,7 @@ fn bytes_error(name: &str, bytes: &[u8]) -> String {
 fn nifti_at(vox_offset: f32, data: &[u8]) -> Vec<u8> {
     let mut f = nifti_bytes([3, 4, 5], 4, 16, &[], 0.0, 0.0);
     f[108..112].copy_from_slice(&vox_offset.to_le_bytes());
-    if vox_offset.is_finite() && vox_offset >= 352.0 && vox_offset < 1e6 {
+    if (352.0..1e6).contains(&vox_offset) {
         f.resize(vox_offset as usize, 0xEE);
     }
     f.extend_from_slice(data);
@@ -705,7 +705,7 @@ fn damaged_nifti_gz_is_refused_by_its_trailer() {
         let mut bad = good.clone();
         bad[i] ^= 0x10;
         match hybrid_octree::io::read_volume_bytes("flip.nii.gz", &bad, &ReadOptions::default()) {
-            Ok(v) => assert_eq!((v.samples, v.shape), (volume.samples.clone(), volume.shape.clone()), "flip at {i}"),
+            Ok(v) => assert_eq!((v.samples, v.shape), (volume.samples.clone(), volume.shape), "flip at {i}"),
             Err(_) => errors += 1,
         }
     }
