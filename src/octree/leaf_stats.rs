@@ -41,7 +41,7 @@
 //! result equals the brute-force definition bit for bit.
 
 use super::layout::Layout;
-use super::trilinear::{bracket, lerp};
+use super::trilinear::{bracket, lerp_scaled};
 use crate::grid::{Sample, TypedGrid};
 
 /// The raw error of a sample that is no data in exactly one of the fine and
@@ -313,7 +313,7 @@ pub fn leaf_stats<T: Sample>(
             v.clear();
             for &yb in ys.iter() {
                 for &xa in xs.iter() {
-                    v.push(lerp(g.at(xa, yb, z0) * scale, g.at(xa, yb, z1) * scale, tz));
+                    v.push(lerp_scaled(g.at(xa, yb, z0) * scale, g.at(xa, yb, z1) * scale, tz));
                 }
             }
             // NaN in the fine samples or in this slice's coarse values: the rows take the no-data path.
@@ -323,12 +323,12 @@ pub fn leaf_stats<T: Sample>(
                 let yi0 = (y0 - y_first) / s;
                 let yi1 = (yi0 + 1).min(nys - 1);
                 w.clear();
-                w.extend((0..nxs).map(|xi| lerp(v[yi0 * nxs + xi], v[yi1 * nxs + xi], ty)));
+                w.extend((0..nxs).map(|xi| lerp_scaled(v[yi0 * nxs + xi], v[yi1 * nxs + xi], ty)));
                 // T along the row, cell by cell: w0 + (w1 - w0) * tx.
                 for &(a, b, xi, off) in cells.iter() {
                     let (w0, w1) = (w[xi], w[(xi + 1).min(nxs - 1)]);
                     for (tv, &f) in t[a..b].iter_mut().zip(&frac[off..]) {
-                        *tv = lerp(w0, w1, f);
+                        *tv = lerp_scaled(w0, w1, f);
                     }
                 }
                 let start = ((z - lo[2]) * wy + (y - lo[1])) * wx;

@@ -33,6 +33,14 @@ pub fn lerp(a: f64, b: f64, t: f64) -> f64 {
     }
 }
 
+/// `a + (b - a) * t` without the overflow test of [`lerp`], for the leaf
+/// kernel's samples, which [`kernel_scale`] keeps below `2^401` in magnitude
+/// (so `b - a` is finite); branch-free, so the kernel's rows vectorise.
+#[inline(always)]
+pub fn lerp_scaled(a: f64, b: f64, t: f64) -> f64 {
+    a + (b - a) * t
+}
+
 #[cold]
 fn wide_lerp(a: f64, b: f64, t: f64) -> f64 {
     a * (1.0 - t) + b * t
