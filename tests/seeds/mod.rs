@@ -5,7 +5,7 @@
 
 use hybrid_octree::datasets::{generate_dims, Dataset};
 use hybrid_octree::grid::ScalarType;
-use hybrid_octree::io::{write_vti, RawOptions};
+use hybrid_octree::io::write_vti;
 use hybrid_octree::points::storage::encode;
 use hybrid_octree::points::{generate, PointOptions, PointSelect};
 use std::io::Write;
@@ -27,29 +27,10 @@ const DIMS: [usize; 3] = [5, 4, 3];
 /// flags 0 (one component, little endian). See [`raw_layout`].
 const RAW_U16_5X4X3: [u8; 8] = [5, 0, 4, 0, 3, 0, 2, 0];
 
-/// The scalar types by the index a raw fuzz input gives.
-const TYPES: [ScalarType; 8] = [
-    ScalarType::U8,
-    ScalarType::I8,
-    ScalarType::U16,
-    ScalarType::I16,
-    ScalarType::U32,
-    ScalarType::I32,
-    ScalarType::F32,
-    ScalarType::F64,
-];
+#[path = "../../fuzz/raw_layout.rs"]
+mod raw_layout;
+pub use raw_layout::raw_layout;
 
-/// A raw fuzz input's layout and data: 3 x u16 dims, a type index (mod 8),
-/// flags (bits 0-1: components - 1, bit 2: big endian), then the samples.
-/// `None` for fewer than 8 bytes. The `raw` fuzz target decodes it alike.
-pub fn raw_layout(bytes: &[u8]) -> Option<(RawOptions, &[u8])> {
-    let (head, data) = (bytes.get(..8)?, &bytes[8..]);
-    let dims = [0, 1, 2].map(|a| usize::from(u16::from_le_bytes([head[2 * a], head[2 * a + 1]])));
-    let mut raw = RawOptions::new(dims, TYPES[usize::from(head[6] % 8)]);
-    raw.components = usize::from(head[7] & 3) + 1;
-    raw.big_endian = head[7] & 4 != 0;
-    Some((raw, data))
-}
 const COUNT: usize = 60;
 
 fn values() -> Vec<f32> {
