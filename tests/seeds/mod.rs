@@ -144,7 +144,10 @@ fn legacy_binary() -> Vec<u8> {
 }
 
 fn written_vti() -> Vec<u8> {
-    let path = std::env::temp_dir().join(format!("hybrid-octree-seed-{}.vti", std::process::id()));
+    // One file per call: the fuzz tests build the seeds on parallel threads.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let path = std::env::temp_dir().join(format!("hybrid-octree-seed-{}-{call}.vti", std::process::id()));
     write_vti(&path, &generate_dims(Dataset::SheppLogan, DIMS, ScalarType::U16)).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     std::fs::remove_file(&path).unwrap();
