@@ -70,7 +70,8 @@ impl Camera {
         }
         // On unit vectors: a scene of 1e-300 or 1e300 world units is checked like one of 1.
         let c = cross(normalize(d), normalize(view_up));
-        if view_up.iter().all(|&v| v == 0.0) || !(dot(c, c) > 1e-24) {
+        let across = dot(c, c);
+        if view_up.iter().all(|&v| v == 0.0) || across.is_nan() || across <= 1e-24 {
             return bad("view up is zero or parallel to the view direction: choose an up vector across the view");
         }
         match projection {

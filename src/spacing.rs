@@ -44,7 +44,7 @@ pub fn max_slice_stride(shape: &GridShape) -> usize {
     let extent =
         (0..3).map(|a| (shape.dims[a].saturating_sub(1)) as f64 * shape.spacing[a]).fold(f64::INFINITY, f64::min);
     let k = extent / (MIN_SLICES * d0);
-    if !(k >= 2.0) {
+    if k.is_nan() || k < 2.0 {
         return 1;
     }
     // 2^floor(log2 k), with k below 2^63 (k <= dims / MIN_SLICES * MAX_ANISOTROPY).
