@@ -129,17 +129,24 @@ pub const EXCERPT_CHARS: usize = 64;
 /// characters and escapes shown as `\n`, `\x1b`, `\u{..}`, and cut to
 /// [`EXCERPT_CHARS`] characters with `...` and the full length after a cut.
 pub fn excerpt(text: &str) -> String {
-    let mut out = String::new();
     let total = text.chars().count();
-    for c in text.chars().take(EXCERPT_CHARS) {
-        if c.is_control() || c == '\u{7f}' {
+    let mut out = escape_controls(&text.chars().take(EXCERPT_CHARS).collect::<String>());
+    if total > EXCERPT_CHARS {
+        out.push_str(&format!("... ({total} characters)"));
+    }
+    out
+}
+
+/// `text` with control characters (DEL and the C0 and C1 ranges) shown as
+/// `\n`, `\u{1b}`, and the rest kept whole.
+pub fn escape_controls(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
             out.extend(c.escape_default());
         } else {
             out.push(c);
         }
-    }
-    if total > EXCERPT_CHARS {
-        out.push_str(&format!("... ({total} characters)"));
     }
     out
 }

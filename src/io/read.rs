@@ -4,8 +4,9 @@
 //! same code as the in-memory one, so both behave alike.
 
 use super::options::ReadOptions;
-use super::source::{display_path, escape_controls, read_regular_file, regular_file_len};
+use super::source::{display_path, read_regular_file, regular_file_len};
 use crate::error::{Error, Result};
+use crate::limits::escape_controls;
 use crate::volume::Volume;
 use std::path::Path;
 

@@ -5,7 +5,7 @@
 
 use super::read::format_error;
 use crate::error::Result;
-use crate::limits::{check_memory, human_bytes};
+use crate::limits::{check_memory, escape_controls, human_bytes};
 use std::io::Read;
 use std::path::Path;
 
@@ -13,19 +13,6 @@ use std::path::Path;
 /// terminal escape sequence), otherwise whole.
 pub fn display_path(path: &Path) -> String {
     escape_controls(&path.display().to_string())
-}
-
-/// `text` with control characters shown as `\n`, `\u{1b}`, and the rest kept.
-pub fn escape_controls(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        if c.is_control() {
-            out.extend(c.escape_default());
-        } else {
-            out.push(c);
-        }
-    }
-    out
 }
 
 /// The size of the regular file at `path`, or an error saying what it is

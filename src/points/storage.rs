@@ -22,7 +22,8 @@
 
 use super::{Point, PointSet};
 use crate::error::{Error, Result};
-use crate::io::source::{display_path, escape_controls, read_regular_file, regular_file_len};
+use crate::io::source::{display_path, read_regular_file, regular_file_len};
+use crate::limits::escape_controls;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"HOPOINTS";
