@@ -9,6 +9,7 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cmath>
 
 vtkStandardNewMacro(vtkPVHybridOctreeRepresentation);
 
@@ -157,6 +158,24 @@ double vtkPVHybridOctreeRepresentation::GetLastFrameMilliseconds()
 int vtkPVHybridOctreeRepresentation::GetLastPoints()
 {
   return static_cast<int>(std::min<vtkTypeInt64>(this->Mapper()->GetLastPoints(), VTK_INT_MAX));
+}
+
+double* vtkPVHybridOctreeRepresentation::GetTextureBudgetRangeMB()
+{
+  const int* e = this->WholeExtent;
+  if (e[1] < e[0] || e[3] < e[2] || e[5] < e[4])
+  {
+    return this->TextureBudgetRangeMB; // no input yet
+  }
+  const double leaf = std::max(this->Mapper()->GetLeafSize(), 1);
+  double texels = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double cells = std::max(e[2 * a + 1] - e[2 * a], 1);
+    texels *= cells + std::ceil(cells / leaf);
+  }
+  this->TextureBudgetRangeMB[1] = std::max(4.0 * texels / 1.0e6, this->TextureBudgetRangeMB[0]);
+  return this->TextureBudgetRangeMB;
 }
 
 double vtkPVHybridOctreeRepresentation::GetLastEstimatedError()

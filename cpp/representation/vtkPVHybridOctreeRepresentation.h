@@ -63,6 +63,13 @@ public:
   int GetLastPoints();
   ///@}
 
+  /// The budget slider's range, {0.1, full} in MB: `full` is the texture
+  /// bytes of the whole input at full resolution, every leaf brick at
+  /// stride 1 with its shared border, 4 bytes a texel:
+  /// 4 * prod_a (c_a + ceil(c_a / L)) for c_a cells along axis a and leaf
+  /// size L (at least 0.1 MB; 64 MB before the input is known).
+  double* GetTextureBudgetRangeMB() VTK_SIZEHINT(2);
+
   /// The mapper (for tests and Python).
   vtkHybridOctreeVolumeMapper* GetHybridOctreeMapper();
 
@@ -84,6 +91,7 @@ private:
 
   vtkHybridOctreeVolumeMapper* Mapper() const;
   std::string LastPlan;
+  double TextureBudgetRangeMB[2] = { 0.1, 64.0 };
 };
 
 #endif

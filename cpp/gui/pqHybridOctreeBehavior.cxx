@@ -1,0 +1,168 @@
+#include "pqHybridOctreeBehavior.h"
+
+#include "pqApplicationCore.h"
+#include "pqDisplayColorWidget.h"
+#include "pqRepresentation.h"
+#include "pqServerManagerModel.h"
+#include "pqView.h"
+#include "vtkCommand.h"
+#include "vtkDataObject.h"
+#include "vtkEventQtSlotConnect.h"
+#include "vtkSMArrayListDomain.h"
+#include "vtkSMPVRepresentationProxy.h"
+#include "vtkSMProperty.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMViewProxy.h"
+
+#include <cstring>
+
+namespace
+{
+/// A property only our extension adds to ParaView's image representation.
+const char* const OwnProperty = "TextureBudgetMB";
+
+bool IsHybridOctree(vtkSMProxy* repr)
+{
+  return repr && repr->GetProperty("Representation") &&
+    std::strcmp(vtkSMPropertyHelper(repr, "Representation").GetAsString(),
+      pqHybridOctreeBehavior::TypeName()) == 0;
+}
+}
+
+pqHybridOctreeBehavior::pqHybridOctreeBehavior(QObject* parent)
+  : Superclass(parent)
+{
+}
+
+pqHybridOctreeBehavior::~pqHybridOctreeBehavior() = default;
+
+void pqHybridOctreeBehavior::startup()
+{
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  QObject::connect(model, &pqServerManagerModel::representationAdded, this,
+    &pqHybridOctreeBehavior::onRepresentationAdded);
+  QObject::connect(model, &pqServerManagerModel::preRepresentationRemoved, this,
+    &pqHybridOctreeBehavior::onRepresentationRemoved);
+  QObject::connect(
+    model, &pqServerManagerModel::viewAdded, this, &pqHybridOctreeBehavior::onViewAdded);
+  // The plugin may be loaded after views and representations exist.
+  for (pqView* view : model->findItems<pqView*>())
+  {
+    this->onViewAdded(view);
+  }
+  for (pqRepresentation* repr : model->findItems<pqRepresentation*>())
+  {
+    this->onRepresentationAdded(repr);
+  }
+}
+
+void pqHybridOctreeBehavior::shutdown()
+{
+  this->Connections->Disconnect();
+  this->Watched.clear();
+}
+
+void pqHybridOctreeBehavior::onViewAdded(pqView* view)
+{
+  QObject::connect(view, &pqView::endRender, this, &pqHybridOctreeBehavior::onEndRender);
+}
+
+void pqHybridOctreeBehavior::onRepresentationAdded(pqRepresentation* repr)
+{
+  vtkSMProxy* proxy = repr ? repr->getProxy() : nullptr;
+  vtkSMProperty* type = proxy ? proxy->GetProperty("Representation") : nullptr;
+  if (!type || !proxy->GetProperty(OwnProperty))
+  {
+    return; // not a representation that offers "Hybrid Octree Volume"
+  }
+  this->Watched.insert(type, repr);
+  this->Connections->Connect(
+    type, vtkCommand::ModifiedEvent, this, SLOT(onTypeModified(vtkObject*)));
+}
+
+void pqHybridOctreeBehavior::onRepresentationRemoved(pqRepresentation* repr)
+{
+  vtkSMProxy* proxy = repr ? repr->getProxy() : nullptr;
+  vtkSMProperty* type = proxy ? proxy->GetProperty("Representation") : nullptr;
+  if (type && this->Watched.remove(type) > 0)
+  {
+    this->Connections->Disconnect(type, vtkCommand::ModifiedEvent, this);
+  }
+}
+
+void pqHybridOctreeBehavior::onTypeModified(vtkObject* property)
+{
+  pqRepresentation* repr = this->Watched.value(property);
+  vtkSMProxy* proxy = repr ? repr->getProxy() : nullptr;
+  if (!IsHybridOctree(proxy) || pqApplicationCore::instance()->isLoadingState())
+  {
+    return;
+  }
+  vtkSMViewProxy* view = repr->getView() ? repr->getView()->getViewProxy() : nullptr;
+  if (pqHybridOctreeBehavior::ColorByFirstArray(proxy) && view)
+  {
+    pqDisplayColorWidget::updateScalarBarVisibility(view, proxy);
+  }
+  pqHybridOctreeBehavior::DefaultIsovalue(proxy);
+  proxy->UpdateVTKObjects();
+  repr->renderViewEventually();
+}
+
+bool pqHybridOctreeBehavior::ColorByFirstArray(vtkSMProxy* repr)
+{
+  auto pvrepr = vtkSMPVRepresentationProxy::SafeDownCast(repr);
+  vtkSMProperty* colorArray = repr ? repr->GetProperty("ColorArrayName") : nullptr;
+  if (!pvrepr || !colorArray || pvrepr->GetUsingScalarColoring())
+  {
+    return false;
+  }
+  auto arrays = colorArray->FindDomain<vtkSMArrayListDomain>();
+  if (!arrays || arrays->GetNumberOfStrings() == 0)
+  {
+    return false; // nothing to colour by: the mapper says so when drawing
+  }
+  // A point array if there is one (the mapper draws point data), as
+  // vtkSMPVRepresentationProxy::SetRepresentationType does for "Volume".
+  unsigned int index = 0;
+  for (unsigned int i = 0; i < arrays->GetNumberOfStrings(); ++i)
+  {
+    if (arrays->GetFieldAssociation(i) == vtkDataObject::POINT)
+    {
+      index = i;
+      break;
+    }
+  }
+  if (!pvrepr->SetScalarColoring(arrays->GetString(index), arrays->GetFieldAssociation(index)))
+  {
+    return false;
+  }
+  pvrepr->RescaleTransferFunctionToDataRange(true);
+  return true;
+}
+
+void pqHybridOctreeBehavior::DefaultIsovalue(vtkSMProxy* repr)
+{
+  vtkSMProperty* isovalue = repr->GetProperty("OctreeIsovalue");
+  if (isovalue && isovalue->IsValueDefault())
+  {
+    isovalue->ResetToDomainDefaults();
+  }
+}
+
+void pqHybridOctreeBehavior::onEndRender()
+{
+  auto view = qobject_cast<pqView*>(this->sender());
+  if (!view)
+  {
+    return;
+  }
+  for (pqRepresentation* repr : view->getRepresentations())
+  {
+    vtkSMProxy* proxy = repr->getProxy();
+    if (repr->isVisible() && IsHybridOctree(proxy))
+    {
+      // The information-only properties: the statistics among them.
+      proxy->UpdatePropertyInformation();
+    }
+  }
+}
