@@ -14,11 +14,16 @@ file the script writes, and checks:
   budget slider up to the full-resolution bytes; statistics in advanced mode);
 - the first picture of "Hybrid Octree Volume" against the first picture of
   ParaView's "Volume" in the same view: RMSE <= 0.03 (RGB in [0, 1]);
-- the region-of-interest sphere is drawn only when the region is on: the
-  pictures with it on and off differ by RMSE >= 0.002 (the budget holds the
-  whole image, so the region changes no brick: only the sphere's lines).
+- the region-of-interest sphere is drawn only when the region is on: with
+  it on, at least 0.1 % of the pixels change by more than 0.02 (the budget
+  holds the whole image, so the region changes no brick: only the sphere's
+  lines change pixels; with it off the picture matched Volume's).
 
-Without --data it uses the CLI's 128^3 8-bit Shepp-Logan phantom.
+Without --data it uses the CLI's 128^3 8-bit vessels (a synthetic
+angiogram). Measured: vessels RMSE 0.0014, sphere 0.85 % of pixels; a real
+8-bit MRI (MNI152 T1, 197x233x189) RMSE 0.0054, sphere 0.44 %; the opaque
+Shepp-Logan phantom is not used: seen down an axis both renderers show
+slice moire (RMSE 0.038), and its sphere lies hidden inside the skull.
 """
 import argparse
 import json
@@ -31,7 +36,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import pvtest  # noqa: E402
 
 RMSE_VS_VOLUME = 0.03
-RMSE_SPHERE_DRAWN = 0.002
+SPHERE_PIXEL_CHANGE = 0.02
+SPHERE_PIXELS = 0.001
 
 
 def full_resolution_mb(path, leaf=16):
@@ -61,8 +67,8 @@ def main():
     os.makedirs(args.workdir, exist_ok=True)
     data = args.data
     if not data:
-        data = os.path.join(args.workdir, "phantom128-u8.vti")
-        subprocess.run([args.cli, "generate", "--dataset", "shepp-logan", "--size", "128", "--type", "u8",
+        data = os.path.join(args.workdir, "vessels128-u8.vti")
+        subprocess.run([args.cli, "generate", "--dataset", "vessels", "--size", "128", "--type", "u8",
                         "--output", data], check=True, capture_output=True)
     result_path = os.path.join(args.workdir, "result.json")
     if os.path.exists(result_path):
@@ -100,13 +106,13 @@ def main():
         volume = pvtest.read_png_rgb(result["volume_png"])
         roi = pvtest.read_png_rgb(result["roi_png"])
         vs_volume = pvtest.rmse(hybrid, volume)
-        sphere = pvtest.rmse(hybrid, roi)
-        pvtest.report("first picture: RMSE %.4f against Volume's (bound %.2f); sphere on/off RMSE %.4f"
-                      % (vs_volume, RMSE_VS_VOLUME, sphere))
+        sphere = float((abs(hybrid - roi).max(axis=1) > SPHERE_PIXEL_CHANGE).mean())
+        pvtest.report("first picture: RMSE %.4f against Volume's (bound %.2f); sphere on: %.2f %% of pixels"
+                      % (vs_volume, RMSE_VS_VOLUME, 100 * sphere))
         test.check(vs_volume <= RMSE_VS_VOLUME, "first picture within RMSE %.2f of Volume's: %.4f"
                    % (RMSE_VS_VOLUME, vs_volume))
-        test.check(sphere >= RMSE_SPHERE_DRAWN, "the region-of-interest sphere is drawn when on (RMSE %.4f)"
-                   % sphere)
+        test.check(sphere >= SPHERE_PIXELS, "the region-of-interest sphere is drawn when on (%.2f %% of pixels)"
+                   % (100 * sphere))
         lit = float((hybrid.sum(axis=1) > 0.5).mean())
         test.check(lit > 0.05, "the first picture shows the coloured volume (%.1f %% of pixels lit)" % (100 * lit))
     test.finish()
