@@ -4,6 +4,7 @@
 #include "pqDisplayColorWidget.h"
 #include "pqRepresentation.h"
 #include "pqServerManagerModel.h"
+#include "pqUndoStack.h"
 #include "pqView.h"
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
@@ -13,6 +14,8 @@
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMViewProxy.h"
+
+#include <QTimer>
 
 #include <cstring>
 
@@ -92,12 +95,22 @@ void pqHybridOctreeBehavior::onRepresentationRemoved(pqRepresentation* repr)
 
 void pqHybridOctreeBehavior::onTypeModified(vtkObject* property)
 {
-  pqRepresentation* repr = this->Watched.value(property);
+  // Run once the type change has returned (the property is modified inside
+  // SetRepresentationType): the colouring is then its own step in the undo
+  // stack and in a Python trace (ColorBy, RescaleTransferFunctionToDataRange),
+  // so a replayed trace colours as the GUI did.
+  QPointer<pqRepresentation> repr = this->Watched.value(property);
+  QTimer::singleShot(0, this, [repr]() { pqHybridOctreeBehavior::OnPicked(repr); });
+}
+
+void pqHybridOctreeBehavior::OnPicked(pqRepresentation* repr)
+{
   vtkSMProxy* proxy = repr ? repr->getProxy() : nullptr;
   if (!IsHybridOctree(proxy) || pqApplicationCore::instance()->isLoadingState())
   {
     return;
   }
+  BEGIN_UNDO_SET("Color Hybrid Octree Volume");
   vtkSMViewProxy* view = repr->getView() ? repr->getView()->getViewProxy() : nullptr;
   if (pqHybridOctreeBehavior::ColorByFirstArray(proxy) && view)
   {
@@ -105,6 +118,7 @@ void pqHybridOctreeBehavior::onTypeModified(vtkObject* property)
   }
   pqHybridOctreeBehavior::DefaultIsovalue(proxy);
   proxy->UpdateVTKObjects();
+  END_UNDO_SET();
   repr->renderViewEventually();
 }
 

@@ -56,6 +56,10 @@ public:
   /// "Volume"; returns whether it coloured.
   static bool ColorByFirstArray(vtkSMProxy* repr);
 
+  /// What picking "Hybrid Octree Volume" does: ColorByFirstArray, the
+  /// scalar bar, DefaultIsovalue (nothing while a state loads).
+  static void OnPicked(pqRepresentation* repr);
+
   /// Sets the isovalue to its domain's default (mid-range of the coloured
   /// array) when it still holds its XML default.
   static void DefaultIsovalue(vtkSMProxy* repr);

@@ -8,8 +8,8 @@ Steps, each after the GUI's event loop has run (Qt timers):
 2. the image is opened with ParaView's reader and shown (Outline);
 3. "Hybrid Octree Volume" is picked in the representation combo box of the
    Properties panel, as a user picks it: the view must show the image
-   coloured by its first point array, the isovalue at mid-range; the
-   picture is saved;
+   coloured by its first point array, the isovalue at mid-range, the
+   Python trace must hold the pick and the colouring; the picture is saved;
 4. the panel is read: volume controls shown, surface styling hidden, the
    region-of-interest sphere hidden while the region is off, the budget a
    slider up to the full-resolution bytes, the statistics in advanced mode;
@@ -26,6 +26,7 @@ import traceback
 
 from paraview.simple import (GetActiveSource, GetActiveView, GetDisplayProperties, Render,
                              SaveScreenshot, SetActiveSource, Show, XMLImageDataReader)
+from paraview import smtrace
 from PyQt5 import QtCore, QtWidgets
 
 RESULT = os.environ["HO_GUI_RESULT"]
@@ -151,10 +152,15 @@ def step_open():
 
 
 def step_pick_hybrid():
+    smtrace.start_trace()
     pick("Hybrid Octree Volume")
 
 
 def step_read_hybrid():
+    trace = smtrace.stop_trace()
+    result["trace"] = trace
+    check("the Python trace holds the pick and the colouring",
+          "Hybrid Octree Volume" in trace and "ColorBy(" in trace, trace[-600:])
     display = GetDisplayProperties(GetActiveSource(), GetActiveView())
     Render(GetActiveView())
     color = list(display.ColorArrayName)
