@@ -582,7 +582,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->LastRenderOK = true;
   }
   this->LastPlan = list.Passes;
-  this->LastEstimatedError = in.Summary.MaxError;
+  this->LastEstimatedError = in.Summary.EstimatedError;
   this->LastPointBytes = static_cast<vtkTypeInt64>(in.Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
   this->LastUploadedBytes = static_cast<vtkTypeInt64>(in.Bricks.GetUploadedBytes());
