@@ -10,7 +10,7 @@
 //!   partial slices weigh a little differently; measured up to 2.2e-4 on a
 //!   100^3 phantom, 0 here.)
 //! - When the estimate is above 0 the picture is measurably different:
-//!   RMSE above [`SAME`] (measured at least 3.5e-3 here).
+//!   RMSE above [`SAME`] (measured at least 3.1e-3 here).
 //! - A larger budget gives an estimate and an RMSE that are not larger,
 //!   within [`ESTIMATE_RISE`] and [`RMSE_RISE`]: the selection spends bytes
 //!   where they remove the most squared error, which is not always where the
