@@ -463,7 +463,7 @@ bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
     summary.Bricks = s.bricks;
     summary.TextureBytes = s.texture_bytes;
     summary.BudgetBytes = s.budget_bytes;
-    summary.MaxError = s.max_error;
+    summary.EstimatedError = s.estimated_error;
     summary.Skipped = s.skipped;
     summary.Warning = std::string(s.warning);
     summary.Points = s.points;

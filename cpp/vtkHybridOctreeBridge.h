@@ -146,7 +146,7 @@ struct SelectionSummary
   std::uint64_t Bricks = 0;
   std::uint64_t TextureBytes = 0;
   std::uint64_t BudgetBytes = 0;
-  double MaxError = 0.0; ///< largest weighted error, fraction of the data range
+  double EstimatedError = 0.0; ///< largest e_p of the visible bricks, fraction of the data range
   std::uint64_t Skipped = 0; ///< nodes left out as fully transparent
   std::string Warning;       ///< empty when none
   std::uint64_t Points = 0;     ///< points of the hybrid representation bought (0 without)

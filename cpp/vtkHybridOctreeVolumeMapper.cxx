@@ -7,6 +7,7 @@
 #include "vtkHybridOctreeFloatTarget.h"
 #include "vtkHybridOctreeImageInput.h"
 #include "vtkHybridOctreeSurfaceDrawer.h"
+#include "vtkHybridOctreeUnsupportedEffects.h"
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -122,6 +123,9 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   vtkHybridOctreeSurfaceDrawer SurfaceDrawer;
   const Surface* UploadedSurface = nullptr;
   vtkSmartPointer<vtkTextureObject> TableTexture;
+
+  // Settings the mapper does not draw, each warned about once while on.
+  vtkHybridOctreeUnsupportedEffects Unsupported;
 };
 
 vtkHybridOctreeVolumeMapper::vtkHybridOctreeVolumeMapper()
@@ -286,7 +290,6 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
 {
   vtkInternals& in = *this->Internals;
   vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
-  vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
   double range[2];
   in.Scalars->GetRange(range, in.Grid.Component < 0 ? 0 : in.Grid.Component);
   if (!(range[1] > range[0]))
@@ -302,7 +305,21 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   const int n = this->TableSize;
   std::vector<double> rgb(3 * static_cast<std::size_t>(n));
   std::vector<double> alpha(static_cast<std::size_t>(n));
-  color->GetTable(range[0], range[1], n, rgb.data());
+  if (property->GetColorChannels(0) == 1)
+  {
+    // A grey colour function (SetColor(vtkPiecewiseFunction*)): asking the
+    // property for its RGB function would replace it with VTK's default ramp.
+    std::vector<double> grey(static_cast<std::size_t>(n));
+    property->GetGrayTransferFunction(0)->GetTable(range[0], range[1], n, grey.data());
+    for (int k = 0; k < n; ++k)
+    {
+      std::fill_n(rgb.begin() + 3 * k, 3, grey[static_cast<std::size_t>(k)]);
+    }
+  }
+  else
+  {
+    property->GetRGBTransferFunction(0)->GetTable(range[0], range[1], n, rgb.data());
+  }
   opacity->GetTable(range[0], range[1], n, alpha.data());
   std::vector<float> table(4 * static_cast<std::size_t>(n));
   in.Transfer.ColorPoints.clear();
@@ -483,18 +500,11 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("the volume has no vtkVolumeProperty: give it one with a scalar opacity");
     return false;
   }
-  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND && !this->WarnedBlendMode)
+  // The picture stays the Composite, unshaded one: said once per setting, not silently.
+  for (const std::string& message :
+    this->Internals->Unsupported.Update(this, property, scalars->GetNumberOfComponents()))
   {
-    // Warned once: the picture is still the composite one, not silently called MIP.
-    vtkWarningMacro("only composite blending is implemented; blend mode "
-      << this->BlendMode << " is drawn as composite");
-    this->WarnedBlendMode = true;
-  }
-  if (property->GetShade(0) && !this->WarnedShade)
-  {
-    vtkWarningMacro("volume shading (vtkVolumeProperty::ShadeOn) is not implemented; the "
-                    "volume is drawn unshaded");
-    this->WarnedShade = true;
+    vtkWarningMacro(<< message);
   }
   if (!(this->FrameBudgetMB(ren) > 0.0))
   {
@@ -582,7 +592,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->LastRenderOK = true;
   }
   this->LastPlan = list.Passes;
-  this->LastEstimatedError = in.Summary.MaxError;
+  this->LastEstimatedError = in.Summary.EstimatedError;
   this->LastPointBytes = static_cast<vtkTypeInt64>(in.Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
   this->LastUploadedBytes = static_cast<vtkTypeInt64>(in.Bricks.GetUploadedBytes());

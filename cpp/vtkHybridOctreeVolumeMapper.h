@@ -32,6 +32,12 @@
  *
  * With UsePoints, the points of the hybrid representation share the budget
  * and are drawn in the slabs between the slices (see SetUsePoints()).
+ *
+ * Drawn: Composite blending of one scalar component through the colour (RGB
+ * or grey) and scalar opacity functions, unshaded. Settings asking for more
+ * (another blend mode, Shade, a gradient opacity, a 2D transfer function,
+ * cropping, clipping planes, dependent components) are drawn as off and
+ * named in one warning each, given again when the setting changes.
  */
 #ifndef vtkHybridOctreeVolumeMapper_h
 #define vtkHybridOctreeVolumeMapper_h
@@ -177,9 +183,11 @@ public:
   /// textures and of those uploaded for this frame, slices drawn, surface
   /// triangles drawn, the passes that ran (comma-joined, e.g.
   /// "opaque-surface,volume"), wall-clock milliseconds of Render(), the
-  /// selection's estimated error (largest weighted nodal error, a fraction
-  /// of the data range), whether the frame was interactive, and whether it
-  /// drew (false after an error).
+  /// selection's estimated error (the largest nodal error of the bricks the
+  /// scalar opacity does not hide, a fraction of the data range: 0 exactly
+  /// when every visible brick draws the full-resolution field; the number
+  /// `hybrid-octree render` prints), whether the frame was interactive, and
+  /// whether it drew (false after an error).
   vtkGetMacro(LastBricks, int);
   vtkGetMacro(LastTextureBytes, vtkTypeInt64);
   vtkGetMacro(LastUploadedBytes, vtkTypeInt64);
@@ -258,9 +266,6 @@ protected:
   vtkTypeInt64 LastNaNSamples = 0;
   bool LastInteractive = false;
   bool LastRenderOK = false;
-  /// Unsupported settings are warned about once each.
-  bool WarnedBlendMode = false;
-  bool WarnedShade = false;
 
 private:
   vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;

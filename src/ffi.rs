@@ -256,8 +256,10 @@ mod bridge {
         /// Sum of the bricks' bytes (f32 texels).
         texture_bytes: usize,
         budget_bytes: usize,
-        /// Largest weighted error Imp(n) e_p(n) of the bricks.
-        max_error: f64,
+        /// The estimated error (`select::estimated_error`): the largest nodal
+        /// error e_p of the bricks visible under the opacity points, a fraction
+        /// of the data range; 0 when they all draw the full-resolution field.
+        estimated_error: f64,
         /// Nodes left out as fully transparent.
         skipped: usize,
         /// "" when none (else: the budget is below the coarsest representation,

@@ -312,7 +312,7 @@ impl SelectionHandle {
                 bricks: s.bricks.len(),
                 texture_bytes: s.texture_bytes,
                 budget_bytes: s.budget_bytes,
-                max_error: s.max_error,
+                estimated_error: s.estimated_error,
                 skipped: s.skipped,
                 warning: s.warning.clone().unwrap_or_default(),
                 points: s.bricks.iter().map(|b| b.point_count).sum(),
@@ -568,7 +568,7 @@ mod tests {
         assert_eq!(sum.bricks, s.selection.bricks.len());
         assert!(sum.warning.contains("above the tolerance 0"), "{sum:?}");
         let loose = h.select_bricks(&SelectDesc { tolerance: 0.1, ..options(12_000) }).unwrap().summary().unwrap();
-        assert!(loose.warning.is_empty() && loose.max_error <= 0.1, "{loose:?}");
+        assert!(loose.warning.is_empty() && loose.estimated_error <= 0.1, "{loose:?}");
         // The same selection as select() called directly.
         let direct = select(&h.octree, &SelectOptions::new(12_000, 0.0), |_, _| true).unwrap();
         assert_eq!(s.selection, direct);

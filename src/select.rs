@@ -17,12 +17,14 @@
 //! (`c`, `r`: the region's centre and radius in index space; `dist` from the
 //! centre to the nearest point of the node's box). Greedy refinement from the
 //! root at `p = 0`: while the budget allows, take the step that removes the
-//! most error mass per byte, where the error mass is `Imp(n) Q_p(n)`, the
-//! node's squared error at level `p` summed over its samples (stored by the
-//! build, see [`crate::octree`]): the max `e_p` says how wrong the worst
-//! sample is, `Q_p` how much of the picture is wrong, and a node crossed by
-//! one sharp edge keeps its max near the top at every level but the finest
-//! while its sum drops with every level. Each node offers the better of:
+//! most error mass per byte, where the error mass is
+//! `Imp(n) max(Q_p(n), e_p(n)^2)`: `Q_p` is the node's squared error at
+//! level `p` summed over its samples (stored by the build, see
+//! [`crate::octree`]), `e_p(n)^2` that of its worst sample (see
+//! [`error_mass`]). The max `e_p` says how wrong the worst sample is, `Q_p`
+//! how much of the picture is wrong, and a node crossed by one sharp edge
+//! keeps its max near the top at every level but the finest while its sum
+//! drops with every level. Each node offers the better of:
 //! raise its `p` to the level that removes the most
 //! mass per byte (up to `max_brick_log2`, never past full resolution), or split it into its children at the same
 //! stride (`p - 1`), which costs only their shared borders and lets each child
@@ -38,6 +40,10 @@
 //! ([`crate::points::mass`]) for their bytes; a brick that has its points can
 //! still be raised or split (its points are then dropped). The budget covers
 //! texture and point bytes together.
+
+mod estimate;
+
+pub use estimate::estimated_error;
 
 use crate::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
@@ -130,8 +136,14 @@ pub struct Selection {
     pub point_bytes: usize,
     /// The budget asked for.
     pub budget_bytes: usize,
-    /// Largest weighted error Imp(n) e_p(n) of the bricks.
+    /// Largest weighted error Imp(n) e_p(n) of the bricks: what the
+    /// tolerance is compared with.
     pub max_error: f64,
+    /// The estimated error of the picture ([`estimated_error`]): the largest
+    /// e_p(n) of the bricks visible under the transfer function, 0 when they
+    /// all draw the full-resolution field. What the CLI, the bridge and the
+    /// volume mapper report.
+    pub estimated_error: f64,
     /// Nodes left out as fully transparent.
     pub skipped: usize,
     /// Set when the budget is below the coarsest representation (then the
@@ -236,6 +248,27 @@ impl Ord for Step {
     }
 }
 
+/// The error mass of node `n` drawn at level `p`, `removed` of its squared
+/// error corrected by points:
+///
+/// ```text
+/// mass(n, p) = max(Q_p(n) - removed, E_p(n)^2)
+/// ```
+///
+/// `Q_p` sums the node's half-open box (each sample counted once across
+/// nodes), but the node draws its closed box: the cells along its far faces
+/// interpolate towards face samples that `Q_p` leaves to the neighbours. A
+/// node whose only error lies on a far face has `Q_p = 0` and still draws
+/// that error; `E_p` (the closed box's largest error) keeps its mass above
+/// 0, so that a budget with room left refines it to full resolution, and
+/// keeps a coarser level from passing for one of no more error
+/// ([`cheapest`]): a node at full resolution has mass 0, and only an exact
+/// coarse form (`E_q = 0`) matches it.
+fn error_mass(n: &NodeRef<'_>, p: usize, removed: f64) -> f64 {
+    let e = n.error(p) as f64;
+    (n.squared_error(p) as f64 - removed).max(e * e)
+}
+
 /// What a step buys: error mass removed per byte added, and a step that
 /// frees bytes without adding error before any step that costs bytes.
 /// A step that changes neither (the same bricks again) buys nothing: 0.
@@ -251,7 +284,7 @@ fn gain(removed: f64, added_bytes: f64) -> f64 {
 
 /// The cheapest form of node `n` drawn at the stride of level `p` without
 /// adding error: either `n` itself at the coarsest level `q <= p` whose
-/// squared error is no larger (`Q_q(n) <= Q_p(n)`), or its visible children,
+/// error mass ([`error_mass`]) is no larger, or its visible children,
 /// each in its own cheapest form at `p - 1` (the same stride; transparent
 /// children cost nothing), whichever needs fewer bytes. A constant or smooth
 /// part of a node drops to a few texels and a transparent one to none, so
@@ -270,7 +303,7 @@ fn cheapest(
     if let Some(known) = memo.borrow().get(&(n.id, p)) {
         return known.clone();
     }
-    let q = (0..p).find(|&q| n.squared_error(q) <= n.squared_error(p)).unwrap_or(p);
+    let q = (0..p).find(|&q| error_mass(n, q, 0.0) <= error_mass(n, p, 0.0)).unwrap_or(p);
     let own = brick_of(n.id, q);
     let mut form = (vec![own], 0);
     if !(n.is_terminal() || p == 0) {
@@ -381,7 +414,7 @@ fn select_impl(
         Some(pm) if b.point_count > 0 => pm.in_box(b.lo, b.hi).2,
         _ => 0.0,
     };
-    let mass = |b: &Brick| b.importance * (octree.node(b.node).squared_error(b.p) as f64 - removed(b)).max(0.0);
+    let mass = |b: &Brick| b.importance * error_mass(&octree.node(b.node), b.p, removed(b));
     // Bytes a brick holds: its texture and its points.
     let cost = |b: &Brick| b.bytes + b.point_bytes;
     let memo = Memo::default();
@@ -442,7 +475,7 @@ fn select_impl(
             let bytes = count * pm.point_bytes;
             (count > 0 && removable > 0.0).then(|| {
                 let with = Brick { point_count: count, point_bytes: bytes, ..*b };
-                (gain(b.importance * removable, bytes as f64), vec![with], 0)
+                (gain(mass(b) - mass(&with), bytes as f64), vec![with], 0)
             })
         });
         let better = |x: Option<(f64, Vec<Brick>, usize)>, y: Option<(f64, Vec<Brick>, usize)>| match (x, y) {
@@ -498,6 +531,7 @@ fn select_impl(
             point_bytes: 0,
             budget_bytes: options.budget_bytes,
             max_error: 0.0,
+            estimated_error: 0.0,
             skipped: 1,
             warning: None,
         });
@@ -540,12 +574,14 @@ fn select_impl(
     }
     let texture_bytes = bricks.iter().map(|b| b.bytes).sum();
     let point_bytes = bricks.iter().map(|b| b.point_bytes).sum();
+    let estimated_error = estimated_error(octree, &bricks, visible);
     Ok(Selection {
         bricks,
         texture_bytes,
         point_bytes,
         budget_bytes: options.budget_bytes,
         max_error,
+        estimated_error,
         skipped,
         warning,
     })
@@ -577,7 +613,8 @@ pub fn take_all_points(selection: &mut Selection, points: &PointMass) {
 /// samples, the last one clamped to the grid's last sample (as
 /// [`Brick::texel_positions`]). Its reconstruction equals every node's T_p at
 /// that stride, so the picture is that of all terminal nodes at one stride,
-/// without their shared borders' bytes.
+/// without their shared borders' bytes. No transfer function is given: its
+/// [`estimated_error`] takes the volume as visible.
 pub fn uniform(octree: &VolumeOctree, stride: usize, bytes_per_texel: usize) -> Result<Selection> {
     let layout = octree.layout();
     let l = layout.root_log2 as usize;
@@ -596,6 +633,7 @@ pub fn uniform(octree: &VolumeOctree, stride: usize, bytes_per_texel: usize) -> 
         point_bytes: 0,
         budget_bytes: brick.bytes,
         max_error,
+        estimated_error: estimated_error(octree, &[brick], |_, _| true),
         skipped: 0,
         warning: None,
     })
@@ -687,6 +725,25 @@ mod tests {
         // Only nodes reaching above 0.8 are visible: the rest are skipped.
         let some = select(&o, &SelectOptions::new(100_000_000, 0.0), |_, max| max > 0.8).unwrap();
         assert!(some.skipped > 0 && some.texture_bytes < tight.texture_bytes);
+    }
+
+    /// A node whose only error lies on a far face (a face sample its
+    /// half-open box leaves to the neighbour) has `Q_0 = 0` but draws that
+    /// error in the cells beside the face: a budget with room refines it,
+    /// and the estimate reaches 0.
+    #[test]
+    fn an_error_on_a_far_face_is_refined_when_the_budget_has_room() {
+        let n = 33;
+        let mut data = vec![0.0f32; n * n * n];
+        data[16 + n * (8 + n * 8)] = 1.0; // on the face x = 16 between the leaves [0, 16] and [16, 32]
+        let grid = crate::grid::Grid::scalar(crate::grid::Samples::F32(&data), [n; 3]).unwrap();
+        let o = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 16 }).unwrap();
+        let left = o.layout().id(1, [0, 0, 0]);
+        let node = o.node(left);
+        assert_eq!((node.squared_error(0), node.error(0)), (0.0, 1.0), "Q_0 = 0 but E_0 = 1");
+        let s = select(&o, &SelectOptions::new(10_000_000, 0.0), |_, _| true).unwrap();
+        assert_eq!((s.max_error, s.estimated_error), (0.0, 0.0), "{:?}", s.bricks);
+        assert!(s.bricks.iter().all(|b| b.error == 0.0));
     }
 
     #[test]

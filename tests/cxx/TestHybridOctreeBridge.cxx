@@ -260,7 +260,7 @@ int DrawLists()
   B::SelectionSummary summary;
   check.Check(selection->GetSummary(summary, error), "summary: " + error);
   std::cout << "bricks " << summary.Bricks << ", " << summary.TextureBytes << " of "
-            << summary.BudgetBytes << " bytes, max error " << summary.MaxError << ", warning '"
+            << summary.BudgetBytes << " bytes, estimated error " << summary.EstimatedError << ", warning '"
             << summary.Warning << "'\n";
   check.Check(summary.TextureBytes <= 20000 && summary.BudgetBytes == 20000, "bytes within the budget");
   check.Check(summary.Bricks > 1, "more than one brick");

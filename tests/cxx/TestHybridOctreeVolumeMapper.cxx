@@ -40,7 +40,8 @@
  *                measured 0.016) and GetLastNaNSamples() counts them.
  *   gpu_reference: at a budget holding the full volume, against VTK's
  *                vtkGPUVolumeRayCastMapper (rays every spacing, not slices):
- *                RMSE < 0.03.
+ *                RMSE < 0.03; every visible brick is drawn at full
+ *                resolution, so GetLastEstimatedError() is 0.
  *   actor:       an opaque vtkActor (a sphere) intersecting the volume: the
  *                same scene drawn by vtkGPUVolumeRayCastMapper, RMSE < 0.03,
  *                and the sphere hides the volume behind it.
@@ -320,10 +321,14 @@ int GpuReference(bool withActor)
   const std::vector<double> b = Grab(theirs.Window);
   const double rmse = Rmse(a, b);
   std::cout << "bricks " << mapper->GetLastBricks() << ", texture bytes "
-            << mapper->GetLastTextureBytes() << "; RGB RMSE against vtkGPUVolumeRayCastMapper "
+            << mapper->GetLastTextureBytes() << ", estimated error "
+            << mapper->GetLastEstimatedError() << "; RGB RMSE against vtkGPUVolumeRayCastMapper "
             << rmse << " (threshold 0.03), signal " << Signal(b) << "\n";
   check.Check(Signal(b) > 0.02, "the reference shows the volume");
   check.Check(rmse < 0.03, "within 0.03 of vtkGPUVolumeRayCastMapper");
+  check.Check(mapper->GetLastEstimatedError() == 0.0,
+    "the budget holds everything: estimated error 0, not " +
+      std::to_string(mapper->GetLastEstimatedError()));
   if (withActor)
   {
     // The pixel at the sphere's projected centre shows the lit sphere (its

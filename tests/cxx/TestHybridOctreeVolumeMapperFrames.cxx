@@ -10,6 +10,16 @@
  *   interactive: a window asking for 30 frames a second gets the interactive
  *                budget; a still frame after it refines to the full budget;
  *                PrintSelf shows every setting and statistic.
+ *   warnings:    each setting the mapper does not draw (a blend mode other
+ *                than Composite, Shade, a gradient opacity, a 2D transfer
+ *                function, cropping, a clipping plane, dependent components)
+ *                gives one warning naming it, once while it stays on; the
+ *                picture is the one without it; turned off and on again, or
+ *                changed (Maximum Intensity to Additive), it is warned about
+ *                again.
+ *   grey:        a grey colour function (SetColor(vtkPiecewiseFunction*))
+ *                draws the picture of the equal RGB function and stays grey
+ *                (VTK's GetRGBTransferFunction would replace it).
  *   no_input, not_image, budget_zero, point_factor, multi_component,
  *   empty_image, infinity, all_nan:
  *                a clear vtkErrorMacro, nothing drawn, no crash, no OpenGL
@@ -21,8 +31,11 @@
 
 #include "vtkAutoInit.h"
 #include "vtkDoubleArray.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPolyData.h"
 
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -118,6 +131,145 @@ int Interactive()
   return check.Result();
 }
 
+/// How many of the warnings `errors` recorded since the last call contain
+/// `fragment`, with all of them in `all` (one a line); clears them.
+int TakeWarnings(ErrorRecorder* errors, const std::string& fragment, std::string& all, int* total = nullptr)
+{
+  int count = 0;
+  all.clear();
+  for (const std::string& w : errors->Warnings)
+  {
+    count += w.find(fragment) != std::string::npos ? 1 : 0;
+    all += w + "\n";
+  }
+  if (total)
+  {
+    *total = static_cast<int>(errors->Warnings.size());
+  }
+  errors->Clear();
+  return count;
+}
+
+int Warnings()
+{
+  Checker check;
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  Scene scene(mapper);
+  mapper->SetLeafSize(8);
+  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  errors->Watch(mapper);
+  scene.Window->Render();
+  const std::vector<double> plain = Grab(scene.Window);
+  std::string all;
+  check.Check(TakeWarnings(errors, "", all) == 0, "no warning for the supported settings:\n" + all);
+
+  vtkNew<vtkPiecewiseFunction> gradient;
+  gradient->AddPoint(0.0, 0.0);
+  gradient->AddPoint(10.0, 1.0);
+  vtkNew<vtkPlaneCollection> planes;
+  vtkNew<vtkPlane> plane;
+  planes->AddItem(plane);
+  // Each setting: turn it on, the fragment its warning must hold, turn it off.
+  struct Setting
+  {
+    const char* Fragment;
+    std::function<void(bool)> Turn;
+  };
+  const std::vector<Setting> settings = {
+    { "the Maximum Intensity blend mode",
+      [&](bool on) { mapper->SetBlendMode(on ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND : 0); } },
+    { "volume shading (vtkVolumeProperty::ShadeOn", [&](bool on) { scene.Property->SetShade(on); } },
+    { "the gradient opacity", [&](bool on) {
+       scene.Property->SetGradientOpacity(gradient);
+       scene.Property->SetDisableGradientOpacity(!on);
+     } },
+    { "the 2D transfer function", [&](bool on) {
+       scene.Property->SetTransferFunctionMode(on ? vtkVolumeProperty::TF_2D : vtkVolumeProperty::TF_1D);
+     } },
+    { "cropping (vtkVolumeMapper::CroppingOn)", [&](bool on) { mapper->SetCropping(on); } },
+    { "1 clipping plane(s)", [&](bool on) { mapper->SetClippingPlanes(on ? planes.Get() : nullptr); } },
+  };
+  for (const Setting& s : settings)
+  {
+    s.Turn(true);
+    scene.Window->Render();
+    const std::vector<double> with = Grab(scene.Window);
+    int total = 0;
+    const int named = TakeWarnings(errors, s.Fragment, all, &total);
+    check.Check(named == 1 && total == 1,
+      std::string("one warning naming ") + s.Fragment + ", got:\n" + all);
+    check.Check(mapper->GetLastRenderOK() && Rmse(with, plain) < 1e-6,
+      std::string("drawn as without it: ") + s.Fragment);
+    scene.Window->Render();
+    check.Check(TakeWarnings(errors, "", all) == 0, std::string("told once: ") + s.Fragment + "\n" + all);
+    s.Turn(false);
+    scene.Window->Render();
+    check.Check(TakeWarnings(errors, "", all) == 0, std::string("off: no warning: ") + s.Fragment);
+    s.Turn(true);
+    scene.Window->Render();
+    check.Check(TakeWarnings(errors, s.Fragment, all) == 1,
+      std::string("on again: told again: ") + s.Fragment + "\n" + all);
+    s.Turn(false);
+    scene.Window->Render();
+    errors->Clear();
+  }
+  // Another value of the same setting is another warning.
+  mapper->SetBlendModeToMaximumIntensity();
+  scene.Window->Render();
+  mapper->SetBlendModeToAdditive();
+  scene.Window->Render();
+  check.Check(TakeWarnings(errors, "the Additive blend mode", all) == 1, "Additive after Maximum Intensity:\n" + all);
+  mapper->SetBlendModeToComposite();
+
+  // Dependent components: a two-component image, component 0 drawn.
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(9, 9, 9);
+  vtkNew<vtkDoubleArray> values;
+  values->SetNumberOfComponents(2);
+  values->SetNumberOfTuples(9 * 9 * 9);
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    values->SetTuple2(i, 0.01 * i, 1.0);
+  }
+  image->GetPointData()->SetScalars(values);
+  mapper->SetInputDataObject(image);
+  mapper->SetComponent(0);
+  scene.Window->Render();
+  check.Check(TakeWarnings(errors, "", all) == 0, "independent components: no warning\n" + all);
+  scene.Property->IndependentComponentsOff();
+  scene.Window->Render();
+  check.Check(TakeWarnings(errors, "dependent components", all) == 1, "dependent components named:\n" + all);
+  check.Check(mapper->GetLastRenderOK(), "dependent components: component 0 drawn");
+  return check.Result();
+}
+
+int Grey()
+{
+  Checker check;
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  Scene scene(mapper);
+  mapper->SetLeafSize(8);
+  const double lo = scene.Range[0], hi = scene.Range[1];
+  vtkNew<vtkColorTransferFunction> rgb;
+  rgb->AddRGBPoint(lo, 0.2, 0.2, 0.2);
+  rgb->AddRGBPoint(hi, 0.9, 0.9, 0.9);
+  scene.Property->SetColor(rgb);
+  scene.Window->Render();
+  const std::vector<double> fromRgb = Grab(scene.Window);
+  vtkNew<vtkPiecewiseFunction> grey;
+  grey->AddPoint(lo, 0.2);
+  grey->AddPoint(hi, 0.9);
+  scene.Property->SetColor(grey);
+  scene.Window->Render();
+  const std::vector<double> fromGrey = Grab(scene.Window);
+  const double rmse = Rmse(fromGrey, fromRgb);
+  std::cout << "grey against equal RGB: RMSE " << rmse << ", signal " << Signal(fromGrey) << "\n";
+  check.Check(mapper->GetLastRenderOK() && Signal(fromGrey) > 0.005, "the grey volume shows");
+  check.Check(rmse < 1e-6, "a grey function draws as the equal RGB function");
+  check.Check(scene.Property->GetColorChannels(0) == 1, "the property keeps its grey function");
+  return check.Result();
+}
+
 int BadInput(const std::string& scenario)
 {
   Checker check;
@@ -204,6 +356,14 @@ int TestHybridOctreeVolumeMapperFrames(int argc, char* argv[])
   if (scenario == "interactive")
   {
     return Interactive();
+  }
+  if (scenario == "warnings")
+  {
+    return Warnings();
+  }
+  if (scenario == "grey")
+  {
+    return Grey();
   }
   return BadInput(scenario);
 }

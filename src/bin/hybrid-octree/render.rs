@@ -48,7 +48,11 @@ struct RenderReport {
     budget_bytes: usize,
     texture_bytes: usize,
     bricks: usize,
-    max_error: f64,
+    /// The selection's estimated error (`select::estimated_error`): the
+    /// largest nodal error of the visible bricks, a fraction of the data
+    /// range; 0 when they all draw the full-resolution field. The volume
+    /// mapper's `GetLastEstimatedError()` is the same number.
+    estimated_error: f64,
     passes: Vec<String>,
     skipped_bricks: usize,
     warning: Option<String>,
@@ -96,7 +100,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             budget_bytes,
             texture_bytes: selection.texture_bytes,
             bricks: selection.bricks.len(),
-            max_error: selection.max_error,
+            estimated_error: selection.estimated_error,
             passes: f.list.plan.passes.clone(),
             skipped_bricks: f.list.plan.skipped_bricks,
             warning: selection.warning.clone(),
@@ -121,11 +125,11 @@ fn print_text(r: &RenderReport) {
     println!("wrote {} ({}x{})", r.output, r.width, r.height);
     println!("plan:            {} ({} transparent nodes skipped)", r.passes.join(" -> "), r.skipped_bricks);
     println!(
-        "bricks:          {} using {:.2} MB of a {:.2} MB budget, largest error {:.4}",
+        "bricks:          {} using {:.2} MB of a {:.2} MB budget, estimated error {:.4}",
         r.bricks,
         r.texture_bytes as f64 / 1e6,
         r.budget_bytes as f64 / 1e6,
-        r.max_error
+        r.estimated_error
     );
     println!(
         "times:           select {:.1} ms, SlabPolygons {:.1} ms, DrawList {:.1} ms, upload {:.1} ms, composite {:.1} ms",

@@ -106,7 +106,8 @@ struct Row {
     rmse: f64,
     psnr: f64,
     ssim: f64,
-    max_error: f64,
+    /// The selection's estimated error (`select::estimated_error`), as `render` and the mapper report it.
+    estimated_error: f64,
 }
 
 /// Megabytes (10^6 bytes) to a byte budget: positive and finite, or a clear error.
@@ -191,7 +192,7 @@ fn measure_with(
         rmse: metrics.rmse,
         psnr: metrics.psnr,
         ssim: metrics.ssim,
-        max_error: selection.max_error,
+        estimated_error: selection.estimated_error,
     })
 }
 
@@ -397,7 +398,7 @@ fn print_table(rows: &[Row]) {
         "RMSE",
         "PSNR",
         "SSIM",
-        "max err"
+        "est err"
     );
     for r in rows {
         println!(
@@ -422,7 +423,7 @@ fn print_table(rows: &[Row]) {
             r.rmse,
             r.psnr,
             r.ssim,
-            r.max_error
+            r.estimated_error
         );
     }
     // At equal bytes: each uniform row is followed by the octree row with its bytes as the budget.

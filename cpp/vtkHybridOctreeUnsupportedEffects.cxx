@@ -1,0 +1,129 @@
+#include "vtkHybridOctreeUnsupportedEffects.h"
+
+#include "vtkPiecewiseFunction.h"
+#include "vtkVolumeMapper.h"
+#include "vtkVolumeProperty.h"
+
+#include <string>
+
+namespace
+{
+/// Whether a gradient opacity function changes any opacity: VTK's default
+/// (and a disabled one) is 1 at every gradient magnitude.
+bool ModulatesOpacity(vtkVolumeProperty* property)
+{
+  if (property->GetDisableGradientOpacity(0))
+  {
+    return false;
+  }
+  vtkPiecewiseFunction* gradient = property->GetGradientOpacity(0);
+  double node[4];
+  for (int i = 0; gradient && i < gradient->GetSize(); ++i)
+  {
+    if (gradient->GetNodeValue(i, node) && node[1] != 1.0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+} // namespace
+
+std::string vtkHybridOctreeUnsupportedEffects::BlendModeName(int mode)
+{
+  switch (mode)
+  {
+    case vtkVolumeMapper::COMPOSITE_BLEND:
+      return "Composite";
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return "Maximum Intensity";
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return "Minimum Intensity";
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      return "Average Intensity";
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      return "Additive";
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      return "Isosurface";
+    case vtkVolumeMapper::SLICE_BLEND:
+      return "Slice";
+    default:
+      return "blend mode " + std::to_string(mode);
+  }
+}
+
+std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
+  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components)
+{
+  // The VTK mapper that draws the effect.
+  const std::string elsewhere =
+    "vtkGPUVolumeRayCastMapper (ParaView: the Volume representation), which draws it";
+  std::vector<std::string> on;
+  const int mode = mapper->GetBlendMode();
+  if (mode != vtkVolumeMapper::COMPOSITE_BLEND)
+  {
+    const std::string name = BlendModeName(mode);
+    on.push_back("the " + name + " blend mode (vtkVolumeMapper::SetBlendMode(" +
+      std::to_string(mode) + "); ParaView: Blend Mode) is not implemented: the volume is drawn " +
+      "with Composite blending; set the blend mode to Composite, or use " + elsewhere);
+  }
+  if (property->GetShade(0))
+  {
+    on.push_back("volume shading (vtkVolumeProperty::ShadeOn; ParaView: Shade) is not "
+                 "implemented: the volume is drawn unshaded; turn Shade off, or use " +
+      elsewhere);
+  }
+  if (ModulatesOpacity(property))
+  {
+    on.push_back("the gradient opacity (vtkVolumeProperty::SetGradientOpacity) is not "
+                 "implemented: the opacity is the scalar opacity alone; disable it "
+                 "(vtkVolumeProperty::DisableGradientOpacityOn), or use " +
+      elsewhere);
+  }
+  if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
+  {
+    on.push_back("the 2D transfer function (vtkVolumeProperty::SetTransferFunctionModeTo2D; "
+                 "ParaView: Use 2D Transfer Function) is not implemented: the 1D colour and "
+                 "scalar opacity functions are drawn; switch to the 1D mode, or use " +
+      elsewhere);
+  }
+  if (mapper->GetCropping())
+  {
+    on.push_back("cropping (vtkVolumeMapper::CroppingOn) is not implemented: the whole volume "
+                 "is drawn; turn cropping off and crop the image instead (vtkExtractVOI; "
+                 "ParaView: the Extract Subset filter)");
+  }
+  const int planes = mapper->GetNumberOfClippingPlanes();
+  if (planes > 0)
+  {
+    on.push_back(std::to_string(planes) +
+      " clipping plane(s) (vtkAbstractMapper::SetClippingPlanes) are not implemented: the whole "
+      "volume is drawn; remove them and clip the image instead (vtkExtractVOI; ParaView: the "
+      "Extract Subset filter)");
+  }
+  if (components > 1 && !property->GetIndependentComponents())
+  {
+    on.push_back("dependent components (vtkVolumeProperty::IndependentComponentsOff; ParaView: "
+                 "Map Scalars off) are not implemented: the component chosen with "
+                 "SetComponent() is drawn through the colour and scalar opacity functions; "
+                 "turn IndependentComponents on, or use " +
+      elsewhere);
+  }
+  return on;
+}
+
+std::vector<std::string> vtkHybridOctreeUnsupportedEffects::Update(
+  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components)
+{
+  const std::vector<std::string> now = TurnedOn(mapper, property, components);
+  std::vector<std::string> fresh;
+  for (const std::string& message : now)
+  {
+    if (this->On.count(message) == 0)
+    {
+      fresh.push_back(message);
+    }
+  }
+  this->On = std::set<std::string>(now.begin(), now.end());
+  return fresh;
+}
