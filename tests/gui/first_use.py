@@ -203,6 +203,9 @@ def step_read_advanced():
     display = GetDisplayProperties(GetActiveSource(), GetActiveView())
     bricks = display.GetPropertyValue("LastBricks")
     check("statistics read back after the frame", bricks and bricks > 0, bricks)
+    error = display.GetPropertyValue("LastEstimatedError")
+    check("Estimated Error 0 where the budget holds the whole image at full resolution",
+          result["budget_slider_max"] is not None and result["budget_slider_max"] < 64 and error == 0, error)
     set_advanced(False)
     display.UseRegionOfInterest = 1
     Render(GetActiveView())
