@@ -10,6 +10,9 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace
 {
 /// The target's premultiplied RGBA, as is (blended by the fixed function).
@@ -28,7 +31,7 @@ vtkHybridOctreeFloatTarget::vtkHybridOctreeFloatTarget() = default;
 vtkHybridOctreeFloatTarget::~vtkHybridOctreeFloatTarget() = default;
 
 bool vtkHybridOctreeFloatTarget::Begin(
-  vtkRenderer* ren, vtkOpenGLRenderWindow* window, std::string& error)
+  vtkRenderer* ren, vtkOpenGLRenderWindow* window, double imageSampleDistance, std::string& error)
 {
   int width = 0, height = 0, x = 0, y = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
@@ -37,6 +40,9 @@ bool vtkHybridOctreeFloatTarget::Begin(
     error = "the renderer's viewport is empty";
     return false;
   }
+  const double s = imageSampleDistance > 1.0 ? imageSampleDistance : 1.0;
+  const int targetWidth = std::max(1, static_cast<int>(std::ceil(width / s)));
+  const int targetHeight = std::max(1, static_cast<int>(std::ceil(height / s)));
   if (!this->Framebuffer || this->Color->GetContext() != window)
   {
     this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
@@ -49,6 +55,7 @@ bool vtkHybridOctreeFloatTarget::Begin(
     this->DepthFramebuffer->SetContext(window);
     this->Quad.reset();
     this->Size[0] = this->Size[1] = 0;
+    this->DepthSize[0] = this->DepthSize[1] = 0;
   }
   // A depth blit needs the same depth format on both sides: the window's.
   GLint bits = 0, type = 0;
@@ -60,24 +67,38 @@ bool vtkHybridOctreeFloatTarget::Begin(
     : bits <= 16                      ? vtkTextureObject::Fixed16
     : bits <= 24                      ? vtkTextureObject::Fixed24
                                       : vtkTextureObject::Fixed32;
-  if (this->Size[0] != width || this->Size[1] != height || this->DepthFormat != format)
+  if (this->Size[0] != targetWidth || this->Size[1] != targetHeight)
   {
-    this->Color->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Color->SetMagnificationFilter(vtkTextureObject::Nearest);
+    // Blended over the viewport texel for pixel at full resolution, filtered when coarser.
+    const int filter = s > 1.0 ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+    this->Color->SetMinificationFilter(filter);
+    this->Color->SetMagnificationFilter(filter);
     this->Color->SetWrapS(vtkTextureObject::ClampToEdge);
     this->Color->SetWrapT(vtkTextureObject::ClampToEdge);
-    this->Depth->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
-    if (!this->Color->Allocate2D(width, height, 4, VTK_FLOAT) ||
-      !this->Depth->AllocateDepth(width, height, format))
+    if (!this->Color->Allocate2D(targetWidth, targetHeight, 4, VTK_FLOAT))
     {
-      error = "OpenGL could not allocate a float colour and a depth texture of the viewport's size";
+      error = "OpenGL could not allocate a float colour texture of " +
+        std::to_string(targetWidth) + "x" + std::to_string(targetHeight);
       return false;
     }
-    this->Size[0] = width;
-    this->Size[1] = height;
+    this->Size[0] = targetWidth;
+    this->Size[1] = targetHeight;
+  }
+  if (this->DepthSize[0] != width || this->DepthSize[1] != height || this->DepthFormat != format)
+  {
+    this->Depth->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    if (!this->Depth->AllocateDepth(width, height, format))
+    {
+      error = "OpenGL could not allocate a depth texture of the viewport's size";
+      return false;
+    }
+    this->DepthSize[0] = width;
+    this->DepthSize[1] = height;
     this->DepthFormat = format;
   }
+  this->DepthScale[0] = static_cast<float>(width) / targetWidth;
+  this->DepthScale[1] = static_cast<float>(height) / targetHeight;
   // The depth of what is drawn so far, blitted from the bound (read)
   // framebuffer: a blit also resolves a multisampled one (a copy would not).
   vtkOpenGLState* state = window->GetState();
@@ -108,8 +129,8 @@ bool vtkHybridOctreeFloatTarget::Begin(
   }
   state->vtkglGetIntegerv(GL_VIEWPORT, this->Viewport);
   state->vtkglGetIntegerv(GL_SCISSOR_BOX, this->Scissor);
-  state->vtkglViewport(0, 0, width, height);
-  state->vtkglScissor(0, 0, width, height);
+  state->vtkglViewport(0, 0, targetWidth, targetHeight);
+  state->vtkglScissor(0, 0, targetWidth, targetHeight);
   vtkOpenGLState::ScopedglClearColor clearColor(state);
   state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
@@ -164,4 +185,5 @@ void vtkHybridOctreeFloatTarget::ReleaseGraphicsResources(vtkWindow* window)
   this->Depth = nullptr;
   this->DepthFramebuffer = nullptr;
   this->Size[0] = this->Size[1] = 0;
+  this->DepthSize[0] = this->DepthSize[1] = 0;
 }

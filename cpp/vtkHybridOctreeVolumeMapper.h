@@ -32,6 +32,20 @@
  *
  * With UsePoints, the points of the hybrid representation share the budget
  * and are drawn in the slabs between the slices (see SetUsePoints()).
+ *
+ * Interactive frames (the window's desired update rate above
+ * InteractiveUpdateRate, as while the camera is dragged) draw the bricks of
+ * the last still frame's selection, resident, without uploading any (a
+ * selection under InteractiveBudgetMB only when there is none: before the
+ * first still frame, or when its inputs changed), every brick ray-marched;
+ * a translucent surface is drawn brick by brick (each of a brick's
+ * triangles before or after that brick's volume, by the side of it the eye
+ * is on, see vtkHybridOctreeSurfaceDrawer) instead of in the slabs, and
+ * points are left out. With AutoAdjustSampleDistances they also composite at a coarser
+ * image sample distance and sample the rays more sparsely, as much as
+ * keeps them within the volume's allocated render time
+ * (vtkHybridOctreeInteractiveReduction). The next still frame draws the
+ * full picture again.
  */
 #ifndef vtkHybridOctreeVolumeMapper_h
 #define vtkHybridOctreeVolumeMapper_h
@@ -41,6 +55,7 @@
 
 #include <memory> // for std::unique_ptr
 #include <string> // for LastPlan
+#include <vector> // for selection keys
 
 class vtkDataArray;
 class vtkFloatArray;
@@ -53,6 +68,7 @@ namespace vtkHybridOctreeBridge
 {
 struct CameraDescription;
 struct DrawList;
+struct SelectDescription;
 }
 #endif
 
@@ -81,9 +97,19 @@ public:
   ///@{
   /// Desired update rate (frames per second) above which a frame is
   /// interactive; default 1 (VTK's still update rate is 0.0001, its
-  /// interactive one 15).
+  /// interactive one 15; ParaView's 0.002 and 5).
   vtkSetClampMacro(InteractiveUpdateRate, double, 0.0, 1.0e6);
   vtkGetMacro(InteractiveUpdateRate, double);
+  ///@}
+
+  ///@{
+  /// Whether interactive frames widen their image sample distance and the
+  /// sample spacing along the rays to keep within the volume's allocated
+  /// render time (as vtkGPUVolumeRayCastMapper's AutoAdjustSampleDistances);
+  /// on by default. Off: interactive frames sample as still ones.
+  vtkSetMacro(AutoAdjustSampleDistances, bool);
+  vtkGetMacro(AutoAdjustSampleDistances, bool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, bool);
   ///@}
 
   ///@{
@@ -195,6 +221,11 @@ public:
   vtkGetMacro(LastNaNSamples, vtkTypeInt64);
   vtkGetMacro(LastInteractive, bool);
   vtkGetMacro(LastRenderOK, bool);
+  /// The last frame's image sample distance (pixels per composited texel
+  /// along x and y, 1 at full resolution) and sample spacing factor m (rays
+  /// sampled every max(d, m d0); 1: every slice of the lattice).
+  vtkGetMacro(LastImageSampleDistance, double);
+  vtkGetMacro(LastSampleSpacing, int);
   ///@}
 
   /// Textures resident after the last frame (bricks kept for later frames included).
@@ -222,6 +253,9 @@ protected:
   bool Prepare(vtkRenderer* ren, vtkVolume* vol);
   /// Whether `ren`'s window asks for an interactive frame rate.
   bool IsInteractive(vtkRenderer* ren) const;
+  /// Whether the selection of the last still frame is up to date (an
+  /// interactive frame draws it when its textures are resident).
+  bool IsStillSelectionCurrent(vtkVolumeProperty* property) const;
   /// The budget of a frame of `ren`: InteractiveBudgetMB (at most BudgetMB)
   /// when interactive, else BudgetMB.
   double FrameBudgetMB(vtkRenderer* ren) const;
@@ -229,6 +263,7 @@ protected:
   double BudgetMB = 64.0;
   double InteractiveBudgetMB = 8.0;
   double InteractiveUpdateRate = 1.0;
+  bool AutoAdjustSampleDistances = true;
   double ErrorTolerance = 0.0;
   bool UseRoi = false;
   double RoiCenter[3] = { 0.0, 0.0, 0.0 };
@@ -258,6 +293,8 @@ protected:
   vtkTypeInt64 LastNaNSamples = 0;
   bool LastInteractive = false;
   bool LastRenderOK = false;
+  double LastImageSampleDistance = 1.0;
+  int LastSampleSpacing = 1;
   /// Unsupported settings are warned about once each.
   bool WarnedBlendMode = false;
   bool WarnedShade = false;
@@ -273,14 +310,29 @@ private:
   bool UpdatePoints();
   /// The points' shades for the current transfer function table.
   bool UpdatePointShades();
-  bool UpdateSelection(vtkRenderer* ren, vtkVolumeProperty* property);
+  /// The selection of a still (BudgetMB) or an interactive frame
+  /// (InteractiveBudgetMB) up to date and chosen for this frame.
+  bool UpdateSelection(vtkVolumeProperty* property, bool interactive);
+  /// This frame's selection: the still one when it is current and `ren`
+  /// is interactive, else UpdateSelection()'s.
+  bool ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property);
+  /// What the selection of `budgetMB` is made from, with its cache key.
+  vtkHybridOctreeBridge::SelectDescription DescribeSelection(
+    vtkVolumeProperty* property, double budgetMB, std::vector<double>& key) const;
   bool UpdateSurface();
   /// The active camera in the octree's frame (through the inverse model matrix).
   vtkHybridOctreeBridge::CameraDescription ModelCamera(vtkRenderer* ren) const;
   bool GetFrameDrawList(vtkRenderer* ren, vtkHybridOctreeBridge::DrawList& list);
-  /// Executes `list`: textures, table, opaque surface, slices and batches.
+  /// Executes `list`: textures, table, opaque surface, slices and batches;
+  /// interactive: resident textures, bricks ray-marched at `level` of
+  /// vtkHybridOctreeInteractiveReduction, a translucent surface per brick.
   bool DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera,
-    const vtkHybridOctreeBridge::DrawList& list);
+    const vtkHybridOctreeBridge::DrawList& list, bool interactive, int level);
+  /// Draws brick i's translucent triangles that go before (or after) its
+  /// volume into the bound float target; returns how many.
+  std::size_t DrawBrickSurface(vtkOpenGLRenderWindow* window, std::size_t i, bool before);
+  /// Whether the transfer function is more opaque above the isovalue than below it.
+  bool IsInsideOpaque() const;
 #endif
   void operator=(const vtkHybridOctreeVolumeMapper&) = delete;
 
