@@ -5,8 +5,8 @@
 
 namespace
 {
-constexpr vtkHybridOctreeInteractiveReduction::Level Ladder[] = { { 1.0, 1 }, { 1.0, 2 },
-  { 1.5, 2 }, { 2.0, 2 }, { 2.0, 4 }, { 3.0, 4 }, { 4.0, 4 } };
+constexpr vtkHybridOctreeInteractiveReduction::Level Ladder[] = { { 1.0, 1 }, { 1.5, 1 },
+  { 2.0, 1 }, { 3.0, 1 }, { 4.0, 1 }, { 4.0, 2 }, { 6.0, 2 } };
 constexpr int Levels = vtkHybridOctreeInteractiveReduction::NumberOfLevels;
 static_assert(sizeof(Ladder) / sizeof(Ladder[0]) == Levels, "one ladder entry per level");
 /// The share of the sampling cost spent per fragment rather than per sample.
