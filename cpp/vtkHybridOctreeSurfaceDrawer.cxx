@@ -251,16 +251,16 @@ void vtkHybridOctreeSurfaceDrawer::OrderByBrick(const vtkHybridOctreeBridge::Dra
   }
 }
 
-std::size_t vtkHybridOctreeSurfaceDrawer::DrawBrickPart(std::size_t i, bool before)
+std::pair<std::size_t, std::size_t> vtkHybridOctreeSurfaceDrawer::GetTrianglesBefore(
+  std::size_t i) const
 {
-  if (!this->Program || 2 * i + 2 >= this->BrickParts.size())
+  // Brick i - 1's triangles after its volume, then brick i's before its own.
+  const std::size_t n = this->BrickParts.size() / 2;
+  if (this->BrickParts.size() != 2 * n + 1 || i > n)
   {
-    return 0;
+    return { 0, 0 };
   }
-  const std::size_t first = this->BrickParts[2 * i + (before ? 0 : 1)];
-  const std::size_t end = this->BrickParts[2 * i + (before ? 1 : 2)];
-  this->Draw(first, end);
-  return end > first ? end - first : 0;
+  return { this->BrickParts[i > 0 ? 2 * i - 1 : 0], this->BrickParts[i < n ? 2 * i + 1 : 2 * n] };
 }
 
 void vtkHybridOctreeSurfaceDrawer::Draw(std::size_t first, std::size_t end)

@@ -35,6 +35,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkHybridOctreeFloatTarget;
@@ -85,11 +86,12 @@ public:
   void OrderByBrick(const vtkHybridOctreeBridge::DrawList& list, const double eye[3],
     const double forward[3], bool parallel, bool insideOpaque);
 
-  /// Draws brick i's triangles of OrderByBrick() before (or after) its
-  /// volume; returns how many. Bound with a target.
-  std::size_t DrawBrickPart(std::size_t i, bool before);
+  /// The triangles of OrderByBrick() drawn between the volume of brick
+  /// i - 1 and that of brick i (i = 0: before the first; i = the number of
+  /// bricks: after the last), as Draw()'s range [first, end).
+  std::pair<std::size_t, std::size_t> GetTrianglesBefore(std::size_t i) const;
 
-  /// Draws triangles `first .. end`. The program must be bound.
+  /// Draws triangles `first .. end` (OrderByBrick()'s with a target). The program must be bound.
   void Draw(std::size_t first, std::size_t end);
 
   /// Unbinds the vertex arrays.

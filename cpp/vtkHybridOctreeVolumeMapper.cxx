@@ -880,20 +880,19 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
       {
         state->vtkglDisable(GL_CULL_FACE);
       }
-      if (surfacePerBrick)
+      const std::size_t before = surfacePerBrick ? this->DrawSurfaceBefore(window, i) : 0;
+      if (before > 0)
       {
-        this->LastSurfaceTriangles +=
-          static_cast<vtkTypeInt64>(this->DrawBrickSurface(window, i, true));
+        this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(before);
         state->vtkglEnable(GL_CULL_FACE); // every brick of an interactive frame is ray-marched
       }
       textures[i]->Activate();
       in.Drawer.DrawBrick(list, i, in.Grid.Spacing, textures[i]);
       textures[i]->Deactivate();
-      if (surfacePerBrick)
-      {
-        this->LastSurfaceTriangles +=
-          static_cast<vtkTypeInt64>(this->DrawBrickSurface(window, i, false));
-      }
+    }
+    if (surfacePerBrick)
+    {
+      this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(this->DrawSurfaceBefore(window, bricks));
     }
     glFrontFace(GL_CCW);
     for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
@@ -912,15 +911,20 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   return ok;
 }
 
-std::size_t vtkHybridOctreeVolumeMapper::DrawBrickSurface(
-  vtkOpenGLRenderWindow* window, std::size_t i, bool before)
+std::size_t vtkHybridOctreeVolumeMapper::DrawSurfaceBefore(
+  vtkOpenGLRenderWindow* window, std::size_t i)
 {
   vtkInternals& in = *this->Internals;
+  const std::pair<std::size_t, std::size_t> range = in.SurfaceDrawer.GetTrianglesBefore(i);
+  if (range.second <= range.first)
+  {
+    return 0;
+  }
   window->GetState()->vtkglDisable(GL_CULL_FACE);
   in.SurfaceDrawer.Rebind(window);
-  const std::size_t drawn = in.SurfaceDrawer.DrawBrickPart(i, before);
+  in.SurfaceDrawer.Draw(range.first, range.second);
   in.Drawer.Rebind(window);
-  return drawn;
+  return range.second - range.first;
 }
 
 bool vtkHybridOctreeVolumeMapper::IsInsideOpaque() const

@@ -328,9 +328,10 @@ private:
   /// vtkHybridOctreeInteractiveReduction, a translucent surface per brick.
   bool DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera,
     const vtkHybridOctreeBridge::DrawList& list, bool interactive, int level);
-  /// Draws brick i's translucent triangles that go before (or after) its
-  /// volume into the bound float target; returns how many.
-  std::size_t DrawBrickSurface(vtkOpenGLRenderWindow* window, std::size_t i, bool before);
+  /// Draws the translucent triangles between brick i - 1's volume and brick
+  /// i's into the bound float target (vtkHybridOctreeSurfaceDrawer::
+  /// GetTrianglesBefore()); returns how many.
+  std::size_t DrawSurfaceBefore(vtkOpenGLRenderWindow* window, std::size_t i);
   /// Whether the transfer function is more opaque above the isovalue than below it.
   bool IsInsideOpaque() const;
 #endif
