@@ -30,8 +30,8 @@ void main()
 vtkHybridOctreeFloatTarget::vtkHybridOctreeFloatTarget() = default;
 vtkHybridOctreeFloatTarget::~vtkHybridOctreeFloatTarget() = default;
 
-bool vtkHybridOctreeFloatTarget::Begin(
-  vtkRenderer* ren, vtkOpenGLRenderWindow* window, double imageSampleDistance, std::string& error)
+bool vtkHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
+  double imageSampleDistance, const double region[4], std::string& error)
 {
   int width = 0, height = 0, x = 0, y = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
@@ -129,8 +129,23 @@ bool vtkHybridOctreeFloatTarget::Begin(
   }
   state->vtkglGetIntegerv(GL_VIEWPORT, this->Viewport);
   state->vtkglGetIntegerv(GL_SCISSOR_BOX, this->Scissor);
+  this->ScissorTest = state->GetEnumState(GL_SCISSOR_TEST);
   state->vtkglViewport(0, 0, targetWidth, targetHeight);
-  state->vtkglScissor(0, 0, targetWidth, targetHeight);
+  // The region's texels; cleared and drawn with two more around them (End()
+  // blends one more, which its linear filter reads with the next).
+  for (int a = 0; a < 2; ++a)
+  {
+    const int n = a == 0 ? targetWidth : targetHeight;
+    const double lo = std::max(-1.0, std::min(1.0, region[2 * a]));
+    const double hi = std::max(lo, std::min(1.0, region[2 * a + 1]));
+    this->Region[2 * a] = static_cast<int>(std::floor((lo + 1.0) * 0.5 * n));
+    this->Region[2 * a + 1] = static_cast<int>(std::ceil((hi + 1.0) * 0.5 * n));
+  }
+  const int cleared[4] = { std::max(0, this->Region[0] - 2),
+    std::min(targetWidth, this->Region[1] + 2), std::max(0, this->Region[2] - 2),
+    std::min(targetHeight, this->Region[3] + 2) };
+  state->vtkglEnable(GL_SCISSOR_TEST);
+  state->vtkglScissor(cleared[0], cleared[2], cleared[1] - cleared[0], cleared[3] - cleared[2]);
   vtkOpenGLState::ScopedglClearColor clearColor(state);
   state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
@@ -142,7 +157,30 @@ void vtkHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
   vtkOpenGLState* state = window->GetState();
   state->PopFramebufferBindings();
   state->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  // Blended over the window pixels of the region and one texel around it
+  // (texel t covers pixels [t s, (t + 1) s)), within the scissor box it had.
+  int lo[2], hi[2];
+  for (int a = 0; a < 2; ++a)
+  {
+    const double scale = this->DepthScale[a];
+    lo[a] = std::max(this->Scissor[a],
+      this->Viewport[a] + static_cast<int>(std::floor((this->Region[2 * a] - 1) * scale)));
+    hi[a] = std::min(this->Scissor[a] + this->Scissor[a + 2],
+      this->Viewport[a] + static_cast<int>(std::ceil((this->Region[2 * a + 1] + 1) * scale)));
+    hi[a] = std::max(hi[a], lo[a]);
+  }
+  state->vtkglScissor(lo[0], lo[1], hi[0] - lo[0], hi[1] - lo[1]);
+  this->Composite(window);
   state->vtkglScissor(this->Scissor[0], this->Scissor[1], this->Scissor[2], this->Scissor[3]);
+  if (!this->ScissorTest)
+  {
+    state->vtkglDisable(GL_SCISSOR_TEST);
+  }
+}
+
+void vtkHybridOctreeFloatTarget::Composite(vtkOpenGLRenderWindow* window)
+{
+  vtkOpenGLState* state = window->GetState();
   if (!this->Quad)
   {
     this->Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, CompositeShader, ""));

@@ -44,15 +44,18 @@ public:
   ~vtkHybridOctreeFloatTarget();
 
   /**
-   * Copies the depth of `ren`'s viewport, then binds the float target
-   * (cleared to 0) with a viewport of the viewport's size divided by
-   * `imageSampleDistance` (>= 1, rounded up). False and `error` when OpenGL
-   * refuses (the window's bindings are then unchanged).
+   * Copies the depth of `ren`'s viewport, then binds the float target with
+   * a viewport of the viewport's size divided by `imageSampleDistance` (>= 1,
+   * rounded up), cleared to 0 and drawn only within `region` (xmin, xmax,
+   * ymin, ymax in normalized device coordinates: what is drawn covers no
+   * more) by the scissor test. False and `error` when OpenGL refuses (the
+   * window's bindings are then unchanged).
    */
   bool Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window, double imageSampleDistance,
-    std::string& error);
+    const double region[4], std::string& error);
 
-  /// Restores the window's framebuffer and viewport and blends the target over it.
+  /// Restores the window's framebuffer, viewport and scissor and blends the
+  /// target's region over the window.
   void End(vtkOpenGLRenderWindow* window);
 
   /// The opaque depth copied by Begin(), viewport-sized (valid until End()).
@@ -68,6 +71,9 @@ private:
   vtkHybridOctreeFloatTarget(const vtkHybridOctreeFloatTarget&) = delete;
   vtkHybridOctreeFloatTarget& operator=(const vtkHybridOctreeFloatTarget&) = delete;
 
+  /// Draws the target over the window's viewport, blended premultiplied.
+  void Composite(vtkOpenGLRenderWindow* window);
+
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   vtkSmartPointer<vtkTextureObject> Color;
   vtkSmartPointer<vtkTextureObject> Depth;
@@ -80,6 +86,9 @@ private:
   int DepthFormat = -1; ///< the depth format of the texture, the window's
   int Viewport[4] = { 0, 0, 0, 0 };
   int Scissor[4] = { 0, 0, 0, 0 };
+  bool ScissorTest = false; ///< the window's scissor test before Begin()
+  /// The region's texels: x in [Region[0], Region[1]), y in [Region[2], Region[3]).
+  int Region[4] = { 0, 0, 0, 0 };
 };
 
 #endif

@@ -830,7 +830,14 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   // translucent triangles of each slab between them; blended premultiplied,
   // depth tested, not written. Clip distances on while the program (which
   // writes them) is bound.
-  if (!in.Target.Begin(ren, window, sampling.ImageSampleDistance, error))
+  // The region of the window drawn: the bricks' boxes (their triangles
+  // included); points' footprints may reach past them, so all of it then.
+  double region[4] = { -1.0, 1.0, -1.0, 1.0 };
+  if (this->LastPoints == 0)
+  {
+    this->ScreenRegion(mcdc, list.Bounds, region);
+  }
+  if (!in.Target.Begin(ren, window, sampling.ImageSampleDistance, region, error))
   {
     vtkErrorMacro(<< error);
     return false;
@@ -909,6 +916,41 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
     vtkErrorMacro(<< error);
   }
   return ok;
+}
+
+void vtkHybridOctreeVolumeMapper::ScreenRegion(
+  vtkMatrix4x4* mcdc, const std::vector<double>& bounds, double region[4]) const
+{
+  // The normalized device box of the boxes' corners (VTK's key matrices are
+  // transposed: clip_r = sum_j mcdc(j, r) p_j); everything when a corner
+  // lies behind the eye.
+  double box[4] = { 1.0, -1.0, 1.0, -1.0 };
+  for (std::size_t i = 0; 6 * i + 5 < bounds.size(); ++i)
+  {
+    for (int c = 0; c < 8; ++c)
+    {
+      const double p[4] = { bounds[6 * i + (c & 1)], bounds[6 * i + 2 + ((c >> 1) & 1)],
+        bounds[6 * i + 4 + ((c >> 2) & 1)], 1.0 };
+      double clip[4];
+      for (int r = 0; r < 4; ++r)
+      {
+        clip[r] = mcdc->GetElement(0, r) * p[0] + mcdc->GetElement(1, r) * p[1] +
+          mcdc->GetElement(2, r) * p[2] + mcdc->GetElement(3, r) * p[3];
+      }
+      if (!(clip[3] > 0.0))
+      {
+        region[0] = region[2] = -1.0;
+        region[1] = region[3] = 1.0;
+        return;
+      }
+      for (int a = 0; a < 2; ++a)
+      {
+        box[2 * a] = std::min(box[2 * a], clip[a] / clip[3]);
+        box[2 * a + 1] = std::max(box[2 * a + 1], clip[a] / clip[3]);
+      }
+    }
+  }
+  std::copy(box, box + 4, region);
 }
 
 std::size_t vtkHybridOctreeVolumeMapper::DrawSurfaceBefore(

@@ -60,6 +60,7 @@
 class vtkDataArray;
 class vtkFloatArray;
 class vtkImageData;
+class vtkMatrix4x4;
 class vtkOpenGLCamera;
 class vtkOpenGLRenderWindow;
 class vtkVolumeProperty;
@@ -332,6 +333,10 @@ private:
   /// i's into the bound float target (vtkHybridOctreeSurfaceDrawer::
   /// GetTrianglesBefore()); returns how many.
   std::size_t DrawSurfaceBefore(vtkOpenGLRenderWindow* window, std::size_t i);
+  /// The normalized device box (xmin, xmax, ymin, ymax) of the boxes
+  /// `bounds[6i .. 6i+6]` (model coordinates) for the model-to-clip matrix
+  /// `mcdc`; all of it when one reaches behind the eye.
+  void ScreenRegion(vtkMatrix4x4* mcdc, const std::vector<double>& bounds, double region[4]) const;
   /// Whether the transfer function is more opaque above the isovalue than below it.
   bool IsInsideOpaque() const;
 #endif
