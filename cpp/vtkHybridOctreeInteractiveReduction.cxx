@@ -13,10 +13,11 @@ static_assert(sizeof(Ladder) / sizeof(Ladder[0]) == Levels, "one ladder entry pe
 constexpr double FragmentShare = 0.5;
 /// The share of the allocated time a frame aims at: the rest of the frame
 /// (the renderer's passes before the volume, FXAA, the swap) is not in the
-/// mapper's time (measured in a ParaView render view at 1130x660: 17-20 ms
-/// of a 66.7 ms allocation), and ParaView's Volume lands at about half its
-/// allocation (30 ms of its own in a 48-61 ms frame).
-constexpr double TargetShare = 0.5;
+/// mapper's time (17-20 ms of a 66.7 ms allocation in a ParaView render
+/// view at 1130x660, llvmpipe). Measured there against ParaView's Volume
+/// (interactive frames of 48-65 ms): at 1/2 ours were 0.68-1.06x of its on
+/// an MRI, at 0.4 0.61-0.63x (docs/BENCHMARKS.md).
+constexpr double TargetShare = 0.4;
 /// A finer level than the last recorded one must be predicted within this fraction of the target.
 constexpr double Hysteresis = 0.8;
 /// Records older than this many interactive frames are not used for the fixed cost.

@@ -28,11 +28,11 @@
  * still picture, 1130x660 in ParaView: s = 4 costs 0.010 on an MRI and 0.030
  * on the 256^3 phantom, m = 2 alone 0.008 and 0.046; docs/BENCHMARKS.md).
  *
- * Choose() takes the finest level whose predicted time is within half the
- * allocated time (the rest of the frame, the renderer's passes and the swap,
- * is not in the mapper's time; ParaView's Volume lands at about half of it
- * too), a level finer than the last one within 4/5 of that, so that the
- * choice does not swing between two levels. A frame's time is a fixed
+ * Choose() takes the finest level whose predicted time is within 0.4 of
+ * the allocated time (the rest of the frame, the renderer's passes and the
+ * swap, is not in the mapper's time; see TargetShare), a level finer than
+ * the last one within 4/5 of that, so that the choice does not swing
+ * between two levels. A frame's time is a fixed
  * part (one draw per brick, the DrawList, the blend over the window) and a
  * part proportional to the level's cost: from the last recorded frame and
  * the latest one at another level (of the last 16 frames),
