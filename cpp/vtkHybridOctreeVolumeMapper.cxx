@@ -57,6 +57,15 @@ void TransformPoint(vtkMatrix4x4* m, const double p[3], double out[3])
   }
 }
 
+/// `m`'s linear part applied to the vector `v`.
+void TransformVector(vtkMatrix4x4* m, const double v[3], double out[3])
+{
+  for (int r = 0; r < 3; ++r)
+  {
+    out[r] = m->GetElement(r, 0) * v[0] + m->GetElement(r, 1) * v[1] + m->GetElement(r, 2) * v[2];
+  }
+}
+
 /// The passes an interactive frame runs for the DrawList's `passes`: a
 /// translucent surface per brick instead of in the slabs, no points.
 std::string InteractivePlan(const std::string& passes)
@@ -79,15 +88,6 @@ std::string InteractivePlan(const std::string& passes)
     start = end + 1;
   }
   return plan;
-}
-
-/// `m`'s linear part applied to the vector `v`.
-void TransformVector(vtkMatrix4x4* m, const double v[3], double out[3])
-{
-  for (int r = 0; r < 3; ++r)
-  {
-    out[r] = m->GetElement(r, 0) * v[0] + m->GetElement(r, 1) * v[1] + m->GetElement(r, 2) * v[2];
-  }
 }
 } // namespace
 

@@ -90,7 +90,10 @@ public:
   ///@{
   /// Texture budget in MB of an interactive frame (when the render window
   /// asks for more than InteractiveUpdateRate frames per second, as during
-  /// camera interaction); default 8. The next still frame refines to BudgetMB.
+  /// camera interaction) that cannot draw the last still frame's resident
+  /// textures: before the first still frame, or when an input of the
+  /// selection changed while interacting; default 8. The next still frame
+  /// refines to BudgetMB.
   vtkSetClampMacro(InteractiveBudgetMB, double, 0.0, 1.0e6);
   vtkGetMacro(InteractiveBudgetMB, double);
   ///@}
@@ -203,10 +206,12 @@ public:
   /// Statistics of the last frame: bricks drawn, bytes of resident brick
   /// textures and of those uploaded for this frame, slices drawn, surface
   /// triangles drawn, the passes that ran (comma-joined, e.g.
-  /// "opaque-surface,volume"), wall-clock milliseconds of Render(), the
-  /// selection's estimated error (largest weighted nodal error, a fraction
-  /// of the data range), whether the frame was interactive, and whether it
-  /// drew (false after an error).
+  /// "opaque-surface,volume"), wall-clock milliseconds of Render() from the
+  /// end of what was drawn before it to the end of its own drawing (it waits
+  /// for OpenGL with glFinish on both sides), the selection's estimated
+  /// error (largest weighted nodal error, a fraction of the data range),
+  /// whether the frame was interactive, and whether it drew (false after an
+  /// error).
   vtkGetMacro(LastBricks, int);
   vtkGetMacro(LastTextureBytes, vtkTypeInt64);
   vtkGetMacro(LastUploadedBytes, vtkTypeInt64);
