@@ -1,5 +1,6 @@
 #include "vtkHybridOctreeBrickDrawer.h"
 
+#include "vtkHybridOctreeFloatTarget.h"
 #include "vtkHybridOctreeSliceGeometry.h"
 
 #include "vtkMatrix4x4.h"
@@ -127,8 +128,10 @@ uniform vec4 surfaceColor;
 uniform vec3 boxLo;
 uniform vec3 boxHi;
 uniform float sliceSpacing;
+uniform int jitter;
 uniform mat4 DCMC;
 uniform vec2 viewportSize;
+uniform vec2 depthScale;
 uniform float nearDepth;
 //VTK::Output::Dec
 
@@ -162,7 +165,7 @@ float viewDepth(float d)
 
 void main()
 {
-  float opaque = texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy), 0).r;
+  float opaque = texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy * depthScale), 0).r;
   if (isSurface > 1.5 && isSurface < 2.5)
   {
     // A ray-marched brick: this fragment is on the exit face of its box; the
@@ -184,13 +187,19 @@ void main()
     float cosA = dot(dir, forward);
     float zIn = max(tIn * cosA, nearDepth);
     float zOut = min(tOut * cosA, opaque < 1.0 ? viewDepth(opaque) : 1.0e30);
-    int k0 = int(ceil(zIn / sliceSpacing));
-    int k1 = min(int(ceil(zOut / sliceSpacing)) - 1, k0 + 4096);
+    // Samples at z = (k + j) d: j = 0 (the slice lattice), or with jitter a
+    // fraction of d fixed per pixel (interleaved gradient noise), the same in
+    // every brick, so that a sparse lattice shows noise, not wood grain.
+    float j = jitter != 0
+      ? fract(52.9829189 * fract(dot(floor(gl_FragCoord.xy), vec2(0.06711056, 0.00583715))))
+      : 0.0;
+    int k0 = int(ceil(zIn / sliceSpacing - j));
+    int k1 = min(int(ceil(zOut / sliceSpacing - j)) - 1, k0 + 4096);
     vec3 C = vec3(0.0);
     float A = 0.0;
     for (int k = k0; k <= k1 && A < 0.999; ++k)
     {
-      vec4 s = sampleAt(origin + dir * (float(k) * sliceSpacing / cosA));
+      vec4 s = sampleAt(origin + dir * ((float(k) + j) * sliceSpacing / cosA));
       C += (1.0 - A) * s.a * s.rgb;
       A += (1.0 - A) * s.a;
     }
@@ -496,10 +505,11 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
 }
 
 bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
-  vtkTextureObject* table, vtkTextureObject* depth, int entries, double lo, double hi,
+  vtkTextureObject* table, vtkHybridOctreeFloatTarget& target, int entries, double lo, double hi,
   const double eye[3], const double forward[3], bool parallel, const double surfaceRGBA[4],
   std::string& error)
 {
+  vtkTextureObject* depth = target.GetDepth();
   this->Program = window->GetShaderCache()->ReadyShaderProgram(VertexShader, FragmentShader, "");
   if (!this->Program)
   {
@@ -554,9 +564,10 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
   vtkNew<vtkMatrix4x4> dcmc;
   vtkMatrix4x4::Invert(mcdc, dcmc);
   this->Program->SetUniformMatrix("DCMC", dcmc);
-  const float size[2] = { static_cast<float>(depth->GetWidth()),
-    static_cast<float>(depth->GetHeight()) };
+  const float size[2] = { static_cast<float>(target.GetSize()[0]),
+    static_cast<float>(target.GetSize()[1]) };
   this->Program->SetUniform2f("viewportSize", size);
+  this->Program->SetUniform2f("depthScale", target.GetDepthScale());
   // The near plane's view depth: the centre of the near clip face, unprojected.
   double ndc[4] = { 0.0, 0.0, -1.0, 1.0 };
   // VTK keeps its key matrices transposed for OpenGL: p_r = sum_j dcmc[j][r] ndc_j.
@@ -611,7 +622,14 @@ void vtkHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList
   this->Program->SetUniform3f("brickLo", lo);
   this->Program->SetUniform3f("inverseStep", inverseStep);
   this->Program->SetUniform3f("texels", n);
-  this->Program->SetUniformf("opacityRatio", static_cast<float>(list.OpacityRatio[i]));
+  // A ray-marched brick samples every max(d, SampleSpacing d0) along the
+  // view (both powers of two times d0: still a shared lattice), its opacity
+  // corrected for that spacing.
+  const double d = list.SliceSpacing[i];
+  const double along =
+    this->IsRayMarched(i) ? std::max(d, this->SampleSpacing * list.ReferenceSpacing) : d;
+  this->Program->SetUniformf(
+    "opacityRatio", static_cast<float>(list.OpacityRatio[i] * (d > 0.0 ? along / d : 1.0)));
   const double* box = &this->Boxes[6 * i];
   const float boxLo[3] = { static_cast<float>(box[0]), static_cast<float>(box[2]),
     static_cast<float>(box[4]) };
@@ -619,8 +637,18 @@ void vtkHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList
     static_cast<float>(box[5]) };
   this->Program->SetUniform3f("boxLo", boxLo);
   this->Program->SetUniform3f("boxHi", boxHi);
-  this->Program->SetUniformf("sliceSpacing", static_cast<float>(list.SliceSpacing[i]));
+  this->Program->SetUniformf("sliceSpacing", static_cast<float>(along));
+  this->Program->SetUniformi("jitter", along > d ? 1 : 0);
   glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
+}
+
+void vtkHybridOctreeBrickDrawer::Rebind(vtkOpenGLRenderWindow* window)
+{
+  if (this->Program && this->Vao)
+  {
+    window->GetShaderCache()->ReadyShaderProgram(this->Program);
+    this->Vao->Bind();
+  }
 }
 
 void vtkHybridOctreeBrickDrawer::Unbind()

@@ -63,6 +63,7 @@
 #include <utility>
 #include <vector>
 
+class vtkHybridOctreeFloatTarget;
 class vtkMatrix4x4;
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
@@ -111,16 +112,24 @@ public:
 
   /**
    * Makes the program current: `mcdc` the model-to-clip matrix, `table` the
-   * transfer-function table (RGBA over [lo, hi] in `entries` cells), `depth`
-   * the opaque geometry's depth (viewport-sized; fragments and ray samples
-   * behind it are dropped), `eye`,
-   * `forward`, `parallel` the camera in model coordinates, `surfaceRGBA` the
-   * surface's colour and opacity. Uploads the vertices of the last Build()
-   * on the first call after it. False and `error` on failure.
+   * transfer-function table (RGBA over [lo, hi] in `entries` cells),
+   * `target` the bound float target (its size, and its copy of the opaque
+   * geometry's depth: fragments and ray samples behind it are dropped),
+   * `eye`, `forward`, `parallel` the camera in model coordinates,
+   * `surfaceRGBA` the surface's colour and opacity. Uploads the vertices of
+   * the last Build() on the first call after it. False and `error` on failure.
    */
   bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, vtkTextureObject* table,
-    vtkTextureObject* depth, int entries, double lo, double hi, const double eye[3],
+    vtkHybridOctreeFloatTarget& target, int entries, double lo, double hi, const double eye[3],
     const double forward[3], bool parallel, const double surfaceRGBA[4], std::string& error);
+
+  /// Ray-marched bricks sample every max(d, factor d0) along the view (d
+  /// their slice spacing; `factor` a power of two, 1 by default: the slice lattice).
+  void SetSampleSpacing(int factor) { this->SampleSpacing = factor > 1 ? factor : 1; }
+
+  /// Makes the program and vertices of the last Bind() current again
+  /// (after another program drew).
+  void Rebind(vtkOpenGLRenderWindow* window);
 
   /// Draws brick i of the built list, sampling `texture`.
   void DrawBrick(const vtkHybridOctreeBridge::DrawList& list, std::size_t i,
@@ -174,6 +183,7 @@ private:
   float PointUp[3] = { 0.0f, 1.0f, 0.0f };
   float PointSpacing = 1.0f;
   std::size_t PointsPlaced = 0;
+  int SampleSpacing = 1;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

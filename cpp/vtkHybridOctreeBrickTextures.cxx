@@ -93,6 +93,19 @@ const vtkHybridOctreeBrickTextures::Resident* vtkHybridOctreeBrickTextures::Acqu
   return &entry;
 }
 
+bool vtkHybridOctreeBrickTextures::HoldsAll(
+  const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides) const
+{
+  for (std::size_t i = 0; i < nodes.size() && i < strides.size(); ++i)
+  {
+    if (this->Entries.find({ nodes[i], strides[i] }) == this->Entries.end())
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 void vtkHybridOctreeBrickTextures::Clear(vtkWindow* window)
 {
   for (auto& e : this->Entries)

@@ -10,6 +10,9 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace
 {
 /// The target's premultiplied RGBA, as is (blended by the fixed function).
@@ -27,8 +30,8 @@ void main()
 vtkHybridOctreeFloatTarget::vtkHybridOctreeFloatTarget() = default;
 vtkHybridOctreeFloatTarget::~vtkHybridOctreeFloatTarget() = default;
 
-bool vtkHybridOctreeFloatTarget::Begin(
-  vtkRenderer* ren, vtkOpenGLRenderWindow* window, std::string& error)
+bool vtkHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
+  double imageSampleDistance, const double region[4], std::string& error)
 {
   int width = 0, height = 0, x = 0, y = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
@@ -37,6 +40,9 @@ bool vtkHybridOctreeFloatTarget::Begin(
     error = "the renderer's viewport is empty";
     return false;
   }
+  const double s = imageSampleDistance > 1.0 ? imageSampleDistance : 1.0;
+  const int targetWidth = std::max(1, static_cast<int>(std::ceil(width / s)));
+  const int targetHeight = std::max(1, static_cast<int>(std::ceil(height / s)));
   if (!this->Framebuffer || this->Color->GetContext() != window)
   {
     this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
@@ -49,6 +55,7 @@ bool vtkHybridOctreeFloatTarget::Begin(
     this->DepthFramebuffer->SetContext(window);
     this->Quad.reset();
     this->Size[0] = this->Size[1] = 0;
+    this->DepthSize[0] = this->DepthSize[1] = 0;
   }
   // A depth blit needs the same depth format on both sides: the window's.
   GLint bits = 0, type = 0;
@@ -60,24 +67,38 @@ bool vtkHybridOctreeFloatTarget::Begin(
     : bits <= 16                      ? vtkTextureObject::Fixed16
     : bits <= 24                      ? vtkTextureObject::Fixed24
                                       : vtkTextureObject::Fixed32;
-  if (this->Size[0] != width || this->Size[1] != height || this->DepthFormat != format)
+  if (this->Size[0] != targetWidth || this->Size[1] != targetHeight)
   {
-    this->Color->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Color->SetMagnificationFilter(vtkTextureObject::Nearest);
+    // Blended over the viewport texel for pixel at full resolution, filtered when coarser.
+    const int filter = s > 1.0 ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+    this->Color->SetMinificationFilter(filter);
+    this->Color->SetMagnificationFilter(filter);
     this->Color->SetWrapS(vtkTextureObject::ClampToEdge);
     this->Color->SetWrapT(vtkTextureObject::ClampToEdge);
-    this->Depth->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
-    if (!this->Color->Allocate2D(width, height, 4, VTK_FLOAT) ||
-      !this->Depth->AllocateDepth(width, height, format))
+    if (!this->Color->Allocate2D(targetWidth, targetHeight, 4, VTK_FLOAT))
     {
-      error = "OpenGL could not allocate a float colour and a depth texture of the viewport's size";
+      error = "OpenGL could not allocate a float colour texture of " +
+        std::to_string(targetWidth) + "x" + std::to_string(targetHeight);
       return false;
     }
-    this->Size[0] = width;
-    this->Size[1] = height;
+    this->Size[0] = targetWidth;
+    this->Size[1] = targetHeight;
+  }
+  if (this->DepthSize[0] != width || this->DepthSize[1] != height || this->DepthFormat != format)
+  {
+    this->Depth->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    if (!this->Depth->AllocateDepth(width, height, format))
+    {
+      error = "OpenGL could not allocate a depth texture of the viewport's size";
+      return false;
+    }
+    this->DepthSize[0] = width;
+    this->DepthSize[1] = height;
     this->DepthFormat = format;
   }
+  this->DepthScale[0] = static_cast<float>(width) / targetWidth;
+  this->DepthScale[1] = static_cast<float>(height) / targetHeight;
   // The depth of what is drawn so far, blitted from the bound (read)
   // framebuffer: a blit also resolves a multisampled one (a copy would not).
   vtkOpenGLState* state = window->GetState();
@@ -108,8 +129,23 @@ bool vtkHybridOctreeFloatTarget::Begin(
   }
   state->vtkglGetIntegerv(GL_VIEWPORT, this->Viewport);
   state->vtkglGetIntegerv(GL_SCISSOR_BOX, this->Scissor);
-  state->vtkglViewport(0, 0, width, height);
-  state->vtkglScissor(0, 0, width, height);
+  this->ScissorTest = state->GetEnumState(GL_SCISSOR_TEST);
+  state->vtkglViewport(0, 0, targetWidth, targetHeight);
+  // The region's texels; cleared and drawn with two more around them (End()
+  // blends one more, which its linear filter reads with the next).
+  for (int a = 0; a < 2; ++a)
+  {
+    const int n = a == 0 ? targetWidth : targetHeight;
+    const double lo = std::max(-1.0, std::min(1.0, region[2 * a]));
+    const double hi = std::max(lo, std::min(1.0, region[2 * a + 1]));
+    this->Region[2 * a] = static_cast<int>(std::floor((lo + 1.0) * 0.5 * n));
+    this->Region[2 * a + 1] = static_cast<int>(std::ceil((hi + 1.0) * 0.5 * n));
+  }
+  const int cleared[4] = { std::max(0, this->Region[0] - 2),
+    std::min(targetWidth, this->Region[1] + 2), std::max(0, this->Region[2] - 2),
+    std::min(targetHeight, this->Region[3] + 2) };
+  state->vtkglEnable(GL_SCISSOR_TEST);
+  state->vtkglScissor(cleared[0], cleared[2], cleared[1] - cleared[0], cleared[3] - cleared[2]);
   vtkOpenGLState::ScopedglClearColor clearColor(state);
   state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
@@ -121,7 +157,30 @@ void vtkHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
   vtkOpenGLState* state = window->GetState();
   state->PopFramebufferBindings();
   state->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  // Blended over the window pixels of the region and one texel around it
+  // (texel t covers pixels [t s, (t + 1) s)), within the scissor box it had.
+  int lo[2], hi[2];
+  for (int a = 0; a < 2; ++a)
+  {
+    const double scale = this->DepthScale[a];
+    lo[a] = std::max(this->Scissor[a],
+      this->Viewport[a] + static_cast<int>(std::floor((this->Region[2 * a] - 1) * scale)));
+    hi[a] = std::min(this->Scissor[a] + this->Scissor[a + 2],
+      this->Viewport[a] + static_cast<int>(std::ceil((this->Region[2 * a + 1] + 1) * scale)));
+    hi[a] = std::max(hi[a], lo[a]);
+  }
+  state->vtkglScissor(lo[0], lo[1], hi[0] - lo[0], hi[1] - lo[1]);
+  this->Composite(window);
   state->vtkglScissor(this->Scissor[0], this->Scissor[1], this->Scissor[2], this->Scissor[3]);
+  if (!this->ScissorTest)
+  {
+    state->vtkglDisable(GL_SCISSOR_TEST);
+  }
+}
+
+void vtkHybridOctreeFloatTarget::Composite(vtkOpenGLRenderWindow* window)
+{
+  vtkOpenGLState* state = window->GetState();
   if (!this->Quad)
   {
     this->Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, CompositeShader, ""));
@@ -164,4 +223,5 @@ void vtkHybridOctreeFloatTarget::ReleaseGraphicsResources(vtkWindow* window)
   this->Depth = nullptr;
   this->DepthFramebuffer = nullptr;
   this->Size[0] = this->Size[1] = 0;
+  this->DepthSize[0] = this->DepthSize[1] = 0;
 }

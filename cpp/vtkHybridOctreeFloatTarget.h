@@ -14,6 +14,13 @@
  * surface) still hides the volume: its depth is blitted into a depth texture
  * first (a blit also resolves a multisampled window); the brick shader
  * drops fragments and ray samples behind it.
+ *
+ * An interactive frame may composite at a coarser image sample distance s
+ * (vtkGPUVolumeRayCastMapper's ImageSampleDistance): the target is then
+ * ceil(w / s) x ceil(h / s) texels, 1 / s^2 of the fragments, and is
+ * blended over the viewport with linear filtering. The depth texture stays
+ * viewport-sized: the shaders read it at their fragment's position times
+ * GetDepthScale().
  */
 #ifndef vtkHybridOctreeFloatTarget_h
 #define vtkHybridOctreeFloatTarget_h
@@ -37,23 +44,35 @@ public:
   ~vtkHybridOctreeFloatTarget();
 
   /**
-   * Copies the depth of `ren`'s viewport, then binds the float target
-   * (cleared to 0) with a viewport of the same size. False and `error` when
-   * OpenGL refuses (the window's bindings are then unchanged).
+   * Copies the depth of `ren`'s viewport, then binds the float target with
+   * a viewport of the viewport's size divided by `imageSampleDistance` (>= 1,
+   * rounded up), cleared to 0 and drawn only within `region` (xmin, xmax,
+   * ymin, ymax in normalized device coordinates: what is drawn covers no
+   * more) by the scissor test. False and `error` when OpenGL refuses (the
+   * window's bindings are then unchanged).
    */
-  bool Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window, std::string& error);
+  bool Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window, double imageSampleDistance,
+    const double region[4], std::string& error);
 
-  /// Restores the window's framebuffer and viewport and blends the target over it.
+  /// Restores the window's framebuffer, viewport and scissor and blends the
+  /// target's region over the window.
   void End(vtkOpenGLRenderWindow* window);
 
   /// The opaque depth copied by Begin(), viewport-sized (valid until End()).
   vtkTextureObject* GetDepth() { return this->Depth; }
+  /// The target's size in texels (its viewport while bound).
+  const int* GetSize() const { return this->Size; }
+  /// Depth texels per target texel along x and y (1 at full resolution).
+  const float* GetDepthScale() const { return this->DepthScale; }
 
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
   vtkHybridOctreeFloatTarget(const vtkHybridOctreeFloatTarget&) = delete;
   vtkHybridOctreeFloatTarget& operator=(const vtkHybridOctreeFloatTarget&) = delete;
+
+  /// Draws the target over the window's viewport, blended premultiplied.
+  void Composite(vtkOpenGLRenderWindow* window);
 
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   vtkSmartPointer<vtkTextureObject> Color;
@@ -62,9 +81,14 @@ private:
   vtkSmartPointer<vtkOpenGLFramebufferObject> DepthFramebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
   int Size[2] = { 0, 0 };
+  int DepthSize[2] = { 0, 0 };
+  float DepthScale[2] = { 1.0f, 1.0f };
   int DepthFormat = -1; ///< the depth format of the texture, the window's
   int Viewport[4] = { 0, 0, 0, 0 };
   int Scissor[4] = { 0, 0, 0, 0 };
+  bool ScissorTest = false; ///< the window's scissor test before Begin()
+  /// The region's texels: x in [Region[0], Region[1]), y in [Region[2], Region[3]).
+  int Region[4] = { 0, 0, 0, 0 };
 };
 
 #endif

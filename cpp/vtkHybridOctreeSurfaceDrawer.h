@@ -7,6 +7,19 @@
  * (a translucent one is drawn in the slabs by vtkHybridOctreeBrickDrawer,
  * from this drawer's vertex and index data).
  *
+ * While the camera moves, a translucent surface is drawn by this drawer into
+ * the float target brick by brick, without slabs (the bricks ray-marched
+ * back to front, see vtkHybridOctreeVolumeMapper), tested against the
+ * target's copy of the opaque depth. A brick's triangles go either before
+ * its volume or after it, each triangle by the side of it the eye is on:
+ * the volume between a triangle and the eye lies on that side, so the
+ * triangle goes before the brick's volume (behind it) when that side is the
+ * more opaque one (the inside, values above the isovalue, into which the
+ * vertex normals -grad f do not point, or the outside), else after it.
+ * Exact for a brick whose eye-side volume is all on one side of its
+ * triangles; the slabs put each triangle between the right slices again in
+ * the next still frame.
+ *
  * Shading is the CPU compositor's headlight Lambert, `rgb = colour |n . d|`
  * with `n` the interpolated vertex normal and `d` the viewing ray's
  * direction.
@@ -22,8 +35,10 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
+class vtkHybridOctreeFloatTarget;
 class vtkMatrix4x4;
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
@@ -49,13 +64,34 @@ public:
   /**
    * Makes the surface program current for a frame: `mcdc` the model-to-clip
    * matrix, `eye`, `forward` and `parallel` the DrawList's camera (model
-   * coordinates), `rgba` colour and opacity. False and `error` when the
-   * program does not compile.
+   * coordinates), `rgba` colour and opacity; with `target` (bound, its depth
+   * texture active), fragments behind its copy of the opaque depth are
+   * dropped. False and `error` when the program does not compile.
    */
   bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, const double eye[3],
-    const double forward[3], bool parallel, const double rgba[4], std::string& error);
+    const double forward[3], bool parallel, const double rgba[4], std::string& error,
+    vtkHybridOctreeFloatTarget* target = nullptr);
 
-  /// Draws triangles `first .. end`. The program must be bound.
+  /// Makes the program and buffers of the last Bind() current again (after another program drew).
+  void Rebind(vtkOpenGLRenderWindow* window);
+
+  /**
+   * Orders the triangles of `list`'s bricks for drawing them brick by
+   * brick: brick i's (the union of its batches) split into those before
+   * its volume and those after it (see the file documentation), for a camera
+   * at `eye` looking along `forward` (model coordinates; `parallel`: every
+   * ray along `forward`), the inside (values above the isovalue) the more
+   * opaque side when `insideOpaque`. Loaded on the next Bind() with a target.
+   */
+  void OrderByBrick(const vtkHybridOctreeBridge::DrawList& list, const double eye[3],
+    const double forward[3], bool parallel, bool insideOpaque);
+
+  /// The triangles of OrderByBrick() drawn between the volume of brick
+  /// i - 1 and that of brick i (i = 0: before the first; i = the number of
+  /// bricks: after the last), as Draw()'s range [first, end).
+  std::pair<std::size_t, std::size_t> GetTrianglesBefore(std::size_t i) const;
+
+  /// Draws triangles `first .. end` (OrderByBrick()'s with a target). The program must be bound.
   void Draw(std::size_t first, std::size_t end);
 
   /// Unbinds the vertex arrays.
@@ -71,6 +107,14 @@ private:
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLBufferObject> Indices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
+  /// The order of OrderByBrick(): brick i's triangles before its volume are
+  /// BrickOrder[BrickParts[2i] .. BrickParts[2i+1]), after it up to BrickParts[2i+2].
+  std::vector<unsigned int> BrickOrder;
+  std::vector<std::size_t> BrickParts;
+  bool BrickOrderUploaded = false;
+  vtkSmartPointer<vtkOpenGLBufferObject> BrickIndices;
+  vtkSmartPointer<vtkOpenGLVertexArrayObject> BrickVao;
+  vtkOpenGLVertexArrayObject* Bound = nullptr;
   vtkShaderProgram* Program = nullptr;
   std::vector<float> VertexData;
   std::vector<unsigned int> IndexData;

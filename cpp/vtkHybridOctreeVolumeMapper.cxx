@@ -6,6 +6,7 @@
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeFloatTarget.h"
 #include "vtkHybridOctreeImageInput.h"
+#include "vtkHybridOctreeInteractiveReduction.h"
 #include "vtkHybridOctreeSurfaceDrawer.h"
 #include "vtkHybridOctreeUnsupportedEffects.h"
 
@@ -65,6 +66,30 @@ void TransformVector(vtkMatrix4x4* m, const double v[3], double out[3])
     out[r] = m->GetElement(r, 0) * v[0] + m->GetElement(r, 1) * v[1] + m->GetElement(r, 2) * v[2];
   }
 }
+
+/// The passes an interactive frame runs for the DrawList's `passes`: a
+/// translucent surface per brick instead of in the slabs, no points.
+std::string InteractivePlan(const std::string& passes)
+{
+  std::string plan;
+  std::size_t start = 0;
+  while (start <= passes.size())
+  {
+    std::size_t end = passes.find(',', start);
+    end = end == std::string::npos ? passes.size() : end;
+    std::string pass = passes.substr(start, end - start);
+    if (pass == "surface-in-slabs")
+    {
+      pass = "surface-per-brick";
+    }
+    if (!pass.empty() && pass != "points")
+    {
+      plan += (plan.empty() ? "" : ",") + pass;
+    }
+    start = end + 1;
+  }
+  return plan;
+}
 } // namespace
 
 struct vtkHybridOctreeVolumeMapper::vtkInternals
@@ -92,12 +117,19 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   std::vector<double> ShadesColors;
   std::vector<double> ShadesOpacities;
 
-  // The selection, made again when its inputs change.
-  std::unique_ptr<Selection> Selected;
-  SelectionSummary Summary;
-  unsigned long SelectedGeneration = 0;
-  std::vector<double> SelectedKey;
-  std::vector<double> SelectedOpacity;
+  // The selections of still and of interactive frames, each made again
+  // when its inputs change, and the one of this frame.
+  struct SelectionSlot
+  {
+    std::unique_ptr<Selection> Selected;
+    SelectionSummary Summary;
+    unsigned long Generation = 0;
+    std::vector<double> Key;
+    std::vector<double> Opacity;
+  };
+  SelectionSlot Still;
+  SelectionSlot Moving;
+  SelectionSlot* Frame = &Still;
 
   // The isosurface, extracted again when the octree or the isovalue change.
   std::unique_ptr<Surface> Iso;
@@ -126,6 +158,8 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
 
   // Settings the mapper does not draw, each warned about once while on.
   vtkHybridOctreeUnsupportedEffects Unsupported;
+  // Interactive frames' sampling, from the times of the frames before.
+  vtkHybridOctreeInteractiveReduction Reduction;
 };
 
 vtkHybridOctreeVolumeMapper::vtkHybridOctreeVolumeMapper()
@@ -240,7 +274,9 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
     this->LastNaNSamples = in.NaNSamples;
     return true;
   }
-  in.Selected.reset();
+  in.Still.Selected.reset();
+  in.Moving.Selected.reset();
+  in.Reduction.Reset();
   in.Iso.reset();
   in.PointSet.reset();
   in.Octree.reset();
@@ -411,15 +447,10 @@ bool vtkHybridOctreeVolumeMapper::UpdatePointShades()
   return true;
 }
 
-bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkRenderer* ren, vtkVolumeProperty* property)
+SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
+  vtkVolumeProperty* property, double budgetMB, std::vector<double>& key) const
 {
   vtkInternals& in = *this->Internals;
-  const double budgetMB = this->FrameBudgetMB(ren);
-  if (!(budgetMB > 0.0))
-  {
-    vtkErrorMacro("the texture budget is 0 MB: set BudgetMB (and InteractiveBudgetMB) above 0");
-    return false;
-  }
   SelectDescription select;
   select.BudgetBytes = static_cast<std::size_t>(budgetMB * 1.0e6);
   select.Tolerance = this->ErrorTolerance;
@@ -429,28 +460,65 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkRenderer* ren, vtkVolumePro
   select.RoiRadius = this->RoiRadius;
   select.HasIsovalue = this->ShowSurface;
   select.Isovalue = this->Isovalue;
-  const std::vector<double> key = { static_cast<double>(select.BudgetBytes), select.Tolerance,
-    select.HasRoi ? 1.0 : 0.0, select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2],
-    select.RoiRadius, select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
+  key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
+    select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
+    select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
     in.PointSet ? static_cast<double>(in.PointsVersion) : -1.0 };
-  if (in.Selected && in.SelectedGeneration == in.OctreeGeneration && in.SelectedKey == key &&
-    in.SelectedOpacity == select.OpacityPoints)
+  return select;
+}
+
+bool vtkHybridOctreeVolumeMapper::IsStillSelectionCurrent(vtkVolumeProperty* property) const
+{
+  const vtkInternals& in = *this->Internals;
+  std::vector<double> key;
+  const SelectDescription select = this->DescribeSelection(property, this->BudgetMB, key);
+  return in.Still.Selected && in.Still.Generation == in.OctreeGeneration && in.Still.Key == key &&
+    in.Still.Opacity == select.OpacityPoints;
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, bool interactive)
+{
+  vtkInternals& in = *this->Internals;
+  const double budgetMB =
+    interactive ? std::min(this->InteractiveBudgetMB, this->BudgetMB) : this->BudgetMB;
+  if (!(budgetMB > 0.0))
+  {
+    vtkErrorMacro("the texture budget is 0 MB: set BudgetMB (and InteractiveBudgetMB) above 0");
+    return false;
+  }
+  vtkInternals::SelectionSlot& slot = interactive ? in.Moving : in.Still;
+  in.Frame = &slot;
+  std::vector<double> key;
+  SelectDescription select = this->DescribeSelection(property, budgetMB, key);
+  if (slot.Selected && slot.Generation == in.OctreeGeneration && slot.Key == key &&
+    slot.Opacity == select.OpacityPoints)
   {
     return true;
   }
   std::string error;
-  in.Selected = in.PointSet ? in.Octree->Select(select, *in.PointSet, error)
-                            : in.Octree->Select(select, error);
-  if (!in.Selected || !in.Selected->GetSummary(in.Summary, error))
+  slot.Selected = in.PointSet ? in.Octree->Select(select, *in.PointSet, error)
+                              : in.Octree->Select(select, error);
+  if (!slot.Selected || !slot.Selected->GetSummary(slot.Summary, error))
   {
-    in.Selected.reset();
+    slot.Selected.reset();
     vtkErrorMacro(<< error);
     return false;
   }
-  in.SelectedGeneration = in.OctreeGeneration;
-  in.SelectedKey = key;
-  in.SelectedOpacity = select.OpacityPoints;
+  slot.Generation = in.OctreeGeneration;
+  slot.Key = key;
+  slot.Opacity = select.OpacityPoints;
   return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property)
+{
+  const bool interactive = this->IsInteractive(ren);
+  if (interactive && this->IsStillSelectionCurrent(property))
+  {
+    this->Internals->Frame = &this->Internals->Still;
+    return true;
+  }
+  return this->UpdateSelection(property, interactive);
 }
 
 bool vtkHybridOctreeVolumeMapper::UpdateSurface()
@@ -517,7 +585,7 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   }
   this->UpdateModelMatrix(image, vol);
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
-    this->UpdateSelection(ren, property) && this->UpdateSurface();
+    this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
 
 CameraDescription vtkHybridOctreeVolumeMapper::ModelCamera(vtkRenderer* ren) const
@@ -550,9 +618,10 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   std::string error;
   const CameraDescription cam = this->ModelCamera(ren);
   const bool surface = in.Iso && this->ShowSurface && this->SurfaceOpacity > 0.0;
+  const Selection& selected = *in.Frame->Selected;
   const bool ok = surface
-    ? in.Selected->GetDrawList(*in.Octree, cam, *in.Iso, this->SurfaceOpacity, list, error)
-    : in.Selected->GetDrawList(*in.Octree, cam, list, error);
+    ? selected.GetDrawList(*in.Octree, cam, *in.Iso, this->SurfaceOpacity, list, error)
+    : selected.GetDrawList(*in.Octree, cam, list, error);
   if (!ok)
   {
     vtkErrorMacro(<< error);
@@ -562,7 +631,6 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
 
 void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
-  const auto start = std::chrono::steady_clock::now();
   this->LastRenderOK = false;
   this->LastBricks = 0;
   this->LastSlices = 0;
@@ -572,7 +640,10 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastUploadedBytes = 0;
   this->LastNaNSamples = 0;
   this->LastPlan.clear();
-  this->LastInteractive = this->IsInteractive(ren);
+  this->LastImageSampleDistance = 1.0;
+  this->LastSampleSpacing = 1;
+  const bool interactive = this->IsInteractive(ren);
+  this->LastInteractive = interactive;
   vtkInternals& in = *this->Internals;
   vtkOpenGLRenderWindow* window =
     ren ? vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()) : nullptr;
@@ -582,26 +653,49 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("an OpenGL render window and camera are required");
     return;
   }
+  // The frame's own time: from the end of what was drawn before it (glFinish)
+  // to the end of its drawing.
+  glFinish();
+  const auto start = std::chrono::steady_clock::now();
   DrawList list;
   if (!this->Prepare(ren, vol) || !this->GetFrameDrawList(ren, list))
   {
     return;
   }
-  if (this->DrawFrame(ren, window, camera, list))
+  if (interactive && in.Frame == &in.Still && !in.Bricks.HoldsAll(list.NodeId, list.Stride))
+  {
+    // The still selection is no longer resident: an interactive one, uploaded.
+    list = DrawList();
+    if (!this->UpdateSelection(vol->GetProperty(), true) || !this->GetFrameDrawList(ren, list))
+    {
+      return;
+    }
+  }
+  const int level = interactive && this->AutoAdjustSampleDistances
+    ? in.Reduction.Choose(vol->GetAllocatedRenderTime())
+    : 0;
+  if (this->DrawFrame(ren, window, camera, list, interactive, level))
   {
     this->LastRenderOK = true;
   }
-  this->LastPlan = list.Passes;
-  this->LastEstimatedError = in.Summary.EstimatedError;
-  this->LastPointBytes = static_cast<vtkTypeInt64>(in.Summary.PointBytes);
+  this->LastPlan = interactive ? InteractivePlan(list.Passes) : list.Passes;
+  this->LastEstimatedError = in.Frame->Summary.EstimatedError;
+  this->LastPointBytes = static_cast<vtkTypeInt64>(in.Frame->Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
   this->LastUploadedBytes = static_cast<vtkTypeInt64>(in.Bricks.GetUploadedBytes());
-  this->LastFrameMilliseconds =
-    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  // The frame's time to the end of its drawing: what the next interactive
+  // frame's sampling is chosen from.
+  glFinish();
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  this->LastFrameMilliseconds = 1.0e3 * elapsed.count();
+  if (this->LastRenderOK)
+  {
+    in.Reduction.Record(level, elapsed.count(), interactive);
+  }
 }
 
-bool vtkHybridOctreeVolumeMapper::DrawFrame(
-  vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera, const DrawList& list)
+bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
+  vtkOpenGLCamera* camera, const DrawList& list, bool interactive, int level)
 {
   vtkInternals& in = *this->Internals;
   std::string error;
@@ -609,7 +703,9 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
 
   // Brick textures: resident ones reused, the rest uploaded within the budget.
   // The points bought share the budget: the textures get the rest.
-  const double textureBudget = this->BudgetMB * 1.0e6 - static_cast<double>(in.Summary.PointBytes);
+  const Selection& selected = *in.Frame->Selected;
+  const double textureBudget =
+    this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
   in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   std::vector<vtkTextureObject*> textures(bricks, nullptr);
   // Per brick the box its slices are clipped to: its visible blocks (empty: not drawn).
@@ -620,7 +716,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
     const std::size_t brick = list.Brick[i];
     const vtkHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(window, { list.NodeId[i], list.Stride[i] },
       &list.Texels[3 * i], [&](std::vector<float>& texels) {
-        return in.Selected->GetBrickTexels(
+        return selected.GetBrickTexels(
           Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, error);
       },
       error);
@@ -665,14 +761,18 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
 
   const CameraDescription cam = this->ModelCamera(ren);
   const bool batches = !list.BatchOffsets.empty() && list.BatchOffsets.back() > 0;
+  // Interactive: every brick ray-marched, its triangles drawn before or after it, no points.
+  const bool surfacePerBrick = interactive && batches;
+  const vtkHybridOctreeInteractiveReduction::Level sampling =
+    vtkHybridOctreeInteractiveReduction::GetLevel(level);
   vtkHybridOctreeBrickDrawer::SurfaceData translucent;
-  if (batches)
+  if (batches && !interactive)
   {
     translucent.Vertices = &in.SurfaceDrawer.GetVertexData();
     translucent.Triangles = &in.SurfaceDrawer.GetIndexData();
   }
   vtkHybridOctreeBrickDrawer::PointData points;
-  if (in.PointSet && !list.BucketOffsets.empty())
+  if (in.PointSet && !list.BucketOffsets.empty() && !interactive)
   {
     points.Drawing = &in.Drawing;
     points.Shades = &in.Shades;
@@ -681,12 +781,18 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(
     in.Drawer.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp, translucent, points));
   this->LastPoints = static_cast<vtkTypeInt64>(in.Drawer.GetPointsPlaced());
+  this->LastImageSampleDistance = sampling.ImageSampleDistance;
+  this->LastSampleSpacing = sampling.SampleSpacing;
   for (std::size_t i = 0; i < bricks; ++i)
   {
     if (drawn[i])
     {
-      this->LastSlices +=
-        static_cast<vtkTypeInt64>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
+      // The lattice planes sampled: every factor-th slice of a sparser ray march.
+      const double slices = static_cast<double>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
+      const double factor = list.SliceSpacing[i] > 0.0
+        ? std::max(1.0, sampling.SampleSpacing * list.ReferenceSpacing / list.SliceSpacing[i])
+        : 1.0;
+      this->LastSlices += static_cast<vtkTypeInt64>(std::ceil(slices / factor));
       ++this->LastBricks;
     }
   }
@@ -733,7 +839,14 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   // translucent triangles of each slab between them; blended premultiplied,
   // depth tested, not written. Clip distances on while the program (which
   // writes them) is bound.
-  if (!in.Target.Begin(ren, window, error))
+  // The region of the window drawn: the bricks' boxes (their triangles
+  // included); points' footprints may reach past them, so all of it then.
+  double region[4] = { -1.0, 1.0, -1.0, 1.0 };
+  if (this->LastPoints == 0)
+  {
+    this->ScreenRegion(mcdc, list.Bounds, region);
+  }
+  if (!in.Target.Begin(ren, window, sampling.ImageSampleDistance, region, error))
   {
     vtkErrorMacro(<< error);
     return false;
@@ -744,13 +857,28 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
   state->vtkglDepthMask(GL_FALSE);
   in.TableTexture->Activate();
   in.Target.GetDepth()->Activate();
-  const bool ok = in.Drawer.Bind(window, mcdc, in.TableTexture, in.Target.GetDepth(),
-    this->TableSize, in.RangeLo, in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
+  in.Drawer.SetSampleSpacing(sampling.SampleSpacing);
+  if (surfacePerBrick)
+  {
+    in.SurfaceDrawer.OrderByBrick(
+      list, cam.Position, list.Forward, cam.Parallel, this->IsInsideOpaque());
+  }
+  bool ok = !surfacePerBrick ||
+    in.SurfaceDrawer.Bind(window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error,
+      &in.Target);
+  ok = ok &&
+    in.Drawer.Bind(window, mcdc, in.TableTexture, in.Target, this->TableSize, in.RangeLo,
+      in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
   if (ok)
   {
+    // Clip distances (the slabs' triangles) on while the program that writes
+    // them is bound; interactive frames have no slabs.
     for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
     {
-      state->vtkglEnable(plane);
+      if (!interactive)
+      {
+        state->vtkglEnable(plane);
+      }
     }
     // Ray-marched boxes keep only the faces rays leave by (see
     // vtkHybridOctreeBrickDrawer::EmitBox); a mirroring model matrix turns
@@ -768,9 +896,19 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
       {
         state->vtkglDisable(GL_CULL_FACE);
       }
+      const std::size_t before = surfacePerBrick ? this->DrawSurfaceBefore(window, i) : 0;
+      if (before > 0)
+      {
+        this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(before);
+        state->vtkglEnable(GL_CULL_FACE); // every brick of an interactive frame is ray-marched
+      }
       textures[i]->Activate();
       in.Drawer.DrawBrick(list, i, in.Grid.Spacing, textures[i]);
       textures[i]->Deactivate();
+    }
+    if (surfacePerBrick)
+    {
+      this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(this->DrawSurfaceBefore(window, bricks));
     }
     glFrontFace(GL_CCW);
     for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
@@ -787,6 +925,74 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(
     vtkErrorMacro(<< error);
   }
   return ok;
+}
+
+void vtkHybridOctreeVolumeMapper::ScreenRegion(
+  vtkMatrix4x4* mcdc, const std::vector<double>& bounds, double region[4]) const
+{
+  // The normalized device box of the boxes' corners (VTK's key matrices are
+  // transposed: clip_r = sum_j mcdc(j, r) p_j); everything when a corner
+  // lies behind the eye.
+  double box[4] = { 1.0, -1.0, 1.0, -1.0 };
+  for (std::size_t i = 0; 6 * i + 5 < bounds.size(); ++i)
+  {
+    for (int c = 0; c < 8; ++c)
+    {
+      const double p[4] = { bounds[6 * i + (c & 1)], bounds[6 * i + 2 + ((c >> 1) & 1)],
+        bounds[6 * i + 4 + ((c >> 2) & 1)], 1.0 };
+      double clip[4];
+      for (int r = 0; r < 4; ++r)
+      {
+        clip[r] = mcdc->GetElement(0, r) * p[0] + mcdc->GetElement(1, r) * p[1] +
+          mcdc->GetElement(2, r) * p[2] + mcdc->GetElement(3, r) * p[3];
+      }
+      if (!(clip[3] > 0.0))
+      {
+        region[0] = region[2] = -1.0;
+        region[1] = region[3] = 1.0;
+        return;
+      }
+      for (int a = 0; a < 2; ++a)
+      {
+        box[2 * a] = std::min(box[2 * a], clip[a] / clip[3]);
+        box[2 * a + 1] = std::max(box[2 * a + 1], clip[a] / clip[3]);
+      }
+    }
+  }
+  std::copy(box, box + 4, region);
+}
+
+std::size_t vtkHybridOctreeVolumeMapper::DrawSurfaceBefore(
+  vtkOpenGLRenderWindow* window, std::size_t i)
+{
+  vtkInternals& in = *this->Internals;
+  const std::pair<std::size_t, std::size_t> range = in.SurfaceDrawer.GetTrianglesBefore(i);
+  if (range.second <= range.first)
+  {
+    return 0;
+  }
+  window->GetState()->vtkglDisable(GL_CULL_FACE);
+  in.SurfaceDrawer.Rebind(window);
+  in.SurfaceDrawer.Draw(range.first, range.second);
+  in.Drawer.Rebind(window);
+  return range.second - range.first;
+}
+
+bool vtkHybridOctreeVolumeMapper::IsInsideOpaque() const
+{
+  // The mean table opacity above the isovalue against below it.
+  const vtkInternals& in = *this->Internals;
+  const int n = this->TableSize;
+  double sum[2] = { 0.0, 0.0 };
+  int count[2] = { 0, 0 };
+  for (int k = 0; k < n && 4 * static_cast<std::size_t>(k) + 3 < in.Table.size(); ++k)
+  {
+    const double v = in.RangeLo + (in.RangeHi - in.RangeLo) * k / (n - 1);
+    const int inside = v >= this->Isovalue ? 1 : 0;
+    sum[inside] += in.Table[4 * static_cast<std::size_t>(k) + 3];
+    ++count[inside];
+  }
+  return sum[1] * std::max(count[0], 1) >= sum[0] * std::max(count[1], 1);
 }
 
 bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
@@ -815,7 +1021,7 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   }
   std::vector<float> out;
   std::string error;
-  if (!in.Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
+  if (!in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
         ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
         static_cast<std::size_t>(height), out, error))
   {
@@ -832,6 +1038,7 @@ void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& in = *this->Internals;
   in.Bricks.Clear(window);
+  in.Reduction.Reset();
   if (in.TableTexture)
   {
     in.TableTexture->ReleaseGraphicsResources(window);
@@ -854,6 +1061,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BudgetMB: " << this->BudgetMB << "\n";
   os << indent << "InteractiveBudgetMB: " << this->InteractiveBudgetMB << "\n";
   os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "UseRoi: " << this->UseRoi << "\n";
   os << indent << "RoiCenter: (" << this->RoiCenter[0] << ", " << this->RoiCenter[1] << ", "
@@ -885,4 +1093,6 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastNaNSamples: " << this->LastNaNSamples << "\n";
   os << indent << "LastInteractive: " << this->LastInteractive << "\n";
   os << indent << "LastRenderOK: " << this->LastRenderOK << "\n";
+  os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
+  os << indent << "LastSampleSpacing: " << this->LastSampleSpacing << "\n";
 }

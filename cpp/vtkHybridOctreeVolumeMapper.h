@@ -38,6 +38,20 @@
  * (another blend mode, Shade, a gradient opacity, a 2D transfer function,
  * cropping, clipping planes, dependent components) are drawn as off and
  * named in one warning each, given again when the setting changes.
+ *
+ * Interactive frames (the window's desired update rate above
+ * InteractiveUpdateRate, as while the camera is dragged) draw the bricks of
+ * the last still frame's selection, resident, without uploading any (a
+ * selection under InteractiveBudgetMB only when there is none: before the
+ * first still frame, or when its inputs changed), every brick ray-marched;
+ * a translucent surface is drawn brick by brick (each of a brick's
+ * triangles before or after that brick's volume, by the side of it the eye
+ * is on, see vtkHybridOctreeSurfaceDrawer) instead of in the slabs, and
+ * points are left out. With AutoAdjustSampleDistances they also composite at a coarser
+ * image sample distance and sample the rays more sparsely, as much as
+ * keeps them within the volume's allocated render time
+ * (vtkHybridOctreeInteractiveReduction). The next still frame draws the
+ * full picture again.
  */
 #ifndef vtkHybridOctreeVolumeMapper_h
 #define vtkHybridOctreeVolumeMapper_h
@@ -47,10 +61,12 @@
 
 #include <memory> // for std::unique_ptr
 #include <string> // for LastPlan
+#include <vector> // for selection keys
 
 class vtkDataArray;
 class vtkFloatArray;
 class vtkImageData;
+class vtkMatrix4x4;
 class vtkOpenGLCamera;
 class vtkOpenGLRenderWindow;
 class vtkVolumeProperty;
@@ -59,6 +75,7 @@ namespace vtkHybridOctreeBridge
 {
 struct CameraDescription;
 struct DrawList;
+struct SelectDescription;
 }
 #endif
 
@@ -79,7 +96,10 @@ public:
   ///@{
   /// Texture budget in MB of an interactive frame (when the render window
   /// asks for more than InteractiveUpdateRate frames per second, as during
-  /// camera interaction); default 8. The next still frame refines to BudgetMB.
+  /// camera interaction) that cannot draw the last still frame's resident
+  /// textures: before the first still frame, or when an input of the
+  /// selection changed while interacting; default 8. The next still frame
+  /// refines to BudgetMB.
   vtkSetClampMacro(InteractiveBudgetMB, double, 0.0, 1.0e6);
   vtkGetMacro(InteractiveBudgetMB, double);
   ///@}
@@ -87,9 +107,19 @@ public:
   ///@{
   /// Desired update rate (frames per second) above which a frame is
   /// interactive; default 1 (VTK's still update rate is 0.0001, its
-  /// interactive one 15).
+  /// interactive one 15; ParaView's 0.002 and 5).
   vtkSetClampMacro(InteractiveUpdateRate, double, 0.0, 1.0e6);
   vtkGetMacro(InteractiveUpdateRate, double);
+  ///@}
+
+  ///@{
+  /// Whether interactive frames widen their image sample distance and the
+  /// sample spacing along the rays to keep within the volume's allocated
+  /// render time (as vtkGPUVolumeRayCastMapper's AutoAdjustSampleDistances);
+  /// on by default. Off: interactive frames sample as still ones.
+  vtkSetMacro(AutoAdjustSampleDistances, bool);
+  vtkGetMacro(AutoAdjustSampleDistances, bool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, bool);
   ///@}
 
   ///@{
@@ -182,12 +212,14 @@ public:
   /// Statistics of the last frame: bricks drawn, bytes of resident brick
   /// textures and of those uploaded for this frame, slices drawn, surface
   /// triangles drawn, the passes that ran (comma-joined, e.g.
-  /// "opaque-surface,volume"), wall-clock milliseconds of Render(), the
-  /// selection's estimated error (the largest nodal error of the bricks the
-  /// scalar opacity does not hide, a fraction of the data range: 0 exactly
-  /// when every visible brick draws the full-resolution field; the number
-  /// `hybrid-octree render` prints), whether the frame was interactive, and
-  /// whether it drew (false after an error).
+  /// "opaque-surface,volume"), wall-clock milliseconds of Render() from the
+  /// end of what was drawn before it to the end of its own drawing (it waits
+  /// for OpenGL with glFinish on both sides), the selection's estimated
+  /// error (the largest nodal error of the bricks the scalar opacity does
+  /// not hide, a fraction of the data range: 0 exactly when every visible
+  /// brick draws the full-resolution field; the number `hybrid-octree
+  /// render` prints), whether the frame was interactive, and whether it
+  /// drew (false after an error).
   vtkGetMacro(LastBricks, int);
   vtkGetMacro(LastTextureBytes, vtkTypeInt64);
   vtkGetMacro(LastUploadedBytes, vtkTypeInt64);
@@ -203,6 +235,11 @@ public:
   vtkGetMacro(LastNaNSamples, vtkTypeInt64);
   vtkGetMacro(LastInteractive, bool);
   vtkGetMacro(LastRenderOK, bool);
+  /// The last frame's image sample distance (pixels per composited texel
+  /// along x and y, 1 at full resolution) and sample spacing factor m (rays
+  /// sampled every max(d, m d0); 1: every slice of the lattice).
+  vtkGetMacro(LastImageSampleDistance, double);
+  vtkGetMacro(LastSampleSpacing, int);
   ///@}
 
   /// Textures resident after the last frame (bricks kept for later frames included).
@@ -230,6 +267,9 @@ protected:
   bool Prepare(vtkRenderer* ren, vtkVolume* vol);
   /// Whether `ren`'s window asks for an interactive frame rate.
   bool IsInteractive(vtkRenderer* ren) const;
+  /// Whether the selection of the last still frame is up to date (an
+  /// interactive frame draws it when its textures are resident).
+  bool IsStillSelectionCurrent(vtkVolumeProperty* property) const;
   /// The budget of a frame of `ren`: InteractiveBudgetMB (at most BudgetMB)
   /// when interactive, else BudgetMB.
   double FrameBudgetMB(vtkRenderer* ren) const;
@@ -237,6 +277,7 @@ protected:
   double BudgetMB = 64.0;
   double InteractiveBudgetMB = 8.0;
   double InteractiveUpdateRate = 1.0;
+  bool AutoAdjustSampleDistances = true;
   double ErrorTolerance = 0.0;
   bool UseRoi = false;
   double RoiCenter[3] = { 0.0, 0.0, 0.0 };
@@ -266,6 +307,8 @@ protected:
   vtkTypeInt64 LastNaNSamples = 0;
   bool LastInteractive = false;
   bool LastRenderOK = false;
+  double LastImageSampleDistance = 1.0;
+  int LastSampleSpacing = 1;
 
 private:
   vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;
@@ -278,14 +321,34 @@ private:
   bool UpdatePoints();
   /// The points' shades for the current transfer function table.
   bool UpdatePointShades();
-  bool UpdateSelection(vtkRenderer* ren, vtkVolumeProperty* property);
+  /// The selection of a still (BudgetMB) or an interactive frame
+  /// (InteractiveBudgetMB) up to date and chosen for this frame.
+  bool UpdateSelection(vtkVolumeProperty* property, bool interactive);
+  /// This frame's selection: the still one when it is current and `ren`
+  /// is interactive, else UpdateSelection()'s.
+  bool ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property);
+  /// What the selection of `budgetMB` is made from, with its cache key.
+  vtkHybridOctreeBridge::SelectDescription DescribeSelection(
+    vtkVolumeProperty* property, double budgetMB, std::vector<double>& key) const;
   bool UpdateSurface();
   /// The active camera in the octree's frame (through the inverse model matrix).
   vtkHybridOctreeBridge::CameraDescription ModelCamera(vtkRenderer* ren) const;
   bool GetFrameDrawList(vtkRenderer* ren, vtkHybridOctreeBridge::DrawList& list);
-  /// Executes `list`: textures, table, opaque surface, slices and batches.
+  /// Executes `list`: textures, table, opaque surface, slices and batches;
+  /// interactive: resident textures, bricks ray-marched at `level` of
+  /// vtkHybridOctreeInteractiveReduction, a translucent surface per brick.
   bool DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera,
-    const vtkHybridOctreeBridge::DrawList& list);
+    const vtkHybridOctreeBridge::DrawList& list, bool interactive, int level);
+  /// Draws the translucent triangles between brick i - 1's volume and brick
+  /// i's into the bound float target (vtkHybridOctreeSurfaceDrawer::
+  /// GetTrianglesBefore()); returns how many.
+  std::size_t DrawSurfaceBefore(vtkOpenGLRenderWindow* window, std::size_t i);
+  /// The normalized device box (xmin, xmax, ymin, ymax) of the boxes
+  /// `bounds[6i .. 6i+6]` (model coordinates) for the model-to-clip matrix
+  /// `mcdc`; all of it when one reaches behind the eye.
+  void ScreenRegion(vtkMatrix4x4* mcdc, const std::vector<double>& bounds, double region[4]) const;
+  /// Whether the transfer function is more opaque above the isovalue than below it.
+  bool IsInsideOpaque() const;
 #endif
   void operator=(const vtkHybridOctreeVolumeMapper&) = delete;
 

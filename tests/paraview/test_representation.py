@@ -13,7 +13,14 @@ reader (XMLImageDataReader) and drawn, in one render view, by:
   and an Estimated Error of 0 (everything is drawn at full resolution);
 - "Hybrid Octree Volume" at a 0.05 MB budget: its statistics stay within
   the budget, its Estimated Error is above 0 and its picture is further
-  from the baseline.
+  from the baseline;
+- a drag: the view proxy's InteractiveRender() after a still frame draws
+  the still frame's resident textures (0 bytes uploaded, the mapper's
+  LastInteractive set), at full sampling the still picture (RMSE <= 0.002),
+  at the sampling chosen for ParaView's allocated render time within RMSE
+  0.04 of it; the next StillRender() is the full frame again (not
+  interactive, full sampling, the still picture); with a translucent
+  isosurface the drag's plan draws it per brick.
 
 It also checks: the representation type is offered for image data and not
 for an unstructured grid; reader -> Hybrid Octree filter -> the outlines of
@@ -105,6 +112,60 @@ t.check(s["LastFrameMilliseconds"] > 0.0, "frame ms: %s" % s["LastFrameMilliseco
 # 64 MB holds the whole 64^3 phantom (1 MB of floats): every visible brick at full resolution.
 t.check(s["LastEstimatedError"] == 0.0, "64 MB: estimated error 0, not %s" % s["LastEstimatedError"])
 
+# ---- A drag: interactive frames from the still frame's resident textures -------------
+import hybrid_octree  # noqa: E402,F401  (the mapper's class: its statistics)
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter  # noqa: E402
+
+
+def mapper_of(display):
+    """The vtkHybridOctreeVolumeMapper behind a display (built-in session)."""
+    return display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
+
+
+def drawn(view):
+    """The picture the view's window holds now (not rendered again), as screenshot() gives it."""
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(view.GetRenderWindow())
+    grab.SetInputBufferTypeToRGB()
+    grab.ReadFrontBufferOff()
+    grab.ShouldRerenderOff()
+    grab.Update()
+    return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).astype(float) / 255.0
+
+
+mapper = mapper_of(display)
+view.SMProxy.StillRender()
+still = drawn(view)
+mapper.AutoAdjustSampleDistancesOff()
+view.SMProxy.InteractiveRender()
+t.check(mapper.GetLastInteractive() and mapper.GetLastRenderOK(), "InteractiveRender() is an interactive frame")
+t.check(mapper.GetLastUploadedBytes() == 0, "the drag uploads nothing after a still frame: %d bytes"
+        % mapper.GetLastUploadedBytes())
+error_full_sampling = rmse(drawn(view), still)
+t.check(error_full_sampling <= 0.002, "full sampling: the still picture (RMSE %.4f)" % error_full_sampling)
+mapper.AutoAdjustSampleDistancesOn()
+camera = view.GetActiveCamera()
+uploaded = 0
+for step in range(6):
+    camera.Azimuth(5.0 if step < 3 else -5.0)
+    view.SMProxy.InteractiveRender()
+    uploaded += mapper.GetLastUploadedBytes()
+    t.check(mapper.GetLastInteractive(), "drag frame %d is interactive" % step)
+dragged = drawn(view)
+sampling = (mapper.GetLastImageSampleDistance(), mapper.GetLastSampleSpacing())
+report("drag: image sample distance %g, sample spacing %d d0, RMSE %.4f to the still picture (full sampling %.4f)"
+       % (sampling[0], sampling[1], rmse(dragged, still), error_full_sampling))
+t.check(uploaded == 0, "no upload while dragging: %d bytes" % uploaded)
+# Measured at the coarsest sampling (image sample distance 6, samples every 2 d0): 0.026.
+t.check(rmse(dragged, still) <= 0.04, "the drag's picture within RMSE 0.04 of the still one: %.4f"
+        % rmse(dragged, still))
+view.SMProxy.StillRender()
+t.check(not mapper.GetLastInteractive() and mapper.GetLastImageSampleDistance() == 1.0
+        and mapper.GetLastSampleSpacing() == 1, "the release is a still frame at full sampling")
+t.check(mapper.GetLastUploadedBytes() == 0 and rmse(drawn(view), still) < 0.002,
+        "the release draws the still picture from resident textures (RMSE %.4f)" % rmse(drawn(view), still))
+
 # ---- A small budget: coarser bricks, within the budget, further from the baseline ----
 display.TextureBudgetMB = 0.05
 Render(view)
@@ -155,6 +216,10 @@ display.IsosurfaceOpacity = 0.5
 Render(view)
 t.check(stats(display)["LastPlan"] == "surface-in-slabs,volume",
         "translucent surface plan: %r" % stats(display)["LastPlan"])
+view.SMProxy.InteractiveRender()
+t.check(mapper.GetLastPlan() == "surface-per-brick,volume" and mapper.GetLastUploadedBytes() == 0,
+        "a drag draws the translucent surface per brick from resident textures: %r" % mapper.GetLastPlan())
+view.SMProxy.StillRender()
 display.IsosurfaceOpacity = 1.0
 Render(view)
 surface_image = screenshot(view, "hybrid-opaque-surface")
