@@ -39,4 +39,13 @@ if ((rustc_minor < 86)); then
   echo "install-deps: $(rustc --version) is too old; HybridOctree needs rustc >= 1.86 (rustup update)" >&2
   exit 1
 fi
+# rustfmt and clippy: the test command's first stage.
+if ! cargo fmt --version >/dev/null 2>&1 || ! cargo clippy --version >/dev/null 2>&1; then
+  if command -v rustup >/dev/null 2>&1; then
+    rustup component add rustfmt clippy
+  else
+    echo "install-deps: cargo fmt or cargo clippy missing; install the rustfmt and clippy components" >&2
+    exit 1
+  fi
+fi
 echo "install-deps: Debian packages and $(cargo --version) ready"

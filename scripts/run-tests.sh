@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds everything, and runs every test:
-# the Rust unit, integration and doc tests, then CTest (C++ filter tests, the
-# find_package consumer, pvbatch plugin tests) under Xvfb.
+# Installs what is missing, builds everything, and runs every test: first
+# the fast Rust stage (rustfmt, clippy with warnings as errors), then the
+# CMake build, the Rust unit, integration and doc tests, then CTest (C++
+# tests, the find_package consumer, pvbatch plugin tests, the GUI test)
+# under Xvfb.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 export PATH="$HOME/.cargo/bin:$PATH"
+
+echo "== cargo fmt --check, cargo clippy (warnings are errors) =="
+cargo fmt --check
+CARGO_TARGET_DIR="$PWD/build/clippy" cargo clippy --release --all-targets --locked -- -D warnings
 
 echo "== CMake build (crate, VTK module, ParaView plugin) =="
 bash scripts/build.sh
