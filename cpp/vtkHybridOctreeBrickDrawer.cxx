@@ -269,12 +269,12 @@ struct Placed
 vtkHybridOctreeBrickDrawer::vtkHybridOctreeBrickDrawer() = default;
 vtkHybridOctreeBrickDrawer::~vtkHybridOctreeBrickDrawer() = default;
 
-void vtkHybridOctreeBrickDrawer::Emit(const float position[3], const float normal[3],
-  float near, float far, float surface, float alpha)
+void vtkHybridOctreeBrickDrawer::Emit(
+  const float position[3], const float normal[3], float near, float far, float surface, float alpha)
 {
   this->VertexData.insert(this->VertexData.end(),
-    { position[0], position[1], position[2], normal[0], normal[1], normal[2], near, far,
-      surface, alpha });
+    { position[0], position[1], position[2], normal[0], normal[1], normal[2], near, far, surface,
+      alpha });
 }
 
 void vtkHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
@@ -349,8 +349,8 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
   }
   this->PointSpacing = static_cast<float>(list.ReferenceSpacing);
   this->PointsPlaced = 0;
-  const bool withPoints = points.Drawing && points.Shades &&
-    list.BucketOffsets.size() == list.GetNumberOfBricks() + 1;
+  const bool withPoints =
+    points.Drawing && points.Shades && list.BucketOffsets.size() == list.GetNumberOfBricks() + 1;
   std::vector<SlabItem> items;
   this->VertexData.clear();
   this->Boxes.clear();
@@ -538,14 +538,14 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
   if (!this->VertexData.empty() &&
     (!this->Vao->AddAttributeArray(
        this->Program, this->Vertices, "vertexMC", 0, stride, VTK_FLOAT, 3, false) ||
-      !this->Vao->AddAttributeArray(
-        this->Program, this->Vertices, "normalMC", 3 * sizeof(float), stride, VTK_FLOAT, 3, false) ||
+      !this->Vao->AddAttributeArray(this->Program, this->Vertices, "normalMC", 3 * sizeof(float),
+        stride, VTK_FLOAT, 3, false) ||
       !this->Vao->AddAttributeArray(
         this->Program, this->Vertices, "clipMC", 6 * sizeof(float), stride, VTK_FLOAT, 2, false) ||
       !this->Vao->AddAttributeArray(this->Program, this->Vertices, "surfaceMC", 8 * sizeof(float),
         stride, VTK_FLOAT, 1, false) ||
-      !this->Vao->AddAttributeArray(this->Program, this->Vertices, "alphaMC", 9 * sizeof(float),
-        stride, VTK_FLOAT, 1, false)))
+      !this->Vao->AddAttributeArray(
+        this->Program, this->Vertices, "alphaMC", 9 * sizeof(float), stride, VTK_FLOAT, 1, false)))
   {
     error = "could not bind the brick vertices";
     this->Vao->Release();

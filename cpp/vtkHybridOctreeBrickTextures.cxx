@@ -38,8 +38,9 @@ bool vtkHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
   return true;
 }
 
-const vtkHybridOctreeBrickTextures::Resident* vtkHybridOctreeBrickTextures::Acquire(vtkOpenGLRenderWindow* window,
-  const Key& key, const std::size_t texels[3], const Fetch& fetch, std::string& error)
+const vtkHybridOctreeBrickTextures::Resident* vtkHybridOctreeBrickTextures::Acquire(
+  vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3], const Fetch& fetch,
+  std::string& error)
 {
   if (this->Window && this->Window != window)
   {

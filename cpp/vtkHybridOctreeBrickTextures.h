@@ -65,7 +65,8 @@ public:
     const std::size_t texels[3], const Fetch& fetch, std::string& error);
 
   /// Whether the bricks (`nodes[i]`, `strides[i]`) are all resident.
-  bool HoldsAll(const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides) const;
+  bool HoldsAll(
+    const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides) const;
 
   /// Bytes of all resident textures.
   std::size_t GetResidentBytes() const { return this->ResidentBytes; }

@@ -224,7 +224,8 @@ VolumeOctree::~VolumeOctree() = default;
 std::unique_ptr<VolumeOctree> VolumeOctree::Build(const void* bytes, std::size_t byteCount,
   const GridDescription& grid, unsigned int leafSize, std::string& error)
 {
-  return Build(bytes, byteCount, grid, leafSize, [](double) { return true; }, error);
+  return Build(
+    bytes, byteCount, grid, leafSize, [](double) { return true; }, error);
 }
 
 namespace
@@ -377,8 +378,8 @@ std::unique_ptr<Selection> VolumeOctree::Select(
   Guarded(error, [&] {
     rust::Box<hybrid_octree::SelectionHandle> handle =
       this->Impl->Handle->select_bricks(ToRust(options));
-    result = std::unique_ptr<Selection>(
-      new Selection(std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
+    result = std::unique_ptr<Selection>(new Selection(
+      std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
   });
   return result;
 }
@@ -429,8 +430,8 @@ bool Points::GetShades(const void* bytes, std::size_t byteCount, const GridDescr
   std::vector<float>& shades, std::string& error) const
 {
   return Guarded(error, [&] {
-    const rust::Vec<float> out = this->Impl->Handle->shades(ToSlice(bytes, byteCount),
-      ToRust(grid), rust::Slice<const double>(colorPoints.data(), colorPoints.size()),
+    const rust::Vec<float> out = this->Impl->Handle->shades(ToSlice(bytes, byteCount), ToRust(grid),
+      rust::Slice<const double>(colorPoints.data(), colorPoints.size()),
       rust::Slice<const double>(opacityPoints.data(), opacityPoints.size()));
     CopyInto(out, shades);
   });
@@ -443,8 +444,8 @@ std::unique_ptr<Selection> VolumeOctree::Select(
   Guarded(error, [&] {
     rust::Box<hybrid_octree::SelectionHandle> handle =
       this->Impl->Handle->select_bricks_with_points(ToRust(options), *points.Impl->Handle);
-    result = std::unique_ptr<Selection>(
-      new Selection(std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
+    result = std::unique_ptr<Selection>(new Selection(
+      std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
   });
   return result;
 }
@@ -536,9 +537,7 @@ std::unique_ptr<Surface> VolumeOctree::ExtractSurfaceForDrawing(const void* byte
 
 bool Surface::GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string& error) const
 {
-  return Guarded(error, [&] {
-    CopyMesh(this->Impl->Handle->mesh(*octree.Impl->Handle), mesh);
-  });
+  return Guarded(error, [&] { CopyMesh(this->Impl->Handle->mesh(*octree.Impl->Handle), mesh); });
 }
 
 bool Selection::Composite(const VolumeOctree& octree, const CameraDescription& camera,
@@ -554,8 +553,8 @@ bool Selection::Composite(const VolumeOctree& octree, const CameraDescription& c
     const rust::Vec<float> out = scene.SurfaceToDraw
       ? this->Impl->Handle->composite_with_surface(*octree.Impl->Handle, ToRust(camera),
           ToSlice(bytes, byteCount), desc, colors, opacities, scene.GaussianPoints,
-          *scene.SurfaceToDraw->Impl->Handle,
-          rust::Slice<const double>(scene.SurfaceRGBA, 4), width, height)
+          *scene.SurfaceToDraw->Impl->Handle, rust::Slice<const double>(scene.SurfaceRGBA, 4),
+          width, height)
       : this->Impl->Handle->composite(*octree.Impl->Handle, ToRust(camera),
           ToSlice(bytes, byteCount), desc, colors, opacities, scene.GaussianPoints, width, height);
     CopyInto(out, rgba);

@@ -110,7 +110,7 @@ struct SurfaceMesh
   std::vector<float> Normals; ///< unit, from values >= isovalue towards values below
   std::vector<std::int64_t> Offsets;
   std::vector<std::int64_t> Connectivity;
-  std::vector<std::uint32_t> PolygonNode;  ///< terminal node holding the polygon (level-by-level id)
+  std::vector<std::uint32_t> PolygonNode; ///< terminal node holding the polygon (level-by-level id)
   std::vector<std::uint32_t> PolygonLevel; ///< level of that node (0 = root)
   std::vector<std::uint32_t> PolygonFace;  ///< the merged coplanar face the triangle belongs to
   std::uint64_t Polygons = 0;
@@ -146,9 +146,9 @@ struct SelectionSummary
   std::uint64_t Bricks = 0;
   std::uint64_t TextureBytes = 0;
   std::uint64_t BudgetBytes = 0;
-  double EstimatedError = 0.0; ///< largest e_p of the visible bricks, fraction of the data range
-  std::uint64_t Skipped = 0; ///< nodes left out as fully transparent
-  std::string Warning;       ///< empty when none
+  double EstimatedError = 0.0;  ///< largest e_p of the visible bricks, fraction of the data range
+  std::uint64_t Skipped = 0;    ///< nodes left out as fully transparent
+  std::string Warning;          ///< empty when none
   std::uint64_t Points = 0;     ///< points of the hybrid representation bought (0 without)
   std::uint64_t PointBytes = 0; ///< their bytes, counted in the budget with the textures
 };
@@ -195,10 +195,10 @@ struct DrawList
   std::vector<double> OpacityRatio;
   std::vector<std::size_t> SliceOffsets;
   std::vector<double> Slices;
-  std::string Passes; ///< comma-joined, e.g. "volume"; empty without bricks
-  double ReferenceSpacing = 0.0; ///< d0, world units
+  std::string Passes;                     ///< comma-joined, e.g. "volume"; empty without bricks
+  double ReferenceSpacing = 0.0;          ///< d0, world units
   double Forward[3] = { 0.0, 0.0, -1.0 }; ///< unit view direction
-  std::vector<std::size_t> BatchOffsets; ///< bricks + 1 values
+  std::vector<std::size_t> BatchOffsets;  ///< bricks + 1 values
   std::vector<std::size_t> BatchSlab;
   std::vector<std::uint32_t> BatchFirst;
   std::vector<std::uint32_t> BatchEnd;
@@ -222,9 +222,9 @@ class Surface;
 /// What Selection::Composite() draws besides the bricks' texels.
 struct CompositeScene
 {
-  std::vector<double> ColorPoints;   ///< (value, r, g, b) flattened
-  std::vector<double> OpacityPoints; ///< (value, opacity) flattened
-  const Surface* SurfaceToDraw = nullptr; ///< the isosurface, or none
+  std::vector<double> ColorPoints;                ///< (value, r, g, b) flattened
+  std::vector<double> OpacityPoints;              ///< (value, opacity) flattened
+  const Surface* SurfaceToDraw = nullptr;         ///< the isosurface, or none
   double SurfaceRGBA[4] = { 1.0, 1.0, 1.0, 1.0 }; ///< its colour and opacity
   bool GaussianPoints = false; ///< footprint of the selection's points: Gaussian, else square
 };
@@ -279,8 +279,8 @@ public:
    * kept). An exception from `progress` cancels too.
    */
   static std::unique_ptr<VolumeOctree> Build(const void* bytes, std::size_t byteCount,
-    const GridDescription& grid, unsigned int leafSize,
-    const std::function<bool(double)>& progress, std::string& error);
+    const GridDescription& grid, unsigned int leafSize, const std::function<bool(double)>& progress,
+    std::string& error);
 
   /// Node counts, levels, memory and build time. False and `error` on failure.
   bool GetSummary(OctreeSummary& summary, std::string& error) const;
@@ -450,12 +450,12 @@ private:
 /// What FtbDisplay() draws (issue 7; see FtbDesc in src/ffi.rs).
 struct FtbOptions
 {
-  double Isovalue = 0.0;      ///< inside: value >= Isovalue ...
-  bool UseLabel = false;      ///< ... or value == Label
+  double Isovalue = 0.0; ///< inside: value >= Isovalue ...
+  bool UseLabel = false; ///< ... or value == Label
   double Label = 0.0;
   double Vpn[3] = { 1.0, -1.0, 1.0 }; ///< view plane normal, towards the viewer
   std::size_t ImageSize = 512;
-  bool BackToFront = false;   ///< Meagher's display instead of FTB with blocking quadtrees
+  bool BackToFront = false; ///< Meagher's display instead of FTB with blocking quadtrees
 };
 
 /// A depth image of the binary octree and what drawing it took.
@@ -485,9 +485,9 @@ bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription&
 /// What GeneratePoints() makes (issue 8; see PointsDesc in src/ffi.rs).
 struct PointsOptions
 {
-  std::size_t Factor = 4;          ///< low resolution: every 2, 4 or 8 samples
-  double Threshold = 0.1;          ///< |error| above this fraction of the data range ...
-  bool UseBudget = false;          ///< ... or the Budget largest errors
+  std::size_t Factor = 4; ///< low resolution: every 2, 4 or 8 samples
+  double Threshold = 0.1; ///< |error| above this fraction of the data range ...
+  bool UseBudget = false; ///< ... or the Budget largest errors
   std::size_t Budget = 0;
   bool UnderestimatesOnly = false; ///< only where the low resolution underestimates
   double MaxOverestimate = -1.0;   ///< optimized low resolution's bound (fraction); < 0: off

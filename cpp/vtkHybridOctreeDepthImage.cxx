@@ -121,7 +121,8 @@ int vtkHybridOctreeDepthImage::RequestData(
   if (n == 0 || result.Depth.size() != n * n || result.Face.size() != n * n ||
     result.Shaded.size() != 3 * n * n)
   {
-    vtkErrorMacro("internal error: the core returned an inconsistent depth image; please report it");
+    vtkErrorMacro(
+      "internal error: the core returned an inconsistent depth image; please report it");
     return 0;
   }
   output->SetExtent(0, static_cast<int>(n) - 1, 0, static_cast<int>(n) - 1, 0, 0);

@@ -150,8 +150,7 @@ vtkDataArray* vtkHybridOctreeFilter::GetScalars(
 //------------------------------------------------------------------------------
 bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scalars)
 {
-  const vtkHybridOctreeBridge::GridDescription grid =
-    DescribeGrid(image, scalars, this->Component);
+  const vtkHybridOctreeBridge::GridDescription grid = DescribeGrid(image, scalars, this->Component);
 
   vtkInternals& cache = *this->Internals;
   if (cache.IsBuiltFrom(scalars, scalars->GetMTime(), grid, this->LeafSize))
@@ -218,8 +217,8 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   const auto mode = this->SurfaceMode == SURFACE_MODE_INTERPOLATED
     ? vtkHybridOctreeBridge::SurfaceMode::Interpolated
     : vtkHybridOctreeBridge::SurfaceMode::Discretized;
-  if (!cache.Octree->ExtractSurface(Bytes(scalars), ByteCount(scalars), cache.Grid,
-        this->Isovalue, mode, this->MeasureSurfaceDistance != 0, mesh, error))
+  if (!cache.Octree->ExtractSurface(Bytes(scalars), ByteCount(scalars), cache.Grid, this->Isovalue,
+        mode, this->MeasureSurfaceDistance != 0, mesh, error))
   {
     vtkErrorMacro(<< error);
     return false;
@@ -232,8 +231,8 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   const std::size_t vertices = mesh.Points.size() / 3;
   if (mesh.Points.size() != 3 * mesh.Vertices || mesh.Normals.size() != mesh.Points.size() ||
     polygons != mesh.Polygons || mesh.PolygonLevel.size() != polygons ||
-    mesh.PolygonFace.size() != polygons ||
-    mesh.Offsets.size() != polygons + 1 || mesh.Offsets.front() != 0 ||
+    mesh.PolygonFace.size() != polygons || mesh.Offsets.size() != polygons + 1 ||
+    mesh.Offsets.front() != 0 ||
     mesh.Offsets.back() != static_cast<std::int64_t>(mesh.Connectivity.size()))
   {
     vtkErrorMacro("internal error: the Hybrid Octree core returned a surface with inconsistent "
@@ -302,8 +301,7 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   AddFieldValue<vtkTypeInt64Array>(fieldData, "polygons", mesh.Polygons);
   AddFieldValue<vtkTypeInt64Array>(fieldData, "faces", mesh.Faces);
   AddFieldValue<vtkTypeInt64Array>(fieldData, "triangles", mesh.Triangles);
-  AddFieldValue<vtkTypeInt64Array>(
-    fieldData, "uncompressed_triangles", mesh.UncompressedTriangles);
+  AddFieldValue<vtkTypeInt64Array>(fieldData, "uncompressed_triangles", mesh.UncompressedTriangles);
   AddFieldValue<vtkTypeInt64Array>(fieldData, "vertices", mesh.Vertices);
   AddFieldValue<vtkTypeInt64Array>(fieldData, "boundary_edges", mesh.BoundaryEdges);
   AddFieldValue<vtkDoubleArray>(fieldData, "extract_ms", mesh.ExtractMilliseconds);
@@ -368,8 +366,7 @@ bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
   vtkHybridOctreeBridge::OctreeSummary summary;
   vtkHybridOctreeBridge::CutBoxes cut;
   std::string error;
-  if (!octree.GetSummary(summary, error) ||
-    !octree.GetCutBoxes(this->ErrorTolerance, cut, error))
+  if (!octree.GetSummary(summary, error) || !octree.GetCutBoxes(this->ErrorTolerance, cut, error))
   {
     vtkErrorMacro(<< error);
     return false;
@@ -400,10 +397,9 @@ bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
   minimum->SetName("min");
   vtkNew<vtkDoubleArray> maximum;
   maximum->SetName("max");
-  for (vtkDataArray* array :
-    { static_cast<vtkDataArray*>(node), static_cast<vtkDataArray*>(level),
-      static_cast<vtkDataArray*>(nodalError), static_cast<vtkDataArray*>(minimum),
-      static_cast<vtkDataArray*>(maximum) })
+  for (vtkDataArray* array : { static_cast<vtkDataArray*>(node), static_cast<vtkDataArray*>(level),
+         static_cast<vtkDataArray*>(nodalError), static_cast<vtkDataArray*>(minimum),
+         static_cast<vtkDataArray*>(maximum) })
   {
     array->SetNumberOfTuples(12 * boxCount);
   }
@@ -413,8 +409,8 @@ bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
     const double* bounds = &cut.Bounds[6 * b];
     for (int c = 0; c < 8; ++c)
     {
-      points->SetPoint(8 * b + c, bounds[c & 1], bounds[2 + ((c >> 1) & 1)],
-        bounds[4 + ((c >> 2) & 1)]);
+      points->SetPoint(
+        8 * b + c, bounds[c & 1], bounds[2 + ((c >> 1) & 1)], bounds[4 + ((c >> 2) & 1)]);
     }
     for (int e = 0; e < 12; ++e)
     {

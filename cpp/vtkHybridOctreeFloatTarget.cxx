@@ -77,8 +77,8 @@ bool vtkHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* 
     this->Color->SetWrapT(vtkTextureObject::ClampToEdge);
     if (!this->Color->Allocate2D(targetWidth, targetHeight, 4, VTK_FLOAT))
     {
-      error = "OpenGL could not allocate a float colour texture of " +
-        std::to_string(targetWidth) + "x" + std::to_string(targetHeight);
+      error = "OpenGL could not allocate a float colour texture of " + std::to_string(targetWidth) +
+        "x" + std::to_string(targetHeight);
       return false;
     }
     this->Size[0] = targetWidth;
@@ -108,7 +108,8 @@ bool vtkHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* 
   state->PushFramebufferBindings();
   this->DepthFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   this->DepthFramebuffer->AddDepthAttachment(this->Depth);
-  glBlitFramebuffer(x, y, x + width, y + height, 0, 0, width, height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  glBlitFramebuffer(
+    x, y, x + width, y + height, 0, 0, width, height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   state->PopFramebufferBindings();
   if (glGetError() != GL_NO_ERROR)
   {

@@ -53,8 +53,8 @@ vtkDataArray* CheckPointScalars(
 void RequestWholeExtent(vtkInformationVector** inputVector);
 
 /// Same dims, spacing, origin, type and component choice.
-bool SameGrid(const vtkHybridOctreeBridge::GridDescription& a,
-  const vtkHybridOctreeBridge::GridDescription& b);
+bool SameGrid(
+  const vtkHybridOctreeBridge::GridDescription& a, const vtkHybridOctreeBridge::GridDescription& b);
 }
 
 #endif

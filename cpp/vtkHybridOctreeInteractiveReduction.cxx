@@ -75,8 +75,7 @@ int vtkHybridOctreeInteractiveReduction::Choose(double allocatedSeconds) const
   }
   for (int level = 0; level < Levels; ++level)
   {
-    const double limit =
-      TargetShare * allocatedSeconds * (level < this->Last ? Hysteresis : 1.0);
+    const double limit = TargetShare * allocatedSeconds * (level < this->Last ? Hysteresis : 1.0);
     if (this->Predict(level) <= limit)
     {
       return level;

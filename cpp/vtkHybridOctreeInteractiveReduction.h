@@ -84,8 +84,8 @@ private:
     unsigned long Frame = 0; ///< 0: none
   };
   Timing Records[NumberOfLevels];
-  int Last = 0;             ///< the level recorded last
-  unsigned long Frame = 0;  ///< records made (0: none)
+  int Last = 0;            ///< the level recorded last
+  unsigned long Frame = 0; ///< records made (0: none)
   bool HaveInteractive = false;
 };
 

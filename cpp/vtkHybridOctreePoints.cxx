@@ -104,8 +104,8 @@ int vtkHybridOctreePoints::RequestData(
   }
   if (this->Factor != 2 && this->Factor != 4 && this->Factor != 8)
   {
-    vtkErrorMacro("the low-resolution factor " << this->Factor
-                                               << " is not supported: use 2, 4 or 8");
+    vtkErrorMacro(
+      "the low-resolution factor " << this->Factor << " is not supported: use 2, 4 or 8");
     return 0;
   }
   vtkHybridOctreeBridge::PointsOptions options;

@@ -26,9 +26,8 @@ void ViewBasis(const double forward[3], const double viewUp[3], double right[3],
  * as triangles, 3 floats per vertex; returns the vertices appended (0 when
  * the plane misses the box or touches it in fewer than 3 points).
  */
-std::size_t AppendSlicePolygon(const double bounds[6], const double eye[3],
-  const double forward[3], const double right[3], const double up[3], double depth,
-  std::vector<float>& out);
+std::size_t AppendSlicePolygon(const double bounds[6], const double eye[3], const double forward[3],
+  const double right[3], const double up[3], double depth, std::vector<float>& out);
 }
 
 #endif

@@ -130,7 +130,8 @@ bool vtkHybridOctreeSurfaceDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix
   // The brick order (a target: drawn brick by brick) or the surface's own;
   // the element buffer bound last is the bound vertex array's.
   this->Bound = target ? this->BrickVao.GetPointer() : this->Vao.GetPointer();
-  vtkOpenGLBufferObject* indices = target ? this->BrickIndices.GetPointer() : this->Indices.GetPointer();
+  vtkOpenGLBufferObject* indices =
+    target ? this->BrickIndices.GetPointer() : this->Indices.GetPointer();
   this->Bound->Bind();
   if (!this->Uploaded)
   {
@@ -226,7 +227,8 @@ void vtkHybridOctreeSurfaceDrawer::OrderByBrick(const vtkHybridOctreeBridge::Dra
         for (int v = 0; v < 3; ++v)
         {
           const float* p = &this->VertexData[6 *
-            std::min<std::size_t>(this->IndexData[3 * static_cast<std::size_t>(t) + v], vertexCount - 1)];
+            std::min<std::size_t>(
+              this->IndexData[3 * static_cast<std::size_t>(t) + v], vertexCount - 1)];
           for (int a = 0; a < 3; ++a)
           {
             c[a] += p[a] / 3.0;

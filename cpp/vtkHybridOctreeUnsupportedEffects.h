@@ -1,6 +1,7 @@
 /**
  * @file   vtkHybridOctreeUnsupportedEffects.h
- * @brief  The vtkVolumeMapper and vtkVolumeProperty settings the Hybrid Octree mapper does not draw (private to the module).
+ * @brief  The vtkVolumeMapper and vtkVolumeProperty settings the Hybrid Octree mapper does not draw
+ * (private to the module).
  *
  * vtkHybridOctreeVolumeMapper draws Composite blending of one scalar
  * component through a 1D colour and scalar opacity function, unshaded.

@@ -231,17 +231,17 @@ vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
   if (!scalars || image->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro("the input image is empty or has no point scalars"
-      << (this->ScalarMode == VTK_SCALAR_MODE_DEFAULT ? std::string()
-                                                     : std::string(" named ") +
-             (this->ArrayName ? this->ArrayName : "(none)"))
+      << (this->ScalarMode == VTK_SCALAR_MODE_DEFAULT
+             ? std::string()
+             : std::string(" named ") + (this->ArrayName ? this->ArrayName : "(none)"))
       << ": give it point scalars or select an existing point array");
     return nullptr;
   }
   const int components = scalars->GetNumberOfComponents();
   if (components > 1 && this->Component < 0)
   {
-    vtkErrorMacro("the point scalars have " << components
-                                            << " components: choose one with SetComponent()");
+    vtkErrorMacro(
+      "the point scalars have " << components << " components: choose one with SetComponent()");
     return nullptr;
   }
   if (this->Component >= components)
@@ -496,8 +496,8 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
     return true;
   }
   std::string error;
-  slot.Selected = in.PointSet ? in.Octree->Select(select, *in.PointSet, error)
-                              : in.Octree->Select(select, error);
+  slot.Selected =
+    in.PointSet ? in.Octree->Select(select, *in.PointSet, error) : in.Octree->Select(select, error);
   if (!slot.Selected || !slot.Selected->GetSummary(slot.Summary, error))
   {
     slot.Selected.reset();
@@ -541,8 +541,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateSurface()
   in.Iso = in.Octree->ExtractSurfaceForDrawing(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
     this->Isovalue, SurfaceMode::Discretized, error);
   SurfaceMesh mesh;
-  if (!in.Iso || !in.Iso->GetMesh(*in.Octree, mesh, error) ||
-    !in.SurfaceDrawer.Upload(mesh, error))
+  if (!in.Iso || !in.Iso->GetMesh(*in.Octree, mesh, error) || !in.SurfaceDrawer.Upload(mesh, error))
   {
     in.Iso.reset();
     vtkErrorMacro(<< error);
@@ -714,8 +713,9 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   for (std::size_t i = 0; i < bricks; ++i)
   {
     const std::size_t brick = list.Brick[i];
-    const vtkHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(window, { list.NodeId[i], list.Stride[i] },
-      &list.Texels[3 * i], [&](std::vector<float>& texels) {
+    const vtkHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
+      window, { list.NodeId[i], list.Stride[i] }, &list.Texels[3 * i],
+      [&](std::vector<float>& texels) {
         return selected.GetBrickTexels(
           Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, error);
       },
@@ -864,8 +864,8 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
       list, cam.Position, list.Forward, cam.Parallel, this->IsInsideOpaque());
   }
   bool ok = !surfacePerBrick ||
-    in.SurfaceDrawer.Bind(window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error,
-      &in.Target);
+    in.SurfaceDrawer.Bind(
+      window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error, &in.Target);
   ok = ok &&
     in.Drawer.Bind(window, mcdc, in.TableTexture, in.Target, this->TableSize, in.RangeLo,
       in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
@@ -908,7 +908,8 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
     }
     if (surfacePerBrick)
     {
-      this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(this->DrawSurfaceBefore(window, bricks));
+      this->LastSurfaceTriangles +=
+        static_cast<vtkTypeInt64>(this->DrawSurfaceBefore(window, bricks));
     }
     glFrontFace(GL_CCW);
     for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })

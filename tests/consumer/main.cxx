@@ -41,8 +41,7 @@ int main()
   }
   // 16 cells, leaf bricks of 4: levels 16, 8, 4; the quadratic is nowhere
   // trilinear, so the cut at tolerance 0 is the 64 leaf bricks.
-  if (levels->GetTuple1(0) != 3 || cut->GetTuple1(0) != 64 ||
-    out->GetNumberOfPoints() != 8 * 64)
+  if (levels->GetTuple1(0) != 3 || cut->GetTuple1(0) != 64 || out->GetNumberOfPoints() != 8 * 64)
   {
     std::cerr << "unexpected cut: levels " << levels->GetTuple1(0) << ", boxes "
               << cut->GetTuple1(0) << "\n";

@@ -57,7 +57,7 @@ int main()
   }
   std::cout << "volume OK: " << mapper->GetLastBricks() << " bricks, "
             << mapper->GetLastTextureBytes() << " texture bytes, " << mapper->GetLastPoints()
-            << " points, plan '" << mapper->GetLastPlan()
-            << "', " << mapper->GetLastFrameMilliseconds() << " ms\n";
+            << " points, plan '" << mapper->GetLastPlan() << "', "
+            << mapper->GetLastFrameMilliseconds() << " ms\n";
   return 0;
 }

@@ -88,8 +88,8 @@ struct Fixture
 void Aim(vtkCamera* camera, const double centre[3], const double direction[3], bool parallel)
 {
   camera->SetFocalPoint(centre[0], centre[1], centre[2]);
-  camera->SetPosition(centre[0] - 80 * direction[0], centre[1] - 80 * direction[1],
-    centre[2] - 80 * direction[2]);
+  camera->SetPosition(
+    centre[0] - 80 * direction[0], centre[1] - 80 * direction[1], centre[2] - 80 * direction[2]);
   // Up across the view: +y when looking mostly along z, else +z.
   const double n = std::sqrt(
     direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
@@ -161,8 +161,8 @@ void CheckDrawList(Checker& check, const B::DrawList& list, const B::CameraDescr
   for (std::size_t i = 0; i < n; ++i)
   {
     const double* b = &list.Bounds[6 * i];
-    check.Check(std::abs(list.OpacityRatio[i] - list.SliceSpacing[i] / list.ReferenceSpacing) <
-        1e-12,
+    check.Check(
+      std::abs(list.OpacityRatio[i] - list.SliceSpacing[i] / list.ReferenceSpacing) < 1e-12,
       name + ": opacity ratio d/d0");
     check.Check(list.SliceSpacing[i] ==
         static_cast<double>(std::min<std::size_t>(list.Stride[i], maxSliceStride)),
@@ -192,8 +192,7 @@ void CheckDrawList(Checker& check, const B::DrawList& list, const B::CameraDescr
         bool overlap = true;
         for (int o = 0; o < 3; ++o)
         {
-          if (o != a &&
-            std::min(b[2 * o + 1], c[2 * o + 1]) - std::max(b[2 * o], c[2 * o]) <= 0.0)
+          if (o != a && std::min(b[2 * o + 1], c[2 * o + 1]) - std::max(b[2 * o], c[2 * o]) <= 0.0)
           {
             overlap = false;
           }
@@ -260,9 +259,10 @@ int DrawLists()
   B::SelectionSummary summary;
   check.Check(selection->GetSummary(summary, error), "summary: " + error);
   std::cout << "bricks " << summary.Bricks << ", " << summary.TextureBytes << " of "
-            << summary.BudgetBytes << " bytes, estimated error " << summary.EstimatedError << ", warning '"
-            << summary.Warning << "'\n";
-  check.Check(summary.TextureBytes <= 20000 && summary.BudgetBytes == 20000, "bytes within the budget");
+            << summary.BudgetBytes << " bytes, estimated error " << summary.EstimatedError
+            << ", warning '" << summary.Warning << "'\n";
+  check.Check(
+    summary.TextureBytes <= 20000 && summary.BudgetBytes == 20000, "bytes within the budget");
   check.Check(summary.Bricks > 1, "more than one brick");
 
   const double centre[3] = { 12.0, 10.0, 8.0 };
@@ -354,7 +354,8 @@ int Texels()
         }
       }
     }
-    check.Check(wrong == 0, "brick " + std::to_string(i) + ": " + std::to_string(wrong) +
+    check.Check(wrong == 0,
+      "brick " + std::to_string(i) + ": " + std::to_string(wrong) +
         " texels differ from the image at the texel positions");
   }
   check.Check(strided, "some brick is downsampled (stride > 1)");
@@ -429,7 +430,8 @@ int SurfaceBatches()
     "opaque: surface pass first, all triangles, no batches (" + opaque.Passes + ")");
   B::DrawList hidden;
   check.Check(selection->GetDrawList(*f.Octree, view, *surface, 0.0, hidden, error), error);
-  check.Check(hidden.Passes == "volume" && hidden.OpaqueTriangles == 0, "hidden surface: volume only");
+  check.Check(
+    hidden.Passes == "volume" && hidden.OpaqueTriangles == 0, "hidden surface: volume only");
   error.clear();
   check.Check(!selection->GetDrawList(*f.Octree, view, *surface, 2.0, hidden, error) &&
       error.find("surface opacity") != std::string::npos,
@@ -485,8 +487,7 @@ int Errors()
   {
     return EXIT_FAILURE;
   }
-  const auto fails = [&](const B::SelectDescription& o, const std::string& fragment)
-  {
+  const auto fails = [&](const B::SelectDescription& o, const std::string& fragment) {
     std::string error;
     const bool refused = f.Octree->Select(o, error) == nullptr;
     check.Check(refused && error.find(fragment) != std::string::npos,
@@ -527,7 +528,8 @@ int Errors()
     "another octree: '" + error + "'");
   std::vector<float> texels;
   error.clear();
-  check.Check(!selection->GetBrickTexels(f.Bytes(), f.ByteCount(), f.Grid, 1000000, texels, error) &&
+  check.Check(
+    !selection->GetBrickTexels(f.Bytes(), f.ByteCount(), f.Grid, 1000000, texels, error) &&
       error.find("does not exist") != std::string::npos,
     "brick out of range: '" + error + "'");
   B::GridDescription moved = f.Grid;
@@ -623,7 +625,8 @@ int Points()
   bool strides = true;
   for (std::size_t i = 0; i < bricks; ++i)
   {
-    strides = strides && (list.BucketOffsets[i] == list.BucketOffsets[i + 1] || list.Stride[i] == 2);
+    strides =
+      strides && (list.BucketOffsets[i] == list.BucketOffsets[i + 1] || list.Stride[i] == 2);
   }
   check.Check(strides, "points only in bricks of stride 2");
   // Errors.
@@ -637,8 +640,8 @@ int Points()
   check.Check(!f.Octree->MakePoints(f.Bytes(), f.ByteCount(), f.Grid, odd, error) &&
       error.find("factor 3") != std::string::npos,
     "factor 3: '" + error + "'");
-  check.Check(!points->GetShades(f.Bytes(), f.ByteCount(), f.Grid, { 0.0, 1.0 }, opacities,
-                shades, error) &&
+  check.Check(
+    !points->GetShades(f.Bytes(), f.ByteCount(), f.Grid, { 0.0, 1.0 }, opacities, shades, error) &&
       error.find("tuples") != std::string::npos,
     "bad colour points: '" + error + "'");
   Fixture other;

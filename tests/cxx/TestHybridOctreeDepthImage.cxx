@@ -81,8 +81,8 @@ int TestHybridOctreeDepthImage(int argc, char* argv[])
       t.Check(SameBits(fd, bd), v + "the same depth, bit for bit");
       auto* ff = vtkUnsignedCharArray::SafeDownCast(f->GetPointData()->GetArray("face"));
       auto* bf = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetArray("face"));
-      t.Check(ff && bf &&
-          std::memcmp(ff->GetPointer(0), bf->GetPointer(0), ff->GetNumberOfValues()) == 0,
+      t.Check(
+        ff && bf && std::memcmp(ff->GetPointer(0), bf->GetPointer(0), ff->GetNumberOfValues()) == 0,
         v + "the same faces");
       vtkIdType seen = 0;
       for (vtkIdType i = 0; fd && i < fd->GetNumberOfValues(); ++i)
@@ -121,7 +121,8 @@ int TestHybridOctreeDepthImage(int argc, char* argv[])
     errors->Watch(noScalars);
     noScalars->SetInputData(empty);
     noScalars->Update();
-    t.Check(errors->HasError("no point scalars"), "no scalars: clear error\n" + errors->AllErrors());
+    t.Check(
+      errors->HasError("no point scalars"), "no scalars: clear error\n" + errors->AllErrors());
     errors->Clear();
     ftb->SetIsovalue(150.0);
     ftb->Update();

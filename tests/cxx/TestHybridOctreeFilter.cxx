@@ -309,8 +309,8 @@ int ArraySelection()
   t.Check(FieldValue(out, "input_bytes") == 729 * 2, "input_bytes count one u16 component");
   filter->SetComponent(0);
   filter->Update();
-  t.Check(FieldValue(out, "value_min") == 0 && FieldValue(out, "value_max") == 6,
-    "range of component 0");
+  t.Check(
+    FieldValue(out, "value_min") == 0 && FieldValue(out, "value_max") == 6, "range of component 0");
 
   filter->SetComponent(-1);
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "other");
@@ -408,6 +408,7 @@ int TestHybridOctreeFilter(int argc, char* argv[])
   {
     return NanHole();
   }
-  std::cerr << "unknown scenario '" << scenario << "': use wavelet, ramp, cache, array or nan_hole\n";
+  std::cerr << "unknown scenario '" << scenario
+            << "': use wavelet, ramp, cache, array or nan_hole\n";
   return EXIT_FAILURE;
 }

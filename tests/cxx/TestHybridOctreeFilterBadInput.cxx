@@ -100,7 +100,8 @@ std::map<std::string, Scenario> Scenarios()
     "2 infinite sample(s), the first at point index 9" };
   s["all_nan"] = { [](vtkHybridOctreeFilter* f) {
                     auto image = MakeImage(5, 5, 5);
-                    image->GetPointData()->GetScalars()->Fill(std::numeric_limits<double>::quiet_NaN());
+                    image->GetPointData()->GetScalars()->Fill(
+                      std::numeric_limits<double>::quiet_NaN());
                     f->SetInputData(image);
                   },
     "no data: all 125 samples are NaN" };

@@ -120,8 +120,9 @@ int TestHybridOctreeFilterProgress(int argc, char* argv[])
       build.push_back(v);
     }
   }
-  t.Check(build.size() == 1, "the build stops at its first report after the abort: " +
-      std::to_string(build.size()) + " reports");
+  t.Check(build.size() == 1,
+    "the build stops at its first report after the abort: " + std::to_string(build.size()) +
+      " reports");
   t.Check(!build.empty() && build.back() < 0.1, "it stopped early");
   t.Check(messages->Errors.empty(), "a cancel is not an error:\n" + messages->AllErrors());
   bool warned = false;
@@ -158,8 +159,8 @@ int TestHybridOctreeFilterProgress(int argc, char* argv[])
     t.Check(out->GetNumberOfPoints() > 0 && out->GetNumberOfPoints() == ref->GetNumberOfPoints() &&
         out->GetNumberOfCells() == ref->GetNumberOfCells(),
       "port " + std::to_string(port) + ": same output as an uninterrupted filter (" +
-        std::to_string(out->GetNumberOfCells()) + " vs " +
-        std::to_string(ref->GetNumberOfCells()) + " cells)");
+        std::to_string(out->GetNumberOfCells()) + " vs " + std::to_string(ref->GetNumberOfCells()) +
+        " cells)");
   }
   // Up to date again: a further Update does not rebuild.
   filter->Update();

@@ -40,7 +40,8 @@ int Ladder()
     const Reduction::Level a = Reduction::GetLevel(l - 1), b = Reduction::GetLevel(l);
     check.Check(Reduction::GetCost(l) < Reduction::GetCost(l - 1),
       "level " + std::to_string(l) + " costs less than the one before");
-    check.Check(b.ImageSampleDistance >= a.ImageSampleDistance && b.SampleSpacing >= a.SampleSpacing,
+    check.Check(
+      b.ImageSampleDistance >= a.ImageSampleDistance && b.SampleSpacing >= a.SampleSpacing,
       "level " + std::to_string(l) + " is nowhere finer");
     check.Check((b.SampleSpacing & (b.SampleSpacing - 1)) == 0, "sample spacing a power of two");
   }
@@ -107,7 +108,8 @@ int Still()
   Reduction r;
   r.Record(4, 0.010, true);
   r.Record(0, 10.0, false); // a slow still frame after interactive ones
-  check.Check(std::fabs(r.Predict(4) - 0.010) < 1e-12, "a still frame after an interactive one is ignored");
+  check.Check(
+    std::fabs(r.Predict(4) - 0.010) < 1e-12, "a still frame after an interactive one is ignored");
   r.Reset();
   check.Check(r.Choose(0.05) == 0, "Reset() forgets");
   r.Record(0, 1.0, false);

@@ -71,7 +71,8 @@ int TestHybridOctreePoints(int argc, char* argv[])
       const vtkIdType id = image->FindPoint(p);
       double q[3];
       image->GetPoint(id, q);
-      off += (id < 0 || std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]) > 1e-9);
+      off +=
+        (id < 0 || std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]) > 1e-9);
       const double v = image->GetPointData()->GetScalars()->GetTuple1(id);
       far += std::abs(value->GetTuple1(i) - v) > span / 510.0 + 1e-3;
       small += std::abs(error->GetTuple1(i)) < 0.05 * span * 0.9;
@@ -84,7 +85,8 @@ int TestHybridOctreePoints(int argc, char* argv[])
     t.Check(notUnit == 0, std::to_string(notUnit) + " normals not unit");
     t.Check(FieldValue(out, "points") == n, "field data: points");
     t.Check(FieldValue(out, "point_bytes") == 6.0 * n, "6 bytes a point");
-    t.Check(FieldValue(out, "low_resolution_bytes") == 4.0 * 17 * 17 * 17, "17^3 texels of 4 bytes");
+    t.Check(
+      FieldValue(out, "low_resolution_bytes") == 4.0 * 17 * 17 * 17, "17^3 texels of 4 bytes");
     t.Check(FieldValue(out, "total_bytes") ==
         FieldValue(out, "low_resolution_bytes") + FieldValue(out, "point_bytes"),
       "total = low resolution + points");
@@ -141,7 +143,8 @@ int TestHybridOctreePoints(int argc, char* argv[])
     errors->Watch(noScalars->GetExecutive());
     noScalars->SetInputData(empty);
     noScalars->Update();
-    t.Check(errors->HasError("no point scalars"), "no scalars: clear error\n" + errors->AllErrors());
+    t.Check(
+      errors->HasError("no point scalars"), "no scalars: clear error\n" + errors->AllErrors());
     errors->Clear();
     points->SetFileName("");
     points->SetFactor(4);

@@ -58,7 +58,8 @@ vtkNew<vtkImageData> Ball(double lo, double hi, double spacing, bool constant = 
     {
       for (int i = 0; i < N; ++i)
       {
-        const double r2 = (i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0);
+        const double r2 =
+          (i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0);
         const double t = constant ? 0.5 : (r2 < 100.0 ? 0.8 : 0.0) + 0.2 * i / 32.0;
         values->SetValue(i + N * (j + N * k), lo * (1.0 - t) + hi * t);
       }
@@ -129,7 +130,8 @@ vtkNew<vtkHybridOctreeVolumeMapper> Ours()
 void Compare(Checker& check, const std::string& what, vtkHybridOctreeVolumeMapper* mapper,
   Stage& ours, Stage& theirs, double threshold)
 {
-  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
   ours.Window->Render();
   theirs.Window->Render();
@@ -215,7 +217,8 @@ int Extreme(bool offset)
   vtkNew<vtkHybridOctreeVolumeMapper> unitMapper = Ours();
   Stage ours(mapper, extreme, 0.0, 1.0, 1.0);
   Stage theirs(unitMapper, unit, 0.0, 1.0, 1.0);
-  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
   ours.Window->Render();
   std::cout << "extreme: errors\n" << errors->AllErrors();
@@ -228,7 +231,8 @@ int Extreme(bool offset)
   errors->Clear();
   mapper->SetInputData(unit);
   ours.Window->Render();
-  check.Check(mapper->GetLastRenderOK(), "and draws again once the data fits:\n" + errors->AllErrors());
+  check.Check(
+    mapper->GetLastRenderOK(), "and draws again once the data fits:\n" + errors->AllErrors());
   theirs.Window->Render();
   const double rmse = Rmse(Grab(ours.Window), Grab(theirs.Window));
   std::cout << "extreme: after the refusal, RGB RMSE against a fresh mapper " << rmse

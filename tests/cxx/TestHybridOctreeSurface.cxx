@@ -7,8 +7,8 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
-#include "vtkFlyingEdges3D.h"
 #include "vtkFloatArray.h"
+#include "vtkFlyingEdges3D.h"
 #include "vtkHybridOctreeFilter.h"
 #include "vtkIdList.h"
 #include "vtkImageData.h"
@@ -297,8 +297,8 @@ void CheckSurface(Checker& t, const Sphere& sphere, int mode, const std::string&
   // (the center of the distance field); vertices on grid edges.
   vtkDataArray* normals = surface->GetPointData()->GetNormals();
   if (!t.Check(normals && normals->GetName() && std::string(normals->GetName()) == "Normals" &&
-        vtkFloatArray::SafeDownCast(normals) && normals->GetNumberOfComponents() == 3 &&
-        normals->GetNumberOfTuples() == vertices,
+          vtkFloatArray::SafeDownCast(normals) && normals->GetNumberOfComponents() == 3 &&
+          normals->GetNumberOfTuples() == vertices,
         name + ": point array 'Normals' (float, 3 components) is the active normals"))
   {
     return;
@@ -326,8 +326,8 @@ void CheckSurface(Checker& t, const Sphere& sphere, int mode, const std::string&
     offGrid += (integers < 2 || (!interpolated && halves != 1)) ? 1 : 0;
   }
   t.Check(notUnit == 0, name + ": " + std::to_string(notUnit) + " normals are not unit length");
-  t.Check(outward == 0,
-    name + ": " + std::to_string(outward) + " normals point away from lower values");
+  t.Check(
+    outward == 0, name + ": " + std::to_string(outward) + " normals point away from lower values");
   t.Check(offGrid == 0,
     name + ": " + std::to_string(offGrid) +
       (interpolated ? " vertices are not on grid edges" : " vertices are not edge midpoints"));
@@ -337,7 +337,7 @@ void CheckSurface(Checker& t, const Sphere& sphere, int mode, const std::string&
   vtkDataArray* node = surface->GetCellData()->GetArray("node");
   vtkDataArray* level = surface->GetCellData()->GetArray("level");
   if (!t.Check(vtkIntArray::SafeDownCast(node) && vtkIntArray::SafeDownCast(level) &&
-        node->GetNumberOfTuples() == polygons && level->GetNumberOfTuples() == polygons,
+          node->GetNumberOfTuples() == polygons && level->GetNumberOfTuples() == polygons,
         name + ": int cell arrays 'node' and 'level', one value per polygon"))
   {
     return;
@@ -360,8 +360,9 @@ void CheckSurface(Checker& t, const Sphere& sphere, int mode, const std::string&
     terminal[id] = { l, { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] } };
   }
   t.Check(wrongId == 0,
-    name + ": " + std::to_string(wrongId) + " boxes on port 0 have another node id than the "
-                                            "level-by-level numbering gives");
+    name + ": " + std::to_string(wrongId) +
+      " boxes on port 0 have another node id than the "
+      "level-by-level numbering gives");
   t.Check(static_cast<vtkIdType>(terminal.size()) == boxCount, name + ": box ids are distinct");
   int unknownNode = 0, wrongLevel = 0, outside = 0, notConvex = 0, degenerate = 0;
   double fanTriangles = 0;
@@ -437,11 +438,14 @@ void CheckSurface(Checker& t, const Sphere& sphere, int mode, const std::string&
     bent += vtkMath::Dot(found->second.Normal, n) < 1.0 - 1e-9 ? 1 : 0;
   }
   const double faceCount = FieldValue(surface, "faces");
-  t.Check(split == 0, name + ": " + std::to_string(split) + " triangles lie in another node than their face");
-  t.Check(bent == 0, name + ": " + std::to_string(bent) + " triangles are not in their face's plane");
+  t.Check(split == 0,
+    name + ": " + std::to_string(split) + " triangles lie in another node than their face");
+  t.Check(
+    bent == 0, name + ": " + std::to_string(bent) + " triangles are not in their face's plane");
   t.Check(interpolated ? faceCount == triangles : faceCount < triangles,
     name + ": faces = triangles (interpolated) or fewer (merged DiscMC)");
-  t.Check(static_cast<double>(faces.size()) <= faceCount, name + ": face ids within the face count");
+  t.Check(
+    static_cast<double>(faces.size()) <= faceCount, name + ": face ids within the face count");
 }
 
 int Mode(int mode)
@@ -539,7 +543,8 @@ int OutsideRange()
       filter->SetIsovalue(isovalue);
       filter->SetSurfaceMode(mode);
       filter->Update();
-      const std::string name = "isovalue " + std::to_string(isovalue) + " mode " + std::to_string(mode);
+      const std::string name =
+        "isovalue " + std::to_string(isovalue) + " mode " + std::to_string(mode);
       t.Check(errors->Errors.empty(), name + ": no error:\n" + errors->AllErrors());
       vtkPolyData* surface = filter->GetOutput(1);
       t.Check(surface->GetNumberOfPoints() == 0 && surface->GetNumberOfCells() == 0,

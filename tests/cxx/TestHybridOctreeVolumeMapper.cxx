@@ -106,7 +106,8 @@ int CpuMatch(const std::string& scenario)
   mapper->UseRoiOn();
   mapper->SetRoiCenter(16.0, 16.0, 16.0);
   mapper->SetRoiRadius(10.0);
-  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
   double threshold = 0.005;
   std::string plan = "volume";
@@ -146,8 +147,8 @@ int CpuMatch(const std::string& scenario)
     plan = opaque ? "surface-opaque,volume" : "surface-in-slabs,volume";
     threshold = 0.006;
   }
-  const bool points = scenario == "points_square" || scenario == "points_gaussian" ||
-    scenario == "points_surface";
+  const bool points =
+    scenario == "points_square" || scenario == "points_gaussian" || scenario == "points_surface";
   std::vector<double> withoutPoints;
   vtkNew<vtkImageData> bars;
   if (points)
@@ -171,8 +172,8 @@ int CpuMatch(const std::string& scenario)
         {
           if ((x + 11) % 16 < 3 && (y + 11) % 16 < 3)
           {
-            values->SetComponent(x + dims[0] * (y + static_cast<vtkIdType>(dims[1]) * z), 0,
-              scene.Range[1]);
+            values->SetComponent(
+              x + dims[0] * (y + static_cast<vtkIdType>(dims[1]) * z), 0, scene.Range[1]);
           }
         }
       }
@@ -217,7 +218,8 @@ int CpuMatch(const std::string& scenario)
     {
       double x[3];
       holed->GetPoint(id, x);
-      const double r2 = (x[0] - 16) * (x[0] - 16) + (x[1] - 16) * (x[1] - 16) + (x[2] - 16) * (x[2] - 16);
+      const double r2 =
+        (x[0] - 16) * (x[0] - 16) + (x[1] - 16) * (x[1] - 16) + (x[2] - 16) * (x[2] - 16);
       if (x[0] < -28 || r2 <= 64)
       {
         values->SetComponent(id, 0, std::numeric_limits<double>::quiet_NaN());
@@ -312,7 +314,8 @@ int GpuReference(bool withActor)
     ours.Renderer->ResetCameraClippingRange();
     theirs.Renderer->ResetCameraClippingRange();
   }
-  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
   ours.Window->Render();
   theirs.Window->Render();
@@ -338,8 +341,8 @@ int GpuReference(bool withActor)
     ours.Renderer->SetWorldPoint(10.0, 8.0, 12.0, 1.0);
     ours.Renderer->WorldToDisplay();
     ours.Renderer->GetDisplayPoint(display);
-    const std::size_t p = 3 * (static_cast<std::size_t>(display[0]) +
-                                Size * static_cast<std::size_t>(display[1]));
+    const std::size_t p =
+      3 * (static_cast<std::size_t>(display[0]) + Size * static_cast<std::size_t>(display[1]));
     std::cout << "pixel at the sphere's centre: " << a[p] << " " << a[p + 1] << " " << a[p + 2]
               << " (reference " << b[p] << " " << b[p + 1] << " " << b[p + 2] << ")\n";
     check.Check(a[p + 1] > a[p] && a[p + 1] > a[p + 2], "the sphere shows at its centre");
@@ -401,10 +404,9 @@ int TestHybridOctreeVolumeMapper(int argc, char* argv[])
 {
   const std::string scenario = argc > 1 ? argv[1] : "cpu_match";
   if (scenario == "cpu_match" || scenario == "multisample" || scenario == "tiny_opacity" ||
-    scenario == "inside" ||
-    scenario == "opaque_surface" ||
-    scenario == "translucent_surface" || scenario == "points_square" ||
-    scenario == "points_gaussian" || scenario == "points_surface" || scenario == "nan_hole")
+    scenario == "inside" || scenario == "opaque_surface" || scenario == "translucent_surface" ||
+    scenario == "points_square" || scenario == "points_gaussian" || scenario == "points_surface" ||
+    scenario == "nan_hole")
   {
     return CpuMatch(scenario);
   }

@@ -65,7 +65,8 @@ int Orbit()
   mapper->SetLeafSize(8);
   mapper->UseRoiOn();
   mapper->SetRoiRadius(12.0);
-  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   vtkTypeInt64 uploaded[2] = { 0, 0 };
@@ -136,14 +137,16 @@ int Interactive()
          "LastBricks", "LastTextureBytes", "LastUploadedBytes", "LastPlan: volume",
          "LastFrameMilliseconds", "LastEstimatedError", "LastInteractive: 0", "LastRenderOK: 1" })
   {
-    check.Check(printed.str().find(name) != std::string::npos, std::string("PrintSelf shows ") + name);
+    check.Check(
+      printed.str().find(name) != std::string::npos, std::string("PrintSelf shows ") + name);
   }
   return check.Result();
 }
 
 /// How many of the warnings `errors` recorded since the last call contain
 /// `fragment`, with all of them in `all` (one a line); clears them.
-int TakeWarnings(ErrorRecorder* errors, const std::string& fragment, std::string& all, int* total = nullptr)
+int TakeWarnings(
+  ErrorRecorder* errors, const std::string& fragment, std::string& all, int* total = nullptr)
 {
   int count = 0;
   all.clear();
@@ -166,7 +169,8 @@ int Warnings()
   vtkNew<vtkHybridOctreeVolumeMapper> mapper;
   Scene scene(mapper);
   mapper->SetLeafSize(8);
-  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
   scene.Window->Render();
   const std::vector<double> plain = Grab(scene.Window);
@@ -188,16 +192,21 @@ int Warnings()
   const std::vector<Setting> settings = {
     { "the Maximum Intensity blend mode",
       [&](bool on) { mapper->SetBlendMode(on ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND : 0); } },
-    { "volume shading (vtkVolumeProperty::ShadeOn", [&](bool on) { scene.Property->SetShade(on); } },
-    { "the gradient opacity", [&](bool on) {
-       scene.Property->SetGradientOpacity(gradient);
-       scene.Property->SetDisableGradientOpacity(!on);
-     } },
-    { "the 2D transfer function", [&](bool on) {
-       scene.Property->SetTransferFunctionMode(on ? vtkVolumeProperty::TF_2D : vtkVolumeProperty::TF_1D);
-     } },
+    { "volume shading (vtkVolumeProperty::ShadeOn",
+      [&](bool on) { scene.Property->SetShade(on); } },
+    { "the gradient opacity",
+      [&](bool on) {
+        scene.Property->SetGradientOpacity(gradient);
+        scene.Property->SetDisableGradientOpacity(!on);
+      } },
+    { "the 2D transfer function",
+      [&](bool on) {
+        scene.Property->SetTransferFunctionMode(
+          on ? vtkVolumeProperty::TF_2D : vtkVolumeProperty::TF_1D);
+      } },
     { "cropping (vtkVolumeMapper::CroppingOn)", [&](bool on) { mapper->SetCropping(on); } },
-    { "1 clipping plane(s)", [&](bool on) { mapper->SetClippingPlanes(on ? planes.Get() : nullptr); } },
+    { "1 clipping plane(s)",
+      [&](bool on) { mapper->SetClippingPlanes(on ? planes.Get() : nullptr); } },
   };
   for (const Setting& s : settings)
   {
@@ -206,12 +215,13 @@ int Warnings()
     const std::vector<double> with = Grab(scene.Window);
     int total = 0;
     const int named = TakeWarnings(errors, s.Fragment, all, &total);
-    check.Check(named == 1 && total == 1,
-      std::string("one warning naming ") + s.Fragment + ", got:\n" + all);
+    check.Check(
+      named == 1 && total == 1, std::string("one warning naming ") + s.Fragment + ", got:\n" + all);
     check.Check(mapper->GetLastRenderOK() && Rmse(with, plain) < 1e-6,
       std::string("drawn as without it: ") + s.Fragment);
     scene.Window->Render();
-    check.Check(TakeWarnings(errors, "", all) == 0, std::string("told once: ") + s.Fragment + "\n" + all);
+    check.Check(
+      TakeWarnings(errors, "", all) == 0, std::string("told once: ") + s.Fragment + "\n" + all);
     s.Turn(false);
     scene.Window->Render();
     check.Check(TakeWarnings(errors, "", all) == 0, std::string("off: no warning: ") + s.Fragment);
@@ -228,7 +238,8 @@ int Warnings()
   scene.Window->Render();
   mapper->SetBlendModeToAdditive();
   scene.Window->Render();
-  check.Check(TakeWarnings(errors, "the Additive blend mode", all) == 1, "Additive after Maximum Intensity:\n" + all);
+  check.Check(TakeWarnings(errors, "the Additive blend mode", all) == 1,
+    "Additive after Maximum Intensity:\n" + all);
   mapper->SetBlendModeToComposite();
 
   // Dependent components: a two-component image, component 0 drawn.
@@ -248,7 +259,8 @@ int Warnings()
   check.Check(TakeWarnings(errors, "", all) == 0, "independent components: no warning\n" + all);
   scene.Property->IndependentComponentsOff();
   scene.Window->Render();
-  check.Check(TakeWarnings(errors, "dependent components", all) == 1, "dependent components named:\n" + all);
+  check.Check(
+    TakeWarnings(errors, "dependent components", all) == 1, "dependent components named:\n" + all);
   check.Check(mapper->GetLastRenderOK(), "dependent components: component 0 drawn");
   return check.Result();
 }
@@ -295,7 +307,8 @@ int InteractiveResident(bool surface)
     mapper->SetIsovalue(mid + 0.3 * (scene.Range[1] - mid));
     mapper->SetSurfaceOpacity(0.4);
   }
-  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
   vtkRenderWindow* window = scene.Window;
   const std::string plan = surface ? "surface-per-brick,volume" : "volume";
@@ -321,7 +334,8 @@ int InteractiveResident(bool surface)
     "the still frame's bricks, resident");
   check.Check(mapper->GetLastImageSampleDistance() == 1.0 && mapper->GetLastSampleSpacing() == 1,
     "full sampling without AutoAdjustSampleDistances");
-  check.Check(mapper->GetLastPlan() == plan, "interactive plan " + plan + ": " + mapper->GetLastPlan());
+  check.Check(
+    mapper->GetLastPlan() == plan, "interactive plan " + plan + ": " + mapper->GetLastPlan());
 
   // The coarsest sampling: a million frames a second leaves a microsecond.
   mapper->AutoAdjustSampleDistancesOn();
@@ -380,7 +394,8 @@ int BadInput(const std::string& scenario)
   vtkNew<vtkHybridOctreeVolumeMapper> mapper;
   Scene scene(mapper);
   mapper->RemoveAllInputConnections(0);
-  vtkSmartPointer<ErrorRecorder> errors = vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
   std::string expected;
   vtkNew<vtkPolyData> polyData;
@@ -433,17 +448,21 @@ int BadInput(const std::string& scenario)
     for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
     {
       const double nan = std::numeric_limits<double>::quiet_NaN();
-      values->SetValue(i, all || i == 50 ? nan : i == 100 ? -std::numeric_limits<double>::infinity() : 0.01 * i);
+      values->SetValue(i,
+        all || i == 50 ? nan
+          : i == 100   ? -std::numeric_limits<double>::infinity()
+                       : 0.01 * i);
     }
     image->GetPointData()->SetScalars(values);
     mapper->SetInputDataObject(image);
-    expected = all ? "no data: all 729 samples are NaN" : "1 infinite sample(s), the first at point index 100";
+    expected = all ? "no data: all 729 samples are NaN"
+                   : "1 infinite sample(s), the first at point index 100";
   }
   scene.Window->Render();
   // vtkVolume skips a mapper without input: call Render() directly as well.
   mapper->Render(scene.Renderer, scene.Volume);
-  check.Check(errors->HasError(expected),
-    "error containing '" + expected + "'; got\n" + errors->AllErrors());
+  check.Check(
+    errors->HasError(expected), "error containing '" + expected + "'; got\n" + errors->AllErrors());
   check.Check(!mapper->GetLastRenderOK(), "nothing drawn");
   check.Check(NoGLError(scene.Window), "no OpenGL error left behind");
   return check.Result();
