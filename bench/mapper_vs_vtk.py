@@ -35,7 +35,7 @@ render --reference` (every sample at full resolution, the surface hit by
 rays), at every --rmse-every-th frame; the row's rmse is the mean over those
 frames.
 
-Goals (issue 5), printed as PASS/MISS: at the default budget, at least 2x the
+Goals, printed as PASS/MISS: at the default budget, at least 2x the
 frame rate of the fastest VTK mapper with RMSE no worse than 1.5x that
 mapper's; with the translucent isosurface, at least 5x the frame rate of dual
 depth peeling at equal or lower RMSE. --json prints one JSON object per row

@@ -29,7 +29,7 @@ below 1: the points help); then "N of M cells at or below the picture
 without points" (and how many of them draw points at all), the worst ratio
 and the run time. --json prints one JSON object per row instead of the table.
 --check (CTest HybridOctree.Bench.representation_points) fails the run unless
-every cell is at or below the picture without points (issue 8's "points never
+every cell is at or below the picture without points (the goal "points never
 make the picture worse"), some cell draws points, and every picture keeps its
 textures within the budget.
 """

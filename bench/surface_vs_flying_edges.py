@@ -34,7 +34,7 @@ every FE point, measured to our surface triangulated with vtkTriangleFilter.
 Reported: mean and max over the samples of both directions (a sampled
 symmetric Hausdorff distance; the max is a lower bound of the true one).
 
-Goals (issue 3), checked on the discretized rows:
+Goals, checked on the discretized rows:
   (a) DiscMC extract + compress time <= FlyingEdges time (same threads);
   (b) DiscMC triangles <= 0.5 x FlyingEdges triangles;
   (c) max distance to the FlyingEdges surface <= half a voxel diagonal (0.866).

@@ -447,7 +447,7 @@ private:
   std::unique_ptr<Internals> Impl;
 };
 
-/// What FtbDisplay() draws (issue 7; see FtbDesc in src/ffi.rs).
+/// What FtbDisplay() draws (paper 2's display; see FtbDesc in src/ffi.rs).
 struct FtbOptions
 {
   double Isovalue = 0.0; ///< inside: value >= Isovalue ...
@@ -482,7 +482,7 @@ struct FtbResult
 bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription& grid,
   const FtbOptions& options, FtbResult& result, std::string& error);
 
-/// What GeneratePoints() makes (issue 8; see PointsDesc in src/ffi.rs).
+/// What GeneratePoints() makes (paper 3's points; see PointsDesc in src/ffi.rs).
 struct PointsOptions
 {
   std::size_t Factor = 4; ///< low resolution: every 2, 4 or 8 samples

@@ -1,5 +1,5 @@
 //! Front-to-back display with blocking quadtrees against Meagher's
-//! back-to-front display (issue 7): for every object and view of the test
+//! back-to-front display (paper 2): for every object and view of the test
 //! set the FTB depth image equals the BTF one bit for bit, FTB never
 //! scan-converts more faces, and an axis view equals a direct ray cast
 //! through the voxels.

@@ -1,6 +1,6 @@
 //! The Surface Octree and the Hybrid Octree through the public API: watertight
 //! DiscMC, lossless face compression, the interpolated mode, and the hard
-//! cases of issue 3. Every Hybrid Octree built here is validated.
+//! cases of the Surface Octree. Every Hybrid Octree built here is validated.
 
 use hybrid_octree::grid::{Grid, GridShape, Samples};
 use hybrid_octree::hybrid::HybridOctree;

@@ -171,7 +171,7 @@ check(again.get("node_count") == full["node_count"] and again.get("cut_count") =
 Delete(watched)
 Delete(big)
 
-# ---- The depth image of the binary octree (issue 7) -------------------------------
+# ---- The depth image of the binary octree (paper 2) -------------------------------
 # Same counters as the CLI on the same file, and the same depth front to back
 # and back to front.
 depth_inputs = XMLImageDataReader(FileName=[sphere_vti])
