@@ -10,17 +10,23 @@
  * asks the core for the DrawList of the active camera: bricks back to front,
  * per brick its slice depths back to front.
  *
- * Each brick's texels are uploaded once as a 3D R32F vtkTextureObject (kept
- * per (node, stride) while the selection holds it). The transfer function is
- * a 1D RGBA float table (colour from the vtkColorTransferFunction, opacity
- * from the scalar opacity) of TableSize entries over the scalars' range.
- * Each slice is drawn as the polygon of its plane clipped to the brick's box
- * (computed on the CPU); the fragment shader reads the brick's texture at
- * texel coordinate clamp((x - lo) / (stride * spacing), 0, n - 1), looks the
- * value up in the table, corrects the opacity a' = 1 - (1 - a)^(d / d0) and
- * blends premultiplied, back to front (GL_ONE, GL_ONE_MINUS_SRC_ALPHA), with
- * the depth test on (opaque geometry occludes the volume) and depth writes
- * off. Every GL state change goes through vtkOpenGLState and is restored.
+ * Each brick's texels are uploaded once as a 3D R32F texture
+ * (vtkHybridOctreeBrickTextures: kept per (node, stride) across frames,
+ * least recently drawn released first, resident bytes within BudgetMB). The
+ * transfer function is a 1D RGBA float table (colour from the
+ * vtkColorTransferFunction or a grey vtkPiecewiseFunction, opacity from the
+ * scalar opacity) of TableSize entries over the scalars' range. An opaque
+ * isosurface is drawn first with depth writes; then the bricks, back to
+ * front, go into a float RGBA target (vtkHybridOctreeFloatTarget; the
+ * opaque depth stops them), one draw call each: a brick holding translucent
+ * surface triangles this frame is drawn as its slices clipped to the box of
+ * its visible blocks with the triangles of each slab between them, any
+ * other brick is ray-marched front to back through its visible box on the
+ * same slice lattice z = k d. Opacity is corrected a' = 1 - (1 - a)^(d / d0)
+ * and blended premultiplied (GL_ONE, GL_ONE_MINUS_SRC_ALPHA); the target is
+ * blended once over the window. Every GL state change goes through
+ * vtkOpenGLState and is restored. docs/ARCHITECTURE.md ("The volume
+ * mapper") has the details.
  *
  * CompositeOnCPU() runs the Rust CPU compositor on the same DrawList and
  * table: the reference the OpenGL picture is tested against.
