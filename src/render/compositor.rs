@@ -16,7 +16,7 @@
 //! closed on the volume's own faces: a point on a face two bricks share
 //! belongs to exactly one of them, and a slice through a face seen head-on
 //! belongs to the brick whose near face it is, the one that lists it
-//! ([`crate::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
+//! ([`crate::plan::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
 //! coordinate of `p(z)` is monotone in `z` (as computed, rounding included),
 //! so the slices inside the box are one run: the exact test is made only at
 //! its ends, scanning in from the first and last candidate slices. The
@@ -46,7 +46,7 @@
 //! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
 //! pixel's depth and its shaded colour goes under the volume in front of it,
 //! last; samples at or behind that depth are dropped (a depth test).
-//! Translucent batches ([`crate::slab`]): the hits of slab `s`'s triangles,
+//! Translucent batches ([`crate::plan::slab`]): the hits of slab `s`'s triangles,
 //! within the batch's clip range `near <= depth < far`, are blended after
 //! slices `0 .. s` and before slice `s` (slab `n` after the last), back to
 //! front; walked in reverse like the slices.
