@@ -24,8 +24,8 @@ use crate::points::draw::Footprint;
 use crate::points::mass::PointMass;
 use crate::points::{add_points, PointSet};
 use crate::render::texture::brick_texels_f32;
-use crate::render::transfer::TransferFunction;
 use crate::surface::Surface;
+use crate::transfer::TransferFunction;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 

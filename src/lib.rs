@@ -40,6 +40,7 @@ pub mod points;
 pub mod render;
 pub mod spacing;
 pub mod surface;
+pub mod transfer;
 pub mod vec3;
 pub mod volume;
 

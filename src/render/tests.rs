@@ -5,7 +5,6 @@ use super::compositor::composite;
 use super::image::{Image, BACKGROUND};
 use super::metrics::compare;
 use super::reference::{reference, ReferenceOptions};
-use super::transfer::TransferFunction;
 use crate::camera::{Camera, Projection};
 use crate::datasets::{generate, Dataset};
 use crate::grid::{Grid, GridShape, ScalarType};
@@ -13,6 +12,7 @@ use crate::octree::{BuildOptions, VolumeOctree};
 use crate::plan::select::Brick;
 use crate::plan::{Batch, BrickDraw, DrawList, Plan, SurfacePass};
 use crate::surface::{Surface, SurfaceOptions};
+use crate::transfer::TransferFunction;
 
 /// A brick over the index box `[lo, hi]` sampled every `stride` cells.
 fn brick(node: u32, lo: [usize; 3], hi: [usize; 3], stride: usize) -> Brick {
