@@ -32,7 +32,7 @@
 //! splat with `sigma = s / 2` over a `ceil(3 sigma)` radius, its weights
 //! scaled to sum to `s^2` pixels of full coverage.
 
-use super::PointSet;
+use super::set::PointSet;
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::grid::GridShape;

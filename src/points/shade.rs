@@ -34,7 +34,7 @@
 //! table, from the grid the points were made from.
 
 use super::draw::{point_colour, point_opacity};
-use super::PointSet;
+use super::set::PointSet;
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::transfer::lut::Lut;
