@@ -219,7 +219,7 @@ mod tests {
         use crate::ffi::build_volume_octree;
         use crate::points::draw::Footprint;
         use crate::render::compositor::composite_with_points;
-        use crate::render::transfer::TransferFunction;
+        use crate::transfer::TransferFunction;
         let (data, desc) = ball();
         let octree = build_volume_octree(as_bytes(&data), &desc, 4).unwrap();
         let o = PointsDesc { factor: 2, underestimates_only: true, ..options() };

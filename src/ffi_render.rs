@@ -17,15 +17,15 @@ use crate::ffi::{
 };
 use crate::ffi_points::PointsHandle;
 use crate::grid::GridShape;
+use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
+use crate::plan::slab::SlabPolygons;
 use crate::plan::{draw_list, plan, DrawList, Scene, SurfacePass};
 use crate::points::draw::Footprint;
 use crate::points::mass::PointMass;
 use crate::points::{add_points, PointSet};
 use crate::render::texture::brick_texels_f32;
-use crate::render::transfer::TransferFunction;
-use crate::select::{select, select_with_points, Roi, SelectOptions, Selection};
-use crate::slab::SlabPolygons;
 use crate::surface::Surface;
+use crate::transfer::TransferFunction;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 

@@ -35,15 +35,14 @@ pub mod hybrid;
 pub mod io;
 pub mod limits;
 pub mod octree;
-pub mod order;
 pub mod plan;
 pub mod points;
 pub mod render;
-pub mod select;
-pub mod slab;
 pub mod spacing;
 pub mod surface;
+pub mod transfer;
 pub mod vec3;
 pub mod volume;
 
 pub use error::{Error, Result};
+pub use plan::{order, select, slab};

@@ -4,9 +4,9 @@
 //! painted later (nearer).
 
 use super::binary_octree::{BinaryOctree, Colour, Node};
+use super::display::Display;
 use super::raster::{DepthImage, Paint, Projector};
 use super::view::View;
-use super::Display;
 use std::time::Instant;
 
 /// The depth image of `octree` seen along `view` on a `size x size` image.

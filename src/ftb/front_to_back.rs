@@ -23,9 +23,9 @@
 
 use super::binary_octree::{BinaryOctree, Colour, GrayOctant, Node};
 use super::bitmap::{BlockingBitmaps, BLACK, QUAD_TAB, WHITE};
+use super::display::Display;
 use super::raster::{DepthImage, Paint, Projector};
 use super::view::View;
-use super::Display;
 use std::time::Instant;
 
 /// The depth image of `octree` seen along `view` on a `size x size` image,

@@ -17,22 +17,13 @@
 pub mod back_to_front;
 pub mod binary_octree;
 pub mod bitmap;
+pub mod display;
 pub mod front_to_back;
 pub mod raster;
 pub mod shade;
 pub mod view;
 
 pub use binary_octree::{BinaryOctree, Colour, Inside, OctantCounts};
+pub use display::Display;
 pub use raster::{Counters, DepthImage};
 pub use view::{View, ViewCase};
-
-/// The result of one display: the depth image, its counters and its time.
-#[derive(Debug, Clone)]
-pub struct Display {
-    /// Depth (distance from the view plane, smaller is nearer) and painted face per pixel.
-    pub image: DepthImage,
-    /// Octants visited by colour, faces scan-converted, scanlines and pixels.
-    pub counters: Counters,
-    /// Wall time of the traversal and scan conversion, in milliseconds.
-    pub ms: f64,
-}

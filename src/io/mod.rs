@@ -15,6 +15,7 @@
 //! the header before anything is allocated). Only regular files are read
 //! ([`source`]); [`read_volume_bytes`] reads the same formats from memory.
 
+mod error;
 pub mod nii;
 pub mod nii_header;
 pub mod options;
@@ -30,6 +31,7 @@ pub mod vtk;
 pub mod vtk_attributes;
 pub mod vtk_tokens;
 
+pub(crate) use error::format_error;
 pub use options::{RawOptions, ReadOptions};
 pub use read::{read_volume, read_volume_bytes, FileKind};
 pub use vti_write::write_vti;

@@ -15,8 +15,8 @@
 //! identity 1, 0) the stored values are rescaled, `v = scl_slope * stored +
 //! scl_inter`, into `f32` (`f64` data stay `f64`).
 
+use super::format_error;
 use super::nii_header::{parse, NiftiHeader, HEADER_BYTES};
-use super::read::format_error;
 use super::sample_sink;
 use crate::error::Result;
 use crate::grid::{GridShape, ScalarType};

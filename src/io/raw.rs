@@ -1,7 +1,7 @@
 //! Headerless raw files: `nx * ny * nz * components` values, x fastest.
 
+use super::format_error;
 use super::options::RawOptions;
-use super::read::format_error;
 use crate::error::Result;
 use crate::grid::GridShape;
 use crate::limits::{check_memory, human_bytes};

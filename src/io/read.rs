@@ -3,21 +3,16 @@
 //! file (a regular file, memory for its bytes) and then hands its bytes to the
 //! same code as the in-memory one, so both behave alike.
 
+use super::format_error;
 use super::options::ReadOptions;
 use super::source::{display_path, read_regular_file, regular_file_len};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::limits::escape_controls;
 use crate::volume::Volume;
 use std::path::Path;
 
 /// The extensions [`read_volume`] understands, for messages.
 pub const SUPPORTED: &str = ".vti, .vtk, .nii, .nii.gz, .raw, .bin";
-
-/// `Error::Format` for the file `label` (already fit to print) with
-/// `message`, whose control characters are escaped.
-pub(crate) fn format_error(label: &str, message: impl Into<String>) -> Error {
-    Error::Format { path: label.to_string(), message: escape_controls(&message.into()) }
-}
 
 /// The file formats, by extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

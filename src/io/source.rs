@@ -3,7 +3,7 @@
 //! the process has the memory for them. A named pipe would block forever and
 //! a device such as `/dev/zero` never ends, so both are refused up front.
 
-use super::read::format_error;
+use super::format_error;
 use crate::error::Result;
 use crate::limits::{check_memory, escape_controls, human_bytes};
 use std::io::Read;

@@ -16,7 +16,7 @@
 //! * a `Direction` other than the identity is refused: the Hybrid Octree is
 //!   axis-aligned, and ignoring it would misplace the data.
 
-use super::read::format_error;
+use super::format_error;
 use super::vti_data::decode_array;
 use super::vti_xml::{parse_header, VtiHeader};
 use crate::error::Result;

@@ -23,7 +23,7 @@
 //! skipped. ASCII floats may be `nan`, `inf`, `-inf` in any case: the reader
 //! passes them on as values.
 
-use super::read::format_error;
+use super::format_error;
 use super::vtk_attributes::{attribute, skip_field, skip_metadata, Array};
 use super::vtk_tokens::{number, parse_number, triple, upper, Cursor, Parse};
 use crate::error::Result;

@@ -21,7 +21,7 @@
 //! satisfy `E_p(parent) = max over children c of E_(p-1)(c)` exactly, which
 //! [`super::validate`] checks.
 //!
-//! For ranking refinements by what they buy (see [`crate::select`]) the
+//! For ranking refinements by what they buy (see [`crate::plan::select`]) the
 //! octree also stores the squared error of every node and level,
 //!
 //! ```text

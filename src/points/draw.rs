@@ -9,9 +9,9 @@
 //! every `f` samples: they are drawn only in bricks of stride `f` (a finer
 //! brick already shows their detail, a coarser one misses more than they
 //! hold) that took their points in the selection
-//! ([`crate::select::select_with_points`], or
-//! [`crate::select::take_all_points`] for every such brick), so the points
-//! drawn are the points paid for. Its slab is [`crate::slab::slab_of`] of
+//! ([`crate::plan::select::select_with_points`], or
+//! [`crate::plan::select::take_all_points`] for every such brick), so the points
+//! drawn are the points paid for. Its slab is [`crate::plan::slab::slab_of`] of
 //! its view depth.
 //!
 //! Opacity (section 3.3: "the error value indicates how much the opacity
@@ -32,7 +32,7 @@
 //! splat with `sigma = s / 2` over a `ceil(3 sigma)` radius, its weights
 //! scaled to sum to `s^2` pixels of full coverage.
 
-use super::PointSet;
+use super::set::PointSet;
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::grid::GridShape;
@@ -91,7 +91,7 @@ pub fn add_points(list: &mut DrawList, shape: &GridShape, set: &PointSet) -> Res
                 return None;
             }
             let depth = list.camera.depth(shape.world(ijk.map(|c| c as f64)));
-            Some((b, crate::slab::slab_of(&list.bricks[b].slices, depth)))
+            Some((b, crate::plan::slab::slab_of(&list.bricks[b].slices, depth)))
         })
         .collect();
     for draw in &mut list.bricks {

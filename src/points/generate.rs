@@ -23,7 +23,8 @@
 //! in grid order, so the points do not depend on the number of threads.
 
 use super::lowres::low_resolution;
-use super::{normals, Point, PointSet};
+use super::normals;
+use super::set::{Point, PointSet};
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear;

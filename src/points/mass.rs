@@ -40,7 +40,7 @@
 //! summed-area tables, so any node box aligned to blocks (every node at or
 //! above the leaf level) is answered in O(1).
 
-use super::PointSet;
+use super::set::PointSet;
 use crate::error::{Error, Result};
 
 /// `eta_f = 1 / sqrt(f)`: the share of a factor-`f` point's removable

@@ -34,11 +34,11 @@
 //! table, from the grid the points were made from.
 
 use super::draw::{point_colour, point_opacity};
-use super::PointSet;
+use super::set::PointSet;
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
-use crate::render::lut::Lut;
-use crate::render::transfer::TransferFunction;
+use crate::transfer::lut::Lut;
+use crate::transfer::TransferFunction;
 use rayon::prelude::*;
 
 /// What a point adds: straight colour and opacity (0: nothing, not drawn).

@@ -20,7 +20,7 @@
 //! Reading checks every field and the exact length, so a truncated or
 //! corrupt file is an error naming what is wrong, never a wrong picture.
 
-use super::{Point, PointSet};
+use super::set::{Point, PointSet};
 use crate::error::{Error, Result};
 use crate::io::source::{display_path, read_regular_file, regular_file_len};
 use crate::limits::escape_controls;

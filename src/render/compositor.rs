@@ -16,7 +16,7 @@
 //! closed on the volume's own faces: a point on a face two bricks share
 //! belongs to exactly one of them, and a slice through a face seen head-on
 //! belongs to the brick whose near face it is, the one that lists it
-//! ([`crate::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
+//! ([`crate::plan::slab::slice_depths`] keeps depths `d_min <= z < d_max`). Each
 //! coordinate of `p(z)` is monotone in `z` (as computed, rounding included),
 //! so the slices inside the box are one run: the exact test is made only at
 //! its ends, scanning in from the first and last candidate slices. The
@@ -30,7 +30,7 @@
 //!
 //! (the same line as `((p(z) - origin) / spacing - lo) / stride`, up to
 //! rounding: a few ulps of the brick's texel coordinates). Each
-//! sample is classified (through [`super::lut`], within 1e-6 of the transfer
+//! sample is classified (through [`crate::transfer::lut`], within 1e-6 of the transfer
 //! function), corrected for the brick's slice spacing `d` against
 //! `d0 = DrawList::reference_spacing` and blended. The DrawList's order is
 //! back to front (`over`); the compositor walks the same sequence reversed,
@@ -46,7 +46,7 @@
 //! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
 //! pixel's depth and its shaded colour goes under the volume in front of it,
 //! last; samples at or behind that depth are dropped (a depth test).
-//! Translucent batches ([`crate::slab`]): the hits of slab `s`'s triangles,
+//! Translucent batches ([`crate::plan::slab`]): the hits of slab `s`'s triangles,
 //! within the batch's clip range `near <= depth < far`, are blended after
 //! slices `0 .. s` and before slice `s` (slab `n` after the last), back to
 //! front; walked in reverse like the slices.
@@ -62,10 +62,8 @@ use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
-use super::lut::Lut;
 use super::sample::to_index;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
-use super::transfer::TransferFunction;
 use super::triangles::{Hit, TriangleGrid};
 use crate::camera::Ray;
 use crate::error::Result;
@@ -74,6 +72,8 @@ use crate::plan::{BrickDraw, DrawList};
 use crate::points::draw::{footprint, project, Footprint};
 use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
+use crate::transfer::lut::Lut;
+use crate::transfer::TransferFunction;
 use crate::vec3::dot;
 use rayon::prelude::*;
 

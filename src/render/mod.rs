@@ -1,14 +1,15 @@
 //! The CPU compositor (executes a DrawList), the full-resolution reference
-//! ray caster, transfer functions and image metrics.
+//! ray caster and image metrics.
 //!
-//! One responsibility per file: [`transfer`] classifies values, [`blend`] is
-//! the compositing step (opacity correction, over and under), [`image`]
-//! holds and writes pictures, [`metrics`] compares them,
-//! [`reference`](mod@reference) ray-casts the full-resolution volume,
-//! [`compositor`] executes a [`DrawList`](crate::plan::DrawList) slice by
-//! slice, brick by brick.
+//! One responsibility per file: [`blend`] is the compositing step (opacity
+//! correction, over and under), [`image`] holds and writes pictures,
+//! [`metrics`] compares them, [`reference`](mod@reference) ray-casts the
+//! full-resolution volume, [`compositor`] executes a
+//! [`DrawList`](crate::plan::DrawList) slice by slice, brick by brick. The
+//! transfer function and its table live in [`crate::transfer`], re-exported
+//! here as [`transfer`].
 //! Inside the crate: `check` (inputs), `sample` (trilinear reconstruction of the grid and of a
-//! brick's texture), `lut` (the transfer function tabulated), `geometry` (rays against boxes and slice planes, screen
+//! brick's texture), `geometry` (rays against boxes and slice planes, screen
 //! footprints), `triangles` (ray-triangle hits through a uniform grid, surface
 //! shading).
 
@@ -17,13 +18,13 @@ mod check;
 pub mod compositor;
 mod geometry;
 pub mod image;
-pub(crate) mod lut;
 pub mod metrics;
 pub mod reference;
 mod sample;
 pub mod texture;
-pub mod transfer;
 mod triangles;
+
+pub use crate::transfer;
 
 #[cfg(test)]
 mod tests;

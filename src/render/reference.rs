@@ -24,12 +24,12 @@ use super::check::{check_colour, check_size};
 use super::geometry::ray_box;
 use super::image::Image;
 use super::sample::{grid_value, to_index};
-use super::transfer::TransferFunction;
 use super::triangles::{Hit, TriangleGrid};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::surface::Surface;
+use crate::transfer::TransferFunction;
 use rayon::prelude::*;
 
 /// Accumulated opacity past which a ray stops.

@@ -15,7 +15,7 @@
 //! (the evaluation order of [`crate::octree::trilinear`]). The full grid is
 //! the lattice of its points, `u = (p - origin) / spacing` for a world point
 //! `p`. A brick's lattice is its texels: texel `i` holds the grid value at
-//! `min(lo + i stride, hi)` (see [`crate::select::Brick::texel_positions`]) and an index-space
+//! `min(lo + i stride, hi)` (see [`crate::plan::select::Brick::texel_positions`]) and an index-space
 //! point `x` is at `u = (x - lo) / stride`, so the last texel of a brick
 //! clipped by the grid repeats the grid's last sample one stride away, as
 //! T_p's virtual padding does.

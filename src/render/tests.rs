@@ -5,23 +5,23 @@ use super::compositor::composite;
 use super::image::{Image, BACKGROUND};
 use super::metrics::compare;
 use super::reference::{reference, ReferenceOptions};
-use super::transfer::TransferFunction;
 use crate::camera::{Camera, Projection};
 use crate::datasets::{generate, Dataset};
 use crate::grid::{Grid, GridShape, ScalarType};
 use crate::octree::{BuildOptions, VolumeOctree};
+use crate::plan::select::Brick;
 use crate::plan::{Batch, BrickDraw, DrawList, Plan, SurfacePass};
-use crate::select::Brick;
 use crate::surface::{Surface, SurfaceOptions};
+use crate::transfer::TransferFunction;
 
 /// A brick over the index box `[lo, hi]` sampled every `stride` cells.
 fn brick(node: u32, lo: [usize; 3], hi: [usize; 3], stride: usize) -> Brick {
-    crate::select::test_brick(node, lo, hi, stride)
+    crate::plan::select::test_brick(node, lo, hi, stride)
 }
 
 /// Slice depths `k d` (integer k) with `near <= k d < far`, `near` and `far`
 /// the box's smallest and largest view depth, back to front (largest first);
-/// the convention of [`crate::slab::slice_depths`].
+/// the convention of [`crate::plan::slab::slice_depths`].
 fn slice_depths(camera: &Camera, lo: [f64; 3], hi: [f64; 3], d: f64) -> Vec<f64> {
     let depths: Vec<f64> =
         (0..8).map(|c| camera.depth([0, 1, 2].map(|a| if c >> a & 1 == 0 { lo[a] } else { hi[a] }))).collect();
@@ -321,8 +321,8 @@ fn foreign_draw_lists_are_refused() {
 /// 1/8 of the full-resolution texture stays within 0.05 (measured 0.011).
 #[test]
 fn the_pipeline_tracks_the_reference() {
+    use crate::plan::select::{select, uniform, SelectOptions};
     use crate::plan::Scene;
-    use crate::select::{select, uniform, SelectOptions};
     let volume = generate(Dataset::SheppLogan, 65, ScalarType::F32);
     let grid = volume.grid(None).unwrap();
     let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 8 }).unwrap();
@@ -343,7 +343,7 @@ fn the_pipeline_tracks_the_reference() {
         let scene = Scene { surface: Some(&surface), surface_opacity: opacity, shading: false };
         // Translucent: the selection's SlabPolygons made once, apart from the view.
         let polygons = (opacity > 0.0 && opacity < 1.0)
-            .then(|| crate::slab::SlabPolygons::new(&octree, &surface, grid.shape(), selection));
+            .then(|| crate::plan::slab::SlabPolygons::new(&octree, &surface, grid.shape(), selection));
         let list =
             crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref()).unwrap();
         let with = (opacity > 0.0).then_some((&surface, [colour[0], colour[1], colour[2], opacity as f32]));

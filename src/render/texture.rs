@@ -3,7 +3,7 @@
 //!
 //! Texel `(i, j, k)` of a brick of `n` texels per axis is stored at
 //! `i + n_x (j + n_y k)` and holds the grid value at the texel position
-//! `min(lo + (i, j, k) stride, hi)` (see [`crate::select::Brick::texel_positions`]).
+//! `min(lo + (i, j, k) stride, hi)` (see [`crate::plan::select::Brick::texel_positions`]).
 //! The copy is `f32` when every copied value is exactly an `f32` (all `u8`,
 //! `i8`, `u16`, `i16` and `f32` grids), else `f64`: either way it holds the
 //! grid's values exactly, and [`Texture::value`] reconstructs T_p bit for bit
@@ -22,8 +22,8 @@ use super::check::check_bricks;
 use crate::error::{Error, Result};
 use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear::lerp;
+use crate::plan::select::Brick;
 use crate::plan::DrawList;
-use crate::select::Brick;
 use rayon::prelude::*;
 
 /// A stored texel: `f32` or `f64`, read back as `f64`.
@@ -252,7 +252,7 @@ mod tests {
     use crate::render::sample::trilinear as grid_trilinear;
 
     fn brick(lo: [usize; 3], hi: [usize; 3], stride: usize) -> Brick {
-        crate::select::test_brick(0, lo, hi, stride)
+        crate::plan::select::test_brick(0, lo, hi, stride)
     }
 
     const BRICKS: [([usize; 3], [usize; 3], usize); 4] = [

@@ -9,8 +9,8 @@
 //! when its only edges used once are [`boundary_edges`] plus
 //! [`nan_boundary_edges`].
 
-use super::build::Surface;
 use super::extract::midpoint2;
+use super::mesh::Surface;
 use crate::grid::Grid;
 use crate::vec3::{cross, sub};
 

@@ -8,8 +8,8 @@
 //! straight vertices without T-junctions, [`earclip`] triangulates faces
 //! ([`exact`]: integer geometry), [`assemble`] names vertices and builds the
 //! mesh, [`place`] computes points and normals, [`build`] runs it all in
-//! parallel, [`check`] measures it (edges, area, volume), [`distance`]
-//! compares two surfaces.
+//! parallel into a [`Surface`] (the types: [`mesh`]), [`check`] measures it
+//! (edges, area, volume), [`distance`] compares two surfaces.
 
 pub mod assemble;
 pub mod build;
@@ -19,8 +19,9 @@ pub mod earclip;
 pub mod exact;
 pub mod extract;
 pub mod faces;
+pub mod mesh;
 pub mod place;
 pub mod straight;
 pub mod table;
 
-pub use build::{Surface, SurfaceMode, SurfaceOptions, SurfaceStats};
+pub use mesh::{Surface, SurfaceMode, SurfaceOptions, SurfaceStats};

@@ -13,8 +13,8 @@
 //! along the edge like the point; where the gradient vanishes, the area-weighted
 //! normal of the polygons around the point ([`finish_normals`]).
 
-use super::build::{Surface, SurfaceMode};
 use super::extract::edge_of_key;
+use super::mesh::{Surface, SurfaceMode};
 use crate::grid::{Sample, TypedGrid};
 use rayon::prelude::*;
 

@@ -15,7 +15,7 @@
 //! values). A cell with a point in it (a kink or a step), and any value
 //! outside `[lo, hi]`, is evaluated exactly by [`TransferFunction::eval`].
 
-use super::transfer::TransferFunction;
+use super::function::TransferFunction;
 
 /// Cells of the table.
 pub(crate) const CELLS: usize = 4096;

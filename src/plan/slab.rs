@@ -66,13 +66,30 @@
 use crate::camera::Camera;
 use crate::grid::GridShape;
 use crate::octree::{NodeId, VolumeOctree};
-use crate::plan::Batch;
-use crate::select::Selection;
+use crate::plan::select::Selection;
 use crate::surface::Surface;
 use crate::vec3::{dot, sub};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::ops::Range;
+
+/// Triangles of the surface drawn between two slices of a brick.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Batch {
+    /// Slab index within the brick: slab `s` lies between slices `s - 1` and
+    /// `s` (slices back to front, see
+    /// [`BrickDraw::slices`](crate::plan::BrickDraw::slices)); slab 0 is
+    /// behind the first slice, slab `n` in front of the last (see the module
+    /// documentation).
+    pub slab: usize,
+    /// Surface triangle ids (polygon ids of the surface, contiguous: the
+    /// polygons of one or more terminal surface nodes, see
+    /// [`SlabPolygons`]).
+    pub triangles: std::ops::Range<u32>,
+    /// `Some((near, far))`: clip to view depths `near <= depth < far`
+    /// (batches whose triangles span more than this slab).
+    pub clip: Option<(f64, f64)>,
+}
 
 /// View depths `k * spacing` of the view-aligned slice planes through the
 /// box `[world_lo, world_hi]`, back to front (largest depth first): those
@@ -307,7 +324,7 @@ mod tests {
     use crate::datasets::{generate, Dataset};
     use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
-    use crate::select::{select, SelectOptions};
+    use crate::plan::select::{select, SelectOptions};
     use crate::surface::SurfaceOptions;
     use crate::vec3::cross;
 

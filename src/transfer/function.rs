@@ -13,7 +13,7 @@
 //! ```
 //!
 //! The opacity is the opacity of a layer one reference spacing `d0` thick
-//! (see [`super::blend::correct_opacity`]).
+//! (see [`crate::render::blend::correct_opacity`]).
 //!
 //! NaN is no data (see [`crate::grid`]): `f(NaN)` is `[0, 0, 0, 0]`,
 //! transparent black, whatever the points; a sample that interpolates a NaN

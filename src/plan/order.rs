@@ -82,7 +82,7 @@ impl Eye {
 /// module documentation for the traversal and the ranking of children.
 ///
 /// `selected` is normally a cut of the tree (the bricks of a
-/// [`crate::select::Selection`]). Every index is emitted exactly once in any
+/// [`crate::plan::select::Selection`]). Every index is emitted exactly once in any
 /// case: a node listed twice gives its indices in increasing order (back to
 /// front), and a selected node that is an ancestor of another selected node
 /// comes before its descendants (back to front). `shape` maps index space to
@@ -247,7 +247,7 @@ mod tests {
     use crate::datasets::{generate, generate_dims, Dataset};
     use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
-    use crate::select::{select, SelectOptions};
+    use crate::plan::select::{select, SelectOptions};
 
     struct Fixture {
         octree: VolumeOctree,

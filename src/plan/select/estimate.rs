@@ -48,7 +48,7 @@ mod tests {
     use crate::datasets::{generate, Dataset};
     use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
-    use crate::select::{select, uniform, SelectOptions};
+    use crate::plan::select::{select, uniform, SelectOptions};
 
     #[test]
     fn visible_bricks_at_their_level_count_and_nothing_else() {

@@ -13,8 +13,9 @@
 //!   (no texture spent), counted in [`Plan::skipped_bricks`];
 //! - shading only when asked for.
 
+use super::select::Brick;
+use super::slab::Batch;
 use crate::camera::Camera;
-use crate::select::Brick;
 use rayon::prelude::*;
 
 /// How the surface is drawn.
@@ -44,22 +45,6 @@ pub struct Plan {
     pub passes: Vec<String>,
 }
 
-/// Triangles of the surface drawn between two slices of a brick.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Batch {
-    /// Slab index within the brick: slab `s` lies between slices `s - 1` and
-    /// `s` (slices back to front, see [`BrickDraw::slices`]); slab 0 is behind
-    /// the first slice, slab `n` in front of the last (see [`crate::slab`]).
-    pub slab: usize,
-    /// Surface triangle ids (polygon ids of the surface, contiguous: the
-    /// polygons of one or more terminal surface nodes, see
-    /// [`crate::slab::SlabPolygons`]).
-    pub triangles: std::ops::Range<u32>,
-    /// `Some((near, far))`: clip to view depths `near <= depth < far`
-    /// (batches whose triangles span more than this slab).
-    pub clip: Option<(f64, f64)>,
-}
-
 /// One brick of the DrawList.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct BrickDraw {
@@ -75,7 +60,7 @@ pub struct BrickDraw {
     /// View depths of the slices through the brick, back to front: slice
     /// planes at depths `k * slice_spacing` (a lattice shared by all bricks of
     /// the same spacing), those inside the brick's depth range
-    /// (`d_min <= z < d_max`, see [`crate::slab::slice_depths`]). A sample on
+    /// (`d_min <= z < d_max`, see [`crate::plan::slab::slice_depths`]). A sample on
     /// a face shared with another brick belongs to the brick whose NEAR face
     /// it is (each box is closed on the faces towards the eye and on the
     /// volume's own faces), so every point is sampled by exactly one brick;
@@ -127,7 +112,7 @@ pub struct Scene<'a> {
 }
 
 /// The plan for a scene (see the module documentation).
-pub fn plan(selection: &crate::select::Selection, scene: &Scene<'_>) -> Plan {
+pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Plan {
     let has_surface = scene.surface.is_some_and(|s| s.polygon_count() > 0) && scene.surface_opacity > 0.0;
     let surface = match (has_surface, scene.surface_opacity >= 1.0) {
         (false, _) => SurfacePass::None,
@@ -153,8 +138,8 @@ pub fn plan(selection: &crate::select::Selection, scene: &Scene<'_>) -> Plan {
 /// passes the plan asks for.
 ///
 /// Only view-dependent work is done here (order, slices, UpdatePosition of
-/// the surface batches, see [`crate::slab`]). A translucent surface is drawn
-/// from `polygons`, the selection's [`SlabPolygons`](crate::slab::SlabPolygons)
+/// the surface batches, see [`crate::plan::slab`]). A translucent surface is drawn
+/// from `polygons`, the selection's [`SlabPolygons`](crate::plan::slab::SlabPolygons)
 /// made once per selection and surface; without it they are made here, every
 /// call.
 ///
@@ -166,15 +151,15 @@ pub fn plan(selection: &crate::select::Selection, scene: &Scene<'_>) -> Plan {
 pub fn draw_list(
     octree: &crate::octree::VolumeOctree,
     shape: &crate::grid::GridShape,
-    selection: &crate::select::Selection,
+    selection: &crate::plan::select::Selection,
     camera: &Camera,
     scene: &Scene<'_>,
-    polygons: Option<&crate::slab::SlabPolygons>,
+    polygons: Option<&crate::plan::slab::SlabPolygons>,
 ) -> crate::Result<DrawList> {
     let plan = plan(selection, scene);
     let d0 = crate::spacing::reference_spacing(shape);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
-    let order = crate::order::brick_order(camera, octree, shape, &ids, true);
+    let order = crate::plan::order::brick_order(camera, octree, shape, &ids, true);
     let made;
     let polygons = match (plan.surface, scene.surface) {
         (SurfacePass::Translucent, Some(s)) => Some(match polygons {
@@ -185,7 +170,7 @@ pub fn draw_list(
                 ))
             }
             None => {
-                made = crate::slab::SlabPolygons::new(octree, s, shape, selection);
+                made = crate::plan::slab::SlabPolygons::new(octree, s, shape, selection);
                 &made
             }
         }),
@@ -198,9 +183,9 @@ pub fn draw_list(
             let world_lo = shape.world(brick.lo.map(|v| v as f64));
             let world_hi = shape.world(brick.hi.map(|v| v as f64));
             let slice_spacing = crate::spacing::slice_spacing(shape, brick.stride);
-            let slices = crate::slab::slice_depths(camera, world_lo, world_hi, slice_spacing);
+            let slices = crate::plan::slab::slice_depths(camera, world_lo, world_hi, slice_spacing);
             let batches = match polygons.map(|p| p.brick(i)) {
-                Some(b) if !b.is_empty() => crate::slab::assign_batches(camera, &slices, b),
+                Some(b) if !b.is_empty() => crate::plan::slab::assign_batches(camera, &slices, b),
                 _ => Vec::new(),
             };
             BrickDraw { brick, world_lo, world_hi, slice_spacing, slices, batches, points: Vec::new() }
@@ -219,7 +204,7 @@ mod tests {
     use crate::datasets::{generate, Dataset};
     use crate::grid::ScalarType;
     use crate::octree::{BuildOptions, VolumeOctree};
-    use crate::select::{select, SelectOptions};
+    use crate::plan::select::{select, SelectOptions};
     use crate::surface::{Surface, SurfaceOptions};
 
     struct Fixture {
@@ -288,7 +273,7 @@ mod tests {
         let shape = grid.shape();
         let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
         let selection = select(&f.octree, &options, |_, _| true).unwrap();
-        let polygons = crate::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
+        let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
         let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
         for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
             let camera =
@@ -308,9 +293,9 @@ mod tests {
         let small = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
         let all = select(&f.octree, &small, |_, _| true).unwrap();
         let fewer = select(&f.octree, &SelectOptions::new(20_000, 0.0), |_, _| true).unwrap();
-        let nodes = |s: &crate::select::Selection| s.bricks.iter().map(|b| b.node).collect::<Vec<_>>();
+        let nodes = |s: &crate::plan::select::Selection| s.bricks.iter().map(|b| b.node).collect::<Vec<_>>();
         assert_ne!(nodes(&all), nodes(&fewer));
-        let polygons = crate::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
+        let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
         let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
         let e = draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons)).unwrap_err().to_string();
