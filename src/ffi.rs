@@ -88,7 +88,7 @@ mod bridge {
         max: Vec<f64>,
     }
 
-    /// What `ftb_display` draws (issue 7).
+    /// What `ftb_display` draws (paper 2's display).
     struct FtbDesc {
         /// Inside: value >= isovalue (unless `use_label`).
         isovalue: f64,
@@ -131,7 +131,7 @@ mod bridge {
         view_case: String,
     }
 
-    /// What `generate_points` makes (issue 8; see `crate::points`).
+    /// What `generate_points` makes (paper 3's points; see `crate::points`).
     struct PointsDesc {
         /// Low-resolution factor: 2, 4 or 8.
         factor: usize,

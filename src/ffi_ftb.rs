@@ -1,4 +1,4 @@
-//! The bridge's front-to-back display (issue 7): the bodies behind
+//! The bridge's front-to-back display (paper 2): the bodies behind
 //! `ffi::ftb_display`, for `vtkHybridOctreeDepthImage`.
 
 use crate::error::{Error, Result};

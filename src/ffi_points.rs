@@ -1,4 +1,4 @@
-//! The bridge's hybrid point/volume representation (issue 8): the body
+//! The bridge's hybrid point/volume representation (paper 3): the body
 //! behind `ffi::generate_points`, for `vtkHybridOctreePoints`, and the
 //! points the volume mapper draws ([`PointsHandle`]).
 

@@ -1,6 +1,6 @@
-//! What a brick's points would buy, for the texture-budget selection
-//! (issue 8: "selection may spend bytes on a brick's points instead of
-//! refining it, choosing whichever buys more error reduction per byte").
+//! What a brick's points would buy, for the texture-budget selection: it
+//! may spend bytes on a brick's points instead of refining it, choosing
+//! whichever buys more error reduction per byte.
 //!
 //! The selection ranks steps by the squared error they remove per byte,
 //! `Q_p(n) = sum over the node's samples of (f - T_p)^2 / range^2`. Points
@@ -17,19 +17,12 @@
 //! ```
 //!
 //! `eta_f` ([`point_efficiency`]) is the share of that data-space error a
-//! point removes from the picture, measured, not derived. A point corrects
+//! point removes from the picture, measured, not derived: a point corrects
 //! the underestimate on a fine structure and leaves T_f's overestimate
 //! beside it, spread over a region that grows with `f`; a ray integrates
 //! that spread error, so the picture weighs it more than its squared sum
-//! says. Counting all of `m^2` (`eta = 1`), the selection bought factor-4
-//! points in place of refinement that made the `vessels` angiogram's
-//! picture 10-12 % worse than the octree alone (`bench render --points`
-//! at 1.10 MB; `tests/hybrid_points.rs` at 0.14 MB); `eta = 1/2` for every
-//! factor cut the mapper's gain on its 3-sample bars from 47 % to 17 %.
-//! `1 / sqrt(f)` (0.71, 0.5, 0.35) keeps the 24 cells of
-//! `bench/representation_points.py`, the mapper's bars and every
-//! octree+points row of docs/BENCHMARKS.md at or below the picture without
-//! points, but one 0.07 % above (phantom, factor 4, 8.59 MB).
+//! says. The measurements behind `1 / sqrt(f)` are in docs/BENCHMARKS.md
+//! (hybrid point/volume rendering).
 //!
 //! ([`PointMass::voxel_means`]; [`PointMass::new`] takes `m = e`, the
 //! point's own sample, and [`PointMass::with_errors`] any given `m`.)

@@ -58,7 +58,7 @@ fn vpn(s: &str) -> std::result::Result<[f64; 3], String> {
     Ok(out)
 }
 
-/// One view's row. Key names are a contract (issue 7): keep them.
+/// One view's row. Key names are a contract with the scripts that read them: keep them.
 #[derive(Debug, Serialize)]
 struct FtbRow {
     input: String,
