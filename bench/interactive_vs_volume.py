@@ -56,7 +56,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "tests", "paraview"))
 from paraview.simple import (ColorBy, Contour, CreateView, Delete, GetColorTransferFunction,  # noqa: E402
                              GetOpacityTransferFunction, Hide, LoadPlugin, Render, Show,
                              XMLImageDataReader)
-from pvtest import Checks, generate_phantom, report, rmse  # noqa: E402
+from pvtest import Checks, generate_phantom, report, rmse, window_rgb  # noqa: E402
 
 HYBRID = "Hybrid Octree Volume"
 ISO_OPACITY = 0.35
@@ -97,26 +97,6 @@ def nifti_as_vti(path):
         writer.SetInputConnection(reader.GetOutputPort())
         writer.Write()
     return out
-
-
-def grab(view, png=None):
-    """The view's picture as an (h*w, 3) float array in [0, 1], also written to `png`."""
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
-
-    f = vtkWindowToImageFilter()
-    f.SetInput(view.GetRenderWindow())
-    f.SetInputBufferTypeToRGB()
-    f.ReadFrontBufferOff()
-    f.ShouldRerenderOff()
-    f.Update()
-    if png:
-        writer = vtkPNGWriter()
-        writer.SetFileName(png)
-        writer.SetInputData(f.GetOutput())
-        writer.Write()
-    return vtk_to_numpy(f.GetOutput().GetPointData().GetScalars()).astype(float) / 255.0
 
 
 def timed(view, interactive):
@@ -171,7 +151,7 @@ def run_row(dataset, path, scene, representation):
     timed(view, False)  # warm-up: octree, uploads, shaders
     stills = [timed(view, False) for _ in range(args.stills)]
     name = os.path.join(workdir, "%s-%s-%s" % (dataset, scene, "hybrid" if representation == HYBRID else "volume"))
-    grab(view, name + "-still.png")
+    window_rgb(view, name + "-still.png")
     mapper = mapper_of(display) if representation == HYBRID else None
     frames, uploads, flagged, levels = [], [], [], []
     for _ in range(args.steps):
@@ -195,9 +175,9 @@ def run_row(dataset, path, scene, representation):
                    sample_spacing=statistics.median(m for _, m, _ in levels),
                    allocated_ms=1e3 * display.GetClientSideObject().GetActiveRepresentation()
                    .GetActor().GetAllocatedRenderTime())
-    interactive_picture = grab(view, name + "-drag.png")
+    interactive_picture = window_rgb(view, name + "-drag.png")
     timed(view, False)  # the release: a still frame of the last drag view
-    row["rmse_to_still"] = rmse(interactive_picture, grab(view, name + "-release.png"))
+    row["rmse_to_still"] = rmse(interactive_picture, window_rgb(view, name + "-release.png"))
     if mapper:
         row["still_interactive"] = bool(mapper.GetLastInteractive())
     Hide(reader, view)

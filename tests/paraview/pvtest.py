@@ -75,6 +75,27 @@ def read_png_rgb(path):
     return pixels[:, :3].astype(float) / 255.0
 
 
+def window_rgb(view, png=None):
+    """The picture `view`'s window holds now (not rendered again), as an
+    (h*w, 3) float array in [0, 1] like read_png_rgb; also written to `png`."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(view.GetRenderWindow())
+    grab.SetInputBufferTypeToRGB()
+    grab.ReadFrontBufferOff()
+    grab.ShouldRerenderOff()
+    grab.Update()
+    if png:
+        writer = vtkPNGWriter()
+        writer.SetFileName(png)
+        writer.SetInputData(grab.GetOutput())
+        writer.Write()
+    return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).astype(float) / 255.0
+
+
 def rmse(a, b):
     """Root mean square difference of two RGB images (same size), in [0, 1]."""
     import numpy as np

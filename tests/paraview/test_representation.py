@@ -41,7 +41,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from paraview import servermanager, smtrace  # noqa: E402
 from paraview.simple import *  # noqa: E402,F401,F403
-from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
+from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse, window_rgb  # noqa: E402
 from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
 
 parser = argparse.ArgumentParser()
@@ -114,8 +114,6 @@ t.check(s["LastEstimatedError"] == 0.0, "64 MB: estimated error 0, not %s" % s["
 
 # ---- A drag: interactive frames from the still frame's resident textures -------------
 import hybrid_octree  # noqa: E402,F401  (the mapper's class: its statistics)
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter  # noqa: E402
 
 
 def mapper_of(display):
@@ -123,26 +121,15 @@ def mapper_of(display):
     return display.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
 
 
-def drawn(view):
-    """The picture the view's window holds now (not rendered again), as screenshot() gives it."""
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(view.GetRenderWindow())
-    grab.SetInputBufferTypeToRGB()
-    grab.ReadFrontBufferOff()
-    grab.ShouldRerenderOff()
-    grab.Update()
-    return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).astype(float) / 255.0
-
-
 mapper = mapper_of(display)
 view.SMProxy.StillRender()
-still = drawn(view)
+still = window_rgb(view)
 mapper.AutoAdjustSampleDistancesOff()
 view.SMProxy.InteractiveRender()
 t.check(mapper.GetLastInteractive() and mapper.GetLastRenderOK(), "InteractiveRender() is an interactive frame")
 t.check(mapper.GetLastUploadedBytes() == 0, "the drag uploads nothing after a still frame: %d bytes"
         % mapper.GetLastUploadedBytes())
-error_full_sampling = rmse(drawn(view), still)
+error_full_sampling = rmse(window_rgb(view), still)
 t.check(error_full_sampling <= 0.002, "full sampling: the still picture (RMSE %.4f)" % error_full_sampling)
 mapper.AutoAdjustSampleDistancesOn()
 camera = view.GetActiveCamera()
@@ -152,7 +139,7 @@ for step in range(6):
     view.SMProxy.InteractiveRender()
     uploaded += mapper.GetLastUploadedBytes()
     t.check(mapper.GetLastInteractive(), "drag frame %d is interactive" % step)
-dragged = drawn(view)
+dragged = window_rgb(view)
 sampling = (mapper.GetLastImageSampleDistance(), mapper.GetLastSampleSpacing())
 report("drag: image sample distance %g, sample spacing %d d0, RMSE %.4f to the still picture (full sampling %.4f)"
        % (sampling[0], sampling[1], rmse(dragged, still), error_full_sampling))
@@ -163,8 +150,8 @@ t.check(rmse(dragged, still) <= 0.04, "the drag's picture within RMSE 0.04 of th
 view.SMProxy.StillRender()
 t.check(not mapper.GetLastInteractive() and mapper.GetLastImageSampleDistance() == 1.0
         and mapper.GetLastSampleSpacing() == 1, "the release is a still frame at full sampling")
-t.check(mapper.GetLastUploadedBytes() == 0 and rmse(drawn(view), still) < 0.002,
-        "the release draws the still picture from resident textures (RMSE %.4f)" % rmse(drawn(view), still))
+t.check(mapper.GetLastUploadedBytes() == 0 and rmse(window_rgb(view), still) < 0.002,
+        "the release draws the still picture from resident textures (RMSE %.4f)" % rmse(window_rgb(view), still))
 
 # ---- A small budget: coarser bricks, within the budget, further from the baseline ----
 display.TextureBudgetMB = 0.05
