@@ -13,6 +13,7 @@
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
+#include "vtkSMSessionProxyManager.h"
 #include "vtkSMViewProxy.h"
 
 #include <QTimer>
@@ -99,14 +100,21 @@ void pqHybridOctreeBehavior::onTypeModified(vtkObject* property)
   // SetRepresentationType): the colouring is then its own step in the undo
   // stack and in a Python trace (ColorBy, RescaleTransferFunctionToDataRange),
   // so a replayed trace colours as the GUI did.
+  // A state being loaded (from the GUI or Python) sets the type too: what
+  // it holds stays as it is (known only now, not when the deferred call runs).
   QPointer<pqRepresentation> repr = this->Watched.value(property);
+  vtkSMSessionProxyManager* pxm = repr ? repr->getProxy()->GetSessionProxyManager() : nullptr;
+  if (!pxm || pxm->GetInLoadXMLState() || pqApplicationCore::instance()->isLoadingState())
+  {
+    return;
+  }
   QTimer::singleShot(0, this, [repr]() { pqHybridOctreeBehavior::OnPicked(repr); });
 }
 
 void pqHybridOctreeBehavior::OnPicked(pqRepresentation* repr)
 {
   vtkSMProxy* proxy = repr ? repr->getProxy() : nullptr;
-  if (!IsHybridOctree(proxy) || pqApplicationCore::instance()->isLoadingState())
+  if (!IsHybridOctree(proxy))
   {
     return;
   }

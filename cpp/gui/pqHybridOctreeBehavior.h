@@ -57,7 +57,8 @@ public:
   static bool ColorByFirstArray(vtkSMProxy* repr);
 
   /// What picking "Hybrid Octree Volume" does: ColorByFirstArray, the
-  /// scalar bar, DefaultIsovalue (nothing while a state loads).
+  /// scalar bar, DefaultIsovalue (not called for a type set by a state
+  /// being loaded).
   static void OnPicked(pqRepresentation* repr);
 
   /// Sets the isovalue to its domain's default (mid-range of the coloured

@@ -15,7 +15,10 @@ Steps, each after the GUI's event loop has run (Qt timers):
    slider up to the full-resolution bytes, the statistics in advanced mode;
 5. the region of interest on: its panel (and sphere) appear;
 6. "Volume" is picked the same way: its picture is saved (the reference);
-7. Output Messages must still be empty; results written, ParaView quits.
+7. Output Messages must still be empty;
+8. a state holding the representation in a solid colour with isovalue 0 is
+   saved and loaded: loading must leave both as they are;
+9. results written, ParaView quits.
 
 PyQt5 (Debian's python3-pyqt5, built on the same Qt 5 as ParaView) reads
 the widgets; paraview.simple reads the proxies and saves the pictures.
@@ -24,8 +27,9 @@ import json
 import os
 import traceback
 
-from paraview.simple import (GetActiveSource, GetActiveView, GetDisplayProperties, Render,
-                             SaveScreenshot, SetActiveSource, Show, XMLImageDataReader)
+from paraview.simple import (ColorBy, Delete, FindSource, GetActiveSource, GetActiveView,
+                             GetDisplayProperties, LoadState, Render, SaveScreenshot, SaveState,
+                             SetActiveSource, Show, XMLImageDataReader)
 from paraview import smtrace
 from PyQt5 import QtCore, QtWidgets
 
@@ -229,6 +233,30 @@ def step_read_volume():
           result["messages_at_end"])
 
 
+def step_hybrid_again():
+    # "Volume" coloured the image already: nothing for the pick to change.
+    GetDisplayProperties(GetActiveSource(), GetActiveView()).SetRepresentationType("Hybrid Octree Volume")
+
+
+def step_state():
+    """A state holding the representation in a solid colour with isovalue 0,
+    loaded again: loading must not colour it or move the isovalue."""
+    display = GetDisplayProperties(GetActiveSource(), GetActiveView())
+    ColorBy(display, None)
+    display.OctreeIsovalue = 0.0
+    path = os.path.join(SHOTS, "solid.pvsm")
+    SaveState(path)
+    Delete(GetActiveSource())
+    LoadState(path)
+
+
+def step_read_state():
+    source = FindSource("image.vti")
+    display = GetDisplayProperties(source, GetActiveView())
+    kept = (display.Representation, list(display.ColorArrayName)[1], display.OctreeIsovalue)
+    check("a loaded state keeps its solid colour and isovalue", kept == ("Hybrid Octree Volume", "", 0.0), kept)
+
+
 def finish():
     with open(RESULT, "w") as f:
         json.dump(result, f, indent=1)
@@ -236,7 +264,7 @@ def finish():
 
 
 STEPS = [step_start, step_open, step_pick_hybrid, step_read_hybrid, step_read_advanced, step_read_roi,
-         step_read_volume]
+         step_read_volume, step_hybrid_again, step_state, step_read_state]
 
 
 def run(index):
