@@ -108,51 +108,34 @@ int vtkHybridOctreeDepthImage::RequestData(
   }
   options.ImageSize = static_cast<std::size_t>(this->ImageSize);
   options.BackToFront = this->Method == BACK_TO_FRONT;
+  // The core draws into the output arrays, rows from the bottom (VTK's order).
+  const vtkIdType n = this->ImageSize;
+  vtkNew<vtkFloatArray> depth;
+  depth->SetName("depth");
+  depth->SetNumberOfTuples(n * n);
+  vtkNew<vtkUnsignedCharArray> face;
+  face->SetName("face");
+  face->SetNumberOfTuples(n * n);
+  vtkNew<vtkUnsignedCharArray> shaded;
+  shaded->SetName("shaded");
+  shaded->SetNumberOfComponents(3);
+  shaded->SetNumberOfTuples(n * n);
+  vtkHybridOctreeBridge::FtbImageBuffers image;
+  image.Depth = depth->GetPointer(0);
+  image.Face = face->GetPointer(0);
+  image.Shaded = shaded->GetPointer(0);
   vtkHybridOctreeBridge::FtbResult result;
   if (!vtkHybridOctreeBridge::FtbDisplay(vtkHybridOctreeImageInput::Bytes(scalars),
         vtkHybridOctreeImageInput::ByteCount(scalars),
-        vtkHybridOctreeImageInput::DescribeGrid(input, scalars, this->Component), options, result,
-        error))
+        vtkHybridOctreeImageInput::DescribeGrid(input, scalars, this->Component), options, image,
+        result, error))
   {
     vtkErrorMacro(<< error);
-    return 0;
-  }
-  const std::size_t n = result.Size;
-  if (n == 0 || result.Depth.size() != n * n || result.Face.size() != n * n ||
-    result.Shaded.size() != 3 * n * n)
-  {
-    vtkErrorMacro(
-      "internal error: the core returned an inconsistent depth image; please report it");
     return 0;
   }
   output->SetExtent(0, static_cast<int>(n) - 1, 0, static_cast<int>(n) - 1, 0, 0);
   output->SetSpacing(1.0, 1.0, 1.0);
   output->SetOrigin(0.0, 0.0, 0.0);
-  vtkNew<vtkFloatArray> depth;
-  depth->SetName("depth");
-  depth->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
-  vtkNew<vtkUnsignedCharArray> face;
-  face->SetName("face");
-  face->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
-  vtkNew<vtkUnsignedCharArray> shaded;
-  shaded->SetName("shaded");
-  shaded->SetNumberOfComponents(3);
-  shaded->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
-  // The core's rows go top down; VTK's images bottom up.
-  for (std::size_t row = 0; row < n; ++row)
-  {
-    const std::size_t from = (n - 1 - row) * n;
-    for (std::size_t x = 0; x < n; ++x)
-    {
-      const vtkIdType to = static_cast<vtkIdType>(row * n + x);
-      depth->SetValue(to, result.Depth[from + x]);
-      face->SetValue(to, result.Face[from + x]);
-      for (int c = 0; c < 3; ++c)
-      {
-        shaded->SetTypedComponent(to, c, result.Shaded[3 * (from + x) + c]);
-      }
-    }
-  }
   output->GetPointData()->SetScalars(depth);
   output->GetPointData()->AddArray(face);
   output->GetPointData()->AddArray(shaded);

@@ -37,7 +37,7 @@ vtkStandardNewMacro(vtkHybridOctreeFilter);
 /// every request even when its data did not change.
 struct vtkHybridOctreeFilter::vtkInternals
 {
-  std::unique_ptr<vtkHybridOctreeBridge::VolumeOctree> Octree;
+  std::unique_ptr<vtkHybridOctreeBridge::HybridOctree> Octree;
   const vtkDataArray* Array = nullptr;
   vtkMTimeType ArrayMTime = 0;
   vtkHybridOctreeBridge::GridDescription Grid;
@@ -172,7 +172,7 @@ bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scal
     this->UpdateProgress(BuildShare * fraction);
     return !this->CheckAbort();
   };
-  cache.Octree = vtkHybridOctreeBridge::VolumeOctree::Build(Bytes(scalars), ByteCount(scalars),
+  cache.Octree = vtkHybridOctreeBridge::HybridOctree::Build(Bytes(scalars), ByteCount(scalars),
     grid, static_cast<unsigned int>(this->LeafSize), progress, error);
   if (!cache.Octree)
   {
@@ -212,77 +212,66 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   }
   cache.Surface = nullptr;
 
-  vtkHybridOctreeBridge::SurfaceMesh mesh;
+  vtkHybridOctreeBridge::SurfaceSummary mesh;
   std::string error;
   const auto mode = this->SurfaceMode == SURFACE_MODE_INTERPOLATED
     ? vtkHybridOctreeBridge::SurfaceMode::Interpolated
     : vtkHybridOctreeBridge::SurfaceMode::Discretized;
-  if (!cache.Octree->ExtractSurface(Bytes(scalars), ByteCount(scalars), cache.Grid, this->Isovalue,
-        mode, this->MeasureSurfaceDistance != 0, mesh, error))
+  if (!cache.Octree->IntegrateSurface(Bytes(scalars), ByteCount(scalars), cache.Grid,
+        this->Isovalue, mode, this->MeasureSurfaceDistance != 0, mesh, error))
   {
     vtkErrorMacro(<< error);
     return false;
   }
   ++this->SurfaceExtractCount;
 
-  // The sizes the bridge promises; a mismatch is a bug in the core, reported
-  // instead of read out of bounds.
-  const std::size_t polygons = mesh.PolygonNode.size();
-  const std::size_t vertices = mesh.Points.size() / 3;
-  if (mesh.Points.size() != 3 * mesh.Vertices || mesh.Normals.size() != mesh.Points.size() ||
-    polygons != mesh.Polygons || mesh.PolygonLevel.size() != polygons ||
-    mesh.PolygonFace.size() != polygons || mesh.Offsets.size() != polygons + 1 ||
-    mesh.Offsets.front() != 0 ||
-    mesh.Offsets.back() != static_cast<std::int64_t>(mesh.Connectivity.size()))
-  {
-    vtkErrorMacro("internal error: the Hybrid Octree core returned a surface with inconsistent "
-                  "array sizes ("
-      << mesh.Vertices << " vertices, " << mesh.Points.size() << " point coordinates, "
-      << mesh.Normals.size() << " normal components, " << mesh.Polygons << " polygons, "
-      << mesh.Offsets.size() << " offsets, " << mesh.Connectivity.size()
-      << " connectivity entries); please report it");
-    return false;
-  }
-  if (!FitsInt(mesh.PolygonNode))
-  {
-    vtkErrorMacro(<< NodeIdTooLarge);
-    return false;
-  }
-
+  // The arrays the core writes the mesh into, sized from its summary.
+  const vtkIdType vertices = static_cast<vtkIdType>(mesh.Vertices);
+  const vtkIdType polygons = static_cast<vtkIdType>(mesh.Polygons);
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(vertices));
-  std::copy(mesh.Points.begin(), mesh.Points.end(), coordinates->GetPointer(0));
+  coordinates->SetNumberOfTuples(vertices);
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
 
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(static_cast<vtkIdType>(vertices));
-  std::copy(mesh.Normals.begin(), mesh.Normals.end(), normals->GetPointer(0));
+  normals->SetNumberOfTuples(vertices);
 
   vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(mesh.Offsets.size()));
-  std::copy(mesh.Offsets.begin(), mesh.Offsets.end(), offsets->GetPointer(0));
+  offsets->SetNumberOfValues(polygons + 1);
   vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(mesh.Connectivity.size()));
-  std::copy(mesh.Connectivity.begin(), mesh.Connectivity.end(), connectivity->GetPointer(0));
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(mesh.Connectivity));
 
   vtkNew<vtkIntArray> node;
   node->SetName("node");
-  node->SetNumberOfValues(static_cast<vtkIdType>(polygons));
+  node->SetNumberOfValues(polygons);
   vtkNew<vtkIntArray> level;
   level->SetName("level");
-  level->SetNumberOfValues(static_cast<vtkIdType>(polygons));
-  std::copy(mesh.PolygonNode.begin(), mesh.PolygonNode.end(), node->GetPointer(0));
-  std::copy(mesh.PolygonLevel.begin(), mesh.PolygonLevel.end(), level->GetPointer(0));
+  level->SetNumberOfValues(polygons);
   vtkNew<vtkIdTypeArray> face;
   face->SetName("face");
-  face->SetNumberOfValues(static_cast<vtkIdType>(polygons));
-  std::copy(mesh.PolygonFace.begin(), mesh.PolygonFace.end(), face->GetPointer(0));
+  face->SetNumberOfValues(polygons);
+
+  vtkHybridOctreeBridge::SurfaceMeshBuffers buffers;
+  buffers.Points = coordinates->GetPointer(0);
+  buffers.Normals = normals->GetPointer(0);
+  buffers.Offsets = offsets->GetPointer(0);
+  buffers.Connectivity = connectivity->GetPointer(0);
+  buffers.PolygonNode = node->GetPointer(0);
+  buffers.PolygonLevel = level->GetPointer(0);
+  buffers.PolygonFace = face->GetPointer(0);
+  const bool written = cache.Octree->GetSurfaceMesh(buffers, error);
+  // The filter outputs the mesh; the octree need not keep it.
+  cache.Octree->RemoveSurface();
+  if (!written)
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
 
   auto surface = vtkSmartPointer<vtkPolyData>::New();
   surface->SetPoints(points);
@@ -362,7 +351,7 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
 //------------------------------------------------------------------------------
 bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
 {
-  const vtkHybridOctreeBridge::VolumeOctree& octree = *this->Internals->Octree;
+  const vtkHybridOctreeBridge::HybridOctree& octree = *this->Internals->Octree;
   vtkHybridOctreeBridge::OctreeSummary summary;
   vtkHybridOctreeBridge::CutBoxes cut;
   std::string error;
