@@ -14,7 +14,8 @@
 //! copied. Large outputs cross the other way into the caller's memory: the
 //! host learns the sizes from a summary, allocates its VTK arrays or staging
 //! buffers, and passes them as `&mut [T]` for Rust to fill (a length that
-//! does not match is an error, nothing is written).
+//! does not match is an error; after any error the buffer's contents are
+//! unspecified).
 
 mod ftb;
 mod grid;
