@@ -3,5 +3,5 @@
 fn main() {
     cxx_build::bridge("src/ffi.rs").std("c++17").compile("hybrid_octree_cxxbridge");
     println!("cargo:rerun-if-changed=src/ffi.rs");
-    println!("cargo:rerun-if-changed=cpp/vtkHybridOctreeBuildProgress.h");
+    println!("cargo:rerun-if-changed=cpp/Filters/vtkHybridOctreeBuildProgress.h");
 }

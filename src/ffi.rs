@@ -344,8 +344,8 @@ mod bridge {
     // ---- C++ types for Rust ------------------------------------------------
 
     unsafe extern "C++" {
-        include!("hybrid-octree/cpp/vtkHybridOctreeBuildProgress.h");
-        /// The build's progress sink (cpp/vtkHybridOctreeBuildProgress.h).
+        include!("hybrid-octree/cpp/Filters/vtkHybridOctreeBuildProgress.h");
+        /// The build's progress sink (cpp/Filters/vtkHybridOctreeBuildProgress.h).
         type BuildProgress;
         /// `fraction` of the build done, in (0, 1]; false asks the build to stop.
         fn report(self: &BuildProgress, fraction: f64) -> bool;

@@ -1,4 +1,6 @@
-#include "vtkHybridOctreeFloatTarget.h"
+#include "vtkOpenGLHybridOctreeFloatTarget.h"
+
+#include "vtkHybridOctreeCompositeFS.h"
 
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -16,21 +18,12 @@
 namespace
 {
 /// The target's premultiplied RGBA, as is (blended by the fixed function).
-const char* CompositeShader = R"(//VTK::System::Dec
-in vec2 texCoord;
-uniform sampler2D composited;
-//VTK::Output::Dec
-void main()
-{
-  gl_FragData[0] = texture(composited, texCoord);
-}
-)";
 }
 
-vtkHybridOctreeFloatTarget::vtkHybridOctreeFloatTarget() = default;
-vtkHybridOctreeFloatTarget::~vtkHybridOctreeFloatTarget() = default;
+vtkOpenGLHybridOctreeFloatTarget::vtkOpenGLHybridOctreeFloatTarget() = default;
+vtkOpenGLHybridOctreeFloatTarget::~vtkOpenGLHybridOctreeFloatTarget() = default;
 
-bool vtkHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
+bool vtkOpenGLHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
   double imageSampleDistance, const double region[4], std::string& error)
 {
   int width = 0, height = 0, x = 0, y = 0;
@@ -153,7 +146,7 @@ bool vtkHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* 
   return true;
 }
 
-void vtkHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
+void vtkOpenGLHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
 {
   vtkOpenGLState* state = window->GetState();
   state->PopFramebufferBindings();
@@ -179,12 +172,12 @@ void vtkHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
   }
 }
 
-void vtkHybridOctreeFloatTarget::Composite(vtkOpenGLRenderWindow* window)
+void vtkOpenGLHybridOctreeFloatTarget::Composite(vtkOpenGLRenderWindow* window)
 {
   vtkOpenGLState* state = window->GetState();
   if (!this->Quad)
   {
-    this->Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, CompositeShader, ""));
+    this->Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, vtkHybridOctreeCompositeFS, ""));
   }
   if (!this->Quad->Program)
   {
@@ -205,7 +198,7 @@ void vtkHybridOctreeFloatTarget::Composite(vtkOpenGLRenderWindow* window)
   this->Color->Deactivate();
 }
 
-void vtkHybridOctreeFloatTarget::ReleaseGraphicsResources(vtkWindow* window)
+void vtkOpenGLHybridOctreeFloatTarget::ReleaseGraphicsResources(vtkWindow* window)
 {
   if (this->Quad)
   {

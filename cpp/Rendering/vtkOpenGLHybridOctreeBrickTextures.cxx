@@ -1,11 +1,11 @@
-#include "vtkHybridOctreeBrickTextures.h"
+#include "vtkOpenGLHybridOctreeBrickTextures.h"
 
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 
 #include <algorithm>
 
-void vtkHybridOctreeBrickTextures::BeginFrame(std::size_t limitBytes)
+void vtkOpenGLHybridOctreeBrickTextures::BeginFrame(std::size_t limitBytes)
 {
   ++this->Frame;
   this->LimitBytes = limitBytes;
@@ -14,7 +14,7 @@ void vtkHybridOctreeBrickTextures::BeginFrame(std::size_t limitBytes)
   this->MakeRoom(0);
 }
 
-bool vtkHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
+bool vtkOpenGLHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
 {
   while (this->ResidentBytes + incoming > this->LimitBytes)
   {
@@ -38,7 +38,7 @@ bool vtkHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
   return true;
 }
 
-const vtkHybridOctreeBrickTextures::Resident* vtkHybridOctreeBrickTextures::Acquire(
+const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTextures::Acquire(
   vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3], const Fetch& fetch,
   std::string& error)
 {
@@ -94,7 +94,7 @@ const vtkHybridOctreeBrickTextures::Resident* vtkHybridOctreeBrickTextures::Acqu
   return &entry;
 }
 
-bool vtkHybridOctreeBrickTextures::HoldsAll(
+bool vtkOpenGLHybridOctreeBrickTextures::HoldsAll(
   const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides) const
 {
   for (std::size_t i = 0; i < nodes.size() && i < strides.size(); ++i)
@@ -107,7 +107,7 @@ bool vtkHybridOctreeBrickTextures::HoldsAll(
   return true;
 }
 
-void vtkHybridOctreeBrickTextures::Clear(vtkWindow* window)
+void vtkOpenGLHybridOctreeBrickTextures::Clear(vtkWindow* window)
 {
   for (auto& e : this->Entries)
   {

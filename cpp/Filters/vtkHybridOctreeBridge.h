@@ -22,7 +22,6 @@
 #include <string>
 #include <vector>
 
-class vtkCamera;
 class vtkPiecewiseFunction;
 
 namespace vtkHybridOctreeBridge
@@ -153,7 +152,7 @@ struct SelectionSummary
   std::uint64_t PointBytes = 0; ///< their bytes, counted in the budget with the textures
 };
 
-/// A camera as vtkCamera describes it (see DescribeCamera()).
+/// A camera as vtkCamera describes it.
 struct CameraDescription
 {
   double Position[3] = { 0.0, 0.0, 1.0 };
@@ -238,10 +237,6 @@ struct PointsDrawing
   std::size_t Factor = 0;      ///< the texture stride the points complete
   std::size_t PointBytes = 0;  ///< all the points as stored
 };
-
-/// The camera's position, focal point, view up, projection, parallel scale
-/// and (vertical) view angle.
-CameraDescription DescribeCamera(vtkCamera* camera);
 
 /**
  * The nodes of a scalar opacity function as (value, opacity) pairs,

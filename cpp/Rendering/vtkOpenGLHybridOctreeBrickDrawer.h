@@ -1,5 +1,5 @@
 /**
- * @file   vtkHybridOctreeBrickDrawer.h
+ * @file   vtkOpenGLHybridOctreeBrickDrawer.h
  * @brief  The bricks' slices, and the translucent surface in their slabs, drawn with OpenGL
  *         (private to the module).
  *
@@ -51,8 +51,8 @@
  *
  * drawn `(c_p a_p w, a_p w)` with coverage w; points adding nothing are not drawn.
  */
-#ifndef vtkHybridOctreeBrickDrawer_h
-#define vtkHybridOctreeBrickDrawer_h
+#ifndef vtkOpenGLHybridOctreeBrickDrawer_h
+#define vtkOpenGLHybridOctreeBrickDrawer_h
 
 #include "vtkHybridOctreeBridge.h"
 #include "vtkSmartPointer.h"
@@ -63,7 +63,7 @@
 #include <utility>
 #include <vector>
 
-class vtkHybridOctreeFloatTarget;
+class vtkOpenGLHybridOctreeFloatTarget;
 class vtkMatrix4x4;
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
@@ -71,7 +71,7 @@ class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
 class vtkTextureObject;
 
-class vtkHybridOctreeBrickDrawer
+class vtkOpenGLHybridOctreeBrickDrawer
 {
 public:
   /// The translucent surface's vertices: 6 floats each (position, normal),
@@ -82,8 +82,8 @@ public:
     const std::vector<unsigned int>* Triangles = nullptr;
   };
 
-  vtkHybridOctreeBrickDrawer();
-  ~vtkHybridOctreeBrickDrawer();
+  vtkOpenGLHybridOctreeBrickDrawer();
+  ~vtkOpenGLHybridOctreeBrickDrawer();
 
   /// The points the list's buckets name, what each adds (4 floats a
   /// point: straight colour, opacity a_p; Points::GetShades()) and their footprint.
@@ -120,8 +120,9 @@ public:
    * the last Build() on the first call after it. False and `error` on failure.
    */
   bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, vtkTextureObject* table,
-    vtkHybridOctreeFloatTarget& target, int entries, double lo, double hi, const double eye[3],
-    const double forward[3], bool parallel, const double surfaceRGBA[4], std::string& error);
+    vtkOpenGLHybridOctreeFloatTarget& target, int entries, double lo, double hi,
+    const double eye[3], const double forward[3], bool parallel, const double surfaceRGBA[4],
+    std::string& error);
 
   /// Ray-marched bricks sample every max(d, factor d0) along the view (d
   /// their slice spacing; `factor` a power of two, 1 by default: the slice lattice).
@@ -148,14 +149,14 @@ public:
   void ReleaseGraphicsResources();
 
 private:
-  vtkHybridOctreeBrickDrawer(const vtkHybridOctreeBrickDrawer&) = delete;
-  vtkHybridOctreeBrickDrawer& operator=(const vtkHybridOctreeBrickDrawer&) = delete;
+  vtkOpenGLHybridOctreeBrickDrawer(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
+  vtkOpenGLHybridOctreeBrickDrawer& operator=(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
 
   /// Appends the 12 triangles of a box (flag 2: a ray-marched brick).
   void EmitBox(const double bounds[6]);
 
   /// Appends one vertex: position, normal, clip interval, kind, point opacity.
-  void Emit(const float position[3], const float normal[3], float near, float far, float surface,
+  void Emit(const float position[3], const float normal[3], float near, float far, int kind,
     float alpha = 0.0f);
 
   /// A triangle copy (index into the brick's placed triangles) or a point

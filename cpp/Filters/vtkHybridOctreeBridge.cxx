@@ -9,7 +9,6 @@
 
 #include "hybrid-octree/src/ffi.rs.h"
 
-#include "vtkCamera.h"
 #include "vtkPiecewiseFunction.h"
 
 #include <algorithm>
@@ -314,22 +313,6 @@ bool VolumeOctree::ExtractSurface(const void* bytes, std::size_t byteCount,
       ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode), measureDistance);
     CopyMesh(s, surface);
   });
-}
-
-CameraDescription DescribeCamera(vtkCamera* camera)
-{
-  CameraDescription d;
-  if (!camera)
-  {
-    return d;
-  }
-  camera->GetPosition(d.Position);
-  camera->GetFocalPoint(d.FocalPoint);
-  camera->GetViewUp(d.ViewUp);
-  d.Parallel = camera->GetParallelProjection() != 0;
-  d.ParallelScale = camera->GetParallelScale();
-  d.ViewAngle = camera->GetViewAngle();
-  return d;
 }
 
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function)

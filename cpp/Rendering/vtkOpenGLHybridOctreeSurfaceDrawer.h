@@ -1,10 +1,10 @@
 /**
- * @file   vtkHybridOctreeSurfaceDrawer.h
+ * @file   vtkOpenGLHybridOctreeSurfaceDrawer.h
  * @brief  The Hybrid Octree's isosurface drawn with OpenGL (private to the module).
  *
  * The Hybrid Octree, section 3.3: an opaque surface is drawn before the
  * volume, with depth test and write, so that the volume behind it is hidden
- * (a translucent one is drawn in the slabs by vtkHybridOctreeBrickDrawer,
+ * (a translucent one is drawn in the slabs by vtkOpenGLHybridOctreeBrickDrawer,
  * from this drawer's vertex and index data).
  *
  * While the camera moves, a translucent surface is drawn by this drawer into
@@ -27,8 +27,8 @@
  * Triangle `t` of the DrawList (a polygon id of the surface mesh) is drawn as
  * indices `3t .. 3t + 3` of the element buffer.
  */
-#ifndef vtkHybridOctreeSurfaceDrawer_h
-#define vtkHybridOctreeSurfaceDrawer_h
+#ifndef vtkOpenGLHybridOctreeSurfaceDrawer_h
+#define vtkOpenGLHybridOctreeSurfaceDrawer_h
 
 #include "vtkHybridOctreeBridge.h"
 #include "vtkSmartPointer.h"
@@ -38,18 +38,18 @@
 #include <utility>
 #include <vector>
 
-class vtkHybridOctreeFloatTarget;
+class vtkOpenGLHybridOctreeFloatTarget;
 class vtkMatrix4x4;
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
 
-class vtkHybridOctreeSurfaceDrawer
+class vtkOpenGLHybridOctreeSurfaceDrawer
 {
 public:
-  vtkHybridOctreeSurfaceDrawer();
-  ~vtkHybridOctreeSurfaceDrawer();
+  vtkOpenGLHybridOctreeSurfaceDrawer();
+  ~vtkOpenGLHybridOctreeSurfaceDrawer();
 
   /// Loads `mesh` (triangles only) into buffers; false and `error` otherwise.
   bool Upload(const vtkHybridOctreeBridge::SurfaceMesh& mesh, std::string& error);
@@ -70,7 +70,7 @@ public:
    */
   bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, const double eye[3],
     const double forward[3], bool parallel, const double rgba[4], std::string& error,
-    vtkHybridOctreeFloatTarget* target = nullptr);
+    vtkOpenGLHybridOctreeFloatTarget* target = nullptr);
 
   /// Makes the program and buffers of the last Bind() current again (after another program drew).
   void Rebind(vtkOpenGLRenderWindow* window);
@@ -101,8 +101,8 @@ public:
   void ReleaseGraphicsResources();
 
 private:
-  vtkHybridOctreeSurfaceDrawer(const vtkHybridOctreeSurfaceDrawer&) = delete;
-  vtkHybridOctreeSurfaceDrawer& operator=(const vtkHybridOctreeSurfaceDrawer&) = delete;
+  vtkOpenGLHybridOctreeSurfaceDrawer(const vtkOpenGLHybridOctreeSurfaceDrawer&) = delete;
+  vtkOpenGLHybridOctreeSurfaceDrawer& operator=(const vtkOpenGLHybridOctreeSurfaceDrawer&) = delete;
 
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLBufferObject> Indices;

@@ -11,13 +11,13 @@
  * per brick its slice depths back to front.
  *
  * Each brick's texels are uploaded once as a 3D R32F texture
- * (vtkHybridOctreeBrickTextures: kept per (node, stride) across frames,
+ * (vtkOpenGLHybridOctreeBrickTextures: kept per (node, stride) across frames,
  * least recently drawn released first, resident bytes within BudgetMB). The
  * transfer function is a 1D RGBA float table (colour from the
  * vtkColorTransferFunction or a grey vtkPiecewiseFunction, opacity from the
  * scalar opacity) of TableSize entries over the scalars' range. An opaque
  * isosurface is drawn first with depth writes; then the bricks, back to
- * front, go into a float RGBA target (vtkHybridOctreeFloatTarget; the
+ * front, go into a float RGBA target (vtkOpenGLHybridOctreeFloatTarget; the
  * opaque depth stops them), one draw call each: a brick holding translucent
  * surface triangles this frame is drawn as its slices clipped to the box of
  * its visible blocks with the triangles of each slab between them, any
@@ -52,7 +52,7 @@
  * first still frame, or when its inputs changed), every brick ray-marched;
  * a translucent surface is drawn brick by brick (each of a brick's
  * triangles before or after that brick's volume, by the side of it the eye
- * is on, see vtkHybridOctreeSurfaceDrawer) instead of in the slabs, and
+ * is on, see vtkOpenGLHybridOctreeSurfaceDrawer) instead of in the slabs, and
  * points are left out. With AutoAdjustSampleDistances they also composite at a coarser
  * image sample distance and sample the rays more sparsely, as much as
  * keeps them within the volume's allocated render time
@@ -62,7 +62,7 @@
 #ifndef vtkHybridOctreeVolumeMapper_h
 #define vtkHybridOctreeVolumeMapper_h
 
-#include "HybridOctreeFiltersModule.h" // for export macro
+#include "HybridOctreeRenderingModule.h" // for export macro
 #include "vtkVolumeMapper.h"
 
 #include <memory> // for std::unique_ptr
@@ -85,7 +85,7 @@ struct SelectDescription;
 }
 #endif
 
-class HYBRIDOCTREEFILTERS_EXPORT vtkHybridOctreeVolumeMapper : public vtkVolumeMapper
+class HYBRIDOCTREERENDERING_EXPORT vtkHybridOctreeVolumeMapper : public vtkVolumeMapper
 {
 public:
   static vtkHybridOctreeVolumeMapper* New();
@@ -176,7 +176,7 @@ public:
    * slabs between their brick's slices, as squares of whole pixels
    * (PointFootprint 0, default) or Gaussian splats (1), with the opacity
    * that, over the textures, gives the representation's own averaged over
-   * the point's voxel (see vtkHybridOctreeBrickDrawer). Off by default.
+   * the point's voxel (see vtkOpenGLHybridOctreeBrickDrawer). Off by default.
    * Only points where the textures underestimate are made: elsewhere a
    * point could only add opacity the data does not have.
    */
@@ -346,7 +346,7 @@ private:
   bool DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera,
     const vtkHybridOctreeBridge::DrawList& list, bool interactive, int level);
   /// Draws the translucent triangles between brick i - 1's volume and brick
-  /// i's into the bound float target (vtkHybridOctreeSurfaceDrawer::
+  /// i's into the bound float target (vtkOpenGLHybridOctreeSurfaceDrawer::
   /// GetTrianglesBefore()); returns how many.
   std::size_t DrawSurfaceBefore(vtkOpenGLRenderWindow* window, std::size_t i);
   /// The normalized device box (xmin, xmax, ymin, ymax) of the boxes

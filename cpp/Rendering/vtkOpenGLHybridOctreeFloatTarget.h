@@ -1,5 +1,5 @@
 /**
- * @file   vtkHybridOctreeFloatTarget.h
+ * @file   vtkOpenGLHybridOctreeFloatTarget.h
  * @brief  The float framebuffer the bricks are composited in (private to the module).
  *
  * Back-to-front slicing adds one premultiplied `c a'` per slice; with the
@@ -22,8 +22,8 @@
  * viewport-sized: the shaders read it at their fragment's position times
  * GetDepthScale().
  */
-#ifndef vtkHybridOctreeFloatTarget_h
-#define vtkHybridOctreeFloatTarget_h
+#ifndef vtkOpenGLHybridOctreeFloatTarget_h
+#define vtkOpenGLHybridOctreeFloatTarget_h
 
 #include "vtkSmartPointer.h"
 
@@ -37,11 +37,11 @@ class vtkRenderer;
 class vtkTextureObject;
 class vtkWindow;
 
-class vtkHybridOctreeFloatTarget
+class vtkOpenGLHybridOctreeFloatTarget
 {
 public:
-  vtkHybridOctreeFloatTarget();
-  ~vtkHybridOctreeFloatTarget();
+  vtkOpenGLHybridOctreeFloatTarget();
+  ~vtkOpenGLHybridOctreeFloatTarget();
 
   /**
    * Copies the depth of `ren`'s viewport, then binds the float target with
@@ -68,8 +68,8 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
-  vtkHybridOctreeFloatTarget(const vtkHybridOctreeFloatTarget&) = delete;
-  vtkHybridOctreeFloatTarget& operator=(const vtkHybridOctreeFloatTarget&) = delete;
+  vtkOpenGLHybridOctreeFloatTarget(const vtkOpenGLHybridOctreeFloatTarget&) = delete;
+  vtkOpenGLHybridOctreeFloatTarget& operator=(const vtkOpenGLHybridOctreeFloatTarget&) = delete;
 
   /// Draws the target over the window's viewport, blended premultiplied.
   void Composite(vtkOpenGLRenderWindow* window);

@@ -1,16 +1,16 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 
-#include "vtkHybridOctreeBrickDrawer.h"
 #include "vtkHybridOctreeBrickOccupancy.h"
-#include "vtkHybridOctreeBrickTextures.h"
 #include "vtkHybridOctreeBridge.h"
-#include "vtkHybridOctreeFloatTarget.h"
+#include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
 #include "vtkHybridOctreeInteractiveReduction.h"
-#include "vtkHybridOctreeSurfaceDrawer.h"
 #include "vtkHybridOctreeUnsupportedEffects.h"
+#include "vtkOpenGLHybridOctreeBrickDrawer.h"
+#include "vtkOpenGLHybridOctreeBrickTextures.h"
+#include "vtkOpenGLHybridOctreeFloatTarget.h"
+#include "vtkOpenGLHybridOctreeSurfaceDrawer.h"
 
-#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -43,6 +43,7 @@ vtkStandardNewMacro(vtkHybridOctreeVolumeMapper);
 namespace
 {
 using namespace vtkHybridOctreeBridge;
+using vtkHybridOctreeCameraInput::DescribeCamera;
 using vtkHybridOctreeImageInput::ByteCount;
 using vtkHybridOctreeImageInput::Bytes;
 
@@ -90,6 +91,7 @@ std::string InteractivePlan(const std::string& passes)
   }
   return plan;
 }
+
 } // namespace
 
 struct vtkHybridOctreeVolumeMapper::vtkInternals
@@ -149,10 +151,10 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   vtkNew<vtkMatrix4x4> ModelInverse;
 
   // GL resources.
-  vtkHybridOctreeBrickTextures Bricks;
-  vtkHybridOctreeBrickDrawer Drawer;
-  vtkHybridOctreeFloatTarget Target;
-  vtkHybridOctreeSurfaceDrawer SurfaceDrawer;
+  vtkOpenGLHybridOctreeBrickTextures Bricks;
+  vtkOpenGLHybridOctreeBrickDrawer Drawer;
+  vtkOpenGLHybridOctreeFloatTarget Target;
+  vtkOpenGLHybridOctreeSurfaceDrawer SurfaceDrawer;
   const Surface* UploadedSurface = nullptr;
   vtkSmartPointer<vtkTextureObject> TableTexture;
 
@@ -713,7 +715,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   for (std::size_t i = 0; i < bricks; ++i)
   {
     const std::size_t brick = list.Brick[i];
-    const vtkHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
+    const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, &list.Texels[3 * i],
       [&](std::vector<float>& texels) {
         return selected.GetBrickTexels(
@@ -765,13 +767,13 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   const bool surfacePerBrick = interactive && batches;
   const vtkHybridOctreeInteractiveReduction::Level sampling =
     vtkHybridOctreeInteractiveReduction::GetLevel(level);
-  vtkHybridOctreeBrickDrawer::SurfaceData translucent;
+  vtkOpenGLHybridOctreeBrickDrawer::SurfaceData translucent;
   if (batches && !interactive)
   {
     translucent.Vertices = &in.SurfaceDrawer.GetVertexData();
     translucent.Triangles = &in.SurfaceDrawer.GetIndexData();
   }
-  vtkHybridOctreeBrickDrawer::PointData points;
+  vtkOpenGLHybridOctreeBrickDrawer::PointData points;
   if (in.PointSet && !list.BucketOffsets.empty() && !interactive)
   {
     points.Drawing = &in.Drawing;
@@ -881,7 +883,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
       }
     }
     // Ray-marched boxes keep only the faces rays leave by (see
-    // vtkHybridOctreeBrickDrawer::EmitBox); a mirroring model matrix turns
+    // vtkOpenGLHybridOctreeBrickDrawer::EmitBox); a mirroring model matrix turns
     // their winding over. Culling is restored before the target is blended.
     vtkOpenGLState::ScopedglEnableDisable brickCulling(state, GL_CULL_FACE);
     state->vtkglCullFace(GL_BACK);

@@ -1,8 +1,11 @@
-#include "vtkHybridOctreeSurfaceDrawer.h"
+#include "vtkOpenGLHybridOctreeSurfaceDrawer.h"
 
-#include "vtkHybridOctreeFloatTarget.h"
+#include "vtkHybridOctreeSurfaceFS.h"
+#include "vtkHybridOctreeSurfaceVS.h"
+
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLHybridOctreeFloatTarget.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLVertexArrayObject.h"
@@ -18,52 +21,13 @@
 
 namespace
 {
-const char* VertexShader = R"(//VTK::System::Dec
-in vec3 vertexMC;
-in vec3 normalMC;
-uniform mat4 MCDC;
-out vec3 positionMC;
-out vec3 normal;
-void main()
-{
-  positionMC = vertexMC;
-  normal = normalMC;
-  gl_Position = MCDC * vec4(vertexMC, 1.0);
-}
-)";
-
-const char* FragmentShader = R"(//VTK::System::Dec
-in vec3 positionMC;
-in vec3 normal;
-uniform vec3 eye;
-uniform vec3 forward;
-uniform int parallel;
-uniform vec4 surfaceColor;
-uniform int testOpaqueDepth;
-uniform sampler2D opaqueDepth;
-uniform vec2 depthScale;
-//VTK::Output::Dec
-void main()
-{
-  if (testOpaqueDepth != 0 &&
-    gl_FragCoord.z > texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy * depthScale), 0).r)
-  {
-    discard; // behind opaque geometry (drawn into the float target, without a depth buffer)
-  }
-  vec3 d = parallel != 0 ? forward : normalize(positionMC - eye);
-  float len = length(normal);
-  float lambert = len > 0.0 ? abs(dot(normal, d)) / len : 1.0;
-  vec3 rgb = clamp(surfaceColor.rgb, 0.0, 1.0) * lambert;
-  gl_FragData[0] = vec4(rgb * surfaceColor.a, surfaceColor.a);
-}
-)";
 
 }
 
-vtkHybridOctreeSurfaceDrawer::vtkHybridOctreeSurfaceDrawer() = default;
-vtkHybridOctreeSurfaceDrawer::~vtkHybridOctreeSurfaceDrawer() = default;
+vtkOpenGLHybridOctreeSurfaceDrawer::vtkOpenGLHybridOctreeSurfaceDrawer() = default;
+vtkOpenGLHybridOctreeSurfaceDrawer::~vtkOpenGLHybridOctreeSurfaceDrawer() = default;
 
-bool vtkHybridOctreeSurfaceDrawer::Upload(
+bool vtkOpenGLHybridOctreeSurfaceDrawer::Upload(
   const vtkHybridOctreeBridge::SurfaceMesh& mesh, std::string& error)
 {
   const std::size_t vertices = mesh.Points.size() / 3;
@@ -107,11 +71,12 @@ bool vtkHybridOctreeSurfaceDrawer::Upload(
   return true;
 }
 
-bool vtkHybridOctreeSurfaceDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
+bool vtkOpenGLHybridOctreeSurfaceDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
   const double eye[3], const double forward[3], bool parallel, const double rgba[4],
-  std::string& error, vtkHybridOctreeFloatTarget* target)
+  std::string& error, vtkOpenGLHybridOctreeFloatTarget* target)
 {
-  this->Program = window->GetShaderCache()->ReadyShaderProgram(VertexShader, FragmentShader, "");
+  this->Program = window->GetShaderCache()->ReadyShaderProgram(
+    vtkHybridOctreeSurfaceVS, vtkHybridOctreeSurfaceFS, "");
   if (!this->Program)
   {
     error = "the surface shader did not compile";
@@ -186,7 +151,7 @@ bool vtkHybridOctreeSurfaceDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix
   return true;
 }
 
-void vtkHybridOctreeSurfaceDrawer::Rebind(vtkOpenGLRenderWindow* window)
+void vtkOpenGLHybridOctreeSurfaceDrawer::Rebind(vtkOpenGLRenderWindow* window)
 {
   if (this->Program && this->Bound)
   {
@@ -195,7 +160,7 @@ void vtkHybridOctreeSurfaceDrawer::Rebind(vtkOpenGLRenderWindow* window)
   }
 }
 
-void vtkHybridOctreeSurfaceDrawer::OrderByBrick(const vtkHybridOctreeBridge::DrawList& list,
+void vtkOpenGLHybridOctreeSurfaceDrawer::OrderByBrick(const vtkHybridOctreeBridge::DrawList& list,
   const double eye[3], const double forward[3], bool parallel, bool insideOpaque)
 {
   const std::size_t bricks = list.GetNumberOfBricks();
@@ -253,7 +218,7 @@ void vtkHybridOctreeSurfaceDrawer::OrderByBrick(const vtkHybridOctreeBridge::Dra
   }
 }
 
-std::pair<std::size_t, std::size_t> vtkHybridOctreeSurfaceDrawer::GetTrianglesBefore(
+std::pair<std::size_t, std::size_t> vtkOpenGLHybridOctreeSurfaceDrawer::GetTrianglesBefore(
   std::size_t i) const
 {
   // Brick i - 1's triangles after its volume, then brick i's before its own.
@@ -265,7 +230,7 @@ std::pair<std::size_t, std::size_t> vtkHybridOctreeSurfaceDrawer::GetTrianglesBe
   return { this->BrickParts[i > 0 ? 2 * i - 1 : 0], this->BrickParts[i < n ? 2 * i + 1 : 2 * n] };
 }
 
-void vtkHybridOctreeSurfaceDrawer::Draw(std::size_t first, std::size_t end)
+void vtkOpenGLHybridOctreeSurfaceDrawer::Draw(std::size_t first, std::size_t end)
 {
   if (end <= first || !this->Program)
   {
@@ -275,7 +240,7 @@ void vtkHybridOctreeSurfaceDrawer::Draw(std::size_t first, std::size_t end)
     reinterpret_cast<const void*>(3 * first * sizeof(unsigned int)));
 }
 
-void vtkHybridOctreeSurfaceDrawer::Unbind()
+void vtkOpenGLHybridOctreeSurfaceDrawer::Unbind()
 {
   if (this->Bound)
   {
@@ -283,7 +248,7 @@ void vtkHybridOctreeSurfaceDrawer::Unbind()
   }
 }
 
-void vtkHybridOctreeSurfaceDrawer::ReleaseGraphicsResources()
+void vtkOpenGLHybridOctreeSurfaceDrawer::ReleaseGraphicsResources()
 {
   if (this->Vertices)
   {

@@ -1,7 +1,10 @@
-#include "vtkHybridOctreeBrickDrawer.h"
+#include "vtkOpenGLHybridOctreeBrickDrawer.h"
 
-#include "vtkHybridOctreeFloatTarget.h"
+#include "vtkHybridOctreeBrickFS.h"
+#include "vtkHybridOctreeBrickVS.h"
+
 #include "vtkHybridOctreeSliceGeometry.h"
+#include "vtkOpenGLHybridOctreeFloatTarget.h"
 
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -25,236 +28,17 @@ namespace
 /// hold its centre, its straight colour in the normal, their quad corner
 /// (+-1, +-1) in the clip interval, and its opacity a_p.
 constexpr std::size_t Stride = 10;
-constexpr float SquarePoint = 3.0f;
-constexpr float GaussianPoint = 4.0f;
+/// The primitive kinds, as the shaders name them (SLICE, SURFACE_TRIANGLE, ...).
+enum PrimitiveKind : int
+{
+  Slice = 0,
+  SurfaceTriangle = 1,
+  RayMarchedBox = 2,
+  SquarePoint = 3,
+  GaussianPoint = 4,
+};
 /// An unbounded clip side (the shader's clip distances stay finite).
 constexpr float Unbounded = 1.0e30f;
-
-const char* VertexShader = R"(//VTK::System::Dec
-in vec3 vertexMC;
-in vec3 normalMC;
-in vec2 clipMC;
-in float surfaceMC;
-in float alphaMC;
-uniform mat4 MCDC;
-uniform vec3 eye;
-uniform vec3 forward;
-uniform vec2 viewportSize;
-uniform vec3 pointUp;
-uniform float pointSpacing;
-out vec3 positionMC;
-out vec3 normal;
-flat out float isSurface;
-flat out vec4 pointFrame;
-flat out vec4 pointColor;
-flat out float pointWeight;
-void main()
-{
-  positionMC = vertexMC;
-  normal = normalMC;
-  isSurface = surfaceMC;
-  pointFrame = vec4(0.0);
-  pointColor = vec4(normalMC, alphaMC);
-  pointWeight = 0.0;
-  if (surfaceMC > 2.5)
-  {
-    // A point: its footprint, s = d0 / pixel pixels across at its depth,
-    // as a quad of whole pixels in window coordinates (see the header).
-    vec4 c = MCDC * vec4(vertexMC, 1.0);
-    vec4 c2 = MCDC * vec4(vertexMC + pointSpacing * pointUp, 1.0);
-    vec2 centre = (c.xy / c.w * 0.5 + 0.5) * viewportSize;
-    float s = length((c2.xy / c2.w * 0.5 + 0.5) * viewportSize - centre);
-    vec2 lo;
-    vec2 hi;
-    float weight;
-    float sigma = 0.0;
-    float radius = 0.0;
-    if (surfaceMC < 3.5)
-    {
-      float side = max(ceil(s), 1.0);
-      weight = min(s * s / (side * side), 1.0);
-      lo = floor(centre - 0.5 * side + 0.5);
-      hi = lo + side;
-    }
-    else
-    {
-      sigma = max(0.5 * s, 0.5);
-      radius = ceil(3.0 * sigma);
-      vec2 f = floor(centre);
-      lo = f - radius;
-      hi = f + radius + 1.0;
-      vec2 sum = vec2(0.0);
-      for (float k = -radius; k <= radius; k += 1.0)
-      {
-        vec2 d = f + k + 0.5 - centre;
-        sum += exp(-d * d / (2.0 * sigma * sigma));
-      }
-      weight = s * s / (sum.x * sum.y);
-    }
-    vec2 corner = mix(lo, hi, clipMC * 0.5 + 0.5);
-    gl_Position = vec4((corner / viewportSize * 2.0 - 1.0) * c.w, c.z, c.w);
-    pointFrame = vec4(centre, sigma, radius);
-    pointWeight = weight;
-    gl_ClipDistance[0] = 1.0;
-    gl_ClipDistance[1] = 1.0;
-    return;
-  }
-  float z = dot(vertexMC - eye, forward);
-  gl_ClipDistance[0] = z - clipMC.x;
-  gl_ClipDistance[1] = clipMC.y - z;
-  gl_Position = MCDC * vec4(vertexMC, 1.0);
-}
-)";
-
-const char* FragmentShader = R"(//VTK::System::Dec
-in vec3 positionMC;
-in vec3 normal;
-flat in float isSurface;
-flat in vec4 pointFrame;
-flat in vec4 pointColor;
-flat in float pointWeight;
-uniform sampler3D brickTexture;
-uniform sampler2D transferTable;
-uniform sampler2D opaqueDepth;
-uniform vec3 brickLo;
-uniform vec3 inverseStep;
-uniform vec3 texels;
-uniform vec2 tableScaleShift;
-uniform float opacityRatio;
-uniform vec3 eye;
-uniform vec3 forward;
-uniform int parallel;
-uniform vec4 surfaceColor;
-uniform vec3 boxLo;
-uniform vec3 boxHi;
-uniform float sliceSpacing;
-uniform int jitter;
-uniform mat4 DCMC;
-uniform vec2 viewportSize;
-uniform vec2 depthScale;
-uniform float nearDepth;
-//VTK::Output::Dec
-
-// Opacity a' of the sample at model position p, and its colour. NaN texels
-// are no data: the linear filter of a sample touching one is NaN (every
-// corner is weighed, 0 * NaN = NaN), and such a sample is transparent black,
-// as in the CPU compositor.
-vec4 sampleAt(vec3 p)
-{
-  vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
-  float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
-  if (isnan(value))
-  {
-    return vec4(0.0);
-  }
-  vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
-  float a = clamp(c.a, 0.0, 1.0);
-  if (opacityRatio != 1.0 && a > 0.0 && a < 1.0)
-  {
-    a = 1.0 - exp(opacityRatio * log(1.0 - a));
-  }
-  return vec4(clamp(c.rgb, 0.0, 1.0), a);
-}
-
-// The view depth (x - eye) . forward of the point at this pixel and depth-buffer value d.
-float viewDepth(float d)
-{
-  vec4 q = DCMC * vec4(gl_FragCoord.xy / viewportSize * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
-  return dot(q.xyz / q.w - eye, forward);
-}
-
-void main()
-{
-  float opaque = texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy * depthScale), 0).r;
-  if (isSurface > 1.5 && isSurface < 2.5)
-  {
-    // A ray-marched brick: this fragment is on the exit face of its box; the
-    // samples are the slice lattice z = k d between entry and exit (the same
-    // samples as the slices), front to back, up to opaque geometry.
-    vec3 dir = parallel != 0 ? forward : normalize(positionMC - eye);
-    vec3 origin = parallel != 0 ? positionMC - forward * dot(positionMC - eye, forward) : eye;
-    vec3 inv = 1.0 / dir;
-    vec3 t1 = (boxLo - origin) * inv;
-    vec3 t2 = (boxHi - origin) * inv;
-    vec3 tn = min(t1, t2);
-    vec3 tf = max(t1, t2);
-    float tIn = max(max(tn.x, tn.y), tn.z);
-    float tOut = min(min(tf.x, tf.y), tf.z);
-    if (dot(positionMC - origin, dir) < 0.5 * (tIn + tOut))
-    {
-      discard; // the entry face
-    }
-    float cosA = dot(dir, forward);
-    float zIn = max(tIn * cosA, nearDepth);
-    float zOut = min(tOut * cosA, opaque < 1.0 ? viewDepth(opaque) : 1.0e30);
-    // Samples at z = (k + j) d: j = 0 (the slice lattice), or with jitter a
-    // fraction of d fixed per pixel (interleaved gradient noise), the same in
-    // every brick, so that a sparse lattice shows noise, not wood grain.
-    float j = jitter != 0
-      ? fract(52.9829189 * fract(dot(floor(gl_FragCoord.xy), vec2(0.06711056, 0.00583715))))
-      : 0.0;
-    int k0 = int(ceil(zIn / sliceSpacing - j));
-    int k1 = min(int(ceil(zOut / sliceSpacing - j)) - 1, k0 + 4096);
-    vec3 C = vec3(0.0);
-    float A = 0.0;
-    for (int k = k0; k <= k1 && A < 0.999; ++k)
-    {
-      vec4 s = sampleAt(origin + dir * ((float(k) + j) * sliceSpacing / cosA));
-      C += (1.0 - A) * s.a * s.rgb;
-      A += (1.0 - A) * s.a;
-    }
-    if (A == 0.0)
-    {
-      discard;
-    }
-    gl_FragData[0] = vec4(C, A);
-    return;
-  }
-  // Behind opaque geometry already drawn.
-  if (gl_FragCoord.z > opaque)
-  {
-    discard;
-  }
-  if (isSurface > 2.5)
-  {
-    // A point (paper 3 section 4): its colour and opacity a_p (see the
-    // header) times the footprint's coverage.
-    float w = pointWeight;
-    if (isSurface > 3.5)
-    {
-      vec2 f = floor(pointFrame.xy);
-      if (any(greaterThan(abs(floor(gl_FragCoord.xy) - f), vec2(pointFrame.w))))
-      {
-        discard;
-      }
-      vec2 d = gl_FragCoord.xy - pointFrame.xy;
-      w = min(exp(-dot(d, d) / (2.0 * pointFrame.z * pointFrame.z)) * w, 1.0);
-    }
-    float a = pointColor.a * w;
-    if (a <= 0.0)
-    {
-      discard;
-    }
-    gl_FragData[0] = vec4(pointColor.rgb * a, a);
-    return;
-  }
-  if (isSurface > 0.5)
-  {
-    vec3 d = parallel != 0 ? forward : normalize(positionMC - eye);
-    float len = length(normal);
-    float lambert = len > 0.0 ? abs(dot(normal, d)) / len : 1.0;
-    vec3 rgb = clamp(surfaceColor.rgb, 0.0, 1.0) * lambert;
-    gl_FragData[0] = vec4(rgb * surfaceColor.a, surfaceColor.a);
-    return;
-  }
-  vec4 s = sampleAt(positionMC);
-  if (s.a == 0.0)
-  {
-    discard; // blends to nothing: skip the blend
-  }
-  gl_FragData[0] = vec4(s.rgb * s.a, s.a);
-}
-)";
 
 /// A triangle copy in a slab, clipped to [Near, Far).
 struct Placed
@@ -266,18 +50,18 @@ struct Placed
 };
 }
 
-vtkHybridOctreeBrickDrawer::vtkHybridOctreeBrickDrawer() = default;
-vtkHybridOctreeBrickDrawer::~vtkHybridOctreeBrickDrawer() = default;
+vtkOpenGLHybridOctreeBrickDrawer::vtkOpenGLHybridOctreeBrickDrawer() = default;
+vtkOpenGLHybridOctreeBrickDrawer::~vtkOpenGLHybridOctreeBrickDrawer() = default;
 
-void vtkHybridOctreeBrickDrawer::Emit(
-  const float position[3], const float normal[3], float near, float far, float surface, float alpha)
+void vtkOpenGLHybridOctreeBrickDrawer::Emit(
+  const float position[3], const float normal[3], float near, float far, int kind, float alpha)
 {
   this->VertexData.insert(this->VertexData.end(),
-    { position[0], position[1], position[2], normal[0], normal[1], normal[2], near, far, surface,
-      alpha });
+    { position[0], position[1], position[2], normal[0], normal[1], normal[2], near, far,
+      static_cast<float>(kind), alpha });
 }
 
-void vtkHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
+void vtkOpenGLHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
 {
   // Corner c at x[c & 1], y[(c >> 1) & 1], z[(c >> 2) & 1]; two triangles a
   // face, wound counter-clockwise seen from inside the box: the faces a ray
@@ -294,12 +78,12 @@ void vtkHybridOctreeBrickDrawer::EmitBox(const double bounds[6])
       const float p[3] = { static_cast<float>(bounds[c & 1]),
         static_cast<float>(bounds[2 + ((c >> 1) & 1)]),
         static_cast<float>(bounds[4 + ((c >> 2) & 1)]) };
-      this->Emit(p, none, -Unbounded, Unbounded, 2.0f);
+      this->Emit(p, none, -Unbounded, Unbounded, RayMarchedBox);
     }
   }
 }
 
-void vtkHybridOctreeBrickDrawer::CollectPoints(const vtkHybridOctreeBridge::DrawList& list,
+void vtkOpenGLHybridOctreeBrickDrawer::CollectPoints(const vtkHybridOctreeBridge::DrawList& list,
   std::size_t bucket, const PointData& points, const double eye[3], std::vector<SlabItem>& items)
 {
   const vtkHybridOctreeBridge::PointsDrawing& d = *points.Drawing;
@@ -323,11 +107,11 @@ void vtkHybridOctreeBrickDrawer::CollectPoints(const vtkHybridOctreeBridge::Draw
   }
 }
 
-void vtkHybridOctreeBrickDrawer::EmitPoint(const PointData& points, std::uint32_t id)
+void vtkOpenGLHybridOctreeBrickDrawer::EmitPoint(const PointData& points, std::uint32_t id)
 {
   static const float corners[6][2] = { { -1, -1 }, { 1, -1 }, { 1, 1 }, { -1, -1 }, { 1, 1 },
     { -1, 1 } };
-  const float kind = points.Gaussian ? GaussianPoint : SquarePoint;
+  const int kind = points.Gaussian ? GaussianPoint : SquarePoint;
   const float* p = &points.Drawing->Position[3 * static_cast<std::size_t>(id)];
   const float* shade = &(*points.Shades)[4 * static_cast<std::size_t>(id)];
   for (const auto& c : corners)
@@ -337,7 +121,7 @@ void vtkHybridOctreeBrickDrawer::EmitPoint(const PointData& points, std::uint32_
   ++this->PointsPlaced;
 }
 
-std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawList& list,
+std::size_t vtkOpenGLHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawList& list,
   const std::vector<double>& bounds, const std::vector<char>& drawn, const double eye[3],
   const double viewUp[3], const SurfaceData& surface, const PointData& points)
 {
@@ -484,7 +268,7 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
         {
           const unsigned int v = (*surface.Triangles)[3 * static_cast<std::size_t>(t.Triangle) + c];
           const float* p = sv + 6 * std::min<std::size_t>(v, vertexCount - 1);
-          this->Emit(p, p + 3, t.Near, t.Far, 1.0f);
+          this->Emit(p, p + 3, t.Near, t.Far, SurfaceTriangle);
         }
       }
       if (s < n && drawn[i])
@@ -494,7 +278,7 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
           &bounds[6 * i], eye, list.Forward, right, up, slices[s], polygon);
         for (std::size_t v = 0; v + 2 < polygon.size(); v += 3)
         {
-          this->Emit(&polygon[v], noNormal, -Unbounded, Unbounded, 0.0f);
+          this->Emit(&polygon[v], noNormal, -Unbounded, Unbounded, Slice);
         }
       }
     }
@@ -504,13 +288,14 @@ std::size_t vtkHybridOctreeBrickDrawer::Build(const vtkHybridOctreeBridge::DrawL
   return placedTotal;
 }
 
-bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
-  vtkTextureObject* table, vtkHybridOctreeFloatTarget& target, int entries, double lo, double hi,
-  const double eye[3], const double forward[3], bool parallel, const double surfaceRGBA[4],
-  std::string& error)
+bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
+  vtkTextureObject* table, vtkOpenGLHybridOctreeFloatTarget& target, int entries, double lo,
+  double hi, const double eye[3], const double forward[3], bool parallel,
+  const double surfaceRGBA[4], std::string& error)
 {
   vtkTextureObject* depth = target.GetDepth();
-  this->Program = window->GetShaderCache()->ReadyShaderProgram(VertexShader, FragmentShader, "");
+  this->Program = window->GetShaderCache()->ReadyShaderProgram(
+    vtkHybridOctreeBrickVS, vtkHybridOctreeBrickFS, "");
   if (!this->Program)
   {
     error = "the brick shader did not compile";
@@ -542,8 +327,8 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
         stride, VTK_FLOAT, 3, false) ||
       !this->Vao->AddAttributeArray(
         this->Program, this->Vertices, "clipMC", 6 * sizeof(float), stride, VTK_FLOAT, 2, false) ||
-      !this->Vao->AddAttributeArray(this->Program, this->Vertices, "surfaceMC", 8 * sizeof(float),
-        stride, VTK_FLOAT, 1, false) ||
+      !this->Vao->AddAttributeArray(
+        this->Program, this->Vertices, "kindMC", 8 * sizeof(float), stride, VTK_FLOAT, 1, false) ||
       !this->Vao->AddAttributeArray(
         this->Program, this->Vertices, "alphaMC", 9 * sizeof(float), stride, VTK_FLOAT, 1, false)))
   {
@@ -595,7 +380,7 @@ bool vtkHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x
   return true;
 }
 
-void vtkHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList& list,
+void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList& list,
   std::size_t i, const double spacing[3], vtkTextureObject* texture)
 {
   if (i + 1 >= this->BrickFirst.size() || !this->Program)
@@ -642,7 +427,7 @@ void vtkHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList
   glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
 }
 
-void vtkHybridOctreeBrickDrawer::Rebind(vtkOpenGLRenderWindow* window)
+void vtkOpenGLHybridOctreeBrickDrawer::Rebind(vtkOpenGLRenderWindow* window)
 {
   if (this->Program && this->Vao)
   {
@@ -651,7 +436,7 @@ void vtkHybridOctreeBrickDrawer::Rebind(vtkOpenGLRenderWindow* window)
   }
 }
 
-void vtkHybridOctreeBrickDrawer::Unbind()
+void vtkOpenGLHybridOctreeBrickDrawer::Unbind()
 {
   if (this->Vao)
   {
@@ -659,7 +444,7 @@ void vtkHybridOctreeBrickDrawer::Unbind()
   }
 }
 
-void vtkHybridOctreeBrickDrawer::ReleaseGraphicsResources()
+void vtkOpenGLHybridOctreeBrickDrawer::ReleaseGraphicsResources()
 {
   if (this->Vertices)
   {

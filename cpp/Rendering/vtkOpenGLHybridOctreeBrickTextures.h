@@ -1,5 +1,5 @@
 /**
- * @file   vtkHybridOctreeBrickTextures.h
+ * @file   vtkOpenGLHybridOctreeBrickTextures.h
  * @brief  The resident 3D textures of the selected bricks (private to the module).
  *
  * The Hybrid Octree, section 3.2: the texture memory holds the bricks of the
@@ -15,8 +15,8 @@
  * and clamped to the edge. With each texture the cache keeps the brick's
  * block value ranges (vtkHybridOctreeBrickOccupancy), measured at upload.
  */
-#ifndef vtkHybridOctreeBrickTextures_h
-#define vtkHybridOctreeBrickTextures_h
+#ifndef vtkOpenGLHybridOctreeBrickTextures_h
+#define vtkOpenGLHybridOctreeBrickTextures_h
 
 #include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkSmartPointer.h"
@@ -33,7 +33,7 @@
 class vtkOpenGLRenderWindow;
 class vtkWindow;
 
-class vtkHybridOctreeBrickTextures
+class vtkOpenGLHybridOctreeBrickTextures
 {
 public:
   /// (octree node id, texel stride): what a brick's texture holds.
