@@ -1,6 +1,7 @@
 #include "vtkHybridOctreeDepthImage.h"
 
 #include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeFieldData.h"
 #include "vtkHybridOctreeImageInput.h"
 
 #include "vtkDataArray.h"
@@ -61,18 +62,6 @@ int vtkHybridOctreeDepthImage::RequestUpdateExtent(
   return 1;
 }
 
-namespace
-{
-template <typename T>
-void AddField(vtkFieldData* fd, const char* name, T value)
-{
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(static_cast<double>(value));
-  fd->AddArray(a);
-}
-}
-
 int vtkHybridOctreeDepthImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -84,15 +73,12 @@ int vtkHybridOctreeDepthImage::RequestData(
     return 0;
   }
   output->Initialize();
-  if (!input)
-  {
-    vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
-    return 0;
-  }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* chosen =
+    input ? this->GetInputArrayToProcess(0, inputVector, association) : nullptr;
   std::string error;
-  vtkDataArray* scalars = vtkHybridOctreeImageInput::CheckPointScalars(
-    input, this->GetInputArrayToProcess(0, inputVector, association), association, error);
+  vtkDataArray* scalars =
+    vtkHybridOctreeImageInput::CheckPointScalars(input, chosen, association, error);
   if (!scalars)
   {
     vtkErrorMacro(<< error);
@@ -158,19 +144,19 @@ int vtkHybridOctreeDepthImage::RequestData(
   output->GetPointData()->AddArray(shaded);
 
   vtkFieldData* fd = output->GetFieldData();
-  AddField(fd, "white_visited", result.WhiteVisited);
-  AddField(fd, "black_visited", result.BlackVisited);
-  AddField(fd, "gray_visited", result.GrayVisited);
-  AddField(fd, "faces", result.Faces);
-  AddField(fd, "scanlines", result.Scanlines);
-  AddField(fd, "pixels", result.Pixels);
-  AddField(fd, "display_ms", result.DisplayMs);
-  AddField(fd, "build_ms", result.BuildMs);
-  AddField(fd, "bitmap_bytes", result.BitmapBytes);
-  AddField(fd, "white_octants", result.WhiteOctants);
-  AddField(fd, "black_octants", result.BlackOctants);
-  AddField(fd, "gray_octants", result.GrayOctants);
-  AddField(fd, "resolution", result.Resolution);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "white_visited", result.WhiteVisited);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "black_visited", result.BlackVisited);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "gray_visited", result.GrayVisited);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "faces", result.Faces);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "scanlines", result.Scanlines);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "pixels", result.Pixels);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "display_ms", result.DisplayMs);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "build_ms", result.BuildMs);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "bitmap_bytes", result.BitmapBytes);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "white_octants", result.WhiteOctants);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "black_octants", result.BlackOctants);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "gray_octants", result.GrayOctants);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "resolution", result.Resolution);
   vtkNew<vtkStringArray> viewCase;
   viewCase->SetName("view_case");
   viewCase->InsertNextValue(result.ViewCase);

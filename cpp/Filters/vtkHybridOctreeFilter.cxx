@@ -1,6 +1,7 @@
 #include "vtkHybridOctreeFilter.h"
 
 #include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeFieldData.h"
 #include "vtkHybridOctreeImageInput.h"
 
 #include "vtkCellArray.h"
@@ -90,17 +91,6 @@ constexpr const char* NodeIdTooLarge =
   "the octree has more than 2^31 nodes, whose ids do not fit the int cell array 'node'; use a "
   "larger LeafSize";
 
-/// Adds a one-value array named `name` to `fieldData`.
-template <typename ArrayT, typename ValueT>
-void AddFieldValue(vtkFieldData* fieldData, const char* name, ValueT value)
-{
-  vtkNew<ArrayT> array;
-  array->SetName(name);
-  array->SetNumberOfTuples(1);
-  array->SetValue(0, static_cast<typename ArrayT::ValueType>(value));
-  fieldData->AddArray(array);
-}
-
 /// Corner pairs of the 12 edges of a box whose corner c sits at
 /// x[c & 1], y[(c >> 1) & 1], z[(c >> 2) & 1]: x edges, y edges, z edges.
 constexpr int BoxEdges[12][2] = { { 0, 1 }, { 2, 3 }, { 4, 5 }, { 6, 7 }, { 0, 2 }, { 1, 3 },
@@ -137,7 +127,8 @@ vtkDataArray* vtkHybridOctreeFilter::GetScalars(
   vtkImageData* image, vtkInformationVector** inputVector)
 {
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkDataArray* scalars =
+    image ? this->GetInputArrayToProcess(0, inputVector, association) : nullptr;
   std::string error;
   scalars = vtkHybridOctreeImageInput::CheckPointScalars(image, scalars, association, error);
   if (!scalars)
@@ -293,21 +284,25 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   surface->GetCellData()->AddArray(face);
 
   vtkNew<vtkFieldData> fieldData;
-  AddFieldValue<vtkDoubleArray>(fieldData, "isovalue", this->Isovalue);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "isovalue", this->Isovalue);
   vtkNew<vtkStringArray> modeName;
   modeName->SetName("surface_mode");
   modeName->InsertNextValue(this->GetSurfaceModeAsString());
   fieldData->AddArray(modeName);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "polygons", mesh.Polygons);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "faces", mesh.Faces);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "triangles", mesh.Triangles);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "uncompressed_triangles", mesh.UncompressedTriangles);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "vertices", mesh.Vertices);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "boundary_edges", mesh.BoundaryEdges);
-  AddFieldValue<vtkDoubleArray>(fieldData, "extract_ms", mesh.ExtractMilliseconds);
-  AddFieldValue<vtkDoubleArray>(fieldData, "compress_ms", mesh.CompressMilliseconds);
-  AddFieldValue<vtkDoubleArray>(fieldData, "distance_mean", mesh.DistanceMean);
-  AddFieldValue<vtkDoubleArray>(fieldData, "distance_max", mesh.DistanceMax);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "polygons", mesh.Polygons);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "faces", mesh.Faces);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "triangles", mesh.Triangles);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "uncompressed_triangles", mesh.UncompressedTriangles);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "vertices", mesh.Vertices);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "boundary_edges", mesh.BoundaryEdges);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(
+    fieldData, "extract_ms", mesh.ExtractMilliseconds);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(
+    fieldData, "compress_ms", mesh.CompressMilliseconds);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "distance_mean", mesh.DistanceMean);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "distance_max", mesh.DistanceMax);
   surface->SetFieldData(fieldData);
 
   cache.Surface = surface;
@@ -332,11 +327,6 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
   }
   boxes->Initialize();
   surface->Initialize();
-  if (!input)
-  {
-    vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
-    return 0;
-  }
   vtkDataArray* scalars = this->GetScalars(input, inputVector);
   if (!scalars)
   {
@@ -440,19 +430,25 @@ bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
   cellData->SetActiveScalars("nodal_error");
 
   vtkNew<vtkFieldData> fieldData;
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "node_count", summary.NodeCount);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "terminal_count", summary.TerminalCount);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "homogeneous_count", summary.HomogeneousCount);
-  AddFieldValue<vtkIntArray>(fieldData, "levels", summary.Levels);
-  AddFieldValue<vtkIntArray>(fieldData, "leaf_size", summary.LeafSize);
-  AddFieldValue<vtkIntArray>(fieldData, "root_size", summary.RootSize);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "octree_bytes", summary.OctreeBytes);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "input_bytes", summary.InputBytes);
-  AddFieldValue<vtkDoubleArray>(fieldData, "build_ms", summary.BuildMilliseconds);
-  AddFieldValue<vtkDoubleArray>(fieldData, "value_min", summary.ValueMin);
-  AddFieldValue<vtkDoubleArray>(fieldData, "value_max", summary.ValueMax);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "nan_samples", summary.NaNSamples);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "cut_count", boxCount);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "node_count", summary.NodeCount);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "terminal_count", summary.TerminalCount);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "homogeneous_count", summary.HomogeneousCount);
+  vtkHybridOctreeFieldData::AddValue<vtkIntArray>(fieldData, "levels", summary.Levels);
+  vtkHybridOctreeFieldData::AddValue<vtkIntArray>(fieldData, "leaf_size", summary.LeafSize);
+  vtkHybridOctreeFieldData::AddValue<vtkIntArray>(fieldData, "root_size", summary.RootSize);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "octree_bytes", summary.OctreeBytes);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "input_bytes", summary.InputBytes);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(
+    fieldData, "build_ms", summary.BuildMilliseconds);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "value_min", summary.ValueMin);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "value_max", summary.ValueMax);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "nan_samples", summary.NaNSamples);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "cut_count", boxCount);
   output->SetFieldData(fieldData);
   return true;
 }

@@ -88,15 +88,12 @@ int vtkHybridOctreePoints::RequestData(
     return 0;
   }
   output->Initialize();
-  if (!input)
-  {
-    vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
-    return 0;
-  }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* chosen =
+    input ? this->GetInputArrayToProcess(0, inputVector, association) : nullptr;
   std::string error;
-  vtkDataArray* scalars = vtkHybridOctreeImageInput::CheckPointScalars(
-    input, this->GetInputArrayToProcess(0, inputVector, association), association, error);
+  vtkDataArray* scalars =
+    vtkHybridOctreeImageInput::CheckPointScalars(input, chosen, association, error);
   if (!scalars)
   {
     vtkErrorMacro(<< error);

@@ -28,6 +28,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
+#include "vtkTimeStamp.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
@@ -104,18 +105,18 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   int LeafSize = 0;
   /// NaN samples (no data) of the image the octree was built from.
   vtkTypeInt64 NaNSamples = 0;
-  unsigned long OctreeGeneration = 0;
+  /// When the octree was built: the caches below are current when made after it.
+  vtkTimeStamp OctreeTime;
   vtkDataArray* Scalars = nullptr;
 
   // The points, made again when the octree or their settings change.
   std::unique_ptr<Points> PointSet;
   PointsDrawing Drawing;
-  unsigned long PointsGeneration = 0;
+  vtkTimeStamp PointsTime;
   std::vector<double> PointsKey;
-  unsigned long PointsVersion = 0;
-  // What each point adds under the transfer function, for that version and table.
+  // What each point adds under the transfer function, for those points and that table.
   std::vector<float> Shades;
-  unsigned long ShadesVersion = 0;
+  vtkTimeStamp ShadesTime;
   std::vector<double> ShadesColors;
   std::vector<double> ShadesOpacities;
 
@@ -125,7 +126,7 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   {
     std::unique_ptr<Selection> Selected;
     SelectionSummary Summary;
-    unsigned long Generation = 0;
+    vtkTimeStamp Time;
     std::vector<double> Key;
     std::vector<double> Opacity;
   };
@@ -135,7 +136,7 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
 
   // The isosurface, extracted again when the octree or the isovalue change.
   std::unique_ptr<Surface> Iso;
-  unsigned long IsoGeneration = 0;
+  vtkTimeStamp IsoTime;
   double IsoValue = 0.0;
 
   // Transfer function table (what the CPU compositor gets too).
@@ -298,7 +299,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   in.ArrayMTime = scalars->GetMTime();
   in.Grid = grid;
   in.LeafSize = this->LeafSize;
-  ++in.OctreeGeneration;
+  in.OctreeTime.Modified();
   return true;
 }
 
@@ -400,7 +401,7 @@ bool vtkHybridOctreeVolumeMapper::UpdatePoints()
   }
   const std::vector<double> key = { static_cast<double>(this->PointFactor), this->PointThreshold,
     static_cast<double>(this->PointBudget) };
-  if (in.PointSet && in.PointsGeneration == in.OctreeGeneration && in.PointsKey == key)
+  if (in.PointSet && in.PointsTime > in.OctreeTime && in.PointsKey == key)
   {
     return this->UpdatePointShades();
   }
@@ -421,16 +422,15 @@ bool vtkHybridOctreeVolumeMapper::UpdatePoints()
     return false;
   }
   in.PointSet = std::move(made);
-  in.PointsGeneration = in.OctreeGeneration;
+  in.PointsTime.Modified();
   in.PointsKey = key;
-  ++in.PointsVersion;
   return this->UpdatePointShades();
 }
 
 bool vtkHybridOctreeVolumeMapper::UpdatePointShades()
 {
   vtkInternals& in = *this->Internals;
-  if (in.ShadesVersion == in.PointsVersion && in.ShadesColors == in.Transfer.ColorPoints &&
+  if (in.ShadesTime > in.PointsTime && in.ShadesColors == in.Transfer.ColorPoints &&
     in.ShadesOpacities == in.Transfer.OpacityPoints)
   {
     return true;
@@ -439,11 +439,11 @@ bool vtkHybridOctreeVolumeMapper::UpdatePointShades()
   if (!in.PointSet->GetShades(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
         in.Transfer.ColorPoints, in.Transfer.OpacityPoints, in.Shades, error))
   {
-    in.ShadesVersion = 0;
+    in.ShadesTime = vtkTimeStamp();
     vtkErrorMacro(<< error);
     return false;
   }
-  in.ShadesVersion = in.PointsVersion;
+  in.ShadesTime.Modified();
   in.ShadesColors = in.Transfer.ColorPoints;
   in.ShadesOpacities = in.Transfer.OpacityPoints;
   return true;
@@ -465,7 +465,7 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
-    in.PointSet ? static_cast<double>(in.PointsVersion) : -1.0 };
+    in.PointSet ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0 };
   return select;
 }
 
@@ -474,7 +474,7 @@ bool vtkHybridOctreeVolumeMapper::IsStillSelectionCurrent(vtkVolumeProperty* pro
   const vtkInternals& in = *this->Internals;
   std::vector<double> key;
   const SelectDescription select = this->DescribeSelection(property, this->BudgetMB, key);
-  return in.Still.Selected && in.Still.Generation == in.OctreeGeneration && in.Still.Key == key &&
+  return in.Still.Selected && in.Still.Time > in.OctreeTime && in.Still.Key == key &&
     in.Still.Opacity == select.OpacityPoints;
 }
 
@@ -492,7 +492,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
   in.Frame = &slot;
   std::vector<double> key;
   SelectDescription select = this->DescribeSelection(property, budgetMB, key);
-  if (slot.Selected && slot.Generation == in.OctreeGeneration && slot.Key == key &&
+  if (slot.Selected && slot.Time > in.OctreeTime && slot.Key == key &&
     slot.Opacity == select.OpacityPoints)
   {
     return true;
@@ -506,7 +506,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
     vtkErrorMacro(<< error);
     return false;
   }
-  slot.Generation = in.OctreeGeneration;
+  slot.Time.Modified();
   slot.Key = key;
   slot.Opacity = select.OpacityPoints;
   return true;
@@ -535,7 +535,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateSurface()
     vtkErrorMacro("the isovalue " << this->Isovalue << " is not a finite number");
     return false;
   }
-  if (in.Iso && in.IsoGeneration == in.OctreeGeneration && in.IsoValue == this->Isovalue)
+  if (in.Iso && in.IsoTime > in.OctreeTime && in.IsoValue == this->Isovalue)
   {
     return true;
   }
@@ -550,7 +550,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateSurface()
     return false;
   }
   in.UploadedSurface = in.Iso.get();
-  in.IsoGeneration = in.OctreeGeneration;
+  in.IsoTime.Modified();
   in.IsoValue = this->Isovalue;
   return true;
 }
