@@ -3,6 +3,6 @@
 fn main() {
     cxx_build::bridge("src/ffi/mod.rs").std("c++17").compile("hybrid_octree_cxxbridge");
     println!("cargo:rerun-if-changed=src/ffi/mod.rs");
-    println!("cargo:rerun-if-changed=cpp/vtkHybridOctreeBuildProgress.h");
-    println!("cargo:rerun-if-changed=cpp/vtkHybridOctreeBridgeEnums.h");
+    println!("cargo:rerun-if-changed=cpp/Filters/vtkHybridOctreeBuildProgress.h");
+    println!("cargo:rerun-if-changed=cpp/Filters/vtkHybridOctreeBridgeEnums.h");
 }

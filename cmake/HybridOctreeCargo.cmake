@@ -70,10 +70,10 @@ add_custom_target(hybrid_octree_cargo ALL
   COMMENT "cargo build --release --locked (hybrid-octree crate)")
 
 # The bridge header includes the crate's own C++ headers as
-# "hybrid-octree/cpp/<file>" (cxx's crate-relative include!): a copy of each
+# "hybrid-octree/cpp/<path>" (cxx's crate-relative include!): a copy of each
 # under <build>/cxx-crate/hybrid-octree/cpp makes that path resolve.
 set(_hybrid_octree_crate_include_dir "${CMAKE_BINARY_DIR}/cxx-crate")
-foreach (_header IN ITEMS vtkHybridOctreeBuildProgress.h vtkHybridOctreeBridgeEnums.h)
+foreach (_header IN ITEMS Filters/vtkHybridOctreeBuildProgress.h Filters/vtkHybridOctreeBridgeEnums.h)
   configure_file("${PROJECT_SOURCE_DIR}/cpp/${_header}"
     "${_hybrid_octree_crate_include_dir}/hybrid-octree/cpp/${_header}" COPYONLY)
 endforeach ()

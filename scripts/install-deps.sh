@@ -7,7 +7,7 @@ set -euo pipefail
 # openmpi-bin: mpiexec, for the 2-rank pvbatch test of the representation.
 # libglew-dev: VTK::RenderingOpenGL2 (the volume mapper) includes <GL/glew.h> and links GLEW.
 # libfontconfig1-dev, libfreetype-dev, fonts-dejavu-core: the CLI's plots (plotters draws text through fontconfig).
-# qtbase5-dev, libqt5svg5-dev, qttools5-dev: the plugin's GUI behaviour (cpp/gui/) builds against ParaView's Qt 5 client (its CMake package asks for Qt5 Widgets, Svg and Help);
+# qtbase5-dev, libqt5svg5-dev, qttools5-dev: the plugin's GUI behaviour (cpp/Plugin/) builds against ParaView's Qt 5 client (its CMake package asks for Qt5 Widgets, Svg and Help);
 # libqt5opengl5-dev, libxml2-dev, libhdf5-dev, libnetcdf-dev, libboost-dev: the CMake targets of VTK's modules that ParaView's pqComponents links name these packages.
 # clang-format: the test command's first stage checks the C++ against .clang-format.
 # python3-pyqt5: the GUI test (tests/gui/) reads the ParaView window's widgets from its Python.

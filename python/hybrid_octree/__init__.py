@@ -3,9 +3,15 @@ with ParaView's VTK on the path).
 
     from hybrid_octree import vtkHybridOctreeFilter, vtkHybridOctreeVolumeMapper
 
-Both are ordinary VTK algorithms: connect them to VTK sources, readers and
+All are ordinary VTK algorithms: connect them to VTK sources, readers and
 renderers as in C++ (see the README).
 """
-from .HybridOctreeFilters import vtkHybridOctreeFilter, vtkHybridOctreeVolumeMapper
+from .HybridOctreeFilters import vtkHybridOctreeDepthImage, vtkHybridOctreeFilter, vtkHybridOctreePoints
+from .HybridOctreeRendering import vtkHybridOctreeVolumeMapper
 
-__all__ = ["vtkHybridOctreeFilter", "vtkHybridOctreeVolumeMapper"]
+__all__ = [
+    "vtkHybridOctreeDepthImage",
+    "vtkHybridOctreeFilter",
+    "vtkHybridOctreePoints",
+    "vtkHybridOctreeVolumeMapper",
+]

@@ -1,4 +1,4 @@
-//! The only `#[cxx::bridge]` of the crate: what `cpp/vtkHybridOctreeBridge.cxx`
+//! The only `#[cxx::bridge]` of the crate: what `cpp/Filters/vtkHybridOctreeBridge.cxx`
 //! may call. No other module knows C++ exists.
 //!
 //! The host holds one object, the Hybrid Octree ([`HybridOctreeHandle`]: the
@@ -35,7 +35,7 @@ mod bridge {
     // ---- Shared enums (defined in C++, checked against these) ---------------
 
     /// The scalar type of the VTK array (VTK_UNSIGNED_CHAR -> U8, ...). The
-    /// C++ definition (cpp/vtkHybridOctreeBridgeEnums.h) is the one the host
+    /// C++ definition (cpp/Filters/vtkHybridOctreeBridgeEnums.h) is the one the host
     /// uses; cxx checks it against this one at compile time.
     #[derive(Debug)]
     #[repr(u8)]
@@ -328,13 +328,13 @@ mod bridge {
     // ---- C++ types for Rust ------------------------------------------------
 
     unsafe extern "C++" {
-        include!("hybrid-octree/cpp/vtkHybridOctreeBuildProgress.h");
-        /// The build's progress sink (cpp/vtkHybridOctreeBuildProgress.h).
+        include!("hybrid-octree/cpp/Filters/vtkHybridOctreeBuildProgress.h");
+        /// The build's progress sink (cpp/Filters/vtkHybridOctreeBuildProgress.h).
         type BuildProgress;
         /// `fraction` of the build done, in (0, 1]; false asks the build to stop.
         fn report(self: &BuildProgress, fraction: f64) -> bool;
 
-        include!("hybrid-octree/cpp/vtkHybridOctreeBridgeEnums.h");
+        include!("hybrid-octree/cpp/Filters/vtkHybridOctreeBridgeEnums.h");
         type ScalarType;
         type SurfaceMode;
     }

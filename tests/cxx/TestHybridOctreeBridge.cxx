@@ -17,6 +17,7 @@
  * DrawList, and the errors).
  */
 #include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeCameraInput.h"
 
 #include "HybridOctreeTestUtilities.h"
 
@@ -280,7 +281,7 @@ int DrawLists()
   {
     vtkNew<vtkCamera> camera;
     Aim(camera, centre, v.Direction, v.Parallel);
-    const B::CameraDescription desc = B::DescribeCamera(camera);
+    const B::CameraDescription desc = vtkHybridOctreeCameraInput::DescribeCamera(camera);
     check.Check(desc.Parallel == v.Parallel && desc.ViewAngle == 30.0 && desc.ParallelScale == 20.0,
       std::string(v.Name) + ": DescribeCamera");
     B::DrawList list;
@@ -314,7 +315,8 @@ int Texels()
   const double diagonal[3] = { 1.0, 0.8, 0.6 };
   Aim(camera, centre, diagonal, false);
   B::DrawList list;
-  if (!check.Check(selection->GetDrawList(*f.Octree, B::DescribeCamera(camera), 0.0, list, error),
+  if (!check.Check(selection->GetDrawList(*f.Octree,
+                     vtkHybridOctreeCameraInput::DescribeCamera(camera), 0.0, list, error),
         "draw list: " + error))
   {
     return EXIT_FAILURE;
@@ -394,7 +396,7 @@ int SurfaceBatches()
   const double centre[3] = { 12.0, 10.0, 8.0 };
   const double diagonal[3] = { 1.0, 0.8, 0.6 };
   Aim(camera, centre, diagonal, false);
-  const B::CameraDescription view = B::DescribeCamera(camera);
+  const B::CameraDescription view = vtkHybridOctreeCameraInput::DescribeCamera(camera);
   for (int round = 0; round < 2; ++round) // the second round reuses the kept slab batching
   {
     B::DrawList list;
@@ -470,7 +472,8 @@ int Transparent()
     "a transparent transfer function selects no brick");
   vtkNew<vtkCamera> camera;
   B::DrawList list;
-  check.Check(selection->GetDrawList(*f.Octree, B::DescribeCamera(camera), 0.0, list, error),
+  check.Check(selection->GetDrawList(
+                *f.Octree, vtkHybridOctreeCameraInput::DescribeCamera(camera), 0.0, list, error),
     "draw list: " + error);
   check.Check(list.GetNumberOfBricks() == 0 && list.Passes.empty(), "nothing to draw");
   // Clamping off: the opacity steps to 0 outside the nodes.
@@ -622,7 +625,8 @@ int Points()
   const double diagonal[3] = { 1.0, 0.7, 0.4 };
   Aim(camera, centre, diagonal, false);
   B::DrawList list;
-  check.Check(selection->GetDrawList(*f.Octree, B::DescribeCamera(camera), 0.0, list, error),
+  check.Check(selection->GetDrawList(
+                *f.Octree, vtkHybridOctreeCameraInput::DescribeCamera(camera), 0.0, list, error),
     "draw list: " + error);
   const std::size_t bricks = list.GetNumberOfBricks();
   check.Check(list.BucketOffsets.size() == bricks + 1 &&

@@ -1,0 +1,554 @@
+/**
+ * @file   vtkHybridOctreeBridge.cxx
+ * @brief  The C++ half of the bridge: the only includer of the cxx header.
+ *
+ * Every call into Rust runs under `Guarded` (try/catch): the Rust side turns errors
+ * and panics into `rust::Error`, which derives from std::exception. Outputs
+ * the caller sizes cross as `rust::Slice<T>` over its memory.
+ */
+#include "vtkHybridOctreeBridge.h"
+
+#include "hybrid-octree/src/ffi/mod.rs.h"
+
+#include "vtkPiecewiseFunction.h"
+
+#include <algorithm>
+#include <exception>
+#include <type_traits>
+#include <utility>
+
+namespace vtkHybridOctreeBridge
+{
+
+/// The Rust handle type behind each C++ object.
+template <class Object>
+struct HandleOf;
+template <>
+struct HandleOf<HybridOctree>
+{
+  using Type = hybrid_octree::HybridOctreeHandle;
+};
+template <>
+struct HandleOf<Selection>
+{
+  using Type = hybrid_octree::SelectionHandle;
+};
+
+/// Owns the Rust handle of `Object`.
+template <class Object>
+struct RustHandle
+{
+  using Handle = typename HandleOf<Object>::Type;
+  explicit RustHandle(rust::Box<Handle> box)
+    : Box(std::move(box))
+  {
+  }
+  rust::Box<Handle> Box;
+};
+
+namespace
+{
+/// Runs `body`, a call into Rust: a `rust::Error` (an error or a panic on the
+/// Rust side, which derives from std::exception) becomes `false` with its
+/// message in `error`.
+template <typename Body>
+bool Guarded(std::string& error, Body&& body)
+{
+  try
+  {
+    body();
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+
+/// The C++ object owning `box`.
+template <class Object>
+std::unique_ptr<Object> Own(rust::Box<typename HandleOf<Object>::Type> box)
+{
+  return std::unique_ptr<Object>(
+    new Object(std::unique_ptr<RustHandle<Object>>(new RustHandle<Object>(std::move(box)))));
+}
+
+/// The Rust handle of `object`.
+template <class Object>
+const typename HandleOf<Object>::Type& HandleFor(const std::unique_ptr<RustHandle<Object>>& impl)
+{
+  return *impl->Box;
+}
+
+hybrid_octree::GridDesc ToRust(const GridDescription& grid)
+{
+  hybrid_octree::GridDesc desc;
+  desc.scalar_type = grid.Type;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    desc.dims[axis] = grid.Dims[axis];
+    desc.spacing[axis] = grid.Spacing[axis];
+    desc.origin[axis] = grid.Origin[axis];
+  }
+  desc.components = grid.Components;
+  desc.component = grid.Component;
+  return desc;
+}
+
+/// The borrowed samples as a byte slice. A null pointer is only legal for an
+/// empty buffer; cxx maps it to a dangling, well-aligned empty slice.
+rust::Slice<const std::uint8_t> ToSlice(const void* bytes, std::size_t byteCount)
+{
+  return rust::Slice<const std::uint8_t>(
+    static_cast<const std::uint8_t*>(bytes), bytes ? byteCount : 0);
+}
+
+/// The caller's `count` values at `data` for Rust to write (null only when empty).
+template <typename T>
+rust::Slice<T> Out(T* data, std::size_t count)
+{
+  return rust::Slice<T>(data, data ? count : 0);
+}
+
+/// vtkIdType memory as the bridge's int64 (the same 8 bytes; `long long`
+/// and `int64_t` may be distinct types of one size).
+rust::Slice<std::int64_t> Out(vtkIdType* data, std::size_t count)
+{
+  static_assert(sizeof(vtkIdType) == sizeof(std::int64_t) && std::is_signed<vtkIdType>::value,
+    "the bridge writes 64-bit ids: build VTK with VTK_USE_64BIT_IDS");
+  return Out(reinterpret_cast<std::int64_t*>(data), count);
+}
+
+template <typename From, typename To>
+void CopyInto(const rust::Vec<From>& from, std::vector<To>& to)
+{
+  to.assign(from.begin(), from.end());
+}
+
+/// The bridge's camera.
+hybrid_octree::CameraDesc ToRust(const CameraDescription& camera)
+{
+  hybrid_octree::CameraDesc desc;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    desc.position[axis] = camera.Position[axis];
+    desc.focal_point[axis] = camera.FocalPoint[axis];
+    desc.view_up[axis] = camera.ViewUp[axis];
+  }
+  desc.parallel = camera.Parallel;
+  desc.parallel_scale = camera.ParallelScale;
+  desc.view_angle = camera.ViewAngle;
+  return desc;
+}
+
+void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
+{
+  CopyInto(out.brick, list.Brick);
+  CopyInto(out.node_id, list.NodeId);
+  CopyInto(out.bounds, list.Bounds);
+  CopyInto(out.texels, list.Texels);
+  CopyInto(out.stride, list.Stride);
+  CopyInto(out.slice_spacing, list.SliceSpacing);
+  CopyInto(out.opacity_ratio, list.OpacityRatio);
+  CopyInto(out.slice_offsets, list.SliceOffsets);
+  CopyInto(out.slices, list.Slices);
+  list.Passes = std::string(out.passes);
+  list.ReferenceSpacing = out.reference_spacing;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    list.Forward[axis] = out.forward[axis];
+  }
+  CopyInto(out.batch_offsets, list.BatchOffsets);
+  CopyInto(out.batch_slab, list.BatchSlab);
+  CopyInto(out.batch_first, list.BatchFirst);
+  CopyInto(out.batch_end, list.BatchEnd);
+  CopyInto(out.batch_clip, list.BatchClip);
+  list.OpaqueTriangles = out.opaque_triangles;
+  CopyInto(out.bucket_offsets, list.BucketOffsets);
+  CopyInto(out.bucket_slab, list.BucketSlab);
+  CopyInto(out.bucket_point_offsets, list.BucketPointOffsets);
+  CopyInto(out.bucket_points, list.BucketPoints);
+}
+
+/// The bridge's select options.
+hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
+{
+  hybrid_octree::SelectDesc desc;
+  desc.budget_bytes = options.BudgetBytes;
+  desc.tolerance = options.Tolerance;
+  desc.has_roi = options.HasRoi;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    desc.roi_center[axis] = options.RoiCenter[axis];
+  }
+  desc.roi_radius = options.RoiRadius;
+  for (double v : options.OpacityPoints)
+  {
+    desc.opacity_points.push_back(v);
+  }
+  desc.has_isovalue = options.HasIsovalue;
+  desc.isovalue = options.Isovalue;
+  return desc;
+}
+
+/// The bridge's point options.
+hybrid_octree::PointsDesc ToRust(const PointsOptions& options)
+{
+  hybrid_octree::PointsDesc o;
+  o.factor = options.Factor;
+  o.threshold = options.Threshold;
+  o.use_budget = options.UseBudget;
+  o.budget = options.Budget;
+  o.underestimates_only = options.UnderestimatesOnly;
+  o.max_overestimate = options.MaxOverestimate;
+  o.file_name = rust::String(options.FileName);
+  return o;
+}
+
+PointsSummary FromRust(const hybrid_octree::PointsSummary& s)
+{
+  PointsSummary summary;
+  summary.Points = s.points;
+  summary.Factor = s.factor;
+  summary.PointBytes = s.point_bytes;
+  summary.Underestimates = s.underestimates;
+  summary.GenerateMs = s.generate_ms;
+  return summary;
+}
+
+/// The Rust build's progress sink over a std::function (never throws into Rust).
+class FunctionProgress final : public hybrid_octree::BuildProgress
+{
+public:
+  explicit FunctionProgress(const std::function<bool(double)>& f)
+    : Function(f)
+  {
+  }
+  bool report(double fraction) const noexcept override
+  {
+    try
+    {
+      return this->Function(fraction);
+    }
+    catch (...)
+    {
+      return false;
+    }
+  }
+
+private:
+  const std::function<bool(double)>& Function;
+};
+} // namespace
+
+HybridOctree::HybridOctree(std::unique_ptr<RustHandle<HybridOctree>> handle)
+  : Impl(std::move(handle))
+{
+}
+
+HybridOctree::~HybridOctree() = default;
+
+std::unique_ptr<HybridOctree> HybridOctree::Build(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, unsigned int leafSize, std::string& error)
+{
+  return Build(
+    bytes, byteCount, grid, leafSize, [](double) { return true; }, error);
+}
+
+std::unique_ptr<HybridOctree> HybridOctree::Build(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, unsigned int leafSize, const std::function<bool(double)>& progress,
+  std::string& error)
+{
+  std::unique_ptr<HybridOctree> result;
+  const FunctionProgress sink(progress);
+  Guarded(error, [&] {
+    result = Own<HybridOctree>(
+      hybrid_octree::build_hybrid_octree(ToSlice(bytes, byteCount), ToRust(grid), leafSize, sink));
+  });
+  return result;
+}
+
+bool HybridOctree::GetSummary(OctreeSummary& summary, std::string& error) const
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::OctreeSummary s = HandleFor(this->Impl).summary();
+    summary.NodeCount = s.node_count;
+    summary.TerminalCount = s.terminal_count;
+    summary.HomogeneousCount = s.homogeneous_count;
+    summary.Levels = s.levels;
+    summary.LeafSize = s.leaf_size;
+    summary.RootSize = s.root_size;
+    summary.OctreeBytes = s.octree_bytes;
+    summary.InputBytes = s.input_bytes;
+    summary.BuildMilliseconds = s.build_ms;
+    summary.ValueMin = s.value_min;
+    summary.ValueMax = s.value_max;
+    summary.NaNSamples = s.nan_samples;
+  });
+}
+
+bool HybridOctree::GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& error) const
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::CutBoxes cut = HandleFor(this->Impl).cut_boxes(tolerance);
+    CopyInto(cut.bounds, boxes.Bounds);
+    CopyInto(cut.node_id, boxes.NodeId);
+    CopyInto(cut.level, boxes.Level);
+    CopyInto(cut.nodal_error, boxes.NodalError);
+    CopyInto(cut.min, boxes.Min);
+    CopyInto(cut.max, boxes.Max);
+  });
+}
+
+bool HybridOctree::IntegrateSurface(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, double isovalue, SurfaceMode mode, bool measureDistance,
+  SurfaceSummary& summary, std::string& error)
+{
+  this->SurfaceVertices = this->SurfacePolygons = this->SurfaceIndices = 0;
+  return Guarded(error, [&] {
+    const hybrid_octree::SurfaceSummary s = this->Impl->Box->integrate_surface(
+      ToSlice(bytes, byteCount), ToRust(grid), isovalue, mode, measureDistance);
+    summary.Vertices = s.vertices;
+    summary.Polygons = s.polygons;
+    summary.Connectivity = s.connectivity;
+    summary.Faces = s.faces;
+    summary.Triangles = s.triangles;
+    summary.UncompressedTriangles = s.uncompressed_triangles;
+    summary.BoundaryEdges = s.boundary_edges;
+    summary.ExtractMilliseconds = s.extract_ms;
+    summary.CompressMilliseconds = s.compress_ms;
+    summary.DistanceMean = s.distance_mean;
+    summary.DistanceMax = s.distance_max;
+    this->SurfaceVertices = s.vertices;
+    this->SurfacePolygons = s.polygons;
+    this->SurfaceIndices = s.connectivity;
+  });
+}
+
+void HybridOctree::RemoveSurface()
+{
+  std::string ignored; // dropping a Rust value cannot fail
+  Guarded(ignored, [&] { this->Impl->Box->remove_surface(); });
+  this->SurfaceVertices = this->SurfacePolygons = this->SurfaceIndices = 0;
+}
+
+bool HybridOctree::GetSurfaceMesh(const SurfaceMeshBuffers& mesh, std::string& error) const
+{
+  const std::size_t vertices = this->SurfaceVertices;
+  const std::size_t polygons = this->SurfacePolygons;
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .surface_mesh(Out(mesh.Points, 3 * vertices), Out(mesh.Normals, 3 * vertices),
+        Out(mesh.Offsets, polygons + 1), Out(mesh.Connectivity, this->SurfaceIndices),
+        Out(mesh.PolygonNode, polygons), Out(mesh.PolygonLevel, polygons),
+        Out(mesh.PolygonFace, polygons));
+  });
+}
+
+bool HybridOctree::GetSurfaceTriangles(
+  std::vector<float>& vertices, std::vector<unsigned int>& indices, std::string& error) const
+{
+  static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "32-bit triangle indices");
+  vertices.resize(6 * this->SurfaceVertices);
+  indices.resize(3 * this->SurfacePolygons);
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .surface_triangles(Out(vertices.data(), vertices.size()),
+        Out(reinterpret_cast<std::uint32_t*>(indices.data()), indices.size()));
+  });
+}
+
+bool HybridOctree::IntegratePoints(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, const PointsOptions& options, PointsSummary& summary,
+  std::string& error)
+{
+  this->Points = this->PointsFactor = this->PointsBytes = 0;
+  return Guarded(error, [&] {
+    summary = FromRust(
+      this->Impl->Box->integrate_points(ToSlice(bytes, byteCount), ToRust(grid), ToRust(options)));
+    this->Points = summary.Points;
+    this->PointsFactor = summary.Factor;
+    this->PointsBytes = summary.PointBytes;
+  });
+}
+
+void HybridOctree::RemovePoints()
+{
+  std::string ignored; // dropping a Rust value cannot fail
+  Guarded(ignored, [&] { this->Impl->Box->remove_points(); });
+  this->Points = this->PointsFactor = this->PointsBytes = 0;
+}
+
+bool HybridOctree::GetPointsDrawing(PointsDrawing& drawing, std::string& error) const
+{
+  drawing.Position.resize(3 * this->Points);
+  drawing.Value.resize(this->Points);
+  drawing.Error.resize(this->Points);
+  drawing.Factor = this->PointsFactor;
+  drawing.PointBytes = this->PointsBytes;
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .points_drawing(Out(drawing.Position.data(), drawing.Position.size()),
+        Out(drawing.Value.data(), drawing.Value.size()),
+        Out(drawing.Error.data(), drawing.Error.size()));
+  });
+}
+
+bool HybridOctree::GetPointShades(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, const std::vector<double>& colorPoints,
+  const std::vector<double>& opacityPoints, std::vector<float>& shades, std::string& error) const
+{
+  shades.resize(4 * this->Points);
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .point_shades(ToSlice(bytes, byteCount), ToRust(grid),
+        rust::Slice<const double>(colorPoints.data(), colorPoints.size()),
+        rust::Slice<const double>(opacityPoints.data(), opacityPoints.size()),
+        Out(shades.data(), shades.size()));
+  });
+}
+
+std::unique_ptr<Selection> HybridOctree::Select(
+  const SelectDescription& options, std::string& error) const
+{
+  std::unique_ptr<Selection> result;
+  Guarded(
+    error, [&] { result = Own<Selection>(HandleFor(this->Impl).select_bricks(ToRust(options))); });
+  return result;
+}
+
+std::vector<double> OpacityPoints(vtkPiecewiseFunction* function)
+{
+  std::vector<double> points;
+  const int n = function ? function->GetSize() : 0;
+  if (n == 0)
+  {
+    return points;
+  }
+  points.reserve(2 * n + 4);
+  double node[4];
+  const bool clamped = function->GetClamping() != 0;
+  for (int i = 0; i < n; ++i)
+  {
+    function->GetNodeValue(i, node);
+    if (i == 0 && !clamped)
+    {
+      points.push_back(node[0]);
+      points.push_back(0.0);
+    }
+    points.push_back(node[0]);
+    points.push_back(std::min(1.0, std::max(0.0, node[1])));
+  }
+  if (!clamped)
+  {
+    points.push_back(node[0]);
+    points.push_back(0.0);
+  }
+  return points;
+}
+
+Selection::Selection(std::unique_ptr<RustHandle<Selection>> handle)
+  : Impl(std::move(handle))
+{
+}
+
+Selection::~Selection() = default;
+
+bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::SelectionSummary s = HandleFor(this->Impl).summary();
+    summary.Bricks = s.bricks;
+    summary.TextureBytes = s.texture_bytes;
+    summary.BudgetBytes = s.budget_bytes;
+    summary.EstimatedError = s.estimated_error;
+    summary.Skipped = s.skipped;
+    summary.Warning = std::string(s.warning);
+    summary.Points = s.points;
+    summary.PointBytes = s.point_bytes;
+  });
+}
+
+bool Selection::GetDrawList(const HybridOctree& octree, const CameraDescription& camera,
+  double surfaceOpacity, DrawList& list, std::string& error) const
+{
+  return Guarded(error, [&] {
+    CopyDrawList(
+      HandleFor(this->Impl).draw_list(HandleFor(octree.Impl), ToRust(camera), surfaceOpacity),
+      list);
+  });
+}
+
+bool Selection::GetBrickTexels(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, std::size_t brick, float* texels, std::size_t count,
+  std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .brick_texels(ToSlice(bytes, byteCount), ToRust(grid), brick, Out(texels, count));
+  });
+}
+
+bool Selection::Composite(const HybridOctree& octree, const CameraDescription& camera,
+  const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const CompositeScene& scene, std::size_t width, std::size_t height, float* rgba,
+  std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .composite(HandleFor(octree.Impl), ToRust(camera), ToSlice(bytes, byteCount), ToRust(grid),
+        rust::Slice<const double>(scene.ColorPoints.data(), scene.ColorPoints.size()),
+        rust::Slice<const double>(scene.OpacityPoints.data(), scene.OpacityPoints.size()),
+        scene.GaussianPoints, rust::Slice<const double>(scene.SurfaceRGBA, 4), width, height,
+        Out(rgba, 4 * width * height));
+  });
+}
+
+bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const FtbOptions& options, const FtbImageBuffers& image, FtbResult& result, std::string& error)
+{
+  return Guarded(error, [&] {
+    hybrid_octree::FtbDesc o;
+    o.isovalue = options.Isovalue;
+    o.use_label = options.UseLabel;
+    o.label = options.Label;
+    o.vpn = { options.Vpn[0], options.Vpn[1], options.Vpn[2] };
+    o.image_size = options.ImageSize;
+    o.back_to_front = options.BackToFront;
+    const std::size_t pixels = options.ImageSize * options.ImageSize;
+    const hybrid_octree::FtbSummary s =
+      hybrid_octree::ftb_display(ToSlice(bytes, byteCount), ToRust(grid), o,
+        Out(image.Depth, pixels), Out(image.Face, pixels), Out(image.Shaded, 3 * pixels));
+    result.WhiteVisited = s.white_visited;
+    result.BlackVisited = s.black_visited;
+    result.GrayVisited = s.gray_visited;
+    result.Faces = s.faces;
+    result.Scanlines = s.scanlines;
+    result.Pixels = s.pixels;
+    result.DisplayMs = s.display_ms;
+    result.BuildMs = s.build_ms;
+    result.BitmapBytes = s.bitmap_bytes;
+    result.WhiteOctants = s.white_octants;
+    result.BlackOctants = s.black_octants;
+    result.GrayOctants = s.gray_octants;
+    result.Resolution = s.resolution;
+    result.ViewCase = std::string(s.view_case);
+  });
+}
+
+bool GeneratePoints(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+  const PointsOptions& options, const std::function<PointsBuffers(const PointsSummary&)>& allocate,
+  PointsSummary& summary, std::string& error)
+{
+  return Guarded(error, [&] {
+    const rust::Box<hybrid_octree::GeneratedPoints> made =
+      hybrid_octree::generate_points(ToSlice(bytes, byteCount), ToRust(grid), ToRust(options));
+    summary = FromRust(made->summary());
+    const std::size_t n = summary.Points;
+    const PointsBuffers out = allocate(summary);
+    made->fill(Out(out.Ijk, 3 * n), Out(out.Value, n), Out(out.Error, n), Out(out.Normal, 3 * n));
+  });
+}
+
+} // namespace vtkHybridOctreeBridge

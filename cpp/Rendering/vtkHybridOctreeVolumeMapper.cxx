@@ -1,0 +1,1104 @@
+#include "vtkHybridOctreeVolumeMapper.h"
+
+#include "vtkHybridOctreeBrickOccupancy.h"
+#include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeCameraInput.h"
+#include "vtkHybridOctreeImageInput.h"
+#include "vtkHybridOctreeInteractiveReduction.h"
+#include "vtkHybridOctreeUnsupportedEffects.h"
+#include "vtkOpenGLHybridOctreeBrickDrawer.h"
+#include "vtkOpenGLHybridOctreeBrickTextures.h"
+#include "vtkOpenGLHybridOctreeFloatTarget.h"
+#include "vtkOpenGLHybridOctreeSurfaceDrawer.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkTimeStamp.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkHybridOctreeVolumeMapper);
+
+namespace
+{
+using namespace vtkHybridOctreeBridge;
+using vtkHybridOctreeCameraInput::DescribeCamera;
+using vtkHybridOctreeImageInput::ByteCount;
+using vtkHybridOctreeImageInput::Bytes;
+
+/// `m` applied to the point `p` (w = 1).
+void TransformPoint(vtkMatrix4x4* m, const double p[3], double out[3])
+{
+  double in[4] = { p[0], p[1], p[2], 1.0 };
+  double r[4];
+  m->MultiplyPoint(in, r);
+  for (int k = 0; k < 3; ++k)
+  {
+    out[k] = r[k] / r[3];
+  }
+}
+
+/// `m`'s linear part applied to the vector `v`.
+void TransformVector(vtkMatrix4x4* m, const double v[3], double out[3])
+{
+  for (int r = 0; r < 3; ++r)
+  {
+    out[r] = m->GetElement(r, 0) * v[0] + m->GetElement(r, 1) * v[1] + m->GetElement(r, 2) * v[2];
+  }
+}
+
+/// The passes an interactive frame runs for the DrawList's `passes`: a
+/// translucent surface per brick instead of in the slabs, no points.
+std::string InteractivePlan(const std::string& passes)
+{
+  std::string plan;
+  std::size_t start = 0;
+  while (start <= passes.size())
+  {
+    std::size_t end = passes.find(',', start);
+    end = end == std::string::npos ? passes.size() : end;
+    std::string pass = passes.substr(start, end - start);
+    if (pass == "surface-in-slabs")
+    {
+      pass = "surface-per-brick";
+    }
+    if (!pass.empty() && pass != "points")
+    {
+      plan += (plan.empty() ? "" : ",") + pass;
+    }
+    start = end + 1;
+  }
+  return plan;
+}
+
+} // namespace
+
+struct vtkHybridOctreeVolumeMapper::vtkInternals
+{
+  // The octree, rebuilt when the scalars, the image geometry or LeafSize change.
+  std::unique_ptr<HybridOctree> Octree;
+  vtkDataArray* Array = nullptr;
+  vtkMTimeType ArrayMTime = 0;
+  GridDescription Grid;
+  int LeafSize = 0;
+  /// NaN samples (no data) of the image the octree was built from.
+  vtkTypeInt64 NaNSamples = 0;
+  /// When the octree was built: the caches below are current when made after it.
+  vtkTimeStamp OctreeTime;
+  vtkDataArray* Scalars = nullptr;
+
+  // The points integrated into the octree, made again when the octree or
+  // their settings change.
+  bool HasPoints = false;
+  PointsDrawing Drawing;
+  vtkTimeStamp PointsTime;
+  std::vector<double> PointsKey;
+  // What each point adds under the transfer function, for those points and that table.
+  std::vector<float> Shades;
+  vtkTimeStamp ShadesTime;
+  std::vector<double> ShadesColors;
+  std::vector<double> ShadesOpacities;
+
+  // The selections of still and of interactive frames, each made again
+  // when its inputs change, and the one of this frame.
+  struct SelectionSlot
+  {
+    std::unique_ptr<Selection> Selected;
+    SelectionSummary Summary;
+    vtkTimeStamp Time;
+    std::vector<double> Key;
+    std::vector<double> Opacity;
+  };
+  SelectionSlot Still;
+  SelectionSlot Moving;
+  SelectionSlot* Frame = &Still;
+
+  // The isosurface integrated into the octree, extracted again when the
+  // octree or the isovalue change.
+  bool HasIso = false;
+  vtkTimeStamp IsoTime;
+  double IsoValue = 0.0;
+
+  // Transfer function table (what the CPU compositor gets too).
+  CompositeScene Transfer;
+  std::vector<float> Table;
+  vtkHybridOctreeOpacityTable Opacity; ///< the table's zero-opacity test
+  double RangeLo = 0.0;
+  double RangeHi = 1.0;
+  bool TableUploaded = false;
+
+  // Model matrix (volume matrix x image direction) and its inverse.
+  vtkNew<vtkMatrix4x4> Model;
+  vtkNew<vtkMatrix4x4> ModelInverse;
+
+  // GL resources.
+  vtkOpenGLHybridOctreeBrickTextures Bricks;
+  vtkOpenGLHybridOctreeBrickDrawer Drawer;
+  vtkOpenGLHybridOctreeFloatTarget Target;
+  vtkOpenGLHybridOctreeSurfaceDrawer SurfaceDrawer;
+  vtkSmartPointer<vtkTextureObject> TableTexture;
+
+  // Settings the mapper does not draw, each warned about once while on.
+  vtkHybridOctreeUnsupportedEffects Unsupported;
+  // Interactive frames' sampling, from the times of the frames before.
+  vtkHybridOctreeInteractiveReduction Reduction;
+};
+
+vtkHybridOctreeVolumeMapper::vtkHybridOctreeVolumeMapper()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkHybridOctreeVolumeMapper::~vtkHybridOctreeVolumeMapper() = default;
+
+int vtkHybridOctreeVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  // Any data set, so that a non-image input is a clear error, not a pipeline failure.
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  // Optional, so that Render() with no input reports its own error.
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+bool vtkHybridOctreeVolumeMapper::IsInteractive(vtkRenderer* ren) const
+{
+  vtkRenderWindow* window = ren ? ren->GetRenderWindow() : nullptr;
+  return window && window->GetDesiredUpdateRate() > this->InteractiveUpdateRate;
+}
+
+double vtkHybridOctreeVolumeMapper::FrameBudgetMB(vtkRenderer* ren) const
+{
+  return this->IsInteractive(ren) ? std::min(this->InteractiveBudgetMB, this->BudgetMB)
+                                  : this->BudgetMB;
+}
+
+vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
+{
+  image = nullptr;
+  if (this->GetNumberOfInputConnections(0) == 0 && !this->GetDataSetInput())
+  {
+    vtkErrorMacro("no input: connect a vtkImageData with point scalars");
+    return nullptr;
+  }
+  if (vtkAlgorithm* producer = this->GetInputAlgorithm())
+  {
+    producer->Update();
+  }
+  vtkDataSet* data = this->GetDataSetInput();
+  if (!data)
+  {
+    vtkErrorMacro("no input: connect a vtkImageData with point scalars");
+    return nullptr;
+  }
+  image = vtkImageData::SafeDownCast(data);
+  if (!image)
+  {
+    vtkErrorMacro("the input is a " << data->GetClassName()
+                                    << ", not a vtkImageData: the mapper draws images only");
+    return nullptr;
+  }
+  // The array VTK's scalar selection names (SelectScalarArray, ScalarMode;
+  // by default the point scalars), as vtkSmartVolumeMapper picks it.
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
+    image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (scalars && cellFlag != 0)
+  {
+    vtkErrorMacro("the selected array " << (scalars->GetName() ? scalars->GetName() : "")
+                                        << " is cell data: the mapper draws point data "
+                                           "(convert with vtkCellDataToPointData)");
+    return nullptr;
+  }
+  if (!scalars || image->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("the input image is empty or has no point scalars"
+      << (this->ScalarMode == VTK_SCALAR_MODE_DEFAULT
+             ? std::string()
+             : std::string(" named ") + (this->ArrayName ? this->ArrayName : "(none)"))
+      << ": give it point scalars or select an existing point array");
+    return nullptr;
+  }
+  const int components = scalars->GetNumberOfComponents();
+  if (components > 1 && this->Component < 0)
+  {
+    vtkErrorMacro(
+      "the point scalars have " << components << " components: choose one with SetComponent()");
+    return nullptr;
+  }
+  if (this->Component >= components)
+  {
+    vtkErrorMacro("component " << this->Component << " does not exist: the point scalars have "
+                               << components << " components");
+    return nullptr;
+  }
+  ScalarType type;
+  if (!vtkHybridOctreeImageInput::ToBridgeType(scalars->GetDataType(), type) ||
+    !scalars->HasStandardMemoryLayout())
+  {
+    vtkErrorMacro("scalar type " << scalars->GetDataTypeAsString()
+                                 << " is not supported: cast to float, double or an 8/16/32-bit "
+                                    "integer type (vtkImageCast)");
+    return nullptr;
+  }
+  return scalars;
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray* scalars)
+{
+  vtkInternals& in = *this->Internals;
+  const GridDescription grid = vtkHybridOctreeImageInput::DescribeGrid(
+    image, scalars, scalars->GetNumberOfComponents() > 1 ? this->Component : -1);
+  in.Scalars = scalars;
+  if (in.Octree && in.Array == scalars && in.ArrayMTime == scalars->GetMTime() &&
+    vtkHybridOctreeImageInput::SameGrid(in.Grid, grid) && in.LeafSize == this->LeafSize)
+  {
+    this->LastNaNSamples = in.NaNSamples;
+    return true;
+  }
+  in.Still.Selected.reset();
+  in.Moving.Selected.reset();
+  in.Reduction.Reset();
+  in.HasIso = false;
+  in.HasPoints = false;
+  in.Octree.reset();
+  std::string error;
+  in.Octree = HybridOctree::Build(
+    Bytes(scalars), ByteCount(scalars), grid, static_cast<unsigned int>(this->LeafSize), error);
+  vtkHybridOctreeBridge::OctreeSummary summary;
+  if (!in.Octree || !in.Octree->GetSummary(summary, error))
+  {
+    in.Octree.reset();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.NaNSamples = static_cast<vtkTypeInt64>(summary.NaNSamples);
+  this->LastNaNSamples = in.NaNSamples;
+  in.Array = scalars;
+  in.ArrayMTime = scalars->GetMTime();
+  in.Grid = grid;
+  in.LeafSize = this->LeafSize;
+  in.OctreeTime.Modified();
+  return true;
+}
+
+void vtkHybridOctreeVolumeMapper::UpdateModelMatrix(vtkImageData* image, vtkVolume* vol)
+{
+  // Samples sit at origin + direction * (index * spacing): the octree's frame
+  // (origin + index * spacing) maps to it by T(origin) D T(-origin).
+  vtkInternals& in = *this->Internals;
+  vtkNew<vtkMatrix4x4> frame;
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  const double* o = in.Grid.Origin;
+  for (int r = 0; r < 3; ++r)
+  {
+    double shift = o[r];
+    for (int c = 0; c < 3; ++c)
+    {
+      frame->SetElement(r, c, direction->GetElement(r, c));
+      shift -= direction->GetElement(r, c) * o[c];
+    }
+    frame->SetElement(r, 3, shift);
+  }
+  vtkMatrix4x4::Multiply4x4(vol->GetMatrix(), frame, in.Model);
+  vtkMatrix4x4::Invert(in.Model, in.ModelInverse);
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* property)
+{
+  vtkInternals& in = *this->Internals;
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  double range[2];
+  in.Scalars->GetRange(range, in.Grid.Component < 0 ? 0 : in.Grid.Component);
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+  // VTK's opacities are per ScalarOpacityUnitDistance U; the DrawList corrects
+  // per d0 = min spacing: a table opacity 1 - (1 - a)^(d0 / U) gives
+  // 1 - (1 - a)^(d / U) after the DrawList's correction.
+  const double unit = property->GetScalarOpacityUnitDistance(0);
+  const double d0 = std::min({ in.Grid.Spacing[0], in.Grid.Spacing[1], in.Grid.Spacing[2] });
+  const double exponent = unit > 0.0 ? d0 / unit : 1.0;
+  const int n = this->TableSize;
+  std::vector<double> rgb(3 * static_cast<std::size_t>(n));
+  std::vector<double> alpha(static_cast<std::size_t>(n));
+  if (property->GetColorChannels(0) == 1)
+  {
+    // A grey colour function (SetColor(vtkPiecewiseFunction*)): asking the
+    // property for its RGB function would replace it with VTK's default ramp.
+    std::vector<double> grey(static_cast<std::size_t>(n));
+    property->GetGrayTransferFunction(0)->GetTable(range[0], range[1], n, grey.data());
+    for (int k = 0; k < n; ++k)
+    {
+      std::fill_n(rgb.begin() + 3 * k, 3, grey[static_cast<std::size_t>(k)]);
+    }
+  }
+  else
+  {
+    property->GetRGBTransferFunction(0)->GetTable(range[0], range[1], n, rgb.data());
+  }
+  opacity->GetTable(range[0], range[1], n, alpha.data());
+  std::vector<float> table(4 * static_cast<std::size_t>(n));
+  in.Transfer.ColorPoints.clear();
+  in.Transfer.OpacityPoints.clear();
+  for (int k = 0; k < n; ++k)
+  {
+    const double v = range[0] + (range[1] - range[0]) * k / (n - 1);
+    double a = std::min(1.0, std::max(0.0, alpha[k]));
+    a = a < 1.0 ? 1.0 - std::pow(1.0 - a, exponent) : 1.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      table[4 * k + c] = static_cast<float>(rgb[3 * k + c]);
+    }
+    table[4 * k + 3] = static_cast<float>(a);
+    in.Transfer.ColorPoints.insert(in.Transfer.ColorPoints.end(),
+      { v, static_cast<double>(table[4 * k]), static_cast<double>(table[4 * k + 1]),
+        static_cast<double>(table[4 * k + 2]) });
+    in.Transfer.OpacityPoints.insert(
+      in.Transfer.OpacityPoints.end(), { v, static_cast<double>(table[4 * k + 3]) });
+  }
+  if (table != in.Table || range[0] != in.RangeLo || range[1] != in.RangeHi)
+  {
+    in.Table.swap(table);
+    in.RangeLo = range[0];
+    in.RangeHi = range[1];
+    in.Opacity.Set(in.Table, range[0], range[1]);
+    in.TableUploaded = false;
+  }
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdatePoints()
+{
+  vtkInternals& in = *this->Internals;
+  if (!this->UsePoints)
+  {
+    if (in.HasPoints)
+    {
+      in.Octree->RemovePoints();
+      in.HasPoints = false;
+    }
+    in.Drawing = PointsDrawing();
+    return true;
+  }
+  const std::vector<double> key = { static_cast<double>(this->PointFactor), this->PointThreshold,
+    static_cast<double>(this->PointBudget) };
+  if (in.HasPoints && in.PointsTime > in.OctreeTime && in.PointsKey == key)
+  {
+    return this->UpdatePointShades();
+  }
+  in.HasPoints = false;
+  PointsOptions options;
+  options.Factor = static_cast<std::size_t>(this->PointFactor);
+  options.Threshold = this->PointThreshold;
+  options.UseBudget = this->PointBudget > 0;
+  options.Budget = static_cast<std::size_t>(this->PointBudget);
+  options.UnderestimatesOnly = true;
+  options.MaxOverestimate = -1.0;
+  std::string error;
+  PointsSummary made;
+  if (!in.Octree->IntegratePoints(
+        Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, options, made, error) ||
+    !in.Octree->GetPointsDrawing(in.Drawing, error))
+  {
+    in.Octree->RemovePoints();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.HasPoints = true;
+  in.PointsTime.Modified();
+  in.PointsKey = key;
+  return this->UpdatePointShades();
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdatePointShades()
+{
+  vtkInternals& in = *this->Internals;
+  if (in.ShadesTime > in.PointsTime && in.ShadesColors == in.Transfer.ColorPoints &&
+    in.ShadesOpacities == in.Transfer.OpacityPoints)
+  {
+    return true;
+  }
+  std::string error;
+  if (!in.Octree->GetPointShades(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+        in.Transfer.ColorPoints, in.Transfer.OpacityPoints, in.Shades, error))
+  {
+    in.ShadesTime = vtkTimeStamp();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.ShadesTime.Modified();
+  in.ShadesColors = in.Transfer.ColorPoints;
+  in.ShadesOpacities = in.Transfer.OpacityPoints;
+  return true;
+}
+
+SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
+  vtkVolumeProperty* property, double budgetMB, std::vector<double>& key) const
+{
+  vtkInternals& in = *this->Internals;
+  SelectDescription select;
+  select.BudgetBytes = static_cast<std::size_t>(budgetMB * 1.0e6);
+  select.Tolerance = this->ErrorTolerance;
+  select.OpacityPoints = vtkHybridOctreeBridge::OpacityPoints(property->GetScalarOpacity(0));
+  select.HasRoi = this->UseRoi;
+  TransformPoint(in.ModelInverse, this->RoiCenter, select.RoiCenter);
+  select.RoiRadius = this->RoiRadius;
+  select.HasIsovalue = this->ShowSurface;
+  select.Isovalue = this->Isovalue;
+  key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
+    select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
+    select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
+    in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0 };
+  return select;
+}
+
+bool vtkHybridOctreeVolumeMapper::IsStillSelectionCurrent(vtkVolumeProperty* property) const
+{
+  const vtkInternals& in = *this->Internals;
+  std::vector<double> key;
+  const SelectDescription select = this->DescribeSelection(property, this->BudgetMB, key);
+  return in.Still.Selected && in.Still.Time > in.OctreeTime && in.Still.Key == key &&
+    in.Still.Opacity == select.OpacityPoints;
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, bool interactive)
+{
+  vtkInternals& in = *this->Internals;
+  const double budgetMB =
+    interactive ? std::min(this->InteractiveBudgetMB, this->BudgetMB) : this->BudgetMB;
+  if (!(budgetMB > 0.0))
+  {
+    vtkErrorMacro("the texture budget is 0 MB: set BudgetMB (and InteractiveBudgetMB) above 0");
+    return false;
+  }
+  vtkInternals::SelectionSlot& slot = interactive ? in.Moving : in.Still;
+  in.Frame = &slot;
+  std::vector<double> key;
+  SelectDescription select = this->DescribeSelection(property, budgetMB, key);
+  if (slot.Selected && slot.Time > in.OctreeTime && slot.Key == key &&
+    slot.Opacity == select.OpacityPoints)
+  {
+    return true;
+  }
+  std::string error;
+  slot.Selected = in.Octree->Select(select, error);
+  if (!slot.Selected || !slot.Selected->GetSummary(slot.Summary, error))
+  {
+    slot.Selected.reset();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  slot.Time.Modified();
+  slot.Key = key;
+  slot.Opacity = select.OpacityPoints;
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property)
+{
+  const bool interactive = this->IsInteractive(ren);
+  if (interactive && this->IsStillSelectionCurrent(property))
+  {
+    this->Internals->Frame = &this->Internals->Still;
+    return true;
+  }
+  return this->UpdateSelection(property, interactive);
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdateSurface()
+{
+  vtkInternals& in = *this->Internals;
+  if (!this->ShowSurface || !(this->SurfaceOpacity > 0.0))
+  {
+    return true;
+  }
+  if (!std::isfinite(this->Isovalue))
+  {
+    vtkErrorMacro("the isovalue " << this->Isovalue << " is not a finite number");
+    return false;
+  }
+  if (in.HasIso && in.IsoTime > in.OctreeTime && in.IsoValue == this->Isovalue)
+  {
+    return true;
+  }
+  in.HasIso = false;
+  std::string error;
+  SurfaceSummary extracted;
+  if (!in.Octree->IntegrateSurface(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+        this->Isovalue, SurfaceMode::Discretized, false, extracted, error) ||
+    !in.SurfaceDrawer.Upload(*in.Octree, error))
+  {
+    in.Octree->RemoveSurface();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.HasIso = true;
+  in.IsoTime.Modified();
+  in.IsoValue = this->Isovalue;
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkImageData* image = nullptr;
+  vtkDataArray* scalars = this->CheckInput(image);
+  if (!scalars)
+  {
+    return false;
+  }
+  vtkVolumeProperty* property = vol ? vol->GetProperty() : nullptr;
+  if (!property)
+  {
+    vtkErrorMacro("the volume has no vtkVolumeProperty: give it one with a scalar opacity");
+    return false;
+  }
+  // The picture stays the Composite, unshaded one: said once per setting, not silently.
+  for (const std::string& message :
+    this->Internals->Unsupported.Update(this, property, scalars->GetNumberOfComponents()))
+  {
+    vtkWarningMacro(<< message);
+  }
+  if (!(this->FrameBudgetMB(ren) > 0.0))
+  {
+    vtkErrorMacro("the texture budget is 0 MB: set BudgetMB (and InteractiveBudgetMB) above 0");
+    return false;
+  }
+  if (!this->UpdateOctree(image, scalars))
+  {
+    return false;
+  }
+  this->UpdateModelMatrix(image, vol);
+  return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
+    this->ChooseSelection(ren, property) && this->UpdateSurface();
+}
+
+CameraDescription vtkHybridOctreeVolumeMapper::ModelCamera(vtkRenderer* ren) const
+{
+  // The camera in the octree's frame: position and focal point through the
+  // inverse model matrix, view up through its linear part.
+  CameraDescription cam = DescribeCamera(ren->GetActiveCamera());
+  vtkMatrix4x4* inverse = this->Internals->ModelInverse;
+  double p[3], f[3], up[3];
+  TransformPoint(inverse, cam.Position, p);
+  TransformPoint(inverse, cam.FocalPoint, f);
+  TransformVector(inverse, cam.ViewUp, up);
+  const double scale = std::cbrt(std::fabs(this->Internals->Model->Determinant()));
+  for (int k = 0; k < 3; ++k)
+  {
+    cam.Position[k] = p[k];
+    cam.FocalPoint[k] = f[k];
+    cam.ViewUp[k] = up[k];
+  }
+  if (scale > 0.0)
+  {
+    cam.ParallelScale /= scale;
+  }
+  return cam;
+}
+
+bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& list)
+{
+  vtkInternals& in = *this->Internals;
+  std::string error;
+  const CameraDescription cam = this->ModelCamera(ren);
+  const bool surface = in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0;
+  const bool ok = in.Frame->Selected->GetDrawList(
+    *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
+  if (!ok)
+  {
+    vtkErrorMacro(<< error);
+  }
+  return ok;
+}
+
+void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  this->LastRenderOK = false;
+  this->LastBricks = 0;
+  this->LastSlices = 0;
+  this->LastSurfaceTriangles = 0;
+  this->LastPoints = 0;
+  this->LastPointBytes = 0;
+  this->LastUploadedBytes = 0;
+  this->LastNaNSamples = 0;
+  this->LastPlan.clear();
+  this->LastImageSampleDistance = 1.0;
+  this->LastSampleSpacing = 1;
+  const bool interactive = this->IsInteractive(ren);
+  this->LastInteractive = interactive;
+  vtkInternals& in = *this->Internals;
+  vtkOpenGLRenderWindow* window =
+    ren ? vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()) : nullptr;
+  vtkOpenGLCamera* camera = ren ? vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera()) : nullptr;
+  if (!window || !camera)
+  {
+    vtkErrorMacro("an OpenGL render window and camera are required");
+    return;
+  }
+  // The frame's own time: from the end of what was drawn before it (glFinish)
+  // to the end of its drawing.
+  glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  DrawList list;
+  if (!this->Prepare(ren, vol) || !this->GetFrameDrawList(ren, list))
+  {
+    return;
+  }
+  if (interactive && in.Frame == &in.Still && !in.Bricks.HoldsAll(list.NodeId, list.Stride))
+  {
+    // The still selection is no longer resident: an interactive one, uploaded.
+    list = DrawList();
+    if (!this->UpdateSelection(vol->GetProperty(), true) || !this->GetFrameDrawList(ren, list))
+    {
+      return;
+    }
+  }
+  const int level = interactive && this->AutoAdjustSampleDistances
+    ? in.Reduction.Choose(vol->GetAllocatedRenderTime())
+    : 0;
+  if (this->DrawFrame(ren, window, camera, list, interactive, level))
+  {
+    this->LastRenderOK = true;
+  }
+  this->LastPlan = interactive ? InteractivePlan(list.Passes) : list.Passes;
+  this->LastEstimatedError = in.Frame->Summary.EstimatedError;
+  this->LastPointBytes = static_cast<vtkTypeInt64>(in.Frame->Summary.PointBytes);
+  this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
+  this->LastUploadedBytes = static_cast<vtkTypeInt64>(in.Bricks.GetUploadedBytes());
+  // The frame's time to the end of its drawing: what the next interactive
+  // frame's sampling is chosen from.
+  glFinish();
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  this->LastFrameMilliseconds = 1.0e3 * elapsed.count();
+  if (this->LastRenderOK)
+  {
+    in.Reduction.Record(level, elapsed.count(), interactive);
+  }
+}
+
+bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
+  vtkOpenGLCamera* camera, const DrawList& list, bool interactive, int level)
+{
+  vtkInternals& in = *this->Internals;
+  std::string error;
+  const std::size_t bricks = list.GetNumberOfBricks();
+
+  // Brick textures: resident ones reused, the rest uploaded within the budget.
+  // The points bought share the budget: the textures get the rest.
+  const Selection& selected = *in.Frame->Selected;
+  const double textureBudget =
+    this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
+  in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
+  std::vector<vtkTextureObject*> textures(bricks, nullptr);
+  // Per brick the box its slices are clipped to: its visible blocks (empty: not drawn).
+  std::vector<double> drawBounds(6 * bricks, 0.0);
+  std::vector<char> drawn(bricks, 0);
+  for (std::size_t i = 0; i < bricks; ++i)
+  {
+    const std::size_t brick = list.Brick[i];
+    const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
+      window, { list.NodeId[i], list.Stride[i] }, &list.Texels[3 * i],
+      [&](float* texels, std::size_t count) {
+        return selected.GetBrickTexels(
+          Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, count, error);
+      },
+      error);
+    if (!resident)
+    {
+      vtkErrorMacro(<< error);
+      return false;
+    }
+    textures[i] = resident->Texture;
+    double lo[3], hi[3];
+    drawn[i] = resident->Occupancy.VisibleBox(in.Opacity, lo, hi);
+    for (int a = 0; a < 3 && drawn[i]; ++a)
+    {
+      // Texel t sits at min + t * stride * spacing (the last one at most at max).
+      const double step = list.Stride[i] * in.Grid.Spacing[a];
+      const double* b = &list.Bounds[6 * i + 2 * a];
+      drawBounds[6 * i + 2 * a] = std::max(b[0], b[0] + lo[a] * step);
+      drawBounds[6 * i + 2 * a + 1] = std::min(b[1], b[0] + hi[a] * step);
+    }
+  }
+  // The transfer function table.
+  if (!in.TableTexture)
+  {
+    in.TableTexture = vtkSmartPointer<vtkTextureObject>::New();
+    in.TableUploaded = false;
+  }
+  if (!in.TableUploaded || in.TableTexture->GetContext() != window)
+  {
+    in.TableTexture->SetContext(window);
+    in.TableTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.TableTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+    in.TableTexture->SetMinificationFilter(vtkTextureObject::Linear);
+    in.TableTexture->SetMagnificationFilter(vtkTextureObject::Linear);
+    if (!in.TableTexture->Create2DFromRaw(
+          static_cast<unsigned int>(this->TableSize), 1, 4, VTK_FLOAT, in.Table.data()))
+    {
+      vtkErrorMacro("OpenGL could not create the transfer function table texture");
+      return false;
+    }
+    in.TableUploaded = true;
+  }
+
+  const CameraDescription cam = this->ModelCamera(ren);
+  const bool batches = !list.BatchOffsets.empty() && list.BatchOffsets.back() > 0;
+  // Interactive: every brick ray-marched, its triangles drawn before or after it, no points.
+  const bool surfacePerBrick = interactive && batches;
+  const vtkHybridOctreeInteractiveReduction::Level sampling =
+    vtkHybridOctreeInteractiveReduction::GetLevel(level);
+  vtkOpenGLHybridOctreeBrickDrawer::SurfaceData translucent;
+  if (batches && !interactive)
+  {
+    translucent.Vertices = &in.SurfaceDrawer.GetVertexData();
+    translucent.Triangles = &in.SurfaceDrawer.GetIndexData();
+  }
+  vtkOpenGLHybridOctreeBrickDrawer::PointData points;
+  if (in.HasPoints && !list.BucketOffsets.empty() && !interactive)
+  {
+    points.Drawing = &in.Drawing;
+    points.Shades = &in.Shades;
+    points.Gaussian = this->PointFootprint == 1;
+  }
+  this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(
+    in.Drawer.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp, translucent, points));
+  this->LastPoints = static_cast<vtkTypeInt64>(in.Drawer.GetPointsPlaced());
+  this->LastImageSampleDistance = sampling.ImageSampleDistance;
+  this->LastSampleSpacing = sampling.SampleSpacing;
+  for (std::size_t i = 0; i < bricks; ++i)
+  {
+    if (drawn[i])
+    {
+      // The lattice planes sampled: every factor-th slice of a sparser ray march.
+      const double slices = static_cast<double>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
+      const double factor = list.SliceSpacing[i] > 0.0
+        ? std::max(1.0, sampling.SampleSpacing * list.ReferenceSpacing / list.SliceSpacing[i])
+        : 1.0;
+      this->LastSlices += static_cast<vtkTypeInt64>(std::ceil(slices / factor));
+      ++this->LastBricks;
+    }
+  }
+
+  // Model to clip: VTK's key matrices are transposed for OpenGL.
+  vtkMatrix4x4* wcvc;
+  vtkMatrix4x4* vcdc;
+  vtkMatrix4x4* wcdc;
+  vtkMatrix3x3* normals;
+  camera->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
+  vtkNew<vtkMatrix4x4> mcwc;
+  vtkMatrix4x4::Transpose(in.Model, mcwc);
+  vtkNew<vtkMatrix4x4> mcdc;
+  vtkMatrix4x4::Multiply4x4(mcwc, wcdc, mcdc);
+  const double rgba[4] = { this->SurfaceColor[0], this->SurfaceColor[1], this->SurfaceColor[2],
+    this->SurfaceOpacity };
+
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglActiveTexture activeTexture(state);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_CULL_FACE);
+
+  // Opaque surface first, writing depth, so that the volume behind it is hidden.
+  if (list.OpaqueTriangles > 0)
+  {
+    state->vtkglDisable(GL_BLEND);
+    state->vtkglDepthMask(GL_TRUE);
+    if (!in.SurfaceDrawer.Bind(window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error))
+    {
+      vtkErrorMacro(<< error);
+      return false;
+    }
+    in.SurfaceDrawer.Draw(0, list.OpaqueTriangles);
+    in.SurfaceDrawer.Unbind();
+    this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(list.OpaqueTriangles);
+  }
+
+  // Bricks back to front, each one draw: its slices back to front with the
+  // translucent triangles of each slab between them; blended premultiplied,
+  // depth tested, not written. Clip distances on while the program (which
+  // writes them) is bound.
+  // The region of the window drawn: the bricks' boxes (their triangles
+  // included); points' footprints may reach past them, so all of it then.
+  double region[4] = { -1.0, 1.0, -1.0, 1.0 };
+  if (this->LastPoints == 0)
+  {
+    this->ScreenRegion(mcdc, list.Bounds, region);
+  }
+  if (!in.Target.Begin(ren, window, sampling.ImageSampleDistance, region, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  state->vtkglDisable(GL_DEPTH_TEST); // the shader tests against the copied opaque depth
+  state->vtkglDepthMask(GL_FALSE);
+  in.TableTexture->Activate();
+  in.Target.GetDepth()->Activate();
+  in.Drawer.SetSampleSpacing(sampling.SampleSpacing);
+  if (surfacePerBrick)
+  {
+    in.SurfaceDrawer.OrderByBrick(
+      list, cam.Position, list.Forward, cam.Parallel, this->IsInsideOpaque());
+  }
+  bool ok = !surfacePerBrick ||
+    in.SurfaceDrawer.Bind(
+      window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error, &in.Target);
+  ok = ok &&
+    in.Drawer.Bind(window, mcdc, in.TableTexture, in.Target, this->TableSize, in.RangeLo,
+      in.RangeHi, cam.Position, list.Forward, cam.Parallel, rgba, error);
+  if (ok)
+  {
+    // Clip distances (the slabs' triangles) on while the program that writes
+    // them is bound; interactive frames have no slabs.
+    for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
+    {
+      if (!interactive)
+      {
+        state->vtkglEnable(plane);
+      }
+    }
+    // Ray-marched boxes keep only the faces rays leave by (see
+    // vtkOpenGLHybridOctreeBrickDrawer::EmitBox); a mirroring model matrix turns
+    // their winding over. Culling is restored before the target is blended.
+    vtkOpenGLState::ScopedglEnableDisable brickCulling(state, GL_CULL_FACE);
+    state->vtkglCullFace(GL_BACK);
+    glFrontFace(in.Model->Determinant() < 0.0 ? GL_CW : GL_CCW);
+    for (std::size_t i = 0; i < bricks; ++i)
+    {
+      if (in.Drawer.IsRayMarched(i))
+      {
+        state->vtkglEnable(GL_CULL_FACE);
+      }
+      else
+      {
+        state->vtkglDisable(GL_CULL_FACE);
+      }
+      const std::size_t before = surfacePerBrick ? this->DrawSurfaceBefore(window, i) : 0;
+      if (before > 0)
+      {
+        this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(before);
+        state->vtkglEnable(GL_CULL_FACE); // every brick of an interactive frame is ray-marched
+      }
+      textures[i]->Activate();
+      in.Drawer.DrawBrick(list, i, in.Grid.Spacing, textures[i]);
+      textures[i]->Deactivate();
+    }
+    if (surfacePerBrick)
+    {
+      this->LastSurfaceTriangles +=
+        static_cast<vtkTypeInt64>(this->DrawSurfaceBefore(window, bricks));
+    }
+    glFrontFace(GL_CCW);
+    for (unsigned int plane : { GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE0 + 1 })
+    {
+      state->vtkglDisable(plane);
+    }
+    in.Drawer.Unbind();
+  }
+  in.Target.GetDepth()->Deactivate();
+  in.TableTexture->Deactivate();
+  in.Target.End(window);
+  if (!ok)
+  {
+    vtkErrorMacro(<< error);
+  }
+  return ok;
+}
+
+void vtkHybridOctreeVolumeMapper::ScreenRegion(
+  vtkMatrix4x4* mcdc, const std::vector<double>& bounds, double region[4]) const
+{
+  // The normalized device box of the boxes' corners (VTK's key matrices are
+  // transposed: clip_r = sum_j mcdc(j, r) p_j); everything when a corner
+  // lies behind the eye.
+  double box[4] = { 1.0, -1.0, 1.0, -1.0 };
+  for (std::size_t i = 0; 6 * i + 5 < bounds.size(); ++i)
+  {
+    for (int c = 0; c < 8; ++c)
+    {
+      const double p[4] = { bounds[6 * i + (c & 1)], bounds[6 * i + 2 + ((c >> 1) & 1)],
+        bounds[6 * i + 4 + ((c >> 2) & 1)], 1.0 };
+      double clip[4];
+      for (int r = 0; r < 4; ++r)
+      {
+        clip[r] = mcdc->GetElement(0, r) * p[0] + mcdc->GetElement(1, r) * p[1] +
+          mcdc->GetElement(2, r) * p[2] + mcdc->GetElement(3, r) * p[3];
+      }
+      if (!(clip[3] > 0.0))
+      {
+        region[0] = region[2] = -1.0;
+        region[1] = region[3] = 1.0;
+        return;
+      }
+      for (int a = 0; a < 2; ++a)
+      {
+        box[2 * a] = std::min(box[2 * a], clip[a] / clip[3]);
+        box[2 * a + 1] = std::max(box[2 * a + 1], clip[a] / clip[3]);
+      }
+    }
+  }
+  std::copy(box, box + 4, region);
+}
+
+std::size_t vtkHybridOctreeVolumeMapper::DrawSurfaceBefore(
+  vtkOpenGLRenderWindow* window, std::size_t i)
+{
+  vtkInternals& in = *this->Internals;
+  const std::pair<std::size_t, std::size_t> range = in.SurfaceDrawer.GetTrianglesBefore(i);
+  if (range.second <= range.first)
+  {
+    return 0;
+  }
+  window->GetState()->vtkglDisable(GL_CULL_FACE);
+  in.SurfaceDrawer.Rebind(window);
+  in.SurfaceDrawer.Draw(range.first, range.second);
+  in.Drawer.Rebind(window);
+  return range.second - range.first;
+}
+
+bool vtkHybridOctreeVolumeMapper::IsInsideOpaque() const
+{
+  // The mean table opacity above the isovalue against below it.
+  const vtkInternals& in = *this->Internals;
+  const int n = this->TableSize;
+  double sum[2] = { 0.0, 0.0 };
+  int count[2] = { 0, 0 };
+  for (int k = 0; k < n && 4 * static_cast<std::size_t>(k) + 3 < in.Table.size(); ++k)
+  {
+    const double v = in.RangeLo + (in.RangeHi - in.RangeLo) * k / (n - 1);
+    const int inside = v >= this->Isovalue ? 1 : 0;
+    sum[inside] += in.Table[4 * static_cast<std::size_t>(k) + 3];
+    ++count[inside];
+  }
+  return sum[1] * std::max(count[0], 1) >= sum[0] * std::max(count[1], 1);
+}
+
+bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
+  vtkRenderer* ren, vtkVolume* vol, int width, int height, vtkFloatArray* rgba)
+{
+  vtkInternals& in = *this->Internals;
+  if (!ren || !ren->GetActiveCamera() || !rgba || width <= 0 || height <= 0)
+  {
+    vtkErrorMacro("CompositeOnCPU needs a renderer with a camera, a size and an output array");
+    return false;
+  }
+  if (!this->Prepare(ren, vol))
+  {
+    return false;
+  }
+  CompositeScene scene = in.Transfer;
+  scene.GaussianPoints = this->PointFootprint == 1;
+  if (in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      scene.SurfaceRGBA[k] = this->SurfaceColor[k];
+    }
+    scene.SurfaceRGBA[3] = this->SurfaceOpacity;
+  }
+  // The compositor writes the picture into `rgba` itself.
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
+  std::string error;
+  if (!in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
+        ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
+        static_cast<std::size_t>(height), rgba->GetPointer(0), error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  return true;
+}
+
+void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  vtkInternals& in = *this->Internals;
+  in.Bricks.Clear(window);
+  in.Reduction.Reset();
+  if (in.TableTexture)
+  {
+    in.TableTexture->ReleaseGraphicsResources(window);
+    in.TableUploaded = false;
+  }
+  in.Drawer.ReleaseGraphicsResources();
+  in.Target.ReleaseGraphicsResources(window);
+  in.SurfaceDrawer.ReleaseGraphicsResources();
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+vtkTypeInt64 vtkHybridOctreeVolumeMapper::GetResidentTextureCount() const
+{
+  return static_cast<vtkTypeInt64>(this->Internals->Bricks.GetNumberOfTextures());
+}
+
+void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "BudgetMB: " << this->BudgetMB << "\n";
+  os << indent << "InteractiveBudgetMB: " << this->InteractiveBudgetMB << "\n";
+  os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
+  os << indent << "UseRoi: " << this->UseRoi << "\n";
+  os << indent << "RoiCenter: (" << this->RoiCenter[0] << ", " << this->RoiCenter[1] << ", "
+     << this->RoiCenter[2] << ")\n";
+  os << indent << "RoiRadius: " << this->RoiRadius << "\n";
+  os << indent << "ShowSurface: " << this->ShowSurface << "\n";
+  os << indent << "Isovalue: " << this->Isovalue << "\n";
+  os << indent << "SurfaceColor: (" << this->SurfaceColor[0] << ", " << this->SurfaceColor[1]
+     << ", " << this->SurfaceColor[2] << ")\n";
+  os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
+  os << indent << "UsePoints: " << this->UsePoints << "\n";
+  os << indent << "PointFactor: " << this->PointFactor << "\n";
+  os << indent << "PointThreshold: " << this->PointThreshold << "\n";
+  os << indent << "PointBudget: " << this->PointBudget << "\n";
+  os << indent << "PointFootprint: " << (this->PointFootprint == 1 ? "Gaussian" : "square") << "\n";
+  os << indent << "LeafSize: " << this->LeafSize << "\n";
+  os << indent << "Component: " << this->Component << "\n";
+  os << indent << "TableSize: " << this->TableSize << "\n";
+  os << indent << "LastBricks: " << this->LastBricks << "\n";
+  os << indent << "LastTextureBytes: " << this->LastTextureBytes << "\n";
+  os << indent << "LastUploadedBytes: " << this->LastUploadedBytes << "\n";
+  os << indent << "LastSlices: " << this->LastSlices << "\n";
+  os << indent << "LastSurfaceTriangles: " << this->LastSurfaceTriangles << "\n";
+  os << indent << "LastPoints: " << this->LastPoints << "\n";
+  os << indent << "LastPointBytes: " << this->LastPointBytes << "\n";
+  os << indent << "LastPlan: " << this->LastPlan << "\n";
+  os << indent << "LastFrameMilliseconds: " << this->LastFrameMilliseconds << "\n";
+  os << indent << "LastEstimatedError: " << this->LastEstimatedError << "\n";
+  os << indent << "LastNaNSamples: " << this->LastNaNSamples << "\n";
+  os << indent << "LastInteractive: " << this->LastInteractive << "\n";
+  os << indent << "LastRenderOK: " << this->LastRenderOK << "\n";
+  os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
+  os << indent << "LastSampleSpacing: " << this->LastSampleSpacing << "\n";
+}

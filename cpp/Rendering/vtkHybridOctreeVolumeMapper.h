@@ -1,0 +1,365 @@
+/**
+ * @class   vtkHybridOctreeVolumeMapper
+ * @brief   Volume mapper that draws the Hybrid Octree's DrawList with OpenGL.
+ *
+ * On Render() the mapper takes its vtkImageData input (point scalars; a
+ * multi-component array needs SetComponent()), builds the Volume Octree
+ * through the Rust core (cached by the scalars' MTime and the image
+ * geometry), selects bricks under BudgetMB and ErrorTolerance, skipping the
+ * nodes over whose range the vtkVolumeProperty's scalar opacity is 0, and
+ * asks the core for the DrawList of the active camera: bricks back to front,
+ * per brick its slice depths back to front.
+ *
+ * Each brick's texels are uploaded once as a 3D R32F texture
+ * (vtkOpenGLHybridOctreeBrickTextures: kept per (node, stride) across frames,
+ * least recently drawn released first, resident bytes within BudgetMB). The
+ * transfer function is a 1D RGBA float table (colour from the
+ * vtkColorTransferFunction or a grey vtkPiecewiseFunction, opacity from the
+ * scalar opacity) of TableSize entries over the scalars' range. An opaque
+ * isosurface is drawn first with depth writes; then the bricks, back to
+ * front, go into a float RGBA target (vtkOpenGLHybridOctreeFloatTarget; the
+ * opaque depth stops them), one draw call each: a brick holding translucent
+ * surface triangles this frame is drawn as its slices clipped to the box of
+ * its visible blocks with the triangles of each slab between them, any
+ * other brick is ray-marched front to back through its visible box on the
+ * same slice lattice z = k d. Opacity is corrected a' = 1 - (1 - a)^(d / d0)
+ * and blended premultiplied (GL_ONE, GL_ONE_MINUS_SRC_ALPHA); the target is
+ * blended once over the window. Every GL state change goes through
+ * vtkOpenGLState and is restored. docs/ARCHITECTURE.md ("The volume
+ * mapper") has the details.
+ *
+ * CompositeOnCPU() runs the Rust CPU compositor on the same DrawList and
+ * table: the reference the OpenGL picture is tested against.
+ *
+ * NaN samples are no data: a sample whose linear filter touches a NaN texel
+ * is NaN and the shader skips it (transparent, as in the CPU compositor);
+ * ranges and the blocks' occupancy leave NaN out. Infinite samples and an
+ * image of NaN only are errors (reported, nothing drawn).
+ *
+ * With UsePoints, the points of the hybrid representation share the budget
+ * and are drawn in the slabs between the slices (see SetUsePoints()).
+ *
+ * Drawn: Composite blending of one scalar component through the colour (RGB
+ * or grey) and scalar opacity functions, unshaded. Settings asking for more
+ * (another blend mode, Shade, a gradient opacity, a 2D transfer function,
+ * cropping, clipping planes, dependent components) are drawn as off and
+ * named in one warning each, given again when the setting changes.
+ *
+ * Interactive frames (the window's desired update rate above
+ * InteractiveUpdateRate, as while the camera is dragged) draw the bricks of
+ * the last still frame's selection, resident, without uploading any (a
+ * selection under InteractiveBudgetMB only when there is none: before the
+ * first still frame, or when its inputs changed), every brick ray-marched;
+ * a translucent surface is drawn brick by brick (each of a brick's
+ * triangles before or after that brick's volume, by the side of it the eye
+ * is on, see vtkOpenGLHybridOctreeSurfaceDrawer) instead of in the slabs, and
+ * points are left out. With AutoAdjustSampleDistances they also composite at a coarser
+ * image sample distance and sample the rays more sparsely, as much as
+ * keeps them within the volume's allocated render time
+ * (vtkHybridOctreeInteractiveReduction). The next still frame draws the
+ * full picture again.
+ */
+#ifndef vtkHybridOctreeVolumeMapper_h
+#define vtkHybridOctreeVolumeMapper_h
+
+#include "HybridOctreeRenderingModule.h" // for export macro
+#include "vtkVolumeMapper.h"
+
+#include <memory> // for std::unique_ptr
+#include <string> // for LastPlan
+#include <vector> // for selection keys
+
+class vtkDataArray;
+class vtkFloatArray;
+class vtkImageData;
+class vtkMatrix4x4;
+class vtkOpenGLCamera;
+class vtkOpenGLRenderWindow;
+class vtkVolumeProperty;
+#ifndef __VTK_WRAP__
+namespace vtkHybridOctreeBridge
+{
+struct CameraDescription;
+struct DrawList;
+struct SelectDescription;
+}
+#endif
+
+class HYBRIDOCTREERENDERING_EXPORT vtkHybridOctreeVolumeMapper : public vtkVolumeMapper
+{
+public:
+  static vtkHybridOctreeVolumeMapper* New();
+  vtkTypeMacro(vtkHybridOctreeVolumeMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Texture budget in MB (10^6 bytes of f32 texels) of a still frame;
+  /// default 64. Resident brick textures never exceed it. 0 is an error at Render().
+  vtkSetClampMacro(BudgetMB, double, 0.0, 1.0e6);
+  vtkGetMacro(BudgetMB, double);
+  ///@}
+
+  ///@{
+  /// Texture budget in MB of an interactive frame (when the render window
+  /// asks for more than InteractiveUpdateRate frames per second, as during
+  /// camera interaction) that cannot draw the last still frame's resident
+  /// textures: before the first still frame, or when an input of the
+  /// selection changed while interacting; default 8. The next still frame
+  /// refines to BudgetMB.
+  vtkSetClampMacro(InteractiveBudgetMB, double, 0.0, 1.0e6);
+  vtkGetMacro(InteractiveBudgetMB, double);
+  ///@}
+
+  ///@{
+  /// Desired update rate (frames per second) above which a frame is
+  /// interactive; default 1 (VTK's still update rate is 0.0001, its
+  /// interactive one 15; ParaView's 0.002 and 5).
+  vtkSetClampMacro(InteractiveUpdateRate, double, 0.0, 1.0e6);
+  vtkGetMacro(InteractiveUpdateRate, double);
+  ///@}
+
+  ///@{
+  /// Whether interactive frames widen their image sample distance and the
+  /// sample spacing along the rays to keep within the volume's allocated
+  /// render time (as vtkGPUVolumeRayCastMapper's AutoAdjustSampleDistances);
+  /// on by default. Off: interactive frames sample as still ones.
+  vtkSetMacro(AutoAdjustSampleDistances, bool);
+  vtkGetMacro(AutoAdjustSampleDistances, bool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, bool);
+  ///@}
+
+  ///@{
+  /// Error tolerance, a fraction of the data range (0..1); default 0.
+  vtkSetClampMacro(ErrorTolerance, double, 0.0, 1.0);
+  vtkGetMacro(ErrorTolerance, double);
+  ///@}
+
+  ///@{
+  /// Region of interest (The Hybrid Octree, section 3.2): bricks near the
+  /// sphere of RoiCenter (world) and RoiRadius (world units) are refined
+  /// first. Off by default.
+  vtkSetMacro(UseRoi, bool);
+  vtkGetMacro(UseRoi, bool);
+  vtkBooleanMacro(UseRoi, bool);
+  vtkSetVector3Macro(RoiCenter, double);
+  vtkGetVector3Macro(RoiCenter, double);
+  vtkSetClampMacro(RoiRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RoiRadius, double);
+  ///@}
+
+  ///@{
+  /// The isosurface drawn with the volume: on with ShowSurface, at Isovalue,
+  /// with SurfaceColor (RGB 0..1) and SurfaceOpacity (1: opaque, drawn
+  /// first with depth; below 1: translucent, sorted into the slabs between
+  /// the slices). Off by default.
+  vtkSetMacro(ShowSurface, bool);
+  vtkGetMacro(ShowSurface, bool);
+  vtkBooleanMacro(ShowSurface, bool);
+  vtkSetMacro(Isovalue, double);
+  vtkGetMacro(Isovalue, double);
+  vtkSetVector3Macro(SurfaceColor, double);
+  vtkGetVector3Macro(SurfaceColor, double);
+  vtkSetClampMacro(SurfaceOpacity, double, 0.0, 1.0);
+  vtkGetMacro(SurfaceOpacity, double);
+  ///@}
+
+  ///@{
+  /**
+   * Points of the hybrid representation (paper 3): with UsePoints on, the
+   * mapper also makes points where textures sampled every PointFactor (2, 4
+   * or 8) samples underestimate the data by more than PointThreshold (a
+   * fraction of the data range), or at the PointBudget largest such errors
+   * when PointBudget > 0. The selection then spends BudgetMB on textures
+   * and points together: a brick of stride PointFactor takes its points
+   * when they remove more error per byte than refining it (6 bytes a point
+   * on grids up to 256 samples per axis, 9 beyond). Points are drawn in the
+   * slabs between their brick's slices, as squares of whole pixels
+   * (PointFootprint 0, default) or Gaussian splats (1), with the opacity
+   * that, over the textures, gives the representation's own averaged over
+   * the point's voxel (see vtkOpenGLHybridOctreeBrickDrawer). Off by default.
+   * Only points where the textures underestimate are made: elsewhere a
+   * point could only add opacity the data does not have.
+   */
+  vtkSetMacro(UsePoints, bool);
+  vtkGetMacro(UsePoints, bool);
+  vtkBooleanMacro(UsePoints, bool);
+  vtkSetClampMacro(PointFactor, int, 2, 8);
+  vtkGetMacro(PointFactor, int);
+  vtkSetClampMacro(PointThreshold, double, 0.0, 1.0);
+  vtkGetMacro(PointThreshold, double);
+  vtkSetClampMacro(PointBudget, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(PointBudget, vtkIdType);
+  vtkSetClampMacro(PointFootprint, int, 0, 1);
+  vtkGetMacro(PointFootprint, int);
+  void SetPointFootprintToSquare() { this->SetPointFootprint(0); }
+  void SetPointFootprintToGaussian() { this->SetPointFootprint(1); }
+  ///@}
+
+  ///@{
+  /// Cells per axis of a leaf brick; default 16.
+  vtkSetClampMacro(LeafSize, int, 2, 128);
+  vtkGetMacro(LeafSize, int);
+  ///@}
+
+  ///@{
+  /// The component of a multi-component scalar array; -1 (default): none,
+  /// allowed only for one-component arrays.
+  vtkSetMacro(Component, int);
+  vtkGetMacro(Component, int);
+  ///@}
+
+  ///@{
+  /// Entries of the transfer function table; default 1024.
+  vtkSetClampMacro(TableSize, int, 2, 65536);
+  vtkGetMacro(TableSize, int);
+  ///@}
+
+  ///@{
+  /// Statistics of the last frame: bricks drawn, bytes of resident brick
+  /// textures and of those uploaded for this frame, slices drawn, surface
+  /// triangles drawn, the passes that ran (comma-joined, e.g.
+  /// "opaque-surface,volume"), wall-clock milliseconds of Render() from the
+  /// end of what was drawn before it to the end of its own drawing (it waits
+  /// for OpenGL with glFinish on both sides), the selection's estimated
+  /// error (the largest nodal error of the bricks the scalar opacity does
+  /// not hide, a fraction of the data range: 0 exactly when every visible
+  /// brick draws the full-resolution field; the number `hybrid-octree
+  /// render` prints), whether the frame was interactive, and whether it
+  /// drew (false after an error).
+  vtkGetMacro(LastBricks, int);
+  vtkGetMacro(LastTextureBytes, vtkTypeInt64);
+  vtkGetMacro(LastUploadedBytes, vtkTypeInt64);
+  vtkGetMacro(LastSlices, vtkTypeInt64);
+  vtkGetMacro(LastSurfaceTriangles, vtkTypeInt64);
+  /// Points drawn in the last frame, and the bytes of the points the selection bought.
+  vtkGetMacro(LastPoints, vtkTypeInt64);
+  vtkGetMacro(LastPointBytes, vtkTypeInt64);
+  const char* GetLastPlan() const { return this->LastPlan.c_str(); }
+  vtkGetMacro(LastFrameMilliseconds, double);
+  vtkGetMacro(LastEstimatedError, double);
+  /// NaN samples (no data: transparent) of the image drawn last.
+  vtkGetMacro(LastNaNSamples, vtkTypeInt64);
+  vtkGetMacro(LastInteractive, bool);
+  vtkGetMacro(LastRenderOK, bool);
+  /// The last frame's image sample distance (pixels per composited texel
+  /// along x and y, 1 at full resolution) and sample spacing factor m (rays
+  /// sampled every max(d, m d0); 1: every slice of the lattice).
+  vtkGetMacro(LastImageSampleDistance, double);
+  vtkGetMacro(LastSampleSpacing, int);
+  ///@}
+
+  /// Textures resident after the last frame (bricks kept for later frames included).
+  vtkTypeInt64 GetResidentTextureCount() const;
+
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  /**
+   * The CPU compositor's picture of the DrawList the mapper draws for `ren`'s
+   * active camera and `vol`'s property (Render() must have succeeded with
+   * them): `width x height` premultiplied RGBA floats, rows from the top,
+   * into `rgba` (4 components). False after a vtkErrorMacro.
+   */
+  bool CompositeOnCPU(vtkRenderer* ren, vtkVolume* vol, int width, int height, vtkFloatArray* rgba);
+
+protected:
+  vtkHybridOctreeVolumeMapper();
+  ~vtkHybridOctreeVolumeMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// Input, octree, transfer function table, selection and surface up to
+  /// date for `ren` and `vol`; false after a vtkErrorMacro.
+  bool Prepare(vtkRenderer* ren, vtkVolume* vol);
+  /// Whether `ren`'s window asks for an interactive frame rate.
+  bool IsInteractive(vtkRenderer* ren) const;
+  /// Whether the selection of the last still frame is up to date (an
+  /// interactive frame draws it when its textures are resident).
+  bool IsStillSelectionCurrent(vtkVolumeProperty* property) const;
+  /// The budget of a frame of `ren`: InteractiveBudgetMB (at most BudgetMB)
+  /// when interactive, else BudgetMB.
+  double FrameBudgetMB(vtkRenderer* ren) const;
+
+  double BudgetMB = 64.0;
+  double InteractiveBudgetMB = 8.0;
+  double InteractiveUpdateRate = 1.0;
+  bool AutoAdjustSampleDistances = true;
+  double ErrorTolerance = 0.0;
+  bool UseRoi = false;
+  double RoiCenter[3] = { 0.0, 0.0, 0.0 };
+  double RoiRadius = 1.0;
+  bool ShowSurface = false;
+  double Isovalue = 0.0;
+  double SurfaceColor[3] = { 1.0, 1.0, 1.0 };
+  double SurfaceOpacity = 1.0;
+  bool UsePoints = false;
+  int PointFactor = 2;
+  double PointThreshold = 0.1;
+  vtkIdType PointBudget = 0;
+  int PointFootprint = 0;
+  int LeafSize = 16;
+  int Component = -1;
+  int TableSize = 1024;
+  int LastBricks = 0;
+  vtkTypeInt64 LastTextureBytes = 0;
+  vtkTypeInt64 LastUploadedBytes = 0;
+  vtkTypeInt64 LastSlices = 0;
+  vtkTypeInt64 LastSurfaceTriangles = 0;
+  vtkTypeInt64 LastPoints = 0;
+  vtkTypeInt64 LastPointBytes = 0;
+  std::string LastPlan;
+  double LastFrameMilliseconds = 0.0;
+  double LastEstimatedError = 0.0;
+  vtkTypeInt64 LastNaNSamples = 0;
+  bool LastInteractive = false;
+  bool LastRenderOK = false;
+  double LastImageSampleDistance = 1.0;
+  int LastSampleSpacing = 1;
+
+private:
+  vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;
+#ifndef __VTK_WRAP__
+  /// The checked input image and its scalars (nullptr after a vtkErrorMacro).
+  vtkDataArray* CheckInput(vtkImageData*& image);
+  bool UpdateOctree(vtkImageData* image, vtkDataArray* scalars);
+  void UpdateModelMatrix(vtkImageData* image, vtkVolume* vol);
+  bool UpdateTransferFunction(vtkVolumeProperty* property);
+  bool UpdatePoints();
+  /// The points' shades for the current transfer function table.
+  bool UpdatePointShades();
+  /// The selection of a still (BudgetMB) or an interactive frame
+  /// (InteractiveBudgetMB) up to date and chosen for this frame.
+  bool UpdateSelection(vtkVolumeProperty* property, bool interactive);
+  /// This frame's selection: the still one when it is current and `ren`
+  /// is interactive, else UpdateSelection()'s.
+  bool ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property);
+  /// What the selection of `budgetMB` is made from, with its cache key.
+  vtkHybridOctreeBridge::SelectDescription DescribeSelection(
+    vtkVolumeProperty* property, double budgetMB, std::vector<double>& key) const;
+  bool UpdateSurface();
+  /// The active camera in the octree's frame (through the inverse model matrix).
+  vtkHybridOctreeBridge::CameraDescription ModelCamera(vtkRenderer* ren) const;
+  bool GetFrameDrawList(vtkRenderer* ren, vtkHybridOctreeBridge::DrawList& list);
+  /// Executes `list`: textures, table, opaque surface, slices and batches;
+  /// interactive: resident textures, bricks ray-marched at `level` of
+  /// vtkHybridOctreeInteractiveReduction, a translucent surface per brick.
+  bool DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera,
+    const vtkHybridOctreeBridge::DrawList& list, bool interactive, int level);
+  /// Draws the translucent triangles between brick i - 1's volume and brick
+  /// i's into the bound float target (vtkOpenGLHybridOctreeSurfaceDrawer::
+  /// GetTrianglesBefore()); returns how many.
+  std::size_t DrawSurfaceBefore(vtkOpenGLRenderWindow* window, std::size_t i);
+  /// The normalized device box (xmin, xmax, ymin, ymax) of the boxes
+  /// `bounds[6i .. 6i+6]` (model coordinates) for the model-to-clip matrix
+  /// `mcdc`; all of it when one reaches behind the eye.
+  void ScreenRegion(vtkMatrix4x4* mcdc, const std::vector<double>& bounds, double region[4]) const;
+  /// Whether the transfer function is more opaque above the isovalue than below it.
+  bool IsInsideOpaque() const;
+#endif
+  void operator=(const vtkHybridOctreeVolumeMapper&) = delete;
+
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

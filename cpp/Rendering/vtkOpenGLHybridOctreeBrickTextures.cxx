@@ -1,0 +1,115 @@
+#include "vtkOpenGLHybridOctreeBrickTextures.h"
+
+#include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
+
+#include <algorithm>
+
+void vtkOpenGLHybridOctreeBrickTextures::BeginFrame(std::size_t limitBytes)
+{
+  ++this->Frame;
+  this->LimitBytes = limitBytes;
+  this->UploadedBytes = 0;
+  // A lower limit (a smaller budget) takes effect at once.
+  this->MakeRoom(0);
+}
+
+bool vtkOpenGLHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
+{
+  while (this->ResidentBytes + incoming > this->LimitBytes)
+  {
+    auto oldest = this->Entries.end();
+    for (auto it = this->Entries.begin(); it != this->Entries.end(); ++it)
+    {
+      if (it->second.LastFrame < this->Frame &&
+        (oldest == this->Entries.end() || it->second.LastFrame < oldest->second.LastFrame))
+      {
+        oldest = it;
+      }
+    }
+    if (oldest == this->Entries.end())
+    {
+      return false;
+    }
+    oldest->second.Texture->ReleaseGraphicsResources(this->Window);
+    this->ResidentBytes -= oldest->second.Bytes;
+    this->Entries.erase(oldest);
+  }
+  return true;
+}
+
+const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTextures::Acquire(
+  vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3], const Fetch& fetch,
+  std::string& error)
+{
+  if (this->Window && this->Window != window)
+  {
+    this->Clear(this->Window);
+  }
+  this->Window = window;
+  auto found = this->Entries.find(key);
+  if (found != this->Entries.end())
+  {
+    found->second.LastFrame = this->Frame;
+    return &found->second;
+  }
+  const std::size_t bytes = 4 * texels[0] * texels[1] * texels[2];
+  if (!this->MakeRoom(bytes))
+  {
+    error = "the bricks of this frame need more than the texture budget of " +
+      std::to_string(this->LimitBytes) + " bytes";
+    return nullptr;
+  }
+  this->Scratch.resize(texels[0] * texels[1] * texels[2]);
+  if (!fetch(this->Scratch.data(), this->Scratch.size()))
+  {
+    return nullptr;
+  }
+  vtkNew<vtkTextureObject> texture;
+  texture->SetContext(window);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(vtkTextureObject::Linear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  if (!texture->Create3DFromRaw(static_cast<unsigned int>(texels[0]),
+        static_cast<unsigned int>(texels[1]), static_cast<unsigned int>(texels[2]), 1, VTK_FLOAT,
+        this->Scratch.data()))
+  {
+    error = "OpenGL could not create a " + std::to_string(texels[0]) + "x" +
+      std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " float 3D texture";
+    return nullptr;
+  }
+  Resident& entry = this->Entries[key];
+  entry.Texture = texture;
+  entry.Occupancy.Measure(this->Scratch, texels);
+  entry.Bytes = bytes;
+  entry.LastFrame = this->Frame;
+  this->ResidentBytes += bytes;
+  this->UploadedBytes += bytes;
+  return &entry;
+}
+
+bool vtkOpenGLHybridOctreeBrickTextures::HoldsAll(
+  const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides) const
+{
+  for (std::size_t i = 0; i < nodes.size() && i < strides.size(); ++i)
+  {
+    if (this->Entries.find({ nodes[i], strides[i] }) == this->Entries.end())
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+void vtkOpenGLHybridOctreeBrickTextures::Clear(vtkWindow* window)
+{
+  for (auto& e : this->Entries)
+  {
+    e.second.Texture->ReleaseGraphicsResources(window);
+  }
+  this->Entries.clear();
+  this->ResidentBytes = 0;
+  this->Window = nullptr;
+}

@@ -1,0 +1,96 @@
+/**
+ * @file   vtkOpenGLHybridOctreeBrickTextures.h
+ * @brief  The resident 3D textures of the selected bricks (private to the module).
+ *
+ * The Hybrid Octree, section 3.2: the texture memory holds the bricks of the
+ * current selection, and a new selection (a moved region of interest, another
+ * budget) loads only the bricks it does not find there. A brick's texture is
+ * identified by its node and texel stride (level p); it stays resident across
+ * frames while the byte limit allows, and the least recently drawn textures
+ * not needed by the current frame are released first, before an upload would
+ * pass the limit. So resident bytes never exceed the limit, as long as one
+ * frame's bricks fit it (which the selection guarantees: they fit its budget).
+ *
+ * Texels are single-channel 32-bit floats (4 bytes each), filtered linearly
+ * and clamped to the edge. With each texture the cache keeps the brick's
+ * block value ranges (vtkHybridOctreeBrickOccupancy), measured at upload.
+ */
+#ifndef vtkOpenGLHybridOctreeBrickTextures_h
+#define vtkOpenGLHybridOctreeBrickTextures_h
+
+#include "vtkHybridOctreeBrickOccupancy.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkWindow;
+
+class vtkOpenGLHybridOctreeBrickTextures
+{
+public:
+  /// (octree node id, texel stride): what a brick's texture holds.
+  using Key = std::pair<std::uint32_t, std::size_t>;
+  /// Writes a brick's texels (x fastest) into the staging buffer it is
+  /// given (`count` floats, the brick's texel count); false and a message in
+  /// the caller's error string on failure.
+  using Fetch = std::function<bool(float* texels, std::size_t count)>;
+
+  /// A resident brick: its texture and block value ranges.
+  struct Resident
+  {
+    vtkSmartPointer<vtkTextureObject> Texture;
+    vtkHybridOctreeBrickOccupancy Occupancy;
+    std::size_t Bytes = 0;
+    std::uint64_t LastFrame = 0;
+  };
+
+  /// Starts a frame whose textures may occupy at most `limitBytes`.
+  void BeginFrame(std::size_t limitBytes);
+
+  /**
+   * The texture of brick `key` (`texels` per axis) for this frame: the
+   * resident one, or a new one filled from `fetch`, after releasing least
+   * recently drawn textures of earlier frames as needed to stay within the
+   * limit. nullptr and `error` when the upload fails or this frame's textures
+   * alone would pass the limit.
+   */
+  const Resident* Acquire(vtkOpenGLRenderWindow* window, const Key& key,
+    const std::size_t texels[3], const Fetch& fetch, std::string& error);
+
+  /// Whether the bricks (`nodes[i]`, `strides[i]`) are all resident.
+  bool HoldsAll(
+    const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides) const;
+
+  /// Bytes of all resident textures.
+  std::size_t GetResidentBytes() const { return this->ResidentBytes; }
+  /// Bytes uploaded since BeginFrame().
+  std::size_t GetUploadedBytes() const { return this->UploadedBytes; }
+  /// Resident textures.
+  std::size_t GetNumberOfTextures() const { return this->Entries.size(); }
+
+  /// Releases every texture (a new octree, or the context going away).
+  void Clear(vtkWindow* window);
+
+private:
+  /// Releases textures not drawn in this frame, least recently drawn first,
+  /// until `incoming` more bytes fit the limit; false when they cannot.
+  bool MakeRoom(std::size_t incoming);
+
+  std::map<Key, Resident> Entries;
+  std::size_t ResidentBytes = 0;
+  std::size_t UploadedBytes = 0;
+  std::size_t LimitBytes = 0;
+  std::uint64_t Frame = 0;
+  vtkWindow* Window = nullptr;
+  std::vector<float> Scratch;
+};
+
+#endif
