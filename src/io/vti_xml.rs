@@ -34,7 +34,7 @@
 //! raw binary, which is not XML. How array bytes are laid out is described in
 //! [`super::vti_data`].
 
-use crate::limits::{excerpt, excerpt_bytes};
+use crate::base::limits::{excerpt, excerpt_bytes};
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 

@@ -45,7 +45,7 @@ mod estimate;
 
 pub use estimate::estimated_error;
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
 use std::cmp::Ordering;
@@ -642,8 +642,8 @@ pub fn uniform(octree: &VolumeOctree, stride: usize, bytes_per_texel: usize) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate, Dataset};
-    use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
 
     fn octree(size: usize) -> VolumeOctree {
@@ -736,7 +736,7 @@ mod tests {
         let n = 33;
         let mut data = vec![0.0f32; n * n * n];
         data[16 + n * (8 + n * 8)] = 1.0; // on the face x = 16 between the leaves [0, 16] and [16, 32]
-        let grid = crate::grid::Grid::scalar(crate::grid::Samples::F32(&data), [n; 3]).unwrap();
+        let grid = crate::data::grid::Grid::scalar(crate::data::grid::Samples::F32(&data), [n; 3]).unwrap();
         let o = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 16 }).unwrap();
         let left = o.layout().id(1, [0, 0, 0]);
         let node = o.node(left);

@@ -33,11 +33,11 @@
 //! scaled to sum to `s^2` pixels of full coverage.
 
 use super::set::PointSet;
-use crate::camera::{Camera, Projection};
-use crate::error::{Error, Result};
-use crate::grid::GridShape;
+use crate::base::error::{Error, Result};
+use crate::data::grid::GridShape;
+use crate::geometry::camera::{Camera, Projection};
+use crate::geometry::vec3::{dot, sub};
 use crate::plan::{DrawList, PointBucket};
-use crate::vec3::{dot, sub};
 use rayon::prelude::*;
 
 /// The footprint a point is drawn with.

@@ -35,8 +35,8 @@
 
 use super::draw::{point_colour, point_opacity};
 use super::set::PointSet;
-use crate::error::{Error, Result};
-use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::base::error::{Error, Result};
+use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::transfer::lut::Lut;
 use crate::transfer::TransferFunction;
 use rayon::prelude::*;
@@ -187,7 +187,7 @@ fn sub_cube_values<T: Sample>(g: &TypedGrid<'_, T>, c: [usize; 3], s: usize) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::{GridShape, Samples};
+    use crate::data::grid::{GridShape, Samples};
     use crate::points::draw::point_opacity;
     use crate::points::{generate, PointOptions, PointSelect};
 

@@ -65,16 +65,16 @@ use super::image::Image;
 use super::sample::to_index;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
-use crate::camera::Ray;
-use crate::error::Result;
-use crate::grid::{Grid, GridShape};
+use crate::base::error::Result;
+use crate::data::grid::{Grid, GridShape};
+use crate::geometry::camera::Ray;
+use crate::geometry::vec3::dot;
 use crate::plan::{BrickDraw, DrawList};
 use crate::points::draw::{footprint, project, Footprint};
 use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
 use crate::transfer::lut::Lut;
 use crate::transfer::TransferFunction;
-use crate::vec3::dot;
 use rayon::prelude::*;
 
 /// Early ray termination: a pixel whose accumulated opacity reaches this

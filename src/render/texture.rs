@@ -19,8 +19,8 @@
 //! only them, never the grid.
 
 use super::check::check_bricks;
-use crate::error::{Error, Result};
-use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
+use crate::base::error::{Error, Result};
+use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear::lerp;
 use crate::plan::select::Brick;
 use crate::plan::DrawList;
@@ -247,7 +247,7 @@ impl GridVisitor for Upload<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::{Grid, Samples};
+    use crate::data::grid::{Grid, Samples};
     use crate::octree::trilinear;
     use crate::render::sample::trilinear as grid_trilinear;
 
@@ -307,7 +307,7 @@ mod tests {
     /// of values that are not f32s as f64.
     #[test]
     fn storage_is_exact() {
-        use crate::camera::Camera;
+        use crate::geometry::camera::Camera;
         use crate::plan::{BrickDraw, DrawList, Plan, SurfacePass};
         let list = |b: Brick| DrawList {
             plan: Plan {

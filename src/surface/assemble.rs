@@ -15,7 +15,7 @@ use super::earclip::EarClipper;
 use super::faces::NodeFaces;
 use super::straight::{vertex_flags, TURNS, USED};
 use super::table::plane_normals;
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use crate::octree::NodeId;
 use rayon::prelude::*;
 

@@ -4,15 +4,15 @@
 //! On a closed surface every edge is used by exactly two polygons, once in
 //! each direction. An edge used once lies where the surface leaves the volume
 //! (a boundary edge); more than twice, or twice in the same direction, is a
-//! defect. NaN is no data (see [`crate::grid`]): cells with a NaN corner have
+//! defect. NaN is no data (see [`crate::data::grid`]): cells with a NaN corner have
 //! no facets, so the surface is also open along them. A surface is watertight
 //! when its only edges used once are [`boundary_edges`] plus
 //! [`nan_boundary_edges`].
 
 use super::extract::midpoint2;
 use super::mesh::Surface;
-use crate::grid::Grid;
-use crate::vec3::{cross, sub};
+use crate::data::grid::Grid;
+use crate::geometry::vec3::{cross, sub};
 
 /// How the edges of a surface are used.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -15,7 +15,7 @@
 
 use super::extract::edge_of_key;
 use super::mesh::{Surface, SurfaceMode};
-use crate::grid::{Sample, TypedGrid};
+use crate::data::grid::{Sample, TypedGrid};
 use rayon::prelude::*;
 
 /// Places vertices of one grid at one isovalue.
