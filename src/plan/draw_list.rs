@@ -69,7 +69,7 @@ pub struct BrickDraw {
     /// Surface batches (translucent surfaces only), back to front.
     pub batches: Vec<Batch>,
     /// Points of the hybrid representation in the brick, by slab, back to
-    /// front (empty without points; see [`crate::points::draw`]).
+    /// front (empty without points; see [`crate::plan::point_slabs`]).
     pub points: Vec<PointBucket>,
 }
 

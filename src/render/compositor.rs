@@ -50,7 +50,8 @@
 //! within the batch's clip range `near <= depth < far`, are blended after
 //! slices `0 .. s` and before slice `s` (slab `n` after the last), back to
 //! front; walked in reverse like the slices.
-//! Points of the hybrid representation ([`crate::points::draw`]): each
+//! Points of the hybrid representation (bucketed by
+//! [`crate::plan::point_slabs`], drawn by [`crate::points::footprint`]): each
 //! point of slab `s` of a brick is splatted onto the pixels of its footprint
 //! before the frame, and blended in that slab like a batch hit (after slices
 //! `0 .. s`, before slice `s`), nearest last within the slab; a pixel whose
@@ -70,7 +71,7 @@ use crate::data::grid::{Grid, GridShape};
 use crate::geometry::camera::Ray;
 use crate::geometry::vec3::dot;
 use crate::plan::{BrickDraw, DrawList};
-use crate::points::draw::{footprint, project, Footprint};
+use crate::points::footprint::{footprint, project, Footprint};
 use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
 use crate::transfer::lut::Lut;
@@ -288,7 +289,7 @@ struct Splats {
 }
 
 /// Splats every point `list` draws (see the module documentation and
-/// [`crate::points::draw`]), in list order, so the table does not depend on threads.
+/// [`crate::plan::point_slabs`]), in list order, so the table does not depend on threads.
 fn splat(
     list: &DrawList,
     shape: &GridShape,
