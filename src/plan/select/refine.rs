@@ -63,6 +63,45 @@ fn select_impl(
     visible: &dyn Fn(f64, f64) -> bool,
     points: Option<&PointMass>,
 ) -> Result<Selection> {
+    check_options(options)?;
+    let root = octree.node(octree.root());
+    if !visible(root.min, root.max) {
+        return Ok(Selection {
+            bricks: Vec::new(),
+            texture_bytes: 0,
+            point_bytes: 0,
+            budget_bytes: options.budget_bytes,
+            max_error: 0.0,
+            estimated_error: 0.0,
+            skipped: 1,
+            warning: None,
+        });
+    }
+    let refiner = Refiner {
+        octree,
+        options,
+        visible,
+        points,
+        root_log2: octree.layout().root_log2 as usize,
+        memo: Memo::default(),
+    };
+    let coarsest = refiner.brick_of(root.id, 0);
+    let mut warning = None;
+    if coarsest.bytes > options.budget_bytes {
+        warning = Some(format!(
+            "the budget of {} bytes is below the coarsest representation ({} bytes): drawing that anyway; \
+             raise the budget for any refinement",
+            options.budget_bytes, coarsest.bytes
+        ));
+    }
+    let (cut, skipped) = refiner.best_cut(&root, coarsest);
+    Ok(refiner.selection(cut.into_values().collect(), skipped, warning))
+}
+
+/// The options' own errors: a budget of 0 bytes, a tolerance that is not a
+/// number `>= 0`, a region of interest without a finite centre and a radius
+/// `> 0`, 0 bytes per texel.
+fn check_options(options: &SelectOptions) -> Result<()> {
     if options.budget_bytes == 0 {
         return Err(Error::InvalidArgument(
             "the texture budget is 0 bytes: give a budget of at least a few kilobytes".into(),
@@ -85,67 +124,139 @@ fn select_impl(
     if options.bytes_per_texel == 0 {
         return Err(Error::InvalidArgument("bytes per texel must be at least 1".into()));
     }
-    let l = octree.layout().root_log2 as usize;
-    let max_p = |n: &NodeRef<'_>| (l - n.level).min(options.max_brick_log2 as usize);
-    let weighted = |b: &Brick| b.importance * b.error as f64;
+    Ok(())
+}
 
-    let brick_of = |id: NodeId, p: usize| {
-        let n = octree.node(id);
-        make_brick(octree, &n, p, importance(options.roi.as_ref(), n.lo, n.hi), options.bytes_per_texel)
-    };
-    // The best next step of a brick in the cut, if it still violates the tolerance.
-    // The error mass of a brick: Imp(n) Q_p(n), its squared error summed over its samples.
-    // With points taken, the squared error they correct is gone.
-    let removed = |b: &Brick| match points {
-        Some(pm) if b.point_count > 0 => pm.in_box(b.lo, b.hi).2,
-        _ => 0.0,
-    };
-    let mass = |b: &Brick| b.importance * error_mass(&octree.node(b.node), b.p, removed(b));
-    // Bytes a brick holds: its texture and its points.
-    let cost = |b: &Brick| b.bytes + b.point_bytes;
-    let memo = Memo::default();
-    let next_step = |b: &Brick| -> Option<(Step, Vec<Brick>, usize)> {
-        if weighted(b) <= options.tolerance || b.error == 0.0 {
+/// A cut being refined: node id to its brick.
+type Cut = std::collections::BTreeMap<NodeId, Brick>;
+
+/// A candidate step: its gain, the bricks that replace the brick, and the
+/// transparent nodes they leave out.
+type Candidate = (f64, Vec<Brick>, usize);
+
+/// One selection: its inputs and the memo of [`cheapest`] forms, shared by
+/// every step.
+struct Refiner<'a> {
+    octree: &'a VolumeOctree,
+    options: &'a SelectOptions,
+    visible: &'a dyn Fn(f64, f64) -> bool,
+    points: Option<&'a PointMass>,
+    /// `L`: the root's level count, `log2` of the root's size.
+    root_log2: usize,
+    memo: Memo,
+}
+
+impl Refiner<'_> {
+    /// The finest level of node `n`: full resolution, or the largest brick.
+    fn max_p(&self, n: &NodeRef<'_>) -> usize {
+        (self.root_log2 - n.level).min(self.options.max_brick_log2 as usize)
+    }
+
+    /// The weighted error `Imp(n) e_p(n)` the tolerance is compared with.
+    fn weighted(b: &Brick) -> f64 {
+        b.importance * b.error as f64
+    }
+
+    /// Node `id` drawn at level `p`, with its importance.
+    fn brick_of(&self, id: NodeId, p: usize) -> Brick {
+        let n = self.octree.node(id);
+        make_brick(self.octree, &n, p, importance(self.options.roi.as_ref(), n.lo, n.hi), self.options.bytes_per_texel)
+    }
+
+    /// The squared error the points a brick took correct (0 without points).
+    fn removed(&self, b: &Brick) -> f64 {
+        match self.points {
+            Some(pm) if b.point_count > 0 => pm.in_box(b.lo, b.hi).2,
+            _ => 0.0,
+        }
+    }
+
+    /// The error mass of a brick: `Imp(n) mass(n, p)` ([`error_mass`]), its
+    /// squared error summed over its samples, less what its points correct.
+    fn mass(&self, b: &Brick) -> f64 {
+        b.importance * error_mass(&self.octree.node(b.node), b.p, self.removed(b))
+    }
+
+    /// Bytes a brick holds: its texture and its points.
+    fn cost(b: &Brick) -> usize {
+        b.bytes + b.point_bytes
+    }
+
+    /// [`cheapest`] form of node `n` at level `p` in this selection.
+    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> (Vec<Brick>, usize) {
+        cheapest(self.octree, n, p, &|id, p| self.brick_of(id, p), &|n| self.max_p(n), &self.visible, &self.memo)
+    }
+
+    /// The best next step of a brick in the cut, if it still violates the
+    /// tolerance: the best of [`Refiner::raise`], [`Refiner::split`] and
+    /// [`Refiner::take_points`], if it removes any error.
+    fn next_step(&self, b: &Brick) -> Option<(Step, Vec<Brick>, usize)> {
+        if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
-        let n = octree.node(b.node);
-        // Raise p to the level q in (p, max] that removes the most error mass
-        // per byte: the same box, 2^(q-p) times the texels per axis. (Looking
-        // past p + 1 matters: across a sharp edge e_p stays near its maximum
-        // until full resolution, so one level alone may buy nothing.)
-        let raise = (b.p + 1..=max_p(&n))
+        let n = self.octree.node(b.node);
+        let raise = self.raise(b, &n);
+        let split = self.split(b, &n);
+        let take_points = self.take_points(b);
+        let better = |x: Option<Candidate>, y: Option<Candidate>| match (x, y) {
+            (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
+            (r, s) => r.or(s),
+        };
+        let best = better(better(raise, split), take_points);
+        best.filter(|s| s.0 > 0.0)
+            .map(|(gain, bricks, hidden)| (Step { gain, node: b.node, p: b.p, points: b.point_count }, bricks, hidden))
+    }
+
+    /// Raise `p` to the level `q` in `(p, max]` that removes the most error
+    /// mass per byte: the same box, `2^(q-p)` times the texels per axis.
+    /// (Looking past `p + 1` matters: across a sharp edge `e_p` stays near its
+    /// maximum until full resolution, so one level alone may buy nothing.)
+    fn raise(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+        (b.p + 1..=self.max_p(n))
             .map(|q| {
-                let (up, hidden) = cheapest(octree, &n, q, &brick_of, &max_p, &visible, &memo);
-                let (up_bytes, up_mass) = (up.iter().map(|u| u.bytes).sum::<usize>(), up.iter().map(mass).sum::<f64>());
-                (gain(mass(b) - up_mass, up_bytes as f64 - cost(b) as f64), up, hidden)
+                let (up, hidden) = self.cheapest(n, q);
+                let (up_bytes, up_mass) =
+                    (up.iter().map(|u| u.bytes).sum::<usize>(), up.iter().map(|u| self.mass(u)).sum::<f64>());
+                (gain(self.mass(b) - up_mass, up_bytes as f64 - Self::cost(b) as f64), up, hidden)
             })
-            .max_by(|x, y| x.0.total_cmp(&y.0));
-        // Split: the children at the same stride (p - 1), each in its
-        // cheapest form (see `cheapest`), which pays a little border and lets
-        // each child refine on its own.
-        //
-        // A split at the same stride removes no error by itself unless parts
-        // of the node drop out; it pays off through the raises of single
-        // children it allows, when raising the whole node does not fit. So it
-        // is ranked by the better of its own gain and its best one-step
-        // lookahead: the split followed by the best raise of one child,
-        // `(removed by both) / (bytes of both)`.
-        let split = (!n.is_terminal() && b.p > 0).then(|| {
-            let (children, hidden, added) =
-                children_forms(octree, &n, b.p, usize::MAX, &brick_of, &max_p, &visible, &memo);
-            let after: f64 = children.iter().map(mass).sum();
-            let split_bytes = added as f64 - cost(b) as f64;
-            let direct = gain(mass(b) - after, split_bytes);
+            .max_by(|x, y| x.0.total_cmp(&y.0))
+    }
+
+    /// Split: the children at the same stride (`p - 1`), each in its
+    /// [`cheapest`] form, which pays a little border and lets each child
+    /// refine on its own.
+    ///
+    /// A split at the same stride removes no error by itself unless parts
+    /// of the node drop out; it pays off through the raises of single
+    /// children it allows, when raising the whole node does not fit. So it
+    /// is ranked by the better of its own gain and its best one-step
+    /// lookahead: the split followed by the best raise of one child,
+    /// `(removed by both) / (bytes of both)`.
+    fn split(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+        (!n.is_terminal() && b.p > 0).then(|| {
+            let (children, hidden, added) = children_forms(
+                self.octree,
+                n,
+                b.p,
+                usize::MAX,
+                &|id, p| self.brick_of(id, p),
+                &|n| self.max_p(n),
+                &self.visible,
+                &self.memo,
+            );
+            let after: f64 = children.iter().map(|c| self.mass(c)).sum();
+            let split_bytes = added as f64 - Self::cost(b) as f64;
+            let direct = gain(self.mass(b) - after, split_bytes);
             let ahead = children
                 .iter()
                 .flat_map(|c| {
-                    let cn = octree.node(c.node);
-                    (c.p + 1..=max_p(&cn)).map(move |q| (c, cn, q))
+                    let cn = self.octree.node(c.node);
+                    (c.p + 1..=self.max_p(&cn)).map(move |q| (c, cn, q))
                 })
                 .map(|(c, cn, q)| {
-                    let (up, _) = cheapest(octree, &cn, q, &brick_of, &max_p, &visible, &memo);
-                    let up_bytes = up.iter().map(|u| u.bytes).sum::<usize>() as f64 - cost(c) as f64;
-                    let removed = mass(b) - after + mass(c) - up.iter().map(mass).sum::<f64>();
+                    let (up, _) = self.cheapest(&cn, q);
+                    let up_bytes = up.iter().map(|u| u.bytes).sum::<usize>() as f64 - Self::cost(c) as f64;
+                    let removed = self.mass(b) - after + self.mass(c) - up.iter().map(|u| self.mass(u)).sum::<f64>();
                     if removed > 0.0 {
                         removed / (split_bytes + up_bytes).max(1.0)
                     } else {
@@ -154,35 +265,32 @@ fn select_impl(
                 })
                 .fold(0.0, f64::max);
             (direct.max(ahead), children, hidden)
-        });
-        // Take the brick's points: their removable squared error for their bytes.
-        let take_points = points.filter(|pm| b.stride == pm.factor && b.point_count == 0).and_then(|pm| {
+        })
+    }
+
+    /// Take the brick's points (a brick at the points' stride that has none
+    /// yet): their removable squared error for their bytes.
+    fn take_points(&self, b: &Brick) -> Option<Candidate> {
+        self.points.filter(|pm| b.stride == pm.factor && b.point_count == 0).and_then(|pm| {
             let (count, _, removable) = pm.in_box(b.lo, b.hi);
             let bytes = count * pm.point_bytes;
             (count > 0 && removable > 0.0).then(|| {
                 let with = Brick { point_count: count, point_bytes: bytes, ..*b };
-                (gain(mass(b) - mass(&with), bytes as f64), vec![with], 0)
+                (gain(self.mass(b) - self.mass(&with), bytes as f64), vec![with], 0)
             })
-        });
-        let better = |x: Option<(f64, Vec<Brick>, usize)>, y: Option<(f64, Vec<Brick>, usize)>| match (x, y) {
-            (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
-            (r, s) => r.or(s),
-        };
-        let best = better(better(raise, split), take_points);
-        best.filter(|s| s.0 > 0.0)
-            .map(|(gain, bricks, hidden)| (Step { gain, node: b.node, p: b.p, points: b.point_count }, bricks, hidden))
-    };
+        })
+    }
 
-    // Greedy refinement of a starting cut (its bricks, its transparent nodes)
-    // until nothing fits: the cut, its bytes, its transparent nodes.
-    let grow = |start: Vec<Brick>, mut skipped: usize| {
-        let mut cut: std::collections::BTreeMap<NodeId, Brick> = std::collections::BTreeMap::new();
+    /// Greedy refinement of a starting cut (its bricks, its transparent
+    /// nodes) until nothing fits: the cut, its bytes, its transparent nodes.
+    fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Cut, usize, usize) {
+        let mut cut = Cut::new();
         let mut bytes = 0usize;
         let mut queue = BinaryHeap::new();
         for b in start {
-            bytes += cost(&b);
+            bytes += Self::cost(&b);
             cut.insert(b.node, b);
-            if let Some((s, _, _)) = next_step(&b) {
+            if let Some((s, _, _)) = self.next_step(&b) {
                 queue.push(s);
             }
         }
@@ -191,86 +299,74 @@ fn select_impl(
             if current.p != step.p || step.points != current.point_count {
                 continue; // stale
             }
-            let Some((_, replacement, hidden)) = next_step(&current) else { continue };
-            let added: usize = replacement.iter().map(cost).sum();
-            if bytes - cost(&current) + added > options.budget_bytes {
+            let Some((_, replacement, hidden)) = self.next_step(&current) else { continue };
+            let added: usize = replacement.iter().map(Self::cost).sum();
+            if bytes - Self::cost(&current) + added > self.options.budget_bytes {
                 continue; // does not fit; cheaper steps of other nodes may
             }
-            bytes = bytes - cost(&current) + added;
+            bytes = bytes - Self::cost(&current) + added;
             cut.remove(&step.node);
             skipped += hidden;
             for r in replacement {
                 cut.insert(r.node, r);
-                if let Some((s, _, _)) = next_step(&r) {
+                if let Some((s, _, _)) = self.next_step(&r) {
                     queue.push(s);
                 }
             }
         }
         (cut, bytes, skipped)
-    };
+    }
 
-    let root = octree.node(octree.root());
-    if !visible(root.min, root.max) {
-        return Ok(Selection {
-            bricks: Vec::new(),
-            texture_bytes: 0,
-            point_bytes: 0,
-            budget_bytes: options.budget_bytes,
-            max_error: 0.0,
-            estimated_error: 0.0,
-            skipped: 1,
-            warning: None,
+    /// Two starts, the better (smaller error mass) wins unless the first
+    /// meets the tolerance: the root at `p = 0` (`coarsest`), and the root at
+    /// the finest level whose cheapest form fits the budget (a greedy that
+    /// starts coarse spends early bytes on what is cheap to fix and may miss
+    /// a fine uniform level that fits; on data with detail everywhere that
+    /// level is the better cut). A start from the root that meets the
+    /// tolerance needs no other (it spends the fewest bytes). Returns the cut
+    /// and its transparent nodes.
+    fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Cut, usize) {
+        let from_root = self.grow(vec![coarsest], 0);
+        let fine = (1..=self.max_p(root)).rev().find_map(|p| {
+            let (bricks, hidden) = self.cheapest(root, p);
+            (bricks.iter().map(|b| b.bytes).sum::<usize>() <= self.options.budget_bytes).then_some((bricks, hidden))
         });
+        let total_mass = |cut: &Cut| cut.values().map(|b| self.mass(b)).sum::<f64>();
+        let meets = from_root.0.values().all(|b| Self::weighted(b) <= self.options.tolerance);
+        let other = if meets { None } else { fine.map(|(bricks, hidden)| self.grow(bricks, hidden)) };
+        let (cut, _, skipped) = match other {
+            Some(other) if total_mass(&other.0) < total_mass(&from_root.0) => other,
+            _ => from_root,
+        };
+        (cut, skipped)
     }
-    let coarsest = brick_of(root.id, 0);
-    let mut warning = None;
-    if coarsest.bytes > options.budget_bytes {
-        warning = Some(format!(
-            "the budget of {} bytes is below the coarsest representation ({} bytes): drawing that anyway; \
-             raise the budget for any refinement",
-            options.budget_bytes, coarsest.bytes
-        ));
+
+    /// The selection of `bricks`: its bytes, its largest weighted error (a
+    /// warning when above the tolerance, unless `warning` is set already) and
+    /// its [`estimated_error`].
+    fn selection(&self, bricks: Vec<Brick>, skipped: usize, mut warning: Option<String>) -> Selection {
+        let max_error = bricks.iter().map(Self::weighted).fold(0.0, f64::max);
+        if warning.is_none() && max_error > self.options.tolerance {
+            warning = Some(format!(
+                "the budget of {} bytes reaches a largest error of {:.4} of the data range, above the tolerance {}: \
+                 raise the budget to reach it",
+                self.options.budget_bytes, max_error, self.options.tolerance
+            ));
+        }
+        let texture_bytes = bricks.iter().map(|b| b.bytes).sum();
+        let point_bytes = bricks.iter().map(|b| b.point_bytes).sum();
+        let estimated_error = estimated_error(self.octree, &bricks, self.visible);
+        Selection {
+            bricks,
+            texture_bytes,
+            point_bytes,
+            budget_bytes: self.options.budget_bytes,
+            max_error,
+            estimated_error,
+            skipped,
+            warning,
+        }
     }
-    // Two starts, the better (smaller error mass) wins unless the first meets the tolerance: the root at p = 0,
-    // and the root at the finest level whose cheapest form fits the budget
-    // (a greedy that starts coarse spends early bytes on what is cheap to
-    // fix and may miss a fine uniform level that fits; on data with detail
-    // everywhere that level is the better cut).
-    let from_root = grow(vec![coarsest], 0);
-    let fine = (1..=max_p(&root)).rev().find_map(|p| {
-        let (bricks, hidden) = cheapest(octree, &root, p, &brick_of, &max_p, &visible, &memo);
-        (bricks.iter().map(|b| b.bytes).sum::<usize>() <= options.budget_bytes).then_some((bricks, hidden))
-    });
-    let total_mass = |cut: &std::collections::BTreeMap<NodeId, Brick>| cut.values().map(mass).sum::<f64>();
-    // A start from the root that meets the tolerance needs no other (it spends the fewest bytes).
-    let meets = from_root.0.values().all(|b| weighted(b) <= options.tolerance);
-    let other = if meets { None } else { fine.map(|(bricks, hidden)| grow(bricks, hidden)) };
-    let (cut, _, skipped) = match other {
-        Some(other) if total_mass(&other.0) < total_mass(&from_root.0) => other,
-        _ => from_root,
-    };
-    let bricks: Vec<Brick> = cut.into_values().collect();
-    let max_error = bricks.iter().map(weighted).fold(0.0, f64::max);
-    if warning.is_none() && max_error > options.tolerance {
-        warning = Some(format!(
-            "the budget of {} bytes reaches a largest error of {:.4} of the data range, above the tolerance {}: \
-             raise the budget to reach it",
-            options.budget_bytes, max_error, options.tolerance
-        ));
-    }
-    let texture_bytes = bricks.iter().map(|b| b.bytes).sum();
-    let point_bytes = bricks.iter().map(|b| b.point_bytes).sum();
-    let estimated_error = estimated_error(octree, &bricks, visible);
-    Ok(Selection {
-        bricks,
-        texture_bytes,
-        point_bytes,
-        budget_bytes: options.budget_bytes,
-        max_error,
-        estimated_error,
-        skipped,
-        warning,
-    })
 }
 
 /// Every brick of `selection` whose stride is the points' factor takes all
