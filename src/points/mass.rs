@@ -6,7 +6,7 @@
 //! `Q_p(n) = sum over the node's samples of (f - T_p)^2 / range^2`. Points
 //! complete T_f, so a brick of stride `f` that takes its points removes the
 //! squared error of those it can correct. A point drawn with its voxel-mean
-//! shade ([`super::shade`]) adds back `m`, the mean of `e = f - T_f` over its
+//! shade ([`super::shade()`]) adds back `m`, the mean of `e = f - T_f` over its
 //! voxel, so of the voxel's squared error `sum e_i^2` it leaves
 //! `sum (e_i - m)^2`: it removes one sample's worth of `m^2` (points only
 //! add opacity, so only `m > 0` counts):

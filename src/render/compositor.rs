@@ -30,7 +30,7 @@
 //!
 //! (the same line as `((p(z) - origin) / spacing - lo) / stride`, up to
 //! rounding: a few ulps of the brick's texel coordinates). Each
-//! sample is classified (through [`crate::transfer::lut`], within 1e-6 of the transfer
+//! sample is classified (through `crate::transfer::lut`, within 1e-6 of the transfer
 //! function), corrected for the brick's slice spacing `d` against
 //! `d0 = DrawList::reference_spacing` and blended. The DrawList's order is
 //! back to front (`over`); the compositor walks the same sequence reversed,
@@ -146,7 +146,7 @@ pub fn composite_textures(
 
 /// [`composite_textures`] with the points of the hybrid representation that
 /// `list` buckets ([`crate::points::add_points`]), each adding its shade
-/// ([`crate::points::shade`], one per point of the set), drawn with `footprint`.
+/// ([`crate::points::shade()`], one per point of the set), drawn with `footprint`.
 ///
 /// # Errors
 ///

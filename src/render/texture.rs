@@ -6,8 +6,8 @@
 //! `min(lo + (i, j, k) stride, hi)` (see [`crate::plan::select::Brick::texel_positions`]).
 //! The copy is `f32` when every copied value is exactly an `f32` (all `u8`,
 //! `i8`, `u16`, `i16` and `f32` grids), else `f64`: either way it holds the
-//! grid's values exactly, and [`Texture::value`] reconstructs T_p bit for bit
-//! (the trilinear formula and evaluation order of [`super::sample`]):
+//! grid's values exactly, and `Texture::value` reconstructs T_p bit for bit
+//! (the trilinear formula and evaluation order of `render::sample`):
 //!
 //! ```text
 //! u = (x - lo) / stride,  clamped to [0, n - 1];  i0 = floor(u), i1 = min(i0 + 1, n - 1), t = u - i0

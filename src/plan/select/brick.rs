@@ -66,7 +66,7 @@ pub struct Brick {
     pub error: f32,
     /// Imp(n).
     pub importance: f64,
-    /// Points of the hybrid representation the brick draws (0: none; see [`select_with_points`]).
+    /// Points of the hybrid representation the brick draws (0: none; see [`super::select_with_points`]).
     pub point_count: usize,
     /// Their bytes.
     pub point_bytes: usize,
@@ -97,7 +97,7 @@ pub struct Selection {
     /// Largest weighted error Imp(n) e_p(n) of the bricks: what the
     /// tolerance is compared with.
     pub max_error: f64,
-    /// The estimated error of the picture ([`estimated_error`]): the largest
+    /// The estimated error of the picture ([`super::estimated_error`]): the largest
     /// e_p(n) of the bricks visible under the transfer function, 0 when they
     /// all draw the full-resolution field. What the CLI, the bridge and the
     /// volume mapper report.

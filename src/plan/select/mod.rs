@@ -21,7 +21,7 @@
 //! `Imp(n) max(Q_p(n), e_p(n)^2)`: `Q_p` is the node's squared error at
 //! level `p` summed over its samples (stored by the build, see
 //! [`crate::octree`]), `e_p(n)^2` that of its worst sample (see
-//! [`error_mass`]). The max `e_p` says how wrong the worst sample is, `Q_p`
+//! `error_mass`). The max `e_p` says how wrong the worst sample is, `Q_p`
 //! how much of the picture is wrong, and a node crossed by one sharp edge
 //! keeps its max near the top at every level but the finest while its sum
 //! drops with every level. Each node offers the better of:

@@ -14,7 +14,7 @@ use crate::octree::VolumeOctree;
 /// ```
 ///
 /// samples, the last one clamped to the grid's last sample (as
-/// [`Brick::texel_positions`]). Its reconstruction equals every node's T_p at
+/// [`Brick::texel_positions`](super::Brick::texel_positions)). Its reconstruction equals every node's T_p at
 /// that stride, so the picture is that of all terminal nodes at one stride,
 /// without their shared borders' bytes. No transfer function is given: its
 /// [`estimated_error`] takes the volume as visible.
