@@ -63,12 +63,12 @@
 //! O(batches); no triangle is read or copied (a batch names its triangles by
 //! a range of surface polygon ids).
 
-use crate::camera::Camera;
-use crate::grid::GridShape;
+use crate::data::grid::GridShape;
+use crate::geometry::camera::Camera;
+use crate::geometry::vec3::{dot, sub};
 use crate::octree::{NodeId, VolumeOctree};
 use crate::plan::select::Selection;
 use crate::surface::Surface;
-use crate::vec3::{dot, sub};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -321,12 +321,12 @@ pub fn assign_batches(camera: &Camera, slices: &[f64], batches: &[PolygonBatch])
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate, Dataset};
-    use crate::grid::ScalarType;
+    use crate::geometry::vec3::cross;
     use crate::octree::BuildOptions;
     use crate::plan::select::{select, SelectOptions};
     use crate::surface::SurfaceOptions;
-    use crate::vec3::cross;
 
     /// A triangle in world space with its surface triangle id.
     type WorldTriangle = (u32, [[f64; 3]; 3]);
@@ -335,7 +335,7 @@ mod tests {
     type Drawn = (u32, usize, Option<(f64, f64)>);
 
     fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
-        crate::camera::test_camera(position, focal, parallel.then_some(20.0))
+        crate::geometry::camera::test_camera(position, focal, parallel.then_some(20.0))
     }
 
     fn polygon_area(p: &[[f64; 3]]) -> f64 {

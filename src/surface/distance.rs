@@ -14,10 +14,10 @@
 use super::build::{march_nodes, surface_nodes};
 use super::extract::midpoint2;
 use super::place::interpolated_point;
-use crate::error::Result;
-use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::base::error::Result;
+use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::geometry::vec3::{dot, sub};
 use crate::octree::VolumeOctree;
-use crate::vec3::{dot, sub};
 use rayon::prelude::*;
 
 /// Mean and max distance, in voxel (index) units.
