@@ -748,7 +748,10 @@ mod tests {
                 }
             }
             assert!(seen.iter().all(|&n| n == 1), "a triangle in no brick or in two");
-            assert_eq!(polygons.batch_count(), (0..selection.bricks.len()).map(|i| polygons.brick(i).len()).sum());
+            assert_eq!(
+                polygons.batch_count(),
+                (0..selection.bricks.len()).map(|i| polygons.brick(i).len()).sum::<usize>()
+            );
         }
     }
 }

@@ -29,10 +29,6 @@ pub mod set;
 pub mod shade;
 pub mod storage;
 
-/// The footprints' former path, `points::draw::Footprint`.
-pub use self::footprint as draw;
-/// Bucketing points into a DrawList is planning; its former path.
-pub use crate::plan::point_slabs::add_points;
 pub use footprint::Footprint;
 pub use generate::{generate, generate_hybrid, PointOptions, PointSelect};
 pub use lowres::low_resolution;

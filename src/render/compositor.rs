@@ -145,7 +145,7 @@ pub fn composite_textures(
 }
 
 /// [`composite_textures`] with the points of the hybrid representation that
-/// `list` buckets ([`crate::points::add_points`]), each adding its shade
+/// `list` buckets ([`crate::plan::point_slabs::add_points`]), each adding its shade
 /// ([`crate::points::shade()`], one per point of the set), drawn with `footprint`.
 ///
 /// # Errors

@@ -371,7 +371,7 @@ impl Refiner<'_> {
 
 /// Every brick of `selection` whose stride is the points' factor takes all
 /// its points (what drawing a uniform stride with its points costs; the
-/// budget is not consulted). [`crate::points::add_points`] draws points only
+/// budget is not consulted). [`crate::plan::point_slabs::add_points`] draws points only
 /// in bricks that took them.
 pub fn take_all_points(selection: &mut Selection, points: &PointMass) {
     for b in &mut selection.bricks {
