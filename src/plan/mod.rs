@@ -1,10 +1,12 @@
 //! The planning layer, from the octree to what the renderers execute:
 //! [`select`] chooses the nodes under a texture budget, [`order`] sorts them
 //! back to front, [`slab`] places the surface triangles between the slices
-//! of each brick, and the draw list (`draw_list`) says which passes a scene
-//! needs and what each draws.
+//! of each brick, the draw list (`draw_list`) says which passes a scene
+//! needs and what each draws, and [`geometry`] makes the OpenGL mapper's
+//! vertices of a draw list.
 
 mod draw_list;
+pub mod geometry;
 pub mod order;
 pub mod select;
 pub mod slab;
