@@ -206,6 +206,27 @@ fn bad_triangles_are_errors() {
     assert!(e.to_string().contains("names vertex 2, the surface has 2"), "{e}");
 }
 
+/// Brick `brick`'s triangle copies in stream order: (slab, near, far), the
+/// slab by the copy's place in the stream, the number of slices drawn before
+/// it (a slice identified by its vertices' depth, nearest of `slices`).
+fn copies_in_stream(g: &BrickGeometry, brick: usize, view: &GeometryView, slices: &[f64]) -> Vec<(usize, f32, f32)> {
+    let depth = |p: [f32; 3]| (0..3).map(|a| (p[a] as f64 - view.eye[a]) * view.forward[a]).sum::<f64>();
+    let mut slab = 0;
+    let mut out = Vec::new();
+    for t in vertices(g, brick).chunks(3) {
+        if t[0].kind == PrimitiveKind::Slice as i32 {
+            let d = depth(t[0].position);
+            let k = (0..slices.len()).min_by(|&a, &b| (slices[a] - d).abs().total_cmp(&(slices[b] - d).abs())).unwrap();
+            assert!(k + 1 >= slab, "slices back to front");
+            slab = k + 1;
+        } else {
+            assert_eq!(t[0].kind, PrimitiveKind::SurfaceTriangle as i32);
+            out.push((slab, t[0].near, t[0].far));
+        }
+    }
+    out
+}
+
 /// The brute-force placement: slab `s` gets a copy of a triangle whose depth
 /// range `[z_min, z_max]` meets `[S[s], S[s-1])`, unclipped when it is the only one.
 fn brute_force_slabs(slices: &[f64], z: [f64; 3]) -> Vec<(usize, bool)> {
@@ -250,10 +271,12 @@ fn placement_matches_a_brute_force_slab_overlap() {
         let camera = cam(p, [8.0; 3], parallel);
         let view = view_of(&camera);
         let slices = slice_depths(&camera, [0.0; 3], [16.0; 3], 1.3);
-        let bounds = [0.0, 16.0, 0.0, 16.0, 0.0, 16.0];
-        // One triangle a brick: its copies are the brick's placed triangles.
+        // One triangle a brick: its copies are the brick's placed triangles;
+        // drawn in a box a little larger than the slices', so that every
+        // slice has its polygon, which tells the slab of what follows it.
+        let bounds = [-1.0, 17.0, -1.0, 17.0, -1.0, 17.0];
         let bricks: Vec<BrickSlabs> = (0..tris.len() as u32)
-            .map(|i| BrickSlabs { slices: &slices, bounds, drawn: false, batches: vec![i..i + 1], buckets: Vec::new() })
+            .map(|i| BrickSlabs { slices: &slices, bounds, drawn: true, batches: vec![i..i + 1], buckets: Vec::new() })
             .collect();
         let g = brick_geometry(&view, &bricks, Some(&surface), None).unwrap();
         let f = view.forward.map(|x| x as f32);
@@ -262,24 +285,17 @@ fn placement_matches_a_brute_force_slab_overlap() {
             // The depths as the GL placement computes them.
             let z = tri.map(|p| (0..3).map(|a| (p[a] - e[a]) as f64 * f[a] as f64).sum::<f64>());
             let expected = brute_force_slabs(&slices, z);
-            let copies: Vec<(usize, bool)> = vertices(&g, i)
-                .chunks(3)
-                .map(|c| {
-                    let clipped = c[0].near != -UNBOUNDED || c[0].far != UNBOUNDED;
-                    // The slab of a copy: that of the middle of its clip interval, else of its centroid.
-                    let mid = if clipped {
-                        let (near, far) = (c[0].near as f64, c[0].far as f64);
-                        if near == -UNBOUNDED as f64 {
-                            far - 0.5
-                        } else if far == UNBOUNDED as f64 {
-                            near + 0.5
-                        } else {
-                            0.5 * (near + far)
-                        }
-                    } else {
-                        z.iter().sum::<f64>() / 3.0
-                    };
-                    (slab_of(&slices, mid), clipped)
+            let copies: Vec<(usize, bool)> = copies_in_stream(&g, i, &view, &slices)
+                .into_iter()
+                .map(|(slab, near, far)| {
+                    let clipped = (near, far) != (-UNBOUNDED, UNBOUNDED);
+                    if clipped {
+                        // Clipped to the slab it is drawn in.
+                        let (n, f) = slab_interval(&slices, slab);
+                        let bound = |v: f64| if v.is_infinite() { v.signum() as f32 * UNBOUNDED } else { v as f32 };
+                        assert_eq!((near, far), (bound(n), bound(f)), "triangle {i}");
+                    }
+                    (slab, clipped)
                 })
                 .collect();
             assert_eq!(copies, expected, "triangle {i} at depths {z:?}");
@@ -299,22 +315,14 @@ fn cpu_slab(batches: &[Batch], t: u32, z: f64) -> usize {
     hits[0]
 }
 
-/// The OpenGL slab of a fragment of triangle `t` at depth `z`: the slab of
-/// the copy whose clip interval keeps it (clip distances `z - near >= 0`,
-/// `far - z >= 0`).
-fn gl_slab(g: &BrickGeometry, slices: &[f64], t: usize, z: f64) -> Vec<usize> {
-    vertices(g, t)
-        .chunks(3)
-        .filter(|c| c[0].near as f64 <= z && z <= c[0].far as f64)
-        .map(|c| {
-            let lo = (c[0].near as f64).max(slices.last().map_or(f64::NEG_INFINITY, |&s| s - 1.0));
-            let hi = (c[0].far as f64).min(slices.first().map_or(f64::INFINITY, |&s| s + 1.0));
-            if c[0].near == -UNBOUNDED && c[0].far == UNBOUNDED {
-                slab_of(slices, z)
-            } else {
-                slab_of(slices, 0.5 * (lo + hi))
-            }
-        })
+/// The OpenGL slab of a fragment of triangle `t` at depth `z`: the slab
+/// (by place in the stream) of the copy whose clip interval keeps it (clip
+/// distances `z - near >= 0`, `far - z >= 0`).
+fn gl_slab(g: &BrickGeometry, view: &GeometryView, slices: &[f64], t: usize, z: f64) -> Vec<usize> {
+    copies_in_stream(g, t, view, slices)
+        .into_iter()
+        .filter(|&(_, near, far)| near as f64 <= z && z <= far as f64)
+        .map(|(slab, _, _)| slab)
         .collect()
 }
 
@@ -356,12 +364,14 @@ proptest! {
             })
             .collect();
         let batches = assign_batches(&camera, &slices, &polygon_batches);
-        // The GL side: one brick a triangle (its stream is that triangle's copies).
-        let bounds = [0.0, 16.0, 0.0, 16.0, 0.0, 16.0];
+        // The GL side: one brick a triangle (its stream is that triangle's
+        // copies and the slices), in a box a little larger than the slices'.
+        let bounds = [-1.0, 17.0, -1.0, 17.0, -1.0, 17.0];
         let bricks: Vec<BrickSlabs> = (0..tris.len() as u32)
-            .map(|i| BrickSlabs { slices: &slices, bounds, drawn: false, batches: vec![i..i + 1], buckets: Vec::new() })
+            .map(|i| BrickSlabs { slices: &slices, bounds, drawn: true, batches: vec![i..i + 1], buckets: Vec::new() })
             .collect();
-        let g = brick_geometry(&view_of(&camera), &bricks, Some(&surface), None).unwrap();
+        let view = view_of(&camera);
+        let g = brick_geometry(&view, &bricks, Some(&surface), None).unwrap();
         let tolerance = 1e-4 * spacing;
         for (i, tri) in world.iter().enumerate() {
             for k in 0..12 {
@@ -379,7 +389,7 @@ proptest! {
                 }
                 let expected = slab_of(&slices, z);
                 prop_assert_eq!(cpu_slab(&batches, i as u32, z), expected, "CPU, triangle {} depth {}", i, z);
-                prop_assert_eq!(gl_slab(&g, &slices, i, z), vec![expected], "GL, triangle {} depth {}", i, z);
+                prop_assert_eq!(gl_slab(&g, &view, &slices, i, z), vec![expected], "GL, triangle {} depth {}", i, z);
             }
         }
     }
