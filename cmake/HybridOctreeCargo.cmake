@@ -11,7 +11,7 @@ Defines:
     builds the `hybrid-octree` command line tool.
   * `HybridOctree::rust`: an IMPORTED STATIC library for
     `<cargo target>/release/libhybrid_octree.a`, carrying the cxx include
-    folder `<cargo target>/cxxbridge` (headers `hybrid-octree/src/ffi.rs.h`
+    folder `<cargo target>/cxxbridge` (headers `hybrid-octree/src/ffi/mod.rs.h`
     and `rust/cxx.h`), the system libraries Rust's std needs, and a linker
     response file listing the system libraries the crate's build scripts
     link dynamically (see HybridOctreeCargoBuild.cmake).
@@ -73,7 +73,7 @@ add_custom_target(hybrid_octree_cargo ALL
 # "hybrid-octree/cpp/<path>" (cxx's crate-relative include!): a copy of each
 # under <build>/cxx-crate/hybrid-octree/cpp makes that path resolve.
 set(_hybrid_octree_crate_include_dir "${CMAKE_BINARY_DIR}/cxx-crate")
-foreach (_header IN ITEMS Filters/vtkHybridOctreeBuildProgress.h)
+foreach (_header IN ITEMS Filters/vtkHybridOctreeBuildProgress.h Filters/vtkHybridOctreeBridgeEnums.h)
   configure_file("${PROJECT_SOURCE_DIR}/cpp/${_header}"
     "${_hybrid_octree_crate_include_dir}/hybrid-octree/cpp/${_header}" COPYONLY)
 endforeach ()

@@ -1,5 +1,6 @@
 //! The Hybrid Octree (paper 1, section 2.3): the Volume Octree and the
-//! surface it contains, known node by node.
+//! surface it contains, known node by node, and (paper 3) the points that
+//! complete its low-resolution textures.
 //!
 //! Construction follows the paper: (1) volume data integration builds the
 //! Volume Octree with min/max and nodal errors per node; (2) surface data
@@ -7,20 +8,46 @@
 //! isovalue and codes their surface (DiscMC facets merged into planar
 //! polygons, or interpolated triangles). Each terminal node owns a contiguous
 //! range of polygons, every polygon lies inside its node's box, so later
-//! stages can take a node's volume and its surface together.
+//! stages can take a node's volume and its surface together. Both steps after
+//! the first are optional: a Hybrid Octree may hold the volume alone, and the
+//! surface and points are integrated (or dropped) as the view asks.
+//!
+//! The renderers' entry points for a whole Hybrid Octree are here:
+//! [`HybridOctree::draw_list`] and [`HybridOctree::slab_polygons`].
 
+use crate::camera::Camera;
 use crate::error::Result;
-use crate::grid::Grid;
+use crate::grid::{Grid, GridShape};
 use crate::octree::{BuildOptions, NodeId, VolumeOctree};
+use crate::plan::select::Selection;
+use crate::plan::slab::SlabPolygons;
+use crate::plan::{draw_list, DrawList, Scene};
+use crate::points::mass::PointMass;
+use crate::points::PointSet;
 use crate::surface::{Surface, SurfaceMode, SurfaceOptions};
+use std::sync::Arc;
 
-/// A Volume Octree and the isosurface it holds, node by node.
+/// A Volume Octree, the isosurface it holds node by node, and the points
+/// completing its textures; the surface and the points are optional.
 #[derive(Debug, Clone)]
 pub struct HybridOctree {
     /// The Volume Octree.
     pub volume: VolumeOctree,
     /// The isosurface, polygons grouped by terminal node.
-    pub surface: Surface,
+    pub surface: Option<Surface>,
+    /// The points of the hybrid point/volume representation.
+    pub points: Option<HybridPoints>,
+}
+
+/// The points of the hybrid representation (paper 3) as a Hybrid Octree
+/// holds them: the set (shared with the selections that bought points) and
+/// its per-block mass, what the selection weighs them by.
+#[derive(Debug, Clone)]
+pub struct HybridPoints {
+    /// The points.
+    pub set: Arc<PointSet>,
+    /// Their error mass per leaf block.
+    pub mass: PointMass,
 }
 
 impl HybridOctree {
@@ -28,15 +55,48 @@ impl HybridOctree {
     pub fn build(grid: &Grid<'_>, build: &BuildOptions, surface: &SurfaceOptions) -> Result<HybridOctree> {
         let volume = VolumeOctree::build(grid, build)?;
         let surface = Surface::extract(grid, &volume, surface)?;
-        Ok(HybridOctree { volume, surface })
+        Ok(HybridOctree { volume, surface: Some(surface), points: None })
+    }
+
+    /// The Volume Octree alone (surface and points integrated later).
+    pub fn volume_only(volume: VolumeOctree) -> HybridOctree {
+        HybridOctree { volume, surface: None, points: None }
     }
 
     /// The polygon index range of terminal node `id` (empty when it holds no surface).
     pub fn polygons_of(&self, id: NodeId) -> std::ops::Range<usize> {
-        match self.surface.node_ranges.binary_search_by_key(&id, |r| r.0) {
-            Ok(i) => self.surface.node_ranges[i].1 as usize..self.surface.node_ranges[i].2 as usize,
+        let Some(surface) = &self.surface else { return 0..0 };
+        match surface.node_ranges.binary_search_by_key(&id, |r| r.0) {
+            Ok(i) => surface.node_ranges[i].1 as usize..surface.node_ranges[i].2 as usize,
             Err(_) => 0..0,
         }
+    }
+
+    /// The scene of this octree: its surface (when it holds one) at
+    /// `surface_opacity` (1 opaque, in (0, 1) translucent, 0 hidden), no shading.
+    pub fn scene(&self, surface_opacity: f64) -> Scene<'_> {
+        Scene { surface: self.surface.as_ref(), surface_opacity, shading: false }
+    }
+
+    /// The DrawList of `selection` (made from this octree's volume over the
+    /// grid of `shape`) for `camera`, with the surface at `surface_opacity`
+    /// (see [`draw_list`]; `polygons`: the selection's [`SlabPolygons`] for
+    /// this surface, made here when `None` and needed).
+    pub fn draw_list(
+        &self,
+        shape: &GridShape,
+        selection: &Selection,
+        camera: &Camera,
+        surface_opacity: f64,
+        polygons: Option<&SlabPolygons>,
+    ) -> Result<DrawList> {
+        draw_list(&self.volume, shape, selection, camera, &self.scene(surface_opacity), polygons)
+    }
+
+    /// The surface's polygons sorted into `selection`'s bricks and slabs, what
+    /// a translucent surface is drawn from; `None` without a surface.
+    pub fn slab_polygons(&self, shape: &GridShape, selection: &Selection) -> Option<SlabPolygons> {
+        self.surface.as_ref().map(|s| SlabPolygons::new(&self.volume, s, shape, selection))
     }
 
     /// Checks the Volume Octree, then that every polygon belongs to exactly one
@@ -45,10 +105,10 @@ impl HybridOctree {
     /// has at least 3 points and (DiscMC) a non-zero area, that no edge is used by
     /// more than two polygons or twice in the same direction, and that the
     /// edges used once are exactly the reported open ones: on the volume's
-    /// faces and along NaN (no data).
+    /// faces and along NaN (no data). Without a surface only the Volume Octree is checked.
     pub fn validate(&self) -> std::result::Result<(), String> {
         self.volume.validate()?;
-        let s = &self.surface;
+        let Some(s) = &self.surface else { return Ok(()) };
         if s.polygon_node.len() != s.polygon_count() {
             return Err(format!("{} polygon nodes for {} polygons", s.polygon_node.len(), s.polygon_count()));
         }

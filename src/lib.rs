@@ -3,7 +3,7 @@
 //! The core of a hybrid volume + surface renderer for VTK and ParaView, after
 //! *The Hybrid Octree* (Volume Octree with nodal errors, Surface Octree from
 //! Discretized Marching Cubes, texture-budget multiresolution rendering).
-//! The crate knows nothing of VTK: `src/ffi.rs` is the only bridge.
+//! The crate knows nothing of VTK: `src/ffi/` is the only bridge.
 //!
 //! ```
 //! use hybrid_octree::datasets::{Dataset, generate};
@@ -26,9 +26,6 @@ pub mod datasets;
 pub mod error;
 #[allow(missing_docs)]
 pub mod ffi;
-mod ffi_ftb;
-mod ffi_points;
-mod ffi_render;
 pub mod ftb;
 pub mod grid;
 pub mod hybrid;

@@ -285,7 +285,7 @@ fn the_surface_is_watertight_except_along_the_nan() {
     ] {
         let h = HybridOctree::build(&g, &BuildOptions { leaf_size: 4 }, &options).unwrap();
         h.validate().unwrap();
-        let s = &h.surface;
+        let s = h.surface.as_ref().expect("built with a surface");
         let e = check::edge_use(s);
         let along = check::nan_boundary_edges(s, &g);
         assert_eq!(s.stats.nan_boundary_edges, along, "{options:?}");

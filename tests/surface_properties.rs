@@ -14,6 +14,11 @@ fn hybrid(grid: &Grid<'_>, leaf: usize, options: SurfaceOptions) -> HybridOctree
     h
 }
 
+/// The surface of a Hybrid Octree built with one.
+fn surface(h: &HybridOctree) -> &Surface {
+    h.surface.as_ref().expect("built with a surface")
+}
+
 fn uncompressed(iso: f64) -> SurfaceOptions {
     SurfaceOptions { compress: false, ..SurfaceOptions::discretized(iso) }
 }
@@ -59,10 +64,10 @@ fn closed_sphere_is_watertight_in_both_modes() {
     let grid = Grid::scalar(Samples::F32(&data), [n; 3]).unwrap();
     for options in [SurfaceOptions::discretized(-12.3), uncompressed(-12.3), SurfaceOptions::interpolated(-12.3)] {
         let h = hybrid(&grid, 8, options);
-        assert!(h.surface.polygon_count() > 100);
-        assert_closed(&h.surface);
+        assert!(surface(&h).polygon_count() > 100);
+        assert_closed(surface(&h));
         // The enclosed volume is close to the ball's (4/3 pi r^3), and positive.
-        let v = check::volume(&h.surface);
+        let v = check::volume(surface(&h));
         let exact = 4.0 / 3.0 * std::f64::consts::PI * 12.3f64.powi(3);
         assert!((v - exact).abs() < 0.05 * exact, "{:?}: volume {v} vs {exact}", options.mode);
     }
@@ -75,22 +80,22 @@ fn compression_is_lossless_and_saves_polygons() {
     let grid = Grid::scalar(Samples::F32(&data), [n; 3]).unwrap();
     let merged = hybrid(&grid, 16, SurfaceOptions::discretized(-15.5));
     let plain = hybrid(&grid, 16, uncompressed(-15.5));
-    assert_same_point_set(&merged.surface, &plain.surface);
-    assert_closed(&merged.surface);
-    assert_eq!(merged.surface.stats.uncompressed_triangles, plain.surface.polygon_count());
-    assert!(merged.surface.stats.triangles < plain.surface.polygon_count());
-    assert!(merged.surface.polygon_count() * 2 < plain.surface.polygon_count());
+    assert_same_point_set(surface(&merged), surface(&plain));
+    assert_closed(surface(&merged));
+    assert_eq!(surface(&merged).stats.uncompressed_triangles, surface(&plain).polygon_count());
+    assert!(surface(&merged).stats.triangles < surface(&plain).polygon_count());
+    assert!(surface(&merged).polygon_count() * 2 < surface(&plain).polygon_count());
     // Sampling: points of every facet lie in a merged polygon of the same node.
-    for (node, first, end) in &plain.surface.node_ranges {
+    for (node, first, end) in &surface(&plain).node_ranges {
         let range = merged.polygons_of(*node);
         for f in *first as usize..*end as usize {
             let tri: Vec<[f64; 3]> =
-                plain.surface.polygon(f).iter().map(|&v| plain.surface.points[v as usize]).collect();
+                surface(&plain).polygon(f).iter().map(|&v| surface(&plain).points[v as usize]).collect();
             for (wa, wb, wc) in [(1.0, 1.0, 1.0), (4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0), (1.0, 0.0, 0.0)] {
                 let w = wa + wb + wc;
                 let q = [0, 1, 2].map(|k| (wa * tri[0][k] + wb * tri[1][k] + wc * tri[2][k]) / w);
                 assert!(
-                    range.clone().any(|p| inside_convex(&merged.surface, p, q)),
+                    range.clone().any(|p| inside_convex(surface(&merged), p, q)),
                     "facet {f} point {q:?} is in no merged polygon of node {node:?}"
                 );
             }
@@ -124,8 +129,8 @@ fn a_plane_with_a_bump_merges_around_the_hole() {
     let grid = Grid::scalar(Samples::F64(&data), dims).unwrap();
     let merged = hybrid(&grid, 8, SurfaceOptions::discretized(3.0));
     let plain = hybrid(&grid, 8, uncompressed(3.0));
-    assert_same_point_set(&merged.surface, &plain.surface);
-    let (m, p) = (&merged.surface, &plain.surface);
+    assert_same_point_set(surface(&merged), surface(&plain));
+    let (m, p) = (surface(&merged), surface(&plain));
     assert_eq!(check::edge_use(m).nonmanifold, 0);
     assert_eq!(check::edge_use(m).boundary, m.stats.boundary_edges);
     assert!(m.stats.faces < m.stats.triangles && m.stats.triangles < p.stats.triangles, "{:?}", m.stats);
@@ -149,7 +154,7 @@ fn isovalue_equal_to_a_plane_of_samples() {
     let grid = Grid::scalar(Samples::F64(&data), dims).unwrap();
     for options in [SurfaceOptions::discretized(3.0), SurfaceOptions::interpolated(3.0)] {
         let h = hybrid(&grid, 4, options);
-        let s = &h.surface;
+        let s = surface(&h);
         // DiscMC: the plane z = 2.5; interpolated: exactly through the samples, z = 3.
         let z = if options.mode == SurfaceMode::Discretized { 2.5 } else { 3.0 };
         assert!(s.points.iter().all(|p| p[2] == z), "{:?}", options.mode);
@@ -200,23 +205,23 @@ fn one_voxel_features_are_closed() {
         let grid = Grid::scalar(Samples::U8(data), dims).unwrap();
         for options in [SurfaceOptions::discretized(100.0), uncompressed(100.0), SurfaceOptions::interpolated(100.0)] {
             let h = hybrid(&grid, 4, options);
-            let e = check::edge_use(&h.surface);
+            let e = check::edge_use(surface(&h));
             assert_eq!(e.nonmanifold, 0, "{name}");
-            assert_eq!(e.boundary, h.surface.stats.boundary_edges, "{name}");
+            assert_eq!(e.boundary, surface(&h).stats.boundary_edges, "{name}");
             if name == "voxel" {
                 assert_eq!(e.boundary, 0);
-                assert!(check::volume(&h.surface) > 0.0);
+                assert!(check::volume(surface(&h)) > 0.0);
             }
         }
         let merged = hybrid(&grid, 4, SurfaceOptions::discretized(100.0));
         let plain = hybrid(&grid, 4, uncompressed(100.0));
-        assert_same_point_set(&merged.surface, &plain.surface);
+        assert_same_point_set(surface(&merged), surface(&plain));
     }
     // The voxel's DiscMC surface is the octahedron through its six edge midpoints: 8 facets, 8 polygons.
     let grid = Grid::scalar(Samples::U8(&voxel), dims).unwrap();
     let h = hybrid(&grid, 4, SurfaceOptions::discretized(100.0));
-    assert_eq!((h.surface.polygon_count(), h.surface.points.len()), (8, 6));
-    assert!((check::volume(&h.surface) - 4.0 / 3.0 * 0.125).abs() < 1e-12);
+    assert_eq!((surface(&h).polygon_count(), surface(&h).points.len()), (8, 6));
+    assert!((check::volume(surface(&h)) - 4.0 / 3.0 * 0.125).abs() < 1e-12);
 }
 
 #[test]
@@ -227,11 +232,12 @@ fn anisotropic_spacing_gives_world_normals() {
     let grid = Grid::new(Samples::F32(&data), shape, 1, None).unwrap();
     let h = hybrid(&grid, 8, SurfaceOptions::interpolated(-5.0));
     // The top of the sphere (largest z) has a normal close to +z in world space too.
-    let top =
-        (0..h.surface.points.len()).max_by(|&a, &b| h.surface.points[a][2].total_cmp(&h.surface.points[b][2])).unwrap();
-    let nz = h.surface.normals[top][2];
-    assert!(nz > 0.9, "normal {:?}", h.surface.normals[top]);
-    for nrm in &h.surface.normals {
+    let top = (0..surface(&h).points.len())
+        .max_by(|&a, &b| surface(&h).points[a][2].total_cmp(&surface(&h).points[b][2]))
+        .unwrap();
+    let nz = surface(&h).normals[top][2];
+    assert!(nz > 0.9, "normal {:?}", surface(&h).normals[top]);
+    for nrm in &surface(&h).normals {
         let len = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
         assert!((len - 1.0).abs() < 1e-5);
     }
@@ -247,8 +253,8 @@ fn every_scalar_type_gives_the_same_surface() {
         ($variant:ident, $t:ty) => {{
             let v: Vec<$t> = base.iter().map(|&x| x as $t).collect();
             let h = hybrid(&Grid::scalar(Samples::$variant(&v), dims).unwrap(), 4, SurfaceOptions::discretized(29.5));
-            assert_eq!(h.surface.connectivity, reference.surface.connectivity, stringify!($t));
-            assert_eq!(h.surface.points, reference.surface.points, stringify!($t));
+            assert_eq!(surface(&h).connectivity, surface(&reference).connectivity, stringify!($t));
+            assert_eq!(surface(&h).points, surface(&reference).points, stringify!($t));
         }};
     }
     check_type!(U8, u8);
@@ -270,7 +276,7 @@ fn same_surface_on_one_and_many_threads() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| hybrid(&grid, 4, SurfaceOptions::discretized(-11.2)).surface)
+            .install(|| hybrid(&grid, 4, SurfaceOptions::discretized(-11.2)).surface.expect("a surface"))
     };
     let one = run(1);
     for threads in [2, 5] {
@@ -312,12 +318,12 @@ proptest! {
         let merged = hybrid(&grid, 1 << leaf, SurfaceOptions::discretized(1.0));
         let plain = hybrid(&grid, 1 << leaf, uncompressed(1.0));
         let interp = hybrid(&grid, 1 << leaf, SurfaceOptions::interpolated(1.0));
-        for s in [&merged.surface, &plain.surface, &interp.surface] {
+        for s in [surface(&merged), surface(&plain), surface(&interp)] {
             let e = check::edge_use(s);
             prop_assert_eq!(e.nonmanifold, 0);
             prop_assert_eq!(e.boundary, s.stats.boundary_edges);
         }
-        assert_same_point_set(&merged.surface, &plain.surface);
-        prop_assert_eq!(plain.surface.polygon_count(), interp.surface.polygon_count());
+        assert_same_point_set(surface(&merged), surface(&plain));
+        prop_assert_eq!(surface(&plain).polygon_count(), surface(&interp).polygon_count());
     }
 }

@@ -3,20 +3,48 @@
  * @brief  The C++ half of the bridge: the only includer of the cxx header.
  *
  * Every call into Rust runs under `Guarded` (try/catch): the Rust side turns errors
- * and panics into `rust::Error`, which derives from std::exception.
+ * and panics into `rust::Error`, which derives from std::exception. Outputs
+ * the caller sizes cross as `rust::Slice<T>` over its memory.
  */
 #include "vtkHybridOctreeBridge.h"
 
-#include "hybrid-octree/src/ffi.rs.h"
+#include "hybrid-octree/src/ffi/mod.rs.h"
 
 #include "vtkPiecewiseFunction.h"
 
 #include <algorithm>
 #include <exception>
+#include <type_traits>
 #include <utility>
 
 namespace vtkHybridOctreeBridge
 {
+
+/// The Rust handle type behind each C++ object.
+template <class Object>
+struct HandleOf;
+template <>
+struct HandleOf<HybridOctree>
+{
+  using Type = hybrid_octree::HybridOctreeHandle;
+};
+template <>
+struct HandleOf<Selection>
+{
+  using Type = hybrid_octree::SelectionHandle;
+};
+
+/// Owns the Rust handle of `Object`.
+template <class Object>
+struct RustHandle
+{
+  using Handle = typename HandleOf<Object>::Type;
+  explicit RustHandle(rust::Box<Handle> box)
+    : Box(std::move(box))
+  {
+  }
+  rust::Box<Handle> Box;
+};
 
 namespace
 {
@@ -38,34 +66,25 @@ bool Guarded(std::string& error, Body&& body)
   return false;
 }
 
-hybrid_octree::ScalarType ToRust(ScalarType type)
+/// The C++ object owning `box`.
+template <class Object>
+std::unique_ptr<Object> Own(rust::Box<typename HandleOf<Object>::Type> box)
 {
-  switch (type)
-  {
-    case ScalarType::U8:
-      return hybrid_octree::ScalarType::U8;
-    case ScalarType::I8:
-      return hybrid_octree::ScalarType::I8;
-    case ScalarType::U16:
-      return hybrid_octree::ScalarType::U16;
-    case ScalarType::I16:
-      return hybrid_octree::ScalarType::I16;
-    case ScalarType::U32:
-      return hybrid_octree::ScalarType::U32;
-    case ScalarType::I32:
-      return hybrid_octree::ScalarType::I32;
-    case ScalarType::F32:
-      return hybrid_octree::ScalarType::F32;
-    case ScalarType::F64:
-      return hybrid_octree::ScalarType::F64;
-  }
-  return hybrid_octree::ScalarType::F64; // unreachable: every enumerator is handled
+  return std::unique_ptr<Object>(
+    new Object(std::unique_ptr<RustHandle<Object>>(new RustHandle<Object>(std::move(box)))));
+}
+
+/// The Rust handle of `object`.
+template <class Object>
+const typename HandleOf<Object>::Type& HandleFor(const std::unique_ptr<RustHandle<Object>>& impl)
+{
+  return *impl->Box;
 }
 
 hybrid_octree::GridDesc ToRust(const GridDescription& grid)
 {
   hybrid_octree::GridDesc desc;
-  desc.scalar_type = ToRust(grid.Type);
+  desc.scalar_type = grid.Type;
   for (int axis = 0; axis < 3; ++axis)
   {
     desc.dims[axis] = grid.Dims[axis];
@@ -77,18 +96,6 @@ hybrid_octree::GridDesc ToRust(const GridDescription& grid)
   return desc;
 }
 
-hybrid_octree::SurfaceMode ToRust(SurfaceMode mode)
-{
-  switch (mode)
-  {
-    case SurfaceMode::Discretized:
-      return hybrid_octree::SurfaceMode::Discretized;
-    case SurfaceMode::Interpolated:
-      return hybrid_octree::SurfaceMode::Interpolated;
-  }
-  return hybrid_octree::SurfaceMode::Discretized; // unreachable: every enumerator is handled
-}
-
 /// The borrowed samples as a byte slice. A null pointer is only legal for an
 /// empty buffer; cxx maps it to a dangling, well-aligned empty slice.
 rust::Slice<const std::uint8_t> ToSlice(const void* bytes, std::size_t byteCount)
@@ -97,30 +104,26 @@ rust::Slice<const std::uint8_t> ToSlice(const void* bytes, std::size_t byteCount
     static_cast<const std::uint8_t*>(bytes), bytes ? byteCount : 0);
 }
 
+/// The caller's `count` values at `data` for Rust to write (null only when empty).
+template <typename T>
+rust::Slice<T> Out(T* data, std::size_t count)
+{
+  return rust::Slice<T>(data, data ? count : 0);
+}
+
+/// vtkIdType memory as the bridge's int64 (the same 8 bytes; `long long`
+/// and `int64_t` may be distinct types of one size).
+rust::Slice<std::int64_t> Out(vtkIdType* data, std::size_t count)
+{
+  static_assert(sizeof(vtkIdType) == sizeof(std::int64_t) && std::is_signed<vtkIdType>::value,
+    "the bridge writes 64-bit ids: build VTK with VTK_USE_64BIT_IDS");
+  return Out(reinterpret_cast<std::int64_t*>(data), count);
+}
+
 template <typename From, typename To>
 void CopyInto(const rust::Vec<From>& from, std::vector<To>& to)
 {
   to.assign(from.begin(), from.end());
-}
-void CopyMesh(const hybrid_octree::SurfaceOutput& s, SurfaceMesh& surface)
-{
-  CopyInto(s.points, surface.Points);
-  CopyInto(s.normals, surface.Normals);
-  CopyInto(s.offsets, surface.Offsets);
-  CopyInto(s.connectivity, surface.Connectivity);
-  CopyInto(s.polygon_node, surface.PolygonNode);
-  CopyInto(s.polygon_level, surface.PolygonLevel);
-  CopyInto(s.polygon_face, surface.PolygonFace);
-  surface.Polygons = s.polygons;
-  surface.Faces = s.faces;
-  surface.Triangles = s.triangles;
-  surface.UncompressedTriangles = s.uncompressed_triangles;
-  surface.Vertices = s.vertices;
-  surface.BoundaryEdges = s.boundary_edges;
-  surface.ExtractMilliseconds = s.extract_ms;
-  surface.CompressMilliseconds = s.compress_ms;
-  surface.DistanceMean = s.distance_mean;
-  surface.DistanceMax = s.distance_max;
 }
 
 /// The bridge's camera.
@@ -202,33 +205,18 @@ hybrid_octree::PointsDesc ToRust(const PointsOptions& options)
   o.file_name = rust::String(options.FileName);
   return o;
 }
-} // namespace
 
-struct VolumeOctree::Internals
+PointsSummary FromRust(const hybrid_octree::PointsSummary& s)
 {
-  explicit Internals(rust::Box<hybrid_octree::VolumeOctreeHandle> handle)
-    : Handle(std::move(handle))
-  {
-  }
-  rust::Box<hybrid_octree::VolumeOctreeHandle> Handle;
-};
-
-VolumeOctree::VolumeOctree(std::unique_ptr<Internals> internals)
-  : Impl(std::move(internals))
-{
+  PointsSummary summary;
+  summary.Points = s.points;
+  summary.Factor = s.factor;
+  summary.PointBytes = s.point_bytes;
+  summary.Underestimates = s.underestimates;
+  summary.GenerateMs = s.generate_ms;
+  return summary;
 }
 
-VolumeOctree::~VolumeOctree() = default;
-
-std::unique_ptr<VolumeOctree> VolumeOctree::Build(const void* bytes, std::size_t byteCount,
-  const GridDescription& grid, unsigned int leafSize, std::string& error)
-{
-  return Build(
-    bytes, byteCount, grid, leafSize, [](double) { return true; }, error);
-}
-
-namespace
-{
 /// The Rust build's progress sink over a std::function (never throws into Rust).
 class FunctionProgress final : public hybrid_octree::BuildProgress
 {
@@ -252,29 +240,39 @@ public:
 private:
   const std::function<bool(double)>& Function;
 };
+} // namespace
+
+HybridOctree::HybridOctree(std::unique_ptr<RustHandle<HybridOctree>> handle)
+  : Impl(std::move(handle))
+{
 }
 
-std::unique_ptr<VolumeOctree> VolumeOctree::Build(const void* bytes, std::size_t byteCount,
+HybridOctree::~HybridOctree() = default;
+
+std::unique_ptr<HybridOctree> HybridOctree::Build(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, unsigned int leafSize, std::string& error)
+{
+  return Build(
+    bytes, byteCount, grid, leafSize, [](double) { return true; }, error);
+}
+
+std::unique_ptr<HybridOctree> HybridOctree::Build(const void* bytes, std::size_t byteCount,
   const GridDescription& grid, unsigned int leafSize, const std::function<bool(double)>& progress,
   std::string& error)
 {
-  std::unique_ptr<VolumeOctree> result;
+  std::unique_ptr<HybridOctree> result;
   const FunctionProgress sink(progress);
   Guarded(error, [&] {
-    const hybrid_octree::GridDesc desc = ToRust(grid);
-    rust::Box<hybrid_octree::VolumeOctreeHandle> handle =
-      hybrid_octree::build_volume_octree_with_progress(
-        ToSlice(bytes, byteCount), desc, leafSize, sink);
-    result = std::unique_ptr<VolumeOctree>(
-      new VolumeOctree(std::unique_ptr<Internals>(new Internals(std::move(handle)))));
+    result = Own<HybridOctree>(
+      hybrid_octree::build_hybrid_octree(ToSlice(bytes, byteCount), ToRust(grid), leafSize, sink));
   });
   return result;
 }
 
-bool VolumeOctree::GetSummary(OctreeSummary& summary, std::string& error) const
+bool HybridOctree::GetSummary(OctreeSummary& summary, std::string& error) const
 {
   return Guarded(error, [&] {
-    const hybrid_octree::OctreeSummary s = this->Impl->Handle->summary();
+    const hybrid_octree::OctreeSummary s = HandleFor(this->Impl).summary();
     summary.NodeCount = s.node_count;
     summary.TerminalCount = s.terminal_count;
     summary.HomogeneousCount = s.homogeneous_count;
@@ -290,10 +288,10 @@ bool VolumeOctree::GetSummary(OctreeSummary& summary, std::string& error) const
   });
 }
 
-bool VolumeOctree::GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& error) const
+bool HybridOctree::GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& error) const
 {
   return Guarded(error, [&] {
-    const hybrid_octree::CutBoxes cut = this->Impl->Handle->cut_boxes(tolerance);
+    const hybrid_octree::CutBoxes cut = HandleFor(this->Impl).cut_boxes(tolerance);
     CopyInto(cut.bounds, boxes.Bounds);
     CopyInto(cut.node_id, boxes.NodeId);
     CopyInto(cut.level, boxes.Level);
@@ -303,16 +301,121 @@ bool VolumeOctree::GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& e
   });
 }
 
-bool VolumeOctree::ExtractSurface(const void* bytes, std::size_t byteCount,
+bool HybridOctree::IntegrateSurface(const void* bytes, std::size_t byteCount,
   const GridDescription& grid, double isovalue, SurfaceMode mode, bool measureDistance,
-  SurfaceMesh& surface, std::string& error) const
+  SurfaceSummary& summary, std::string& error)
 {
+  this->SurfaceVertices = this->SurfacePolygons = this->SurfaceIndices = 0;
   return Guarded(error, [&] {
-    const hybrid_octree::GridDesc desc = ToRust(grid);
-    const hybrid_octree::SurfaceOutput s = this->Impl->Handle->extract_surface(
-      ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode), measureDistance);
-    CopyMesh(s, surface);
+    const hybrid_octree::SurfaceSummary s = this->Impl->Box->integrate_surface(
+      ToSlice(bytes, byteCount), ToRust(grid), isovalue, mode, measureDistance);
+    summary.Vertices = s.vertices;
+    summary.Polygons = s.polygons;
+    summary.Connectivity = s.connectivity;
+    summary.Faces = s.faces;
+    summary.Triangles = s.triangles;
+    summary.UncompressedTriangles = s.uncompressed_triangles;
+    summary.BoundaryEdges = s.boundary_edges;
+    summary.ExtractMilliseconds = s.extract_ms;
+    summary.CompressMilliseconds = s.compress_ms;
+    summary.DistanceMean = s.distance_mean;
+    summary.DistanceMax = s.distance_max;
+    this->SurfaceVertices = s.vertices;
+    this->SurfacePolygons = s.polygons;
+    this->SurfaceIndices = s.connectivity;
   });
+}
+
+void HybridOctree::RemoveSurface()
+{
+  std::string ignored; // dropping a Rust value cannot fail
+  Guarded(ignored, [&] { this->Impl->Box->remove_surface(); });
+  this->SurfaceVertices = this->SurfacePolygons = this->SurfaceIndices = 0;
+}
+
+bool HybridOctree::GetSurfaceMesh(const SurfaceMeshBuffers& mesh, std::string& error) const
+{
+  const std::size_t vertices = this->SurfaceVertices;
+  const std::size_t polygons = this->SurfacePolygons;
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .surface_mesh(Out(mesh.Points, 3 * vertices), Out(mesh.Normals, 3 * vertices),
+        Out(mesh.Offsets, polygons + 1), Out(mesh.Connectivity, this->SurfaceIndices),
+        Out(mesh.PolygonNode, polygons), Out(mesh.PolygonLevel, polygons),
+        Out(mesh.PolygonFace, polygons));
+  });
+}
+
+bool HybridOctree::GetSurfaceTriangles(
+  std::vector<float>& vertices, std::vector<unsigned int>& indices, std::string& error) const
+{
+  static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "32-bit triangle indices");
+  vertices.resize(6 * this->SurfaceVertices);
+  indices.resize(3 * this->SurfacePolygons);
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .surface_triangles(Out(vertices.data(), vertices.size()),
+        Out(reinterpret_cast<std::uint32_t*>(indices.data()), indices.size()));
+  });
+}
+
+bool HybridOctree::IntegratePoints(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, const PointsOptions& options, PointsSummary& summary,
+  std::string& error)
+{
+  this->Points = this->PointsFactor = this->PointsBytes = 0;
+  return Guarded(error, [&] {
+    summary = FromRust(
+      this->Impl->Box->integrate_points(ToSlice(bytes, byteCount), ToRust(grid), ToRust(options)));
+    this->Points = summary.Points;
+    this->PointsFactor = summary.Factor;
+    this->PointsBytes = summary.PointBytes;
+  });
+}
+
+void HybridOctree::RemovePoints()
+{
+  std::string ignored; // dropping a Rust value cannot fail
+  Guarded(ignored, [&] { this->Impl->Box->remove_points(); });
+  this->Points = this->PointsFactor = this->PointsBytes = 0;
+}
+
+bool HybridOctree::GetPointsDrawing(PointsDrawing& drawing, std::string& error) const
+{
+  drawing.Position.resize(3 * this->Points);
+  drawing.Value.resize(this->Points);
+  drawing.Error.resize(this->Points);
+  drawing.Factor = this->PointsFactor;
+  drawing.PointBytes = this->PointsBytes;
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .points_drawing(Out(drawing.Position.data(), drawing.Position.size()),
+        Out(drawing.Value.data(), drawing.Value.size()),
+        Out(drawing.Error.data(), drawing.Error.size()));
+  });
+}
+
+bool HybridOctree::GetPointShades(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, const std::vector<double>& colorPoints,
+  const std::vector<double>& opacityPoints, std::vector<float>& shades, std::string& error) const
+{
+  shades.resize(4 * this->Points);
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .point_shades(ToSlice(bytes, byteCount), ToRust(grid),
+        rust::Slice<const double>(colorPoints.data(), colorPoints.size()),
+        rust::Slice<const double>(opacityPoints.data(), opacityPoints.size()),
+        Out(shades.data(), shades.size()));
+  });
+}
+
+std::unique_ptr<Selection> HybridOctree::Select(
+  const SelectDescription& options, std::string& error) const
+{
+  std::unique_ptr<Selection> result;
+  Guarded(
+    error, [&] { result = Own<Selection>(HandleFor(this->Impl).select_bricks(ToRust(options))); });
+  return result;
 }
 
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function)
@@ -345,96 +448,8 @@ std::vector<double> OpacityPoints(vtkPiecewiseFunction* function)
   return points;
 }
 
-struct Selection::Internals
-{
-  explicit Internals(rust::Box<hybrid_octree::SelectionHandle> handle)
-    : Handle(std::move(handle))
-  {
-  }
-  rust::Box<hybrid_octree::SelectionHandle> Handle;
-};
-
-std::unique_ptr<Selection> VolumeOctree::Select(
-  const SelectDescription& options, std::string& error) const
-{
-  std::unique_ptr<Selection> result;
-  Guarded(error, [&] {
-    rust::Box<hybrid_octree::SelectionHandle> handle =
-      this->Impl->Handle->select_bricks(ToRust(options));
-    result = std::unique_ptr<Selection>(new Selection(
-      std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
-  });
-  return result;
-}
-
-struct Points::Internals
-{
-  explicit Internals(rust::Box<hybrid_octree::PointsHandle> handle)
-    : Handle(std::move(handle))
-  {
-  }
-  rust::Box<hybrid_octree::PointsHandle> Handle;
-};
-
-Points::Points(std::unique_ptr<Internals> internals)
-  : Impl(std::move(internals))
-{
-}
-
-Points::~Points() = default;
-
-std::unique_ptr<Points> VolumeOctree::MakePoints(const void* bytes, std::size_t byteCount,
-  const GridDescription& grid, const PointsOptions& options, std::string& error) const
-{
-  std::unique_ptr<Points> result;
-  Guarded(error, [&] {
-    rust::Box<hybrid_octree::PointsHandle> handle = this->Impl->Handle->points_for_drawing(
-      ToSlice(bytes, byteCount), ToRust(grid), ToRust(options));
-    result = std::unique_ptr<Points>(
-      new Points(std::unique_ptr<Points::Internals>(new Points::Internals(std::move(handle)))));
-  });
-  return result;
-}
-
-bool Points::GetDrawing(PointsDrawing& drawing, std::string& error) const
-{
-  return Guarded(error, [&] {
-    const hybrid_octree::PointsDrawing d = this->Impl->Handle->drawing();
-    CopyInto(d.position, drawing.Position);
-    CopyInto(d.value, drawing.Value);
-    CopyInto(d.error, drawing.Error);
-    drawing.Factor = d.factor;
-    drawing.PointBytes = d.point_bytes;
-  });
-}
-
-bool Points::GetShades(const void* bytes, std::size_t byteCount, const GridDescription& grid,
-  const std::vector<double>& colorPoints, const std::vector<double>& opacityPoints,
-  std::vector<float>& shades, std::string& error) const
-{
-  return Guarded(error, [&] {
-    const rust::Vec<float> out = this->Impl->Handle->shades(ToSlice(bytes, byteCount), ToRust(grid),
-      rust::Slice<const double>(colorPoints.data(), colorPoints.size()),
-      rust::Slice<const double>(opacityPoints.data(), opacityPoints.size()));
-    CopyInto(out, shades);
-  });
-}
-
-std::unique_ptr<Selection> VolumeOctree::Select(
-  const SelectDescription& options, const Points& points, std::string& error) const
-{
-  std::unique_ptr<Selection> result;
-  Guarded(error, [&] {
-    rust::Box<hybrid_octree::SelectionHandle> handle =
-      this->Impl->Handle->select_bricks_with_points(ToRust(options), *points.Impl->Handle);
-    result = std::unique_ptr<Selection>(new Selection(
-      std::unique_ptr<Selection::Internals>(new Selection::Internals(std::move(handle)))));
-  });
-  return result;
-}
-
-Selection::Selection(std::unique_ptr<Internals> internals)
-  : Impl(std::move(internals))
+Selection::Selection(std::unique_ptr<RustHandle<Selection>> handle)
+  : Impl(std::move(handle))
 {
 }
 
@@ -443,7 +458,7 @@ Selection::~Selection() = default;
 bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
 {
   return Guarded(error, [&] {
-    const hybrid_octree::SelectionSummary s = this->Impl->Handle->summary();
+    const hybrid_octree::SelectionSummary s = HandleFor(this->Impl).summary();
     summary.Bricks = s.bricks;
     summary.TextureBytes = s.texture_bytes;
     summary.BudgetBytes = s.budget_bytes;
@@ -455,100 +470,45 @@ bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
   });
 }
 
-bool Selection::GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
-  DrawList& list, std::string& error) const
+bool Selection::GetDrawList(const HybridOctree& octree, const CameraDescription& camera,
+  double surfaceOpacity, DrawList& list, std::string& error) const
 {
   return Guarded(error, [&] {
-    const hybrid_octree::DrawListOutput out =
-      this->Impl->Handle->draw_list(*octree.Impl->Handle, ToRust(camera));
-    CopyDrawList(out, list);
+    CopyDrawList(
+      HandleFor(this->Impl).draw_list(HandleFor(octree.Impl), ToRust(camera), surfaceOpacity),
+      list);
   });
 }
 
 bool Selection::GetBrickTexels(const void* bytes, std::size_t byteCount,
-  const GridDescription& grid, std::size_t brick, std::vector<float>& texels,
+  const GridDescription& grid, std::size_t brick, float* texels, std::size_t count,
   std::string& error) const
 {
   return Guarded(error, [&] {
-    const hybrid_octree::GridDesc desc = ToRust(grid);
-    const rust::Vec<float> t =
-      this->Impl->Handle->brick_texels(ToSlice(bytes, byteCount), desc, brick);
-    CopyInto(t, texels);
+    HandleFor(this->Impl)
+      .brick_texels(ToSlice(bytes, byteCount), ToRust(grid), brick, Out(texels, count));
   });
 }
 
-struct Surface::Internals
-{
-  explicit Internals(rust::Box<hybrid_octree::SurfaceHandle> handle)
-    : Handle(std::move(handle))
-  {
-  }
-  rust::Box<hybrid_octree::SurfaceHandle> Handle;
-};
-
-bool Selection::GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
-  const Surface& surface, double surfaceOpacity, DrawList& list, std::string& error) const
-{
-  return Guarded(error, [&] {
-    const hybrid_octree::DrawListOutput out = this->Impl->Handle->draw_list_with_surface(
-      *octree.Impl->Handle, ToRust(camera), *surface.Impl->Handle, surfaceOpacity);
-    CopyDrawList(out, list);
-  });
-}
-
-Surface::Surface(std::unique_ptr<Internals> internals)
-  : Impl(std::move(internals))
-{
-}
-
-Surface::~Surface() = default;
-
-std::unique_ptr<Surface> VolumeOctree::ExtractSurfaceForDrawing(const void* bytes,
-  std::size_t byteCount, const GridDescription& grid, double isovalue, SurfaceMode mode,
-  std::string& error) const
-{
-  std::unique_ptr<Surface> result;
-  Guarded(error, [&] {
-    const hybrid_octree::GridDesc desc = ToRust(grid);
-    rust::Box<hybrid_octree::SurfaceHandle> handle = this->Impl->Handle->surface_for_drawing(
-      ToSlice(bytes, byteCount), desc, isovalue, ToRust(mode));
-    result = std::unique_ptr<Surface>(
-      new Surface(std::unique_ptr<Surface::Internals>(new Surface::Internals(std::move(handle)))));
-  });
-  return result;
-}
-
-bool Surface::GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string& error) const
-{
-  return Guarded(error, [&] { CopyMesh(this->Impl->Handle->mesh(*octree.Impl->Handle), mesh); });
-}
-
-bool Selection::Composite(const VolumeOctree& octree, const CameraDescription& camera,
+bool Selection::Composite(const HybridOctree& octree, const CameraDescription& camera,
   const void* bytes, std::size_t byteCount, const GridDescription& grid,
-  const CompositeScene& scene, std::size_t width, std::size_t height, std::vector<float>& rgba,
+  const CompositeScene& scene, std::size_t width, std::size_t height, float* rgba,
   std::string& error) const
 {
   return Guarded(error, [&] {
-    const hybrid_octree::GridDesc desc = ToRust(grid);
-    const rust::Slice<const double> colors(scene.ColorPoints.data(), scene.ColorPoints.size());
-    const rust::Slice<const double> opacities(
-      scene.OpacityPoints.data(), scene.OpacityPoints.size());
-    const rust::Vec<float> out = scene.SurfaceToDraw
-      ? this->Impl->Handle->composite_with_surface(*octree.Impl->Handle, ToRust(camera),
-          ToSlice(bytes, byteCount), desc, colors, opacities, scene.GaussianPoints,
-          *scene.SurfaceToDraw->Impl->Handle, rust::Slice<const double>(scene.SurfaceRGBA, 4),
-          width, height)
-      : this->Impl->Handle->composite(*octree.Impl->Handle, ToRust(camera),
-          ToSlice(bytes, byteCount), desc, colors, opacities, scene.GaussianPoints, width, height);
-    CopyInto(out, rgba);
+    HandleFor(this->Impl)
+      .composite(HandleFor(octree.Impl), ToRust(camera), ToSlice(bytes, byteCount), ToRust(grid),
+        rust::Slice<const double>(scene.ColorPoints.data(), scene.ColorPoints.size()),
+        rust::Slice<const double>(scene.OpacityPoints.data(), scene.OpacityPoints.size()),
+        scene.GaussianPoints, rust::Slice<const double>(scene.SurfaceRGBA, 4), width, height,
+        Out(rgba, 4 * width * height));
   });
 }
 
 bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription& grid,
-  const FtbOptions& options, FtbResult& result, std::string& error)
+  const FtbOptions& options, const FtbImageBuffers& image, FtbResult& result, std::string& error)
 {
   return Guarded(error, [&] {
-    const hybrid_octree::GridDesc desc = ToRust(grid);
     hybrid_octree::FtbDesc o;
     o.isovalue = options.Isovalue;
     o.use_label = options.UseLabel;
@@ -556,43 +516,38 @@ bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription&
     o.vpn = { options.Vpn[0], options.Vpn[1], options.Vpn[2] };
     o.image_size = options.ImageSize;
     o.back_to_front = options.BackToFront;
-    const hybrid_octree::FtbImage image =
-      hybrid_octree::ftb_display(ToSlice(bytes, byteCount), desc, o);
-    result.Size = image.size;
-    CopyInto(image.depth, result.Depth);
-    CopyInto(image.face, result.Face);
-    CopyInto(image.shaded, result.Shaded);
-    result.WhiteVisited = image.white_visited;
-    result.BlackVisited = image.black_visited;
-    result.GrayVisited = image.gray_visited;
-    result.Faces = image.faces;
-    result.Scanlines = image.scanlines;
-    result.Pixels = image.pixels;
-    result.DisplayMs = image.display_ms;
-    result.BuildMs = image.build_ms;
-    result.BitmapBytes = image.bitmap_bytes;
-    result.WhiteOctants = image.white_octants;
-    result.BlackOctants = image.black_octants;
-    result.GrayOctants = image.gray_octants;
-    result.Resolution = image.resolution;
-    result.ViewCase = std::string(image.view_case);
+    const std::size_t pixels = options.ImageSize * options.ImageSize;
+    const hybrid_octree::FtbSummary s =
+      hybrid_octree::ftb_display(ToSlice(bytes, byteCount), ToRust(grid), o,
+        Out(image.Depth, pixels), Out(image.Face, pixels), Out(image.Shaded, 3 * pixels));
+    result.WhiteVisited = s.white_visited;
+    result.BlackVisited = s.black_visited;
+    result.GrayVisited = s.gray_visited;
+    result.Faces = s.faces;
+    result.Scanlines = s.scanlines;
+    result.Pixels = s.pixels;
+    result.DisplayMs = s.display_ms;
+    result.BuildMs = s.build_ms;
+    result.BitmapBytes = s.bitmap_bytes;
+    result.WhiteOctants = s.white_octants;
+    result.BlackOctants = s.black_octants;
+    result.GrayOctants = s.gray_octants;
+    result.Resolution = s.resolution;
+    result.ViewCase = std::string(s.view_case);
   });
 }
 
 bool GeneratePoints(const void* bytes, std::size_t byteCount, const GridDescription& grid,
-  const PointsOptions& options, PointsResult& result, std::string& error)
+  const PointsOptions& options, const std::function<PointsBuffers(const PointsSummary&)>& allocate,
+  PointsSummary& summary, std::string& error)
 {
   return Guarded(error, [&] {
-    const hybrid_octree::PointsOutput points =
+    const rust::Box<hybrid_octree::GeneratedPoints> made =
       hybrid_octree::generate_points(ToSlice(bytes, byteCount), ToRust(grid), ToRust(options));
-    CopyInto(points.ijk, result.Ijk);
-    CopyInto(points.value, result.Value);
-    CopyInto(points.error, result.Error);
-    CopyInto(points.normal, result.Normal);
-    result.Factor = points.factor;
-    result.PointBytes = points.point_bytes;
-    result.Underestimates = points.underestimates;
-    result.GenerateMs = points.generate_ms;
+    summary = FromRust(made->summary());
+    const std::size_t n = summary.Points;
+    const PointsBuffers out = allocate(summary);
+    made->fill(Out(out.Ijk, 3 * n), Out(out.Value, n), Out(out.Error, n), Out(out.Normal, 3 * n));
   });
 }
 

@@ -4,16 +4,22 @@
  *
  * The VTK classes of this module call the Rust crate only through this
  * header. It holds no cxx type: vtkHybridOctreeBridge.cxx is the only file
- * that includes the cxx-generated `hybrid-octree/src/ffi.rs.h`, converts
+ * that includes the cxx-generated `hybrid-octree/src/ffi/mod.rs.h`, converts
  * between these structs and the bridge's, and turns every `rust::Error`
  * (a `std::exception`) into an error string the caller reports with
- * vtkErrorMacro.
+ * vtkErrorMacro. The enums are the bridge's own (vtkHybridOctreeBridgeEnums.h).
  *
- * Volume samples cross borrowed: Build() and ExtractSurface() read the
- * caller's buffer while they run and keep no pointer to it.
+ * Volume samples cross borrowed: Build() and IntegrateSurface() read the
+ * caller's buffer while they run and keep no pointer to it. Large outputs
+ * go the other way into the caller's memory (a VTK array's WritePointer(),
+ * a texture's staging buffer): the caller sizes it from a summary and the
+ * Rust core writes into it, nothing is copied twice.
  */
 #ifndef vtkHybridOctreeBridge_h
 #define vtkHybridOctreeBridge_h
+
+#include "vtkHybridOctreeBridgeEnums.h"
+#include "vtkType.h" // vtkIdType
 
 #include <cstddef>
 #include <cstdint>
@@ -28,17 +34,16 @@ namespace vtkHybridOctreeBridge
 {
 
 /// Scalar types the Rust core reads (VTK_UNSIGNED_CHAR -> U8, ...).
-enum class ScalarType
-{
-  U8,
-  I8,
-  U16,
-  I16,
-  U32,
-  I32,
-  F32,
-  F64
-};
+using ScalarType = hybrid_octree::ScalarType;
+
+/// Which isosurface the Hybrid Octree keeps: Discretized (DiscMC, coplanar
+/// facets merged, lossless) or Interpolated (classic Marching Cubes).
+using SurfaceMode = hybrid_octree::SurfaceMode;
+
+/// The owner of one Rust handle of `Object`, defined in
+/// vtkHybridOctreeBridge.cxx (the only file that sees cxx types).
+template <class Object>
+struct RustHandle;
 
 /// Layout of a borrowed image: point dims, spacing, origin of the first
 /// sample, components per tuple and the chosen component (-1: none, allowed
@@ -53,7 +58,7 @@ struct GridDescription
   int Component = -1;
 };
 
-/// Summary of a built Volume Octree (see OctreeSummary in src/ffi.rs).
+/// Summary of a built Volume Octree (see OctreeSummary in src/ffi/mod.rs).
 struct OctreeSummary
 {
   std::uint64_t NodeCount = 0;
@@ -85,46 +90,45 @@ struct CutBoxes
   std::size_t GetNumberOfBoxes() const { return this->Level.size(); }
 };
 
-/// Which isosurface the Hybrid Octree keeps (see SurfaceMode in src/ffi.rs).
-enum class SurfaceMode
+/// An isosurface integrated into a HybridOctree (see SurfaceSummary in
+/// src/ffi/mod.rs): its sizes, for the caller's arrays, and what extracting
+/// it took. Polygons are triangles: the merged coplanar faces triangulated
+/// with their own vertices.
+struct SurfaceSummary
 {
-  /// Discretized Marching Cubes: vertices at edge midpoints, coplanar facets
-  /// merged into faces and re-triangulated (lossless).
-  Discretized,
-  /// Classic Marching Cubes: vertices linearly interpolated along edges.
-  Interpolated
-};
-
-/// An isosurface extracted from a Volume Octree (see SurfaceOutput in
-/// src/ffi.rs), world coordinates.
-///
-/// Sizes: `Points` and `Normals` hold 3 values per vertex; polygon `i` uses
-/// `Connectivity[Offsets[i] .. Offsets[i + 1]]`, so `Offsets` holds
-/// `Polygons + 1` values starting at 0; `PolygonNode`, `PolygonLevel` and
-/// `PolygonFace` hold one value per polygon. Polygons are triangles: the
-/// merged coplanar faces triangulated with their own vertices.
-struct SurfaceMesh
-{
-  std::vector<double> Points;
-  std::vector<float> Normals; ///< unit, from values >= isovalue towards values below
-  std::vector<std::int64_t> Offsets;
-  std::vector<std::int64_t> Connectivity;
-  std::vector<std::uint32_t> PolygonNode; ///< terminal node holding the polygon (level-by-level id)
-  std::vector<std::uint32_t> PolygonLevel; ///< level of that node (0 = root)
-  std::vector<std::uint32_t> PolygonFace;  ///< the merged coplanar face the triangle belongs to
-  std::uint64_t Polygons = 0;
+  std::size_t Vertices = 0;
+  std::size_t Polygons = 0;
+  std::size_t Connectivity = 0;            ///< 3 per polygon
   std::uint64_t Faces = 0;                 ///< merged coplanar faces
   std::uint64_t Triangles = 0;             ///< triangles in the output (= Polygons)
   std::uint64_t UncompressedTriangles = 0; ///< before coplanar facets are merged
-  std::uint64_t Vertices = 0;
-  std::uint64_t BoundaryEdges = 0; ///< edges of one polygon only (0: closed surface)
+  std::uint64_t BoundaryEdges = 0;         ///< edges of one polygon only (0: closed surface)
   double ExtractMilliseconds = 0.0;
   double CompressMilliseconds = 0.0;
   double DistanceMean = -1.0; ///< DiscMC to interpolated surface, voxels; -1: not measured
   double DistanceMax = -1.0;
 };
 
-/// What to select for drawing (see SelectDesc in src/ffi.rs).
+/**
+ * The caller's arrays a surface mesh is written into, world coordinates,
+ * sized from the SurfaceSummary: `Points` and `Normals` 3 values per vertex
+ * (unit normals, from values >= isovalue towards values below); polygon `i`
+ * uses `Connectivity[Offsets[i] .. Offsets[i + 1]]` (`Polygons + 1`
+ * offsets from 0); per polygon the terminal node holding it (level-by-level
+ * id), its level (0 = root) and the merged coplanar face it belongs to.
+ */
+struct SurfaceMeshBuffers
+{
+  double* Points = nullptr;
+  float* Normals = nullptr;
+  vtkIdType* Offsets = nullptr;
+  vtkIdType* Connectivity = nullptr;
+  int* PolygonNode = nullptr;
+  int* PolygonLevel = nullptr;
+  vtkIdType* PolygonFace = nullptr;
+};
+
+/// What to select for drawing (see SelectDesc in src/ffi/mod.rs).
 struct SelectDescription
 {
   std::size_t BudgetBytes = 0; ///< texture budget (f32 texels), > 0
@@ -139,7 +143,7 @@ struct SelectDescription
   double Isovalue = 0.0;
 };
 
-/// Summary of a selection (see SelectionSummary in src/ffi.rs).
+/// Summary of a selection (see SelectionSummary in src/ffi/mod.rs).
 struct SelectionSummary
 {
   std::uint64_t Bricks = 0;
@@ -164,7 +168,7 @@ struct CameraDescription
 };
 
 /**
- * A DrawList for one camera (see DrawListOutput in src/ffi.rs): the volume
+ * A DrawList for one camera (see DrawListOutput in src/ffi/mod.rs): the volume
  * bricks in drawing order, back to front. Per brick `i`: `Brick[i]` (its
  * index in the selection, for GetBrickTexels()), `NodeId[i]`,
  * `Bounds[6i .. 6i+6]` (world, VTK order), `Texels[3i .. 3i+3]`,
@@ -178,7 +182,7 @@ struct CameraDescription
  * With a translucent surface, brick `i`'s triangle batches are
  * `BatchOffsets[i] .. BatchOffsets[i+1]`, back to front: batch `k` draws the
  * surface triangles `BatchFirst[k] .. BatchEnd[k]` (polygon ids of
- * Surface::GetMesh()) in slab `BatchSlab[k]` (between slices s-1 and s),
+ * HybridOctree::GetSurfaceTriangles()) in slab `BatchSlab[k]` (between slices s-1 and s),
  * clipped to view depths `BatchClip[2k] <= depth < BatchClip[2k+1]`
  * (infinite: no clip needed). With an opaque surface, triangles
  * `0 .. OpaqueTriangles` are drawn first (depth write), then the bricks.
@@ -207,7 +211,7 @@ struct DrawList
   /// buckets are BucketOffsets[i] .. BucketOffsets[i + 1] (bricks + 1
   /// values), bucket k lies in slab BucketSlab[k] of its brick (as
   /// BatchSlab) and draws the points BucketPoints[BucketPointOffsets[k] ..
-  /// BucketPointOffsets[k + 1]] (ids into Points::GetDrawing()'s arrays).
+  /// BucketPointOffsets[k + 1]] (ids into HybridOctree::GetPointsDrawing()'s arrays).
   std::vector<std::size_t> BucketOffsets;
   std::vector<std::size_t> BucketSlab;
   std::vector<std::size_t> BucketPointOffsets;
@@ -216,16 +220,24 @@ struct DrawList
   std::size_t GetNumberOfBricks() const { return this->Brick.size(); }
 };
 
-class Surface;
-
 /// What Selection::Composite() draws besides the bricks' texels.
 struct CompositeScene
 {
-  std::vector<double> ColorPoints;                ///< (value, r, g, b) flattened
-  std::vector<double> OpacityPoints;              ///< (value, opacity) flattened
-  const Surface* SurfaceToDraw = nullptr;         ///< the isosurface, or none
-  double SurfaceRGBA[4] = { 1.0, 1.0, 1.0, 1.0 }; ///< its colour and opacity
+  std::vector<double> ColorPoints;   ///< (value, r, g, b) flattened
+  std::vector<double> OpacityPoints; ///< (value, opacity) flattened
+  /// The octree's isosurface's colour and opacity; opacity 0 hides it.
+  double SurfaceRGBA[4] = { 1.0, 1.0, 1.0, 0.0 };
   bool GaussianPoints = false; ///< footprint of the selection's points: Gaussian, else square
+};
+
+/// Points of the hybrid representation: how many, and what making them took.
+struct PointsSummary
+{
+  std::size_t Points = 0;
+  std::size_t Factor = 0;         ///< the low-resolution stride the points complete
+  std::size_t PointBytes = 0;     ///< all the points as stored
+  std::size_t Underestimates = 0; ///< points with e > 0
+  double GenerateMs = 0.0;
 };
 
 /// Points of the hybrid representation as the renderer draws them.
@@ -248,23 +260,27 @@ struct PointsDrawing
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function);
 
 class Selection;
-class Points;
 struct PointsOptions;
 
-/// A Volume Octree owned on the C++ side (it owns the Rust handle).
-class VolumeOctree
+/**
+ * The Hybrid Octree owned on the C++ side (it owns the Rust handle): the
+ * Volume Octree, and the isosurface and points integrated into it.
+ */
+class HybridOctree
 {
 public:
-  ~VolumeOctree();
-  VolumeOctree(const VolumeOctree&) = delete;
-  VolumeOctree& operator=(const VolumeOctree&) = delete;
+  explicit HybridOctree(std::unique_ptr<RustHandle<HybridOctree>> handle);
+  ~HybridOctree();
+  HybridOctree(const HybridOctree&) = delete;
+  HybridOctree& operator=(const HybridOctree&) = delete;
 
   /**
    * Builds the Volume Octree of `byteCount` bytes at `bytes` laid out as
-   * `grid`, with leaf bricks of `leafSize` cells per axis. Returns nullptr
-   * and sets `error` to the core's message on failure.
+   * `grid`, with leaf bricks of `leafSize` cells per axis (no surface, no
+   * points yet). Returns nullptr and sets `error` to the core's message on
+   * failure.
    */
-  static std::unique_ptr<VolumeOctree> Build(const void* bytes, std::size_t byteCount,
+  static std::unique_ptr<HybridOctree> Build(const void* bytes, std::size_t byteCount,
     const GridDescription& grid, unsigned int leafSize, std::string& error);
 
   /**
@@ -273,7 +289,7 @@ public:
    * false cancels the build (nullptr, `error` names the cancel, nothing is
    * kept). An exception from `progress` cancels too.
    */
-  static std::unique_ptr<VolumeOctree> Build(const void* bytes, std::size_t byteCount,
+  static std::unique_ptr<HybridOctree> Build(const void* bytes, std::size_t byteCount,
     const GridDescription& grid, unsigned int leafSize, const std::function<bool(double)>& progress,
     std::string& error);
 
@@ -285,64 +301,91 @@ public:
   bool GetCutBoxes(double tolerance, CutBoxes& boxes, std::string& error) const;
 
   /**
-   * Extracts the isosurface at `isovalue` of the image the octree was built
-   * from: `bytes`, `byteCount` and `grid` must describe the same samples as
-   * in Build(). `measureDistance` also measures the distance between the
-   * discretized and the interpolated surface. Replaces the contents of
-   * `surface`. An isovalue outside the data range gives an empty surface;
-   * a non-finite isovalue or a grid that does not match the octree's returns
-   * false and sets `error`.
+   * Surface data integration: extracts the isosurface at `isovalue` of the
+   * image the octree was built from (`bytes`, `byteCount` and `grid` as in
+   * Build()) and keeps it, replacing any; `measureDistance` also measures
+   * the distance between the discretized and the interpolated surface. An
+   * isovalue outside the data range gives an empty surface; a non-finite
+   * isovalue or a grid that does not match the octree's returns false, sets
+   * `error` and leaves no surface.
    */
-  bool ExtractSurface(const void* bytes, std::size_t byteCount, const GridDescription& grid,
-    double isovalue, SurfaceMode mode, bool measureDistance, SurfaceMesh& surface,
-    std::string& error) const;
+  bool IntegrateSurface(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    double isovalue, SurfaceMode mode, bool measureDistance, SurfaceSummary& summary,
+    std::string& error);
+
+  /// Drops the isosurface.
+  void RemoveSurface();
+
+  /// The isosurface as a mesh into `mesh`'s arrays, sized from its
+  /// SurfaceSummary. False and `error` on failure (no surface, a node id
+  /// beyond an int).
+  bool GetSurfaceMesh(const SurfaceMeshBuffers& mesh, std::string& error) const;
 
   /**
-   * Selects bricks (nodes and texture levels) within the budget. Returns
-   * nullptr and sets `error` on failure (budget 0, a bad tolerance, ROI or
-   * opacity points).
+   * The isosurface as the GPU draws it, into the caller's buffers:
+   * `vertices` 6 floats a vertex (world position, then unit normal),
+   * `indices` 3 a triangle (the DrawList's triangle ids are their
+   * positions); both resized from the SurfaceSummary. False and `error` on
+   * failure.
+   */
+  bool GetSurfaceTriangles(
+    std::vector<float>& vertices, std::vector<unsigned int>& indices, std::string& error) const;
+
+  /**
+   * Points data integration: the points completing stride-`options.Factor`
+   * textures of the image the octree was built from (`bytes`, `byteCount`,
+   * `grid` as in Build()), kept for Select(), replacing any.
+   * `options.MaxOverestimate` must be < 0 (the textures are the image
+   * itself). False, `error` and no points on failure.
+   */
+  bool IntegratePoints(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    const PointsOptions& options, PointsSummary& summary, std::string& error);
+
+  /// Drops the points.
+  void RemovePoints();
+
+  /// The points' positions, values and errors, `drawing`'s arrays resized
+  /// to the points. False and `error` on failure.
+  bool GetPointsDrawing(PointsDrawing& drawing, std::string& error) const;
+
+  /**
+   * What each point adds under the transfer function of `colorPoints`
+   * ((value, r, g, b) flattened) and `opacityPoints` ((value, opacity)
+   * flattened): 4 floats a point into `shades` (resized), its straight
+   * colour and opacity, averaged over its voxel (see src/points/shade.rs).
+   * `bytes`, `byteCount` and `grid`: the image the points were made from.
+   * False and `error` on failure.
+   */
+  bool GetPointShades(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    const std::vector<double>& colorPoints, const std::vector<double>& opacityPoints,
+    std::vector<float>& shades, std::string& error) const;
+
+  /**
+   * Selects bricks (nodes and texture levels) within the budget; with points
+   * integrated, the budget goes to textures and points (a brick at the
+   * points' stride takes its points when they remove more error per byte
+   * than refining it; the DrawLists bucket the points bought into their
+   * slabs). Returns nullptr and sets `error` on failure (budget 0, a bad
+   * tolerance, ROI or opacity points).
    */
   std::unique_ptr<Selection> Select(const SelectDescription& options, std::string& error) const;
 
-  /**
-   * Select() spending the budget on textures and on `points` (made from this
-   * octree by MakePoints()): a brick at the points' stride takes its points
-   * when they remove more error per byte than refining it; the selection's
-   * DrawLists bucket the points bought into their slabs.
-   */
-  std::unique_ptr<Selection> Select(
-    const SelectDescription& options, const Points& points, std::string& error) const;
-
-  /**
-   * The points completing stride-`options.Factor` textures of the image the
-   * octree was built from (`bytes`, `byteCount`, `grid` as in Build()),
-   * kept for Select(). `options.MaxOverestimate` must be < 0 (the textures
-   * are the image itself). Returns nullptr and sets `error` on failure.
-   */
-  std::unique_ptr<Points> MakePoints(const void* bytes, std::size_t byteCount,
-    const GridDescription& grid, const PointsOptions& options, std::string& error) const;
-
-  /**
-   * Extracts the isosurface (as ExtractSurface(), without the distance) and
-   * keeps it for drawing with a Selection. Returns nullptr and sets `error`
-   * on failure.
-   */
-  std::unique_ptr<Surface> ExtractSurfaceForDrawing(const void* bytes, std::size_t byteCount,
-    const GridDescription& grid, double isovalue, SurfaceMode mode, std::string& error) const;
-
 private:
   friend class Selection;
-  friend class Surface;
-  friend class Points;
-  struct Internals;
-  explicit VolumeOctree(std::unique_ptr<Internals> internals);
-  std::unique_ptr<Internals> Impl;
+  std::unique_ptr<RustHandle<HybridOctree>> Impl;
+  std::size_t SurfaceVertices = 0; ///< of the surface held
+  std::size_t SurfacePolygons = 0; ///< of the surface held
+  std::size_t SurfaceIndices = 0;  ///< connectivity entries of the surface held
+  std::size_t Points = 0;          ///< points held
+  std::size_t PointsFactor = 0;    ///< their stride
+  std::size_t PointsBytes = 0;     ///< their bytes as stored
 };
 
-/// A selection of a VolumeOctree (it owns the Rust handle).
+/// A selection of a HybridOctree (it owns the Rust handle).
 class Selection
 {
 public:
+  explicit Selection(std::unique_ptr<RustHandle<Selection>> handle);
   ~Selection();
   Selection(const Selection&) = delete;
   Selection& operator=(const Selection&) = delete;
@@ -350,99 +393,47 @@ public:
   /// Bricks, bytes, error, skipped nodes, warning. False and `error` on failure.
   bool GetSummary(SelectionSummary& summary, std::string& error) const;
 
-  /// The DrawList for `camera`; `octree` must be the one Select() was called on.
-  /// Replaces the contents of `list`. False and `error` on failure.
-  bool GetDrawList(const VolumeOctree& octree, const CameraDescription& camera, DrawList& list,
-    std::string& error) const;
-
-  /// The DrawList with `surface` (extracted from `octree`) at `surfaceOpacity`:
-  /// 1 opaque (drawn first), (0, 1) translucent (batches in the slabs), 0 hidden.
-  /// The slab batching is made on the first call for a surface and kept.
-  bool GetDrawList(const VolumeOctree& octree, const CameraDescription& camera,
-    const Surface& surface, double surfaceOpacity, DrawList& list, std::string& error) const;
+  /**
+   * The DrawList for `camera`, with the octree's surface, when it holds one,
+   * at `surfaceOpacity`: 1 opaque (drawn first), (0, 1) translucent (batches
+   * in the slabs, made on the first call for a surface and kept), 0 hidden.
+   * `octree` must be the one Select() was called on. Replaces the contents
+   * of `list`. False and `error` on failure.
+   */
+  bool GetDrawList(const HybridOctree& octree, const CameraDescription& camera,
+    double surfaceOpacity, DrawList& list, std::string& error) const;
 
   /**
    * Brick `brick`'s texels (x fastest; texel (i, j, k) is the image at
    * min(lo + (i, j, k) * stride, hi)) as float: exact for 8/16-bit and float
-   * images, rounded to nearest for double and 32-bit integers. `bytes`,
+   * images, rounded to nearest for double and 32-bit integers, written into
+   * the caller's `texels` (`count`, the brick's texel count). `bytes`,
    * `byteCount` and `grid` describe the image the octree was built from.
-   * Replaces the contents of `texels`. False and `error` on failure.
+   * False and `error` on failure.
    */
   bool GetBrickTexels(const void* bytes, std::size_t byteCount, const GridDescription& grid,
-    std::size_t brick, std::vector<float>& texels, std::string& error) const;
+    std::size_t brick, float* texels, std::size_t count, std::string& error) const;
 
   /**
    * The CPU compositor's picture of the DrawList (GetDrawList(octree,
-   * camera), with `scene.SurfaceToDraw` at `scene.SurfaceRGBA[3]` when set),
-   * `width x height`, premultiplied RGBA floats, rows from the top, with the
-   * transfer function of `scene.ColorPoints` ((value, r, g, b) flattened) and
-   * `scene.OpacityPoints` ((value, opacity) flattened), piecewise linear; the
-   * surface headlight-shaded, `rgb |n . d|`. `bytes`, `byteCount` and `grid`:
-   * the image the octree was built from. The reference
-   * vtkHybridOctreeVolumeMapper's OpenGL output is tested against.
+   * camera, scene.SurfaceRGBA[3])) into the caller's `rgba`: `width x
+   * height` premultiplied RGBA floats (4 a pixel), rows from the top, with
+   * the transfer function of `scene.ColorPoints` ((value, r, g, b)
+   * flattened) and `scene.OpacityPoints` ((value, opacity) flattened),
+   * piecewise linear; the octree's surface, when it holds one and
+   * `scene.SurfaceRGBA[3]` > 0, headlight-shaded, `rgb |n . d|`. `bytes`,
+   * `byteCount` and `grid`: the image the octree was built from. The
+   * reference vtkHybridOctreeVolumeMapper's OpenGL output is tested against.
    */
-  bool Composite(const VolumeOctree& octree, const CameraDescription& camera, const void* bytes,
+  bool Composite(const HybridOctree& octree, const CameraDescription& camera, const void* bytes,
     std::size_t byteCount, const GridDescription& grid, const CompositeScene& scene,
-    std::size_t width, std::size_t height, std::vector<float>& rgba, std::string& error) const;
+    std::size_t width, std::size_t height, float* rgba, std::string& error) const;
 
 private:
-  friend class VolumeOctree;
-  struct Internals;
-  explicit Selection(std::unique_ptr<Internals> internals);
-  std::unique_ptr<Internals> Impl;
+  std::unique_ptr<RustHandle<Selection>> Impl;
 };
 
-/// An isosurface kept for drawing (it owns the Rust handle).
-class Surface
-{
-public:
-  ~Surface();
-  Surface(const Surface&) = delete;
-  Surface& operator=(const Surface&) = delete;
-
-  /// The mesh (world coordinates); its polygon ids are the DrawList's
-  /// triangle ids. `octree`: the one it was extracted from. False and `error` on failure.
-  bool GetMesh(const VolumeOctree& octree, SurfaceMesh& mesh, std::string& error) const;
-
-private:
-  friend class VolumeOctree;
-  friend class Selection;
-  struct Internals;
-  explicit Surface(std::unique_ptr<Internals> internals);
-  std::unique_ptr<Internals> Impl;
-};
-
-/// Points of the hybrid representation kept for drawing (it owns the Rust handle).
-class Points
-{
-public:
-  ~Points();
-  Points(const Points&) = delete;
-  Points& operator=(const Points&) = delete;
-
-  /// Positions, values and errors. False and `error` on failure.
-  bool GetDrawing(PointsDrawing& drawing, std::string& error) const;
-
-  /**
-   * What each point adds under the transfer function of `colorPoints`
-   * ((value, r, g, b) flattened) and `opacityPoints` ((value, opacity)
-   * flattened): 4 floats a point into `shades`, its straight colour and
-   * opacity, averaged over its voxel (see src/points/shade.rs). `bytes`,
-   * `byteCount` and `grid`: the image the points were made from. False and
-   * `error` on failure.
-   */
-  bool GetShades(const void* bytes, std::size_t byteCount, const GridDescription& grid,
-    const std::vector<double>& colorPoints, const std::vector<double>& opacityPoints,
-    std::vector<float>& shades, std::string& error) const;
-
-private:
-  friend class VolumeOctree;
-  struct Internals;
-  explicit Points(std::unique_ptr<Internals> internals);
-  std::unique_ptr<Internals> Impl;
-};
-
-/// What FtbDisplay() draws (paper 2's display; see FtbDesc in src/ffi.rs).
+/// What FtbDisplay() draws (paper 2's display; see FtbDesc in src/ffi/mod.rs).
 struct FtbOptions
 {
   double Isovalue = 0.0; ///< inside: value >= Isovalue ...
@@ -453,13 +444,18 @@ struct FtbOptions
   bool BackToFront = false; ///< Meagher's display instead of FTB with blocking quadtrees
 };
 
-/// A depth image of the binary octree and what drawing it took.
+/// The caller's `ImageSize^2` pixels a depth image is drawn into, rows from
+/// the bottom (VTK's image order).
+struct FtbImageBuffers
+{
+  float* Depth = nullptr;         ///< NaN where nothing was painted
+  std::uint8_t* Face = nullptr;   ///< 0 nothing, 1 + axis of the face painted
+  std::uint8_t* Shaded = nullptr; ///< RGB, 3 a pixel
+};
+
+/// What drawing a depth image took.
 struct FtbResult
 {
-  std::size_t Size = 0;
-  std::vector<float> Depth;         ///< rows from the top; NaN where nothing was painted
-  std::vector<std::uint8_t> Face;   ///< 0 nothing, 1 + axis of the face painted
-  std::vector<std::uint8_t> Shaded; ///< RGB
   std::size_t WhiteVisited = 0, BlackVisited = 0, GrayVisited = 0;
   std::size_t Faces = 0, Scanlines = 0, Pixels = 0;
   double DisplayMs = 0.0, BuildMs = 0.0;
@@ -471,13 +467,14 @@ struct FtbResult
 
 /**
  * Builds the binary octree of `byteCount` bytes at `bytes` laid out as
- * `grid` and draws its depth image. False and `error` on failure (a zero VPN,
- * a non-finite isovalue, an image size outside 8..8192, bad samples).
+ * `grid` and draws its depth image into `image` (`options.ImageSize^2`
+ * pixels). False and `error` on failure (a zero VPN, a non-finite isovalue,
+ * an image size outside 8..8192, bad samples).
  */
 bool FtbDisplay(const void* bytes, std::size_t byteCount, const GridDescription& grid,
-  const FtbOptions& options, FtbResult& result, std::string& error);
+  const FtbOptions& options, const FtbImageBuffers& image, FtbResult& result, std::string& error);
 
-/// What GeneratePoints() makes (paper 3's points; see PointsDesc in src/ffi.rs).
+/// What GeneratePoints() makes (paper 3's points; see PointsDesc in src/ffi/mod.rs).
 struct PointsOptions
 {
   std::size_t Factor = 4; ///< low resolution: every 2, 4 or 8 samples
@@ -489,26 +486,26 @@ struct PointsOptions
   std::string FileName;            ///< also write the point file (empty: do not)
 };
 
-/// The points, dequantised as stored.
-struct PointsResult
+/// The caller's arrays the points are written into (one entry a point, 3 for
+/// `Ijk` and `Normal`), dequantised as stored.
+struct PointsBuffers
 {
-  std::vector<std::uint32_t> Ijk; ///< 3 per point
-  std::vector<float> Value;
-  std::vector<float> Error;
-  std::vector<float> Normal; ///< 3 per point
-  std::size_t Factor = 0;
-  std::size_t PointBytes = 0;
-  std::size_t Underestimates = 0;
-  double GenerateMs = 0.0;
+  std::uint32_t* Ijk = nullptr; ///< grid index
+  float* Value = nullptr;
+  float* Error = nullptr;
+  float* Normal = nullptr; ///< unit, from the 256-direction table
 };
 
 /**
  * The points completing the stride-`Factor` low resolution of `byteCount`
- * bytes at `bytes` laid out as `grid`. False and `error` on failure (a bad
- * factor, threshold or bound, a grid too small, a file not written).
+ * bytes at `bytes` laid out as `grid`: `allocate(summary)` is called once
+ * their count is known and returns the caller's arrays, which are then
+ * filled. False and `error` on failure (a bad factor, threshold or bound, a
+ * grid too small, a file not written, an array missing).
  */
 bool GeneratePoints(const void* bytes, std::size_t byteCount, const GridDescription& grid,
-  const PointsOptions& options, PointsResult& result, std::string& error);
+  const PointsOptions& options, const std::function<PointsBuffers(const PointsSummary&)>& allocate,
+  PointsSummary& summary, std::string& error);
 
 } // namespace vtkHybridOctreeBridge
 

@@ -2,7 +2,7 @@
  * @file   vtkHybridOctreeBuildProgress.h
  * @brief  The C++ side of the build's progress sink, called by Rust (private to the module).
  *
- * `hybrid_octree::build_volume_octree_with_progress` (src/ffi.rs) calls
+ * `hybrid_octree::build_hybrid_octree` (src/ffi/mod.rs) calls
  * `report(fraction)` on the thread that started the build, between chunks of
  * leaf bricks, with fractions increasing to 1 (the leaf pass, which is
  * nearly all of the build time). Returning false cancels the build: Rust then

@@ -1,6 +1,7 @@
 #include "vtkHybridOctreeDepthImage.h"
 
 #include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeFieldData.h"
 #include "vtkHybridOctreeImageInput.h"
 
 #include "vtkDataArray.h"
@@ -61,18 +62,6 @@ int vtkHybridOctreeDepthImage::RequestUpdateExtent(
   return 1;
 }
 
-namespace
-{
-template <typename T>
-void AddField(vtkFieldData* fd, const char* name, T value)
-{
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(static_cast<double>(value));
-  fd->AddArray(a);
-}
-}
-
 int vtkHybridOctreeDepthImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -84,15 +73,12 @@ int vtkHybridOctreeDepthImage::RequestData(
     return 0;
   }
   output->Initialize();
-  if (!input)
-  {
-    vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
-    return 0;
-  }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* chosen =
+    input ? this->GetInputArrayToProcess(0, inputVector, association) : nullptr;
   std::string error;
-  vtkDataArray* scalars = vtkHybridOctreeImageInput::CheckPointScalars(
-    input, this->GetInputArrayToProcess(0, inputVector, association), association, error);
+  vtkDataArray* scalars =
+    vtkHybridOctreeImageInput::CheckPointScalars(input, chosen, association, error);
   if (!scalars)
   {
     vtkErrorMacro(<< error);
@@ -108,69 +94,52 @@ int vtkHybridOctreeDepthImage::RequestData(
   }
   options.ImageSize = static_cast<std::size_t>(this->ImageSize);
   options.BackToFront = this->Method == BACK_TO_FRONT;
+  // The core draws into the output arrays, rows from the bottom (VTK's order).
+  const vtkIdType n = this->ImageSize;
+  vtkNew<vtkFloatArray> depth;
+  depth->SetName("depth");
+  depth->SetNumberOfTuples(n * n);
+  vtkNew<vtkUnsignedCharArray> face;
+  face->SetName("face");
+  face->SetNumberOfTuples(n * n);
+  vtkNew<vtkUnsignedCharArray> shaded;
+  shaded->SetName("shaded");
+  shaded->SetNumberOfComponents(3);
+  shaded->SetNumberOfTuples(n * n);
+  vtkHybridOctreeBridge::FtbImageBuffers image;
+  image.Depth = depth->GetPointer(0);
+  image.Face = face->GetPointer(0);
+  image.Shaded = shaded->GetPointer(0);
   vtkHybridOctreeBridge::FtbResult result;
   if (!vtkHybridOctreeBridge::FtbDisplay(vtkHybridOctreeImageInput::Bytes(scalars),
         vtkHybridOctreeImageInput::ByteCount(scalars),
-        vtkHybridOctreeImageInput::DescribeGrid(input, scalars, this->Component), options, result,
-        error))
+        vtkHybridOctreeImageInput::DescribeGrid(input, scalars, this->Component), options, image,
+        result, error))
   {
     vtkErrorMacro(<< error);
-    return 0;
-  }
-  const std::size_t n = result.Size;
-  if (n == 0 || result.Depth.size() != n * n || result.Face.size() != n * n ||
-    result.Shaded.size() != 3 * n * n)
-  {
-    vtkErrorMacro(
-      "internal error: the core returned an inconsistent depth image; please report it");
     return 0;
   }
   output->SetExtent(0, static_cast<int>(n) - 1, 0, static_cast<int>(n) - 1, 0, 0);
   output->SetSpacing(1.0, 1.0, 1.0);
   output->SetOrigin(0.0, 0.0, 0.0);
-  vtkNew<vtkFloatArray> depth;
-  depth->SetName("depth");
-  depth->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
-  vtkNew<vtkUnsignedCharArray> face;
-  face->SetName("face");
-  face->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
-  vtkNew<vtkUnsignedCharArray> shaded;
-  shaded->SetName("shaded");
-  shaded->SetNumberOfComponents(3);
-  shaded->SetNumberOfTuples(static_cast<vtkIdType>(n * n));
-  // The core's rows go top down; VTK's images bottom up.
-  for (std::size_t row = 0; row < n; ++row)
-  {
-    const std::size_t from = (n - 1 - row) * n;
-    for (std::size_t x = 0; x < n; ++x)
-    {
-      const vtkIdType to = static_cast<vtkIdType>(row * n + x);
-      depth->SetValue(to, result.Depth[from + x]);
-      face->SetValue(to, result.Face[from + x]);
-      for (int c = 0; c < 3; ++c)
-      {
-        shaded->SetTypedComponent(to, c, result.Shaded[3 * (from + x) + c]);
-      }
-    }
-  }
   output->GetPointData()->SetScalars(depth);
   output->GetPointData()->AddArray(face);
   output->GetPointData()->AddArray(shaded);
 
   vtkFieldData* fd = output->GetFieldData();
-  AddField(fd, "white_visited", result.WhiteVisited);
-  AddField(fd, "black_visited", result.BlackVisited);
-  AddField(fd, "gray_visited", result.GrayVisited);
-  AddField(fd, "faces", result.Faces);
-  AddField(fd, "scanlines", result.Scanlines);
-  AddField(fd, "pixels", result.Pixels);
-  AddField(fd, "display_ms", result.DisplayMs);
-  AddField(fd, "build_ms", result.BuildMs);
-  AddField(fd, "bitmap_bytes", result.BitmapBytes);
-  AddField(fd, "white_octants", result.WhiteOctants);
-  AddField(fd, "black_octants", result.BlackOctants);
-  AddField(fd, "gray_octants", result.GrayOctants);
-  AddField(fd, "resolution", result.Resolution);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "white_visited", result.WhiteVisited);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "black_visited", result.BlackVisited);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "gray_visited", result.GrayVisited);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "faces", result.Faces);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "scanlines", result.Scanlines);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "pixels", result.Pixels);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "display_ms", result.DisplayMs);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "build_ms", result.BuildMs);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "bitmap_bytes", result.BitmapBytes);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "white_octants", result.WhiteOctants);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "black_octants", result.BlackOctants);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "gray_octants", result.GrayOctants);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fd, "resolution", result.Resolution);
   vtkNew<vtkStringArray> viewCase;
   viewCase->SetName("view_case");
   viewCase->InsertNextValue(result.ViewCase);

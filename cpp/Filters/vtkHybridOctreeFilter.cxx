@@ -1,6 +1,7 @@
 #include "vtkHybridOctreeFilter.h"
 
 #include "vtkHybridOctreeBridge.h"
+#include "vtkHybridOctreeFieldData.h"
 #include "vtkHybridOctreeImageInput.h"
 
 #include "vtkCellArray.h"
@@ -37,7 +38,7 @@ vtkStandardNewMacro(vtkHybridOctreeFilter);
 /// every request even when its data did not change.
 struct vtkHybridOctreeFilter::vtkInternals
 {
-  std::unique_ptr<vtkHybridOctreeBridge::VolumeOctree> Octree;
+  std::unique_ptr<vtkHybridOctreeBridge::HybridOctree> Octree;
   const vtkDataArray* Array = nullptr;
   vtkMTimeType ArrayMTime = 0;
   vtkHybridOctreeBridge::GridDescription Grid;
@@ -90,17 +91,6 @@ constexpr const char* NodeIdTooLarge =
   "the octree has more than 2^31 nodes, whose ids do not fit the int cell array 'node'; use a "
   "larger LeafSize";
 
-/// Adds a one-value array named `name` to `fieldData`.
-template <typename ArrayT, typename ValueT>
-void AddFieldValue(vtkFieldData* fieldData, const char* name, ValueT value)
-{
-  vtkNew<ArrayT> array;
-  array->SetName(name);
-  array->SetNumberOfTuples(1);
-  array->SetValue(0, static_cast<typename ArrayT::ValueType>(value));
-  fieldData->AddArray(array);
-}
-
 /// Corner pairs of the 12 edges of a box whose corner c sits at
 /// x[c & 1], y[(c >> 1) & 1], z[(c >> 2) & 1]: x edges, y edges, z edges.
 constexpr int BoxEdges[12][2] = { { 0, 1 }, { 2, 3 }, { 4, 5 }, { 6, 7 }, { 0, 2 }, { 1, 3 },
@@ -137,7 +127,8 @@ vtkDataArray* vtkHybridOctreeFilter::GetScalars(
   vtkImageData* image, vtkInformationVector** inputVector)
 {
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkDataArray* scalars =
+    image ? this->GetInputArrayToProcess(0, inputVector, association) : nullptr;
   std::string error;
   scalars = vtkHybridOctreeImageInput::CheckPointScalars(image, scalars, association, error);
   if (!scalars)
@@ -172,7 +163,7 @@ bool vtkHybridOctreeFilter::UpdateOctree(vtkImageData* image, vtkDataArray* scal
     this->UpdateProgress(BuildShare * fraction);
     return !this->CheckAbort();
   };
-  cache.Octree = vtkHybridOctreeBridge::VolumeOctree::Build(Bytes(scalars), ByteCount(scalars),
+  cache.Octree = vtkHybridOctreeBridge::HybridOctree::Build(Bytes(scalars), ByteCount(scalars),
     grid, static_cast<unsigned int>(this->LeafSize), progress, error);
   if (!cache.Octree)
   {
@@ -212,77 +203,66 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   }
   cache.Surface = nullptr;
 
-  vtkHybridOctreeBridge::SurfaceMesh mesh;
+  vtkHybridOctreeBridge::SurfaceSummary mesh;
   std::string error;
   const auto mode = this->SurfaceMode == SURFACE_MODE_INTERPOLATED
     ? vtkHybridOctreeBridge::SurfaceMode::Interpolated
     : vtkHybridOctreeBridge::SurfaceMode::Discretized;
-  if (!cache.Octree->ExtractSurface(Bytes(scalars), ByteCount(scalars), cache.Grid, this->Isovalue,
-        mode, this->MeasureSurfaceDistance != 0, mesh, error))
+  if (!cache.Octree->IntegrateSurface(Bytes(scalars), ByteCount(scalars), cache.Grid,
+        this->Isovalue, mode, this->MeasureSurfaceDistance != 0, mesh, error))
   {
     vtkErrorMacro(<< error);
     return false;
   }
   ++this->SurfaceExtractCount;
 
-  // The sizes the bridge promises; a mismatch is a bug in the core, reported
-  // instead of read out of bounds.
-  const std::size_t polygons = mesh.PolygonNode.size();
-  const std::size_t vertices = mesh.Points.size() / 3;
-  if (mesh.Points.size() != 3 * mesh.Vertices || mesh.Normals.size() != mesh.Points.size() ||
-    polygons != mesh.Polygons || mesh.PolygonLevel.size() != polygons ||
-    mesh.PolygonFace.size() != polygons || mesh.Offsets.size() != polygons + 1 ||
-    mesh.Offsets.front() != 0 ||
-    mesh.Offsets.back() != static_cast<std::int64_t>(mesh.Connectivity.size()))
-  {
-    vtkErrorMacro("internal error: the Hybrid Octree core returned a surface with inconsistent "
-                  "array sizes ("
-      << mesh.Vertices << " vertices, " << mesh.Points.size() << " point coordinates, "
-      << mesh.Normals.size() << " normal components, " << mesh.Polygons << " polygons, "
-      << mesh.Offsets.size() << " offsets, " << mesh.Connectivity.size()
-      << " connectivity entries); please report it");
-    return false;
-  }
-  if (!FitsInt(mesh.PolygonNode))
-  {
-    vtkErrorMacro(<< NodeIdTooLarge);
-    return false;
-  }
-
+  // The arrays the core writes the mesh into, sized from its summary.
+  const vtkIdType vertices = static_cast<vtkIdType>(mesh.Vertices);
+  const vtkIdType polygons = static_cast<vtkIdType>(mesh.Polygons);
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(vertices));
-  std::copy(mesh.Points.begin(), mesh.Points.end(), coordinates->GetPointer(0));
+  coordinates->SetNumberOfTuples(vertices);
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
 
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(static_cast<vtkIdType>(vertices));
-  std::copy(mesh.Normals.begin(), mesh.Normals.end(), normals->GetPointer(0));
+  normals->SetNumberOfTuples(vertices);
 
   vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(mesh.Offsets.size()));
-  std::copy(mesh.Offsets.begin(), mesh.Offsets.end(), offsets->GetPointer(0));
+  offsets->SetNumberOfValues(polygons + 1);
   vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(mesh.Connectivity.size()));
-  std::copy(mesh.Connectivity.begin(), mesh.Connectivity.end(), connectivity->GetPointer(0));
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(mesh.Connectivity));
 
   vtkNew<vtkIntArray> node;
   node->SetName("node");
-  node->SetNumberOfValues(static_cast<vtkIdType>(polygons));
+  node->SetNumberOfValues(polygons);
   vtkNew<vtkIntArray> level;
   level->SetName("level");
-  level->SetNumberOfValues(static_cast<vtkIdType>(polygons));
-  std::copy(mesh.PolygonNode.begin(), mesh.PolygonNode.end(), node->GetPointer(0));
-  std::copy(mesh.PolygonLevel.begin(), mesh.PolygonLevel.end(), level->GetPointer(0));
+  level->SetNumberOfValues(polygons);
   vtkNew<vtkIdTypeArray> face;
   face->SetName("face");
-  face->SetNumberOfValues(static_cast<vtkIdType>(polygons));
-  std::copy(mesh.PolygonFace.begin(), mesh.PolygonFace.end(), face->GetPointer(0));
+  face->SetNumberOfValues(polygons);
+
+  vtkHybridOctreeBridge::SurfaceMeshBuffers buffers;
+  buffers.Points = coordinates->GetPointer(0);
+  buffers.Normals = normals->GetPointer(0);
+  buffers.Offsets = offsets->GetPointer(0);
+  buffers.Connectivity = connectivity->GetPointer(0);
+  buffers.PolygonNode = node->GetPointer(0);
+  buffers.PolygonLevel = level->GetPointer(0);
+  buffers.PolygonFace = face->GetPointer(0);
+  const bool written = cache.Octree->GetSurfaceMesh(buffers, error);
+  // The filter outputs the mesh; the octree need not keep it.
+  cache.Octree->RemoveSurface();
+  if (!written)
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
 
   auto surface = vtkSmartPointer<vtkPolyData>::New();
   surface->SetPoints(points);
@@ -293,21 +273,25 @@ bool vtkHybridOctreeFilter::UpdateSurface(vtkDataArray* scalars)
   surface->GetCellData()->AddArray(face);
 
   vtkNew<vtkFieldData> fieldData;
-  AddFieldValue<vtkDoubleArray>(fieldData, "isovalue", this->Isovalue);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "isovalue", this->Isovalue);
   vtkNew<vtkStringArray> modeName;
   modeName->SetName("surface_mode");
   modeName->InsertNextValue(this->GetSurfaceModeAsString());
   fieldData->AddArray(modeName);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "polygons", mesh.Polygons);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "faces", mesh.Faces);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "triangles", mesh.Triangles);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "uncompressed_triangles", mesh.UncompressedTriangles);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "vertices", mesh.Vertices);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "boundary_edges", mesh.BoundaryEdges);
-  AddFieldValue<vtkDoubleArray>(fieldData, "extract_ms", mesh.ExtractMilliseconds);
-  AddFieldValue<vtkDoubleArray>(fieldData, "compress_ms", mesh.CompressMilliseconds);
-  AddFieldValue<vtkDoubleArray>(fieldData, "distance_mean", mesh.DistanceMean);
-  AddFieldValue<vtkDoubleArray>(fieldData, "distance_max", mesh.DistanceMax);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "polygons", mesh.Polygons);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "faces", mesh.Faces);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "triangles", mesh.Triangles);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "uncompressed_triangles", mesh.UncompressedTriangles);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "vertices", mesh.Vertices);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "boundary_edges", mesh.BoundaryEdges);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(
+    fieldData, "extract_ms", mesh.ExtractMilliseconds);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(
+    fieldData, "compress_ms", mesh.CompressMilliseconds);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "distance_mean", mesh.DistanceMean);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "distance_max", mesh.DistanceMax);
   surface->SetFieldData(fieldData);
 
   cache.Surface = surface;
@@ -332,11 +316,6 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
   }
   boxes->Initialize();
   surface->Initialize();
-  if (!input)
-  {
-    vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
-    return 0;
-  }
   vtkDataArray* scalars = this->GetScalars(input, inputVector);
   if (!scalars)
   {
@@ -362,7 +341,7 @@ int vtkHybridOctreeFilter::RequestData(vtkInformation* vtkNotUsed(request),
 //------------------------------------------------------------------------------
 bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
 {
-  const vtkHybridOctreeBridge::VolumeOctree& octree = *this->Internals->Octree;
+  const vtkHybridOctreeBridge::HybridOctree& octree = *this->Internals->Octree;
   vtkHybridOctreeBridge::OctreeSummary summary;
   vtkHybridOctreeBridge::CutBoxes cut;
   std::string error;
@@ -440,19 +419,25 @@ bool vtkHybridOctreeFilter::FillBoxes(vtkPolyData* output)
   cellData->SetActiveScalars("nodal_error");
 
   vtkNew<vtkFieldData> fieldData;
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "node_count", summary.NodeCount);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "terminal_count", summary.TerminalCount);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "homogeneous_count", summary.HomogeneousCount);
-  AddFieldValue<vtkIntArray>(fieldData, "levels", summary.Levels);
-  AddFieldValue<vtkIntArray>(fieldData, "leaf_size", summary.LeafSize);
-  AddFieldValue<vtkIntArray>(fieldData, "root_size", summary.RootSize);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "octree_bytes", summary.OctreeBytes);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "input_bytes", summary.InputBytes);
-  AddFieldValue<vtkDoubleArray>(fieldData, "build_ms", summary.BuildMilliseconds);
-  AddFieldValue<vtkDoubleArray>(fieldData, "value_min", summary.ValueMin);
-  AddFieldValue<vtkDoubleArray>(fieldData, "value_max", summary.ValueMax);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "nan_samples", summary.NaNSamples);
-  AddFieldValue<vtkTypeInt64Array>(fieldData, "cut_count", boxCount);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "node_count", summary.NodeCount);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "terminal_count", summary.TerminalCount);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "homogeneous_count", summary.HomogeneousCount);
+  vtkHybridOctreeFieldData::AddValue<vtkIntArray>(fieldData, "levels", summary.Levels);
+  vtkHybridOctreeFieldData::AddValue<vtkIntArray>(fieldData, "leaf_size", summary.LeafSize);
+  vtkHybridOctreeFieldData::AddValue<vtkIntArray>(fieldData, "root_size", summary.RootSize);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "octree_bytes", summary.OctreeBytes);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "input_bytes", summary.InputBytes);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(
+    fieldData, "build_ms", summary.BuildMilliseconds);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "value_min", summary.ValueMin);
+  vtkHybridOctreeFieldData::AddValue<vtkDoubleArray>(fieldData, "value_max", summary.ValueMax);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(
+    fieldData, "nan_samples", summary.NaNSamples);
+  vtkHybridOctreeFieldData::AddValue<vtkTypeInt64Array>(fieldData, "cut_count", boxCount);
   output->SetFieldData(fieldData);
   return true;
 }

@@ -98,6 +98,11 @@ bool SameGrid(const GridDescription& a, const GridDescription& b)
 vtkDataArray* CheckPointScalars(
   vtkImageData* image, vtkDataArray* scalars, int association, std::string& error)
 {
+  if (!image)
+  {
+    error = "no input image: connect a vtkImageData with point scalars";
+    return nullptr;
+  }
   const bool cellArraysOnly = image->GetPointData()->GetNumberOfArrays() == 0 &&
     image->GetCellData()->GetNumberOfArrays() > 0;
   const std::string name = scalars && scalars->GetName() ? scalars->GetName() : "(unnamed)";

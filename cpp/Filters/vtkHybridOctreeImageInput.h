@@ -42,8 +42,9 @@ vtkHybridOctreeBridge::GridDescription DescribeGrid(
 /**
  * `scalars` (the algorithm's selected input array, with its `association`)
  * if the core can read it as the image's point samples; else nullptr and
- * `error` saying what to do (cell data, no array, an unsupported type, a
- * non-contiguous array).
+ * `error` saying what to do (no input image, cell data, no array, an
+ * unsupported type, a non-contiguous array). The filters' RequestData
+ * preamble: `image` is the request's input, possibly null.
  */
 vtkDataArray* CheckPointScalars(
   vtkImageData* image, vtkDataArray* scalars, int association, std::string& error);

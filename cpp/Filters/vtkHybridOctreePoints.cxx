@@ -88,15 +88,12 @@ int vtkHybridOctreePoints::RequestData(
     return 0;
   }
   output->Initialize();
-  if (!input)
-  {
-    vtkErrorMacro("no input image: connect a vtkImageData with point scalars");
-    return 0;
-  }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* chosen =
+    input ? this->GetInputArrayToProcess(0, inputVector, association) : nullptr;
   std::string error;
-  vtkDataArray* scalars = vtkHybridOctreeImageInput::CheckPointScalars(
-    input, this->GetInputArrayToProcess(0, inputVector, association), association, error);
+  vtkDataArray* scalars =
+    vtkHybridOctreeImageInput::CheckPointScalars(input, chosen, association, error);
   if (!scalars)
   {
     vtkErrorMacro(<< error);
@@ -116,49 +113,52 @@ int vtkHybridOctreePoints::RequestData(
   options.UnderestimatesOnly = this->UnderestimatesOnly != 0;
   options.MaxOverestimate = this->MaxOverestimate;
   options.FileName = this->FileName;
-  vtkHybridOctreeBridge::PointsResult result;
+  // The core writes values, errors and normals into the output arrays, the
+  // grid indices into `ijk` (placed below through the image's geometry).
+  vtkNew<vtkFloatArray> value;
+  value->SetName("value");
+  vtkNew<vtkFloatArray> err;
+  err->SetName("error");
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  std::vector<std::uint32_t> ijk;
+  const auto allocate = [&](const vtkHybridOctreeBridge::PointsSummary& made) {
+    const vtkIdType count = static_cast<vtkIdType>(made.Points);
+    value->SetNumberOfTuples(count);
+    err->SetNumberOfTuples(count);
+    normals->SetNumberOfTuples(count);
+    ijk.resize(3 * made.Points);
+    vtkHybridOctreeBridge::PointsBuffers buffers;
+    buffers.Ijk = ijk.data();
+    buffers.Value = value->GetPointer(0);
+    buffers.Error = err->GetPointer(0);
+    buffers.Normal = normals->GetPointer(0);
+    return buffers;
+  };
+  vtkHybridOctreeBridge::PointsSummary result;
   if (!vtkHybridOctreeBridge::GeneratePoints(vtkHybridOctreeImageInput::Bytes(scalars),
         vtkHybridOctreeImageInput::ByteCount(scalars),
-        vtkHybridOctreeImageInput::DescribeGrid(input, scalars, this->Component), options, result,
-        error))
+        vtkHybridOctreeImageInput::DescribeGrid(input, scalars, this->Component), options, allocate,
+        result, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  const std::size_t n = result.Value.size();
-  if (result.Ijk.size() != 3 * n || result.Normal.size() != 3 * n || result.Error.size() != n)
-  {
-    vtkErrorMacro("internal error: the core returned inconsistent points; please report it");
-    return 0;
-  }
+  const std::size_t n = result.Points;
   int extent[6];
   input->GetExtent(extent);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(n));
-  vtkNew<vtkFloatArray> value;
-  value->SetName("value");
-  value->SetNumberOfTuples(static_cast<vtkIdType>(n));
-  vtkNew<vtkFloatArray> err;
-  err->SetName("error");
-  err->SetNumberOfTuples(static_cast<vtkIdType>(n));
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(static_cast<vtkIdType>(n));
   for (std::size_t i = 0; i < n; ++i)
   {
     // Grid index (from the extent's start) to the physical point, direction matrix included.
-    const int ijk[3] = { extent[0] + static_cast<int>(result.Ijk[3 * i]),
-      extent[2] + static_cast<int>(result.Ijk[3 * i + 1]),
-      extent[4] + static_cast<int>(result.Ijk[3 * i + 2]) };
+    const int index[3] = { extent[0] + static_cast<int>(ijk[3 * i]),
+      extent[2] + static_cast<int>(ijk[3 * i + 1]), extent[4] + static_cast<int>(ijk[3 * i + 2]) };
     double xyz[3];
-    input->TransformIndexToPhysicalPoint(ijk, xyz);
-    const vtkIdType id = static_cast<vtkIdType>(i);
-    points->SetPoint(id, xyz);
-    value->SetValue(id, result.Value[i]);
-    err->SetValue(id, result.Error[i]);
-    normals->SetTypedTuple(id, &result.Normal[3 * i]);
+    input->TransformIndexToPhysicalPoint(index, xyz);
+    points->SetPoint(static_cast<vtkIdType>(i), xyz);
   }
   vtkNew<vtkIdTypeArray> connectivity;
   connectivity->SetNumberOfTuples(static_cast<vtkIdType>(n));

@@ -28,6 +28,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
+#include "vtkTimeStamp.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
@@ -97,25 +98,26 @@ std::string InteractivePlan(const std::string& passes)
 struct vtkHybridOctreeVolumeMapper::vtkInternals
 {
   // The octree, rebuilt when the scalars, the image geometry or LeafSize change.
-  std::unique_ptr<VolumeOctree> Octree;
+  std::unique_ptr<HybridOctree> Octree;
   vtkDataArray* Array = nullptr;
   vtkMTimeType ArrayMTime = 0;
   GridDescription Grid;
   int LeafSize = 0;
   /// NaN samples (no data) of the image the octree was built from.
   vtkTypeInt64 NaNSamples = 0;
-  unsigned long OctreeGeneration = 0;
+  /// When the octree was built: the caches below are current when made after it.
+  vtkTimeStamp OctreeTime;
   vtkDataArray* Scalars = nullptr;
 
-  // The points, made again when the octree or their settings change.
-  std::unique_ptr<Points> PointSet;
+  // The points integrated into the octree, made again when the octree or
+  // their settings change.
+  bool HasPoints = false;
   PointsDrawing Drawing;
-  unsigned long PointsGeneration = 0;
+  vtkTimeStamp PointsTime;
   std::vector<double> PointsKey;
-  unsigned long PointsVersion = 0;
-  // What each point adds under the transfer function, for that version and table.
+  // What each point adds under the transfer function, for those points and that table.
   std::vector<float> Shades;
-  unsigned long ShadesVersion = 0;
+  vtkTimeStamp ShadesTime;
   std::vector<double> ShadesColors;
   std::vector<double> ShadesOpacities;
 
@@ -125,7 +127,7 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   {
     std::unique_ptr<Selection> Selected;
     SelectionSummary Summary;
-    unsigned long Generation = 0;
+    vtkTimeStamp Time;
     std::vector<double> Key;
     std::vector<double> Opacity;
   };
@@ -133,9 +135,10 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   SelectionSlot Moving;
   SelectionSlot* Frame = &Still;
 
-  // The isosurface, extracted again when the octree or the isovalue change.
-  std::unique_ptr<Surface> Iso;
-  unsigned long IsoGeneration = 0;
+  // The isosurface integrated into the octree, extracted again when the
+  // octree or the isovalue change.
+  bool HasIso = false;
+  vtkTimeStamp IsoTime;
   double IsoValue = 0.0;
 
   // Transfer function table (what the CPU compositor gets too).
@@ -155,7 +158,6 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   vtkOpenGLHybridOctreeBrickDrawer Drawer;
   vtkOpenGLHybridOctreeFloatTarget Target;
   vtkOpenGLHybridOctreeSurfaceDrawer SurfaceDrawer;
-  const Surface* UploadedSurface = nullptr;
   vtkSmartPointer<vtkTextureObject> TableTexture;
 
   // Settings the mapper does not draw, each warned about once while on.
@@ -279,11 +281,11 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   in.Still.Selected.reset();
   in.Moving.Selected.reset();
   in.Reduction.Reset();
-  in.Iso.reset();
-  in.PointSet.reset();
+  in.HasIso = false;
+  in.HasPoints = false;
   in.Octree.reset();
   std::string error;
-  in.Octree = VolumeOctree::Build(
+  in.Octree = HybridOctree::Build(
     Bytes(scalars), ByteCount(scalars), grid, static_cast<unsigned int>(this->LeafSize), error);
   vtkHybridOctreeBridge::OctreeSummary summary;
   if (!in.Octree || !in.Octree->GetSummary(summary, error))
@@ -298,7 +300,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   in.ArrayMTime = scalars->GetMTime();
   in.Grid = grid;
   in.LeafSize = this->LeafSize;
-  ++in.OctreeGeneration;
+  in.OctreeTime.Modified();
   return true;
 }
 
@@ -394,17 +396,21 @@ bool vtkHybridOctreeVolumeMapper::UpdatePoints()
   vtkInternals& in = *this->Internals;
   if (!this->UsePoints)
   {
-    in.PointSet.reset();
+    if (in.HasPoints)
+    {
+      in.Octree->RemovePoints();
+      in.HasPoints = false;
+    }
     in.Drawing = PointsDrawing();
     return true;
   }
   const std::vector<double> key = { static_cast<double>(this->PointFactor), this->PointThreshold,
     static_cast<double>(this->PointBudget) };
-  if (in.PointSet && in.PointsGeneration == in.OctreeGeneration && in.PointsKey == key)
+  if (in.HasPoints && in.PointsTime > in.OctreeTime && in.PointsKey == key)
   {
     return this->UpdatePointShades();
   }
-  in.PointSet.reset();
+  in.HasPoints = false;
   PointsOptions options;
   options.Factor = static_cast<std::size_t>(this->PointFactor);
   options.Threshold = this->PointThreshold;
@@ -413,37 +419,38 @@ bool vtkHybridOctreeVolumeMapper::UpdatePoints()
   options.UnderestimatesOnly = true;
   options.MaxOverestimate = -1.0;
   std::string error;
-  std::unique_ptr<Points> made =
-    in.Octree->MakePoints(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, options, error);
-  if (!made || !made->GetDrawing(in.Drawing, error))
+  PointsSummary made;
+  if (!in.Octree->IntegratePoints(
+        Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, options, made, error) ||
+    !in.Octree->GetPointsDrawing(in.Drawing, error))
   {
+    in.Octree->RemovePoints();
     vtkErrorMacro(<< error);
     return false;
   }
-  in.PointSet = std::move(made);
-  in.PointsGeneration = in.OctreeGeneration;
+  in.HasPoints = true;
+  in.PointsTime.Modified();
   in.PointsKey = key;
-  ++in.PointsVersion;
   return this->UpdatePointShades();
 }
 
 bool vtkHybridOctreeVolumeMapper::UpdatePointShades()
 {
   vtkInternals& in = *this->Internals;
-  if (in.ShadesVersion == in.PointsVersion && in.ShadesColors == in.Transfer.ColorPoints &&
+  if (in.ShadesTime > in.PointsTime && in.ShadesColors == in.Transfer.ColorPoints &&
     in.ShadesOpacities == in.Transfer.OpacityPoints)
   {
     return true;
   }
   std::string error;
-  if (!in.PointSet->GetShades(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+  if (!in.Octree->GetPointShades(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
         in.Transfer.ColorPoints, in.Transfer.OpacityPoints, in.Shades, error))
   {
-    in.ShadesVersion = 0;
+    in.ShadesTime = vtkTimeStamp();
     vtkErrorMacro(<< error);
     return false;
   }
-  in.ShadesVersion = in.PointsVersion;
+  in.ShadesTime.Modified();
   in.ShadesColors = in.Transfer.ColorPoints;
   in.ShadesOpacities = in.Transfer.OpacityPoints;
   return true;
@@ -465,7 +472,7 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
-    in.PointSet ? static_cast<double>(in.PointsVersion) : -1.0 };
+    in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0 };
   return select;
 }
 
@@ -474,7 +481,7 @@ bool vtkHybridOctreeVolumeMapper::IsStillSelectionCurrent(vtkVolumeProperty* pro
   const vtkInternals& in = *this->Internals;
   std::vector<double> key;
   const SelectDescription select = this->DescribeSelection(property, this->BudgetMB, key);
-  return in.Still.Selected && in.Still.Generation == in.OctreeGeneration && in.Still.Key == key &&
+  return in.Still.Selected && in.Still.Time > in.OctreeTime && in.Still.Key == key &&
     in.Still.Opacity == select.OpacityPoints;
 }
 
@@ -492,21 +499,20 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
   in.Frame = &slot;
   std::vector<double> key;
   SelectDescription select = this->DescribeSelection(property, budgetMB, key);
-  if (slot.Selected && slot.Generation == in.OctreeGeneration && slot.Key == key &&
+  if (slot.Selected && slot.Time > in.OctreeTime && slot.Key == key &&
     slot.Opacity == select.OpacityPoints)
   {
     return true;
   }
   std::string error;
-  slot.Selected =
-    in.PointSet ? in.Octree->Select(select, *in.PointSet, error) : in.Octree->Select(select, error);
+  slot.Selected = in.Octree->Select(select, error);
   if (!slot.Selected || !slot.Selected->GetSummary(slot.Summary, error))
   {
     slot.Selected.reset();
     vtkErrorMacro(<< error);
     return false;
   }
-  slot.Generation = in.OctreeGeneration;
+  slot.Time.Modified();
   slot.Key = key;
   slot.Opacity = select.OpacityPoints;
   return true;
@@ -535,22 +541,23 @@ bool vtkHybridOctreeVolumeMapper::UpdateSurface()
     vtkErrorMacro("the isovalue " << this->Isovalue << " is not a finite number");
     return false;
   }
-  if (in.Iso && in.IsoGeneration == in.OctreeGeneration && in.IsoValue == this->Isovalue)
+  if (in.HasIso && in.IsoTime > in.OctreeTime && in.IsoValue == this->Isovalue)
   {
     return true;
   }
+  in.HasIso = false;
   std::string error;
-  in.Iso = in.Octree->ExtractSurfaceForDrawing(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
-    this->Isovalue, SurfaceMode::Discretized, error);
-  SurfaceMesh mesh;
-  if (!in.Iso || !in.Iso->GetMesh(*in.Octree, mesh, error) || !in.SurfaceDrawer.Upload(mesh, error))
+  SurfaceSummary extracted;
+  if (!in.Octree->IntegrateSurface(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+        this->Isovalue, SurfaceMode::Discretized, false, extracted, error) ||
+    !in.SurfaceDrawer.Upload(*in.Octree, error))
   {
-    in.Iso.reset();
+    in.Octree->RemoveSurface();
     vtkErrorMacro(<< error);
     return false;
   }
-  in.UploadedSurface = in.Iso.get();
-  in.IsoGeneration = in.OctreeGeneration;
+  in.HasIso = true;
+  in.IsoTime.Modified();
   in.IsoValue = this->Isovalue;
   return true;
 }
@@ -618,11 +625,9 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   vtkInternals& in = *this->Internals;
   std::string error;
   const CameraDescription cam = this->ModelCamera(ren);
-  const bool surface = in.Iso && this->ShowSurface && this->SurfaceOpacity > 0.0;
-  const Selection& selected = *in.Frame->Selected;
-  const bool ok = surface
-    ? selected.GetDrawList(*in.Octree, cam, *in.Iso, this->SurfaceOpacity, list, error)
-    : selected.GetDrawList(*in.Octree, cam, list, error);
+  const bool surface = in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0;
+  const bool ok = in.Frame->Selected->GetDrawList(
+    *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
   if (!ok)
   {
     vtkErrorMacro(<< error);
@@ -717,9 +722,9 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
     const std::size_t brick = list.Brick[i];
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, &list.Texels[3 * i],
-      [&](std::vector<float>& texels) {
+      [&](float* texels, std::size_t count) {
         return selected.GetBrickTexels(
-          Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, error);
+          Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, count, error);
       },
       error);
     if (!resident)
@@ -774,7 +779,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
     translucent.Triangles = &in.SurfaceDrawer.GetIndexData();
   }
   vtkOpenGLHybridOctreeBrickDrawer::PointData points;
-  if (in.PointSet && !list.BucketOffsets.empty() && !interactive)
+  if (in.HasPoints && !list.BucketOffsets.empty() && !interactive)
   {
     points.Drawing = &in.Drawing;
     points.Shades = &in.Shades;
@@ -1013,27 +1018,25 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   }
   CompositeScene scene = in.Transfer;
   scene.GaussianPoints = this->PointFootprint == 1;
-  if (in.Iso && this->ShowSurface && this->SurfaceOpacity > 0.0)
+  if (in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0)
   {
-    scene.SurfaceToDraw = in.Iso.get();
     for (int k = 0; k < 3; ++k)
     {
       scene.SurfaceRGBA[k] = this->SurfaceColor[k];
     }
     scene.SurfaceRGBA[3] = this->SurfaceOpacity;
   }
-  std::vector<float> out;
+  // The compositor writes the picture into `rgba` itself.
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
   std::string error;
   if (!in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
         ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
-        static_cast<std::size_t>(height), out, error))
+        static_cast<std::size_t>(height), rgba->GetPointer(0), error))
   {
     vtkErrorMacro(<< error);
     return false;
   }
-  rgba->SetNumberOfComponents(4);
-  rgba->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
-  std::copy(out.begin(), out.end(), rgba->GetPointer(0));
   return true;
 }
 

@@ -60,13 +60,9 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
       std::to_string(this->LimitBytes) + " bytes";
     return nullptr;
   }
-  if (!fetch(this->Scratch))
+  this->Scratch.resize(texels[0] * texels[1] * texels[2]);
+  if (!fetch(this->Scratch.data(), this->Scratch.size()))
   {
-    return nullptr;
-  }
-  if (this->Scratch.size() != texels[0] * texels[1] * texels[2])
-  {
-    error = "a brick's texels do not match its texel box";
     return nullptr;
   }
   vtkNew<vtkTextureObject> texture;

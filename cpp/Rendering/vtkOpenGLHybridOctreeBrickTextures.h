@@ -38,9 +38,10 @@ class vtkOpenGLHybridOctreeBrickTextures
 public:
   /// (octree node id, texel stride): what a brick's texture holds.
   using Key = std::pair<std::uint32_t, std::size_t>;
-  /// Fills its argument with a brick's texels (x fastest); false and a
-  /// message in the caller's error string on failure.
-  using Fetch = std::function<bool(std::vector<float>&)>;
+  /// Writes a brick's texels (x fastest) into the staging buffer it is
+  /// given (`count` floats, the brick's texel count); false and a message in
+  /// the caller's error string on failure.
+  using Fetch = std::function<bool(float* texels, std::size_t count)>;
 
   /// A resident brick: its texture and block value ranges.
   struct Resident

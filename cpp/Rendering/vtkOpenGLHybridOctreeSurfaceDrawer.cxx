@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <utility>
 
 namespace
@@ -28,45 +27,13 @@ vtkOpenGLHybridOctreeSurfaceDrawer::vtkOpenGLHybridOctreeSurfaceDrawer() = defau
 vtkOpenGLHybridOctreeSurfaceDrawer::~vtkOpenGLHybridOctreeSurfaceDrawer() = default;
 
 bool vtkOpenGLHybridOctreeSurfaceDrawer::Upload(
-  const vtkHybridOctreeBridge::SurfaceMesh& mesh, std::string& error)
+  const vtkHybridOctreeBridge::HybridOctree& octree, std::string& error)
 {
-  const std::size_t vertices = mesh.Points.size() / 3;
-  const std::size_t polygons = mesh.Offsets.empty() ? 0 : mesh.Offsets.size() - 1;
-  if (mesh.Normals.size() != mesh.Points.size() ||
-    vertices > std::numeric_limits<unsigned int>::max())
+  if (!octree.GetSurfaceTriangles(this->VertexData, this->IndexData, error))
   {
-    error = "the surface's normals do not match its points";
     return false;
   }
-  this->VertexData.resize(6 * vertices);
-  for (std::size_t v = 0; v < vertices; ++v)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      this->VertexData[6 * v + k] = static_cast<float>(mesh.Points[3 * v + k]);
-      this->VertexData[6 * v + 3 + k] = mesh.Normals[3 * v + k];
-    }
-  }
-  this->IndexData.resize(3 * polygons);
-  for (std::size_t p = 0; p < polygons; ++p)
-  {
-    if (mesh.Offsets[p + 1] - mesh.Offsets[p] != 3)
-    {
-      error = "surface polygon " + std::to_string(p) + " is not a triangle";
-      return false;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::int64_t id = mesh.Connectivity[static_cast<std::size_t>(mesh.Offsets[p]) + k];
-      if (id < 0 || static_cast<std::size_t>(id) >= vertices)
-      {
-        error = "surface polygon " + std::to_string(p) + " names a vertex it does not have";
-        return false;
-      }
-      this->IndexData[3 * p + k] = static_cast<unsigned int>(id);
-    }
-  }
-  this->Triangles = polygons;
+  this->Triangles = this->IndexData.size() / 3;
   this->Uploaded = false;
   return true;
 }

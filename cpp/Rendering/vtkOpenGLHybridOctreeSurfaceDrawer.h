@@ -51,8 +51,9 @@ public:
   vtkOpenGLHybridOctreeSurfaceDrawer();
   ~vtkOpenGLHybridOctreeSurfaceDrawer();
 
-  /// Loads `mesh` (triangles only) into buffers; false and `error` otherwise.
-  bool Upload(const vtkHybridOctreeBridge::SurfaceMesh& mesh, std::string& error);
+  /// Loads the surface `octree` holds into buffers (the core writes the
+  /// triangles into them); false and `error` otherwise.
+  bool Upload(const vtkHybridOctreeBridge::HybridOctree& octree, std::string& error);
 
   /// Triangles loaded.
   std::size_t GetNumberOfTriangles() const { return this->Triangles; }

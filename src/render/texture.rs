@@ -86,6 +86,13 @@ fn texel_values<T: Sample, S>(g: &TypedGrid<'_, T>, brick: &Brick, f: impl Fn(f6
 /// [`Error::InvalidArgument`] if the brick is not a brick of this grid (its
 /// box outside the grid, a zero stride or texel counts that do not match).
 pub fn brick_texels_f32(grid: &Grid<'_>, brick: &Brick) -> Result<Vec<f32>> {
+    let mut texels = vec![0.0; texel_count(grid, brick)?];
+    brick_texels_f32_into(grid, brick, &mut texels)?;
+    Ok(texels)
+}
+
+/// The texel count of `brick`, checked to be a brick of `grid`.
+fn texel_count(grid: &Grid<'_>, brick: &Brick) -> Result<usize> {
     let dims = grid.dims();
     let expected = [0, 1, 2].map(|a| (brick.hi[a].saturating_sub(brick.lo[a])).div_ceil(brick.stride.max(1)) + 1);
     if brick.stride == 0
@@ -97,14 +104,47 @@ pub fn brick_texels_f32(grid: &Grid<'_>, brick: &Brick) -> Result<Vec<f32>> {
             brick.node.0, brick.lo, brick.hi, brick.stride, brick.texels
         )));
     }
-    struct F32<'b>(&'b Brick);
-    impl GridVisitor for F32<'_> {
-        type Output = Vec<f32>;
-        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f32> {
-            texel_values(&g, self.0, |v| Some(v as f32)).expect("every value is stored")
+    Ok(brick.texels.iter().product())
+}
+
+/// [`brick_texels_f32`] into `texels`, the caller's buffer of the brick's
+/// texel count (e.g. a GPU upload's staging memory).
+///
+/// # Errors
+///
+/// As [`brick_texels_f32`], and [`Error::InvalidArgument`] if `texels` does
+/// not hold the brick's texel count.
+pub fn brick_texels_f32_into(grid: &Grid<'_>, brick: &Brick, texels: &mut [f32]) -> Result<()> {
+    let count = texel_count(grid, brick)?;
+    if texels.len() != count {
+        return Err(Error::InvalidArgument(format!(
+            "a buffer of {} texels for brick (node {}) of {count} texels",
+            texels.len(),
+            brick.node.0
+        )));
+    }
+    struct F32<'b, 't>(&'b Brick, &'t mut [f32]);
+    impl GridVisitor for F32<'_, '_> {
+        type Output = ();
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) {
+            let F32(brick, texels) = self;
+            let pos = |a: usize, i: usize| (brick.lo[a] + i * brick.stride).min(brick.hi[a]);
+            let n = brick.texels;
+            let mut to = texels.iter_mut();
+            for k in 0..n[2] {
+                for j in 0..n[1] {
+                    for i in 0..n[0] {
+                        // The buffer holds exactly n[0] n[1] n[2] texels (checked above).
+                        if let Some(t) = to.next() {
+                            *t = g.at(pos(0, i), pos(1, j), pos(2, k)) as f32;
+                        }
+                    }
+                }
+            }
         }
     }
-    Ok(grid.visit(F32(brick)))
+    grid.visit(F32(brick, texels));
+    Ok(())
 }
 
 /// One brick's texture: its texels, contiguous, x fastest.

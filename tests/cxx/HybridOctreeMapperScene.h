@@ -104,22 +104,48 @@ inline double Signal(const std::vector<double>& rgb)
   return rgb.empty() ? 0.0 : sum / static_cast<double>(rgb.size());
 }
 
-/// A window, renderer and volume around any volume mapper.
-struct Scene
+/// A window, renderer and volume around any volume mapper: linear
+/// interpolation, no shading, the camera looking at the origin from
+/// `position` with a 30 degree view angle.
+struct Stage
 {
   vtkNew<vtkRenderWindow> Window;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkVolumeProperty> Property;
-  vtkNew<vtkRTAnalyticSource> Wavelet;
-  double Range[2] = { 0.0, 1.0 };
 
-  explicit Scene(vtkVolumeMapper* mapper, int half = 32)
+  void Build(vtkVolumeMapper* mapper, vtkColorTransferFunction* color,
+    vtkPiecewiseFunction* opacity, const double position[3])
   {
     this->Window->SetSize(Size, Size);
     this->Window->SetMultiSamples(0);
     this->Window->AddRenderer(this->Renderer);
     this->Renderer->SetBackground(Background[0], Background[1], Background[2]);
+    this->Property->SetColor(color);
+    this->Property->SetScalarOpacity(opacity);
+    this->Property->SetInterpolationTypeToLinear();
+    this->Property->ShadeOff();
+    this->Volume->SetMapper(mapper);
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetFocalPoint(0.0, 0.0, 0.0);
+    camera->SetPosition(position[0], position[1], position[2]);
+    camera->SetViewUp(0.0, 1.0, 0.0);
+    camera->SetViewAngle(30.0);
+    this->Renderer->ResetCameraClippingRange();
+  }
+};
+
+/// The wavelet (vtkRTAnalyticSource, `half` samples either side of the
+/// origin) on a Stage: blue-yellow-red colours, transparent below mid-range.
+struct Scene : Stage
+{
+  vtkNew<vtkRTAnalyticSource> Wavelet;
+  double Range[2] = { 0.0, 1.0 };
+
+  explicit Scene(vtkVolumeMapper* mapper, int half = 32)
+  {
     this->Wavelet->SetWholeExtent(-half, half, -half, half, -half, half);
     this->Wavelet->Update();
     this->Wavelet->GetOutput()->GetPointData()->GetScalars()->GetRange(this->Range);
@@ -134,19 +160,8 @@ struct Scene
     opacity->AddPoint(mid, 0.0);
     opacity->AddPoint(mid + 0.2 * (hi - mid), 0.05);
     opacity->AddPoint(hi, 0.4);
-    this->Property->SetColor(color);
-    this->Property->SetScalarOpacity(opacity);
-    this->Property->SetInterpolationTypeToLinear();
-    this->Property->ShadeOff();
-    this->Volume->SetMapper(mapper);
-    this->Volume->SetProperty(this->Property);
-    this->Renderer->AddVolume(this->Volume);
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetFocalPoint(0.0, 0.0, 0.0);
-    camera->SetPosition(95.0, 75.0, 130.0);
-    camera->SetViewUp(0.0, 1.0, 0.0);
-    camera->SetViewAngle(30.0);
-    this->Renderer->ResetCameraClippingRange();
+    const double position[3] = { 95.0, 75.0, 130.0 };
+    this->Build(mapper, color, opacity, position);
   }
 };
 

@@ -48,7 +48,7 @@ struct Fixture
   vtkImageData* Image = nullptr;
   vtkFloatArray* Values = nullptr;
   B::GridDescription Grid;
-  std::unique_ptr<B::VolumeOctree> Octree;
+  std::unique_ptr<B::HybridOctree> Octree;
 
   Fixture()
   {
@@ -66,7 +66,7 @@ struct Fixture
       this->Grid.Origin[a] = this->Image->GetOrigin()[a];
     }
     std::string error;
-    this->Octree = B::VolumeOctree::Build(this->Bytes(), this->ByteCount(), this->Grid, 8, error);
+    this->Octree = B::HybridOctree::Build(this->Bytes(), this->ByteCount(), this->Grid, 8, error);
     if (!this->Octree)
     {
       std::cerr << "build failed: " << error << "\n";
@@ -285,7 +285,7 @@ int DrawLists()
     check.Check(desc.Parallel == v.Parallel && desc.ViewAngle == 30.0 && desc.ParallelScale == 20.0,
       std::string(v.Name) + ": DescribeCamera");
     B::DrawList list;
-    if (check.Check(selection->GetDrawList(*f.Octree, desc, list, error),
+    if (check.Check(selection->GetDrawList(*f.Octree, desc, 0.0, list, error),
           std::string(v.Name) + ": draw list: " + error))
     {
       CheckDrawList(check, list, desc, summary.Bricks, MaxSliceStride(f.Grid), v.Name);
@@ -315,8 +315,8 @@ int Texels()
   const double diagonal[3] = { 1.0, 0.8, 0.6 };
   Aim(camera, centre, diagonal, false);
   B::DrawList list;
-  if (!check.Check(selection->GetDrawList(
-                     *f.Octree, vtkHybridOctreeCameraInput::DescribeCamera(camera), list, error),
+  if (!check.Check(selection->GetDrawList(*f.Octree,
+                     vtkHybridOctreeCameraInput::DescribeCamera(camera), 0.0, list, error),
         "draw list: " + error))
   {
     return EXIT_FAILURE;
@@ -325,13 +325,14 @@ int Texels()
   std::vector<float> texels;
   for (std::size_t i = 0; i < list.GetNumberOfBricks(); ++i)
   {
-    if (!check.Check(
-          selection->GetBrickTexels(f.Bytes(), f.ByteCount(), f.Grid, list.Brick[i], texels, error),
+    const std::size_t* n = &list.Texels[3 * i];
+    texels.assign(n[0] * n[1] * n[2], -1.0f);
+    if (!check.Check(selection->GetBrickTexels(f.Bytes(), f.ByteCount(), f.Grid, list.Brick[i],
+                       texels.data(), texels.size(), error),
           "texels: " + error))
     {
       continue;
     }
-    const std::size_t* n = &list.Texels[3 * i];
     const std::size_t stride = list.Stride[i];
     strided = strided || stride > 1;
     check.Check(texels.size() == n[0] * n[1] * n[2], "texel count = product of the dims");
@@ -378,15 +379,19 @@ int SurfaceBatches()
   options.Isovalue = 150.0;
   std::string error;
   std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
-  std::unique_ptr<B::Surface> surface = f.Octree->ExtractSurfaceForDrawing(
-    f.Bytes(), f.ByteCount(), f.Grid, 150.0, B::SurfaceMode::Discretized, error);
+  B::SurfaceSummary mesh;
+  const bool surface = f.Octree->IntegrateSurface(
+    f.Bytes(), f.ByteCount(), f.Grid, 150.0, B::SurfaceMode::Discretized, false, mesh, error);
   if (!check.Check(selection && surface, "select and surface: " + error))
   {
     return EXIT_FAILURE;
   }
-  B::SurfaceMesh mesh;
-  check.Check(surface->GetMesh(*f.Octree, mesh, error), "mesh: " + error);
-  check.Check(mesh.Polygons > 0 && mesh.Offsets.size() == mesh.Polygons + 1, "a surface");
+  std::vector<float> vertices;
+  std::vector<unsigned int> indices;
+  check.Check(f.Octree->GetSurfaceTriangles(vertices, indices, error), "triangles: " + error);
+  check.Check(mesh.Polygons > 0 && indices.size() == 3 * mesh.Polygons &&
+      vertices.size() == 6 * mesh.Vertices,
+    "a surface");
   vtkNew<vtkCamera> camera;
   const double centre[3] = { 12.0, 10.0, 8.0 };
   const double diagonal[3] = { 1.0, 0.8, 0.6 };
@@ -395,8 +400,8 @@ int SurfaceBatches()
   for (int round = 0; round < 2; ++round) // the second round reuses the kept slab batching
   {
     B::DrawList list;
-    if (!check.Check(selection->GetDrawList(*f.Octree, view, *surface, 0.5, list, error),
-          "translucent: " + error))
+    if (!check.Check(
+          selection->GetDrawList(*f.Octree, view, 0.5, list, error), "translucent: " + error))
     {
       return check.Result();
     }
@@ -426,16 +431,16 @@ int SurfaceBatches()
       "every triangle is in some batch");
   }
   B::DrawList opaque;
-  check.Check(selection->GetDrawList(*f.Octree, view, *surface, 1.0, opaque, error), error);
+  check.Check(selection->GetDrawList(*f.Octree, view, 1.0, opaque, error), error);
   check.Check(opaque.Passes == "surface-opaque,volume" && opaque.OpaqueTriangles == mesh.Polygons &&
       opaque.BatchSlab.empty(),
     "opaque: surface pass first, all triangles, no batches (" + opaque.Passes + ")");
   B::DrawList hidden;
-  check.Check(selection->GetDrawList(*f.Octree, view, *surface, 0.0, hidden, error), error);
+  check.Check(selection->GetDrawList(*f.Octree, view, 0.0, hidden, error), error);
   check.Check(
     hidden.Passes == "volume" && hidden.OpaqueTriangles == 0, "hidden surface: volume only");
   error.clear();
-  check.Check(!selection->GetDrawList(*f.Octree, view, *surface, 2.0, hidden, error) &&
+  check.Check(!selection->GetDrawList(*f.Octree, view, 2.0, hidden, error) &&
       error.find("surface opacity") != std::string::npos,
     "opacity 2: '" + error + "'");
   return check.Result();
@@ -468,7 +473,7 @@ int Transparent()
   vtkNew<vtkCamera> camera;
   B::DrawList list;
   check.Check(selection->GetDrawList(
-                *f.Octree, vtkHybridOctreeCameraInput::DescribeCamera(camera), list, error),
+                *f.Octree, vtkHybridOctreeCameraInput::DescribeCamera(camera), 0.0, list, error),
     "draw list: " + error);
   check.Check(list.GetNumberOfBricks() == 0 && list.Passes.empty(), "nothing to draw");
   // Clamping off: the opacity steps to 0 outside the nodes.
@@ -521,24 +526,25 @@ int Errors()
   camera.FocalPoint[2] = camera.Position[2];
   B::DrawList list;
   error.clear();
-  check.Check(!selection->GetDrawList(*f.Octree, camera, list, error) &&
+  check.Check(!selection->GetDrawList(*f.Octree, camera, 0.0, list, error) &&
       error.find("position equals the focal point") != std::string::npos,
     "camera at its focal point: '" + error + "'");
   Fixture other;
   error.clear();
-  check.Check(!selection->GetDrawList(*other.Octree, B::CameraDescription(), list, error) &&
+  check.Check(!selection->GetDrawList(*other.Octree, B::CameraDescription(), 0.0, list, error) &&
       error.find("another octree") != std::string::npos,
     "another octree: '" + error + "'");
-  std::vector<float> texels;
+  std::vector<float> texels(8);
   error.clear();
-  check.Check(
-    !selection->GetBrickTexels(f.Bytes(), f.ByteCount(), f.Grid, 1000000, texels, error) &&
+  check.Check(!selection->GetBrickTexels(
+                f.Bytes(), f.ByteCount(), f.Grid, 1000000, texels.data(), texels.size(), error) &&
       error.find("does not exist") != std::string::npos,
     "brick out of range: '" + error + "'");
   B::GridDescription moved = f.Grid;
   moved.Origin[0] += 1.0;
   error.clear();
-  check.Check(!selection->GetBrickTexels(f.Bytes(), f.ByteCount(), moved, 0, texels, error) &&
+  check.Check(!selection->GetBrickTexels(
+                f.Bytes(), f.ByteCount(), moved, 0, texels.data(), texels.size(), error) &&
       error.find("image changed") != std::string::npos,
     "another image: '" + error + "'");
   return check.Result();
@@ -557,14 +563,15 @@ int Points()
   options.Budget = 300; // the 300 largest underestimates of stride-2 textures
   options.UnderestimatesOnly = true;
   std::string error;
-  std::unique_ptr<B::Points> points =
-    f.Octree->MakePoints(f.Bytes(), f.ByteCount(), f.Grid, options, error);
-  if (!check.Check(points != nullptr, "make points: " + error))
+  B::PointsSummary made;
+  if (!check.Check(
+        f.Octree->IntegratePoints(f.Bytes(), f.ByteCount(), f.Grid, options, made, error),
+        "make points: " + error))
   {
     return EXIT_FAILURE;
   }
   B::PointsDrawing drawing;
-  check.Check(points->GetDrawing(drawing, error), "drawing: " + error);
+  check.Check(f.Octree->GetPointsDrawing(drawing, error), "drawing: " + error);
   const std::size_t n = drawing.Value.size();
   check.Check(n == 300 && drawing.Position.size() == 3 * n && drawing.Error.size() == n &&
       drawing.Factor == 2 && drawing.PointBytes == 6 * n,
@@ -587,7 +594,8 @@ int Points()
   const std::vector<double> colors = { 30.0, 0.1, 0.2, 0.9, 280.0, 0.9, 0.1, 0.1 };
   const std::vector<double> opacities = { 30.0, 0.0, 280.0, 0.6 };
   std::vector<float> shades;
-  check.Check(points->GetShades(f.Bytes(), f.ByteCount(), f.Grid, colors, opacities, shades, error),
+  check.Check(
+    f.Octree->GetPointShades(f.Bytes(), f.ByteCount(), f.Grid, colors, opacities, shades, error),
     "shades: " + error);
   bool ranged = shades.size() == 4 * n;
   std::size_t adding = 0;
@@ -600,7 +608,7 @@ int Points()
   // A budget between stride 2 and full resolution: the selection buys points.
   B::SelectDescription select;
   select.BudgetBytes = 12000;
-  std::unique_ptr<B::Selection> selection = f.Octree->Select(select, *points, error);
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(select, error);
   if (!check.Check(selection != nullptr, "select with points: " + error))
   {
     return EXIT_FAILURE;
@@ -618,7 +626,7 @@ int Points()
   Aim(camera, centre, diagonal, false);
   B::DrawList list;
   check.Check(selection->GetDrawList(
-                *f.Octree, vtkHybridOctreeCameraInput::DescribeCamera(camera), list, error),
+                *f.Octree, vtkHybridOctreeCameraInput::DescribeCamera(camera), 0.0, list, error),
     "draw list: " + error);
   const std::size_t bricks = list.GetNumberOfBricks();
   check.Check(list.BucketOffsets.size() == bricks + 1 &&
@@ -634,24 +642,25 @@ int Points()
   }
   check.Check(strides, "points only in bricks of stride 2");
   // Errors.
+  check.Check(!f.Octree->GetPointShades(
+                f.Bytes(), f.ByteCount(), f.Grid, { 0.0, 1.0 }, opacities, shades, error) &&
+      error.find("tuples") != std::string::npos,
+    "bad colour points: '" + error + "'");
   B::PointsOptions optimized = options;
   optimized.MaxOverestimate = 0.1;
-  check.Check(!f.Octree->MakePoints(f.Bytes(), f.ByteCount(), f.Grid, optimized, error) &&
+  check.Check(
+    !f.Octree->IntegratePoints(f.Bytes(), f.ByteCount(), f.Grid, optimized, made, error) &&
       error.find("max_overestimate") != std::string::npos,
     "the optimized low resolution cannot be drawn: '" + error + "'");
   B::PointsOptions odd = options;
   odd.Factor = 3;
-  check.Check(!f.Octree->MakePoints(f.Bytes(), f.ByteCount(), f.Grid, odd, error) &&
+  check.Check(!f.Octree->IntegratePoints(f.Bytes(), f.ByteCount(), f.Grid, odd, made, error) &&
       error.find("factor 3") != std::string::npos,
     "factor 3: '" + error + "'");
-  check.Check(
-    !points->GetShades(f.Bytes(), f.ByteCount(), f.Grid, { 0.0, 1.0 }, opacities, shades, error) &&
-      error.find("tuples") != std::string::npos,
-    "bad colour points: '" + error + "'");
-  Fixture other;
-  check.Check(!other.Octree->Select(select, *points, error) &&
-      error.find("another octree") != std::string::npos,
-    "points of another octree: '" + error + "'");
+  // A failed integration leaves no points: the selection buys none.
+  std::unique_ptr<B::Selection> without = f.Octree->Select(select, error);
+  check.Check(without && without->GetSummary(summary, error) && summary.Points == 0,
+    "no points after a failed integration");
   return check.Result();
 }
 } // namespace

@@ -69,22 +69,13 @@ vtkNew<vtkImageData> Ball(double lo, double hi, double spacing, bool constant = 
   return image;
 }
 
-/// A window with one volume of `image` drawn by `mapper`: a colour ramp and
-/// an opacity of 0.05 a unit distance `unit` over `[lo, hi]`, the camera
-/// looking at the origin from `distance` (scaled by `scale`).
-struct Stage
+/// One volume of `image` drawn by `mapper` on a MapperScene::Stage: a colour
+/// ramp and an opacity of 0.02-0.08 a unit distance `scale` over `[lo, hi]`,
+/// the camera looking at the origin from a distance scaled by `scale`.
+struct BallStage : Stage
 {
-  vtkNew<vtkRenderWindow> Window;
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkVolumeProperty> Property;
-
-  Stage(vtkVolumeMapper* mapper, vtkImageData* image, double lo, double hi, double scale)
+  BallStage(vtkVolumeMapper* mapper, vtkImageData* image, double lo, double hi, double scale)
   {
-    this->Window->SetSize(Size, Size);
-    this->Window->SetMultiSamples(0);
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(Background[0], Background[1], Background[2]);
     mapper->SetInputData(image);
     vtkNew<vtkColorTransferFunction> color;
     color->AddRGBPoint(lo, 0.1, 0.2, 0.9);
@@ -92,20 +83,9 @@ struct Stage
     vtkNew<vtkPiecewiseFunction> opacity;
     opacity->AddPoint(lo, 0.02);
     opacity->AddPoint(hi, 0.08);
-    this->Property->SetColor(color);
-    this->Property->SetScalarOpacity(opacity);
     this->Property->SetScalarOpacityUnitDistance(scale);
-    this->Property->SetInterpolationTypeToLinear();
-    this->Property->ShadeOff();
-    this->Volume->SetMapper(mapper);
-    this->Volume->SetProperty(this->Property);
-    this->Renderer->AddVolume(this->Volume);
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetFocalPoint(0.0, 0.0, 0.0);
-    camera->SetPosition(50.0 * scale, 38.0 * scale, 66.0 * scale);
-    camera->SetViewUp(0.0, 1.0, 0.0);
-    camera->SetViewAngle(30.0);
-    this->Renderer->ResetCameraClippingRange();
+    const double position[3] = { 50.0 * scale, 38.0 * scale, 66.0 * scale };
+    this->Build(mapper, color, opacity, position);
   }
 };
 
@@ -128,7 +108,7 @@ vtkNew<vtkHybridOctreeVolumeMapper> Ours()
 
 /// Draws both stages and checks the RMSE of their windows against `threshold`.
 void Compare(Checker& check, const std::string& what, vtkHybridOctreeVolumeMapper* mapper,
-  Stage& ours, Stage& theirs, double threshold)
+  BallStage& ours, BallStage& theirs, double threshold)
 {
   vtkSmartPointer<ErrorRecorder> errors =
     vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
@@ -154,8 +134,8 @@ int Constant()
   vtkNew<vtkHybridOctreeVolumeMapper> mapper = Ours();
   vtkNew<vtkGPUVolumeRayCastMapper> gpu = Reference();
   // The colour and opacity points span [0, 1] around the one value 0.5.
-  Stage ours(mapper, image, 0.0, 1.0, 1.0);
-  Stage theirs(gpu, image, 0.0, 1.0, 1.0);
+  BallStage ours(mapper, image, 0.0, 1.0, 1.0);
+  BallStage theirs(gpu, image, 0.0, 1.0, 1.0);
   Compare(check, "constant", mapper, ours, theirs, 0.01);
   check.Check(mapper->GetLastSlices() > 16, "the one brick is sliced across the cube");
   return check.Result();
@@ -168,8 +148,8 @@ int Spacing()
   vtkNew<vtkImageData> unit = Ball(0.0, 1.0, 1.0);
   vtkNew<vtkHybridOctreeVolumeMapper> mapper = Ours();
   vtkNew<vtkGPUVolumeRayCastMapper> gpu = Reference();
-  Stage ours(mapper, tiny, 0.0, 1.0, 1e-6);
-  Stage theirs(gpu, unit, 0.0, 1.0, 1.0);
+  BallStage ours(mapper, tiny, 0.0, 1.0, 1e-6);
+  BallStage theirs(gpu, unit, 0.0, 1.0, 1.0);
   Compare(check, "spacing 1e-6", mapper, ours, theirs, 0.01);
   return check.Result();
 }
@@ -193,8 +173,8 @@ int Direction()
   rotated->SetDirectionMatrix(direction);
   vtkNew<vtkHybridOctreeVolumeMapper> mapper = Ours();
   vtkNew<vtkGPUVolumeRayCastMapper> gpu = Reference();
-  Stage ours(mapper, rotated, 0.0, 1.0, 1.0);
-  Stage theirs(gpu, plain, 0.0, 1.0, 1.0);
+  BallStage ours(mapper, rotated, 0.0, 1.0, 1.0);
+  BallStage theirs(gpu, plain, 0.0, 1.0, 1.0);
   // Where vtkImageData puts point (i, j, k): origin + D (spacing * ijk), the
   // identity-direction image moved by T(origin) D T(-origin).
   const double* o = plain->GetOrigin();
@@ -215,8 +195,8 @@ int Extreme(bool offset)
   vtkNew<vtkImageData> unit = Ball(0.0, 1.0, 1.0);
   vtkNew<vtkHybridOctreeVolumeMapper> mapper = Ours();
   vtkNew<vtkHybridOctreeVolumeMapper> unitMapper = Ours();
-  Stage ours(mapper, extreme, 0.0, 1.0, 1.0);
-  Stage theirs(unitMapper, unit, 0.0, 1.0, 1.0);
+  BallStage ours(mapper, extreme, 0.0, 1.0, 1.0);
+  BallStage theirs(unitMapper, unit, 0.0, 1.0, 1.0);
   vtkSmartPointer<ErrorRecorder> errors =
     vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);

@@ -90,7 +90,7 @@ pub fn run(args: &SurfaceArgs) -> Result<()> {
         let octree = build_octree(&grid, &BuildOptions { leaf_size: args.leaf_size })?;
         let build_ms = octree.stats().build_ms;
         let surface = Surface::extract(&grid, &octree, &options)?;
-        let hybrid = HybridOctree { volume: octree, surface };
+        let hybrid = HybridOctree { volume: octree, surface: Some(surface), points: None };
         hybrid.validate().map_err(|e| Error::Internal(format!("Hybrid Octree failed validation: {e}")))?;
         let measured = if args.distance {
             let started = std::time::Instant::now();
@@ -99,10 +99,10 @@ pub fn run(args: &SurfaceArgs) -> Result<()> {
         } else {
             None
         };
+        let Some(s) = &hybrid.surface else { unreachable!("the surface was integrated above") };
         if let Some(path) = &args.output {
-            write_vtk(path, &hybrid.surface, grid.shape())?;
+            write_vtk(path, s, grid.shape())?;
         }
-        let s = &hybrid.surface;
         let st = &s.stats;
         Ok(SurfaceReport {
             isovalue: args.isovalue,

@@ -1,0 +1,549 @@
+//! The only `#[cxx::bridge]` of the crate: what `cpp/Filters/vtkHybridOctreeBridge.cxx`
+//! may call. No other module knows C++ exists.
+//!
+//! The host holds one object, the Hybrid Octree ([`HybridOctreeHandle`]: the
+//! Volume Octree, and the isosurface and points integrated into it when asked),
+//! and the selections made from it ([`SelectionHandle`]).
+//!
+//! Every function body runs under [`guard::guarded`] and returns `Result`, so
+//! a Rust panic becomes a `rust::Error` exception on the C++ side (reported
+//! with `vtkErrorMacro`) instead of aborting ParaView.
+//!
+//! Volume data crosses borrowed: `bytes` is the VTK array's storage
+//! (`GetVoidPointer(0)`, `GetDataSize() * GetDataTypeSize()` bytes); nothing is
+//! copied. Large outputs cross the other way into the caller's memory: the
+//! host learns the sizes from a summary, allocates its VTK arrays or staging
+//! buffers, and passes them as `&mut [T]` for Rust to fill (a length that
+//! does not match is an error; after any error the buffer's contents are
+//! unspecified).
+
+mod ftb;
+mod grid;
+mod guard;
+mod octree;
+mod points;
+mod render;
+#[cfg(test)]
+mod render_tests;
+mod surface;
+#[cfg(test)]
+mod test_support;
+mod transfer;
+
+#[cxx::bridge(namespace = "hybrid_octree")]
+mod bridge {
+    // ---- Shared enums (defined in C++, checked against these) ---------------
+
+    /// The scalar type of the VTK array (VTK_UNSIGNED_CHAR -> U8, ...). The
+    /// C++ definition (cpp/Filters/vtkHybridOctreeBridgeEnums.h) is the one the host
+    /// uses; cxx checks it against this one at compile time.
+    #[derive(Debug)]
+    #[repr(u8)]
+    enum ScalarType {
+        U8,
+        I8,
+        U16,
+        I16,
+        U32,
+        I32,
+        F32,
+        F64,
+    }
+
+    /// Which isosurface the Hybrid Octree keeps (C++ definition as ScalarType's).
+    #[derive(Debug)]
+    #[repr(u8)]
+    enum SurfaceMode {
+        /// Discretized Marching Cubes, coplanar facets merged (lossless).
+        Discretized,
+        /// Classic Marching Cubes, vertices interpolated along edges.
+        Interpolated,
+    }
+
+    // ---- Shared structs -------------------------------------------------
+
+    /// Layout of the borrowed image: dims, spacing, origin, components and
+    /// the chosen component (-1: none chosen, allowed for 1-component arrays).
+    #[derive(Debug)]
+    struct GridDesc {
+        scalar_type: ScalarType,
+        dims: [usize; 3],
+        spacing: [f64; 3],
+        origin: [f64; 3],
+        components: usize,
+        component: i32,
+    }
+
+    /// Summary of a built Volume Octree.
+    #[derive(Debug)]
+    struct OctreeSummary {
+        /// Nodes reachable from the root (terminal nodes are not refined).
+        node_count: usize,
+        /// Terminal nodes: homogeneous nodes plus leaf bricks.
+        terminal_count: usize,
+        /// Nodes whose e_0 is 0 (trilinear over their box).
+        homogeneous_count: usize,
+        /// Number of levels: the root is level 0, leaves are level `levels - 1`.
+        levels: u32,
+        /// Cells per axis of a leaf brick.
+        leaf_size: u32,
+        /// Cells per axis of the (virtually padded) root.
+        root_size: u32,
+        /// Bytes the octree owns (the borrowed samples not included).
+        octree_bytes: usize,
+        /// Bytes of the input samples of the chosen component.
+        input_bytes: usize,
+        /// Wall-clock build time.
+        build_ms: f64,
+        /// Data range, used to normalise nodal errors (NaN left out).
+        value_min: f64,
+        value_max: f64,
+        /// NaN samples of the chosen component: no data, transparent and
+        /// outside every isosurface.
+        nan_samples: usize,
+    }
+
+    /// The boxes of an octree cut, one entry per node, world coordinates.
+    #[derive(Debug)]
+    struct CutBoxes {
+        /// 6 values per node: xmin, xmax, ymin, ymax, zmin, zmax (VTK bounds order).
+        bounds: Vec<f64>,
+        /// The node's id in the level-by-level numbering (what a surface polygon's node names).
+        node_id: Vec<u32>,
+        level: Vec<u32>,
+        /// e_0 of the node normalised by the data range.
+        nodal_error: Vec<f32>,
+        /// The node's scalar range, NaN left out; NaN for a box of NaN only.
+        min: Vec<f64>,
+        max: Vec<f64>,
+    }
+
+    /// What `ftb_display` draws (paper 2's display).
+    struct FtbDesc {
+        /// Inside: value >= isovalue (unless `use_label`).
+        isovalue: f64,
+        /// Inside: value == label instead.
+        use_label: bool,
+        label: f64,
+        /// View plane normal, towards the viewer.
+        vpn: [f64; 3],
+        /// Image side in pixels: the image is `image_size^2` pixels.
+        image_size: usize,
+        /// Meagher's back-to-front display instead of front to back with blocking quadtrees.
+        back_to_front: bool,
+    }
+
+    /// What drawing a depth image took (the pixels go to the caller's buffers).
+    #[derive(Debug)]
+    struct FtbSummary {
+        white_visited: usize,
+        black_visited: usize,
+        gray_visited: usize,
+        faces: usize,
+        scanlines: usize,
+        pixels: usize,
+        display_ms: f64,
+        build_ms: f64,
+        bitmap_bytes: usize,
+        white_octants: usize,
+        black_octants: usize,
+        gray_octants: usize,
+        resolution: u32,
+        /// "XYZ", "XY", ... (the view case).
+        view_case: String,
+    }
+
+    /// What `generate_points` and `integrate_points` make (paper 3's points; see `crate::points`).
+    struct PointsDesc {
+        /// Low-resolution factor: 2, 4 or 8.
+        factor: usize,
+        /// Points where |error| exceeds this fraction of the data range ...
+        threshold: f64,
+        /// ... or, when `use_budget`, the `budget` largest errors.
+        use_budget: bool,
+        budget: usize,
+        /// Only where the low resolution underestimates (e > 0).
+        underestimates_only: bool,
+        /// The optimized low resolution's bound (fraction of the data range); negative: plain subsampling.
+        max_overestimate: f64,
+        /// Also write the point file here (empty: do not).
+        file_name: String,
+    }
+
+    /// Points of the hybrid representation: how many, and what making them took.
+    #[derive(Debug)]
+    struct PointsSummary {
+        points: usize,
+        /// The low-resolution factor the points complete.
+        factor: usize,
+        /// Bytes of the points as stored (6 or 9 a point).
+        point_bytes: usize,
+        /// Points with e > 0.
+        underestimates: usize,
+        generate_ms: f64,
+    }
+
+    /// An isosurface integrated into the Hybrid Octree: its sizes (for the
+    /// caller's arrays) and what extracting it took.
+    #[derive(Debug)]
+    struct SurfaceSummary {
+        vertices: usize,
+        /// Polygons (triangles): `polygons + 1` offsets.
+        polygons: usize,
+        /// Connectivity entries (3 per triangle).
+        connectivity: usize,
+        /// Merged coplanar faces (DiscMC with compression), else the triangles.
+        faces: u64,
+        /// Triangles in the output (= polygons).
+        triangles: u64,
+        /// Triangles before face compression.
+        uncompressed_triangles: u64,
+        /// Polygon edges on the volume's faces (0 for a closed surface).
+        boundary_edges: u64,
+        extract_ms: f64,
+        compress_ms: f64,
+        /// DiscMC vs interpolated distance in voxel units (sampled, symmetric); -1 when not measured.
+        distance_mean: f64,
+        distance_max: f64,
+    }
+
+    /// What to select (see `select::SelectOptions`; f32 texels, bricks up to
+    /// 128 cells per axis).
+    #[derive(Debug)]
+    struct SelectDesc {
+        /// Texture budget in bytes (> 0).
+        budget_bytes: usize,
+        /// Error tolerance, a fraction of the data range (>= 0).
+        tolerance: f64,
+        /// Refine around a region of interest.
+        has_roi: bool,
+        /// ROI centre, WORLD coordinates (turned into index space with the
+        /// image's origin and spacing).
+        roi_center: [f64; 3],
+        /// ROI radius, world units (> 0), turned into index units by dividing
+        /// by the smallest spacing: with anisotropic spacing the index-space
+        /// sphere covers at least the world sphere.
+        roi_radius: f64,
+        /// The scalar opacity transfer function, (value, opacity) pairs
+        /// flattened, values increasing: nodes over whose range it is 0 are
+        /// skipped (no texture). Empty: every node shows.
+        opacity_points: Vec<f64>,
+        /// With an isosurface: nodes holding the isovalue always show.
+        has_isovalue: bool,
+        isovalue: f64,
+    }
+
+    /// Summary of a selection.
+    #[derive(Debug)]
+    struct SelectionSummary {
+        bricks: usize,
+        /// Sum of the bricks' bytes (f32 texels).
+        texture_bytes: usize,
+        budget_bytes: usize,
+        /// The estimated error (`select::estimated_error`): the largest nodal
+        /// error e_p of the bricks visible under the opacity points, a fraction
+        /// of the data range; 0 when they all draw the full-resolution field.
+        estimated_error: f64,
+        /// Nodes left out as fully transparent.
+        skipped: usize,
+        /// "" when none (else: the budget is below the coarsest representation,
+        /// or the tolerance was not reached).
+        warning: String,
+        /// Points of the hybrid representation bought within the budget (0 without points).
+        points: usize,
+        /// Their bytes (counted in the budget with the textures).
+        point_bytes: usize,
+    }
+
+    /// A camera as vtkCamera gives it (world coordinates).
+    #[derive(Debug)]
+    struct CameraDesc {
+        position: [f64; 3],
+        focal_point: [f64; 3],
+        view_up: [f64; 3],
+        /// GetParallelProjection().
+        parallel: bool,
+        /// GetParallelScale(): half the view height, world units.
+        parallel_scale: f64,
+        /// GetViewAngle(): full vertical angle, degrees.
+        view_angle: f64,
+    }
+
+    /// A DrawList for one camera, flattened per brick in drawing order (back
+    /// to front), with the surface passes when drawn with a surface.
+    #[derive(Debug)]
+    struct DrawListOutput {
+        /// Index of the brick in the selection (for brick_texels).
+        brick: Vec<usize>,
+        node_id: Vec<u32>,
+        /// 6 per brick, world: xmin, xmax, ymin, ymax, zmin, zmax.
+        bounds: Vec<f64>,
+        /// 3 per brick: texels per axis (x, y, z). Texture coordinate of a
+        /// world point along axis a, in texels: (x - xmin) / (stride * spacing[a]),
+        /// clamped to [0, texels - 1] (the last texel of a clipped brick is closer).
+        texels: Vec<usize>,
+        /// Cells between texels.
+        stride: Vec<usize>,
+        /// World distance d between the brick's slices.
+        slice_spacing: Vec<f64>,
+        /// d / d0: opacity correction a' = 1 - (1 - a)^(d / d0).
+        opacity_ratio: Vec<f64>,
+        /// Brick i's slices are slices[slice_offsets[i] .. slice_offsets[i + 1]].
+        slice_offsets: Vec<usize>,
+        /// View depths (position-relative, along `forward`), back to front:
+        /// the plane of depth z is {x : (x - camera position) . forward = z}.
+        slices: Vec<f64>,
+        /// The plan's passes in order, comma-joined ("volume", "" with no brick).
+        passes: String,
+        /// d0, world units.
+        reference_spacing: f64,
+        /// The camera's unit view direction.
+        forward: [f64; 3],
+        /// Translucent surface: brick i's triangle batches are batches
+        /// batch_offsets[i] .. batch_offsets[i + 1], back to front (empty
+        /// lists without one).
+        batch_offsets: Vec<usize>,
+        /// Per batch: the slab s within its brick (between slices s - 1 and s;
+        /// 0 behind the first slice, slices-count in front of the last).
+        batch_slab: Vec<usize>,
+        /// Per batch: surface triangles [first, end) (polygon ids of the octree's surface).
+        batch_first: Vec<u32>,
+        batch_end: Vec<u32>,
+        /// Per batch, 2 values: clip to view depths near <= depth < far; (-inf, inf): no clip needed.
+        batch_clip: Vec<f64>,
+        /// Opaque surface: the surface pass draws triangles 0 .. this first (0 otherwise).
+        opaque_triangles: usize,
+        /// Points (a selection made with points): brick i's point buckets are
+        /// buckets bucket_offsets[i] .. bucket_offsets[i + 1], back to front
+        /// (empty lists without points).
+        bucket_offsets: Vec<usize>,
+        /// Per bucket: the slab within its brick, as batch_slab.
+        bucket_slab: Vec<usize>,
+        /// Bucket k's points are bucket_points[bucket_point_offsets[k] .. bucket_point_offsets[k + 1]].
+        bucket_point_offsets: Vec<usize>,
+        /// Point ids (into the octree's points), in grid order within a bucket.
+        bucket_points: Vec<u32>,
+    }
+
+    // ---- C++ types for Rust ------------------------------------------------
+
+    unsafe extern "C++" {
+        include!("hybrid-octree/cpp/Filters/vtkHybridOctreeBuildProgress.h");
+        /// The build's progress sink (cpp/Filters/vtkHybridOctreeBuildProgress.h).
+        type BuildProgress;
+        /// `fraction` of the build done, in (0, 1]; false asks the build to stop.
+        fn report(self: &BuildProgress, fraction: f64) -> bool;
+
+        include!("hybrid-octree/cpp/Filters/vtkHybridOctreeBridgeEnums.h");
+        type ScalarType;
+        type SurfaceMode;
+    }
+
+    // ---- Rust types and functions for C++ --------------------------------
+
+    extern "Rust" {
+        /// The Hybrid Octree, owned by the C++ filter or mapper: the Volume
+        /// Octree, and the isosurface and points integrated into it.
+        type HybridOctreeHandle;
+
+        /// Builds the Volume Octree of the borrowed image (no surface, no
+        /// points yet), reporting progress to `progress` between chunks of
+        /// leaf bricks (on the calling thread); its `false` cancels the build
+        /// (the error names the cancel; nothing is kept).
+        fn build_hybrid_octree(
+            bytes: &[u8],
+            desc: &GridDesc,
+            leaf_size: u32,
+            progress: &BuildProgress,
+        ) -> Result<Box<HybridOctreeHandle>>;
+        /// Node counts, levels, memory and build time.
+        fn summary(self: &HybridOctreeHandle) -> Result<OctreeSummary>;
+        /// The cut at normalised tolerance `tolerance` (the first nodes from the
+        /// root whose e_0 <= tolerance, or leaf bricks).
+        fn cut_boxes(self: &HybridOctreeHandle, tolerance: f64) -> Result<CutBoxes>;
+
+        /// Surface data integration: extracts the isosurface of the image the
+        /// octree was built from (the same bytes and description) and keeps
+        /// it, replacing any. An isovalue outside the data range gives an
+        /// empty surface; a non-finite one is an error (the octree then holds
+        /// no surface).
+        fn integrate_surface(
+            self: &mut HybridOctreeHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            isovalue: f64,
+            mode: SurfaceMode,
+            measure_distance: bool,
+        ) -> Result<SurfaceSummary>;
+        /// Drops the isosurface.
+        fn remove_surface(self: &mut HybridOctreeHandle) -> Result<()>;
+        /// The isosurface as a mesh, world coordinates, into the caller's
+        /// arrays (sizes from its SurfaceSummary): `points` 3 per vertex,
+        /// `normals` 3 per vertex (unit, from values >= isovalue towards
+        /// values below it), polygon i uses connectivity[offsets[i] ..
+        /// offsets[i + 1]] (`polygons + 1` offsets), and per polygon the
+        /// terminal node holding it, its level and the merged coplanar face
+        /// it triangulates. Node ids and levels must fit an `i32`.
+        #[allow(clippy::too_many_arguments)]
+        fn surface_mesh(
+            self: &HybridOctreeHandle,
+            points: &mut [f64],
+            normals: &mut [f32],
+            offsets: &mut [i64],
+            connectivity: &mut [i64],
+            polygon_node: &mut [i32],
+            polygon_level: &mut [i32],
+            polygon_face: &mut [i64],
+        ) -> Result<()>;
+        /// The isosurface as the GPU draws it: `vertices` 6 floats a vertex
+        /// (world position, then unit normal), `indices` 3 a triangle (the
+        /// DrawList's triangle ids are these triangles' positions).
+        fn surface_triangles(self: &HybridOctreeHandle, vertices: &mut [f32], indices: &mut [u32]) -> Result<()>;
+
+        /// The binary octree of the borrowed image drawn along `options.vpn`
+        /// into the caller's `image_size^2` pixels, rows from the BOTTOM (VTK
+        /// image order): `depth` the distance from the view plane (smaller is
+        /// nearer, NaN where nothing was painted), `face` 0 for nothing, 1 +
+        /// the axis of the face painted, `shaded` RGB (3 a pixel, 0 where
+        /// nothing was painted). Errors: a zero or non-finite VPN, a
+        /// non-finite isovalue or label, an image size outside 8..=8192.
+        fn ftb_display(
+            bytes: &[u8],
+            desc: &GridDesc,
+            options: &FtbDesc,
+            depth: &mut [f32],
+            face: &mut [u8],
+            shaded: &mut [u8],
+        ) -> Result<FtbSummary>;
+
+        /// Points completing a low resolution of a borrowed image, made by
+        /// `generate_points` and read out once their count is known.
+        type GeneratedPoints;
+
+        /// The points completing the borrowed image's low resolution (errors:
+        /// a factor other than 2, 4 or 8, a threshold or bound outside [0, 1],
+        /// a grid too small for the factor, a file that cannot be written).
+        fn generate_points(bytes: &[u8], desc: &GridDesc, options: &PointsDesc) -> Result<Box<GeneratedPoints>>;
+        /// Count, factor, bytes, underestimates, time.
+        fn summary(self: &GeneratedPoints) -> Result<PointsSummary>;
+        /// The points into the caller's arrays (one entry a point, 3 for
+        /// `ijk` and `normal`): grid index, original value and error
+        /// f - T_f (both quantised to 8 bits, as stored), unit normal from
+        /// the 256-direction table.
+        fn fill(
+            self: &GeneratedPoints,
+            ijk: &mut [u32],
+            value: &mut [f32],
+            error: &mut [f32],
+            normal: &mut [f32],
+        ) -> Result<()>;
+
+        /// Points data integration: the points completing the borrowed
+        /// image's stride-`factor` textures (plain subsampling:
+        /// `max_overestimate` must be < 0, the textures being the image
+        /// itself), kept for the selections, replacing any.
+        fn integrate_points(
+            self: &mut HybridOctreeHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            options: &PointsDesc,
+        ) -> Result<PointsSummary>;
+        /// Drops the points.
+        fn remove_points(self: &mut HybridOctreeHandle) -> Result<()>;
+        /// The points as the renderer draws them, into the caller's arrays
+        /// (one entry a point, 3 for `position`): the sample's world
+        /// position (the grid's frame), its original value f and error e =
+        /// f - T_f (dequantised as stored: the volume shows f - e there).
+        fn points_drawing(
+            self: &HybridOctreeHandle,
+            position: &mut [f32],
+            value: &mut [f32],
+            error: &mut [f32],
+        ) -> Result<()>;
+        /// What each point adds under the transfer function of `colors`
+        /// ((value, r, g, b) flattened) and `opacities` ((value, opacity)),
+        /// into `shades`: 4 floats a point, straight colour and opacity,
+        /// averaged over its voxel (see `points::shade`); `bytes` and `desc`:
+        /// the image the points were made from.
+        fn point_shades(
+            self: &HybridOctreeHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            colors: &[f64],
+            opacities: &[f64],
+            shades: &mut [f32],
+        ) -> Result<()>;
+
+        /// A selection of the octree's nodes and texture levels, for drawing.
+        type SelectionHandle;
+
+        /// Selects bricks within the budget (errors: budget 0, a tolerance
+        /// that is not a number >= 0, a bad ROI or opacity points). With
+        /// points integrated, the budget goes to textures and points: a brick
+        /// at the points' stride takes its points when they remove more error
+        /// per byte than refining it, and the DrawLists bucket the points
+        /// bought into the slabs.
+        fn select_bricks(self: &HybridOctreeHandle, options: &SelectDesc) -> Result<Box<SelectionHandle>>;
+        /// Bricks, bytes, error, skipped nodes, warning.
+        fn summary(self: &SelectionHandle) -> Result<SelectionSummary>;
+        /// The DrawList of the selection for `camera` (`octree`: the one the
+        /// selection was made from), with the octree's surface, when it holds
+        /// one, at `surface_opacity` (1: opaque pass first; (0, 1): batches
+        /// in the slabs, whose SlabPolygons are made on the first call and
+        /// kept for this surface; 0: hidden).
+        fn draw_list(
+            self: &SelectionHandle,
+            octree: &HybridOctreeHandle,
+            camera: &CameraDesc,
+            surface_opacity: f64,
+        ) -> Result<DrawListOutput>;
+        /// Brick `brick`'s texels as f32, x fastest (see
+        /// `render::texture::brick_texels_f32`), from the image the octree
+        /// was built from, into `texels` (the brick's texel count).
+        fn brick_texels(
+            self: &SelectionHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            brick: usize,
+            texels: &mut [f32],
+        ) -> Result<()>;
+
+        /// The CPU compositor's picture of the selection's DrawList for
+        /// `camera` into `rgba`: `width x height` premultiplied RGBA (4
+        /// floats a pixel, rows from the top), with the transfer function
+        /// of `colors` ((value, r, g, b) flattened) and `opacities` ((value,
+        /// opacity) flattened), over the image the octree was built from; a
+        /// selection made with points draws them, with Gaussian footprints
+        /// when `gaussian_points`, else square ones; the octree's surface,
+        /// when it holds one and `surface_rgba` (r, g, b, opacity) has an
+        /// opacity above 0, headlight-shaded (opacity 1: the opaque pass,
+        /// below 1: the batches in the slabs).
+        #[allow(clippy::too_many_arguments)]
+        fn composite(
+            self: &SelectionHandle,
+            octree: &HybridOctreeHandle,
+            camera: &CameraDesc,
+            bytes: &[u8],
+            desc: &GridDesc,
+            colors: &[f64],
+            opacities: &[f64],
+            gaussian_points: bool,
+            surface_rgba: &[f64],
+            width: usize,
+            height: usize,
+            rgba: &mut [f32],
+        ) -> Result<()>;
+    }
+}
+
+use bridge::BuildProgress;
+pub use bridge::{
+    CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc, OctreeSummary, PointsDesc, PointsSummary,
+    ScalarType, SelectDesc, SelectionSummary, SurfaceMode, SurfaceSummary,
+};
+use ftb::ftb_display;
+use octree::build_hybrid_octree;
+pub use octree::HybridOctreeHandle;
+use points::generate_points;
+pub use points::GeneratedPoints;
+pub use render::SelectionHandle;

@@ -1,0 +1,353 @@
+//! The rendering half of the bridge: a selection made from a Hybrid Octree,
+//! its DrawList for a VTK camera, its bricks' texels, and the CPU
+//! compositor's picture, for `vtkHybridOctreeVolumeMapper`.
+//!
+//! The selection, the DrawList and the texel layout are those of the CLI:
+//! [`select`] with the transfer function's visibility test,
+//! [`HybridOctree::draw_list`](crate::hybrid::HybridOctree::draw_list) (the
+//! octree's surface at an opacity, the selection's [`SlabPolygons`] made once
+//! per selection and surface), [`brick_texels_f32_into`] (the layout of
+//! [`crate::render::texture`]).
+
+use super::grid::{grid_of, grid_unscanned, same_image};
+use super::guard::{check_len, guarded, Bridged};
+use super::octree::HybridOctreeHandle;
+use super::transfer::{opacity_function, transfer_function};
+use super::{CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary};
+use crate::camera::{Camera, Projection};
+use crate::error::{Error, Result};
+use crate::grid::{GridShape, ScalarType};
+use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
+use crate::plan::slab::SlabPolygons;
+use crate::plan::{plan, DrawList, SurfacePass};
+use crate::points::draw::Footprint;
+use crate::points::{add_points, PointSet};
+use crate::render::texture::brick_texels_f32_into;
+use std::sync::{Arc, Mutex};
+
+/// A selection, with the octree and grid it was made from.
+#[derive(Debug)]
+pub struct SelectionHandle {
+    pub(crate) selection: Selection,
+    octree_id: u64,
+    shape: GridShape,
+    /// The octree's value range (what 32-bit float texels must resolve).
+    value_range: (f64, f64),
+    /// The SlabPolygons of the last translucent surface drawn, with its id.
+    polygons: Mutex<Option<(u64, SlabPolygons)>>,
+    /// The points the selection spent bytes on (the octree held points).
+    points: Option<Arc<PointSet>>,
+}
+
+/// The select options of `desc` for a grid of `shape`: the ROI from world
+/// to index space (centre through origin and spacing, radius divided by the
+/// smallest spacing).
+pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<SelectOptions> {
+    let roi = if desc.has_roi {
+        let (c, r) = (desc.roi_center, desc.roi_radius);
+        if c.iter().any(|v| !v.is_finite()) || !(r > 0.0 && r.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "region of interest (centre {c:?}, radius {r}, world units) needs a finite centre and a radius > 0"
+            )));
+        }
+        let min_spacing = shape.spacing.iter().copied().fold(f64::INFINITY, f64::min);
+        Some(Roi { center: [0, 1, 2].map(|a| (c[a] - shape.origin[a]) / shape.spacing[a]), radius: r / min_spacing })
+    } else {
+        None
+    };
+    Ok(SelectOptions { roi, ..SelectOptions::new(desc.budget_bytes, desc.tolerance) })
+}
+
+/// The CLI's visibility test (`scene::visible`): a node shows unless the
+/// opacity is 0 over its whole range, or when it holds the isovalue; with
+/// the octree's points, bytes go to textures or points ([`select_with_points`]).
+pub(crate) fn select_with(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Result<Selection> {
+    let options = select_options(&octree.shape, desc)?;
+    let tf = opacity_function(&desc.opacity_points)?;
+    let iso = desc.has_isovalue.then_some(desc.isovalue);
+    if iso.is_some_and(|v| !v.is_finite()) {
+        return Err(Error::InvalidArgument(format!("isovalue {} must be a finite number", desc.isovalue)));
+    }
+    let visible = |min: f64, max: f64| {
+        tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max)) || iso.is_some_and(|v| min < v && v <= max)
+    };
+    match &octree.hybrid.points {
+        Some(points) => select_with_points(octree.volume(), &options, visible, &points.mass),
+        None => select(octree.volume(), &options, visible),
+    }
+}
+
+/// The checked camera of `desc`.
+pub(crate) fn camera(desc: &CameraDesc) -> Result<Camera> {
+    let projection = if desc.parallel {
+        Projection::Parallel { scale: desc.parallel_scale }
+    } else {
+        Projection::Perspective { view_angle_deg: desc.view_angle }
+    };
+    Camera::new(desc.position, desc.focal_point, desc.view_up, projection)
+}
+
+/// `list` flattened (see [`DrawListOutput`]); a brick's index is its place in `selection`.
+fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
+    let n = list.bricks.len();
+    let mut out = DrawListOutput {
+        brick: Vec::with_capacity(n),
+        node_id: Vec::with_capacity(n),
+        bounds: Vec::with_capacity(6 * n),
+        texels: Vec::with_capacity(3 * n),
+        stride: Vec::with_capacity(n),
+        slice_spacing: Vec::with_capacity(n),
+        opacity_ratio: Vec::with_capacity(n),
+        slice_offsets: Vec::with_capacity(n + 1),
+        slices: Vec::new(),
+        passes: list.plan.passes.join(","),
+        reference_spacing: list.reference_spacing,
+        forward: list.camera.forward(),
+        batch_offsets: Vec::with_capacity(n + 1),
+        batch_slab: Vec::new(),
+        batch_first: Vec::new(),
+        batch_end: Vec::new(),
+        batch_clip: Vec::new(),
+        opaque_triangles: list.opaque_triangles.len(),
+        bucket_offsets: Vec::new(),
+        bucket_slab: Vec::new(),
+        bucket_point_offsets: Vec::new(),
+        bucket_points: Vec::new(),
+    };
+    out.slice_offsets.push(0);
+    out.batch_offsets.push(0);
+    if list.plan.passes.iter().any(|p| p == "points") {
+        out.bucket_offsets.push(0);
+        out.bucket_point_offsets.push(0);
+        for d in &list.bricks {
+            for bucket in &d.points {
+                out.bucket_slab.push(bucket.slab);
+                out.bucket_points.extend_from_slice(&bucket.points);
+                out.bucket_point_offsets.push(out.bucket_points.len());
+            }
+            out.bucket_offsets.push(out.bucket_slab.len());
+        }
+    }
+    for d in &list.bricks {
+        // Bricks are sorted by node id in the selection.
+        let index = selection.bricks.binary_search_by_key(&d.brick.node, |b| b.node).expect("a selected brick");
+        out.brick.push(index);
+        out.node_id.push(d.brick.node.0);
+        let (lo, hi) = (d.world_lo, d.world_hi);
+        out.bounds.extend_from_slice(&[lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]]);
+        out.texels.extend_from_slice(&d.brick.texels);
+        out.stride.push(d.brick.stride);
+        out.slice_spacing.push(d.slice_spacing);
+        out.opacity_ratio.push(d.slice_spacing / list.reference_spacing);
+        out.slices.extend_from_slice(&d.slices);
+        out.slice_offsets.push(out.slices.len());
+        for b in &d.batches {
+            out.batch_slab.push(b.slab);
+            out.batch_first.push(b.triangles.start);
+            out.batch_end.push(b.triangles.end);
+            let (near, far) = b.clip.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+            out.batch_clip.extend_from_slice(&[near, far]);
+        }
+        out.batch_offsets.push(out.batch_slab.len());
+    }
+    out
+}
+
+/// Refuses data whose differences 32-bit float texels cannot resolve: a
+/// value of magnitude `m` is off by up to `m 2^-24` in an `f32`; when that is
+/// more than one cell of a 4096-cell table, `(max - min) / 4096` (e.g. a
+/// `1e-3` range on a `1e9` offset), the GPU picture would be noise. Only
+/// `f64`, `i32` and `u32` grids can be inexact; a constant image has no
+/// differences to lose.
+fn check_f32_resolution(scalar_type: ScalarType, (lo, hi): (f64, f64)) -> Result<()> {
+    use crate::grid::ScalarType::{F64, I32, U32};
+    let m = lo.abs().max(hi.abs());
+    let range = hi - lo;
+    if matches!(scalar_type, F64 | I32 | U32) && range > 0.0 && m * 2f64.powi(-24) > range / 4096.0 {
+        return Err(Error::InvalidArgument(format!(
+            "the values span {range:.3e} on magnitudes up to {m:.3e}: a GPU texture's 32-bit float keeps only \
+             {:.3e} at that magnitude, more than 1/4096 of the range; subtract the offset (e.g. with \
+             vtkImageShiftScale), or draw with CompositeOnCPU, which keeps 64-bit values",
+            m * 2f64.powi(-24)
+        )));
+    }
+    Ok(())
+}
+
+/// The footprint the bridge's flag names.
+fn footprint(gaussian: bool) -> Footprint {
+    if gaussian {
+        Footprint::Gaussian
+    } else {
+        Footprint::Square
+    }
+}
+
+/// The `[r, g, b, opacity]` of the bridge's surface colour.
+fn surface_rgba(rgba: &[f64]) -> Result<[f64; 4]> {
+    rgba.try_into()
+        .map_err(|_| Error::InvalidArgument(format!("{} surface colour values: give r, g, b and opacity", rgba.len())))
+}
+
+impl HybridOctreeHandle {
+    pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
+        guarded(|| {
+            let selection = select_with(self, desc)?;
+            Ok(Box::new(SelectionHandle {
+                selection,
+                octree_id: self.id,
+                shape: self.shape,
+                value_range: self.volume().value_range(),
+                polygons: Mutex::new(None),
+                points: self.hybrid.points.as_ref().map(|p| Arc::clone(&p.set)),
+            }))
+        })
+    }
+}
+
+impl SelectionHandle {
+    pub(crate) fn summary(&self) -> Bridged<SelectionSummary> {
+        guarded(|| {
+            let s = &self.selection;
+            Ok(SelectionSummary {
+                bricks: s.bricks.len(),
+                texture_bytes: s.texture_bytes,
+                budget_bytes: s.budget_bytes,
+                estimated_error: s.estimated_error,
+                skipped: s.skipped,
+                warning: s.warning.clone().unwrap_or_default(),
+                points: s.bricks.iter().map(|b| b.point_count).sum(),
+                point_bytes: s.point_bytes,
+            })
+        })
+    }
+
+    /// The DrawList itself (for the bridge and the tests): the octree's
+    /// surface at `surface_opacity`, and the points bought bucketed into the slabs.
+    pub(crate) fn list(
+        &self,
+        octree: &HybridOctreeHandle,
+        camera_desc: &CameraDesc,
+        surface_opacity: f64,
+    ) -> Result<DrawList> {
+        let mut list = self.volume_list(octree, camera_desc, surface_opacity)?;
+        if let Some(set) = &self.points {
+            add_points(&mut list, &octree.shape, set)?;
+        }
+        Ok(list)
+    }
+
+    /// [`Self::list`] without the points.
+    fn volume_list(
+        &self,
+        octree: &HybridOctreeHandle,
+        camera_desc: &CameraDesc,
+        surface_opacity: f64,
+    ) -> Result<DrawList> {
+        if octree.id != self.octree_id {
+            return Err(Error::InvalidArgument(
+                "this selection was made from another octree: select again from this one".into(),
+            ));
+        }
+        let camera = camera(camera_desc)?;
+        if !(0.0..=1.0).contains(&surface_opacity) {
+            return Err(Error::InvalidArgument(format!("surface opacity {surface_opacity} must be between 0 and 1")));
+        }
+        let hybrid = &octree.hybrid;
+        if plan(&self.selection, &hybrid.scene(surface_opacity)).surface != SurfacePass::Translucent {
+            return hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, None);
+        }
+        let mut cache = self.polygons.lock().unwrap_or_else(|e| e.into_inner());
+        if cache.as_ref().is_none_or(|(id, _)| *id != octree.surface_id) {
+            *cache = hybrid.slab_polygons(&octree.shape, &self.selection).map(|made| (octree.surface_id, made));
+        }
+        let polygons = cache.as_ref().map(|(_, p)| p);
+        hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, polygons)
+    }
+
+    pub(crate) fn draw_list(
+        &self,
+        octree: &HybridOctreeHandle,
+        camera_desc: &CameraDesc,
+        surface_opacity: f64,
+    ) -> Bridged<DrawListOutput> {
+        guarded(|| Ok(flatten(&self.list(octree, camera_desc, surface_opacity)?, &self.selection)))
+    }
+
+    /// The CPU compositor on this selection's DrawList: the transfer function
+    /// from `(colors, opacities)` tuples, the points bought drawn with their
+    /// footprint, the octree's surface with its `[r, g, b, opacity]` (hidden
+    /// at opacity 0).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn composite(
+        &self,
+        octree: &HybridOctreeHandle,
+        camera_desc: &CameraDesc,
+        bytes: &[u8],
+        desc: &GridDesc,
+        colors: &[f64],
+        opacities: &[f64],
+        gaussian_points: bool,
+        surface_colour: &[f64],
+        width: usize,
+        height: usize,
+        rgba: &mut [f32],
+    ) -> Bridged<()> {
+        guarded(|| {
+            let colour = surface_rgba(surface_colour)?;
+            let grid = grid_of(bytes, desc)?;
+            same_image(&self.shape, &grid)?;
+            let tf = transfer_function(colors, opacities)?;
+            let list = self.list(octree, camera_desc, colour[3])?;
+            let surface = octree.hybrid.surface.as_ref().filter(|_| colour[3] > 0.0);
+            let drawn = surface.map(|s| (s, colour.map(|v| v as f32)));
+            let textures = crate::render::texture::upload(&grid, &list)?;
+            let shades = match self.points.as_deref() {
+                Some(set) => crate::points::shade(&grid, set, &tf)?,
+                None => Vec::new(),
+            };
+            let points = self.points.as_deref().map(|set| (set, shades.as_slice(), footprint(gaussian_points)));
+            let image =
+                crate::render::compositor::composite_with_points(&textures, &list, &tf, width, height, drawn, points)?;
+            check_len("the picture", rgba, 4 * image.rgba.len())?;
+            for (pixel, to) in image.rgba.iter().zip(rgba.chunks_exact_mut(4)) {
+                to.copy_from_slice(pixel);
+            }
+            Ok(())
+        })
+    }
+
+    pub(crate) fn brick_texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize, texels: &mut [f32]) -> Bridged<()> {
+        guarded(|| {
+            // One brick of many: scanning the whole image for infinities per
+            // brick would cost a full pass each; the octree's build scanned it,
+            // and only this brick's texels are checked here. NaN is no data:
+            // it goes to the texture, where the shader skips it.
+            let grid = grid_unscanned(bytes, desc)?;
+            same_image(&self.shape, &grid)?;
+            let Some(b) = self.selection.bricks.get(brick) else {
+                return Err(Error::InvalidArgument(format!(
+                    "brick {brick} does not exist: the selection has {} bricks",
+                    self.selection.bricks.len()
+                )));
+            };
+            brick_texels_f32_into(&grid, b, texels)?;
+            check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
+            if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
+                let why = if grid.samples().scalar_type() == ScalarType::F64 {
+                    "a value beyond the range of a GPU texture's 32-bit float (|value| above 3.4e38), texel {i}: \
+                     scale the data into that range (e.g. with vtkImageShiftScale), or draw with CompositeOnCPU, \
+                     which keeps 64-bit values"
+                } else {
+                    "an infinite value (texel {i}): the image changed since the octree was built; fix the values \
+                     and rebuild it"
+                };
+                return Err(Error::InvalidArgument(format!(
+                    "brick {brick} holds {}",
+                    why.replace("{i}", &i.to_string())
+                )));
+            }
+            Ok(())
+        })
+    }
+}
