@@ -614,8 +614,12 @@ bool GetBrickGeometry(const BrickGeometryInput& input, BrickGeometry& geometry, 
     desc.point_positions = In(input.PointPositions);
     desc.point_shades = In(input.PointShades);
     desc.gaussian_points = input.GaussianPoints;
-    const hybrid_octree::BrickGeometryOutput out = hybrid_octree::brick_geometry(desc);
-    CopyInto(out.vertices, geometry.Vertices);
+    hybrid_octree::BrickGeometryOutput out = hybrid_octree::brick_geometry(desc);
+    // The vertices stay in the Rust core's buffer, kept alive by Storage.
+    auto vertices = std::make_shared<rust::Vec<float>>(std::move(out.vertices));
+    geometry.Vertices = vertices->data();
+    geometry.VertexFloats = vertices->size();
+    geometry.Storage = std::move(vertices);
     CopyInto(out.brick_first, geometry.BrickFirst);
     CopyInto(out.ray_marched, geometry.RayMarched);
     CopyInto(out.drawn, geometry.Drawn);

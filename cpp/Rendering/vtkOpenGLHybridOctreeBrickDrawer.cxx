@@ -59,8 +59,9 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   this->Vao->Bind();
   if (!this->Uploaded)
   {
-    if (!this->Geometry.Vertices.empty() &&
-      !this->Vertices->Upload(this->Geometry.Vertices, vtkOpenGLBufferObject::ArrayBuffer))
+    if (this->Geometry.VertexFloats > 0 &&
+      !this->Vertices->Upload(
+        this->Geometry.Vertices, this->Geometry.VertexFloats, vtkOpenGLBufferObject::ArrayBuffer))
     {
       error = "could not load the slices into an OpenGL buffer";
       this->Vao->Release();
@@ -69,7 +70,7 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
     this->Uploaded = true;
   }
   const int stride = static_cast<int>(Stride * sizeof(float));
-  if (!this->Geometry.Vertices.empty() &&
+  if (this->Geometry.VertexFloats > 0 &&
     (!this->Vao->AddAttributeArray(
        this->Program, this->Vertices, "vertexMC", 0, stride, VTK_FLOAT, 3, false) ||
       !this->Vao->AddAttributeArray(this->Program, this->Vertices, "normalMC", 3 * sizeof(float),

@@ -732,7 +732,7 @@ int Geometry()
         std::count(geometry.RayMarched.begin(), geometry.RayMarched.end(), 1) ==
           static_cast<std::ptrdiff_t>(n),
       "every brick drawn, ray-marched");
-    check.Check(geometry.Vertices.size() == 10 * 36 * n && geometry.BrickFirst.back() == 36 * n,
+    check.Check(geometry.VertexFloats == 10 * 36 * n && geometry.BrickFirst.back() == 36 * n,
       "one box (12 triangles) a brick, 10 floats a vertex");
   }
   // Transparent everywhere: nothing drawn.
@@ -742,7 +742,7 @@ int Geometry()
   {
     check.Check(std::count(geometry.Drawn.begin(), geometry.Drawn.end(), 0) ==
           static_cast<std::ptrdiff_t>(n) &&
-        geometry.Vertices.empty(),
+        geometry.VertexFloats == 0,
       "no block visible: nothing drawn");
   }
   // Mismatched inputs: clear errors, no crash.
