@@ -1,14 +1,16 @@
 #[==[.md
 # HybridOctreeCargo
 
-Builds the Rust crate with `cargo build --release --locked` into the CMake
-build tree and exposes its static library to CMake.
+Builds the Rust crate into the CMake build tree and exposes its static
+library to CMake: the library with `cargo build --release --locked --lib
+--no-default-features` (without the command line tool's crates), the
+`hybrid-octree` tool with its `cli` feature (see HybridOctreeCargoBuild.cmake).
 
 Defines:
 
   * `hybrid_octree_cargo`: a custom target that runs cargo on every build
-    (cargo is incremental, so an unchanged crate costs a second); it also
-    builds the `hybrid-octree` command line tool.
+    (cargo is incremental, so an unchanged crate costs a second): the
+    `hybrid-octree` command line tool, then the library.
   * `HybridOctree::rust`: an IMPORTED STATIC library for
     `<cargo target>/release/libhybrid_octree.a`, carrying the cxx include
     folder `<cargo target>/cxxbridge` (headers `hybrid-octree/src/ffi/mod.rs.h`
@@ -67,7 +69,7 @@ add_custom_target(hybrid_octree_cargo ALL
   BYPRODUCTS "${_hybrid_octree_rust_lib}" "${HYBRID_OCTREE_CLI}" "${HYBRID_OCTREE_RUST_LINK_FILE}"
   WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}"
   USES_TERMINAL
-  COMMENT "cargo build --release --locked (hybrid-octree crate)")
+  COMMENT "cargo build --release --locked (hybrid-octree tool, then the library without cli)")
 
 # The bridge header includes the crate's own C++ headers as
 # "hybrid-octree/cpp/<path>" (cxx's crate-relative include!): a copy of each

@@ -2,13 +2,20 @@
 #   -DCARGO=<cargo> -DMANIFEST=<Cargo.toml> -DTARGET_DIR=<CARGO_TARGET_DIR>
 #   -DLINK_FILE=<response file> [-DEXTRA_FLAGS=<list>]
 #
-# Runs `cargo build --release --locked` and writes to LINK_FILE the system
-# libraries the crate's build scripts link dynamically (for example -llzma from
-# lzma-sys): a Rust static library does not bundle them, so whatever links the
-# archive must name them. The list comes from cargo's build-script-executed
-# messages, which cargo emits for fresh build scripts too. LINK_FILE is a GNU
-# ld response file, rewritten only when its content changes (no spurious
-# relinks).
+# Runs cargo twice in the same target folder: first
+# `cargo build --release --locked --bin hybrid-octree` (the command line tool,
+# with the crate's default `cli` feature), then
+# `cargo build --release --locked --lib --no-default-features` (the static
+# library without the tool's crates: the plots' fonts would bring fontconfig
+# and freetype). The library comes last so that the archive cargo leaves in
+# release/ is the one built without `cli`.
+#
+# Writes to LINK_FILE the system libraries the library's build scripts link
+# dynamically (for example -llzma from lzma-sys): a Rust static library does
+# not bundle them, so whatever links the archive must name them. The list
+# comes from the library build's build-script-executed messages, which cargo
+# emits for fresh build scripts too. LINK_FILE is a GNU ld response file,
+# rewritten only when its content changes (no spurious relinks).
 foreach (var IN ITEMS CARGO MANIFEST TARGET_DIR LINK_FILE)
   if (NOT DEFINED ${var})
     message(FATAL_ERROR "${var} is required")
@@ -18,11 +25,19 @@ endforeach ()
 set(ENV{CARGO_TARGET_DIR} "${TARGET_DIR}")
 execute_process(
   COMMAND "${CARGO}" build --release --locked --manifest-path "${MANIFEST}"
+          --bin hybrid-octree ${EXTRA_FLAGS}
+  RESULT_VARIABLE rc)
+if (NOT rc EQUAL 0)
+  message(FATAL_ERROR "cargo build --release --locked --bin hybrid-octree failed (exit ${rc})")
+endif ()
+execute_process(
+  COMMAND "${CARGO}" build --release --locked --manifest-path "${MANIFEST}"
+          --lib --no-default-features
           --message-format=json-render-diagnostics ${EXTRA_FLAGS}
   OUTPUT_VARIABLE messages
   RESULT_VARIABLE rc)
 if (NOT rc EQUAL 0)
-  message(FATAL_ERROR "cargo build --release --locked failed (exit ${rc})")
+  message(FATAL_ERROR "cargo build --release --locked --lib --no-default-features failed (exit ${rc})")
 endif ()
 
 set(flags "")

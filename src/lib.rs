@@ -21,25 +21,36 @@
 #![warn(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn)]
 
-pub mod camera;
+// The crate by layer, lowest first (`scripts/layers.py` checks that no
+// file imports from a layer above its own, and that no files import each
+// other in a loop):
+//
+// - base: the error type and the limits checked before allocating;
+// - data, geometry: grids, volumes and spacings; vectors and the camera;
+// - datasets, io: the volumes read or generated;
+// - octree: the Volume Octree; surface: the Surface Octree;
+// - transfer: transfer functions; points: the hybrid point representation;
+// - plan: budget selection, back-to-front order, slabs, the draw list;
+// - render, ftb: the compositor and reference ray caster; front-to-back display;
+// - hybrid and the ffi modules: what the C++ bridge calls.
+pub mod base;
+pub mod data;
 pub mod datasets;
-pub mod error;
 #[allow(missing_docs)]
 pub mod ffi;
 pub mod ftb;
-pub mod grid;
+pub mod geometry;
 pub mod hybrid;
 pub mod io;
-pub mod limits;
 pub mod octree;
 pub mod plan;
 pub mod points;
 pub mod render;
-pub mod spacing;
 pub mod surface;
 pub mod transfer;
-pub mod vec3;
-pub mod volume;
 
-pub use error::{Error, Result};
+pub use base::error::{Error, Result};
+pub use base::{error, limits};
+pub use data::{grid, spacing, volume};
+pub use geometry::{camera, vec3};
 pub use plan::{order, select, slab};

@@ -7,9 +7,10 @@ use hybrid_octree::camera::Camera;
 use hybrid_octree::datasets::{generate as dataset, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::octree::{BuildOptions, VolumeOctree};
+use hybrid_octree::plan::point_slabs::add_points;
 use hybrid_octree::plan::{draw_list, DrawList, Scene};
 use hybrid_octree::points::{
-    add_points, generate, generate_hybrid, shade, Footprint, PointMass, PointOptions, PointSelect, PointSet,
+    generate, generate_hybrid, shade, Footprint, PointMass, PointOptions, PointSelect, PointSet,
 };
 use hybrid_octree::render::compositor::composite_with_points;
 use hybrid_octree::render::image::Image;

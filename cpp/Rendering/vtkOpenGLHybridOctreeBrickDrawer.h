@@ -40,7 +40,7 @@
  * holding points is drawn as slices. Each point is a quad of
  * whole pixels around its projected centre c (window coordinates), its size
  * s = the projection of d0 (pixels), as the CPU compositor splats it
- * (crate::points::draw):
+ * (crate::points::footprint):
  *
  *     square:   S = ceil(s) pixels across, from round(c - S/2), coverage s^2 / S^2
  *     Gaussian: sigma = max(s/2, 0.5), pixels within r = ceil(3 sigma) of floor(c),

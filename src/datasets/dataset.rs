@@ -1,6 +1,6 @@
 //! The names of the built-in datasets.
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 
 /// A built-in dataset; see the module of each for its formula.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -14,10 +14,10 @@
 //! | f32, f64 | `f`                 | 0 ..= 1          |
 
 use super::dataset::Dataset;
-use crate::error::{Error, Result};
-use crate::grid::{GridShape, ScalarType};
-use crate::limits::check_memory;
-use crate::volume::{SampleBuf, Volume};
+use crate::base::error::{Error, Result};
+use crate::base::limits::check_memory;
+use crate::data::grid::{GridShape, ScalarType};
+use crate::data::volume::{SampleBuf, Volume};
 use rayon::prelude::*;
 
 /// Checks, before anything is allocated, that `dims` samples of
@@ -125,7 +125,7 @@ fn fill<T: Send>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::Samples;
+    use crate::data::grid::Samples;
 
     fn range(v: &Volume) -> (f64, f64) {
         let g = v.grid(None).unwrap();

@@ -7,7 +7,7 @@
 //! number of threads. Geometry is spacing 1 and origin 0 (index space = world
 //! space), so a dataset of size `n` spans `[0, n - 1]^3`.
 //!
-//! One file per dataset; [`dataset`] names them, [`generate`] samples and
+//! One file per dataset; [`dataset`] names them, [`generate()`] samples and
 //! converts them to the requested scalar type.
 
 pub mod constant;

@@ -28,7 +28,7 @@
 //! Each subtree carries its bounding box, so a sample far from a branch
 //! skips all of it: the field costs a few segment distances a sample.
 
-use crate::vec3::{add, cross, dot, normalize, scale, sub};
+use crate::geometry::vec3::{add, cross, dot, normalize, scale, sub};
 use std::sync::OnceLock;
 
 /// Generations of the tree (root = 1): 2^6 - 1 = 63 segments.

@@ -11,7 +11,7 @@
 
 use super::guard::{check_len, guarded, Bridged};
 use super::{BrickGeometryDesc, BrickGeometryOutput};
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use crate::plan::geometry::occupancy::{measure, ranges_len, visible_bounds, visible_box, OpacityTable};
 use crate::plan::geometry::{brick_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices};
 use std::ops::Range;

@@ -283,7 +283,7 @@ mod tests {
 
     #[test]
     fn a_selection_with_points_buys_them_and_its_draw_list_buckets_them() {
-        use crate::points::draw::Footprint;
+        use crate::points::Footprint;
         use crate::render::compositor::composite_with_points;
         use crate::transfer::TransferFunction;
         let (data, desc) = ball();

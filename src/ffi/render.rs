@@ -17,11 +17,12 @@ use super::{CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::grid::{GridShape, ScalarType};
+use crate::plan::point_slabs::add_points;
 use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
 use crate::plan::{plan, DrawList, SurfacePass};
-use crate::points::draw::Footprint;
-use crate::points::{add_points, PointSet};
+use crate::points::Footprint;
+use crate::points::PointSet;
 use crate::render::texture::brick_texels_f32_into;
 use std::sync::{Arc, Mutex};
 

@@ -8,8 +8,8 @@
 //! `(x + s/2 * (oct & 1), y + s/2 * ((oct >> 1) & 1), z + s/2 * (oct >> 2))`
 //! (bit 0 x, bit 1 y, bit 2 z, as in the paper's Table I).
 
-use crate::error::{Error, Result};
-use crate::grid::Grid;
+use crate::base::error::{Error, Result};
+use crate::data::grid::Grid;
 use rayon::prelude::*;
 use serde::Serialize;
 

@@ -16,7 +16,7 @@
 //!   (p - c) . up)` and depth `-(p - c) . w` (smaller is nearer), `c` the
 //!   centre of the octree space.
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use serde::Serialize;
 
 /// Which octant faces a direction can see.

@@ -1,7 +1,7 @@
 //! The error every reader returns for a file it cannot read.
 
-use crate::error::Error;
-use crate::limits::escape_controls;
+use crate::base::error::Error;
+use crate::base::limits::escape_controls;
 
 /// `Error::Format` for the file `label` (already fit to print) with
 /// `message`, whose control characters are escaped.

@@ -1,4 +1,4 @@
-//! Reading volumes from files into a [`crate::volume::Volume`], and writing
+//! Reading volumes from files into a [`crate::data::volume::Volume`], and writing
 //! them as VTK XML image data.
 //!
 //! | extension          | format                                   | module   |
@@ -11,7 +11,7 @@
 //! Extensions are matched in any case. Every failure is an
 //! [`crate::Error::Format`] naming the file and what to do, or an
 //! [`crate::Error::InvalidArgument`] when the volume would need more memory
-//! than the process may use ([`crate::limits::check_memory`], checked from
+//! than the process may use ([`crate::base::limits::check_memory`], checked from
 //! the header before anything is allocated). Only regular files are read
 //! ([`source`]); [`read_volume_bytes`] reads the same formats from memory.
 

@@ -18,10 +18,10 @@
 use super::format_error;
 use super::nii_header::{parse, NiftiHeader, HEADER_BYTES};
 use super::sample_sink;
-use crate::error::Result;
-use crate::grid::{GridShape, ScalarType};
-use crate::limits::{check_memory, human_bytes};
-use crate::volume::{SampleBuf, Volume};
+use crate::base::error::Result;
+use crate::base::limits::{check_memory, human_bytes};
+use crate::data::grid::{GridShape, ScalarType};
+use crate::data::volume::{SampleBuf, Volume};
 use std::io::Read;
 
 /// Bytes allowed after the voxel data (padding some writers add); more means

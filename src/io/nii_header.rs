@@ -9,7 +9,7 @@
 //! (268), `srow_x/y/z` (280, 296, 312, 4 x f32), `magic` (344, `n+1` for a
 //! single `.nii` file).
 
-use crate::grid::ScalarType;
+use crate::data::grid::ScalarType;
 
 /// Bytes in a NIfTI-1 header.
 pub const HEADER_BYTES: usize = 348;
@@ -92,7 +92,7 @@ pub fn parse(bytes: &[u8]) -> Result<NiftiHeader, String> {
         other => {
             return Err(format!(
                 "the NIfTI magic is '{}', not 'n+1': this is not a single-file NIfTI-1 image, or it is corrupt",
-                crate::limits::excerpt_bytes(other)
+                crate::base::limits::excerpt_bytes(other)
             ))
         }
     }

@@ -1,6 +1,6 @@
 //! What the caller tells the readers: the layout of a raw file.
 
-use crate::grid::ScalarType;
+use crate::data::grid::ScalarType;
 
 /// Layout of a headerless raw file: `dims[0] * dims[1] * dims[2] * components`
 /// values of `scalar_type`, x fastest, components interleaved.

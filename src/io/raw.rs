@@ -2,10 +2,10 @@
 
 use super::format_error;
 use super::options::RawOptions;
-use crate::error::Result;
-use crate::grid::GridShape;
-use crate::limits::{check_memory, human_bytes};
-use crate::volume::{SampleBuf, Volume};
+use crate::base::error::Result;
+use crate::base::limits::{check_memory, human_bytes};
+use crate::data::grid::GridShape;
+use crate::data::volume::{SampleBuf, Volume};
 
 /// The bytes the layout `raw` needs, after checking the dims.
 fn expected_bytes(label: &str, raw: &RawOptions) -> Result<usize> {

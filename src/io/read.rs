@@ -6,9 +6,9 @@
 use super::format_error;
 use super::options::ReadOptions;
 use super::source::{display_path, read_regular_file, regular_file_len};
-use crate::error::Result;
-use crate::limits::escape_controls;
-use crate::volume::Volume;
+use crate::base::error::Result;
+use crate::base::limits::escape_controls;
+use crate::data::volume::Volume;
 use std::path::Path;
 
 /// The extensions [`read_volume`] understands, for messages.

@@ -1,8 +1,8 @@
 //! Filling a [`SampleBuf`] chunk by chunk, so that readers convert values as
 //! they read them instead of holding the file's bytes and the samples at once.
 
-use crate::grid::ScalarType;
-use crate::volume::SampleBuf;
+use crate::data::grid::ScalarType;
+use crate::data::volume::SampleBuf;
 
 /// An empty buffer of `ty` with room for `n` values.
 pub fn with_capacity(ty: ScalarType, n: usize) -> SampleBuf {

@@ -4,8 +4,8 @@
 //! a device such as `/dev/zero` never ends, so both are refused up front.
 
 use super::format_error;
-use crate::error::Result;
-use crate::limits::{check_memory, escape_controls, human_bytes};
+use crate::base::error::Result;
+use crate::base::limits::{check_memory, escape_controls, human_bytes};
 use std::io::Read;
 use std::path::Path;
 

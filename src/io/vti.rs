@@ -19,10 +19,10 @@
 use super::format_error;
 use super::vti_data::decode_array;
 use super::vti_xml::{parse_header, VtiHeader};
-use crate::error::Result;
-use crate::grid::GridShape;
-use crate::limits::excerpt;
-use crate::volume::Volume;
+use crate::base::error::Result;
+use crate::base::limits::excerpt;
+use crate::data::grid::GridShape;
+use crate::data::volume::Volume;
 
 /// Reads the `.vti` file `bytes` (`label` names it in errors).
 pub fn read_vti_bytes(label: &str, bytes: &[u8]) -> Result<Volume> {

@@ -31,9 +31,9 @@
 //! is allocated or sliced; errors are messages for [`crate::Error::Format`].
 
 use super::vti_xml::{AppendedEncoding, ArrayData, ArrayHeader, ByteOrder, Compressor, VtiHeader};
-use crate::grid::ScalarType;
-use crate::limits::{check_memory, excerpt};
-use crate::volume::SampleBuf;
+use crate::base::limits::{check_memory, excerpt};
+use crate::data::grid::ScalarType;
+use crate::data::volume::SampleBuf;
 use std::io::Read;
 
 /// Decodes `array` of the file `bytes` (whose header is `header`), which must

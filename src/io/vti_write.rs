@@ -5,8 +5,8 @@
 //! precision).
 
 use super::source::display_path;
-use crate::error::{Error, Result};
-use crate::volume::{SampleBuf, Volume};
+use crate::base::error::{Error, Result};
+use crate::data::volume::{SampleBuf, Volume};
 use std::io::Write;
 use std::path::Path;
 use vtkio::model::{

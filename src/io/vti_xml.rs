@@ -34,7 +34,7 @@
 //! raw binary, which is not XML. How array bytes are laid out is described in
 //! [`super::vti_data`].
 
-use crate::limits::{excerpt, excerpt_bytes};
+use crate::base::limits::{excerpt, excerpt_bytes};
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
@@ -135,10 +135,7 @@ pub struct VtiHeader {
 /// messages for [`crate::Error::Format`].
 pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
     let mut reader = Reader::from_reader(bytes);
-    let mut header: Option<VtiHeader> = None;
-    // Open elements, innermost last.
-    let mut stack: Vec<Vec<u8>> = Vec::new();
-    let mut array: Option<(ArrayHeader, String)> = None;
+    let mut parser = HeaderParser::default();
     loop {
         let event = reader.read_event().map_err(|e| {
             format!(
@@ -148,90 +145,14 @@ pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
             )
         })?;
         match event {
-            Event::Start(e) | Event::Empty(e) if header.is_none() && e.local_name().as_ref() != b"VTKFile" => {
-                return Err(format!(
-                    "this is not a VTK XML file: the first element is <{}>, not <VTKFile>",
-                    excerpt_bytes(e.name().as_ref())
-                ));
-            }
             Event::Start(ref e) | Event::Empty(ref e) => {
-                let empty = matches!(event, Event::Empty(_));
-                let name = e.local_name().as_ref().to_vec();
-                let parent = stack.last().map(Vec::as_slice);
-                match (name.as_slice(), parent) {
-                    (b"VTKFile", None) => {
-                        let h = vtk_file(e)?;
-                        if h.file_type != "ImageData" {
-                            return Ok(h); // the caller explains what the file is instead
-                        }
-                        header = Some(h);
-                    }
-                    (b"ImageData", Some(b"VTKFile")) => {
-                        let h = header.as_mut().expect("set by VTKFile");
-                        h.whole_extent = attr(e, "WholeExtent")?.map(|v| numbers(&v, "WholeExtent")).transpose()?;
-                        h.origin = attr(e, "Origin")?.map(|v| numbers(&v, "Origin")).transpose()?.unwrap_or([0.0; 3]);
-                        h.spacing =
-                            attr(e, "Spacing")?.map(|v| numbers(&v, "Spacing")).transpose()?.unwrap_or([1.0; 3]);
-                        h.direction = attr(e, "Direction")?.map(|v| numbers(&v, "Direction")).transpose()?;
-                    }
-                    (b"Piece", Some(b"ImageData")) => {
-                        let extent = attr(e, "Extent")?.map(|v| numbers(&v, "Extent")).transpose()?;
-                        let source = attr(e, "Source")?;
-                        let piece = PieceHeader { extent, source, ..PieceHeader::default() };
-                        header.as_mut().expect("set by VTKFile").pieces.push(piece);
-                    }
-                    (b"PointData", Some(b"Piece")) => {
-                        if let Some(p) = header.as_mut().and_then(|h| h.pieces.last_mut()) {
-                            p.active_scalars = attr(e, "Scalars")?;
-                        }
-                    }
-                    (b"DataArray", Some(b"CellData")) => {
-                        if let Some(p) = header.as_mut().and_then(|h| h.pieces.last_mut()) {
-                            p.cell_arrays += 1;
-                        }
-                    }
-                    (b"DataArray", Some(b"PointData")) => {
-                        let a = data_array(e)?;
-                        if empty {
-                            push_array(&mut header, a, String::new())?;
-                        } else {
-                            array = Some((a, String::new()));
-                        }
-                    }
-                    (b"AppendedData", Some(b"VTKFile")) => {
-                        let encoding = match attr(e, "encoding")?.as_deref() {
-                            Some("raw") | None => AppendedEncoding::Raw,
-                            Some("base64") => AppendedEncoding::Base64,
-                            Some(other) => {
-                                return Err(format!(
-                                    "unknown AppendedData encoding '{}' (VTK writes 'raw' or 'base64')",
-                                    excerpt(other)
-                                ))
-                            }
-                        };
-                        // The data start after optional whitespace and the '_' marker.
-                        let after_tag = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX);
-                        let rest = bytes.get(after_tag..).unwrap_or_default();
-                        let marker = rest.iter().position(|b| !b.is_ascii_whitespace());
-                        if empty || marker.map(|m| rest[m]) != Some(b'_') {
-                            return Err("the AppendedData section lacks its '_' marker before the data; \
-                                        the file is truncated or corrupt"
-                                .into());
-                        }
-                        let start = after_tag + marker.unwrap_or(0) + 1;
-                        header.as_mut().expect("set by VTKFile").appended = Some((encoding, start));
-                        break;
-                    }
-                    _ => {}
-                }
-                if !empty {
-                    stack.push(name);
+                let after_tag = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX);
+                if parser.start(e, matches!(event, Event::Empty(_)), bytes, after_tag)? {
+                    break;
                 }
             }
             Event::Text(t) => {
-                if let Some((_, text)) =
-                    array.as_mut().filter(|_| stack.last().map(Vec::as_slice) == Some(b"DataArray"))
-                {
+                if let Some(text) = parser.array_text() {
                     let t = t.unescape().map_err(|e| {
                         format!("bad text in a DataArray ({}); the file is corrupt", excerpt(&e.to_string()))
                     })?;
@@ -239,32 +160,155 @@ pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
                 }
             }
             Event::CData(t) => {
-                if let Some((_, text)) =
-                    array.as_mut().filter(|_| stack.last().map(Vec::as_slice) == Some(b"DataArray"))
-                {
+                if let Some(text) = parser.array_text() {
                     text.push_str(&String::from_utf8_lossy(&t));
                 }
             }
-            Event::End(e) => {
-                stack.pop();
-                if e.local_name().as_ref() == b"DataArray" && stack.last().map(Vec::as_slice) == Some(b"PointData") {
-                    if let Some((a, text)) = array.take() {
-                        push_array(&mut header, a, text)?;
-                    }
-                }
-            }
+            Event::End(e) => parser.end(e.local_name().as_ref())?,
             Event::Eof => break,
             _ => {}
         }
     }
-    let header = header.ok_or("this is not a VTK XML file: it has no <VTKFile> element")?;
-    if !stack.is_empty() && header.appended.is_none() {
-        return Err(format!(
-            "the XML ends inside <{}>; the file is truncated or corrupt",
-            excerpt_bytes(stack.last().map(Vec::as_slice).unwrap_or_default())
-        ));
+    parser.finish()
+}
+
+/// The state of [`parse_header`] between XML events.
+#[derive(Default)]
+struct HeaderParser {
+    /// Set by the `VTKFile` element.
+    header: Option<VtiHeader>,
+    /// Open elements, innermost last.
+    stack: Vec<Vec<u8>>,
+    /// The point data array being read, with its text so far.
+    array: Option<(ArrayHeader, String)>,
+}
+
+impl HeaderParser {
+    /// A start (or empty, `empty`) element `e`, whose tag ends at byte
+    /// `after_tag` of `bytes`. Returns true when parsing is over: the file is
+    /// not image data (the caller explains what it is instead), or the
+    /// `AppendedData` section starts.
+    fn start(&mut self, e: &BytesStart, empty: bool, bytes: &[u8], after_tag: usize) -> Result<bool, String> {
+        if self.header.is_none() && e.local_name().as_ref() != b"VTKFile" {
+            return Err(format!(
+                "this is not a VTK XML file: the first element is <{}>, not <VTKFile>",
+                excerpt_bytes(e.name().as_ref())
+            ));
+        }
+        let name = e.local_name().as_ref().to_vec();
+        let parent = self.stack.last().map(Vec::as_slice);
+        match (name.as_slice(), parent) {
+            (b"VTKFile", None) => {
+                let h = vtk_file(e)?;
+                let image = h.file_type == "ImageData";
+                self.header = Some(h);
+                if !image {
+                    return Ok(true);
+                }
+            }
+            (b"ImageData", Some(b"VTKFile")) => image_data(self.header.as_mut().expect("set by VTKFile"), e)?,
+            (b"Piece", Some(b"ImageData")) => {
+                let extent = attr(e, "Extent")?.map(|v| numbers(&v, "Extent")).transpose()?;
+                let source = attr(e, "Source")?;
+                let piece = PieceHeader { extent, source, ..PieceHeader::default() };
+                self.header.as_mut().expect("set by VTKFile").pieces.push(piece);
+            }
+            (b"PointData", Some(b"Piece")) => {
+                if let Some(p) = self.header.as_mut().and_then(|h| h.pieces.last_mut()) {
+                    p.active_scalars = attr(e, "Scalars")?;
+                }
+            }
+            (b"DataArray", Some(b"CellData")) => {
+                if let Some(p) = self.header.as_mut().and_then(|h| h.pieces.last_mut()) {
+                    p.cell_arrays += 1;
+                }
+            }
+            (b"DataArray", Some(b"PointData")) => {
+                let a = data_array(e)?;
+                if empty {
+                    push_array(&mut self.header, a, String::new())?;
+                } else {
+                    self.array = Some((a, String::new()));
+                }
+            }
+            (b"AppendedData", Some(b"VTKFile")) => {
+                let appended = appended_data(e, empty, bytes, after_tag)?;
+                self.header.as_mut().expect("set by VTKFile").appended = Some(appended);
+                return Ok(true);
+            }
+            _ => {}
+        }
+        if !empty {
+            self.stack.push(name);
+        }
+        Ok(false)
     }
-    Ok(header)
+
+    /// The text of the point data array being read, when directly inside its
+    /// `DataArray` (VTK may nest `<InformationKey>` elements in it).
+    fn array_text(&mut self) -> Option<&mut String> {
+        let inside = self.stack.last().map(Vec::as_slice) == Some(b"DataArray");
+        self.array.as_mut().filter(|_| inside).map(|(_, text)| text)
+    }
+
+    /// The end of element `name`: a point data array is complete.
+    fn end(&mut self, name: &[u8]) -> Result<(), String> {
+        self.stack.pop();
+        if name == b"DataArray" && self.stack.last().map(Vec::as_slice) == Some(b"PointData") {
+            if let Some((a, text)) = self.array.take() {
+                push_array(&mut self.header, a, text)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The header, once the XML ended or the appended data started.
+    fn finish(self) -> Result<VtiHeader, String> {
+        let header = self.header.ok_or("this is not a VTK XML file: it has no <VTKFile> element")?;
+        if !self.stack.is_empty() && header.appended.is_none() {
+            return Err(format!(
+                "the XML ends inside <{}>; the file is truncated or corrupt",
+                excerpt_bytes(self.stack.last().map(Vec::as_slice).unwrap_or_default())
+            ));
+        }
+        Ok(header)
+    }
+}
+
+/// The geometry attributes of the `ImageData` element: `WholeExtent`,
+/// `Origin` (default 0), `Spacing` (default 1), `Direction`.
+fn image_data(h: &mut VtiHeader, e: &BytesStart) -> Result<(), String> {
+    h.whole_extent = attr(e, "WholeExtent")?.map(|v| numbers(&v, "WholeExtent")).transpose()?;
+    h.origin = attr(e, "Origin")?.map(|v| numbers(&v, "Origin")).transpose()?.unwrap_or([0.0; 3]);
+    h.spacing = attr(e, "Spacing")?.map(|v| numbers(&v, "Spacing")).transpose()?.unwrap_or([1.0; 3]);
+    h.direction = attr(e, "Direction")?.map(|v| numbers(&v, "Direction")).transpose()?;
+    Ok(())
+}
+
+/// The encoding of the `AppendedData` element `e` (its tag ends at byte
+/// `after_tag` of `bytes`) and the offset of its data: after optional
+/// whitespace and the `_` marker.
+fn appended_data(
+    e: &BytesStart,
+    empty: bool,
+    bytes: &[u8],
+    after_tag: usize,
+) -> Result<(AppendedEncoding, usize), String> {
+    let encoding = match attr(e, "encoding")?.as_deref() {
+        Some("raw") | None => AppendedEncoding::Raw,
+        Some("base64") => AppendedEncoding::Base64,
+        Some(other) => {
+            return Err(format!("unknown AppendedData encoding '{}' (VTK writes 'raw' or 'base64')", excerpt(other)))
+        }
+    };
+    let rest = bytes.get(after_tag..).unwrap_or_default();
+    let marker = rest.iter().position(|b| !b.is_ascii_whitespace());
+    if empty || marker.map(|m| rest[m]) != Some(b'_') {
+        return Err("the AppendedData section lacks its '_' marker before the data; \
+                    the file is truncated or corrupt"
+            .into());
+    }
+    Ok((encoding, after_tag + marker.unwrap_or(0) + 1))
 }
 
 fn vtk_file(e: &BytesStart) -> Result<VtiHeader, String> {

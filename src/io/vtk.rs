@@ -26,10 +26,10 @@
 use super::format_error;
 use super::vtk_attributes::{attribute, skip_field, skip_metadata, Array};
 use super::vtk_tokens::{number, parse_number, triple, upper, Cursor, Parse};
-use crate::error::Result;
-use crate::grid::{GridShape, ScalarType};
-use crate::limits::{check_memory, excerpt, excerpt_bytes};
-use crate::volume::{SampleBuf, Volume};
+use crate::base::error::Result;
+use crate::base::limits::{check_memory, excerpt, excerpt_bytes};
+use crate::data::grid::{GridShape, ScalarType};
+use crate::data::volume::{SampleBuf, Volume};
 
 /// Reads the legacy `.vtk` file `bytes` (`label` names it in errors).
 pub fn read_vtk_bytes(label: &str, bytes: &[u8]) -> Result<Volume> {

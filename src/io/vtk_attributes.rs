@@ -3,7 +3,7 @@
 //! with every count checked against the bytes that are there.
 
 use super::vtk_tokens::{number, parse_number, too_many, truncated, upper, Cursor, Parse};
-use crate::limits::excerpt;
+use crate::base::limits::excerpt;
 
 /// One point or cell attribute: where its values start and how many.
 #[derive(Debug, Clone)]

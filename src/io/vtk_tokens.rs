@@ -2,7 +2,7 @@
 //! keywords and ASCII data, raw byte runs for BINARY data; numbers and
 //! keywords read from it.
 
-use crate::limits::excerpt_bytes;
+use crate::base::limits::excerpt_bytes;
 
 /// A position in the file's bytes.
 #[derive(Debug, Clone)]

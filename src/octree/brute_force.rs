@@ -8,7 +8,7 @@ use super::build::{normalise, squared_error};
 use super::layout::NodeId;
 use super::trilinear::{eval, kernel_scale};
 use super::volume_octree::VolumeOctree;
-use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
 
 /// The error of one sample: `None` for a hole (exactly one of `f` and `t`
 /// NaN), 0 when both are NaN, `f - t` otherwise.

@@ -30,7 +30,7 @@
 //!
 //! summed over the half-open boxes of n's leaves (each sample counted once).
 //!
-//! NaN is no data (see [`crate::grid`]). Min and max skip it (a node of NaN
+//! NaN is no data (see [`crate::data::grid`]). Min and max skip it (a node of NaN
 //! only keeps the empty range `(+inf, -inf)`). A sample that is NaN in exactly
 //! one of `f` and `T_s` is a hole one picture has and the other has not: the
 //! coarse picture shows a hole where data exists, or data where there is none.
@@ -57,8 +57,8 @@ use super::layout::Layout;
 use super::leaf_stats::{leaf_stats, LeafStats, Scratch, HOLE};
 use super::trilinear::kernel_scale;
 use super::volume_octree::VolumeOctree;
-use crate::error::{Error, Result};
-use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::base::error::{Error, Result};
+use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use rayon::prelude::*;
 use std::time::Instant;
 

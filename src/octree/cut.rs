@@ -4,7 +4,7 @@
 
 use super::layout::NodeId;
 use super::volume_octree::VolumeOctree;
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 
 impl VolumeOctree {
     /// The first nodes from the root, in depth-first z, y, x order, whose

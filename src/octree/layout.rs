@@ -18,7 +18,7 @@
 //! children of `(i, j, k)` are the existing nodes `(2i + dx, 2j + dy, 2k + dz)`
 //! of the next level, so no pointers are stored.
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 
 /// Index of a node in the level-by-level numbering.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]

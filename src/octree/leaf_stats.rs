@@ -16,7 +16,7 @@
 //! grid's last samples belong to the last brick), so the bricks partition the
 //! samples and a node's `q_j` is the sum over its leaves.
 //!
-//! NaN is no data (see [`crate::grid`]): min and max skip it (a brick of NaN
+//! NaN is no data (see [`crate::data::grid`]): min and max skip it (a brick of NaN
 //! only has the empty range `(+inf, -inf)`), and the error of a sample is
 //!
 //! ```text
@@ -42,7 +42,7 @@
 
 use super::layout::Layout;
 use super::trilinear::{bracket, lerp_scaled};
-use crate::grid::{Sample, TypedGrid};
+use crate::data::grid::{Sample, TypedGrid};
 
 /// The raw error of a sample that is no data in exactly one of the fine and
 /// the coarse picture: larger than any finite error, and kept by every max.

@@ -18,7 +18,7 @@
 //! definition: the fast kernel and the brute-force reference both call the
 //! functions of this file, so their results are equal bit for bit.
 
-use crate::grid::{Sample, TypedGrid};
+use crate::data::grid::{Sample, TypedGrid};
 
 /// `a + (b - a) * t`, the one interpolation formula used everywhere; when
 /// `b - a` overflows (samples of opposite sign near `f64::MAX`), the same
@@ -115,7 +115,7 @@ pub fn eval<T: Sample>(g: &TypedGrid<'_, T>, s: usize, x: usize, y: usize, z: us
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::{Grid, GridVisitor, Samples};
+    use crate::data::grid::{Grid, GridVisitor, Samples};
 
     struct At(usize, [usize; 3]);
     impl GridVisitor for At {

@@ -15,7 +15,7 @@
 
 use super::select::Brick;
 use super::slab::Batch;
-use crate::camera::Camera;
+use crate::geometry::camera::Camera;
 use rayon::prelude::*;
 
 /// How the surface is drawn.
@@ -69,7 +69,7 @@ pub struct BrickDraw {
     /// Surface batches (translucent surfaces only), back to front.
     pub batches: Vec<Batch>,
     /// Points of the hybrid representation in the brick, by slab, back to
-    /// front (empty without points; see [`crate::points::draw`]).
+    /// front (empty without points; see [`crate::plan::point_slabs`]).
     pub points: Vec<PointBucket>,
 }
 
@@ -134,7 +134,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
 
 /// The DrawList for `selection` seen from `camera`: the plan, the bricks back
 /// to front with their slices (every `stride` samples along the view: `d =
-/// min(stride, c) d0`, against `d0`, see [`crate::spacing`]), and the surface
+/// min(stride, c) d0`, against `d0`, see [`crate::data::spacing`]), and the surface
 /// passes the plan asks for.
 ///
 /// Only view-dependent work is done here (order, slices, UpdatePosition of
@@ -150,14 +150,14 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
 /// `scene.surface` (make them again after a new selection).
 pub fn draw_list(
     octree: &crate::octree::VolumeOctree,
-    shape: &crate::grid::GridShape,
+    shape: &crate::data::grid::GridShape,
     selection: &crate::plan::select::Selection,
     camera: &Camera,
     scene: &Scene<'_>,
     polygons: Option<&crate::plan::slab::SlabPolygons>,
 ) -> crate::Result<DrawList> {
     let plan = plan(selection, scene);
-    let d0 = crate::spacing::reference_spacing(shape);
+    let d0 = crate::data::spacing::reference_spacing(shape);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
     let order = crate::plan::order::brick_order(camera, octree, shape, &ids, true);
     let made;
@@ -182,7 +182,7 @@ pub fn draw_list(
             let brick = selection.bricks[i];
             let world_lo = shape.world(brick.lo.map(|v| v as f64));
             let world_hi = shape.world(brick.hi.map(|v| v as f64));
-            let slice_spacing = crate::spacing::slice_spacing(shape, brick.stride);
+            let slice_spacing = crate::data::spacing::slice_spacing(shape, brick.stride);
             let slices = crate::plan::slab::slice_depths(camera, world_lo, world_hi, slice_spacing);
             let batches = match polygons.map(|p| p.brick(i)) {
                 Some(b) if !b.is_empty() => crate::plan::slab::assign_batches(camera, &slices, b),
@@ -201,14 +201,14 @@ pub fn draw_list(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate, Dataset};
-    use crate::grid::ScalarType;
     use crate::octree::{BuildOptions, VolumeOctree};
     use crate::plan::select::{select, SelectOptions};
     use crate::surface::{Surface, SurfaceOptions};
 
     struct Fixture {
-        volume: crate::volume::Volume,
+        volume: crate::data::volume::Volume,
         octree: VolumeOctree,
         surface: Surface,
     }

@@ -1,15 +1,18 @@
 //! The planning layer, from the octree to what the renderers execute:
 //! [`select`] chooses the nodes under a texture budget, [`order`] sorts them
 //! back to front, [`slab`] places the surface triangles between the slices
-//! of each brick, the draw list (`draw_list`) says which passes a scene
-//! needs and what each draws, and [`geometry`] makes the OpenGL mapper's
-//! vertices of a draw list.
+//! of each brick, [`point_slabs`] buckets the points of the hybrid
+//! representation into them, the draw list (`draw_list`) says which passes
+//! a scene needs and what each draws, and [`geometry`] makes the OpenGL
+//! mapper's vertices of a draw list.
 
 mod draw_list;
 pub mod geometry;
 pub mod order;
+pub mod point_slabs;
 pub mod select;
 pub mod slab;
 
 pub use draw_list::{draw_list, plan, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
+pub use point_slabs::add_points;
 pub use slab::Batch;

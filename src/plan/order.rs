@@ -37,8 +37,8 @@
 //!
 //! [`is_back_to_front`] is the brute-force check the tests hold the order to.
 
-use crate::camera::Camera;
-use crate::grid::GridShape;
+use crate::data::grid::GridShape;
+use crate::geometry::camera::Camera;
 use crate::octree::{NodeId, VolumeOctree};
 use std::collections::{HashMap, HashSet};
 
@@ -244,8 +244,8 @@ fn can_hide(eye: &Eye, a: ([f64; 3], [f64; 3]), b: ([f64; 3], [f64; 3])) -> Opti
 mod tests {
     use super::*;
 
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate, generate_dims, Dataset};
-    use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
     use crate::plan::select::{select, SelectOptions};
 
@@ -279,7 +279,7 @@ mod tests {
     }
 
     fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
-        crate::camera::test_camera(position, focal, parallel.then_some(40.0))
+        crate::geometry::camera::test_camera(position, focal, parallel.then_some(40.0))
     }
 
     /// Cameras around a volume centred at `c`: along +-x, +-y, +-z, the 8

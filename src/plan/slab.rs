@@ -63,12 +63,12 @@
 //! O(batches); no triangle is read or copied (a batch names its triangles by
 //! a range of surface polygon ids).
 
-use crate::camera::Camera;
-use crate::grid::GridShape;
+use crate::data::grid::GridShape;
+use crate::geometry::camera::Camera;
+use crate::geometry::vec3::{dot, sub};
 use crate::octree::{NodeId, VolumeOctree};
 use crate::plan::select::Selection;
 use crate::surface::Surface;
-use crate::vec3::{dot, sub};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -138,7 +138,7 @@ pub fn slab_of(slices: &[f64], depth: f64) -> usize {
 /// The slabs a primitive of view depths `[d_lo, d_hi]` is drawn in, with
 /// their clip intervals: the one rule of the CPU compositor (through
 /// [`assign_batches`], per batch) and of the OpenGL mapper (per triangle,
-/// [`crate::plan::geometry::brick_geometry`]):
+/// [`crate::plan::geometry::brick_geometry()`]):
 ///
 /// ```text
 /// far = slab(d_hi),  near = slab(d_lo)
@@ -338,12 +338,12 @@ pub fn assign_batches(camera: &Camera, slices: &[f64], batches: &[PolygonBatch])
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate, Dataset};
-    use crate::grid::ScalarType;
+    use crate::geometry::vec3::cross;
     use crate::octree::BuildOptions;
     use crate::plan::select::{select, SelectOptions};
     use crate::surface::SurfaceOptions;
-    use crate::vec3::cross;
 
     /// A triangle in world space with its surface triangle id.
     type WorldTriangle = (u32, [[f64; 3]; 3]);
@@ -352,7 +352,7 @@ mod tests {
     type Drawn = (u32, usize, Option<(f64, f64)>);
 
     fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
-        crate::camera::test_camera(position, focal, parallel.then_some(20.0))
+        crate::geometry::camera::test_camera(position, focal, parallel.then_some(20.0))
     }
 
     fn polygon_area(p: &[[f64; 3]]) -> f64 {
@@ -765,7 +765,10 @@ mod tests {
                 }
             }
             assert!(seen.iter().all(|&n| n == 1), "a triangle in no brick or in two");
-            assert_eq!(polygons.batch_count(), (0..selection.bricks.len()).map(|i| polygons.brick(i).len()).sum());
+            assert_eq!(
+                polygons.batch_count(),
+                (0..selection.bricks.len()).map(|i| polygons.brick(i).len()).sum::<usize>()
+            );
         }
     }
 }

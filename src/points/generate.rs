@@ -25,10 +25,10 @@
 use super::lowres::low_resolution;
 use super::normals;
 use super::set::{Point, PointSet};
-use crate::error::{Error, Result};
-use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::base::error::{Error, Result};
+use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::data::volume::Volume;
 use crate::octree::trilinear;
-use crate::volume::Volume;
 use rayon::prelude::*;
 
 /// Which samples become points.
@@ -270,8 +270,8 @@ fn gradient<T: Sample>(g: &TypedGrid<'_, T>, ijk: [usize; 3]) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate as dataset, Dataset};
-    use crate::grid::ScalarType;
 
     fn options(select: PointSelect) -> PointOptions {
         PointOptions::new(2, select)
@@ -334,7 +334,7 @@ mod tests {
             .to_string();
         assert!(e.contains("too small"), "{e}");
         let flat = vec![2.5f32; 9 * 9 * 9];
-        let g = Grid::scalar(crate::grid::Samples::F32(&flat), [9, 9, 9]).unwrap();
+        let g = Grid::scalar(crate::data::grid::Samples::F32(&flat), [9, 9, 9]).unwrap();
         let set = generate(&g, &PointOptions::new(4, PointSelect::Threshold(0.0))).unwrap();
         assert!(set.points.is_empty() && set.error_scale == 0.0);
     }
@@ -375,7 +375,7 @@ mod tests {
                 }
             })
             .collect();
-        let g = Grid::scalar(crate::grid::Samples::F64(&data), [n; 3]).unwrap();
+        let g = Grid::scalar(crate::data::grid::Samples::F64(&data), [n; 3]).unwrap();
         let set = generate(&g, &options(PointSelect::Threshold(0.1))).unwrap();
         assert_eq!(set.points.len(), 4 * 4 * 4, "every odd sample");
         assert!(set.error_scale.is_finite() && set.points.iter().all(|p| set.value(p).is_finite()));
@@ -383,7 +383,7 @@ mod tests {
         // A NaN lattice sample (4, 0, 0) is a corner of T_2 at (3, 1, 1) and (5, 1, 1): no data, no point.
         let mut holed = data.clone();
         holed[4] = f64::NAN;
-        let g = Grid::scalar(crate::grid::Samples::F64(&holed), [n; 3]).unwrap();
+        let g = Grid::scalar(crate::data::grid::Samples::F64(&holed), [n; 3]).unwrap();
         let set = generate(&g, &options(PointSelect::Threshold(0.1))).unwrap();
         assert_eq!(set.points.len(), 4 * 4 * 4 - 2);
         assert!(set.points.iter().all(|p| p.ijk[1] != 1 || p.ijk[2] != 1 || ![3, 5].contains(&p.ijk[0])));

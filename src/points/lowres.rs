@@ -31,9 +31,9 @@
 //! (rounded down to `f32`) and the others kept: a uniform stride-`s`
 //! selection of it textures exactly this low-resolution volume.
 
-use crate::error::{Error, Result};
-use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
-use crate::volume::{SampleBuf, Volume};
+use crate::base::error::{Error, Result};
+use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::data::volume::{SampleBuf, Volume};
 use rayon::prelude::*;
 
 /// The grid with its stride-`factor` lattice lowered so that T_factor never
@@ -114,8 +114,8 @@ fn f32_at_most(v: f64) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate, Dataset};
-    use crate::grid::ScalarType;
     use crate::octree::trilinear;
 
     struct MaxOver<'a>(&'a Grid<'a>, usize);

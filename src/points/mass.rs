@@ -6,7 +6,7 @@
 //! `Q_p(n) = sum over the node's samples of (f - T_p)^2 / range^2`. Points
 //! complete T_f, so a brick of stride `f` that takes its points removes the
 //! squared error of those it can correct. A point drawn with its voxel-mean
-//! shade ([`super::shade`]) adds back `m`, the mean of `e = f - T_f` over its
+//! shade ([`super::shade()`]) adds back `m`, the mean of `e = f - T_f` over its
 //! voxel, so of the voxel's squared error `sum e_i^2` it leaves
 //! `sum (e_i - m)^2`: it removes one sample's worth of `m^2` (points only
 //! add opacity, so only `m > 0` counts):
@@ -34,7 +34,7 @@
 //! above the leaf level) is answered in O(1).
 
 use super::set::PointSet;
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 
 /// `eta_f = 1 / sqrt(f)`: the share of a factor-`f` point's removable
 /// data-space squared error the selection counts (see the module
@@ -71,7 +71,7 @@ impl PointMass {
     /// what its voxel-mean shade removes ([`super::shade::voxel_mean_errors`]
     /// over `grid`, the grid the points were made from): what the renderers
     /// draw, so what the selection should count.
-    pub fn voxel_means(grid: &crate::grid::Grid<'_>, set: &PointSet, block: usize) -> PointMass {
+    pub fn voxel_means(grid: &crate::data::grid::Grid<'_>, set: &PointSet, block: usize) -> PointMass {
         PointMass::tables(set, block, &super::shade::voxel_mean_errors(grid, set))
     }
 
@@ -169,8 +169,8 @@ impl PointMass {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate as dataset, Dataset};
-    use crate::grid::ScalarType;
     use crate::points::{generate, PointOptions, PointSelect};
 
     #[test]

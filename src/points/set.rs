@@ -6,7 +6,7 @@
 pub struct Point {
     /// Grid sample of the point.
     pub ijk: [u16; 3],
-    /// Index into [`super::normals::TABLE`] of the original data's gradient direction.
+    /// Index into [`super::normals::table`] of the original data's gradient direction.
     pub normal: u8,
     /// Error `f - T_f` at the point, `error / 127 * error_scale` in data units.
     pub error: i8,

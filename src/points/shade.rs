@@ -4,7 +4,7 @@
 //! A point stands for the error of one sample, but a renderer's rays do not
 //! pass through samples: they see the trilinear field between them. A point
 //! is drawn over its voxel, the cube `C_p` of one sample spacing around it
-//! (its footprint is one sample spacing across, see [`super::draw`]), so
+//! (its footprint is one sample spacing across, see [`super::footprint`]), so
 //! what it must add is what the data's field has there beyond the low
 //! resolution's, on average over the cube:
 //!
@@ -20,7 +20,7 @@
 //! a_p = max(0, (A_t - A_v) / (1 - A_v)),    c_p = (C_t - C_v) / (A_t - A_v)  clamped to [0, 1]
 //! ```
 //!
-//! ([`super::draw::point_opacity`], [`super::draw::point_colour`]). Taking
+//! ([`super::opacity::point_opacity`], [`super::opacity::point_colour`]). Taking
 //! `alpha(f(p))` at the sample alone (section 4.1 read literally)
 //! over-corrects structures about a voxel thin under a steep transfer
 //! function: the field of a one-sample line is at its peak only on the line,
@@ -33,10 +33,10 @@
 //! The shade depends on the transfer function, so renderers compute it per
 //! table, from the grid the points were made from.
 
-use super::draw::{point_colour, point_opacity};
+use super::opacity::{point_colour, point_opacity};
 use super::set::PointSet;
-use crate::error::{Error, Result};
-use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::base::error::{Error, Result};
+use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
 use crate::transfer::lut::Lut;
 use crate::transfer::TransferFunction;
 use rayon::prelude::*;
@@ -187,8 +187,8 @@ fn sub_cube_values<T: Sample>(g: &TypedGrid<'_, T>, c: [usize; 3], s: usize) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::{GridShape, Samples};
-    use crate::points::draw::point_opacity;
+    use crate::data::grid::{GridShape, Samples};
+    use crate::points::opacity::point_opacity;
     use crate::points::{generate, PointOptions, PointSelect};
 
     fn grid(data: &[f32], n: usize) -> Grid<'_> {

@@ -21,9 +21,9 @@
 //! corrupt file is an error naming what is wrong, never a wrong picture.
 
 use super::set::{Point, PointSet};
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
+use crate::base::limits::escape_controls;
 use crate::io::source::{display_path, read_regular_file, regular_file_len};
-use crate::limits::escape_controls;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"HOPOINTS";
@@ -150,8 +150,8 @@ pub fn from_bytes(bytes: &[u8], file_name: &str) -> Result<PointSet> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate as dataset, Dataset};
-    use crate::grid::ScalarType;
     use crate::points::{generate, PointOptions, PointSelect};
 
     fn sample(size: usize) -> PointSet {

@@ -2,8 +2,8 @@
 //! picture sizes, surface colours, and DrawLists that must fit the grid they
 //! are drawn over.
 
-use crate::error::{Error, Result};
-use crate::grid::GridShape;
+use crate::base::error::{Error, Result};
+use crate::data::grid::GridShape;
 use crate::plan::DrawList;
 use crate::surface::Surface;
 

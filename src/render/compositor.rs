@@ -30,7 +30,7 @@
 //!
 //! (the same line as `((p(z) - origin) / spacing - lo) / stride`, up to
 //! rounding: a few ulps of the brick's texel coordinates). Each
-//! sample is classified (through [`crate::transfer::lut`], within 1e-6 of the transfer
+//! sample is classified (through `crate::transfer::lut`, within 1e-6 of the transfer
 //! function), corrected for the brick's slice spacing `d` against
 //! `d0 = DrawList::reference_spacing` and blended. The DrawList's order is
 //! back to front (`over`); the compositor walks the same sequence reversed,
@@ -50,7 +50,8 @@
 //! within the batch's clip range `near <= depth < far`, are blended after
 //! slices `0 .. s` and before slice `s` (slab `n` after the last), back to
 //! front; walked in reverse like the slices.
-//! Points of the hybrid representation ([`crate::points::draw`]): each
+//! Points of the hybrid representation (bucketed by
+//! [`crate::plan::point_slabs`], drawn by [`crate::points::footprint`]): each
 //! point of slab `s` of a brick is splatted onto the pixels of its footprint
 //! before the frame, and blended in that slab like a batch hit (after slices
 //! `0 .. s`, before slice `s`), nearest last within the slab; a pixel whose
@@ -65,16 +66,16 @@ use super::image::Image;
 use super::sample::to_index;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
-use crate::camera::Ray;
-use crate::error::Result;
-use crate::grid::{Grid, GridShape};
+use crate::base::error::Result;
+use crate::data::grid::{Grid, GridShape};
+use crate::geometry::camera::Ray;
+use crate::geometry::vec3::dot;
 use crate::plan::{BrickDraw, DrawList};
-use crate::points::draw::{footprint, project, Footprint};
+use crate::points::footprint::{footprint, project, Footprint};
 use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
 use crate::transfer::lut::Lut;
 use crate::transfer::TransferFunction;
-use crate::vec3::dot;
 use rayon::prelude::*;
 
 /// Early ray termination: a pixel whose accumulated opacity reaches this
@@ -144,8 +145,8 @@ pub fn composite_textures(
 }
 
 /// [`composite_textures`] with the points of the hybrid representation that
-/// `list` buckets ([`crate::points::add_points`]), each adding its shade
-/// ([`crate::points::shade`], one per point of the set), drawn with `footprint`.
+/// `list` buckets ([`crate::plan::point_slabs::add_points`]), each adding its shade
+/// ([`crate::points::shade()`], one per point of the set), drawn with `footprint`.
 ///
 /// # Errors
 ///
@@ -288,7 +289,7 @@ struct Splats {
 }
 
 /// Splats every point `list` draws (see the module documentation and
-/// [`crate::points::draw`]), in list order, so the table does not depend on threads.
+/// [`crate::plan::point_slabs`]), in list order, so the table does not depend on threads.
 fn splat(
     list: &DrawList,
     shape: &GridShape,

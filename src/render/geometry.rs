@@ -10,8 +10,8 @@
 //!
 //! (the inverse of [`Camera::ray`]; `s` the parallel scale, `t = tan(angle / 2)`).
 
-use crate::camera::{Camera, Projection, Ray};
-use crate::vec3::{dot, sub};
+use crate::geometry::camera::{Camera, Projection, Ray};
+use crate::geometry::vec3::{dot, sub};
 
 /// The parameter interval `[t0, t1]`, `t0 >= 0`, of `ray` inside the closed
 /// box `[lo, hi]`, or `None`.

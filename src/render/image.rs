@@ -12,7 +12,7 @@
 //! zlib stream (flate2), each chunk closed by the CRC-32 of ISO 3309
 //! (polynomial 0xEDB88320, reflected).
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use std::io::Write;
 use std::path::Path;
 

@@ -16,7 +16,7 @@
 //! (or high) as they are.
 
 use super::image::{Image, BACKGROUND};
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 
 /// Differences between two pictures (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]

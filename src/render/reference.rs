@@ -7,7 +7,7 @@
 //! the full grid), front to back:
 //!
 //! ```text
-//! (c, a) = transfer function(value),  a' = 1 - (1 - a)^(l / d0),  d0 = crate::spacing::reference_spacing
+//! (c, a) = transfer function(value),  a' = 1 - (1 - a)^(l / d0),  d0 = crate::data::spacing::reference_spacing
 //! C += (1 - A) a' c,  A += (1 - A) a'              (premultiplied; stop once A > 0.999)
 //! ```
 //!
@@ -25,9 +25,9 @@ use super::geometry::ray_box;
 use super::image::Image;
 use super::sample::{grid_value, to_index};
 use super::triangles::{Hit, TriangleGrid};
-use crate::camera::Camera;
-use crate::error::{Error, Result};
-use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
+use crate::base::error::{Error, Result};
+use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
+use crate::geometry::camera::Camera;
 use crate::surface::Surface;
 use crate::transfer::TransferFunction;
 use rayon::prelude::*;
@@ -38,7 +38,7 @@ pub const EARLY_TERMINATION: f64 = 0.999;
 /// What the reference draws besides the volume, and how finely.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ReferenceOptions<'a> {
-    /// Sample spacing along the ray, world units (> 0); `None`: `d0 / 4` ([`crate::spacing::reference_spacing`]).
+    /// Sample spacing along the ray, world units (> 0); `None`: `d0 / 4` ([`crate::data::spacing::reference_spacing`]).
     pub step: Option<f64>,
     /// A surface and its `[r, g, b, opacity]`, all in `[0, 1]`.
     pub surface: Option<(&'a Surface, [f32; 4])>,
@@ -56,7 +56,7 @@ pub fn reference(
 ) -> Result<Image> {
     check_size(width, height)?;
     let shape = *grid.shape();
-    let d0 = crate::spacing::reference_spacing(&shape);
+    let d0 = crate::data::spacing::reference_spacing(&shape);
     let step = options.step.unwrap_or(d0 / 4.0);
     if !(step > 0.0 && step.is_finite()) {
         return Err(Error::InvalidArgument(format!("reference step {step}: give a positive number of world units")));
@@ -144,8 +144,8 @@ impl Caster<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::Projection;
-    use crate::grid::Samples;
+    use crate::data::grid::Samples;
+    use crate::geometry::camera::Projection;
     use crate::render::triangles::tests::surface_of;
 
     /// A constant field seen along z through a slab of known thickness:

@@ -20,7 +20,7 @@
 //! clipped by the grid repeats the grid's last sample one stride away, as
 //! T_p's virtual padding does.
 
-use crate::grid::{GridShape, Sample, TypedGrid};
+use crate::data::grid::{GridShape, Sample, TypedGrid};
 use crate::octree::trilinear::lerp;
 
 /// Trilinear interpolation at lattice coordinates `u` of `n` points per axis
@@ -58,7 +58,7 @@ pub(crate) fn grid_value<T: Sample>(g: &TypedGrid<'_, T>, x: [f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::{Grid, GridVisitor, Samples};
+    use crate::data::grid::{Grid, GridVisitor, Samples};
 
     /// The full grid's reconstruction: linear between grid points, clamped outside.
     struct FullGrid;

@@ -5,9 +5,9 @@ use super::compositor::composite;
 use super::image::{Image, BACKGROUND};
 use super::metrics::compare;
 use super::reference::{reference, ReferenceOptions};
-use crate::camera::{Camera, Projection};
+use crate::data::grid::{Grid, GridShape, ScalarType};
 use crate::datasets::{generate, Dataset};
-use crate::grid::{Grid, GridShape, ScalarType};
+use crate::geometry::camera::{Camera, Projection};
 use crate::octree::{BuildOptions, VolumeOctree};
 use crate::plan::select::Brick;
 use crate::plan::{Batch, BrickDraw, DrawList, Plan, SurfacePass};
@@ -35,7 +35,7 @@ fn slice_depths(camera: &Camera, lo: [f64; 3], hi: [f64; 3], d: f64) -> Vec<f64>
 /// back to front by the depth of their centres (a valid order for bricks of
 /// one size under a parallel projection, or for one brick).
 fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: SurfacePass) -> DrawList {
-    let d0 = crate::spacing::reference_spacing(shape);
+    let d0 = crate::data::spacing::reference_spacing(shape);
     let mut draws: Vec<BrickDraw> = bricks
         .iter()
         .map(|&brick| {
@@ -184,7 +184,7 @@ fn pictures_do_not_depend_on_the_thread_count() {
     assert_eq!(one.1, two.1);
 }
 
-fn sphere_surface() -> (crate::volume::Volume, Surface) {
+fn sphere_surface() -> (crate::data::volume::Volume, Surface) {
     let volume = generate(Dataset::Sphere, 33, ScalarType::F32);
     let grid = volume.grid(None).unwrap();
     let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 8 }).unwrap();
@@ -227,7 +227,7 @@ fn opaque_surface_matches_the_reference() {
 #[test]
 fn translucent_batches_are_blended_inside_their_slab() {
     let data = vec![0.5f32; 9 * 9 * 9];
-    let grid = Grid::scalar(crate::grid::Samples::F32(&data), [9, 9, 9]).unwrap();
+    let grid = Grid::scalar(crate::data::grid::Samples::F32(&data), [9, 9, 9]).unwrap();
     let tf = TransferFunction::new(vec![(0.0, [1.0, 1.0, 1.0])], vec![(0.0, 0.1)]).unwrap();
     let camera =
         Camera::new([4.0, 4.0, 100.0], [4.0, 4.0, 4.0], [0.0, 1.0, 0.0], Projection::Parallel { scale: 3.0 }).unwrap();
@@ -280,7 +280,7 @@ fn translucent_batches_are_blended_inside_their_slab() {
 #[test]
 fn a_face_seen_head_on_is_sampled_once() {
     let data = vec![0.5f32; 5 * 5 * 9];
-    let grid = Grid::scalar(crate::grid::Samples::F32(&data), [5, 5, 9]).unwrap();
+    let grid = Grid::scalar(crate::data::grid::Samples::F32(&data), [5, 5, 9]).unwrap();
     let tf = TransferFunction::new(vec![(0.0, [1.0, 1.0, 1.0])], vec![(0.0, 0.1)]).unwrap();
     for eye_z in [100.0, -100.0] {
         let camera =
@@ -302,7 +302,7 @@ fn a_face_seen_head_on_is_sampled_once() {
 #[test]
 fn foreign_draw_lists_are_refused() {
     let data = vec![0.5f32; 5 * 5 * 5];
-    let grid = Grid::scalar(crate::grid::Samples::F32(&data), [5, 5, 5]).unwrap();
+    let grid = Grid::scalar(crate::data::grid::Samples::F32(&data), [5, 5, 5]).unwrap();
     let tf = TransferFunction::ramp(0.0, 1.0);
     let camera = Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap();
     let list = draw_list(grid.shape(), &camera, &[brick(0, [0; 3], [8; 3], 2)], SurfacePass::None);
@@ -366,7 +366,7 @@ fn the_pipeline_tracks_the_reference() {
 fn rays_stop_once_opaque_within_the_bound() {
     use super::compositor::OPAQUE;
     let data = vec![0.5f32; 9 * 9 * 9];
-    let grid = Grid::scalar(crate::grid::Samples::F32(&data), [9, 9, 9]).unwrap();
+    let grid = Grid::scalar(crate::data::grid::Samples::F32(&data), [9, 9, 9]).unwrap();
     let tf = TransferFunction::new(vec![(0.0, [1.0, 0.5, 0.25])], vec![(0.0, 0.7)]).unwrap();
     let camera =
         Camera::new([4.0, 4.0, 100.0], [4.0, 4.0, 4.0], [0.0, 1.0, 0.0], Projection::Parallel { scale: 3.0 }).unwrap();

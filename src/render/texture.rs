@@ -6,8 +6,8 @@
 //! `min(lo + (i, j, k) stride, hi)` (see [`crate::plan::select::Brick::texel_positions`]).
 //! The copy is `f32` when every copied value is exactly an `f32` (all `u8`,
 //! `i8`, `u16`, `i16` and `f32` grids), else `f64`: either way it holds the
-//! grid's values exactly, and [`Texture::value`] reconstructs T_p bit for bit
-//! (the trilinear formula and evaluation order of [`super::sample`]):
+//! grid's values exactly, and `Texture::value` reconstructs T_p bit for bit
+//! (the trilinear formula and evaluation order of `render::sample`):
 //!
 //! ```text
 //! u = (x - lo) / stride,  clamped to [0, n - 1];  i0 = floor(u), i1 = min(i0 + 1, n - 1), t = u - i0
@@ -19,8 +19,8 @@
 //! only them, never the grid.
 
 use super::check::check_bricks;
-use crate::error::{Error, Result};
-use crate::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
+use crate::base::error::{Error, Result};
+use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear::lerp;
 use crate::plan::select::Brick;
 use crate::plan::DrawList;
@@ -287,7 +287,7 @@ impl GridVisitor for Upload<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::{Grid, Samples};
+    use crate::data::grid::{Grid, Samples};
     use crate::octree::trilinear;
     use crate::render::sample::trilinear as grid_trilinear;
 
@@ -347,7 +347,7 @@ mod tests {
     /// of values that are not f32s as f64.
     #[test]
     fn storage_is_exact() {
-        use crate::camera::Camera;
+        use crate::geometry::camera::Camera;
         use crate::plan::{BrickDraw, DrawList, Plan, SurfacePass};
         let list = |b: Brick| DrawList {
             plan: Plan {

@@ -17,10 +17,10 @@
 //! interpolated with `(1 - u - v, u, v)` and normalised.
 
 use super::geometry::ray_box;
-use crate::camera::Ray;
-use crate::grid::GridShape;
+use crate::data::grid::GridShape;
+use crate::geometry::camera::Ray;
+use crate::geometry::vec3::{cross, dot, sub};
 use crate::surface::Surface;
-use crate::vec3::{cross, dot, sub};
 
 const EPS: f64 = 1e-9;
 const MAX_CELLS: f64 = (1u64 << 22) as f64;
@@ -323,7 +323,7 @@ pub(crate) mod tests {
         for _ in 0..2000 {
             let origin = [0, 1, 2].map(|_| -5.0 + 25.0 * lcg(&mut s));
             let target = shape.world([0, 1, 2].map(|_| 10.0 * lcg(&mut s)));
-            let ray = Ray { origin, direction: crate::vec3::normalize(sub(target, origin)) };
+            let ray = Ray { origin, direction: crate::geometry::vec3::normalize(sub(target, origin)) };
             let mut brute: Vec<(f64, u32)> =
                 world.iter().enumerate().filter_map(|(i, t)| intersect(&ray, t).map(|h| (h.0, i as u32))).collect();
             brute.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
@@ -349,7 +349,7 @@ pub(crate) mod tests {
         let surface = surface_of(&tris);
         let shape = GridShape { dims: [3; 3], spacing: [1.0; 3], origin: [0.0; 3] };
         let grid = TriangleGrid::new(&surface, &shape, 0..2).unwrap();
-        let d = crate::vec3::normalize([0.0, 0.6, -0.8]);
+        let d = crate::geometry::vec3::normalize([0.0, 0.6, -0.8]);
         let ray = Ray { origin: [1.0, 1.0 - 0.6 * 5.0 / 0.8, 6.0], direction: d }; // through (1, 1, 1), on the diagonal
         let mut all = Vec::new();
         grid.all_hits(&ray, f64::INFINITY, &mut all);

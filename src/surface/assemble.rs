@@ -15,7 +15,7 @@ use super::earclip::EarClipper;
 use super::faces::NodeFaces;
 use super::straight::{vertex_flags, TURNS, USED};
 use super::table::plane_normals;
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use crate::octree::NodeId;
 use rayon::prelude::*;
 
@@ -84,9 +84,33 @@ pub struct Mesh {
 
 /// Names the vertices of `parts` (in node order) and triangulates their faces.
 pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
-    // Boundary vertices: (key, turns, node, local) from every node, sorted by
-    // key; a key's run says whether any node turns there.
-    let mut boundary: Vec<(u64, bool, u32, u32)> = parts
+    let (boundary, shared_of, shared) = shared_vertices(parts);
+    let global = global_names(parts, &boundary, &shared_of, shared.len() as u32);
+    drop((boundary, shared_of));
+    let (face_base, faces) = face_bases(parts);
+    let counts = triangle_counts(parts, &global);
+    let total: usize = counts.iter().sum();
+    let mut mesh = Mesh {
+        faces: faces as usize,
+        triangles: vec![[0; 3]; total],
+        triangle_face: vec![0; total],
+        ..Mesh::default()
+    };
+    triangulate(parts, &global, &face_base, &counts, &mut mesh)?;
+    name_vertices(parts, &counts, shared, &mut mesh);
+    Ok(mesh)
+}
+
+/// A boundary vertex of a node: its edge key, whether the node turns there,
+/// the node's position in `parts` and the vertex's local index.
+type BoundaryVertex = (u64, bool, u32, u32);
+
+/// The boundary vertices of every node sorted by key, the shared name each
+/// gets (`u32::MAX`: the vertex leaves), and the keys of the shared vertices
+/// in key order. A key's run says whether any node turns there: it
+/// stays if one does.
+fn shared_vertices(parts: &[NodePart]) -> (Vec<BoundaryVertex>, Vec<u32>, Vec<u64>) {
+    let mut boundary: Vec<BoundaryVertex> = parts
         .par_iter()
         .enumerate()
         .flat_map_iter(|(i, p)| {
@@ -113,14 +137,20 @@ pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
         }
         run = end;
     }
-    // Inner vertices kept per node (placed in NodePart::new), numbered after the shared ones.
+    (boundary, shared_of, shared)
+}
+
+/// The global name of each node's local vertices (`u32::MAX`: the vertex
+/// leaves): the shared ones from [`shared_vertices`], then the inner ones kept
+/// per node (placed in [`NodePart::new`]), numbered node after node from
+/// `shared`, the number of shared vertices (a prefix sum).
+fn global_names(parts: &[NodePart], boundary: &[BoundaryVertex], shared_of: &[u32], shared: u32) -> Vec<Vec<u32>> {
     let mut first_inner = Vec::with_capacity(parts.len());
-    let mut next = shared.len() as u32;
+    let mut next = shared;
     for count in parts.iter().map(|p| p.inner.len() as u32) {
         first_inner.push(next);
         next += count;
     }
-    // Global index of each node's local vertices (u32::MAX: the vertex leaves).
     let mut global: Vec<Vec<u32>> = parts
         .par_iter()
         .zip(&first_inner)
@@ -138,38 +168,54 @@ pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
                 .collect()
         })
         .collect();
-    for (e, &g) in boundary.iter().zip(&shared_of) {
+    for (e, &g) in boundary.iter().zip(shared_of) {
         global[e.2 as usize][e.3 as usize] = g;
     }
-    drop((boundary, shared_of));
+    global
+}
+
+/// The number of each node's first face (faces are numbered node after
+/// node), and the number of faces.
+fn face_bases(parts: &[NodePart]) -> (Vec<u32>, u32) {
     let mut face_base = Vec::with_capacity(parts.len());
     let mut faces = 0u32;
     for p in parts {
         face_base.push(faces);
         faces += p.faces.len() as u32;
     }
+    (face_base, faces)
+}
 
-    // Triangles per node: a face of k kept vertices gives k - 2.
-    let counts: Vec<usize> = parts
+/// Triangles per node: a face of `k` kept vertices gives `k - 2`.
+fn triangle_counts(parts: &[NodePart], global: &[Vec<u32>]) -> Vec<usize> {
+    parts
         .par_iter()
-        .zip(&global)
+        .zip(global)
         .map(|(p, global)| {
             (0..p.faces.len())
                 .map(|f| p.faces.get(f).iter().filter(|&&l| global[l as usize] != u32::MAX).count().saturating_sub(2))
                 .sum()
         })
-        .collect();
-    let total: usize = counts.iter().sum();
-    let mut mesh = Mesh {
-        faces: faces as usize,
-        triangles: vec![[0; 3]; total],
-        triangle_face: vec![0; total],
-        ..Mesh::default()
-    };
-    // Each node fills its own slice of the output, in parallel.
+        .collect()
+}
+
+/// Ear-clips every face's kept vertices into `mesh.triangles` (global names)
+/// and `mesh.triangle_face`, each node filling its own slice of `counts[i]`
+/// triangles, in parallel.
+///
+/// # Errors
+///
+/// [`Error::Internal`] when a face is not a simple polygon.
+fn triangulate(
+    parts: &[NodePart],
+    global: &[Vec<u32>],
+    face_base: &[u32],
+    counts: &[usize],
+    mesh: &mut Mesh,
+) -> Result<()> {
     let mut slices = Vec::with_capacity(parts.len());
     let (mut rest_t, mut rest_f) = (&mut mesh.triangles[..], &mut mesh.triangle_face[..]);
-    for &count in &counts {
+    for &count in counts {
         let (t, tail_t) = rest_t.split_at_mut(count);
         let (f, tail_f) = rest_f.split_at_mut(count);
         slices.push((t, f));
@@ -178,8 +224,8 @@ pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
     slices
         .into_par_iter()
         .zip(parts)
-        .zip(&global)
-        .zip(&face_base)
+        .zip(global)
+        .zip(face_base)
         .map_init(
             || (EarClipper::default(), Vec::new(), Vec::new()),
             |(clipper, kept, triangles), ((((out, face_out), p), global), &face0)| {
@@ -204,8 +250,12 @@ pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
                 Ok(())
             },
         )
-        .collect::<Result<()>>()?;
+        .collect::<Result<()>>()
+}
 
+/// The mesh's vertex keys (the `shared` ones, then each node's inner ones
+/// kept), the node of each triangle and each node's triangle range.
+fn name_vertices(parts: &[NodePart], counts: &[usize], shared: Vec<u64>, mesh: &mut Mesh) {
     mesh.shared = shared.len();
     mesh.keys = shared;
     mesh.keys.par_extend(
@@ -213,13 +263,11 @@ pub fn assemble(parts: &[NodePart]) -> Result<Mesh> {
             .par_iter()
             .flat_map_iter(|p| (0..p.faces.verts.len()).filter(|&l| p.inner_kept(l)).map(|l| p.faces.verts.keys[l])),
     );
-    mesh.triangle_node
-        .par_extend(parts.par_iter().zip(&counts).flat_map_iter(|(p, &n)| std::iter::repeat_n(p.node, n)));
+    mesh.triangle_node.par_extend(parts.par_iter().zip(counts).flat_map_iter(|(p, &n)| std::iter::repeat_n(p.node, n)));
     let mut first = 0u32;
-    for (p, &n) in parts.iter().zip(&counts) {
+    for (p, &n) in parts.iter().zip(counts) {
         let end = first + n as u32;
         mesh.node_ranges.push((p.node, first, end));
         first = end;
     }
-    Ok(mesh)
 }

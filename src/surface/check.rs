@@ -4,15 +4,17 @@
 //! On a closed surface every edge is used by exactly two polygons, once in
 //! each direction. An edge used once lies where the surface leaves the volume
 //! (a boundary edge); more than twice, or twice in the same direction, is a
-//! defect. NaN is no data (see [`crate::grid`]): cells with a NaN corner have
+//! defect. NaN is no data (see [`crate::data::grid`]): cells with a NaN corner have
 //! no facets, so the surface is also open along them. A surface is watertight
 //! when its only edges used once are [`boundary_edges`] plus
 //! [`nan_boundary_edges`].
 
 use super::extract::midpoint2;
 use super::mesh::Surface;
-use crate::grid::Grid;
-use crate::vec3::{cross, sub};
+use super::polygon::fan_cross;
+pub use super::polygon::polygon_normal;
+use crate::data::grid::Grid;
+use crate::geometry::vec3::cross;
 
 /// How the edges of a surface are used.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -135,17 +137,6 @@ pub(crate) fn nan_boundary_edges_with(
         .sum()
 }
 
-/// Twice the area vector of a planar polygon in index space: the sum over its
-/// fan triangles `(p0, pk, pk+1)` of `(pk - p0) x (pk+1 - p0)` (its length is
-/// twice the area, its direction the outward normal).
-pub fn polygon_normal(s: &Surface, polygon: &[u32]) -> [f64; 3] {
-    let o = s.points[polygon[0] as usize];
-    (1..polygon.len().saturating_sub(1)).fold([0.0; 3], |n, k| {
-        let c = fan_cross(o, s.points[polygon[k] as usize], s.points[polygon[k + 1] as usize]);
-        [n[0] + c[0], n[1] + c[1], n[2] + c[2]]
-    })
-}
-
 /// Sum of `f(p0, pk, pk+1)` over the fan triangles of every polygon.
 fn fan_sum(s: &Surface, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f64) -> f64 {
     (0..s.polygon_count())
@@ -155,11 +146,6 @@ fn fan_sum(s: &Surface, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f64) -> f64 
             (1..p.len() - 1).map(|k| f(o, s.points[p[k] as usize], s.points[p[k + 1] as usize])).sum::<f64>()
         })
         .sum()
-}
-
-/// `(a - o) x (b - o)`: twice the area vector of triangle `(o, a, b)`.
-fn fan_cross(o: [f64; 3], a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    cross(sub(a, o), sub(b, o))
 }
 
 /// Surface area in index units (fan triangulation from the first vertex;

@@ -14,10 +14,10 @@
 use super::build::{march_nodes, surface_nodes};
 use super::extract::midpoint2;
 use super::place::interpolated_point;
-use crate::error::Result;
-use crate::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::base::error::Result;
+use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::geometry::vec3::{dot, sub};
 use crate::octree::VolumeOctree;
-use crate::vec3::{dot, sub};
 use rayon::prelude::*;
 
 /// Mean and max distance, in voxel (index) units.
@@ -91,7 +91,10 @@ fn one_way(
             _ => runs.push((c, i, i + 1)),
         }
     }
-    runs.par_iter()
+    // Per run (sum, max, count), collected in run order and summed in that
+    // order: the same total on any thread count.
+    let per_run: Vec<(f64, f64, usize)> = runs
+        .par_iter()
         .map_init(
             || (Vec::new(), Vec::new()),
             |(candidates, sampled): &mut (Vec<[[f64; 3]; 3]>, Vec<u32>), &(cell, first, end)| {
@@ -122,7 +125,8 @@ fn one_way(
                 (sum, max, count)
             },
         )
-        .reduce(|| (0.0, 0.0, 0), |a, b| (a.0 + b.0, a.1.max(b.1), a.2 + b.2))
+        .collect();
+    per_run.iter().fold((0.0, 0.0, 0), |a, b| (a.0 + b.0, a.1.max(b.1), a.2 + b.2))
 }
 
 /// Calls `f` with the run of every non-empty cell in the 3 x 3 x 3 block around `xyz`.
@@ -207,5 +211,28 @@ mod tests {
         assert_eq!(point_triangle([0.5, -3.0, 0.0], t), 3.0); // edge ab
         assert!((point_triangle([1.0, 1.0, 0.0], t) - 0.5f64.sqrt()).abs() < 1e-15);
         // edge bc
+    }
+
+    #[test]
+    fn the_distance_is_the_same_on_any_thread_count() {
+        use crate::datasets::{generate, Dataset};
+        use crate::grid::ScalarType;
+        use crate::octree::BuildOptions;
+        let volume = generate(Dataset::SheppLogan, 48, ScalarType::F32);
+        let grid = volume.grid(None).unwrap();
+        let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 8 }).unwrap();
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| discretized_to_interpolated(&grid, &octree, 0.5).unwrap())
+        };
+        let one = on(1);
+        assert!(one.samples > 0);
+        for threads in [2, 3, 8] {
+            let d = on(threads);
+            assert_eq!(
+                (d.mean.to_bits(), d.max.to_bits(), d.samples),
+                (one.mean.to_bits(), one.max.to_bits(), one.samples)
+            );
+        }
     }
 }

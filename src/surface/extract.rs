@@ -14,7 +14,7 @@
 //! [`super::check::nan_boundary_edges`]).
 
 use super::table::{cases, edge_corners, ON_CELL_FACE};
-use crate::grid::{Sample, TypedGrid};
+use crate::data::grid::{Sample, TypedGrid};
 
 /// The edge key of the edge from point `p` along `axis` in a grid of `dims`.
 #[inline]

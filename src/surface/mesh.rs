@@ -3,7 +3,7 @@
 //! and [`SurfaceStats`]. Extraction is [`super::build`]; points and normals
 //! [`super::place`]; measures [`super::check`].
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use crate::octree::NodeId;
 
 /// Which isosurface to keep.

@@ -7,9 +7,10 @@
 //! cells, [`faces`] merges coplanar regions into faces, [`straight`] drops
 //! straight vertices without T-junctions, [`earclip`] triangulates faces
 //! ([`exact`]: integer geometry), [`assemble`] names vertices and builds the
-//! mesh, [`place`] computes points and normals, [`build`] runs it all in
-//! parallel into a [`Surface`] (the types: [`mesh`]), [`check`] measures it
-//! (edges, area, volume), [`distance`] compares two surfaces.
+//! mesh, [`place`] computes points and normals (from the polygons' area
+//! vectors, [`polygon`]), [`build`] runs it all in parallel into a
+//! [`Surface`] (the types: [`mesh`]), [`check`] measures it (edges, area,
+//! volume), [`distance`] compares two surfaces.
 
 pub mod assemble;
 pub mod build;
@@ -21,6 +22,7 @@ pub mod extract;
 pub mod faces;
 pub mod mesh;
 pub mod place;
+pub mod polygon;
 pub mod straight;
 pub mod table;
 

@@ -15,7 +15,7 @@
 
 use super::extract::edge_of_key;
 use super::mesh::{Surface, SurfaceMode};
-use crate::grid::{Sample, TypedGrid};
+use crate::data::grid::{Sample, TypedGrid};
 use rayon::prelude::*;
 
 /// Places vertices of one grid at one isovalue.
@@ -100,7 +100,7 @@ pub fn finish_normals(s: &Surface, mut raw: Vec<[f64; 3]>, spacing: [f64; 3]) ->
         let mut acc = vec![[0.0f64; 3]; raw.len()];
         for i in 0..s.polygon_count() {
             let poly = s.polygon(i);
-            let n = super::check::polygon_normal(s, poly);
+            let n = super::polygon::polygon_normal(s, poly);
             for &v in poly {
                 for k in 0..3 {
                     acc[v as usize][k] += n[k];

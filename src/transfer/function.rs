@@ -15,12 +15,12 @@
 //! The opacity is the opacity of a layer one reference spacing `d0` thick
 //! (see [`crate::render::blend::correct_opacity`]).
 //!
-//! NaN is no data (see [`crate::grid`]): `f(NaN)` is `[0, 0, 0, 0]`,
+//! NaN is no data (see [`crate::data::grid`]): `f(NaN)` is `[0, 0, 0, 0]`,
 //! transparent black, whatever the points; a sample that interpolates a NaN
 //! corner is NaN, so this one rule makes it contribute nothing in every
 //! renderer that looks its colour up here.
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 
 /// A colour and an opacity transfer function (see the module documentation).
 #[derive(Debug, Clone, PartialEq)]

@@ -39,7 +39,7 @@
 //! C++ made.
 
 use super::slice_polygon::{append_slice_polygon, corner, view_basis};
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use crate::plan::slab::slab_copies;
 use crate::plan::DrawList;
 use std::cmp::Ordering;

@@ -4,12 +4,12 @@
 #![allow(clippy::single_range_in_vec_init)]
 
 use super::*;
-use crate::camera::Camera;
+use crate::geometry::camera::Camera;
 use crate::plan::slab::{assign_batches, slab_interval, slab_of, slice_depths, Batch, PolygonBatch};
 use proptest::prelude::*;
 
 fn cam(position: [f64; 3], focal: [f64; 3], parallel: bool) -> Camera {
-    crate::camera::test_camera(position, focal, parallel.then_some(20.0))
+    crate::geometry::camera::test_camera(position, focal, parallel.then_some(20.0))
 }
 
 fn view_of(camera: &Camera) -> GeometryView {
@@ -184,8 +184,11 @@ fn bricks_without_triangles_or_points_are_ray_marched_boxes() {
     let centre = [0.5, 0.5, 4.0];
     for t in v.chunks(3) {
         let p = t.iter().map(|x| x.position.map(f64::from)).collect::<Vec<_>>();
-        let n = crate::vec3::cross(crate::vec3::sub(p[1], p[0]), crate::vec3::sub(p[2], p[0]));
-        assert!(crate::vec3::dot(n, crate::vec3::sub(centre, p[0])) > 0.0);
+        let n = crate::geometry::vec3::cross(
+            crate::geometry::vec3::sub(p[1], p[0]),
+            crate::geometry::vec3::sub(p[2], p[0]),
+        );
+        assert!(crate::geometry::vec3::dot(n, crate::geometry::vec3::sub(centre, p[0])) > 0.0);
     }
     // Without a surface the batches are not read: every brick ray-marched.
     let g = brick_geometry(&view_of(&camera), &bricks, None, None).unwrap();
@@ -397,8 +400,8 @@ proptest! {
 
 #[test]
 fn a_real_draw_list_with_a_surface() {
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate, Dataset};
-    use crate::grid::ScalarType;
     use crate::octree::{BuildOptions, VolumeOctree};
     use crate::plan::select::{select, SelectOptions};
     use crate::plan::{draw_list, Scene};

@@ -6,7 +6,7 @@
 //! - [`occupancy`]: a brick's block value ranges (measured with its
 //!   texels) and, under the transfer function's opacity table, the box of
 //!   its visible blocks, which its slices are clipped to;
-//! - [`brick_geometry`]: the vertex stream of every brick: its slices, the
+//! - [`brick_geometry`](mod@brick_geometry): the vertex stream of every brick: its slices, the
 //!   translucent surface's triangles placed in the slabs between them by the
 //!   rule the CPU compositor uses ([`crate::plan::slab::slab_copies`]), the
 //!   hybrid points, or its ray-marched box.

@@ -35,7 +35,7 @@
 //! and a brick with no visible block is not drawn. The picture is unchanged:
 //! only transparent samples go.
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use std::cmp::Ordering;
 
 /// Cells per block edge.

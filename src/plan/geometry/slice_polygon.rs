@@ -19,7 +19,7 @@
 //! Exactly the arithmetic the OpenGL mapper used, in `f64`, the vertices
 //! rounded to `f32` at the end.
 
-use crate::vec3::{cross, dot};
+use crate::geometry::vec3::{cross, dot};
 
 /// The view basis of the slices: unit `right = forward x view_up /
 /// |forward x view_up|` (0 when they are parallel) and `up = right x forward`.
@@ -95,7 +95,7 @@ pub fn append_slice_polygon(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::vec3::{norm, sub};
+    use crate::geometry::vec3::{norm, sub};
 
     fn polygon(bounds: [f64; 6], eye: [f64; 3], forward: [f64; 3], depth: f64) -> Vec<[f64; 3]> {
         let basis = view_basis(forward, [0.0, 0.0, 1.0]);
@@ -167,7 +167,7 @@ mod tests {
             (seed >> 11) as f64 / (1u64 << 53) as f64
         };
         for _ in 0..40 {
-            let f = crate::vec3::normalize([next() - 0.5, next() - 0.5, next() - 0.5]);
+            let f = crate::geometry::vec3::normalize([next() - 0.5, next() - 0.5, next() - 0.5]);
             let eye = [5.0 * next(), -4.0 * next(), 6.0 * next()];
             let depths: Vec<f64> = (0..8).map(|k| dot(sub(corner(&b, k), eye), f)).collect();
             let (lo, hi) = depths.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &d| (l.min(d), h.max(d)));

@@ -45,8 +45,8 @@ pub fn estimated_error(octree: &VolumeOctree, bricks: &[Brick], visible: impl Fn
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::grid::ScalarType;
     use crate::datasets::{generate, Dataset};
-    use crate::grid::ScalarType;
     use crate::octree::BuildOptions;
     use crate::plan::select::{select, uniform, SelectOptions};
 

@@ -37,7 +37,7 @@
 //! Infinities stay an error ([`Error::NonFinite`]): they have no colour and no
 //! place in a value range. A volume of NaN only is [`Error::NoData`].
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 use rayon::prelude::*;
 
 /// A scalar type VTK images carry. `to_f64` is exact for every type here.
@@ -252,7 +252,7 @@ impl<'a> Samples<'a> {
 }
 
 /// Geometry and layout of a grid, shared by the borrowed [`Grid`] and the owned
-/// [`crate::volume::Volume`].
+/// [`crate::data::volume::Volume`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GridShape {
     /// Samples per axis `(nx, ny, nz)`, each at least 2.

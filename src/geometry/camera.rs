@@ -16,8 +16,8 @@
 //! with `s` the parallel scale (half the view height in world units) and
 //! `t = tan(view angle / 2)`.
 
-use crate::error::{Error, Result};
-use crate::vec3::{cross, dot, norm, normalize, sub};
+use crate::base::error::{Error, Result};
+use crate::geometry::vec3::{cross, dot, norm, normalize, sub};
 
 /// How the camera projects.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]

@@ -1,8 +1,8 @@
 //! An owned volume: what the built-in datasets generate and the file readers
 //! load. A [`Volume`] lends itself out as a borrowed [`Grid`].
 
-use crate::error::Result;
-use crate::grid::{Grid, GridShape, Samples, ScalarType};
+use crate::base::error::Result;
+use crate::data::grid::{Grid, GridShape, Samples, ScalarType};
 
 /// Owned samples of one of the supported scalar types.
 #[derive(Debug, Clone, PartialEq)]

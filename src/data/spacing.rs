@@ -22,7 +22,7 @@
 //! across the volume's thinnest side. Both spacings scale with the spacings:
 //! a volume at spacing `1e-6` or `1e6` is sliced like one at spacing 1.
 
-use crate::grid::GridShape;
+use crate::data::grid::GridShape;
 
 /// The largest spacing over the reference spacing `d0`.
 pub const MAX_ANISOTROPY: f64 = 16.0;

@@ -19,7 +19,7 @@
 //!
 //! A request above it is refused with the size it would need, never attempted.
 
-use crate::error::{Error, Result};
+use crate::base::error::{Error, Result};
 
 /// The environment variable a user sets to cap what one request may allocate.
 pub const MAX_MEMORY_VAR: &str = "HYBRID_OCTREE_MAX_MEMORY";

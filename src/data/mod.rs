@@ -1,0 +1,7 @@
+//! The sampled data every algorithm reads: the borrowed, typed view of a
+//! regular scalar grid ([`grid`]), the owned volume behind it ([`volume`]),
+//! and the sample spacings every renderer shares ([`spacing`]).
+
+pub mod grid;
+pub mod spacing;
+pub mod volume;

@@ -1,0 +1,110 @@
+//! The error mass a node removes per byte, and the cheapest form of a node
+//! at a stride (see the module documentation of [`super`]).
+
+use super::brick::Brick;
+use crate::octree::{NodeId, NodeRef, VolumeOctree};
+
+/// The error mass of node `n` drawn at level `p`, `removed` of its squared
+/// error corrected by points:
+///
+/// ```text
+/// mass(n, p) = max(Q_p(n) - removed, E_p(n)^2)
+/// ```
+///
+/// `Q_p` sums the node's half-open box (each sample counted once across
+/// nodes), but the node draws its closed box: the cells along its far faces
+/// interpolate towards face samples that `Q_p` leaves to the neighbours. A
+/// node whose only error lies on a far face has `Q_p = 0` and still draws
+/// that error; `E_p` (the closed box's largest error) keeps its mass above
+/// 0, so that a budget with room left refines it to full resolution, and
+/// keeps a coarser level from passing for one of no more error
+/// ([`cheapest`]): a node at full resolution has mass 0, and only an exact
+/// coarse form (`E_q = 0`) matches it.
+pub(super) fn error_mass(n: &NodeRef<'_>, p: usize, removed: f64) -> f64 {
+    let e = n.error(p) as f64;
+    (n.squared_error(p) as f64 - removed).max(e * e)
+}
+
+/// What a step buys: error mass removed per byte added, and a step that
+/// frees bytes without adding error before any step that costs bytes.
+/// A step that changes neither (the same bricks again) buys nothing: 0.
+pub(super) fn gain(removed: f64, added_bytes: f64) -> f64 {
+    if added_bytes == 0.0 && removed == 0.0 {
+        0.0
+    } else if added_bytes <= 0.0 && removed >= 0.0 {
+        f64::INFINITY
+    } else {
+        removed / added_bytes.max(1.0)
+    }
+}
+
+/// The cheapest form of node `n` drawn at the stride of level `p` without
+/// adding error: either `n` itself at the coarsest level `q <= p` whose
+/// error mass ([`error_mass`]) is no larger, or its visible children,
+/// each in its own cheapest form at `p - 1` (the same stride; transparent
+/// children cost nothing), whichever needs fewer bytes. A constant or smooth
+/// part of a node drops to a few texels and a transparent one to none, so
+/// the bytes go where the error is. Returns the bricks and how many
+/// transparent nodes were left out. Results are kept in `memo` by (node, p):
+/// they depend on nothing else within one selection.
+pub(super) fn cheapest(
+    octree: &VolumeOctree,
+    n: &NodeRef<'_>,
+    p: usize,
+    brick_of: &dyn Fn(NodeId, usize) -> Brick,
+    max_p: &dyn Fn(&NodeRef<'_>) -> usize,
+    visible: &dyn Fn(f64, f64) -> bool,
+    memo: &Memo,
+) -> (Vec<Brick>, usize) {
+    if let Some(known) = memo.borrow().get(&(n.id, p)) {
+        return known.clone();
+    }
+    let q = (0..p).find(|&q| error_mass(n, q, 0.0) <= error_mass(n, p, 0.0)).unwrap_or(p);
+    let own = brick_of(n.id, q);
+    let mut form = (vec![own], 0);
+    if !(n.is_terminal() || p == 0) {
+        let (children, hidden, bytes) = children_forms(octree, n, p, own.bytes, brick_of, max_p, visible, memo);
+        if bytes < own.bytes {
+            form = (children, hidden);
+        }
+    }
+    memo.borrow_mut().insert((n.id, p), form.clone());
+    form
+}
+
+/// The visible children of `n` (not terminal, `p >= 1`), each in its
+/// [`cheapest`] form at `p - 1` (the stride of `n` at `p`): their bricks, the
+/// transparent nodes left out, and their bytes. Stops early once the bytes
+/// reach `enough`.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn children_forms(
+    octree: &VolumeOctree,
+    n: &NodeRef<'_>,
+    p: usize,
+    enough: usize,
+    brick_of: &dyn Fn(NodeId, usize) -> Brick,
+    max_p: &dyn Fn(&NodeRef<'_>) -> usize,
+    visible: &dyn Fn(f64, f64) -> bool,
+    memo: &Memo,
+) -> (Vec<Brick>, usize, usize) {
+    let mut children = Vec::new();
+    let (mut hidden, mut bytes) = (0, 0);
+    for c in octree.children(n.id) {
+        let cn = octree.node(c);
+        if !visible(cn.min, cn.max) {
+            hidden += 1;
+            continue;
+        }
+        let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, visible, memo);
+        bytes += bricks.iter().map(|b| b.bytes).sum::<usize>();
+        children.extend(bricks);
+        hidden += h;
+        if bytes >= enough {
+            break;
+        }
+    }
+    (children, hidden, bytes)
+}
+
+/// [`cheapest`]'s results of one selection.
+pub(super) type Memo = std::cell::RefCell<std::collections::HashMap<(NodeId, usize), (Vec<Brick>, usize)>>;

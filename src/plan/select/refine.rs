@@ -1,0 +1,560 @@
+//! Greedy refinement under a texture budget (see the module documentation of
+//! [`super`]).
+
+use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
+use super::estimate::estimated_error;
+use super::mass::{cheapest, children_forms, error_mass, gain, Memo};
+use crate::base::error::{Error, Result};
+use crate::octree::{NodeId, NodeRef, VolumeOctree};
+use crate::points::PointMass;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// A refinement step in the queue.
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    /// Weighted error removed per byte added.
+    gain: f64,
+    node: NodeId,
+    /// The node's p when the step was queued (stale steps are skipped).
+    p: usize,
+    /// The node's point count when the step was queued (likewise).
+    points: usize,
+}
+
+impl PartialEq for Step {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Step {}
+impl PartialOrd for Step {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Step {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.gain.total_cmp(&o.gain).then_with(|| o.node.cmp(&self.node))
+    }
+}
+
+/// Selects a cut and levels for `octree` (see the module documentation).
+/// `visible(min, max)` says whether a node with that value range shows under
+/// the transfer function; return `true` to keep every node.
+pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f64, f64) -> bool) -> Result<Selection> {
+    select_impl(octree, options, &visible, None)
+}
+
+/// [`select`] where bricks of stride `points.factor` may also take their
+/// points (see the module documentation); the budget covers both.
+pub fn select_with_points(
+    octree: &VolumeOctree,
+    options: &SelectOptions,
+    visible: impl Fn(f64, f64) -> bool,
+    points: &PointMass,
+) -> Result<Selection> {
+    select_impl(octree, options, &visible, Some(points))
+}
+
+fn select_impl(
+    octree: &VolumeOctree,
+    options: &SelectOptions,
+    visible: &dyn Fn(f64, f64) -> bool,
+    points: Option<&PointMass>,
+) -> Result<Selection> {
+    check_options(options)?;
+    let root = octree.node(octree.root());
+    if !visible(root.min, root.max) {
+        return Ok(Selection {
+            bricks: Vec::new(),
+            texture_bytes: 0,
+            point_bytes: 0,
+            budget_bytes: options.budget_bytes,
+            max_error: 0.0,
+            estimated_error: 0.0,
+            skipped: 1,
+            warning: None,
+        });
+    }
+    let refiner = Refiner {
+        octree,
+        options,
+        visible,
+        points,
+        root_log2: octree.layout().root_log2 as usize,
+        memo: Memo::default(),
+    };
+    let coarsest = refiner.brick_of(root.id, 0);
+    let mut warning = None;
+    if coarsest.bytes > options.budget_bytes {
+        warning = Some(format!(
+            "the budget of {} bytes is below the coarsest representation ({} bytes): drawing that anyway; \
+             raise the budget for any refinement",
+            options.budget_bytes, coarsest.bytes
+        ));
+    }
+    let (cut, skipped) = refiner.best_cut(&root, coarsest);
+    Ok(refiner.selection(cut.into_values().collect(), skipped, warning))
+}
+
+/// The options' own errors: a budget of 0 bytes, a tolerance that is not a
+/// number `>= 0`, a region of interest without a finite centre and a radius
+/// `> 0`, 0 bytes per texel.
+fn check_options(options: &SelectOptions) -> Result<()> {
+    if options.budget_bytes == 0 {
+        return Err(Error::InvalidArgument(
+            "the texture budget is 0 bytes: give a budget of at least a few kilobytes".into(),
+        ));
+    }
+    if !(options.tolerance >= 0.0 && options.tolerance.is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "error tolerance {} must be a number >= 0 (a fraction of the data range)",
+            options.tolerance
+        )));
+    }
+    if let Some(r) = &options.roi {
+        if !(r.radius > 0.0 && r.radius.is_finite()) || r.center.iter().any(|c| !c.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "region of interest (centre {:?}, radius {}) needs a finite centre and a radius > 0",
+                r.center, r.radius
+            )));
+        }
+    }
+    if options.bytes_per_texel == 0 {
+        return Err(Error::InvalidArgument("bytes per texel must be at least 1".into()));
+    }
+    Ok(())
+}
+
+/// A cut being refined: node id to its brick.
+type Cut = std::collections::BTreeMap<NodeId, Brick>;
+
+/// A candidate step: its gain, the bricks that replace the brick, and the
+/// transparent nodes they leave out.
+type Candidate = (f64, Vec<Brick>, usize);
+
+/// One selection: its inputs and the memo of [`cheapest`] forms, shared by
+/// every step.
+struct Refiner<'a> {
+    octree: &'a VolumeOctree,
+    options: &'a SelectOptions,
+    visible: &'a dyn Fn(f64, f64) -> bool,
+    points: Option<&'a PointMass>,
+    /// `L`: the root's level count, `log2` of the root's size.
+    root_log2: usize,
+    memo: Memo,
+}
+
+impl Refiner<'_> {
+    /// The finest level of node `n`: full resolution, or the largest brick.
+    fn max_p(&self, n: &NodeRef<'_>) -> usize {
+        (self.root_log2 - n.level).min(self.options.max_brick_log2 as usize)
+    }
+
+    /// The weighted error `Imp(n) e_p(n)` the tolerance is compared with.
+    fn weighted(b: &Brick) -> f64 {
+        b.importance * b.error as f64
+    }
+
+    /// Node `id` drawn at level `p`, with its importance.
+    fn brick_of(&self, id: NodeId, p: usize) -> Brick {
+        let n = self.octree.node(id);
+        make_brick(self.octree, &n, p, importance(self.options.roi.as_ref(), n.lo, n.hi), self.options.bytes_per_texel)
+    }
+
+    /// The squared error the points a brick took correct (0 without points).
+    fn removed(&self, b: &Brick) -> f64 {
+        match self.points {
+            Some(pm) if b.point_count > 0 => pm.in_box(b.lo, b.hi).2,
+            _ => 0.0,
+        }
+    }
+
+    /// The error mass of a brick: `Imp(n) mass(n, p)` ([`error_mass`]), its
+    /// squared error summed over its samples, less what its points correct.
+    fn mass(&self, b: &Brick) -> f64 {
+        b.importance * error_mass(&self.octree.node(b.node), b.p, self.removed(b))
+    }
+
+    /// Bytes a brick holds: its texture and its points.
+    fn cost(b: &Brick) -> usize {
+        b.bytes + b.point_bytes
+    }
+
+    /// [`cheapest`] form of node `n` at level `p` in this selection.
+    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> (Vec<Brick>, usize) {
+        cheapest(self.octree, n, p, &|id, p| self.brick_of(id, p), &|n| self.max_p(n), &self.visible, &self.memo)
+    }
+
+    /// The best next step of a brick in the cut, if it still violates the
+    /// tolerance: the best of [`Refiner::raise`], [`Refiner::split`] and
+    /// [`Refiner::take_points`], if it removes any error.
+    fn next_step(&self, b: &Brick) -> Option<(Step, Vec<Brick>, usize)> {
+        if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
+            return None;
+        }
+        let n = self.octree.node(b.node);
+        let raise = self.raise(b, &n);
+        let split = self.split(b, &n);
+        let take_points = self.take_points(b);
+        let better = |x: Option<Candidate>, y: Option<Candidate>| match (x, y) {
+            (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
+            (r, s) => r.or(s),
+        };
+        let best = better(better(raise, split), take_points);
+        best.filter(|s| s.0 > 0.0)
+            .map(|(gain, bricks, hidden)| (Step { gain, node: b.node, p: b.p, points: b.point_count }, bricks, hidden))
+    }
+
+    /// Raise `p` to the level `q` in `(p, max]` that removes the most error
+    /// mass per byte: the same box, `2^(q-p)` times the texels per axis.
+    /// (Looking past `p + 1` matters: across a sharp edge `e_p` stays near its
+    /// maximum until full resolution, so one level alone may buy nothing.)
+    fn raise(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+        (b.p + 1..=self.max_p(n))
+            .map(|q| {
+                let (up, hidden) = self.cheapest(n, q);
+                let (up_bytes, up_mass) =
+                    (up.iter().map(|u| u.bytes).sum::<usize>(), up.iter().map(|u| self.mass(u)).sum::<f64>());
+                (gain(self.mass(b) - up_mass, up_bytes as f64 - Self::cost(b) as f64), up, hidden)
+            })
+            .max_by(|x, y| x.0.total_cmp(&y.0))
+    }
+
+    /// Split: the children at the same stride (`p - 1`), each in its
+    /// [`cheapest`] form, which pays a little border and lets each child
+    /// refine on its own.
+    ///
+    /// A split at the same stride removes no error by itself unless parts
+    /// of the node drop out; it pays off through the raises of single
+    /// children it allows, when raising the whole node does not fit. So it
+    /// is ranked by the better of its own gain and its best one-step
+    /// lookahead: the split followed by the best raise of one child,
+    /// `(removed by both) / (bytes of both)`.
+    fn split(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+        (!n.is_terminal() && b.p > 0).then(|| {
+            let (children, hidden, added) = children_forms(
+                self.octree,
+                n,
+                b.p,
+                usize::MAX,
+                &|id, p| self.brick_of(id, p),
+                &|n| self.max_p(n),
+                &self.visible,
+                &self.memo,
+            );
+            let after: f64 = children.iter().map(|c| self.mass(c)).sum();
+            let split_bytes = added as f64 - Self::cost(b) as f64;
+            let direct = gain(self.mass(b) - after, split_bytes);
+            let ahead = children
+                .iter()
+                .flat_map(|c| {
+                    let cn = self.octree.node(c.node);
+                    (c.p + 1..=self.max_p(&cn)).map(move |q| (c, cn, q))
+                })
+                .map(|(c, cn, q)| {
+                    let (up, _) = self.cheapest(&cn, q);
+                    let up_bytes = up.iter().map(|u| u.bytes).sum::<usize>() as f64 - Self::cost(c) as f64;
+                    let removed = self.mass(b) - after + self.mass(c) - up.iter().map(|u| self.mass(u)).sum::<f64>();
+                    if removed > 0.0 {
+                        removed / (split_bytes + up_bytes).max(1.0)
+                    } else {
+                        0.0
+                    }
+                })
+                .fold(0.0, f64::max);
+            (direct.max(ahead), children, hidden)
+        })
+    }
+
+    /// Take the brick's points (a brick at the points' stride that has none
+    /// yet): their removable squared error for their bytes.
+    fn take_points(&self, b: &Brick) -> Option<Candidate> {
+        self.points.filter(|pm| b.stride == pm.factor && b.point_count == 0).and_then(|pm| {
+            let (count, _, removable) = pm.in_box(b.lo, b.hi);
+            let bytes = count * pm.point_bytes;
+            (count > 0 && removable > 0.0).then(|| {
+                let with = Brick { point_count: count, point_bytes: bytes, ..*b };
+                (gain(self.mass(b) - self.mass(&with), bytes as f64), vec![with], 0)
+            })
+        })
+    }
+
+    /// Greedy refinement of a starting cut (its bricks, its transparent
+    /// nodes) until nothing fits: the cut, its bytes, its transparent nodes.
+    fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Cut, usize, usize) {
+        let mut cut = Cut::new();
+        let mut bytes = 0usize;
+        let mut queue = BinaryHeap::new();
+        for b in start {
+            bytes += Self::cost(&b);
+            cut.insert(b.node, b);
+            if let Some((s, _, _)) = self.next_step(&b) {
+                queue.push(s);
+            }
+        }
+        while let Some(step) = queue.pop() {
+            let Some(current) = cut.get(&step.node).copied() else { continue };
+            if current.p != step.p || step.points != current.point_count {
+                continue; // stale
+            }
+            let Some((_, replacement, hidden)) = self.next_step(&current) else { continue };
+            let added: usize = replacement.iter().map(Self::cost).sum();
+            if bytes - Self::cost(&current) + added > self.options.budget_bytes {
+                continue; // does not fit; cheaper steps of other nodes may
+            }
+            bytes = bytes - Self::cost(&current) + added;
+            cut.remove(&step.node);
+            skipped += hidden;
+            for r in replacement {
+                cut.insert(r.node, r);
+                if let Some((s, _, _)) = self.next_step(&r) {
+                    queue.push(s);
+                }
+            }
+        }
+        (cut, bytes, skipped)
+    }
+
+    /// Two starts, the better (smaller error mass) wins unless the first
+    /// meets the tolerance: the root at `p = 0` (`coarsest`), and the root at
+    /// the finest level whose cheapest form fits the budget (a greedy that
+    /// starts coarse spends early bytes on what is cheap to fix and may miss
+    /// a fine uniform level that fits; on data with detail everywhere that
+    /// level is the better cut). A start from the root that meets the
+    /// tolerance needs no other (it spends the fewest bytes). Returns the cut
+    /// and its transparent nodes.
+    fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Cut, usize) {
+        let from_root = self.grow(vec![coarsest], 0);
+        let fine = (1..=self.max_p(root)).rev().find_map(|p| {
+            let (bricks, hidden) = self.cheapest(root, p);
+            (bricks.iter().map(|b| b.bytes).sum::<usize>() <= self.options.budget_bytes).then_some((bricks, hidden))
+        });
+        let total_mass = |cut: &Cut| cut.values().map(|b| self.mass(b)).sum::<f64>();
+        let meets = from_root.0.values().all(|b| Self::weighted(b) <= self.options.tolerance);
+        let other = if meets { None } else { fine.map(|(bricks, hidden)| self.grow(bricks, hidden)) };
+        let (cut, _, skipped) = match other {
+            Some(other) if total_mass(&other.0) < total_mass(&from_root.0) => other,
+            _ => from_root,
+        };
+        (cut, skipped)
+    }
+
+    /// The selection of `bricks`: its bytes, its largest weighted error (a
+    /// warning when above the tolerance, unless `warning` is set already) and
+    /// its [`estimated_error`].
+    fn selection(&self, bricks: Vec<Brick>, skipped: usize, mut warning: Option<String>) -> Selection {
+        let max_error = bricks.iter().map(Self::weighted).fold(0.0, f64::max);
+        if warning.is_none() && max_error > self.options.tolerance {
+            warning = Some(format!(
+                "the budget of {} bytes reaches a largest error of {:.4} of the data range, above the tolerance {}: \
+                 raise the budget to reach it",
+                self.options.budget_bytes, max_error, self.options.tolerance
+            ));
+        }
+        let texture_bytes = bricks.iter().map(|b| b.bytes).sum();
+        let point_bytes = bricks.iter().map(|b| b.point_bytes).sum();
+        let estimated_error = estimated_error(self.octree, &bricks, self.visible);
+        Selection {
+            bricks,
+            texture_bytes,
+            point_bytes,
+            budget_bytes: self.options.budget_bytes,
+            max_error,
+            estimated_error,
+            skipped,
+            warning,
+        }
+    }
+}
+
+/// Every brick of `selection` whose stride is the points' factor takes all
+/// its points (what drawing a uniform stride with its points costs; the
+/// budget is not consulted). [`crate::plan::point_slabs::add_points`] draws points only
+/// in bricks that took them.
+pub fn take_all_points(selection: &mut Selection, points: &PointMass) {
+    for b in &mut selection.bricks {
+        if b.stride == points.factor {
+            let (count, _, _) = points.in_box(b.lo, b.hi);
+            b.point_count = count;
+            b.point_bytes = count * points.point_bytes;
+        }
+    }
+    selection.point_bytes = selection.bricks.iter().map(|b| b.point_bytes).sum();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::grid::ScalarType;
+    use crate::datasets::{generate, Dataset};
+    use crate::octree::BuildOptions;
+    use crate::plan::select::{uniform, Roi};
+
+    fn octree(size: usize) -> VolumeOctree {
+        octree_of(Dataset::SheppLogan, size)
+    }
+
+    fn octree_of(dataset: Dataset, size: usize) -> VolumeOctree {
+        let v = generate(dataset, size, ScalarType::F32);
+        VolumeOctree::build(&v.grid(None).unwrap(), &BuildOptions { leaf_size: 8 }).unwrap()
+    }
+
+    /// Every grid cell lies in exactly one brick.
+    fn assert_tiles(o: &VolumeOctree, s: &Selection) {
+        let d = o.layout().dims;
+        let mut count = vec![0u8; (d[0] - 1) * (d[1] - 1) * (d[2] - 1)];
+        for b in &s.bricks {
+            for z in b.lo[2]..b.hi[2] {
+                for y in b.lo[1]..b.hi[1] {
+                    for x in b.lo[0]..b.hi[0] {
+                        count[x + (d[0] - 1) * (y + (d[1] - 1) * z)] += 1;
+                    }
+                }
+            }
+        }
+        assert!(count.iter().all(|&c| c == 1), "the cut does not tile the grid once");
+    }
+
+    #[test]
+    fn budget_is_respected_and_more_budget_buys_less_error() {
+        let o = octree(65);
+        let mut last = f64::INFINITY;
+        for budget in [4_000, 40_000, 400_000, 4_000_000] {
+            let s = select(&o, &SelectOptions::new(budget, 0.0), |_, _| true).unwrap();
+            assert!(s.texture_bytes <= budget, "{} > {budget}", s.texture_bytes);
+            assert_eq!(s.texture_bytes, s.bricks.iter().map(|b| b.bytes).sum::<usize>());
+            assert_tiles(&o, &s);
+            assert!(s.max_error <= last);
+            last = s.max_error;
+        }
+    }
+
+    #[test]
+    fn zero_budget_is_an_error_and_a_tiny_one_a_warning() {
+        let o = octree(33);
+        let e = select(&o, &SelectOptions::new(0, 0.0), |_, _| true).unwrap_err().to_string();
+        assert!(e.contains("budget is 0 bytes"), "{e}");
+        let e = select(&o, &SelectOptions::new(1000, f64::NAN), |_, _| true).unwrap_err().to_string();
+        assert!(e.contains("tolerance"), "{e}");
+        let roi = Some(Roi { center: [1.0; 3], radius: 0.0 });
+        let e =
+            select(&o, &SelectOptions { roi, ..SelectOptions::new(1000, 0.0) }, |_, _| true).unwrap_err().to_string();
+        assert!(e.contains("radius > 0"), "{e}");
+        let e = select(&o, &SelectOptions { bytes_per_texel: 0, ..SelectOptions::new(1000, 0.0) }, |_, _| true)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bytes per texel"), "{e}");
+        let s = select(&o, &SelectOptions::new(1, 0.0), |_, _| true).unwrap();
+        assert_eq!(s.bricks.len(), 1);
+        assert!(s.warning.as_deref().unwrap_or("").contains("below the coarsest"));
+    }
+
+    #[test]
+    fn tolerance_stops_refinement_and_transparent_nodes_cost_nothing() {
+        // Smooth data: coarse levels already meet a loose tolerance (the
+        // phantom's sharp edges keep a large error at every level but the finest).
+        let o = octree_of(Dataset::MarschnerLobb, 65);
+        let loose = select(&o, &SelectOptions::new(100_000_000, 0.3), |_, _| true).unwrap();
+        let tight = select(&o, &SelectOptions::new(100_000_000, 0.0), |_, _| true).unwrap();
+        assert!(
+            loose.texture_bytes < tight.texture_bytes,
+            "{} {} {} {}",
+            loose.texture_bytes,
+            tight.texture_bytes,
+            loose.max_error,
+            tight.max_error
+        );
+        assert!(loose.max_error <= 0.3 && tight.max_error == 0.0);
+        assert!(loose.warning.is_none() && tight.warning.is_none());
+        // Only nodes reaching above 0.8 are visible: the rest are skipped.
+        let some = select(&o, &SelectOptions::new(100_000_000, 0.0), |_, max| max > 0.8).unwrap();
+        assert!(some.skipped > 0 && some.texture_bytes < tight.texture_bytes);
+    }
+
+    /// A node whose only error lies on a far face (a face sample its
+    /// half-open box leaves to the neighbour) has `Q_0 = 0` but draws that
+    /// error in the cells beside the face: a budget with room refines it,
+    /// and the estimate reaches 0.
+    #[test]
+    fn an_error_on_a_far_face_is_refined_when_the_budget_has_room() {
+        let n = 33;
+        let mut data = vec![0.0f32; n * n * n];
+        data[16 + n * (8 + n * 8)] = 1.0; // on the face x = 16 between the leaves [0, 16] and [16, 32]
+        let grid = crate::data::grid::Grid::scalar(crate::data::grid::Samples::F32(&data), [n; 3]).unwrap();
+        let o = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 16 }).unwrap();
+        let left = o.layout().id(1, [0, 0, 0]);
+        let node = o.node(left);
+        assert_eq!((node.squared_error(0), node.error(0)), (0.0, 1.0), "Q_0 = 0 but E_0 = 1");
+        let s = select(&o, &SelectOptions::new(10_000_000, 0.0), |_, _| true).unwrap();
+        assert_eq!((s.max_error, s.estimated_error), (0.0, 0.0), "{:?}", s.bricks);
+        assert!(s.bricks.iter().all(|b| b.error == 0.0));
+    }
+
+    #[test]
+    fn roi_refines_near_its_centre_first() {
+        let o = octree(65);
+        let roi = Roi { center: [8.0, 8.0, 32.0], radius: 8.0 };
+        let s = select(&o, &SelectOptions { roi: Some(roi), ..SelectOptions::new(60_000, 0.0) }, |_, _| true).unwrap();
+        let near = s.bricks.iter().filter(|b| b.importance == 1.0).map(|b| b.stride).min().unwrap();
+        let far = s.bricks.iter().filter(|b| b.importance < 0.3).map(|b| b.stride).min().unwrap_or(usize::MAX);
+        assert!(near < far, "near stride {near}, far {far}");
+    }
+
+    fn total_mass(o: &VolumeOctree, s: &Selection) -> f64 {
+        s.bricks.iter().map(|b| b.importance * o.node(b.node).squared_error(b.p) as f64).sum()
+    }
+
+    /// At the bytes of uniform downsampling, the selection's squared error
+    /// is never above the uniform one's, on data with detail in places
+    /// (the phantom) and everywhere (Marschner-Lobb), and the phantom's
+    /// empty and constant parts buy it a much smaller one.
+    #[test]
+    fn never_worse_than_uniform_at_its_bytes() {
+        for dataset in [Dataset::SheppLogan, Dataset::MarschnerLobb] {
+            let o = octree_of(dataset, 65);
+            for stride in [2, 4, 8] {
+                let better = if dataset == Dataset::SheppLogan && stride == 2 { 0.9 } else { 1.0 };
+                let u = uniform(&o, stride, 4).unwrap();
+                let s = select(&o, &SelectOptions::new(u.texture_bytes, 0.0), |_, _| true).unwrap();
+                assert!(s.texture_bytes <= u.texture_bytes);
+                let (ms, mu) = (total_mass(&o, &s), total_mass(&o, &u));
+                assert!(ms <= mu * better + 1e-12, "{dataset:?} stride {stride}: {ms} vs uniform {mu}");
+            }
+        }
+    }
+
+    /// A node's cheapest form adds no squared error and no bytes, and drops
+    /// transparent children.
+    #[test]
+    fn cheapest_form_loses_nothing() {
+        let o = octree(65);
+        let l = o.layout().root_log2 as usize;
+        let max_p = |n: &NodeRef<'_>| l - n.level;
+        let brick_of = |id: NodeId, p: usize| make_brick(&o, &o.node(id), p, 1.0, 4);
+        let root = o.node(o.root());
+        for p in 1..=l {
+            let own = brick_of(root.id, p);
+            for visible in [&(|_: f64, _: f64| true) as &dyn Fn(f64, f64) -> bool, &|_, max| max > 0.5] {
+                let (bricks, _) = cheapest(&o, &root, p, &brick_of, &max_p, visible, &Memo::default());
+                let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
+                let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
+                assert!(bytes <= own.bytes, "p {p}: {bytes} > {}", own.bytes);
+                assert!(mass <= root.squared_error(p) as f64 * (1.0 + 1e-5) + 1e-9, "p {p}");
+            }
+        }
+    }
+
+    #[test]
+    fn uniform_is_one_texture_of_the_whole_grid() {
+        let o = octree(65);
+        let u = uniform(&o, 2, 4).unwrap();
+        assert_tiles(&o, &u);
+        assert_eq!(u.bricks.len(), 1);
+        assert_eq!((u.bricks[0].stride, u.bricks[0].texels), (2, [33, 33, 33]));
+        assert_eq!(u.texture_bytes, 33 * 33 * 33 * 4);
+        assert_eq!(u.max_error, o.node(o.root()).error(u.bricks[0].p) as f64);
+        assert!(uniform(&o, 3, 4).is_err() && uniform(&o, 128, 4).is_err());
+    }
+}
