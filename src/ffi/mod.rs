@@ -5,7 +5,7 @@
 //! Volume Octree, and the isosurface and points integrated into it when asked),
 //! and the selections made from it ([`SelectionHandle`]).
 //!
-//! Every function body runs under [`guard::guarded`] and returns `Result`, so
+//! Every function body runs under `guard::guarded` and returns `Result`, so
 //! a Rust panic becomes a `rust::Error` exception on the C++ side (reported
 //! with `vtkErrorMacro`) instead of aborting ParaView.
 //!
