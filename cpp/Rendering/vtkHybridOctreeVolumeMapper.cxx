@@ -1,6 +1,5 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 
-#include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
@@ -144,7 +143,6 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   // Transfer function table (what the CPU compositor gets too).
   CompositeScene Transfer;
   std::vector<float> Table;
-  vtkHybridOctreeOpacityTable Opacity; ///< the table's zero-opacity test
   double RangeLo = 0.0;
   double RangeHi = 1.0;
   bool TableUploaded = false;
@@ -385,7 +383,6 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
     in.Table.swap(table);
     in.RangeLo = range[0];
     in.RangeHi = range[1];
-    in.Opacity.Set(in.Table, range[0], range[1]);
     in.TableUploaded = false;
   }
   return true;
@@ -714,9 +711,9 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
     this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
   in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   std::vector<vtkTextureObject*> textures(bricks, nullptr);
-  // Per brick the box its slices are clipped to: its visible blocks (empty: not drawn).
-  std::vector<double> drawBounds(6 * bricks, 0.0);
-  std::vector<char> drawn(bricks, 0);
+  // The frame's geometry is made from each brick's block ranges (kept with its texture).
+  vtkHybridOctreeBridge::BrickGeometryInput geometryInput;
+  geometryInput.BlockRanges.resize(bricks, nullptr);
   for (std::size_t i = 0; i < bricks; ++i)
   {
     const std::size_t brick = list.Brick[i];
@@ -733,16 +730,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
       return false;
     }
     textures[i] = resident->Texture;
-    double lo[3], hi[3];
-    drawn[i] = resident->Occupancy.VisibleBox(in.Opacity, lo, hi);
-    for (int a = 0; a < 3 && drawn[i]; ++a)
-    {
-      // Texel t sits at min + t * stride * spacing (the last one at most at max).
-      const double step = list.Stride[i] * in.Grid.Spacing[a];
-      const double* b = &list.Bounds[6 * i + 2 * a];
-      drawBounds[6 * i + 2 * a] = std::max(b[0], b[0] + lo[a] * step);
-      drawBounds[6 * i + 2 * a + 1] = std::min(b[1], b[0] + hi[a] * step);
-    }
+    geometryInput.BlockRanges[i] = &resident->BlockRanges;
   }
   // The transfer function table.
   if (!in.TableTexture)
@@ -772,27 +760,40 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   const bool surfacePerBrick = interactive && batches;
   const vtkHybridOctreeInteractiveReduction::Level sampling =
     vtkHybridOctreeInteractiveReduction::GetLevel(level);
-  vtkOpenGLHybridOctreeBrickDrawer::SurfaceData translucent;
+  // Per brick its slices clipped to its visible blocks, the translucent
+  // triangles and the points in the slabs between them, or its ray-marched box.
+  geometryInput.List = &list;
+  std::copy(cam.Position, cam.Position + 3, geometryInput.Eye);
+  std::copy(cam.ViewUp, cam.ViewUp + 3, geometryInput.ViewUp);
+  std::copy(in.Grid.Spacing, in.Grid.Spacing + 3, geometryInput.Spacing);
+  geometryInput.Table = &in.Table;
+  geometryInput.TableLo = in.RangeLo;
+  geometryInput.TableHi = in.RangeHi;
   if (batches && !interactive)
   {
-    translucent.Vertices = &in.SurfaceDrawer.GetVertexData();
-    translucent.Triangles = &in.SurfaceDrawer.GetIndexData();
+    geometryInput.SurfaceVertices = &in.SurfaceDrawer.GetVertexData();
+    geometryInput.SurfaceTriangles = &in.SurfaceDrawer.GetIndexData();
   }
-  vtkOpenGLHybridOctreeBrickDrawer::PointData points;
   if (in.HasPoints && !list.BucketOffsets.empty() && !interactive)
   {
-    points.Drawing = &in.Drawing;
-    points.Shades = &in.Shades;
-    points.Gaussian = this->PointFootprint == 1;
+    geometryInput.PointPositions = &in.Drawing.Position;
+    geometryInput.PointShades = &in.Shades;
+    geometryInput.GaussianPoints = this->PointFootprint == 1;
   }
-  this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(
-    in.Drawer.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp, translucent, points));
-  this->LastPoints = static_cast<vtkTypeInt64>(in.Drawer.GetPointsPlaced());
+  vtkHybridOctreeBridge::BrickGeometry geometry;
+  if (!vtkHybridOctreeBridge::GetBrickGeometry(geometryInput, geometry, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(geometry.TrianglesPlaced);
+  this->LastPoints = static_cast<vtkTypeInt64>(geometry.PointsPlaced);
+  in.Drawer.SetGeometry(std::move(geometry), list.ReferenceSpacing);
   this->LastImageSampleDistance = sampling.ImageSampleDistance;
   this->LastSampleSpacing = sampling.SampleSpacing;
   for (std::size_t i = 0; i < bricks; ++i)
   {
-    if (drawn[i])
+    if (in.Drawer.IsDrawn(i))
     {
       // The lattice planes sampled: every factor-th slice of a sparser ray march.
       const double slices = static_cast<double>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
