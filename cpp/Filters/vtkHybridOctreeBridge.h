@@ -252,7 +252,7 @@ struct PointsDrawing
 
 /**
  * What the OpenGL mapper draws of `List` for one camera, computed by the Rust
- * core (src/plan/geometry, the CPU compositor's rules; see
+ * core (src/plan/draw_geometry, the CPU compositor's rules; see
  * GetBrickGeometry()). `Eye` and `ViewUp` are the camera in the list's frame,
  * `Spacing` the image's, `Table` the transfer function's table (4 floats a
  * cell over [TableLo, TableHi], as the shader samples it), `BlockRanges[i]`

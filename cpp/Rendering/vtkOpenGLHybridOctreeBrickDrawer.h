@@ -14,7 +14,7 @@
  * compositor's sampling of the same DrawList.
  *
  * The vertices are made by the Rust core (vtkHybridOctreeBridge::
- * GetBrickGeometry(), src/plan/geometry, with the CPU compositor's slab
+ * GetBrickGeometry(), src/plan/draw_geometry, with the CPU compositor's slab
  * rule); this class uploads and draws them. A translucent surface is drawn
  * inside the slabs between the slices. With
  * the brick's slices at depths S[0] > S[1] > ... > S[n-1] (back to front),

@@ -1,19 +1,19 @@
 //! The OpenGL mapper's geometry half of the bridge: a brick's block value
 //! ranges, measured from its texels when they are made, and every frame the
-//! vertices of the DrawList's bricks ([`crate::plan::geometry`]), so that
+//! vertices of the DrawList's bricks ([`crate::plan::draw_geometry`]), so that
 //! `vtkOpenGLHybridOctreeBrickDrawer` only uploads and draws.
 //!
 //! The frame's inputs are the host's own copies, borrowed: the DrawList it
 //! holds, the transfer function's table, each brick's block ranges, the
 //! surface triangles and points it uploaded. Per brick, its drawn box is the
 //! box of its visible blocks under the table
-//! ([`crate::plan::geometry::occupancy`]); nothing where none is visible.
+//! ([`crate::plan::draw_geometry::occupancy`]); nothing where none is visible.
 
 use super::guard::{check_len, guarded, Bridged};
 use super::{BrickGeometryDesc, BrickGeometryOutput};
 use crate::base::error::{Error, Result};
-use crate::plan::geometry::occupancy::{measure, ranges_len, visible_bounds, visible_box, OpacityTable};
-use crate::plan::geometry::{brick_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices};
+use crate::plan::draw_geometry::occupancy::{measure, ranges_len, visible_bounds, visible_box, OpacityTable};
+use crate::plan::draw_geometry::{brick_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices};
 use std::ops::Range;
 
 /// The texels per axis of a brick, checked: 3 values whose product fits memory.

@@ -327,7 +327,7 @@ mod bridge {
     }
 
     /// What the OpenGL mapper's vertices of a frame are made from (see
-    /// `plan::geometry`), borrowed from the host: the camera (`eye`,
+    /// `plan::draw_geometry`), borrowed from the host: the camera (`eye`,
     /// `view_up`; `forward` the DrawList's), the image spacing, the DrawList's
     /// parts as DrawListOutput names them, the transfer function's table (4
     /// floats a cell, cells over [table_lo, table_hi]), per brick its block
@@ -366,7 +366,7 @@ mod bridge {
         gaussian_points: bool,
     }
 
-    /// The vertices of every brick of a frame (`plan::geometry::brick_geometry`).
+    /// The vertices of every brick of a frame (`plan::draw_geometry::brick_geometry`).
     #[derive(Debug)]
     struct BrickGeometryOutput {
         /// 10 floats a vertex: position, normal, clip interval (near, far),
@@ -573,7 +573,7 @@ mod bridge {
         ) -> Result<()>;
 
         /// Floats of the block ranges of a brick of `dims` texels (x, y, z):
-        /// 2 per block of 4^3 cells (see `plan::geometry::occupancy`).
+        /// 2 per block of 4^3 cells (see `plan::draw_geometry::occupancy`).
         fn block_ranges_len(dims: &[usize]) -> Result<usize>;
         /// A brick's block value ranges ([min, max] per block, NaN left out)
         /// from its `texels` (`dims`, x fastest), into the caller's `ranges`

@@ -138,7 +138,7 @@ pub fn slab_of(slices: &[f64], depth: f64) -> usize {
 /// The slabs a primitive of view depths `[d_lo, d_hi]` is drawn in, with
 /// their clip intervals: the one rule of the CPU compositor (through
 /// [`assign_batches`], per batch) and of the OpenGL mapper (per triangle,
-/// [`crate::plan::geometry::brick_geometry()`]):
+/// [`crate::plan::draw_geometry::brick_geometry()`]):
 ///
 /// ```text
 /// far = slab(d_hi),  near = slab(d_lo)
