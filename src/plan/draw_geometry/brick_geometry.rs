@@ -253,12 +253,7 @@ pub fn brick_geometry(
     points: Option<&PointVertices<'_>>,
 ) -> Result<BrickGeometry> {
     let basis = view_basis(view.forward, view.view_up);
-    let f = view.forward.map(|v| v as f32);
-    let e = view.eye.map(|v| v as f32);
-    // A triangle vertex's depth: f32 differences, f64 products and sums.
-    let depth = |p: &[f32]| {
-        ((p[0] - e[0]) as f64 * f[0] as f64 + (p[1] - e[1]) as f64 * f[1] as f64) + (p[2] - e[2]) as f64 * f[2] as f64
-    };
+    let eye = Eye32 { e: view.eye.map(|v| v as f32), f: view.forward.map(|v| v as f32) };
     let point_count = points.map_or(0, |p| (p.positions.len() / 3).min(p.shades.len() / 4));
     let mut out = BrickGeometry {
         point_up: basis.1.map(|v| v as f32),
@@ -271,37 +266,15 @@ pub fn brick_geometry(
     let (mut placed, mut items, mut ranges) = (Vec::<Placed>::new(), Vec::<SlabItem>::new(), Vec::new());
     for brick in bricks {
         let slices = brick.slices;
-        let n = slices.len();
         placed.clear();
         if let Some(surface) = surface {
-            ranges.clear();
-            ranges.extend(brick.batches.iter().map(|r| (r.start, r.end)));
-            // The union of the batches' ranges.
-            ranges.sort_unstable();
-            let mut covered = 0u32;
-            for &(first, end) in &ranges {
-                for t in first.max(covered)..end {
-                    let corners = triangle(surface, t)?;
-                    let (mut z_min, mut z_max) = (f64::INFINITY, f64::NEG_INFINITY);
-                    for p in corners {
-                        let z = depth(p);
-                        z_min = z_min.min(z);
-                        z_max = z_max.max(z);
-                    }
-                    for (slab, clip) in slab_copies(slices, z_min, z_max) {
-                        let (near, far) = clip.map_or((-UNBOUNDED, UNBOUNDED), |(a, b)| (clip_bound(a), clip_bound(b)));
-                        placed.push(Placed { slab, triangle: t, near, far });
-                    }
-                }
-                covered = covered.max(end);
-            }
-            placed.sort_by_key(|p| p.slab);
+            place_triangles(brick, surface, &eye, &mut ranges, &mut placed)?;
             out.triangles_placed += placed.len();
         }
         let mut buckets = if points.is_some() { &brick.buckets[..] } else { &[][..] };
         if placed.is_empty() && buckets.is_empty() {
             // No triangles or points between its slices: ray-marched, drawn as its box.
-            if brick.drawn && n > 0 {
+            if brick.drawn && !slices.is_empty() {
                 stream.emit_box(&brick.bounds);
             }
             out.brick_first.push(stream.data.len() / FLOATS_PER_VERTEX);
@@ -309,69 +282,16 @@ pub fn brick_geometry(
             continue;
         }
         let mut next = 0;
-        for s in 0..=n {
+        for s in 0..=slices.len() {
             items.clear();
-            for (k, copy) in placed.iter().enumerate().skip(next).take_while(|(_, c)| c.slab == s) {
-                let corners = triangle(surface.expect("placed triangles have a surface"), copy.triangle)?;
-                let mut z = 0.0;
-                for p in corners {
-                    for a in 0..3 {
-                        z += (p[a] - e[a]) as f64 * f[a] as f64 / 3.0;
-                    }
-                }
-                let z = cxx_min(cxx_max(z, copy.near as f64), copy.far as f64);
-                items.push(SlabItem { depth: z, id: k as u32, point: false });
-                next = k + 1;
+            next = collect_triangles(s, &placed, next, surface, &eye, &mut items)?;
+            if let Some(points) = points {
+                buckets = collect_points(s, buckets, points, point_count, view, &mut items);
             }
-            while let Some(((slab, ids), rest)) = buckets.split_first() {
-                if *slab > s {
-                    break;
-                }
-                buckets = rest;
-                let points = points.expect("buckets are read with points");
-                for &id in *ids {
-                    let i = id as usize;
-                    // Not in the set, or adds nothing (a_p not above 0, NaN included).
-                    if i >= point_count || points.shades[4 * i + 3].partial_cmp(&0.0) != Some(Ordering::Greater) {
-                        continue;
-                    }
-                    let mut z = 0.0;
-                    for (a, &v) in points.positions[3 * i..3 * i + 3].iter().enumerate() {
-                        z += (v as f64 - view.eye[a]) * view.forward[a];
-                    }
-                    items.push(SlabItem { depth: z, id, point: true });
-                }
-            }
-            // Far first, stably (std::stable_sort with a.depth > b.depth).
-            items.sort_by(|a, b| {
-                if a.depth > b.depth {
-                    Ordering::Less
-                } else if b.depth > a.depth {
-                    Ordering::Greater
-                } else {
-                    Ordering::Equal
-                }
-            });
-            for item in &items {
-                if item.point {
-                    stream.emit_point(points.expect("point items have points"), item.id);
-                    out.points_placed += 1;
-                    continue;
-                }
-                let copy = &placed[item.id as usize];
-                for p in triangle(surface.expect("placed triangles have a surface"), copy.triangle)? {
-                    stream.emit(&p[..3], &p[3..], copy.near, copy.far, PrimitiveKind::SurfaceTriangle, 0.0);
-                }
-            }
+            sort_far_first(&mut items);
+            out.points_placed += emit_items(&items, &placed, surface, points, &mut stream)?;
             if let (Some(&depth), true) = (slices.get(s), brick.drawn) {
-                let first = stream.data.len();
-                let mut polygon = Vec::new();
-                append_slice_polygon(&brick.bounds, view.eye, view.forward, basis, depth, &mut polygon);
-                stream.data.reserve(polygon.len() / 3 * FLOATS_PER_VERTEX);
-                for v in polygon.chunks_exact(3) {
-                    stream.emit(v, &[0.0; 3], -UNBOUNDED, UNBOUNDED, PrimitiveKind::Slice, 0.0);
-                }
-                debug_assert_eq!((stream.data.len() - first) % (3 * FLOATS_PER_VERTEX), 0);
+                emit_slice(&mut stream, brick, view, basis, depth);
             }
         }
         out.brick_first.push(stream.data.len() / FLOATS_PER_VERTEX);
@@ -379,6 +299,174 @@ pub fn brick_geometry(
     }
     out.vertices = stream.data;
     Ok(out)
+}
+
+/// The eye and view direction in `f32`, as the mapper held them.
+struct Eye32 {
+    e: [f32; 3],
+    f: [f32; 3],
+}
+
+impl Eye32 {
+    /// A triangle vertex's depth `(p - eye) . forward`: f32 differences, f64
+    /// products and sums.
+    fn depth(&self, p: &[f32]) -> f64 {
+        let (e, f) = (self.e, self.f);
+        ((p[0] - e[0]) as f64 * f[0] as f64 + (p[1] - e[1]) as f64 * f[1] as f64) + (p[2] - e[2]) as f64 * f[2] as f64
+    }
+
+    /// A triangle's centroid depth, `sum over corners and axes of (p - eye) f / 3`.
+    fn centroid_depth(&self, corners: [&[f32]; 3]) -> f64 {
+        let mut z = 0.0;
+        for p in corners {
+            for ((&v, &e), &f) in p[..3].iter().zip(&self.e).zip(&self.f) {
+                z += (v - e) as f64 * f as f64 / 3.0;
+            }
+        }
+        z
+    }
+}
+
+/// The triangle copies of `brick` into `placed`, by slab: each triangle of
+/// the union of its batches' ranges (once) where [`slab_copies`] puts it
+/// from its vertices' depth range, with its clip interval.
+fn place_triangles(
+    brick: &BrickSlabs<'_>,
+    surface: &SurfaceVertices<'_>,
+    eye: &Eye32,
+    ranges: &mut Vec<(u32, u32)>,
+    placed: &mut Vec<Placed>,
+) -> Result<()> {
+    ranges.clear();
+    ranges.extend(brick.batches.iter().map(|r| (r.start, r.end)));
+    // The union of the batches' ranges.
+    ranges.sort_unstable();
+    let mut covered = 0u32;
+    for &(first, end) in ranges.iter() {
+        for t in first.max(covered)..end {
+            let corners = triangle(surface, t)?;
+            let (mut z_min, mut z_max) = (f64::INFINITY, f64::NEG_INFINITY);
+            for p in corners {
+                let z = eye.depth(p);
+                z_min = z_min.min(z);
+                z_max = z_max.max(z);
+            }
+            for (slab, clip) in slab_copies(brick.slices, z_min, z_max) {
+                let (near, far) = clip.map_or((-UNBOUNDED, UNBOUNDED), |(a, b)| (clip_bound(a), clip_bound(b)));
+                placed.push(Placed { slab, triangle: t, near, far });
+            }
+        }
+        covered = covered.max(end);
+    }
+    placed.sort_by_key(|p| p.slab);
+    Ok(())
+}
+
+/// Slab `s`'s triangle copies (those of `placed` from `next` on, which is
+/// sorted by slab) into `items` at their centroid's depth clamped to their
+/// clip interval; the index after the last one taken.
+fn collect_triangles(
+    s: usize,
+    placed: &[Placed],
+    mut next: usize,
+    surface: Option<&SurfaceVertices<'_>>,
+    eye: &Eye32,
+    items: &mut Vec<SlabItem>,
+) -> Result<usize> {
+    for (k, copy) in placed.iter().enumerate().skip(next).take_while(|(_, c)| c.slab == s) {
+        let corners = triangle(surface.expect("placed triangles have a surface"), copy.triangle)?;
+        let z = cxx_min(cxx_max(eye.centroid_depth(corners), copy.near as f64), copy.far as f64);
+        items.push(SlabItem { depth: z, id: k as u32, point: false });
+        next = k + 1;
+    }
+    Ok(next)
+}
+
+/// The points of the buckets of slab `s` and before (the head of
+/// `buckets`, sorted by slab) that add something (`a_p > 0`) into `items`
+/// at their depth; the buckets left.
+fn collect_points<'b>(
+    s: usize,
+    mut buckets: &'b [(usize, &'b [u32])],
+    points: &PointVertices<'_>,
+    point_count: usize,
+    view: &GeometryView,
+    items: &mut Vec<SlabItem>,
+) -> &'b [(usize, &'b [u32])] {
+    while let Some(((slab, ids), rest)) = buckets.split_first() {
+        if *slab > s {
+            break;
+        }
+        buckets = rest;
+        for &id in *ids {
+            let i = id as usize;
+            // Not in the set, or adds nothing (a_p not above 0, NaN included).
+            if i >= point_count || points.shades[4 * i + 3].partial_cmp(&0.0) != Some(Ordering::Greater) {
+                continue;
+            }
+            let mut z = 0.0;
+            for (a, &v) in points.positions[3 * i..3 * i + 3].iter().enumerate() {
+                z += (v as f64 - view.eye[a]) * view.forward[a];
+            }
+            items.push(SlabItem { depth: z, id, point: true });
+        }
+    }
+    buckets
+}
+
+/// Far first, stably (std::stable_sort with a.depth > b.depth).
+fn sort_far_first(items: &mut [SlabItem]) {
+    items.sort_by(|a, b| {
+        if a.depth > b.depth {
+            Ordering::Less
+        } else if b.depth > a.depth {
+            Ordering::Greater
+        } else {
+            Ordering::Equal
+        }
+    });
+}
+
+/// A slab's items as vertices: a point's quad, a triangle copy's three
+/// vertices with its clip interval; the points emitted.
+fn emit_items(
+    items: &[SlabItem],
+    placed: &[Placed],
+    surface: Option<&SurfaceVertices<'_>>,
+    points: Option<&PointVertices<'_>>,
+    stream: &mut Stream,
+) -> Result<usize> {
+    let mut emitted = 0;
+    for item in items {
+        if item.point {
+            stream.emit_point(points.expect("point items have points"), item.id);
+            emitted += 1;
+            continue;
+        }
+        let copy = &placed[item.id as usize];
+        for p in triangle(surface.expect("placed triangles have a surface"), copy.triangle)? {
+            stream.emit(&p[..3], &p[3..], copy.near, copy.far, PrimitiveKind::SurfaceTriangle, 0.0);
+        }
+    }
+    Ok(emitted)
+}
+
+/// The slice at view depth `depth`: its plane's polygon in the brick's drawn box.
+fn emit_slice(
+    stream: &mut Stream,
+    brick: &BrickSlabs<'_>,
+    view: &GeometryView,
+    basis: ([f64; 3], [f64; 3]),
+    depth: f64,
+) {
+    let first = stream.data.len();
+    let mut polygon = Vec::new();
+    append_slice_polygon(&brick.bounds, view.eye, view.forward, basis, depth, &mut polygon);
+    stream.data.reserve(polygon.len() / 3 * FLOATS_PER_VERTEX);
+    for v in polygon.chunks_exact(3) {
+        stream.emit(v, &[0.0; 3], -UNBOUNDED, UNBOUNDED, PrimitiveKind::Slice, 0.0);
+    }
+    debug_assert_eq!((stream.data.len() - first) % (3 * FLOATS_PER_VERTEX), 0);
 }
 
 /// The bricks of a Rust [`DrawList`] for [`brick_geometry`]: every brick
