@@ -189,6 +189,7 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   }
   desc.has_isovalue = options.HasIsovalue;
   desc.isovalue = options.Isovalue;
+  desc.gradient_border = options.GradientBorder;
   return desc;
 }
 

@@ -141,6 +141,9 @@ struct SelectDescription
   std::vector<double> OpacityPoints;
   bool HasIsovalue = false; ///< nodes holding the isovalue always show
   double Isovalue = 0.0;
+  /// Count one border texel per side of each brick in its bytes (a shaded
+  /// volume's gradient reads them).
+  bool GradientBorder = false;
 };
 
 /// Summary of a selection (see SelectionSummary in src/ffi/mod.rs).
