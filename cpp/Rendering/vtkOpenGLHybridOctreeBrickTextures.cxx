@@ -1,5 +1,7 @@
 #include "vtkOpenGLHybridOctreeBrickTextures.h"
 
+#include "vtkHybridOctreeBridge.h"
+
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 
@@ -40,7 +42,7 @@ bool vtkOpenGLHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
 
 const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTextures::Acquire(
   vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3], const Fetch& fetch,
-  std::string& error)
+  std::string& error, std::size_t border)
 {
   if (this->Window && this->Window != window)
   {
@@ -80,9 +82,41 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
       std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " float 3D texture";
     return nullptr;
   }
+  std::vector<float> ranges;
+  const float* own = this->Scratch.data();
+  std::size_t ownTexels[3] = { texels[0], texels[1], texels[2] };
+  if (border > 0)
+  {
+    // The block ranges describe the brick's own texels, inside the border.
+    for (int a = 0; a < 3; ++a)
+    {
+      ownTexels[a] = texels[a] - 2 * border;
+    }
+    this->Interior.resize(ownTexels[0] * ownTexels[1] * ownTexels[2]);
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < ownTexels[2]; ++k)
+    {
+      for (std::size_t j = 0; j < ownTexels[1]; ++j)
+      {
+        const float* row =
+          this->Scratch.data() + border + texels[0] * ((j + border) + texels[1] * (k + border));
+        for (std::size_t i = 0; i < ownTexels[0]; ++i)
+        {
+          this->Interior[at++] = row[i];
+        }
+      }
+    }
+    own = this->Interior.data();
+  }
+  if (!vtkHybridOctreeBridge::MeasureBlockRanges(
+        own, ownTexels[0] * ownTexels[1] * ownTexels[2], ownTexels, ranges, error))
+  {
+    texture->ReleaseGraphicsResources(window);
+    return nullptr;
+  }
   Resident& entry = this->Entries[key];
   entry.Texture = texture;
-  entry.Occupancy.Measure(this->Scratch, texels);
+  entry.BlockRanges.swap(ranges);
   entry.Bytes = bytes;
   entry.LastFrame = this->Frame;
   this->ResidentBytes += bytes;

@@ -13,12 +13,14 @@
  *
  * Texels are single-channel 32-bit floats (4 bytes each), filtered linearly
  * and clamped to the edge. With each texture the cache keeps the brick's
- * block value ranges (vtkHybridOctreeBrickOccupancy), measured at upload.
+ * block value ranges, measured from its texels at upload by the Rust core
+ * (vtkHybridOctreeBridge::MeasureBlockRanges()) and handed back to it every
+ * frame (vtkHybridOctreeBridge::GetBrickGeometry()): which blocks the
+ * transfer function leaves visible.
  */
 #ifndef vtkOpenGLHybridOctreeBrickTextures_h
 #define vtkOpenGLHybridOctreeBrickTextures_h
 
-#include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 
@@ -47,7 +49,7 @@ public:
   struct Resident
   {
     vtkSmartPointer<vtkTextureObject> Texture;
-    vtkHybridOctreeBrickOccupancy Occupancy;
+    std::vector<float> BlockRanges; ///< opaque to C++: for GetBrickGeometry()
     std::size_t Bytes = 0;
     std::uint64_t LastFrame = 0;
   };
@@ -60,10 +62,12 @@ public:
    * resident one, or a new one filled from `fetch`, after releasing least
    * recently drawn textures of earlier frames as needed to stay within the
    * limit. nullptr and `error` when the upload fails or this frame's textures
-   * alone would pass the limit.
+   * alone would pass the limit. With a gradient `border` (shading: 1) the
+   * texels carry that many border texels per side; the block ranges are
+   * measured on the brick's own texels inside it.
    */
   const Resident* Acquire(vtkOpenGLRenderWindow* window, const Key& key,
-    const std::size_t texels[3], const Fetch& fetch, std::string& error);
+    const std::size_t texels[3], const Fetch& fetch, std::string& error, std::size_t border = 0);
 
   /// Whether the bricks (`nodes[i]`, `strides[i]`) are all resident.
   bool HoldsAll(
@@ -91,6 +95,7 @@ private:
   std::uint64_t Frame = 0;
   vtkWindow* Window = nullptr;
   std::vector<float> Scratch;
+  std::vector<float> Interior; ///< a bordered brick's own texels
 };
 
 #endif
