@@ -189,6 +189,7 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   }
   desc.has_isovalue = options.HasIsovalue;
   desc.isovalue = options.Isovalue;
+  desc.gradient_border = options.GradientBorder;
   return desc;
 }
 
@@ -487,6 +488,41 @@ bool Selection::GetBrickTexels(const void* bytes, std::size_t byteCount,
   return Guarded(error, [&] {
     HandleFor(this->Impl)
       .brick_texels(ToSlice(bytes, byteCount), ToRust(grid), brick, Out(texels, count));
+  });
+}
+
+bool Selection::GetBrickTexelsBordered(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, std::size_t brick, float* texels, std::size_t count,
+  std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .brick_texels_bordered(ToSlice(bytes, byteCount), ToRust(grid), brick, Out(texels, count));
+  });
+}
+
+bool Selection::SetShading(const ShadingDescription& shading, std::string& error) const
+{
+  return Guarded(error, [&] {
+    hybrid_octree::ShadingDesc desc;
+    desc.shade = shading.Shade;
+    desc.ambient = shading.Ambient;
+    desc.diffuse = shading.Diffuse;
+    desc.specular = shading.Specular;
+    desc.specular_power = shading.SpecularPower;
+    desc.two_sided = shading.TwoSided;
+    desc.headlight = shading.Headlight;
+    auto toRust = [](const std::vector<double>& from, rust::Vec<double>& to) {
+      for (double v : from)
+      {
+        to.push_back(v);
+      }
+    };
+    toRust(shading.LightDirections, desc.light_directions);
+    toRust(shading.LightAmbient, desc.light_ambient);
+    toRust(shading.LightDiffuse, desc.light_diffuse);
+    toRust(shading.LightSpecular, desc.light_specular);
+    HandleFor(this->Impl).set_shading(desc);
   });
 }
 

@@ -141,6 +141,28 @@ struct SelectDescription
   std::vector<double> OpacityPoints;
   bool HasIsovalue = false; ///< nodes holding the isovalue always show
   double Isovalue = 0.0;
+  /// Count one border texel per side of each brick in its bytes (a shaded
+  /// volume's gradient reads them).
+  bool GradientBorder = false;
+};
+
+/// The volume's shading (see ShadingDesc in src/ffi/mod.rs): vtkVolumeProperty's
+/// Shade, Ambient, Diffuse, Specular, SpecularPower and the renderer's lights.
+struct ShadingDescription
+{
+  bool Shade = false; ///< off: nothing else is read
+  double Ambient = 0.1;
+  double Diffuse = 0.7;
+  double Specular = 0.2;
+  double SpecularPower = 10.0;
+  bool TwoSided = true; ///< vtkRenderer's TwoSidedLighting
+  /// VTK's default lighting (one headlight of intensity 1): the first light's
+  /// diffuse and specular colours are used, its direction and ambient are not.
+  bool Headlight = true;
+  std::vector<double> LightDirections; ///< 3 per light: focal point - position, world
+  std::vector<double> LightAmbient;    ///< 3 per light: colour x intensity
+  std::vector<double> LightDiffuse;    ///< 3 per light: colour x intensity
+  std::vector<double> LightSpecular;   ///< 3 per light: colour x intensity
 };
 
 /// Summary of a selection (see SelectionSummary in src/ffi/mod.rs).
@@ -486,6 +508,22 @@ public:
    */
   bool GetBrickTexels(const void* bytes, std::size_t byteCount, const GridDescription& grid,
     std::size_t brick, float* texels, std::size_t count, std::string& error) const;
+
+  /**
+   * GetBrickTexels() with the gradient border of a shaded volume: (texels +
+   * 2) per axis, texel i at clamp(lo + (i - 1) stride, 0, dims - 1); a world
+   * point's texture coordinate is then (x - xmin) / (stride * spacing) + 1
+   * texels. False and `error` on failure.
+   */
+  bool GetBrickTexelsBordered(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    std::size_t brick, float* texels, std::size_t count, std::string& error) const;
+
+  /**
+   * The shading of the DrawLists and pictures made after this call; the
+   * plan then says "volume-shaded" unless the shading changes no colour.
+   * False and `error` on failure (a bad number, no light, lights not in threes).
+   */
+  bool SetShading(const ShadingDescription& shading, std::string& error) const;
 
   /**
    * The CPU compositor's picture of the DrawList (GetDrawList(octree,

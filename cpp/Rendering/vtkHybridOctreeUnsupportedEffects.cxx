@@ -67,12 +67,6 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
       std::to_string(mode) + "); ParaView: Blend Mode) is not implemented: the volume is drawn " +
       "with Composite blending; set the blend mode to Composite, or use " + elsewhere);
   }
-  if (property->GetShade(0))
-  {
-    on.push_back("volume shading (vtkVolumeProperty::ShadeOn; ParaView: Shade) is not "
-                 "implemented: the volume is drawn unshaded; turn Shade off, or use " +
-      elsewhere);
-  }
   if (ModulatesOpacity(property))
   {
     on.push_back("the gradient opacity (vtkVolumeProperty::SetGradientOpacity) is not "

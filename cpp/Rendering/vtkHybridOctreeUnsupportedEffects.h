@@ -4,8 +4,9 @@
  * (private to the module).
  *
  * vtkHybridOctreeVolumeMapper draws Composite blending of one scalar
- * component through a 1D colour and scalar opacity function, unshaded.
- * Settings that ask for more (another blend mode, Shade, a gradient
+ * component through a 1D colour and scalar opacity function, shaded when
+ * the property asks (Shade).
+ * Settings that ask for more (another blend mode, a gradient
  * opacity, a 2D transfer function, cropping, clipping planes, dependent
  * components) are drawn as if off; each one the user has turned on is named
  * in one warning that says what is drawn instead and what to do.

@@ -15,6 +15,8 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -66,6 +68,58 @@ void TransformVector(vtkMatrix4x4* m, const double v[3], double out[3])
   {
     out[r] = m->GetElement(r, 0) * v[0] + m->GetElement(r, 1) * v[1] + m->GetElement(r, 2) * v[2];
   }
+}
+
+/// The volume's shading as VTK's GPU ray caster takes it (vtkOpenGLGPUVolumeRayCastMapper,
+/// VTK 9.2): the property's Shade, Ambient, Diffuse, Specular, SpecularPower
+/// and the renderer's switched-on lights: its default lighting when exactly
+/// one, a headlight of intensity 1, is on, else every light as a
+/// directional one (focal point - position, through `modelInverse` into the
+/// octree's frame; colours times intensity). No light on: unshaded.
+ShadingDescription DescribeShading(
+  vtkRenderer* ren, vtkVolumeProperty* property, vtkMatrix4x4* modelInverse)
+{
+  ShadingDescription shading;
+  shading.Shade = property->GetShade(0) != 0;
+  shading.Ambient = property->GetAmbient(0);
+  shading.Diffuse = property->GetDiffuse(0);
+  shading.Specular = property->GetSpecular(0);
+  shading.SpecularPower = property->GetSpecularPower(0);
+  shading.TwoSided = ren->GetTwoSidedLighting() != 0;
+  if (!shading.Shade)
+  {
+    return shading;
+  }
+  int on = 0;
+  bool headlight = false;
+  vtkLightCollection* lights = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* light = lights->GetNextLight(it))
+  {
+    if (light->GetSwitch() == 0)
+    {
+      continue;
+    }
+    ++on;
+    headlight = on == 1 && light->GetIntensity() == 1.0 && light->LightTypeIsHeadlight();
+    const double* p = light->GetTransformedPosition();
+    const double* f = light->GetTransformedFocalPoint();
+    const double world[3] = { f[0] - p[0], f[1] - p[1], f[2] - p[2] };
+    double model[3];
+    TransformVector(modelInverse, world, model);
+    const double intensity = light->GetIntensity();
+    for (int a = 0; a < 3; ++a)
+    {
+      shading.LightDirections.push_back(model[a]);
+      shading.LightAmbient.push_back(light->GetAmbientColor()[a] * intensity);
+      shading.LightDiffuse.push_back(light->GetDiffuseColor()[a] * intensity);
+      shading.LightSpecular.push_back(light->GetSpecularColor()[a] * intensity);
+    }
+  }
+  shading.Headlight = on == 1 && headlight;
+  shading.Shade = on > 0;
+  return shading;
 }
 
 /// The passes an interactive frame runs for the DrawList's `passes`: a
@@ -160,6 +214,10 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
 
   // Settings the mapper does not draw, each warned about once while on.
   vtkHybridOctreeUnsupportedEffects Unsupported;
+  /// The frame's shading (Prepare), light directions in the octree's frame.
+  ShadingDescription Shading;
+  /// Whether the resident brick textures carry gradient borders.
+  bool BorderedTextures = false;
   // Interactive frames' sampling, from the times of the frames before.
   vtkHybridOctreeInteractiveReduction Reduction;
 };
@@ -466,10 +524,13 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   select.RoiRadius = this->RoiRadius;
   select.HasIsovalue = this->ShowSurface;
   select.Isovalue = this->Isovalue;
+  // Shaded: the bricks' gradient borders count in the budget.
+  select.GradientBorder = property->GetShade(0) != 0;
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
-    in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0 };
+    in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0,
+    select.GradientBorder ? 1.0 : 0.0 };
   return select;
 }
 
@@ -589,6 +650,7 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
     return false;
   }
   this->UpdateModelMatrix(image, vol);
+  this->Internals->Shading = DescribeShading(ren, property, this->Internals->ModelInverse);
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
@@ -623,8 +685,9 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   std::string error;
   const CameraDescription cam = this->ModelCamera(ren);
   const bool surface = in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0;
-  const bool ok = in.Frame->Selected->GetDrawList(
-    *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
+  const bool ok = in.Frame->Selected->SetShading(in.Shading, error) &&
+    in.Frame->Selected->GetDrawList(
+      *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
   if (!ok)
   {
     vtkErrorMacro(<< error);
@@ -756,6 +819,18 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   const Selection& selected = *in.Frame->Selected;
   const double textureBudget =
     this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
+  // Shaded: textures with one border texel per side (the gradient reads
+  // them); the resident ones of the other kind are released first.
+  const bool shaded = list.Passes.find("volume-shaded") != std::string::npos;
+  if (shaded != in.BorderedTextures)
+  {
+    in.Bricks.Clear(window);
+    in.BorderedTextures = shaded;
+  }
+  ShadingDescription shading = in.Shading;
+  shading.Shade = shaded;
+  in.Drawer.SetShading(shading);
+  const std::size_t border = shaded ? 1 : 0;
   in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   textures.assign(bricks, nullptr);
   // The frame's geometry is made from each brick's block ranges (kept with its texture).
@@ -763,13 +838,17 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   for (std::size_t i = 0; i < bricks; ++i)
   {
     const std::size_t brick = list.Brick[i];
+    const std::size_t dims[3] = { list.Texels[3 * i] + 2 * border,
+      list.Texels[3 * i + 1] + 2 * border, list.Texels[3 * i + 2] + 2 * border };
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
-      window, { list.NodeId[i], list.Stride[i] }, &list.Texels[3 * i],
+      window, { list.NodeId[i], list.Stride[i] }, dims,
       [&](float* texels, std::size_t count) {
-        return selected.GetBrickTexels(
-          Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, count, error);
+        return shaded ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
+                          in.Grid, brick, texels, count, error)
+                      : selected.GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+                          brick, texels, count, error);
       },
-      error);
+      error, border);
     if (!resident)
     {
       vtkErrorMacro(<< error);
@@ -1083,9 +1162,10 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   rgba->SetNumberOfComponents(4);
   rgba->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
   std::string error;
-  if (!in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
-        ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
-        static_cast<std::size_t>(height), rgba->GetPointer(0), error))
+  if (!in.Frame->Selected->SetShading(in.Shading, error) ||
+    !in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
+      ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
+      static_cast<std::size_t>(height), rgba->GetPointer(0), error))
   {
     vtkErrorMacro(<< error);
     return false;

@@ -16,6 +16,9 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -43,12 +46,29 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   const double surfaceRGBA[4], std::string& error)
 {
   vtkTextureObject* depth = target.GetDepth();
-  this->Program = window->GetShaderCache()->ReadyShaderProgram(
-    vtkHybridOctreeBrickVS, vtkHybridOctreeBrickFS, "");
+  const bool shade = this->Shading.Shade;
+  std::string fragment = vtkHybridOctreeBrickFS;
+  if (shade)
+  {
+    // The shading variant: its own program; the unshaded one is unchanged.
+    const std::string system = "//VTK::System::Dec";
+    const std::size_t at = fragment.find(system);
+    const std::string defines =
+      "\n#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+    fragment.insert(at == std::string::npos ? 0 : at + system.size(), defines);
+  }
+  vtkShaderProgram* previous = this->Program;
+  this->Program =
+    window->GetShaderCache()->ReadyShaderProgram(vtkHybridOctreeBrickVS, fragment.c_str(), "");
   if (!this->Program)
   {
     error = "the brick shader did not compile";
     return false;
+  }
+  if (this->Vao && previous && previous != this->Program)
+  {
+    // The shaded and unshaded programs alternate: attributes bound anew.
+    this->Vao->ShaderProgramChanged();
   }
   if (!this->Vao)
   {
@@ -127,6 +147,51 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   this->Program->SetUniform4f("surfaceColor", c);
   this->Program->SetUniform3f("pointUp", this->Geometry.PointUp);
   this->Program->SetUniformf("pointSpacing", this->PointSpacing);
+  if (shade && !this->SetShadingUniforms(error))
+  {
+    return false;
+  }
+  return true;
+}
+
+bool vtkOpenGLHybridOctreeBrickDrawer::SetShadingUniforms(std::string& error)
+{
+  const vtkHybridOctreeBridge::ShadingDescription& s = this->Shading;
+  const std::size_t count = s.LightDirections.size() / 3;
+  if (count == 0 || count > static_cast<std::size_t>(MaxLights) ||
+    s.LightDiffuse.size() != 3 * count || s.LightSpecular.size() != 3 * count ||
+    s.LightAmbient.size() != 3 * count)
+  {
+    error = "shading takes 1 to " + std::to_string(MaxLights) + " lights, " +
+      std::to_string(count) + " given: switch some lights off";
+    return false;
+  }
+  const float material[4] = { static_cast<float>(s.Ambient), static_cast<float>(s.Diffuse),
+    static_cast<float>(s.Specular), static_cast<float>(s.SpecularPower) };
+  this->Program->SetUniform4f("material", material);
+  this->Program->SetUniformi("twoSided", s.TwoSided ? 1 : 0);
+  this->Program->SetUniformi("headlight", s.Headlight ? 1 : 0);
+  this->Program->SetUniformi("lightCount", static_cast<int>(count));
+  std::vector<float> directions(3 * MaxLights, 0.0f), ambient(3 * MaxLights, 0.0f),
+    diffuse(3 * MaxLights, 0.0f), specular(3 * MaxLights, 0.0f);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double* d = &s.LightDirections[3 * i];
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int a = 0; a < 3; ++a)
+    {
+      directions[3 * i + a] = static_cast<float>(length > 0.0 ? d[a] / length : 0.0);
+      ambient[3 * i + a] = static_cast<float>(s.LightAmbient[3 * i + a]);
+      diffuse[3 * i + a] = static_cast<float>(s.LightDiffuse[3 * i + a]);
+      specular[3 * i + a] = static_cast<float>(s.LightSpecular[3 * i + a]);
+    }
+  }
+  using Vec3 = const float(*)[3];
+  this->Program->SetUniform3fv(
+    "lightDirection", MaxLights, reinterpret_cast<Vec3>(directions.data()));
+  this->Program->SetUniform3fv("lightAmbient", MaxLights, reinterpret_cast<Vec3>(ambient.data()));
+  this->Program->SetUniform3fv("lightDiffuse", MaxLights, reinterpret_cast<Vec3>(diffuse.data()));
+  this->Program->SetUniform3fv("lightSpecular", MaxLights, reinterpret_cast<Vec3>(specular.data()));
   return true;
 }
 
@@ -149,10 +214,18 @@ void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::Dr
     static_cast<float>(b[4]) };
   float inverseStep[3];
   float n[3];
+  float gradientStep[3];
+  // Shaded: the texture carries one border texel per side.
+  const std::size_t border = this->Shading.Shade ? 2 : 0;
   for (int a = 0; a < 3; ++a)
   {
     inverseStep[a] = static_cast<float>(1.0 / (list.Stride[i] * spacing[a]));
-    n[a] = static_cast<float>(list.Texels[3 * i + a]);
+    gradientStep[a] = static_cast<float>(list.Stride[i] * spacing[a]);
+    n[a] = static_cast<float>(list.Texels[3 * i + a] + border);
+  }
+  if (border)
+  {
+    this->Program->SetUniform3f("gradientStep", gradientStep);
   }
   this->Program->SetUniformi("brickTexture", texture->GetTextureUnit());
   this->Program->SetUniform3f("brickLo", lo);

@@ -105,6 +105,17 @@ public:
     const double eye[3], const double forward[3], bool parallel, const double surfaceRGBA[4],
     std::string& error);
 
+  /// The volume's shading, light directions in model coordinates (see
+  /// ShadingDescription); Shade off: the unshaded program, no gradient.
+  /// Shaded bricks' textures carry one border texel per side. Call before Bind().
+  void SetShading(const vtkHybridOctreeBridge::ShadingDescription& shading)
+  {
+    this->Shading = shading;
+  }
+
+  /// The most lights the shaded program takes.
+  static constexpr int MaxLights = 8;
+
   /// Ray-marched bricks sample every max(d, factor d0) along the view (d
   /// their slice spacing; `factor` a power of two, 1 by default: the slice lattice).
   void SetSampleSpacing(int factor) { this->SampleSpacing = factor > 1 ? factor : 1; }
@@ -130,6 +141,9 @@ public:
   void ReleaseGraphicsResources();
 
 private:
+  /// The shaded program's material and light uniforms.
+  bool SetShadingUniforms(std::string& error);
+
   vtkOpenGLHybridOctreeBrickDrawer(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
   vtkOpenGLHybridOctreeBrickDrawer& operator=(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
 
@@ -138,6 +152,7 @@ private:
   /// d0: a point's size.
   float PointSpacing = 1.0f;
   int SampleSpacing = 1;
+  vtkHybridOctreeBridge::ShadingDescription Shading;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

@@ -42,7 +42,7 @@ bool vtkOpenGLHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
 
 const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTextures::Acquire(
   vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3], const Fetch& fetch,
-  std::string& error)
+  std::string& error, std::size_t border)
 {
   if (this->Window && this->Window != window)
   {
@@ -83,8 +83,33 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
     return nullptr;
   }
   std::vector<float> ranges;
+  const float* own = this->Scratch.data();
+  std::size_t ownTexels[3] = { texels[0], texels[1], texels[2] };
+  if (border > 0)
+  {
+    // The block ranges describe the brick's own texels, inside the border.
+    for (int a = 0; a < 3; ++a)
+    {
+      ownTexels[a] = texels[a] - 2 * border;
+    }
+    this->Interior.resize(ownTexels[0] * ownTexels[1] * ownTexels[2]);
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < ownTexels[2]; ++k)
+    {
+      for (std::size_t j = 0; j < ownTexels[1]; ++j)
+      {
+        const float* row =
+          this->Scratch.data() + border + texels[0] * ((j + border) + texels[1] * (k + border));
+        for (std::size_t i = 0; i < ownTexels[0]; ++i)
+        {
+          this->Interior[at++] = row[i];
+        }
+      }
+    }
+    own = this->Interior.data();
+  }
   if (!vtkHybridOctreeBridge::MeasureBlockRanges(
-        this->Scratch.data(), this->Scratch.size(), texels, ranges, error))
+        own, ownTexels[0] * ownTexels[1] * ownTexels[2], ownTexels, ranges, error))
   {
     texture->ReleaseGraphicsResources(window);
     return nullptr;

@@ -62,10 +62,12 @@ public:
    * resident one, or a new one filled from `fetch`, after releasing least
    * recently drawn textures of earlier frames as needed to stay within the
    * limit. nullptr and `error` when the upload fails or this frame's textures
-   * alone would pass the limit.
+   * alone would pass the limit. With a gradient `border` (shading: 1) the
+   * texels carry that many border texels per side; the block ranges are
+   * measured on the brick's own texels inside it.
    */
   const Resident* Acquire(vtkOpenGLRenderWindow* window, const Key& key,
-    const std::size_t texels[3], const Fetch& fetch, std::string& error);
+    const std::size_t texels[3], const Fetch& fetch, std::string& error, std::size_t border = 0);
 
   /// Whether the bricks (`nodes[i]`, `strides[i]`) are all resident.
   bool HoldsAll(
@@ -93,6 +95,7 @@ private:
   std::uint64_t Frame = 0;
   vtkWindow* Window = nullptr;
   std::vector<float> Scratch;
+  std::vector<float> Interior; ///< a bordered brick's own texels
 };
 
 #endif

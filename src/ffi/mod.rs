@@ -26,6 +26,8 @@ mod points;
 mod render;
 #[cfg(test)]
 mod render_tests;
+#[cfg(test)]
+mod shade_tests;
 mod surface;
 #[cfg(test)]
 mod test_support;
@@ -232,6 +234,9 @@ mod bridge {
         /// With an isosurface: nodes holding the isovalue always show.
         has_isovalue: bool,
         isovalue: f64,
+        /// Count one border texel per side of each brick in its bytes (the
+        /// volume is shaded: the gradient reads them; see `brick_texels_bordered`).
+        gradient_border: bool,
     }
 
     /// Summary of a selection.
@@ -254,6 +259,31 @@ mod bridge {
         points: usize,
         /// Their bytes (counted in the budget with the textures).
         point_bytes: usize,
+    }
+
+    /// The volume's shading (see `transfer::lighting`): vtkVolumeProperty's
+    /// Shade, Ambient, Diffuse, Specular and SpecularPower and the
+    /// renderer's lights, directions in world coordinates.
+    #[derive(Debug)]
+    struct ShadingDesc {
+        /// GetShade(): off, nothing else is read.
+        shade: bool,
+        ambient: f64,
+        diffuse: f64,
+        specular: f64,
+        specular_power: f64,
+        /// vtkRenderer's TwoSidedLighting.
+        two_sided: bool,
+        /// VTK's default lighting (one headlight of intensity 1): the first
+        /// light's diffuse and specular colours are used, its direction and
+        /// ambient colour are not.
+        headlight: bool,
+        /// 3 per light: direction of travel (focal point minus position), world.
+        light_directions: Vec<f64>,
+        /// 3 per light each: colour times intensity.
+        light_ambient: Vec<f64>,
+        light_diffuse: Vec<f64>,
+        light_specular: Vec<f64>,
     }
 
     /// A camera as vtkCamera gives it (world coordinates).
@@ -571,6 +601,22 @@ mod bridge {
             brick: usize,
             texels: &mut [f32],
         ) -> Result<()>;
+        /// Brick `brick`'s texels with the gradient border of a shaded
+        /// volume: (texels + 2) per axis, texel i at lo + (i - 1) stride
+        /// clamped to the grid (`render::texture::bordered_position`); a
+        /// world point's texture coordinate is then (x - xmin) / (stride *
+        /// spacing[a]) + 1 texels.
+        fn brick_texels_bordered(
+            self: &SelectionHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            brick: usize,
+            texels: &mut [f32],
+        ) -> Result<()>;
+        /// The shading of the DrawLists and pictures made after this call
+        /// (errors: a bad number; a shade without lights or lights not in
+        /// threes). The plan then says "volume-shaded" unless it changes no colour.
+        fn set_shading(self: &SelectionHandle, shading: &ShadingDesc) -> Result<()>;
 
         /// Floats of the block ranges of a brick of `dims` texels (x, y, z):
         /// 2 per block of 4^3 cells (see `plan::draw_geometry::occupancy`).
@@ -617,7 +663,8 @@ mod bridge {
 use bridge::BuildProgress;
 pub use bridge::{
     BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
-    OctreeSummary, PointsDesc, PointsSummary, ScalarType, SelectDesc, SelectionSummary, SurfaceMode, SurfaceSummary,
+    OctreeSummary, PointsDesc, PointsSummary, ScalarType, SelectDesc, SelectionSummary, ShadingDesc, SurfaceMode,
+    SurfaceSummary,
 };
 use ftb::ftb_display;
 use geometry::{block_ranges_len, brick_block_ranges, frame_brick_geometry as brick_geometry};

@@ -13,17 +13,18 @@ use super::grid::{grid_of, grid_unscanned, same_image};
 use super::guard::{check_len, guarded, Bridged};
 use super::octree::HybridOctreeHandle;
 use super::transfer::{opacity_function, transfer_function};
-use super::{CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary};
+use super::{CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary, ShadingDesc};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::grid::{GridShape, ScalarType};
 use crate::plan::point_slabs::add_points;
 use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
-use crate::plan::{plan, DrawList, SurfacePass};
+use crate::plan::{plan, relight, DrawList, SurfacePass};
 use crate::points::Footprint;
 use crate::points::PointSet;
-use crate::render::texture::brick_texels_f32_into;
+use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_f32_into};
+use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
 use std::sync::{Arc, Mutex};
 
 /// A selection, with the octree and grid it was made from.
@@ -38,6 +39,52 @@ pub struct SelectionHandle {
     polygons: Mutex<Option<(u64, SlabPolygons)>>,
     /// The points the selection spent bytes on (the octree held points).
     points: Option<Arc<PointSet>>,
+    /// The shading of its DrawLists ([`SelectionHandle::set_shading`]).
+    lighting: Mutex<Option<Lighting>>,
+}
+
+/// The lighting of `desc` (`None` when it does not shade), checked.
+pub(crate) fn lighting(desc: &ShadingDesc) -> Result<Option<Lighting>> {
+    if !desc.shade {
+        return Ok(None);
+    }
+    let count = desc.light_directions.len() / 3;
+    let lists = [&desc.light_directions, &desc.light_ambient, &desc.light_diffuse, &desc.light_specular];
+    if lists.iter().any(|l| l.len() != 3 * count) || count == 0 {
+        return Err(Error::InvalidArgument(format!(
+            "shading: {} light directions and {}, {}, {} ambient, diffuse, specular values: give 3 of each per light, \
+             at least one light (a renderer without a switched-on light shades nothing: turn Shade off)",
+            desc.light_directions.len(),
+            desc.light_ambient.len(),
+            desc.light_diffuse.len(),
+            desc.light_specular.len()
+        )));
+    }
+    let v = |l: &Vec<f64>, i: usize| [l[3 * i], l[3 * i + 1], l[3 * i + 2]];
+    let material = Material {
+        ambient: desc.ambient,
+        diffuse: desc.diffuse,
+        specular: desc.specular,
+        specular_power: desc.specular_power,
+    };
+    let lights = if desc.headlight {
+        Lights::Headlight { diffuse: v(&desc.light_diffuse, 0), specular: v(&desc.light_specular, 0) }
+    } else {
+        Lights::Directional(
+            (0..count)
+                .map(|i| Light {
+                    direction: v(&desc.light_directions, i),
+                    space: LightSpace::World,
+                    ambient: v(&desc.light_ambient, i),
+                    diffuse: v(&desc.light_diffuse, i),
+                    specular: v(&desc.light_specular, i),
+                })
+                .collect(),
+        )
+    };
+    let lighting = Lighting { material, lights, two_sided: desc.two_sided };
+    lighting.check()?;
+    Ok(Some(lighting))
 }
 
 /// The select options of `desc` for a grid of `shape`: the ROI from world
@@ -56,7 +103,11 @@ pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<Sel
     } else {
         None
     };
-    Ok(SelectOptions { roi, ..SelectOptions::new(desc.budget_bytes, desc.tolerance) })
+    Ok(SelectOptions {
+        roi,
+        gradient_border: desc.gradient_border,
+        ..SelectOptions::new(desc.budget_bytes, desc.tolerance)
+    })
 }
 
 /// The CLI's visibility test (`scene::visible`): a node shows unless the
@@ -201,6 +252,7 @@ impl HybridOctreeHandle {
                 value_range: self.volume().value_range(),
                 polygons: Mutex::new(None),
                 points: self.hybrid.points.as_ref().map(|p| Arc::clone(&p.set)),
+                lighting: Mutex::new(None),
             }))
         })
     }
@@ -235,7 +287,8 @@ impl SelectionHandle {
         if let Some(set) = &self.points {
             add_points(&mut list, &octree.shape, set)?;
         }
-        Ok(list)
+        let lighting = self.lighting.lock().unwrap_or_else(|e| e.into_inner()).clone();
+        relight(list, lighting.as_ref())
     }
 
     /// [`Self::list`] without the points.
@@ -318,7 +371,31 @@ impl SelectionHandle {
         })
     }
 
+    /// The shading of the DrawLists made after this call.
+    pub(crate) fn set_shading(&self, desc: &ShadingDesc) -> Bridged<()> {
+        guarded(|| {
+            let made = lighting(desc)?;
+            *self.lighting.lock().unwrap_or_else(|e| e.into_inner()) = made;
+            Ok(())
+        })
+    }
+
     pub(crate) fn brick_texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize, texels: &mut [f32]) -> Bridged<()> {
+        self.texels(bytes, desc, brick, false, texels)
+    }
+
+    pub(crate) fn brick_texels_bordered(
+        &self,
+        bytes: &[u8],
+        desc: &GridDesc,
+        brick: usize,
+        texels: &mut [f32],
+    ) -> Bridged<()> {
+        self.texels(bytes, desc, brick, true, texels)
+    }
+
+    /// Brick `brick`'s texels, with the gradient border when `bordered`.
+    fn texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize, bordered: bool, texels: &mut [f32]) -> Bridged<()> {
         guarded(|| {
             // One brick of many: scanning the whole image for infinities per
             // brick would cost a full pass each; the octree's build scanned it,
@@ -332,7 +409,11 @@ impl SelectionHandle {
                     self.selection.bricks.len()
                 )));
             };
-            brick_texels_f32_into(&grid, b, texels)?;
+            if bordered {
+                brick_texels_f32_bordered_into(&grid, b, texels)?;
+            } else {
+                brick_texels_f32_into(&grid, b, texels)?;
+            }
             check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
             if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
                 let why = if grid.samples().scalar_type() == ScalarType::F64 {

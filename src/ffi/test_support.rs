@@ -26,6 +26,7 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         opacity_points: Vec::new(),
         has_isovalue: false,
         isovalue: 0.0,
+        gradient_border: false,
     }
 }
 

@@ -11,11 +11,15 @@
 //!   slabs, back to front, clip planes only for batches spanning slabs;
 //! - bricks fully transparent under the transfer function: never selected
 //!   (no texture spent), counted in [`Plan::skipped_bricks`];
-//! - shading only when asked for.
+//! - shading only when asked for and when it changes a colour (not with
+//!   `ambient = 1, diffuse = specular = 0` under the headlight): then the
+//!   plan says `volume-shaded` and the DrawList carries the lighting, its
+//!   lights in world space.
 
 use super::select::Brick;
 use super::slab::Batch;
 use crate::geometry::camera::Camera;
+use crate::transfer::lighting::Lighting;
 use rayon::prelude::*;
 
 /// How the surface is drawn.
@@ -37,7 +41,7 @@ pub struct Plan {
     pub volume: bool,
     /// How the surface is drawn.
     pub surface: SurfacePass,
-    /// Gradient shading of the volume.
+    /// Gradient shading of the volume (the DrawList's [`DrawList::lighting`]).
     pub shading: bool,
     /// Nodes not selected because the transfer function makes them fully transparent.
     pub skipped_bricks: usize,
@@ -98,6 +102,10 @@ pub struct DrawList {
     /// Reference slice spacing d0 (world units): the full-resolution sample
     /// spacing, against which opacity is corrected.
     pub reference_spacing: f64,
+    /// The volume's shading, lights in world space (`Some` exactly when
+    /// [`Plan::shading`]); brick textures then carry one border texel per
+    /// side for the gradient ([`crate::plan::select::SelectOptions::gradient_border`]).
+    pub lighting: Option<Lighting>,
 }
 
 /// What the scene holds besides the volume.
@@ -107,8 +115,9 @@ pub struct Scene<'a> {
     pub surface: Option<&'a crate::surface::Surface>,
     /// Its opacity: 1 opaque, in (0, 1) translucent, 0 hidden.
     pub surface_opacity: f64,
-    /// Gradient shading of the volume (only when the volume property asks).
-    pub shading: bool,
+    /// Gradient shading of the volume: `Some` when the volume property asks
+    /// (vtkVolumeProperty's Shade), with its material and the lights.
+    pub shading: Option<&'a Lighting>,
 }
 
 /// The plan for a scene (see the module documentation).
@@ -126,10 +135,40 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         SurfacePass::Translucent => passes.push("surface-in-slabs".to_string()),
         SurfacePass::None => {}
     }
+    let shading = shades(volume, scene.shading);
     if volume {
-        passes.push(if scene.shading { "volume-shaded" } else { "volume" }.to_string());
+        passes.push(if shading { "volume-shaded" } else { "volume" }.to_string());
     }
-    Plan { volume, surface, shading: scene.shading && volume, skipped_bricks: selection.skipped, passes }
+    Plan { volume, surface, shading, skipped_bricks: selection.skipped, passes }
+}
+
+/// The planner's shading rule: shade a volume, when the scene asks, unless
+/// the lighting gives every colour back ([`Lighting::is_identity`]).
+fn shades(volume: bool, lighting: Option<&Lighting>) -> bool {
+    volume && lighting.is_some_and(|l| !l.is_identity())
+}
+
+/// `list` planned again for `lighting` (lights in world or view space, for
+/// the list's camera), as [`draw_list`] plans [`Scene::shading`]: the plan's
+/// `volume` pass becomes `volume-shaded` (or back) and [`DrawList::lighting`]
+/// is set, or cleared when it does not shade.
+///
+/// # Errors
+///
+/// [`crate::Error::InvalidArgument`] for a bad number in the lighting ([`Lighting::check`]).
+pub fn relight(mut list: DrawList, lighting: Option<&Lighting>) -> crate::Result<DrawList> {
+    if let Some(l) = lighting {
+        l.check()?;
+    }
+    let shading = shades(list.plan.volume, lighting);
+    for pass in &mut list.plan.passes {
+        if pass == "volume" || pass == "volume-shaded" {
+            *pass = if shading { "volume-shaded" } else { "volume" }.to_string();
+        }
+    }
+    list.plan.shading = shading;
+    list.lighting = lighting.filter(|_| shading).map(|l| l.in_world(&list.camera));
+    Ok(list)
 }
 
 /// The DrawList for `selection` seen from `camera`: the plan, the bricks back
@@ -147,7 +186,8 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
 ///
 /// [`crate::Error::InvalidArgument`] if `polygons` was made for other bricks
 /// than `selection`'s or for a surface of another polygon count than
-/// `scene.surface` (make them again after a new selection).
+/// `scene.surface` (make them again after a new selection), or for a bad
+/// number in the lighting ([`Lighting::check`]).
 pub fn draw_list(
     octree: &crate::octree::VolumeOctree,
     shape: &crate::data::grid::GridShape,
@@ -156,7 +196,11 @@ pub fn draw_list(
     scene: &Scene<'_>,
     polygons: Option<&crate::plan::slab::SlabPolygons>,
 ) -> crate::Result<DrawList> {
+    if let Some(l) = scene.shading {
+        l.check()?;
+    }
     let plan = plan(selection, scene);
+    let lighting = scene.shading.filter(|_| plan.shading).map(|l| l.in_world(camera));
     let d0 = crate::data::spacing::reference_spacing(shape);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
     let order = crate::plan::order::brick_order(camera, octree, shape, &ids, true);
@@ -195,7 +239,7 @@ pub fn draw_list(
         (SurfacePass::Opaque, Some(s)) => (0..s.polygon_count() as u32).collect(),
         _ => Vec::new(),
     };
-    Ok(DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0 })
+    Ok(DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0, lighting })
 }
 
 #[cfg(test)]
@@ -233,7 +277,7 @@ mod tests {
     #[test]
     fn volume_only_without_a_surface() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: false }, |_, _| true);
+        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: None }, |_, _| true);
         assert_eq!(l.plan.passes, vec!["volume"]);
         assert_eq!(l.plan.surface, SurfacePass::None);
         assert!(l.opaque_triangles.is_empty() && l.bricks.iter().all(|b| b.batches.is_empty()));
@@ -243,7 +287,7 @@ mod tests {
     #[test]
     fn opaque_surface_first_then_volume_without_interleaving() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: false }, |_, _| true);
+        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: None }, |_, _| true);
         assert_eq!(l.plan.passes, vec!["surface-opaque", "volume"]);
         assert_eq!(l.opaque_triangles.len(), f.surface.polygon_count());
         assert!(l.bricks.iter().all(|b| b.batches.is_empty()), "no batches in the slabs");
@@ -252,7 +296,9 @@ mod tests {
     #[test]
     fn translucent_surface_goes_into_the_slabs_every_triangle_at_least_once() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: true }, |_, _| true);
+        let shaded = Lighting::headlight(Default::default());
+        let l =
+            list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: Some(&shaded) }, |_, _| true);
         assert_eq!(l.plan.passes, vec!["surface-in-slabs", "volume-shaded"]);
         assert!(l.opaque_triangles.is_empty());
         let mut seen = vec![false; f.surface.polygon_count()];
@@ -274,7 +320,7 @@ mod tests {
         let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
         let selection = select(&f.octree, &options, |_, _| true).unwrap();
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
+        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None };
         for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
             let camera =
                 Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), azimuth, elevation, parallel).unwrap();
@@ -297,7 +343,7 @@ mod tests {
         assert_ne!(nodes(&all), nodes(&fewer));
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
+        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None };
         let e = draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons)).unwrap_err().to_string();
         assert!(e.contains("made for another selection or surface"), "{e}");
     }
@@ -305,12 +351,36 @@ mod tests {
     #[test]
     fn transparent_nodes_cost_no_texture_and_a_hidden_surface_no_pass() {
         let f = fixture();
-        let l =
-            list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: false }, |_, max| max > 0.9);
+        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: None }, |_, max| max > 0.9);
         assert!(l.plan.skipped_bricks > 0);
         assert_eq!(l.plan.surface, SurfacePass::None);
         assert!(!l.plan.shading);
-        let none = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: true }, |_, _| false);
+        let shaded = Lighting::headlight(Default::default());
+        let none = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded) }, |_, _| false);
         assert!(!none.plan.volume && none.bricks.is_empty() && none.plan.passes.is_empty() && !none.plan.shading);
+    }
+
+    /// Shading that changes no colour (ambient 1, diffuse and specular 0,
+    /// the headlight) is planned unshaded: "volume", no lighting in the list.
+    #[test]
+    fn identity_shading_is_not_planned() {
+        let f = fixture();
+        let identity = Lighting::headlight(crate::transfer::lighting::Material {
+            ambient: 1.0,
+            diffuse: 0.0,
+            specular: 0.0,
+            specular_power: 10.0,
+        });
+        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: Some(&identity) }, |_, _| true);
+        assert_eq!(l.plan.passes, vec!["volume"]);
+        assert!(!l.plan.shading && l.lighting.is_none());
+        let shaded = Lighting::headlight(Default::default());
+        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded) }, |_, _| true);
+        assert_eq!(l.plan.passes, vec!["volume-shaded"]);
+        assert!(l.plan.shading && l.lighting.is_some());
+        // Planned again: the same as planned with the scene's shading.
+        let plain = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: None }, |_, _| true);
+        assert_eq!(relight(plain.clone(), Some(&shaded)).unwrap(), l);
+        assert_eq!(relight(l, Some(&identity)).unwrap(), plain);
     }
 }

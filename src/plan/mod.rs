@@ -13,6 +13,6 @@ pub mod point_slabs;
 pub mod select;
 pub mod slab;
 
-pub use draw_list::{draw_list, plan, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
+pub use draw_list::{draw_list, plan, relight, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
 pub use point_slabs::add_points;
 pub use slab::Batch;

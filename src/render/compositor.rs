@@ -43,6 +43,13 @@
 //! and stops a pixel once `A >= `[`OPAQUE`] (early ray termination): everything
 //! behind would add at most `1 - A <= 1 - OPAQUE` to each channel.
 //!
+//! Shading ([`DrawList::lighting`], the plan's `volume-shaded`): each sample
+//! of opacity `a > 0` has its colour `c` shaded
+//! ([`crate::transfer::lighting`]) at the normal of the brick's gradient,
+//! central differences one texel away on its bordered texture
+//! (`super::shade`), the ray direction as `V`. Without lighting no gradient
+//! is taken (the executor counts them).
+//!
 //! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
 //! pixel's depth and its shaded colour goes under the volume in front of it,
 //! last; samples at or behind that depth are dropped (a depth test).
@@ -64,6 +71,7 @@ use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
 use super::sample::to_index;
+use super::shade::{gradient, normal};
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::Result;
@@ -74,6 +82,7 @@ use crate::plan::{BrickDraw, DrawList};
 use crate::points::footprint::{footprint, project, Footprint};
 use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
+use crate::transfer::lighting::Lighting;
 use crate::transfer::lut::Lut;
 use crate::transfer::TransferFunction;
 use rayon::prelude::*;
@@ -165,10 +174,39 @@ pub fn composite_with_points(
     check_list(list, &textures.shape, surface.map(|s| s.0))?;
     check_points(list, points.map(|p| (p.0, p.1)))?;
     textures.check(list)?;
-    Ok(match &textures.texels {
-        Texels::F32(t) => execute(t, &textures.shape, list, tf, width, height, surface, points)?,
-        Texels::F64(t) => execute(t, &textures.shape, list, tf, width, height, surface, points)?,
-    })
+    Ok(execute_counted(textures, list, tf, width, height, surface, points)?.0)
+}
+
+/// [`composite_with_points`] on checked inputs, and the number of gradients taken.
+#[allow(clippy::too_many_arguments)]
+fn execute_counted(
+    textures: &Textures,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+    surface: Option<(&Surface, [f32; 4])>,
+    points: Option<DrawnPoints<'_>>,
+) -> Result<(Image, usize)> {
+    match &textures.texels {
+        Texels::F32(t) => execute(t, &textures.shape, list, tf, width, height, surface, points),
+        Texels::F64(t) => execute(t, &textures.shape, list, tf, width, height, surface, points),
+    }
+}
+
+/// [`composite_textures`], and how many gradients it took (0 unless the list shades).
+#[cfg(test)]
+pub(crate) fn composite_counting_gradients(
+    textures: &Textures,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+) -> Result<(Image, usize)> {
+    check_size(width, height)?;
+    check_list(list, &textures.shape, None)?;
+    textures.check(list)?;
+    execute_counted(textures, list, tf, width, height, None, None)
 }
 
 /// The points a DrawList draws: the set, each point's shade (one per point
@@ -209,7 +247,7 @@ fn execute<S: Texel>(
     height: usize,
     surface: Option<(&Surface, [f32; 4])>,
     points: Option<DrawnPoints<'_>>,
-) -> Result<Image> {
+) -> Result<(Image, usize)> {
     let shape = *shape;
     let d0 = list.reference_spacing;
     let volume_lo = shape.world([0.0; 3]);
@@ -248,6 +286,7 @@ fn execute<S: Texel>(
         height,
         shape,
         bricks: &bricks,
+        lighting: list.lighting.as_ref().filter(|_| list.plan.shading),
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
@@ -345,6 +384,8 @@ struct Executor<'a, S> {
     height: usize,
     shape: GridShape,
     bricks: &'a [Prepared<'a, S>],
+    /// The shading, lights in world space (`None`: unshaded, no gradients).
+    lighting: Option<&'a Lighting>,
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
@@ -359,14 +400,17 @@ struct Scratch {
     hits: Vec<Hit>,
     /// `(slab, depth, straight colour, opacity)` of one brick's batch hits.
     events: Vec<(usize, f64, [f64; 3], f64)>,
+    /// Gradients taken (shading).
+    gradients: usize,
 }
 
 impl<S: Texel> Executor<'_, S> {
     /// The picture, bands of [`BAND`] rows in parallel, each column of a
-    /// band in turn (neighbouring rays read the same texels).
-    fn run(self) -> Image {
+    /// band in turn (neighbouring rays read the same texels), and the
+    /// number of gradients taken.
+    fn run(self) -> (Image, usize) {
         let (w, h) = (self.width, self.height);
-        let bands: Vec<Vec<[f32; 4]>> = (0..h.div_ceil(BAND))
+        let bands: Vec<(Vec<[f32; 4]>, usize)> = (0..h.div_ceil(BAND))
             .into_par_iter()
             .map_init(Scratch::default, |scratch, band| {
                 let (y0, y1) = (band * BAND, ((band + 1) * BAND).min(h));
@@ -376,15 +420,18 @@ impl<S: Texel> Executor<'_, S> {
                     rect[2] < y1 && y0 < rect[3]
                 }));
                 let mut out = vec![[0.0; 4]; (y1 - y0) * w];
+                scratch.gradients = 0;
                 for x in 0..w {
                     for y in y0..y1 {
                         out[(y - y0) * w + x] = self.pixel(x, y, scratch);
                     }
                 }
-                out
+                (out, scratch.gradients)
             })
             .collect();
-        Image { width: w, height: h, rgba: bands.concat() }
+        let gradients = bands.iter().map(|b| b.1).sum();
+        let rgba = bands.into_iter().flat_map(|b| b.0).collect();
+        (Image { width: w, height: h, rgba }, gradients)
     }
 }
 
@@ -493,9 +540,15 @@ impl<S: Texel> Executor<'_, S> {
             }
             if (s0..s1).contains(&j) {
                 let dz = slices[j] - za;
-                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel([0, 1, 2].map(|k| ua[k] + dz * ub[k])));
+                let u = [0, 1, 2].map(|k| ua[k] + dz * ub[k]);
+                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel(u));
                 if a > 0.0 {
-                    acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
+                    let mut rgb = [r, gr, bl];
+                    if let Some(lighting) = self.lighting {
+                        rgb = self.shade(lighting, brick.texture, u, rgb, pr.ray.direction);
+                        scratch.gradients += 1;
+                    }
+                    acc = under(acc, rgb, correct_opacity(a, brick.ratio));
                     if acc[3] >= OPAQUE {
                         return acc;
                     }
@@ -506,6 +559,14 @@ impl<S: Texel> Executor<'_, S> {
             acc = under(acc, c, a);
         }
         acc
+    }
+
+    /// Colour `c` of the sample at texel coordinates `u` of `texture` (its
+    /// gradient border included), shaded along `view` (module documentation).
+    #[inline]
+    fn shade(&self, lighting: &Lighting, texture: &Texture<S>, u: [f64; 3], c: [f64; 3], view: [f64; 3]) -> [f64; 3] {
+        let h = self.shape.spacing.map(|s| s * texture.stride());
+        lighting.shade(c, normal(gradient(|v| texture.at_texel(v), u, h)), view)
     }
 
     /// The pixel's hits of brick `b`'s batch triangles in front of the

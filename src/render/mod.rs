@@ -11,7 +11,7 @@
 //! Inside the crate: `check` (inputs), `sample` (trilinear reconstruction of the grid and of a
 //! brick's texture), `geometry` (rays against boxes and slice planes, screen
 //! footprints), `triangles` (ray-triangle hits through a uniform grid, surface
-//! shading).
+//! shading), `shade` (the volume's gradient rule, shared by both renderers).
 
 pub mod blend;
 mod check;
@@ -21,6 +21,7 @@ pub mod image;
 pub mod metrics;
 pub mod reference;
 mod sample;
+mod shade;
 pub mod texture;
 mod triangles;
 

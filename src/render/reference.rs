@@ -14,7 +14,11 @@
 //! A surface (with colour `[r, g, b, opacity]`) is hit in world space; each
 //! hit (each triangle once, one hit where triangles share an edge) is
 //! composited the same way (`c` the headlight-shaded colour, `a` the
-//! opacity, no correction) before the samples behind it. An opaque surface
+//! opacity, no correction) before the samples behind it. With a lighting
+//! ([`ReferenceOptions::lighting`]) each sample of opacity `a > 0` has its
+//! colour shaded ([`crate::transfer::lighting`]) at the normal of the full
+//! grid's gradient, central differences one sample away (`super::shade`,
+//! the compositor's rule at stride 1), the ray direction as `V`. An opaque surface
 //! (opacity 1) ends the ray at its first hit; opacity 0 hides it. Rows run in parallel; every
 //! pixel is computed on its own, so the picture does not depend on the
 //! number of threads.
@@ -24,11 +28,13 @@ use super::check::{check_colour, check_size};
 use super::geometry::ray_box;
 use super::image::Image;
 use super::sample::{grid_value, to_index};
+use super::shade::{gradient, normal};
 use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::{Error, Result};
 use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::geometry::camera::Camera;
 use crate::surface::Surface;
+use crate::transfer::lighting::Lighting;
 use crate::transfer::TransferFunction;
 use rayon::prelude::*;
 
@@ -42,6 +48,9 @@ pub struct ReferenceOptions<'a> {
     pub step: Option<f64>,
     /// A surface and its `[r, g, b, opacity]`, all in `[0, 1]`.
     pub surface: Option<(&'a Surface, [f32; 4])>,
+    /// Shade the volume with this material and these lights (view-space
+    /// lights follow the camera).
+    pub lighting: Option<&'a Lighting>,
 }
 
 /// Ray-casts `grid` classified by `tf`, seen by `camera`, into a
@@ -61,6 +70,10 @@ pub fn reference(
     if !(step > 0.0 && step.is_finite()) {
         return Err(Error::InvalidArgument(format!("reference step {step}: give a positive number of world units")));
     }
+    if let Some(l) = options.lighting {
+        l.check()?;
+    }
+    let lighting = options.lighting.map(|l| l.in_world(camera));
     let surface = match options.surface {
         Some((_, colour)) if colour[3] == 0.0 => None, // invisible
         Some((s, colour)) => {
@@ -69,7 +82,8 @@ pub fn reference(
         }
         None => None,
     };
-    Ok(grid.visit(Caster { tf, camera, width, height, shape, step, d0, surface: surface.as_ref() }))
+    let lighting = lighting.as_ref();
+    Ok(grid.visit(Caster { tf, camera, width, height, shape, step, d0, surface: surface.as_ref(), lighting }))
 }
 
 struct Caster<'a> {
@@ -81,6 +95,8 @@ struct Caster<'a> {
     step: f64,
     d0: f64,
     surface: Option<&'a (&'a Surface, TriangleGrid, [f32; 4])>,
+    /// Lights in world space.
+    lighting: Option<&'a Lighting>,
 }
 
 impl GridVisitor for Caster<'_> {
@@ -129,8 +145,14 @@ impl Caster<'_> {
                     return acc.map(|v| v as f32);
                 }
                 let p = [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]);
-                let [r, gr, b, a] = self.tf.eval(grid_value(g, to_index(&self.shape, p)));
-                acc = under(acc, [r as f64, gr as f64, b as f64], correct_opacity(a as f64, l / self.d0));
+                let u = to_index(&self.shape, p);
+                let [r, gr, b, a] = self.tf.eval(grid_value(g, u));
+                let mut rgb = [r as f64, gr as f64, b as f64];
+                if let (Some(lighting), true) = (self.lighting, a > 0.0) {
+                    let n = normal(gradient(|v| grid_value(g, v), u, self.shape.spacing));
+                    rgb = lighting.shade(rgb, n, ray.direction);
+                }
+                acc = under(acc, rgb, correct_opacity(a as f64, l / self.d0));
                 if acc[3] > EARLY_TERMINATION {
                     return acc.map(|v| v as f32);
                 }
@@ -161,13 +183,14 @@ mod tests {
                 .unwrap();
         let exact = 1.0 - 0.9f64.powf(4.0 / 0.5); // L = 4, d0 = 0.5
         for step in [None, Some(0.3), Some(0.05)] {
-            let img = reference(&grid, &tf, &camera, 4, 4, &ReferenceOptions { step, surface: None }).unwrap();
+            let img = reference(&grid, &tf, &camera, 4, 4, &ReferenceOptions { step, surface: None, lighting: None })
+                .unwrap();
             for p in &img.rgba {
                 assert!((p[3] as f64 - exact).abs() < 1e-6, "{step:?}: {} vs {exact}", p[3]);
                 assert!((p[1] as f64 - 0.5 * exact).abs() < 1e-6);
             }
         }
-        let bad = ReferenceOptions { step: Some(0.0), surface: None };
+        let bad = ReferenceOptions { step: Some(0.0), surface: None, lighting: None };
         assert!(reference(&grid, &tf, &camera, 4, 4, &bad).unwrap_err().to_string().contains("positive"));
         assert!(reference(&grid, &tf, &camera, 0, 4, &ReferenceOptions::default()).is_err());
     }
@@ -188,7 +211,8 @@ mod tests {
         ]);
         let front = 1.0 - 0.9f64.powi(2); // the volume in front of the plane: 2 units
         for opacity in [1.0f32, 0.5] {
-            let options = ReferenceOptions { step: None, surface: Some((&plane, [0.0, 0.0, 1.0, opacity])) };
+            let options =
+                ReferenceOptions { step: None, surface: Some((&plane, [0.0, 0.0, 1.0, opacity])), lighting: None };
             let img = reference(&grid, &tf, &camera, 3, 3, &options).unwrap();
             let p = img.rgba[4].map(|v| v as f64);
             let a = opacity as f64;

@@ -49,7 +49,14 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
     let centre = |d: &BrickDraw| camera.depth([0, 1, 2].map(|a| 0.5 * (d.world_lo[a] + d.world_hi[a])));
     draws.sort_by(|a, b| centre(b).total_cmp(&centre(a)));
     let plan = Plan { volume: true, surface, shading: false, skipped_bricks: 0, passes: Vec::new() };
-    DrawList { plan, camera: *camera, bricks: draws, opaque_triangles: Vec::new(), reference_spacing: d0 }
+    DrawList {
+        plan,
+        camera: *camera,
+        bricks: draws,
+        opaque_triangles: Vec::new(),
+        reference_spacing: d0,
+        lighting: None,
+    }
 }
 
 /// Leaf bricks of `size` cells tiling the grid, at stride 1.
@@ -206,7 +213,7 @@ fn opaque_surface_matches_the_reference() {
     list.opaque_triangles = (0..surface.polygon_count() as u32).collect();
     let colour = [1.0, 0.8, 0.5, 1.0];
     let image = composite(&grid, &list, &tf, 64, 64, Some((&surface, colour))).unwrap();
-    let options = ReferenceOptions { step: None, surface: Some((&surface, colour)) };
+    let options = ReferenceOptions { step: None, surface: Some((&surface, colour)), lighting: None };
     let truth = reference(&grid, &tf, &camera, 64, 64, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
     eprintln!("opaque surface: {m:?}");
@@ -256,7 +263,7 @@ fn translucent_batches_are_blended_inside_their_slab() {
             assert!((p[k] as f64 - acc[k]).abs() < 1e-6, "{p:?} vs {acc:?}");
         }
     }
-    let options = ReferenceOptions { step: None, surface: Some((&plane, colour)) };
+    let options = ReferenceOptions { step: None, surface: Some((&plane, colour)), lighting: None };
     let truth = reference(&grid, &tf, &camera, 6, 6, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
     eprintln!("translucent plane: {m:?}");
@@ -340,7 +347,7 @@ fn the_pipeline_tracks_the_reference() {
         ("full, translucent surface", &full, 0.4, 0.01),
         ("1/4 budget, translucent surface", &coarse, 0.4, 0.05),
     ] {
-        let scene = Scene { surface: Some(&surface), surface_opacity: opacity, shading: false };
+        let scene = Scene { surface: Some(&surface), surface_opacity: opacity, shading: None };
         // Translucent: the selection's SlabPolygons made once, apart from the view.
         let polygons = (opacity > 0.0 && opacity < 1.0)
             .then(|| crate::plan::slab::SlabPolygons::new(&octree, &surface, grid.shape(), selection));
@@ -348,7 +355,7 @@ fn the_pipeline_tracks_the_reference() {
             crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref()).unwrap();
         let with = (opacity > 0.0).then_some((&surface, [colour[0], colour[1], colour[2], opacity as f32]));
         let image = composite(&grid, &list, &tf, 96, 96, with).unwrap();
-        let options = ReferenceOptions { step: None, surface: with };
+        let options = ReferenceOptions { step: None, surface: with, lighting: None };
         let truth = reference(&grid, &tf, &camera, 96, 96, &options).unwrap();
         let m = compare(&image, &truth).unwrap();
         let strides: Vec<usize> =
@@ -381,3 +388,6 @@ fn rays_stop_once_opaque_within_the_bound() {
         }
     }
 }
+
+#[path = "shade_tests.rs"]
+mod shade_tests;

@@ -61,9 +61,22 @@ impl Texel for f64 {
 /// `i + n_x (j + n_y k)` (x fastest), each stored by `f`; `None` at the first
 /// value `f` refuses. The one texel layout of every brick texture (the
 /// uploads here and the bridge's `brick_texels`); the brick must lie in the grid.
-fn texel_values<T: Sample, S>(g: &TypedGrid<'_, T>, brick: &Brick, f: impl Fn(f64) -> Option<S>) -> Option<Vec<S>> {
-    let pos = |a: usize, i: usize| (brick.lo[a] + i * brick.stride).min(brick.hi[a]);
-    let n = brick.texels;
+/// With a `border` of 1 (shading), one more texel on each side: texel `i`
+/// of `n + 2` at `lo + (i - 1) stride`, clamped to the grid (see [`bordered_position`]).
+fn texel_values<T: Sample, S>(
+    g: &TypedGrid<'_, T>,
+    brick: &Brick,
+    border: usize,
+    f: impl Fn(f64) -> Option<S>,
+) -> Option<Vec<S>> {
+    let pos = |a: usize, i: usize| {
+        if border == 0 {
+            (brick.lo[a] + i * brick.stride).min(brick.hi[a])
+        } else {
+            bordered_position(brick, g.dims, a, i)
+        }
+    };
+    let n = brick.texels.map(|n| n + 2 * border);
     let mut data = Vec::with_capacity(n[0] * n[1] * n[2]);
     for k in 0..n[2] {
         for j in 0..n[1] {
@@ -73,6 +86,23 @@ fn texel_values<T: Sample, S>(g: &TypedGrid<'_, T>, brick: &Brick, f: impl Fn(f6
         }
     }
     Some(data)
+}
+
+/// Grid index of texel `i` (of `n + 2`) along `axis` of `brick`'s texture
+/// with a gradient border:
+///
+/// ```text
+/// position(i) = clamp(lo + (i - 1) stride, 0, dims - 1)
+/// ```
+///
+/// Texels `1 ..= n` are the brick's own (`min(lo + i stride, hi)`: `hi` is
+/// on the brick's lattice or the grid's last sample), texels 0 and `n + 1`
+/// the neighbours one stride outside, which the central differences at the
+/// brick's faces read, so a brick's gradient there is its neighbour's at
+/// the same stride (no seam); at the grid's faces they repeat its last
+/// sample, as the full-resolution reconstruction clamps.
+pub fn bordered_position(brick: &Brick, dims: [usize; 3], axis: usize, i: usize) -> usize {
+    (brick.lo[axis] + i * brick.stride).saturating_sub(brick.stride).min(dims[axis] - 1)
 }
 
 /// One brick's texels as `f32`, in the layout of the module documentation
@@ -115,7 +145,23 @@ fn texel_count(grid: &Grid<'_>, brick: &Brick) -> Result<usize> {
 /// As [`brick_texels_f32`], and [`Error::InvalidArgument`] if `texels` does
 /// not hold the brick's texel count.
 pub fn brick_texels_f32_into(grid: &Grid<'_>, brick: &Brick, texels: &mut [f32]) -> Result<()> {
-    let count = texel_count(grid, brick)?;
+    texels_f32_into(grid, brick, 0, texels)
+}
+
+/// [`brick_texels_f32_into`] with the gradient border of a shaded volume:
+/// `(n + 2)` texels per axis, texel `i` at [`bordered_position`].
+///
+/// # Errors
+///
+/// As [`brick_texels_f32_into`], the buffer holding `(n_x + 2) (n_y + 2) (n_z + 2)` texels.
+pub fn brick_texels_f32_bordered_into(grid: &Grid<'_>, brick: &Brick, texels: &mut [f32]) -> Result<()> {
+    texels_f32_into(grid, brick, 1, texels)
+}
+
+/// The brick's texels as `f32` with `border` texels per side (0 or 1).
+fn texels_f32_into(grid: &Grid<'_>, brick: &Brick, border: usize, texels: &mut [f32]) -> Result<()> {
+    texel_count(grid, brick)?;
+    let count = brick.texels.iter().map(|n| n + 2 * border).product::<usize>();
     if texels.len() != count {
         return Err(Error::InvalidArgument(format!(
             "a buffer of {} texels for brick (node {}) of {count} texels",
@@ -123,13 +169,19 @@ pub fn brick_texels_f32_into(grid: &Grid<'_>, brick: &Brick, texels: &mut [f32])
             brick.node.0
         )));
     }
-    struct F32<'b, 't>(&'b Brick, &'t mut [f32]);
+    struct F32<'b, 't>(&'b Brick, usize, &'t mut [f32]);
     impl GridVisitor for F32<'_, '_> {
         type Output = ();
         fn visit<T: Sample>(self, g: TypedGrid<'_, T>) {
-            let F32(brick, texels) = self;
-            let pos = |a: usize, i: usize| (brick.lo[a] + i * brick.stride).min(brick.hi[a]);
-            let n = brick.texels;
+            let F32(brick, border, texels) = self;
+            let pos = |a: usize, i: usize| {
+                if border == 0 {
+                    (brick.lo[a] + i * brick.stride).min(brick.hi[a])
+                } else {
+                    bordered_position(brick, g.dims, a, i)
+                }
+            };
+            let n = brick.texels.map(|n| n + 2 * border);
             let mut to = texels.iter_mut();
             for k in 0..n[2] {
                 for j in 0..n[1] {
@@ -143,7 +195,7 @@ pub fn brick_texels_f32_into(grid: &Grid<'_>, brick: &Brick, texels: &mut [f32])
             }
         }
     }
-    grid.visit(F32(brick, texels));
+    grid.visit(F32(brick, border, texels));
     Ok(())
 }
 
@@ -154,8 +206,10 @@ pub(crate) struct Texture<S> {
     lo: [usize; 3],
     hi: [usize; 3],
     stride: usize,
-    /// Texels per axis.
+    /// Texels per axis, the border included.
     n: [usize; 3],
+    /// Border texels per side: 0, or 1 with shading ([`bordered_position`]).
+    border: usize,
     /// `n - 1`, per axis.
     last: [f64; 3],
     data: Vec<S>,
@@ -164,15 +218,23 @@ pub(crate) struct Texture<S> {
 impl<S: Texel> Texture<S> {
     /// Copies `brick`'s texels from `g` (the brick checked to lie in the grid);
     /// `None` when a value is not exactly an `S`.
-    fn copy<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick) -> Option<Texture<S>> {
-        let data = texel_values(g, brick, S::exact)?;
-        let n = brick.texels;
-        Some(Texture { lo: brick.lo, hi: brick.hi, stride: brick.stride, n, last: n.map(|n| (n - 1) as f64), data })
+    fn copy<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick, border: usize) -> Option<Texture<S>> {
+        let data = texel_values(g, brick, border, S::exact)?;
+        let n = brick.texels.map(|n| n + 2 * border);
+        let (lo, hi, stride, last) = (brick.lo, brick.hi, brick.stride, n.map(|n| (n - 1) as f64));
+        Some(Texture { lo, hi, stride, n, border, last, data })
     }
 
     /// True when this is the texture of `brick`.
     fn is_of(&self, brick: &Brick) -> bool {
-        (self.lo, self.hi, self.stride, self.n) == (brick.lo, brick.hi, brick.stride, brick.texels)
+        (self.lo, self.hi, self.stride, self.n.map(|n| n - 2 * self.border))
+            == (brick.lo, brick.hi, brick.stride, brick.texels)
+    }
+
+    /// `stride` as a float: texel spacing in index units.
+    #[inline]
+    pub(crate) fn stride(&self) -> f64 {
+        self.stride as f64
     }
 
     /// T_p at index-space point `x` (see the module documentation): [`Self::at_texel`]
@@ -180,15 +242,16 @@ impl<S: Texel> Texture<S> {
     /// [`Self::texel_line`].)
     #[cfg(test)]
     pub(crate) fn value(&self, x: [f64; 3]) -> f64 {
-        self.at_texel([0, 1, 2].map(|a| (x[a] - self.lo[a] as f64) / self.stride as f64))
+        self.at_texel([0, 1, 2].map(|a| (x[a] - self.lo[a] as f64) / self.stride as f64 + self.border as f64))
     }
 
     /// The texel coordinates `u(s) = a + s b` of the index-space line
-    /// `x(s) = xa + s xb`: `a = (xa - lo) / stride`, `b = xb / stride`.
+    /// `x(s) = xa + s xb`: `a = (xa - lo) / stride + border`, `b = xb / stride`.
     #[inline]
     pub(crate) fn texel_line(&self, xa: [f64; 3], xb: [f64; 3]) -> ([f64; 3], [f64; 3]) {
         let s = self.stride as f64;
-        ([0, 1, 2].map(|a| (xa[a] - self.lo[a] as f64) / s), xb.map(|b| b / s))
+        let border = self.border as f64;
+        ([0, 1, 2].map(|a| (xa[a] - self.lo[a] as f64) / s + border), xb.map(|b| b / s))
     }
 
     /// T_p at texel coordinates `u` (`u = (x - lo) / stride`, clamped to
@@ -245,7 +308,9 @@ impl Textures {
     /// Checks that these are the textures of `list`'s bricks.
     pub(crate) fn check(&self, list: &DrawList) -> Result<()> {
         fn all<S: Texel>(t: &[Texture<S>], list: &DrawList) -> bool {
-            t.len() == list.bricks.len() && t.iter().zip(&list.bricks).all(|(t, d)| t.is_of(&d.brick))
+            let border = usize::from(list.plan.shading);
+            t.len() == list.bricks.len()
+                && t.iter().zip(&list.bricks).all(|(t, d)| t.is_of(&d.brick) && t.border == border)
         }
         let ok = match &self.texels {
             Texels::F32(t) => all(t, list),
@@ -261,7 +326,8 @@ impl Textures {
     }
 }
 
-/// Uploads `list`'s brick textures from `grid` (bricks in parallel).
+/// Uploads `list`'s brick textures from `grid` (bricks in parallel), with
+/// a gradient border when the list shades ([`bordered_position`]).
 pub fn upload(grid: &Grid<'_>, list: &DrawList) -> Result<Textures> {
     let shape = *grid.shape();
     check_bricks(list, &shape)?;
@@ -274,12 +340,13 @@ impl GridVisitor for Upload<'_> {
     type Output = Texels;
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Texels {
         let bricks = &self.0.bricks;
-        let f32s: Option<Vec<Texture<f32>>> = bricks.par_iter().map(|d| Texture::copy(&g, &d.brick)).collect();
+        let border = usize::from(self.0.plan.shading);
+        let f32s: Option<Vec<Texture<f32>>> = bricks.par_iter().map(|d| Texture::copy(&g, &d.brick, border)).collect();
         match f32s {
             Some(t) => Texels::F32(t),
-            None => {
-                Texels::F64(bricks.par_iter().map(|d| Texture::copy(&g, &d.brick).expect("f64 holds f64")).collect())
-            }
+            None => Texels::F64(
+                bricks.par_iter().map(|d| Texture::copy(&g, &d.brick, border).expect("f64 holds f64")).collect(),
+            ),
         }
     }
 }
@@ -311,7 +378,7 @@ mod tests {
         fn visit<T: Sample>(self, g: TypedGrid<'_, T>) {
             for (lo, hi, s) in BRICKS {
                 let b = brick(lo, hi, s);
-                let tex = Texture::<S>::copy(&g, &b).unwrap();
+                let tex = Texture::<S>::copy(&g, &b, 0).unwrap();
                 for z in lo[2]..=hi[2] {
                     for y in lo[1]..=hi[1] {
                         for x in lo[0]..=hi[0] {
@@ -369,6 +436,7 @@ mod tests {
             }],
             opaque_triangles: Vec::new(),
             reference_spacing: 1.0,
+            lighting: None,
         };
         let l = list(brick([0; 3], [4; 3], 1));
         let f64s: Vec<f64> = (0..125).map(|i| i as f64 / 10.0).collect();

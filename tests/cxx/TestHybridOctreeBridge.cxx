@@ -368,6 +368,98 @@ int Texels()
   return check.Result();
 }
 
+/// Shading through the bridge: the border bytes counted only when asked
+/// for, the plan "volume-shaded" once SetShading() is given a lighting that
+/// changes colours, the bordered texels the image at clamp(lo + (i - 1)
+/// stride, 0, dims - 1), bad shading refused with a message.
+int Shading()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  B::SelectDescription options;
+  options.BudgetBytes = 30000;
+  options.GradientBorder = true;
+  std::string error;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  B::SelectionSummary summary;
+  if (!check.Check(selection && selection->GetSummary(summary, error), "select: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  check.Check(summary.TextureBytes <= options.BudgetBytes, "within the budget, borders counted");
+  vtkNew<vtkCamera> camera;
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double diagonal[3] = { 1.0, 0.8, 0.6 };
+  Aim(camera, centre, diagonal, false);
+  const B::CameraDescription cam = vtkHybridOctreeCameraInput::DescribeCamera(camera);
+  B::ShadingDescription shading;
+  shading.Shade = true;
+  shading.LightDirections = { 0.0, 0.0, -1.0 };
+  shading.LightAmbient = { 1.0, 1.0, 1.0 };
+  shading.LightDiffuse = { 1.0, 1.0, 1.0 };
+  shading.LightSpecular = { 1.0, 1.0, 1.0 };
+  B::DrawList list;
+  check.Check(selection->SetShading(shading, error), "set shading: " + error);
+  if (!check.Check(selection->GetDrawList(*f.Octree, cam, 0.0, list, error), "list: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  check.Check(list.Passes == "volume-shaded", "shaded passes: " + list.Passes);
+  std::size_t wrong = 0;
+  std::vector<float> texels;
+  for (std::size_t i = 0; i < list.GetNumberOfBricks(); ++i)
+  {
+    const std::size_t n[3] = { list.Texels[3 * i] + 2, list.Texels[3 * i + 1] + 2,
+      list.Texels[3 * i + 2] + 2 };
+    texels.assign(n[0] * n[1] * n[2], -1.0f);
+    if (!check.Check(selection->GetBrickTexelsBordered(f.Bytes(), f.ByteCount(), f.Grid,
+                       list.Brick[i], texels.data(), texels.size(), error),
+          "bordered texels: " + error))
+    {
+      continue;
+    }
+    const long stride = static_cast<long>(list.Stride[i]);
+    long lo[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::lround((list.Bounds[6 * i + 2 * a] - f.Grid.Origin[a]) / f.Grid.Spacing[a]);
+    }
+    auto at = [&](int a, std::size_t t) {
+      const long p = lo[a] + (static_cast<long>(t) - 1) * stride;
+      return static_cast<std::size_t>(
+        std::min(std::max(p, 0L), static_cast<long>(f.Grid.Dims[a]) - 1));
+    };
+    for (std::size_t k = 0; k < n[2]; ++k)
+    {
+      for (std::size_t j = 0; j < n[1]; ++j)
+      {
+        for (std::size_t t = 0; t < n[0]; ++t)
+        {
+          wrong += texels[t + n[0] * (j + n[1] * k)] != f.At(at(0, t), at(1, j), at(2, k));
+        }
+      }
+    }
+  }
+  check.Check(wrong == 0, std::to_string(wrong) + " bordered texels differ from the image");
+  // Identity shading (ambient 1, diffuse and specular 0) is planned unshaded.
+  B::ShadingDescription identity = shading;
+  identity.Ambient = 1.0;
+  identity.Diffuse = 0.0;
+  identity.Specular = 0.0;
+  check.Check(selection->SetShading(identity, error) &&
+      selection->GetDrawList(*f.Octree, cam, 0.0, list, error) && list.Passes == "volume",
+    "identity shading plans 'volume': " + list.Passes + " " + error);
+  B::ShadingDescription bad = shading;
+  bad.LightDiffuse = { 1.0 };
+  check.Check(!selection->SetShading(bad, error) && error.find("3 of each") != std::string::npos,
+    "lights not in threes: '" + error + "'");
+  return check.Result();
+}
+
 int SurfaceBatches()
 {
   Checker check;
@@ -816,7 +908,12 @@ int TestHybridOctreeBridge(int argc, char* argv[])
   {
     return Geometry();
   }
-  std::cerr << "unknown scenario '" << scenario
-            << "': use draw_list, texels, surface, transparent, errors, points or geometry\n";
+  if (scenario == "shading")
+  {
+    return Shading();
+  }
+  std::cerr
+    << "unknown scenario '" << scenario
+    << "': use draw_list, texels, surface, transparent, errors, points, geometry or shading\n";
   return EXIT_FAILURE;
 }

@@ -45,6 +45,13 @@
  *   actor:       an opaque vtkActor (a sphere) intersecting the volume: the
  *                same scene drawn by vtkGPUVolumeRayCastMapper, RMSE < 0.03,
  *                and the sphere hides the volume behind it.
+ *   shaded:      Shade on (VTK's default material, the default headlight),
+ *                mixed strides: the plan is "volume-shaded", the GL picture
+ *                within RMSE 0.005 of the CPU compositor on the same
+ *                DrawList, and it differs from the unshaded one.
+ *   gpu_shaded, gpu_light_kit: Shade on, the full volume in the budget,
+ *                against vtkGPUVolumeRayCastMapper with the default
+ *                headlight and with a vtkLightKit: RMSE < 0.03.
  *   matrix:      the volume rotated and moved with its vtkVolume matrix, and
  *                the camera and the region of interest moved alike: the same
  *                bricks and picture, RMSE < 0.01.
@@ -55,6 +62,7 @@
 #include "vtkActor.h"
 #include "vtkAutoInit.h"
 #include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkLightKit.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
@@ -228,7 +236,23 @@ int CpuMatch(const std::string& scenario)
     }
     mapper->SetInputData(holed);
   }
+  std::vector<double> unshaded;
+  if (scenario == "shaded")
+  {
+    scene.Window->Render();
+    unshaded = Grab(scene.Window);
+    scene.Property->ShadeOn();
+    plan = "volume-shaded";
+  }
   CompareWithCpu(check, scene, mapper, threshold, errors);
+  if (scenario == "shaded")
+  {
+    const double change = Rmse(Grab(scene.Window), unshaded);
+    std::cout << "RGB RMSE shaded vs unshaded " << change << "\n";
+    check.Check(change > 0.01, "the shading shows");
+    check.Check(errors->Errors.empty() && errors->Warnings.empty(),
+      "Shade is drawn, no warning:\n" + errors->AllErrors());
+  }
   check.Check(mapper->GetLastBricks() > 8, "many bricks");
   if (scenario == "nan_hole")
   {
@@ -286,6 +310,48 @@ vtkNew<vtkGPUVolumeRayCastMapper> MakeReference()
   gpu->SetSampleDistance(1.0);
   gpu->SetUseJittering(0);
   return gpu;
+}
+
+/// Shade on, the full volume in the budget, against vtkGPUVolumeRayCastMapper:
+/// the default headlight, or a vtkLightKit.
+int GpuShaded(bool lightKit)
+{
+  Checker check;
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  mapper->SetLeafSize(8);
+  mapper->SetBudgetMB(4.0);
+  Scene ours(mapper);
+  vtkNew<vtkGPUVolumeRayCastMapper> gpu = MakeReference();
+  Scene theirs(gpu);
+  vtkNew<vtkLightKit> kit;
+  for (Scene* s : { &ours, &theirs })
+  {
+    s->Property->ShadeOn();
+    if (lightKit)
+    {
+      s->Renderer->AutomaticLightCreationOff();
+      s->Renderer->RemoveAllLights();
+      kit->AddLightsToRenderer(s->Renderer);
+    }
+  }
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  errors->Watch(mapper);
+  ours.Window->Render();
+  theirs.Window->Render();
+  check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
+  check.Check(std::string(mapper->GetLastPlan()) == "volume-shaded",
+    std::string("plan 'volume-shaded', not '") + mapper->GetLastPlan() + "'");
+  const std::vector<double> a = Grab(ours.Window);
+  const std::vector<double> b = Grab(theirs.Window);
+  const double rmse = Rmse(a, b);
+  std::cout << (lightKit ? "light kit" : "headlight") << ": bricks " << mapper->GetLastBricks()
+            << ", texture bytes " << mapper->GetLastTextureBytes()
+            << "; RGB RMSE against vtkGPUVolumeRayCastMapper " << rmse
+            << " (threshold 0.03), signal " << Signal(b) << "\n";
+  check.Check(Signal(b) > 0.02, "the reference shows the volume");
+  check.Check(rmse < 0.03, "within 0.03 of vtkGPUVolumeRayCastMapper");
+  return check.Result();
 }
 
 int GpuReference(bool withActor)
@@ -406,9 +472,13 @@ int TestHybridOctreeVolumeMapper(int argc, char* argv[])
   if (scenario == "cpu_match" || scenario == "multisample" || scenario == "tiny_opacity" ||
     scenario == "inside" || scenario == "opaque_surface" || scenario == "translucent_surface" ||
     scenario == "points_square" || scenario == "points_gaussian" || scenario == "points_surface" ||
-    scenario == "nan_hole")
+    scenario == "nan_hole" || scenario == "shaded")
   {
     return CpuMatch(scenario);
+  }
+  if (scenario == "gpu_shaded" || scenario == "gpu_light_kit")
+  {
+    return GpuShaded(scenario == "gpu_light_kit");
   }
   if (scenario == "gpu_reference" || scenario == "actor")
   {

@@ -11,7 +11,7 @@
  *                budget; a still frame after it refines to the full budget;
  *                PrintSelf shows every setting and statistic.
  *   warnings:    each setting the mapper does not draw (a blend mode other
- *                than Composite, Shade, a gradient opacity, a 2D transfer
+ *                than Composite, a gradient opacity, a 2D transfer
  *                function, cropping, a clipping plane, dependent components)
  *                gives one warning naming it, once while it stays on; the
  *                picture is the one without it; turned off and on again, or
@@ -192,8 +192,6 @@ int Warnings()
   const std::vector<Setting> settings = {
     { "the Maximum Intensity blend mode",
       [&](bool on) { mapper->SetBlendMode(on ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND : 0); } },
-    { "volume shading (vtkVolumeProperty::ShadeOn",
-      [&](bool on) { scene.Property->SetShade(on); } },
     { "the gradient opacity",
       [&](bool on) {
         scene.Property->SetGradientOpacity(gradient);

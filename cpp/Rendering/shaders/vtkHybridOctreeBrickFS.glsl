@@ -25,6 +25,20 @@ uniform mat4 DCMC;
 uniform vec2 viewportSize;
 uniform vec2 depthScale;
 uniform float nearDepth;
+#ifdef HO_SHADE
+// Volume shading (VTK 9.2's model, src/transfer/lighting.rs): the brick
+// texture carries one border texel per side; the gradient is the central
+// difference one texel away, over gradientStep (stride * spacing, model units).
+uniform vec3 gradientStep;
+uniform vec4 material; // ambient, diffuse, specular, specular power
+uniform int twoSided;
+uniform int headlight;
+uniform int lightCount;
+uniform vec3 lightDirection[HO_MAX_LIGHTS];
+uniform vec3 lightAmbient[HO_MAX_LIGHTS];
+uniform vec3 lightDiffuse[HO_MAX_LIGHTS];
+uniform vec3 lightSpecular[HO_MAX_LIGHTS];
+#endif
 //VTK::Output::Dec
 
 // The primitive kinds (the vertex attribute kindMC, a whole number).
@@ -34,13 +48,85 @@ const int RAY_MARCHED_BOX = 2;
 const int SQUARE_POINT = 3;
 const int GAUSSIAN_POINT = 4;
 
-// Opacity a' of the sample at model position p, and its colour. NaN texels
+#ifdef HO_SHADE
+float texelAt(vec3 u)
+{
+  return texture(brickTexture, (u + vec3(0.5)) / texels).r;
+}
+
+// The shaded colour of c at texel coordinates u (border included), seen
+// along the unit ray direction v: N the normalised central-difference
+// gradient (0 where it is 0 or touches no data), then
+// headlight: ka c + [d > 0] (kd d Ld c + ks max(R.V, 0)^p Ls), R = 2 (N.L) N - L, L = V;
+// lights:    ka sum La + kd sum [d > 0] d Ld c + ks sum [d > 0][R.V > 0] (R.V)^p Ls,
+//            R = normalize(2 d N - L); d = N.L, |N.L| when two-sided; clamped to [0, 1].
+vec3 shade(vec3 u, vec3 c, vec3 v)
+{
+  vec3 g = vec3(texelAt(u + vec3(1.0, 0.0, 0.0)) - texelAt(u - vec3(1.0, 0.0, 0.0)),
+             texelAt(u + vec3(0.0, 1.0, 0.0)) - texelAt(u - vec3(0.0, 1.0, 0.0)),
+             texelAt(u + vec3(0.0, 0.0, 1.0)) - texelAt(u - vec3(0.0, 0.0, 1.0))) /
+    (2.0 * gradientStep);
+  float len = length(g);
+  vec3 n = (len > 0.0 && !isnan(len) && !isinf(len)) ? g / len : vec3(0.0);
+  vec3 outColor;
+  if (headlight != 0)
+  {
+    float d = dot(n, v);
+    vec3 r = 2.0 * d * n - v;
+    float rv = max(dot(r, v), 0.0);
+    if (d < 0.0 && twoSided != 0)
+    {
+      d = -d;
+    }
+    outColor = material.x * c;
+    if (d > 0.0)
+    {
+      outColor += material.y * d * lightDiffuse[0] * c + material.z * pow(rv, material.w) * lightSpecular[0];
+    }
+  }
+  else
+  {
+    vec3 amb = vec3(0.0);
+    vec3 dif = vec3(0.0);
+    vec3 spe = vec3(0.0);
+    for (int i = 0; i < lightCount; ++i)
+    {
+      vec3 l = lightDirection[i];
+      float d = dot(n, l);
+      if (d < 0.0 && twoSided != 0)
+      {
+        d = -d;
+      }
+      if (d > 0.0)
+      {
+        vec3 r = normalize(2.0 * d * n - l);
+        float rv = dot(r, v);
+        dif += d * lightDiffuse[i];
+        if (rv > 0.0)
+        {
+          spe += pow(rv, material.w) * lightSpecular[i];
+        }
+      }
+      amb += lightAmbient[i];
+    }
+    outColor = material.x * amb + material.y * dif * c + material.z * spe;
+  }
+  return clamp(outColor, 0.0, 1.0);
+}
+#endif
+
+// Opacity a' of the sample at model position p, and its colour (shaded
+// along the ray direction v with HO_SHADE). NaN texels
 // are no data: the linear filter of a sample touching one is NaN (every
 // corner is weighed, 0 * NaN = NaN), and such a sample is transparent black,
 // as in the CPU compositor.
-vec4 sampleAt(vec3 p)
+vec4 sampleAt(vec3 p, vec3 v)
 {
+#ifdef HO_SHADE
+  vec3 u = clamp((p - brickLo) * inverseStep + vec3(1.0), vec3(1.0), texels - vec3(2.0));
+#else
   vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
+#endif
   float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
   if (isnan(value))
   {
@@ -52,7 +138,14 @@ vec4 sampleAt(vec3 p)
   {
     a = 1.0 - exp(opacityRatio * log(1.0 - a));
   }
-  return vec4(clamp(c.rgb, 0.0, 1.0), a);
+  vec3 rgb = clamp(c.rgb, 0.0, 1.0);
+#ifdef HO_SHADE
+  if (a > 0.0)
+  {
+    rgb = shade(u, rgb, v);
+  }
+#endif
+  return vec4(rgb, a);
 }
 
 // The view depth (x - eye) . forward of the point at this pixel and depth-buffer value d.
@@ -98,7 +191,7 @@ void main()
     float A = 0.0;
     for (int k = k0; k <= k1 && A < 0.999; ++k)
     {
-      vec4 s = sampleAt(origin + dir * ((float(k) + j) * sliceSpacing / cosA));
+      vec4 s = sampleAt(origin + dir * ((float(k) + j) * sliceSpacing / cosA), dir);
       C += (1.0 - A) * s.a * s.rgb;
       A += (1.0 - A) * s.a;
     }
@@ -146,7 +239,7 @@ void main()
     gl_FragData[0] = vec4(rgb * surfaceColor.a, surfaceColor.a);
     return;
   }
-  vec4 s = sampleAt(positionMC);
+  vec4 s = sampleAt(positionMC, parallel != 0 ? forward : normalize(positionMC - eye));
   if (s.a == 0.0)
   {
     discard; // blends to nothing: skip the blend

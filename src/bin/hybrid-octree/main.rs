@@ -27,6 +27,7 @@ mod points;
 mod pool;
 mod render;
 mod scene;
+mod shade;
 mod surface;
 
 use clap::{Parser, Subcommand};

@@ -54,6 +54,8 @@ struct RenderReport {
     /// mapper's `GetLastEstimatedError()` is the same number.
     estimated_error: f64,
     passes: Vec<String>,
+    /// The shading the frame used, lights in world space (the plan says `volume-shaded`).
+    lighting: Option<hybrid_octree::transfer::lighting::Lighting>,
     skipped_bricks: usize,
     warning: Option<String>,
     select_ms: f64,
@@ -78,7 +80,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let volume = args.input.load()?;
         let grid = args.input.grid(&volume)?;
         let scene = load(&grid, &args.scene)?;
-        let options = SelectOptions { roi: args.scene.roi, ..SelectOptions::new(budget_bytes, args.tolerance) };
+        let options = SelectOptions {
+            roi: args.scene.roi,
+            gradient_border: args.scene.shade.shades(),
+            ..SelectOptions::new(budget_bytes, args.tolerance)
+        };
         let started = Instant::now();
         let selection = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
         let select_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -102,6 +108,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             bricks: selection.bricks.len(),
             estimated_error: selection.estimated_error,
             passes: f.list.plan.passes.clone(),
+            lighting: f.list.lighting.clone(),
             skipped_bricks: f.list.plan.skipped_bricks,
             warning: selection.warning.clone(),
             select_ms,

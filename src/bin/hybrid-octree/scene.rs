@@ -53,6 +53,9 @@ pub struct SceneArgs {
     /// Region of interest X,Y,Z,R (index space): refined first.
     #[arg(long, value_parser = roi, allow_hyphen_values = true)]
     pub roi: Option<Roi>,
+    /// Volume shading.
+    #[command(flatten)]
+    pub shade: crate::shade::ShadeArgs,
 }
 
 fn roi(s: &str) -> std::result::Result<Roi, String> {
@@ -133,7 +136,9 @@ pub fn frame(
     args: &SceneArgs,
     points: Option<(&PointSet, Footprint)>,
 ) -> Result<Frame> {
-    let view = Scene { surface: scene.surface.as_ref(), surface_opacity: args.surface_opacity, shading: false };
+    let lighting = args.shade.lighting();
+    let view =
+        Scene { surface: scene.surface.as_ref(), surface_opacity: args.surface_opacity, shading: lighting.as_ref() };
     let started = Instant::now();
     let polygons = match (plan(selection, &view).surface, &scene.surface) {
         (SurfacePass::Translucent, Some(s)) => Some(SlabPolygons::new(&scene.octree, s, grid.shape(), selection)),
@@ -170,13 +175,14 @@ pub fn surface_colour(args: &SceneArgs) -> [f32; 4] {
 /// The full-resolution reference picture of the scene.
 pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Result<Image> {
     let surface = scene.surface.as_ref().map(|s| (s, surface_colour(args)));
+    let lighting = args.shade.lighting();
     reference(
         grid,
         &scene.tf,
         &scene.camera,
         args.width,
         args.height,
-        &ReferenceOptions { surface, ..ReferenceOptions::default() },
+        &ReferenceOptions { surface, lighting: lighting.as_ref(), ..ReferenceOptions::default() },
     )
 }
 

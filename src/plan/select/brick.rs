@@ -3,7 +3,7 @@
 //! [`Selection`].
 //!
 //! ```text
-//! bytes(n, p)  = texels_x * texels_y * texels_z * bytes_per_texel
+//! bytes(n, p)  = texels_x * texels_y * texels_z * bytes_per_texel     (texels_a + 2 with a gradient border)
 //! error(n, p)  = Imp(n) * e_p(n)              (e_p normalised by the data range)
 //! ```
 
@@ -31,6 +31,10 @@ pub struct SelectOptions {
     pub bytes_per_texel: usize,
     /// Largest brick: `2^max_brick_log2` cells per axis.
     pub max_brick_log2: u32,
+    /// Count one more texel on each side of every brick in its bytes: the
+    /// border the gradient of a shaded volume reads (`(n + 2)` texels per
+    /// axis instead of `n`); set when the scene shades.
+    pub gradient_border: bool,
 }
 
 impl SelectOptions {
@@ -39,7 +43,14 @@ impl SelectOptions {
     /// texture limit, and large enough that data with detail everywhere can
     /// be drawn as a few big bricks with little border overhead).
     pub fn new(budget_bytes: usize, tolerance: f64) -> SelectOptions {
-        SelectOptions { budget_bytes, tolerance, roi: None, bytes_per_texel: 4, max_brick_log2: 7 }
+        SelectOptions {
+            budget_bytes,
+            tolerance,
+            roi: None,
+            bytes_per_texel: 4,
+            max_brick_log2: 7,
+            gradient_border: false,
+        }
     }
 }
 
@@ -120,6 +131,7 @@ pub(super) fn make_brick(
     p: usize,
     importance: f64,
     bytes_per_texel: usize,
+    gradient_border: bool,
 ) -> Brick {
     let l = octree.layout().root_log2 as usize;
     let stride = 1usize << (l - n.level - p);
@@ -132,7 +144,7 @@ pub(super) fn make_brick(
         hi: n.hi,
         stride,
         texels,
-        bytes: texels.iter().product::<usize>() * bytes_per_texel,
+        bytes: texels.iter().map(|&n| n + 2 * usize::from(gradient_border)).product::<usize>() * bytes_per_texel,
         error: n.error(p),
         importance,
         point_count: 0,

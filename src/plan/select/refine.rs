@@ -160,7 +160,14 @@ impl Refiner<'_> {
     /// Node `id` drawn at level `p`, with its importance.
     fn brick_of(&self, id: NodeId, p: usize) -> Brick {
         let n = self.octree.node(id);
-        make_brick(self.octree, &n, p, importance(self.options.roi.as_ref(), n.lo, n.hi), self.options.bytes_per_texel)
+        make_brick(
+            self.octree,
+            &n,
+            p,
+            importance(self.options.roi.as_ref(), n.lo, n.hi),
+            self.options.bytes_per_texel,
+            self.options.gradient_border,
+        )
     }
 
     /// The squared error the points a brick took correct (0 without points).
@@ -532,7 +539,7 @@ mod tests {
         let o = octree(65);
         let l = o.layout().root_log2 as usize;
         let max_p = |n: &NodeRef<'_>| l - n.level;
-        let brick_of = |id: NodeId, p: usize| make_brick(&o, &o.node(id), p, 1.0, 4);
+        let brick_of = |id: NodeId, p: usize| make_brick(&o, &o.node(id), p, 1.0, 4, false);
         let root = o.node(o.root());
         for p in 1..=l {
             let own = brick_of(root.id, p);

@@ -28,7 +28,7 @@ pub fn uniform(octree: &VolumeOctree, stride: usize, bytes_per_texel: usize) -> 
         )));
     }
     let root = octree.node(octree.root());
-    let brick = make_brick(octree, &root, l - stride.trailing_zeros() as usize, 1.0, bytes_per_texel);
+    let brick = make_brick(octree, &root, l - stride.trailing_zeros() as usize, 1.0, bytes_per_texel, false);
     let max_error = brick.error as f64;
     Ok(Selection {
         bricks: vec![brick],
