@@ -11,8 +11,11 @@
 //!   slabs, back to front, clip planes only for batches spanning slabs;
 //! - bricks fully transparent under the transfer function: never selected
 //!   (no texture spent), counted in [`Plan::skipped_bricks`];
-//! - shading only when asked for.
+//! - shading only when asked for;
+//! - the blend mode ([`Blend`]): `volume` for Composite, `volume-mip`,
+//!   `volume-minip`, `volume-average` or `volume-additive` for the others.
 
+use super::blend::Blend;
 use super::select::Brick;
 use super::slab::Batch;
 use crate::geometry::camera::Camera;
@@ -41,6 +44,8 @@ pub struct Plan {
     pub shading: bool,
     /// Nodes not selected because the transfer function makes them fully transparent.
     pub skipped_bricks: usize,
+    /// How the samples along a ray become a pixel.
+    pub blend: Blend,
     /// The passes, in the order they run (e.g. `["surface-opaque", "volume"]`).
     pub passes: Vec<String>,
 }
@@ -109,6 +114,8 @@ pub struct Scene<'a> {
     pub surface_opacity: f64,
     /// Gradient shading of the volume (only when the volume property asks).
     pub shading: bool,
+    /// The blend mode (VTK's `vtkVolumeMapper::SetBlendMode`) and its ranges.
+    pub blend: Blend,
 }
 
 /// The plan for a scene (see the module documentation).
@@ -127,9 +134,19 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         SurfacePass::None => {}
     }
     if volume {
-        passes.push(if scene.shading { "volume-shaded" } else { "volume" }.to_string());
+        passes.push(match scene.blend.mode {
+            super::BlendMode::Composite if scene.shading => "volume-shaded".to_string(),
+            mode => mode.pass(),
+        });
     }
-    Plan { volume, surface, shading: scene.shading && volume, skipped_bricks: selection.skipped, passes }
+    Plan {
+        volume,
+        surface,
+        shading: scene.shading && volume && scene.blend.mode == super::BlendMode::Composite,
+        skipped_bricks: selection.skipped,
+        blend: scene.blend,
+        passes,
+    }
 }
 
 /// The DrawList for `selection` seen from `camera`: the plan, the bricks back
@@ -233,7 +250,11 @@ mod tests {
     #[test]
     fn volume_only_without_a_surface() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: false }, |_, _| true);
+        let l = list(
+            &f,
+            &Scene { surface: None, surface_opacity: 1.0, shading: false, blend: Default::default() },
+            |_, _| true,
+        );
         assert_eq!(l.plan.passes, vec!["volume"]);
         assert_eq!(l.plan.surface, SurfacePass::None);
         assert!(l.opaque_triangles.is_empty() && l.bricks.iter().all(|b| b.batches.is_empty()));
@@ -243,7 +264,11 @@ mod tests {
     #[test]
     fn opaque_surface_first_then_volume_without_interleaving() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: false }, |_, _| true);
+        let l = list(
+            &f,
+            &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: false, blend: Default::default() },
+            |_, _| true,
+        );
         assert_eq!(l.plan.passes, vec!["surface-opaque", "volume"]);
         assert_eq!(l.opaque_triangles.len(), f.surface.polygon_count());
         assert!(l.bricks.iter().all(|b| b.batches.is_empty()), "no batches in the slabs");
@@ -252,7 +277,11 @@ mod tests {
     #[test]
     fn translucent_surface_goes_into_the_slabs_every_triangle_at_least_once() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: true }, |_, _| true);
+        let l = list(
+            &f,
+            &Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: true, blend: Default::default() },
+            |_, _| true,
+        );
         assert_eq!(l.plan.passes, vec!["surface-in-slabs", "volume-shaded"]);
         assert!(l.opaque_triangles.is_empty());
         let mut seen = vec![false; f.surface.polygon_count()];
@@ -274,7 +303,8 @@ mod tests {
         let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
         let selection = select(&f.octree, &options, |_, _| true).unwrap();
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
+        let scene =
+            Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false, blend: Default::default() };
         for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
             let camera =
                 Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), azimuth, elevation, parallel).unwrap();
@@ -297,7 +327,8 @@ mod tests {
         assert_ne!(nodes(&all), nodes(&fewer));
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false };
+        let scene =
+            Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: false, blend: Default::default() };
         let e = draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons)).unwrap_err().to_string();
         assert!(e.contains("made for another selection or surface"), "{e}");
     }
@@ -305,12 +336,19 @@ mod tests {
     #[test]
     fn transparent_nodes_cost_no_texture_and_a_hidden_surface_no_pass() {
         let f = fixture();
-        let l =
-            list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: false }, |_, max| max > 0.9);
+        let l = list(
+            &f,
+            &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: false, blend: Default::default() },
+            |_, max| max > 0.9,
+        );
         assert!(l.plan.skipped_bricks > 0);
         assert_eq!(l.plan.surface, SurfacePass::None);
         assert!(!l.plan.shading);
-        let none = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: true }, |_, _| false);
+        let none = list(
+            &f,
+            &Scene { surface: None, surface_opacity: 1.0, shading: true, blend: Default::default() },
+            |_, _| false,
+        );
         assert!(!none.plan.volume && none.bricks.is_empty() && none.plan.passes.is_empty() && !none.plan.shading);
     }
 }

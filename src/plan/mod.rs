@@ -5,12 +5,14 @@
 //! representation into them, and the draw list (`draw_list`) says which passes a scene
 //! needs and what each draws.
 
+pub mod blend;
 mod draw_list;
 pub mod order;
 pub mod point_slabs;
 pub mod select;
 pub mod slab;
 
+pub use blend::{Blend, BlendMode};
 pub use draw_list::{draw_list, plan, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
 pub use point_slabs::add_points;
 pub use slab::Batch;

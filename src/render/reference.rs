@@ -18,6 +18,10 @@
 //! (opacity 1) ends the ray at its first hit; opacity 0 hides it. Rows run in parallel; every
 //! pixel is computed on its own, so the picture does not depend on the
 //! number of threads.
+//!
+//! Blend modes besides Composite ([`reference_blend`]) reduce the same
+//! samples, each standing for `l / d0` reference spacings, instead of
+//! blending them: `projection`.
 
 use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_size};
@@ -28,9 +32,12 @@ use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::{Error, Result};
 use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::geometry::camera::Camera;
+use crate::plan::{Blend, BlendMode};
 use crate::surface::Surface;
 use crate::transfer::TransferFunction;
 use rayon::prelude::*;
+
+mod projection;
 
 /// Accumulated opacity past which a ray stops.
 pub const EARLY_TERMINATION: f64 = 0.999;
@@ -54,6 +61,20 @@ pub fn reference(
     height: usize,
     options: &ReferenceOptions<'_>,
 ) -> Result<Image> {
+    reference_blend(grid, tf, camera, width, height, options, &Blend::default())
+}
+
+/// [`reference`] under `blend`'s mode: Composite as there; the other modes
+/// reduce the same samples (see `projection`).
+pub fn reference_blend(
+    grid: &Grid<'_>,
+    tf: &TransferFunction,
+    camera: &Camera,
+    width: usize,
+    height: usize,
+    options: &ReferenceOptions<'_>,
+    blend: &Blend,
+) -> Result<Image> {
     check_size(width, height)?;
     let shape = *grid.shape();
     let d0 = crate::data::spacing::reference_spacing(&shape);
@@ -69,7 +90,7 @@ pub fn reference(
         }
         None => None,
     };
-    Ok(grid.visit(Caster { tf, camera, width, height, shape, step, d0, surface: surface.as_ref() }))
+    Ok(grid.visit(Caster { tf, camera, width, height, shape, step, d0, surface: surface.as_ref(), blend: *blend }))
 }
 
 struct Caster<'a> {
@@ -81,6 +102,7 @@ struct Caster<'a> {
     step: f64,
     d0: f64,
     surface: Option<&'a (&'a Surface, TriangleGrid, [f32; 4])>,
+    blend: Blend,
 }
 
 impl GridVisitor for Caster<'_> {
@@ -104,6 +126,9 @@ impl Caster<'_> {
             } else {
                 tris.all_hits(&ray, f64::INFINITY, hits);
             }
+        }
+        if self.blend.mode != BlendMode::Composite {
+            return self.project(g, &ray, hits.first());
         }
         let mut acc: Rgba = [0.0; 4];
         let mut next_hit = 0;

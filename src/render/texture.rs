@@ -15,6 +15,10 @@
 //! T_p(x)    = lerp(w(i0), w(i1), tx)
 //! ```
 //!
+//! A coarse brick of a maximum (minimum) intensity picture holds instead
+//! the largest (smallest) grid value within a stride of each texel
+//! position, so that it never hides a peak (`pool`).
+//!
 //! Textures are made once per DrawList, bricks in parallel; a frame reads
 //! only them, never the grid.
 
@@ -23,8 +27,10 @@ use crate::base::error::{Error, Result};
 use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear::lerp;
 use crate::plan::select::Brick;
-use crate::plan::DrawList;
+use crate::plan::{BlendMode, DrawList};
 use rayon::prelude::*;
+
+mod pool;
 
 /// A stored texel: `f32` or `f64`, read back as `f64`.
 pub(crate) trait Texel: Copy + Send + Sync + 'static {
@@ -164,8 +170,20 @@ pub(crate) struct Texture<S> {
 impl<S: Texel> Texture<S> {
     /// Copies `brick`'s texels from `g` (the brick checked to lie in the grid);
     /// `None` when a value is not exactly an `S`.
+    #[cfg(test)]
     fn copy<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick) -> Option<Texture<S>> {
-        let data = texel_values(g, brick, S::exact)?;
+        Texture::copy_for(g, brick, BlendMode::Composite)
+    }
+
+    /// [`Self::copy`] for a picture of blend mode `mode`: a coarse brick of a
+    /// MIP or MinIP holds its peak-keeping texels (`pool`).
+    fn copy_for<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick, mode: BlendMode) -> Option<Texture<S>> {
+        let data = match mode {
+            BlendMode::Mip | BlendMode::Minip if brick.stride > 1 => {
+                pool::pooled_values(g, brick, mode == BlendMode::Mip, S::exact)?
+            }
+            _ => texel_values(g, brick, S::exact)?,
+        };
         let n = brick.texels;
         Some(Texture { lo: brick.lo, hi: brick.hi, stride: brick.stride, n, last: n.map(|n| (n - 1) as f64), data })
     }
@@ -274,12 +292,14 @@ impl GridVisitor for Upload<'_> {
     type Output = Texels;
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Texels {
         let bricks = &self.0.bricks;
-        let f32s: Option<Vec<Texture<f32>>> = bricks.par_iter().map(|d| Texture::copy(&g, &d.brick)).collect();
+        let mode = self.0.plan.blend.mode;
+        let f32s: Option<Vec<Texture<f32>>> =
+            bricks.par_iter().map(|d| Texture::copy_for(&g, &d.brick, mode)).collect();
         match f32s {
             Some(t) => Texels::F32(t),
-            None => {
-                Texels::F64(bricks.par_iter().map(|d| Texture::copy(&g, &d.brick).expect("f64 holds f64")).collect())
-            }
+            None => Texels::F64(
+                bricks.par_iter().map(|d| Texture::copy_for(&g, &d.brick, mode).expect("f64 holds f64")).collect(),
+            ),
         }
     }
 }
@@ -355,6 +375,7 @@ mod tests {
                 surface: SurfacePass::None,
                 shading: false,
                 skipped_bricks: 0,
+                blend: Default::default(),
                 passes: Vec::new(),
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),

@@ -133,7 +133,12 @@ pub fn frame(
     args: &SceneArgs,
     points: Option<(&PointSet, Footprint)>,
 ) -> Result<Frame> {
-    let view = Scene { surface: scene.surface.as_ref(), surface_opacity: args.surface_opacity, shading: false };
+    let view = Scene {
+        surface: scene.surface.as_ref(),
+        surface_opacity: args.surface_opacity,
+        shading: false,
+        blend: Default::default(),
+    };
     let started = Instant::now();
     let polygons = match (plan(selection, &view).surface, &scene.surface) {
         (SurfacePass::Translucent, Some(s)) => Some(SlabPolygons::new(&scene.octree, s, grid.shape(), selection)),

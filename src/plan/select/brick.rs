@@ -31,6 +31,10 @@ pub struct SelectOptions {
     pub bytes_per_texel: usize,
     /// Largest brick: `2^max_brick_log2` cells per axis.
     pub max_brick_log2: u32,
+    /// Coarse bricks hold peak-keeping texels (maximum and minimum
+    /// intensity, [`crate::plan::BlendMode::is_extremum`]): a coarse form of
+    /// a node is exact only when it is constant.
+    pub pooled: bool,
 }
 
 impl SelectOptions {
@@ -39,7 +43,7 @@ impl SelectOptions {
     /// texture limit, and large enough that data with detail everywhere can
     /// be drawn as a few big bricks with little border overhead).
     pub fn new(budget_bytes: usize, tolerance: f64) -> SelectOptions {
-        SelectOptions { budget_bytes, tolerance, roi: None, bytes_per_texel: 4, max_brick_log2: 7 }
+        SelectOptions { budget_bytes, tolerance, roi: None, bytes_per_texel: 4, max_brick_log2: 7, pooled: false }
     }
 }
 
