@@ -64,7 +64,7 @@ pub fn reference(
     reference_blend(grid, tf, camera, width, height, options, &Blend::default())
 }
 
-/// [`reference`] under `blend`'s mode: Composite as there; the other modes
+/// [`reference()`] under `blend`'s mode: Composite as there; the other modes
 /// reduce the same samples (see `projection`).
 pub fn reference_blend(
     grid: &Grid<'_>,

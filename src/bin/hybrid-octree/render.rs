@@ -54,6 +54,8 @@ struct RenderReport {
     /// mapper's `GetLastEstimatedError()` is the same number.
     estimated_error: f64,
     passes: Vec<String>,
+    /// The blend mode and its ranges (the plan's).
+    blend: hybrid_octree::plan::Blend,
     skipped_bricks: usize,
     warning: Option<String>,
     select_ms: f64,
@@ -78,7 +80,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let volume = args.input.load()?;
         let grid = args.input.grid(&volume)?;
         let scene = load(&grid, &args.scene)?;
-        let options = SelectOptions { roi: args.scene.roi, ..SelectOptions::new(budget_bytes, args.tolerance) };
+        let options = SelectOptions {
+            roi: args.scene.roi,
+            pooled: scene.blend.mode.is_extremum(),
+            ..SelectOptions::new(budget_bytes, args.tolerance)
+        };
         let started = Instant::now();
         let selection = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
         let select_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -102,6 +108,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             bricks: selection.bricks.len(),
             estimated_error: selection.estimated_error,
             passes: f.list.plan.passes.clone(),
+            blend: f.list.plan.blend,
             skipped_bricks: f.list.plan.skipped_bricks,
             warning: selection.warning.clone(),
             select_ms,
