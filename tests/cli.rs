@@ -744,9 +744,10 @@ fn negative_numbers_are_accepted_as_values_everywhere() {
     surface.extend(hu);
     surface.extend(["--isovalue", "-500"]);
     assert!(run(&surface).status.success());
+    let ftb_prefix = png.replace(".png", "-ftb");
     let mut ftb = vec!["ftb"];
     ftb.extend(hu);
-    ftb.extend(["--isovalue", "-500"]);
+    ftb.extend(["--isovalue", "-500", "--output", &ftb_prefix]);
     assert!(run(&ftb).status.success());
     let mut bench = vec!["bench", "render"];
     bench.extend(hu);

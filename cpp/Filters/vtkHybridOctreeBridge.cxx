@@ -551,4 +551,94 @@ bool GeneratePoints(const void* bytes, std::size_t byteCount, const GridDescript
   });
 }
 
+namespace
+{
+template <typename T>
+rust::Slice<const T> In(const std::vector<T>& v)
+{
+  return rust::Slice<const T>(v.data(), v.size());
+}
+
+/// An optional input: empty when absent.
+template <typename T>
+rust::Slice<const T> In(const std::vector<T>* v)
+{
+  return v ? In(*v) : rust::Slice<const T>();
+}
+} // namespace
+
+bool GetBrickGeometry(const BrickGeometryInput& input, BrickGeometry& geometry, std::string& error)
+{
+  if (!input.List || !input.Table)
+  {
+    error = "the brick geometry needs a DrawList and a transfer function table";
+    return false;
+  }
+  const DrawList& list = *input.List;
+  return Guarded(error, [&] {
+    std::vector<rust::Slice<const float>> ranges;
+    ranges.reserve(input.BlockRanges.size());
+    for (const std::vector<float>* r : input.BlockRanges)
+    {
+      ranges.push_back(In(r));
+    }
+    static_assert(std::is_same<unsigned int, std::uint32_t>::value, "triangle ids are 32 bits");
+    hybrid_octree::BrickGeometryDesc desc{};
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      desc.eye[axis] = input.Eye[axis];
+      desc.forward[axis] = list.Forward[axis];
+      desc.view_up[axis] = input.ViewUp[axis];
+      desc.spacing[axis] = input.Spacing[axis];
+    }
+    desc.bounds = In(list.Bounds);
+    desc.texels = In(list.Texels);
+    desc.stride = In(list.Stride);
+    desc.slice_offsets = In(list.SliceOffsets);
+    desc.slices = In(list.Slices);
+    desc.batch_offsets = In(list.BatchOffsets);
+    desc.batch_first = In(list.BatchFirst);
+    desc.batch_end = In(list.BatchEnd);
+    desc.bucket_offsets = In(list.BucketOffsets);
+    desc.bucket_slab = In(list.BucketSlab);
+    desc.bucket_point_offsets = In(list.BucketPointOffsets);
+    desc.bucket_points = In(list.BucketPoints);
+    desc.table = In(*input.Table);
+    desc.table_lo = input.TableLo;
+    desc.table_hi = input.TableHi;
+    desc.block_ranges = rust::Slice<const rust::Slice<const float>>(ranges.data(), ranges.size());
+    desc.with_surface = input.SurfaceVertices && input.SurfaceTriangles;
+    desc.surface_vertices = In(input.SurfaceVertices);
+    desc.surface_triangles = In(input.SurfaceTriangles);
+    desc.with_points = input.PointPositions && input.PointShades;
+    desc.point_positions = In(input.PointPositions);
+    desc.point_shades = In(input.PointShades);
+    desc.gaussian_points = input.GaussianPoints;
+    hybrid_octree::BrickGeometryOutput out = hybrid_octree::brick_geometry(desc);
+    // The vertices stay in the Rust core's buffer, kept alive by Storage.
+    auto vertices = std::make_shared<rust::Vec<float>>(std::move(out.vertices));
+    geometry.Vertices = vertices->data();
+    geometry.VertexFloats = vertices->size();
+    geometry.Storage = std::move(vertices);
+    CopyInto(out.brick_first, geometry.BrickFirst);
+    CopyInto(out.ray_marched, geometry.RayMarched);
+    CopyInto(out.drawn, geometry.Drawn);
+    CopyInto(out.boxes, geometry.Boxes);
+    std::copy(out.point_up.begin(), out.point_up.end(), geometry.PointUp);
+    geometry.TrianglesPlaced = out.triangles_placed;
+    geometry.PointsPlaced = out.points_placed;
+  });
+}
+
+bool MeasureBlockRanges(const float* texels, std::size_t count, const std::size_t dims[3],
+  std::vector<float>& ranges, std::string& error)
+{
+  return Guarded(error, [&] {
+    const rust::Slice<const std::size_t> d(dims, 3);
+    ranges.resize(hybrid_octree::block_ranges_len(d));
+    hybrid_octree::brick_block_ranges(
+      rust::Slice<const float>(texels, texels ? count : 0), d, Out(ranges.data(), ranges.size()));
+  });
+}
+
 } // namespace vtkHybridOctreeBridge

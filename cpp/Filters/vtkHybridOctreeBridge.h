@@ -251,6 +251,79 @@ struct PointsDrawing
 };
 
 /**
+ * What the OpenGL mapper draws of `List` for one camera, computed by the Rust
+ * core (src/plan/draw_geometry, the CPU compositor's rules; see
+ * GetBrickGeometry()). `Eye` and `ViewUp` are the camera in the list's frame,
+ * `Spacing` the image's, `Table` the transfer function's table (4 floats a
+ * cell over [TableLo, TableHi], as the shader samples it), `BlockRanges[i]`
+ * brick i's block value ranges (MeasureBlockRanges() of its texels). With
+ * `SurfaceVertices` and `SurfaceTriangles` (the translucent surface as
+ * uploaded: 6 floats a vertex, position and normal; 3 vertex ids a
+ * triangle) the list's batches are drawn in the slabs; with
+ * `PointPositions` (3 a point) and `PointShades` (4 a point: straight colour,
+ * opacity a_p) its point buckets are.
+ */
+struct BrickGeometryInput
+{
+  const DrawList* List = nullptr;
+  double Eye[3] = { 0.0, 0.0, 0.0 };
+  double ViewUp[3] = { 0.0, 1.0, 0.0 };
+  double Spacing[3] = { 1.0, 1.0, 1.0 };
+  const std::vector<float>* Table = nullptr;
+  double TableLo = 0.0;
+  double TableHi = 1.0;
+  std::vector<const std::vector<float>*> BlockRanges;
+  const std::vector<float>* SurfaceVertices = nullptr;
+  const std::vector<unsigned int>* SurfaceTriangles = nullptr;
+  const std::vector<float>* PointPositions = nullptr;
+  const std::vector<float>* PointShades = nullptr;
+  bool GaussianPoints = false;
+};
+
+/**
+ * The vertices of every brick of a DrawList (see BrickGeometryOutput in
+ * src/ffi/mod.rs): `VertexFloats` floats at `Vertices`, 10 a vertex
+ * (position, normal, clip interval near and far, primitive kind: 0 slice, 1
+ * surface triangle, 2 ray-marched box, 3 square point, 4 Gaussian point;
+ * point opacity), kept by `Storage` (the Rust core's own buffer, not
+ * copied); brick i's vertices `BrickFirst[i] .. BrickFirst[i + 1]`,
+ * `RayMarched[i]` (drawn as its box), `Drawn[i]` (some block visible),
+ * `Boxes[6i .. 6i+6]` (the box its slices are clipped to, VTK order),
+ * `PointUp` (a point quad's up).
+ */
+struct BrickGeometry
+{
+  const float* Vertices = nullptr;
+  std::size_t VertexFloats = 0;
+  std::shared_ptr<const void> Storage;
+  std::vector<std::size_t> BrickFirst;
+  std::vector<char> RayMarched;
+  std::vector<char> Drawn;
+  std::vector<double> Boxes;
+  float PointUp[3] = { 0.0f, 1.0f, 0.0f };
+  std::size_t TrianglesPlaced = 0; ///< surface triangle copies (one per slab drawn in)
+  std::size_t PointsPlaced = 0;
+};
+
+/**
+ * The OpenGL mapper's vertices of `input.List` into `geometry` (replaced):
+ * per brick its slices clipped to the box of its visible blocks, the
+ * surface triangles and points in the slabs between them, or, with none,
+ * its ray-marched box. False and `error` on failure (inputs that do not
+ * match the list).
+ */
+bool GetBrickGeometry(const BrickGeometryInput& input, BrickGeometry& geometry, std::string& error);
+
+/**
+ * A brick's block value ranges (per block of 4^3 cells its texels' [min,
+ * max], NaN left out) from its `count` texels at `texels` (`dims` per axis,
+ * x fastest), into `ranges` (resized): measured once, when the texels are
+ * made. False and `error` on failure.
+ */
+bool MeasureBlockRanges(const float* texels, std::size_t count, const std::size_t dims[3],
+  std::vector<float>& ranges, std::string& error);
+
+/**
  * The nodes of a scalar opacity function as (value, opacity) pairs,
  * flattened, opacities clamped to [0, 1]. With clamping off, the opacity
  * steps to 0 outside the nodes (a 0 point is added at each end). Midpoint and

@@ -1,6 +1,5 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 
-#include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
@@ -144,7 +143,6 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   // Transfer function table (what the CPU compositor gets too).
   CompositeScene Transfer;
   std::vector<float> Table;
-  vtkHybridOctreeOpacityTable Opacity; ///< the table's zero-opacity test
   double RangeLo = 0.0;
   double RangeHi = 1.0;
   bool TableUploaded = false;
@@ -385,7 +383,6 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
     in.Table.swap(table);
     in.RangeLo = range[0];
     in.RangeHi = range[1];
-    in.Opacity.Set(in.Table, range[0], range[1]);
     in.TableUploaded = false;
   }
   return true;
@@ -704,105 +701,22 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   vtkOpenGLCamera* camera, const DrawList& list, bool interactive, int level)
 {
   vtkInternals& in = *this->Internals;
-  std::string error;
-  const std::size_t bricks = list.GetNumberOfBricks();
-
-  // Brick textures: resident ones reused, the rest uploaded within the budget.
-  // The points bought share the budget: the textures get the rest.
-  const Selection& selected = *in.Frame->Selected;
-  const double textureBudget =
-    this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
-  in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
-  std::vector<vtkTextureObject*> textures(bricks, nullptr);
-  // Per brick the box its slices are clipped to: its visible blocks (empty: not drawn).
-  std::vector<double> drawBounds(6 * bricks, 0.0);
-  std::vector<char> drawn(bricks, 0);
-  for (std::size_t i = 0; i < bricks; ++i)
+  std::vector<vtkTextureObject*> textures;
+  vtkHybridOctreeBridge::BrickGeometryInput geometryInput;
+  if (!this->AcquireBrickTextures(window, list, textures, geometryInput) ||
+    !this->UploadTable(window))
   {
-    const std::size_t brick = list.Brick[i];
-    const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
-      window, { list.NodeId[i], list.Stride[i] }, &list.Texels[3 * i],
-      [&](float* texels, std::size_t count) {
-        return selected.GetBrickTexels(
-          Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, count, error);
-      },
-      error);
-    if (!resident)
-    {
-      vtkErrorMacro(<< error);
-      return false;
-    }
-    textures[i] = resident->Texture;
-    double lo[3], hi[3];
-    drawn[i] = resident->Occupancy.VisibleBox(in.Opacity, lo, hi);
-    for (int a = 0; a < 3 && drawn[i]; ++a)
-    {
-      // Texel t sits at min + t * stride * spacing (the last one at most at max).
-      const double step = list.Stride[i] * in.Grid.Spacing[a];
-      const double* b = &list.Bounds[6 * i + 2 * a];
-      drawBounds[6 * i + 2 * a] = std::max(b[0], b[0] + lo[a] * step);
-      drawBounds[6 * i + 2 * a + 1] = std::min(b[1], b[0] + hi[a] * step);
-    }
+    return false;
   }
-  // The transfer function table.
-  if (!in.TableTexture)
-  {
-    in.TableTexture = vtkSmartPointer<vtkTextureObject>::New();
-    in.TableUploaded = false;
-  }
-  if (!in.TableUploaded || in.TableTexture->GetContext() != window)
-  {
-    in.TableTexture->SetContext(window);
-    in.TableTexture->SetWrapS(vtkTextureObject::ClampToEdge);
-    in.TableTexture->SetWrapT(vtkTextureObject::ClampToEdge);
-    in.TableTexture->SetMinificationFilter(vtkTextureObject::Linear);
-    in.TableTexture->SetMagnificationFilter(vtkTextureObject::Linear);
-    if (!in.TableTexture->Create2DFromRaw(
-          static_cast<unsigned int>(this->TableSize), 1, 4, VTK_FLOAT, in.Table.data()))
-    {
-      vtkErrorMacro("OpenGL could not create the transfer function table texture");
-      return false;
-    }
-    in.TableUploaded = true;
-  }
-
   const CameraDescription cam = this->ModelCamera(ren);
-  const bool batches = !list.BatchOffsets.empty() && list.BatchOffsets.back() > 0;
-  // Interactive: every brick ray-marched, its triangles drawn before or after it, no points.
-  const bool surfacePerBrick = interactive && batches;
   const vtkHybridOctreeInteractiveReduction::Level sampling =
     vtkHybridOctreeInteractiveReduction::GetLevel(level);
-  vtkOpenGLHybridOctreeBrickDrawer::SurfaceData translucent;
-  if (batches && !interactive)
+  if (!this->MakeBrickGeometry(list, cam, interactive, sampling.SampleSpacing, geometryInput))
   {
-    translucent.Vertices = &in.SurfaceDrawer.GetVertexData();
-    translucent.Triangles = &in.SurfaceDrawer.GetIndexData();
+    return false;
   }
-  vtkOpenGLHybridOctreeBrickDrawer::PointData points;
-  if (in.HasPoints && !list.BucketOffsets.empty() && !interactive)
-  {
-    points.Drawing = &in.Drawing;
-    points.Shades = &in.Shades;
-    points.Gaussian = this->PointFootprint == 1;
-  }
-  this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(
-    in.Drawer.Build(list, drawBounds, drawn, cam.Position, cam.ViewUp, translucent, points));
-  this->LastPoints = static_cast<vtkTypeInt64>(in.Drawer.GetPointsPlaced());
   this->LastImageSampleDistance = sampling.ImageSampleDistance;
   this->LastSampleSpacing = sampling.SampleSpacing;
-  for (std::size_t i = 0; i < bricks; ++i)
-  {
-    if (drawn[i])
-    {
-      // The lattice planes sampled: every factor-th slice of a sparser ray march.
-      const double slices = static_cast<double>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
-      const double factor = list.SliceSpacing[i] > 0.0
-        ? std::max(1.0, sampling.SampleSpacing * list.ReferenceSpacing / list.SliceSpacing[i])
-        : 1.0;
-      this->LastSlices += static_cast<vtkTypeInt64>(std::ceil(slices / factor));
-      ++this->LastBricks;
-    }
-  }
 
   // Model to clip: VTK's key matrices are transposed for OpenGL.
   vtkMatrix4x4* wcvc;
@@ -826,34 +740,173 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   vtkOpenGLState::ScopedglActiveTexture activeTexture(state);
   state->vtkglEnable(GL_DEPTH_TEST);
   state->vtkglDisable(GL_CULL_FACE);
+  return this->DrawOpaqueSurface(window, mcdc, cam, list, rgba) &&
+    this->DrawBricks(ren, window, mcdc, cam, list, textures, interactive,
+      sampling.ImageSampleDistance, sampling.SampleSpacing, rgba);
+}
 
-  // Opaque surface first, writing depth, so that the volume behind it is hidden.
-  if (list.OpaqueTriangles > 0)
+bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* window,
+  const DrawList& list, std::vector<vtkTextureObject*>& textures,
+  vtkHybridOctreeBridge::BrickGeometryInput& geometryInput)
+{
+  vtkInternals& in = *this->Internals;
+  std::string error;
+  const std::size_t bricks = list.GetNumberOfBricks();
+  // The points bought share the budget: the textures get the rest.
+  const Selection& selected = *in.Frame->Selected;
+  const double textureBudget =
+    this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
+  in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
+  textures.assign(bricks, nullptr);
+  // The frame's geometry is made from each brick's block ranges (kept with its texture).
+  geometryInput.BlockRanges.assign(bricks, nullptr);
+  for (std::size_t i = 0; i < bricks; ++i)
   {
-    state->vtkglDisable(GL_BLEND);
-    state->vtkglDepthMask(GL_TRUE);
-    if (!in.SurfaceDrawer.Bind(window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error))
+    const std::size_t brick = list.Brick[i];
+    const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
+      window, { list.NodeId[i], list.Stride[i] }, &list.Texels[3 * i],
+      [&](float* texels, std::size_t count) {
+        return selected.GetBrickTexels(
+          Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, brick, texels, count, error);
+      },
+      error);
+    if (!resident)
     {
       vtkErrorMacro(<< error);
       return false;
     }
-    in.SurfaceDrawer.Draw(0, list.OpaqueTriangles);
-    in.SurfaceDrawer.Unbind();
-    this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(list.OpaqueTriangles);
+    textures[i] = resident->Texture;
+    geometryInput.BlockRanges[i] = &resident->BlockRanges;
   }
+  return true;
+}
 
+bool vtkHybridOctreeVolumeMapper::UploadTable(vtkOpenGLRenderWindow* window)
+{
+  vtkInternals& in = *this->Internals;
+  if (!in.TableTexture)
+  {
+    in.TableTexture = vtkSmartPointer<vtkTextureObject>::New();
+    in.TableUploaded = false;
+  }
+  if (!in.TableUploaded || in.TableTexture->GetContext() != window)
+  {
+    in.TableTexture->SetContext(window);
+    in.TableTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.TableTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+    in.TableTexture->SetMinificationFilter(vtkTextureObject::Linear);
+    in.TableTexture->SetMagnificationFilter(vtkTextureObject::Linear);
+    if (!in.TableTexture->Create2DFromRaw(
+          static_cast<unsigned int>(this->TableSize), 1, 4, VTK_FLOAT, in.Table.data()))
+    {
+      vtkErrorMacro("OpenGL could not create the transfer function table texture");
+      return false;
+    }
+    in.TableUploaded = true;
+  }
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::MakeBrickGeometry(const DrawList& list,
+  const CameraDescription& cam, bool interactive, double sampleSpacing,
+  vtkHybridOctreeBridge::BrickGeometryInput& geometryInput)
+{
+  vtkInternals& in = *this->Internals;
+  const bool batches = !list.BatchOffsets.empty() && list.BatchOffsets.back() > 0;
+  // Per brick its slices clipped to its visible blocks, the translucent
+  // triangles and the points in the slabs between them, or its ray-marched
+  // box. Interactive: every brick ray-marched, no triangles or points in slabs.
+  geometryInput.List = &list;
+  std::copy(cam.Position, cam.Position + 3, geometryInput.Eye);
+  std::copy(cam.ViewUp, cam.ViewUp + 3, geometryInput.ViewUp);
+  std::copy(in.Grid.Spacing, in.Grid.Spacing + 3, geometryInput.Spacing);
+  geometryInput.Table = &in.Table;
+  geometryInput.TableLo = in.RangeLo;
+  geometryInput.TableHi = in.RangeHi;
+  if (batches && !interactive)
+  {
+    geometryInput.SurfaceVertices = &in.SurfaceDrawer.GetVertexData();
+    geometryInput.SurfaceTriangles = &in.SurfaceDrawer.GetIndexData();
+  }
+  if (in.HasPoints && !list.BucketOffsets.empty() && !interactive)
+  {
+    geometryInput.PointPositions = &in.Drawing.Position;
+    geometryInput.PointShades = &in.Shades;
+    geometryInput.GaussianPoints = this->PointFootprint == 1;
+  }
+  std::string error;
+  vtkHybridOctreeBridge::BrickGeometry geometry;
+  if (!vtkHybridOctreeBridge::GetBrickGeometry(geometryInput, geometry, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(geometry.TrianglesPlaced);
+  this->LastPoints = static_cast<vtkTypeInt64>(geometry.PointsPlaced);
+  in.Drawer.SetGeometry(std::move(geometry), list.ReferenceSpacing);
+  for (std::size_t i = 0; i < list.GetNumberOfBricks(); ++i)
+  {
+    if (in.Drawer.IsDrawn(i))
+    {
+      // The lattice planes sampled: every factor-th slice of a sparser ray march.
+      const double slices = static_cast<double>(list.SliceOffsets[i + 1] - list.SliceOffsets[i]);
+      const double factor = list.SliceSpacing[i] > 0.0
+        ? std::max(1.0, sampleSpacing * list.ReferenceSpacing / list.SliceSpacing[i])
+        : 1.0;
+      this->LastSlices += static_cast<vtkTypeInt64>(std::ceil(slices / factor));
+      ++this->LastBricks;
+    }
+  }
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::DrawOpaqueSurface(vtkOpenGLRenderWindow* window,
+  vtkMatrix4x4* mcdc, const CameraDescription& cam, const DrawList& list, const double rgba[4])
+{
+  vtkInternals& in = *this->Internals;
+  if (list.OpaqueTriangles == 0)
+  {
+    return true;
+  }
+  // Written to depth, so that the volume behind it is hidden.
+  vtkOpenGLState* state = window->GetState();
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglDepthMask(GL_TRUE);
+  std::string error;
+  if (!in.SurfaceDrawer.Bind(window, mcdc, cam.Position, list.Forward, cam.Parallel, rgba, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.SurfaceDrawer.Draw(0, list.OpaqueTriangles);
+  in.SurfaceDrawer.Unbind();
+  this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(list.OpaqueTriangles);
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
+  vtkMatrix4x4* mcdc, const CameraDescription& cam, const DrawList& list,
+  const std::vector<vtkTextureObject*>& textures, bool interactive, double imageSampleDistance,
+  double sampleSpacing, const double rgba[4])
+{
+  vtkInternals& in = *this->Internals;
+  const std::size_t bricks = list.GetNumberOfBricks();
+  const bool batches = !list.BatchOffsets.empty() && list.BatchOffsets.back() > 0;
+  // Interactive: its triangles drawn before or after each brick, not in slabs.
+  const bool surfacePerBrick = interactive && batches;
+  vtkOpenGLState* state = window->GetState();
+  std::string error;
   // Bricks back to front, each one draw: its slices back to front with the
   // translucent triangles of each slab between them; blended premultiplied,
-  // depth tested, not written. Clip distances on while the program (which
-  // writes them) is bound.
-  // The region of the window drawn: the bricks' boxes (their triangles
-  // included); points' footprints may reach past them, so all of it then.
+  // depth tested, not written. The region of the window drawn: the bricks'
+  // boxes (their triangles included); points' footprints may reach past
+  // them, so all of it then.
   double region[4] = { -1.0, 1.0, -1.0, 1.0 };
   if (this->LastPoints == 0)
   {
     this->ScreenRegion(mcdc, list.Bounds, region);
   }
-  if (!in.Target.Begin(ren, window, sampling.ImageSampleDistance, region, error))
+  if (!in.Target.Begin(ren, window, imageSampleDistance, region, error))
   {
     vtkErrorMacro(<< error);
     return false;
@@ -864,7 +917,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   state->vtkglDepthMask(GL_FALSE);
   in.TableTexture->Activate();
   in.Target.GetDepth()->Activate();
-  in.Drawer.SetSampleSpacing(sampling.SampleSpacing);
+  in.Drawer.SetSampleSpacing(sampleSpacing);
   if (surfacePerBrick)
   {
     in.SurfaceDrawer.OrderByBrick(
@@ -888,8 +941,8 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
       }
     }
     // Ray-marched boxes keep only the faces rays leave by (see
-    // vtkOpenGLHybridOctreeBrickDrawer::EmitBox); a mirroring model matrix turns
-    // their winding over. Culling is restored before the target is blended.
+    // plan::draw_geometry); a mirroring model matrix turns their winding
+    // over. Culling is restored before the target is blended.
     vtkOpenGLState::ScopedglEnableDisable brickCulling(state, GL_CULL_FACE);
     state->vtkglCullFace(GL_BACK);
     glFrontFace(in.Model->Determinant() < 0.0 ? GL_CW : GL_CCW);

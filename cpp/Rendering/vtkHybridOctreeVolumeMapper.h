@@ -75,10 +75,12 @@ class vtkImageData;
 class vtkMatrix4x4;
 class vtkOpenGLCamera;
 class vtkOpenGLRenderWindow;
+class vtkTextureObject;
 class vtkVolumeProperty;
 #ifndef __VTK_WRAP__
 namespace vtkHybridOctreeBridge
 {
+struct BrickGeometryInput;
 struct CameraDescription;
 struct DrawList;
 struct SelectDescription;
@@ -345,6 +347,29 @@ private:
   /// vtkHybridOctreeInteractiveReduction, a translucent surface per brick.
   bool DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkOpenGLCamera* camera,
     const vtkHybridOctreeBridge::DrawList& list, bool interactive, int level);
+  /// The textures of `list`'s bricks: resident ones reused, the rest uploaded
+  /// within the budget the points bought leave; each brick's block ranges
+  /// into `geometry`.
+  bool AcquireBrickTextures(vtkOpenGLRenderWindow* window,
+    const vtkHybridOctreeBridge::DrawList& list, std::vector<vtkTextureObject*>& textures,
+    vtkHybridOctreeBridge::BrickGeometryInput& geometry);
+  /// The transfer function table's texture, uploaded when it changed.
+  bool UploadTable(vtkOpenGLRenderWindow* window);
+  /// The frame's vertices from the core (plan::draw_geometry) handed to the
+  /// drawer; the bricks, slices, triangles and points drawn.
+  bool MakeBrickGeometry(const vtkHybridOctreeBridge::DrawList& list,
+    const vtkHybridOctreeBridge::CameraDescription& cam, bool interactive, double sampleSpacing,
+    vtkHybridOctreeBridge::BrickGeometryInput& geometry);
+  /// The opaque surface pass, depth written, before the volume.
+  bool DrawOpaqueSurface(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
+    const vtkHybridOctreeBridge::CameraDescription& cam,
+    const vtkHybridOctreeBridge::DrawList& list, const double rgba[4]);
+  /// The bricks back to front into the float target, then blended over the
+  /// window; interactive frames draw a translucent surface brick by brick.
+  bool DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
+    const vtkHybridOctreeBridge::CameraDescription& cam,
+    const vtkHybridOctreeBridge::DrawList& list, const std::vector<vtkTextureObject*>& textures,
+    bool interactive, double imageSampleDistance, double sampleSpacing, const double rgba[4]);
   /// Draws the translucent triangles between brick i - 1's volume and brick
   /// i's into the bound float target (vtkOpenGLHybridOctreeSurfaceDrawer::
   /// GetTrianglesBefore()); returns how many.

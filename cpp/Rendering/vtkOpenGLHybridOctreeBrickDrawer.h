@@ -13,7 +13,10 @@
  * premultiplied back to front: `C = (c a', a') + (1 - a') C`. Exactly the CPU
  * compositor's sampling of the same DrawList.
  *
- * A translucent surface is drawn inside the slabs between the slices. With
+ * The vertices are made by the Rust core (vtkHybridOctreeBridge::
+ * GetBrickGeometry(), src/plan/draw_geometry, with the CPU compositor's slab
+ * rule); this class uploads and draws them. A translucent surface is drawn
+ * inside the slabs between the slices. With
  * the brick's slices at depths S[0] > S[1] > ... > S[n-1] (back to front),
  * slab s = { z : S[s] <= z < S[s-1] } (slab 0 unbounded behind, slab n in
  * front), z = (x - eye) . forward. The DrawList names each brick's surface
@@ -60,8 +63,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <utility>
-#include <vector>
 
 class vtkOpenGLHybridOctreeFloatTarget;
 class vtkMatrix4x4;
@@ -74,41 +75,21 @@ class vtkTextureObject;
 class vtkOpenGLHybridOctreeBrickDrawer
 {
 public:
-  /// The translucent surface's vertices: 6 floats each (position, normal),
-  /// and triangle t's vertex ids at 3t .. 3t + 3.
-  struct SurfaceData
-  {
-    const std::vector<float>* Vertices = nullptr;
-    const std::vector<unsigned int>* Triangles = nullptr;
-  };
-
   vtkOpenGLHybridOctreeBrickDrawer();
   ~vtkOpenGLHybridOctreeBrickDrawer();
 
-  /// The points the list's buckets name, what each adds (4 floats a
-  /// point: straight colour, opacity a_p; Points::GetShades()) and their footprint.
-  struct PointData
-  {
-    const vtkHybridOctreeBridge::PointsDrawing* Drawing = nullptr;
-    const std::vector<float>* Shades = nullptr;
-    bool Gaussian = false;
-  };
-
   /**
-   * The vertices of every brick of `list` for a camera at `eye` with
-   * `viewUp` (model coordinates), on the CPU: brick i's slices clipped to
-   * `bounds[6i .. 6i+6]` (inside its box; none where `drawn[i]` is 0), and,
-   * when `surface` is given and the list has batches, the brick's surface
-   * triangles in their slabs, and when `points` are given and the list has
-   * buckets, its points in their slabs. Returns the surface triangles placed
-   * (copies in several slabs counted each time).
+   * The vertices of every brick of a DrawList for this frame
+   * (vtkHybridOctreeBridge::GetBrickGeometry()), drawn from the next Bind();
+   * `pointSpacing` is d0, a point's size (the list's reference spacing).
    */
-  std::size_t Build(const vtkHybridOctreeBridge::DrawList& list, const std::vector<double>& bounds,
-    const std::vector<char>& drawn, const double eye[3], const double viewUp[3],
-    const SurfaceData& surface, const PointData& points);
+  void SetGeometry(vtkHybridOctreeBridge::BrickGeometry&& geometry, double pointSpacing);
 
-  /// Points placed by the last Build().
-  std::size_t GetPointsPlaced() const { return this->PointsPlaced; }
+  /// Whether brick i shows (some block visible): else nothing of its volume is drawn.
+  bool IsDrawn(std::size_t i) const
+  {
+    return i < this->Geometry.Drawn.size() && this->Geometry.Drawn[i];
+  }
 
   /**
    * Makes the program current: `mcdc` the model-to-clip matrix, `table` the
@@ -117,7 +98,7 @@ public:
    * geometry's depth: fragments and ray samples behind it are dropped),
    * `eye`, `forward`, `parallel` the camera in model coordinates,
    * `surfaceRGBA` the surface's colour and opacity. Uploads the vertices of
-   * the last Build() on the first call after it. False and `error` on failure.
+   * the last SetGeometry() on the first call after it. False and `error` on failure.
    */
   bool Bind(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc, vtkTextureObject* table,
     vtkOpenGLHybridOctreeFloatTarget& target, int entries, double lo, double hi,
@@ -132,14 +113,14 @@ public:
   /// (after another program drew).
   void Rebind(vtkOpenGLRenderWindow* window);
 
-  /// Draws brick i of the built list, sampling `texture`.
+  /// Draws brick i of the list, sampling `texture`.
   void DrawBrick(const vtkHybridOctreeBridge::DrawList& list, std::size_t i,
     const double spacing[3], vtkTextureObject* texture);
 
   /// Whether brick i is drawn as its ray-marched box (else as slices).
   bool IsRayMarched(std::size_t i) const
   {
-    return i < this->RayMarched.size() && this->RayMarched[i];
+    return i < this->Geometry.RayMarched.size() && this->Geometry.RayMarched[i];
   }
 
   /// Unbinds the vertex arrays.
@@ -152,38 +133,10 @@ private:
   vtkOpenGLHybridOctreeBrickDrawer(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
   vtkOpenGLHybridOctreeBrickDrawer& operator=(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
 
-  /// Appends the 12 triangles of a box (flag 2: a ray-marched brick).
-  void EmitBox(const double bounds[6]);
-
-  /// Appends one vertex: position, normal, clip interval, kind, point opacity.
-  void Emit(const float position[3], const float normal[3], float near, float far, int kind,
-    float alpha = 0.0f);
-
-  /// A triangle copy (index into the brick's placed triangles) or a point
-  /// (point id) of a slab, at its view depth.
-  struct SlabItem
-  {
-    double Depth;
-    std::uint32_t Id;
-    bool Point;
-  };
-  /// Appends the points of `list`'s bucket `bucket` that add something to `items`.
-  void CollectPoints(const vtkHybridOctreeBridge::DrawList& list, std::size_t bucket,
-    const PointData& points, const double eye[3], std::vector<SlabItem>& items);
-  /// Appends point `id`'s quad (two triangles).
-  void EmitPoint(const PointData& points, std::uint32_t id);
-
-  std::vector<float> VertexData;
-  /// Brick i's vertices: BrickFirst[i] .. BrickFirst[i + 1].
-  std::vector<std::size_t> BrickFirst;
-  /// Per brick: drawn as its ray-marched box.
-  std::vector<char> RayMarched;
-  /// Brick i's drawn box (its visible blocks): Boxes[6i .. 6i+6].
-  std::vector<double> Boxes;
-  /// The view's up (model coordinates, perpendicular to forward) and d0: a point's size.
-  float PointUp[3] = { 0.0f, 1.0f, 0.0f };
+  /// The vertices (10 floats each), per-brick ranges, flags and boxes.
+  vtkHybridOctreeBridge::BrickGeometry Geometry;
+  /// d0: a point's size.
   float PointSpacing = 1.0f;
-  std::size_t PointsPlaced = 0;
   int SampleSpacing = 1;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;

@@ -1,5 +1,7 @@
 #include "vtkOpenGLHybridOctreeBrickTextures.h"
 
+#include "vtkHybridOctreeBridge.h"
+
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 
@@ -80,9 +82,16 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
       std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " float 3D texture";
     return nullptr;
   }
+  std::vector<float> ranges;
+  if (!vtkHybridOctreeBridge::MeasureBlockRanges(
+        this->Scratch.data(), this->Scratch.size(), texels, ranges, error))
+  {
+    texture->ReleaseGraphicsResources(window);
+    return nullptr;
+  }
   Resident& entry = this->Entries[key];
   entry.Texture = texture;
-  entry.Occupancy.Measure(this->Scratch, texels);
+  entry.BlockRanges.swap(ranges);
   entry.Bytes = bytes;
   entry.LastFrame = this->Frame;
   this->ResidentBytes += bytes;

@@ -13,12 +13,14 @@
  *
  * Texels are single-channel 32-bit floats (4 bytes each), filtered linearly
  * and clamped to the edge. With each texture the cache keeps the brick's
- * block value ranges (vtkHybridOctreeBrickOccupancy), measured at upload.
+ * block value ranges, measured from its texels at upload by the Rust core
+ * (vtkHybridOctreeBridge::MeasureBlockRanges()) and handed back to it every
+ * frame (vtkHybridOctreeBridge::GetBrickGeometry()): which blocks the
+ * transfer function leaves visible.
  */
 #ifndef vtkOpenGLHybridOctreeBrickTextures_h
 #define vtkOpenGLHybridOctreeBrickTextures_h
 
-#include "vtkHybridOctreeBrickOccupancy.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 
@@ -47,7 +49,7 @@ public:
   struct Resident
   {
     vtkSmartPointer<vtkTextureObject> Texture;
-    vtkHybridOctreeBrickOccupancy Occupancy;
+    std::vector<float> BlockRanges; ///< opaque to C++: for GetBrickGeometry()
     std::size_t Bytes = 0;
     std::uint64_t LastFrame = 0;
   };

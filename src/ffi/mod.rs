@@ -5,7 +5,7 @@
 //! Volume Octree, and the isosurface and points integrated into it when asked),
 //! and the selections made from it ([`SelectionHandle`]).
 //!
-//! Every function body runs under [`guard::guarded`] and returns `Result`, so
+//! Every function body runs under `guard::guarded` and returns `Result`, so
 //! a Rust panic becomes a `rust::Error` exception on the C++ side (reported
 //! with `vtkErrorMacro`) instead of aborting ParaView.
 //!
@@ -18,6 +18,7 @@
 //! unspecified).
 
 mod ftb;
+mod geometry;
 mod grid;
 mod guard;
 mod octree;
@@ -325,6 +326,69 @@ mod bridge {
         bucket_points: Vec<u32>,
     }
 
+    /// What the OpenGL mapper's vertices of a frame are made from (see
+    /// `plan::draw_geometry`), borrowed from the host: the camera (`eye`,
+    /// `view_up`; `forward` the DrawList's), the image spacing, the DrawList's
+    /// parts as DrawListOutput names them, the transfer function's table (4
+    /// floats a cell, cells over [table_lo, table_hi]), per brick its block
+    /// ranges (`brick_block_ranges`); when `with_surface` (and the list has
+    /// batches) the surface triangles as uploaded (6 floats a vertex:
+    /// position, normal; 3 vertex ids a triangle), when `with_points` (and
+    /// the list has buckets) the points' positions (3 a point) and shades (4
+    /// a point: straight colour, opacity).
+    struct BrickGeometryDesc<'a> {
+        eye: [f64; 3],
+        forward: [f64; 3],
+        view_up: [f64; 3],
+        spacing: [f64; 3],
+        bounds: &'a [f64],
+        texels: &'a [usize],
+        stride: &'a [usize],
+        slice_offsets: &'a [usize],
+        slices: &'a [f64],
+        batch_offsets: &'a [usize],
+        batch_first: &'a [u32],
+        batch_end: &'a [u32],
+        bucket_offsets: &'a [usize],
+        bucket_slab: &'a [usize],
+        bucket_point_offsets: &'a [usize],
+        bucket_points: &'a [u32],
+        table: &'a [f32],
+        table_lo: f64,
+        table_hi: f64,
+        block_ranges: &'a [&'a [f32]],
+        with_surface: bool,
+        surface_vertices: &'a [f32],
+        surface_triangles: &'a [u32],
+        with_points: bool,
+        point_positions: &'a [f32],
+        point_shades: &'a [f32],
+        gaussian_points: bool,
+    }
+
+    /// The vertices of every brick of a frame (`plan::draw_geometry::brick_geometry`).
+    #[derive(Debug)]
+    struct BrickGeometryOutput {
+        /// 10 floats a vertex: position, normal, clip interval (near, far),
+        /// primitive kind (0 slice, 1 surface triangle, 2 ray-marched box, 3
+        /// square point, 4 Gaussian point), point opacity.
+        vertices: Vec<f32>,
+        /// Brick i's vertices are brick_first[i] .. brick_first[i + 1].
+        brick_first: Vec<usize>,
+        /// Per brick, 1: drawn as its ray-marched box (no triangle or point between its slices).
+        ray_marched: Vec<u8>,
+        /// Per brick, 1: some block is visible under the table (else nothing of its volume is drawn).
+        drawn: Vec<u8>,
+        /// 6 per brick: the box its slices are clipped to, its visible blocks (VTK order; 0 when not drawn).
+        boxes: Vec<f64>,
+        /// The view's up, unit and perpendicular to forward: a point quad's up.
+        point_up: [f32; 3],
+        /// Surface triangle copies placed (a triangle in several slabs counted each time).
+        triangles_placed: usize,
+        /// Points placed.
+        points_placed: usize,
+    }
+
     // ---- C++ types for Rust ------------------------------------------------
 
     unsafe extern "C++" {
@@ -508,6 +572,20 @@ mod bridge {
             texels: &mut [f32],
         ) -> Result<()>;
 
+        /// Floats of the block ranges of a brick of `dims` texels (x, y, z):
+        /// 2 per block of 4^3 cells (see `plan::draw_geometry::occupancy`).
+        fn block_ranges_len(dims: &[usize]) -> Result<usize>;
+        /// A brick's block value ranges ([min, max] per block, NaN left out)
+        /// from its `texels` (`dims`, x fastest), into the caller's `ranges`
+        /// (`block_ranges_len(dims)` floats): measured once, when the texels
+        /// are made.
+        fn brick_block_ranges(texels: &[f32], dims: &[usize], ranges: &mut [f32]) -> Result<()>;
+        /// The OpenGL mapper's vertices of a frame: per brick its slices
+        /// clipped to its visible blocks, the surface triangles and points in
+        /// the slabs between them (the CPU compositor's slab rule), or its
+        /// ray-marched box.
+        fn brick_geometry(desc: &BrickGeometryDesc) -> Result<BrickGeometryOutput>;
+
         /// The CPU compositor's picture of the selection's DrawList for
         /// `camera` into `rgba`: `width x height` premultiplied RGBA (4
         /// floats a pixel, rows from the top), with the transfer function
@@ -538,10 +616,11 @@ mod bridge {
 
 use bridge::BuildProgress;
 pub use bridge::{
-    CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc, OctreeSummary, PointsDesc, PointsSummary,
-    ScalarType, SelectDesc, SelectionSummary, SurfaceMode, SurfaceSummary,
+    BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
+    OctreeSummary, PointsDesc, PointsSummary, ScalarType, SelectDesc, SelectionSummary, SurfaceMode, SurfaceSummary,
 };
 use ftb::ftb_display;
+use geometry::{block_ranges_len, brick_block_ranges, frame_brick_geometry as brick_geometry};
 use octree::build_hybrid_octree;
 pub use octree::HybridOctreeHandle;
 use points::generate_points;

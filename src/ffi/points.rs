@@ -16,7 +16,7 @@ use crate::points::{
 use std::sync::Arc;
 use std::time::Instant;
 
-/// Points made by [`generate_points`], kept until the host has read them.
+/// Points made by `generate_points`, kept until the host has read them.
 #[derive(Debug)]
 pub struct GeneratedPoints {
     set: PointSet,

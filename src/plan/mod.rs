@@ -2,10 +2,12 @@
 //! [`select`] chooses the nodes under a texture budget, [`order`] sorts them
 //! back to front, [`slab`] places the surface triangles between the slices
 //! of each brick, [`point_slabs`] buckets the points of the hybrid
-//! representation into them, and the draw list (`draw_list`) says which passes a scene
-//! needs and what each draws.
+//! representation into them, the draw list (`draw_list`) says which passes
+//! a scene needs and what each draws, and [`draw_geometry`] makes the OpenGL
+//! mapper's vertices of a draw list.
 
 pub mod blend;
+pub mod draw_geometry;
 mod draw_list;
 pub mod order;
 pub mod point_slabs;

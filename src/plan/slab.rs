@@ -135,6 +135,24 @@ pub fn slab_of(slices: &[f64], depth: f64) -> usize {
     slices.partition_point(|&s| s > depth)
 }
 
+/// The slabs a primitive of view depths `[d_lo, d_hi]` is drawn in, with
+/// their clip intervals: the one rule of the CPU compositor (through
+/// [`assign_batches`], per batch) and of the OpenGL mapper (per triangle,
+/// [`crate::plan::draw_geometry::brick_geometry()`]):
+///
+/// ```text
+/// far = slab(d_hi),  near = slab(d_lo)
+/// far = near:  (far, None)                                   unclipped in its one slab
+/// else:        (s, Some(slab_interval(s)))  for s = far ..= near   clipped to each slab it covers
+/// ```
+///
+/// Nothing when `far > near` (a NaN range: `d_lo = +inf, d_hi = -inf` with slices).
+pub fn slab_copies(slices: &[f64], d_lo: f64, d_hi: f64) -> impl Iterator<Item = (usize, Option<(f64, f64)>)> + '_ {
+    let (far, near) = (slab_of(slices, d_hi), slab_of(slices, d_lo));
+    let clipped = far != near;
+    (far..=near).map(move |s| (s, clipped.then(|| slab_interval(slices, s))))
+}
+
 /// The depth interval `(near, far)` of slab `slab`: `near <= d < far` with
 /// `near = slices[slab]` (`-inf` for `slab = n`) and `far = slices[slab - 1]`
 /// (`+inf` for `slab = 0`). Panics if `slab > slices.len()`.
@@ -268,7 +286,8 @@ impl SlabPolygons {
 ///
 /// and goes, if `far = near`, unclipped into that slab (`clip = None`), else
 /// into every slab `far ..= near` with `clip = Some((near_s, far_s))`, the
-/// slab's interval ([`slab_interval`]; the outer slabs' are unbounded). As
+/// slab's interval ([`slab_interval`]; the outer slabs' are unbounded): the
+/// rule of [`slab_copies`], which the OpenGL mapper applies per triangle. As
 /// the clip intervals are half-open (`near_s <= depth < far_s`) and tile the
 /// depth axis, every point of every triangle is drawn in exactly one slab,
 /// a flat triangle on a slice plane included (in the slab behind it).
@@ -293,13 +312,11 @@ pub fn assign_batches(camera: &Camera, slices: &[f64], batches: &[PolygonBatch])
             size += u.abs().max(v.abs());
         }
         let r = 16.0 * f64::EPSILON * size;
-        let (far, near) = (slab_of(slices, d_hi + r), slab_of(slices, d_lo - r));
         if !(d_lo.is_finite() && d_hi.is_finite()) {
             placed.push((0, b.triangles.clone()));
-        } else if far == near {
-            placed.push((2 * near, b.triangles.clone()));
         } else {
-            placed.extend((far..=near).map(|s| (2 * s + 1, b.triangles.clone())));
+            let copies = slab_copies(slices, d_lo - r, d_hi + r);
+            placed.extend(copies.map(|(s, clip)| (2 * s + usize::from(clip.is_some()), b.triangles.clone())));
         }
     }
     placed.sort_by_key(|p| p.0);

@@ -14,7 +14,10 @@
  * another octree's selection: clear messages, no crash), `points` (the
  * hybrid representation's points kept for drawing: positions, shades, a
  * selection that buys them within the budget, their buckets in the
- * DrawList, and the errors).
+ * DrawList, and the errors), `geometry` (the OpenGL mapper's vertices of a
+ * DrawList: each brick's block ranges from its texels, the boxes of its
+ * visible blocks under an opaque and a transparent table, one ray-marched
+ * box a brick without a surface, and mismatched inputs: clear errors).
  */
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeCameraInput.h"
@@ -663,6 +666,123 @@ int Points()
     "no points after a failed integration");
   return check.Result();
 }
+int Geometry()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  B::SelectDescription options;
+  options.BudgetBytes = 30000;
+  std::string error;
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  vtkNew<vtkCamera> camera;
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double direction[3] = { 1.0, 0.8, 0.6 };
+  Aim(camera, centre, direction, false);
+  const B::CameraDescription desc = vtkHybridOctreeCameraInput::DescribeCamera(camera);
+  B::DrawList list;
+  if (!check.Check(selection && selection->GetDrawList(*f.Octree, desc, 0.0, list, error),
+        "draw list: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  const std::size_t n = list.GetNumberOfBricks();
+  std::vector<std::vector<float>> ranges(n);
+  B::BrickGeometryInput input;
+  input.List = &list;
+  std::copy(desc.Position, desc.Position + 3, input.Eye);
+  std::copy(desc.ViewUp, desc.ViewUp + 3, input.ViewUp);
+  std::copy(f.Grid.Spacing, f.Grid.Spacing + 3, input.Spacing);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::size_t* dims = &list.Texels[3 * i];
+    std::vector<float> texels(dims[0] * dims[1] * dims[2]);
+    check.Check(selection->GetBrickTexels(f.Bytes(), f.ByteCount(), f.Grid, list.Brick[i],
+                  texels.data(), texels.size(), error) &&
+        B::MeasureBlockRanges(texels.data(), texels.size(), dims, ranges[i], error),
+      "block ranges of brick " + std::to_string(i) + ": " + error);
+    // 2 per block of 4^3 cells.
+    std::size_t blocks = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      blocks *= dims[a] > 1 ? (dims[a] - 2) / 4 + 1 : 1;
+    }
+    check.Check(ranges[i].size() == 2 * blocks, "two values a block");
+    input.BlockRanges.push_back(&ranges[i]);
+  }
+  double range[2];
+  f.Values->GetRange(range);
+  input.TableLo = range[0];
+  input.TableHi = range[1];
+  // Opaque everywhere: every brick drawn in its whole box, ray-marched (no surface).
+  const std::vector<float> opaque(4 * 16, 1.0f);
+  input.Table = &opaque;
+  B::BrickGeometry geometry;
+  if (check.Check(B::GetBrickGeometry(input, geometry, error), "geometry: " + error))
+  {
+    check.Check(geometry.BrickFirst.size() == n + 1 && geometry.RayMarched.size() == n &&
+        geometry.Drawn.size() == n && geometry.Boxes.size() == 6 * n,
+      "per-brick sizes");
+    check.Check(geometry.Boxes == list.Bounds, "all blocks visible: the boxes are the bricks'");
+    check.Check(std::count(geometry.Drawn.begin(), geometry.Drawn.end(), 1) ==
+          static_cast<std::ptrdiff_t>(n) &&
+        std::count(geometry.RayMarched.begin(), geometry.RayMarched.end(), 1) ==
+          static_cast<std::ptrdiff_t>(n),
+      "every brick drawn, ray-marched");
+    check.Check(geometry.VertexFloats == 10 * 36 * n && geometry.BrickFirst.back() == 36 * n,
+      "one box (12 triangles) a brick, 10 floats a vertex");
+  }
+  // Transparent everywhere: nothing drawn.
+  const std::vector<float> clear(4 * 16, 0.0f);
+  input.Table = &clear;
+  if (check.Check(B::GetBrickGeometry(input, geometry, error), "geometry: " + error))
+  {
+    check.Check(std::count(geometry.Drawn.begin(), geometry.Drawn.end(), 0) ==
+          static_cast<std::ptrdiff_t>(n) &&
+        geometry.VertexFloats == 0,
+      "no block visible: nothing drawn");
+  }
+  // Mismatched inputs: clear errors, no crash.
+  const auto fails = [&](const B::BrickGeometryInput& bad, const std::string& fragment) {
+    std::string message;
+    B::BrickGeometry ignored;
+    check.Check(
+      !B::GetBrickGeometry(bad, ignored, message) && message.find(fragment) != std::string::npos,
+      "expected an error with '" + fragment + "', got '" + message + "'");
+  };
+  B::BrickGeometryInput bad = input;
+  bad.BlockRanges.pop_back();
+  fails(bad, "brick block ranges");
+  std::vector<float> shortRanges(1);
+  bad = input;
+  bad.BlockRanges[0] = &shortRanges;
+  fails(bad, "block range values");
+  bad = input;
+  bad.Table = nullptr;
+  fails(bad, "transfer function table");
+  std::vector<float> vertices(6, 0.0f);
+  std::vector<unsigned int> triangles;
+  B::DrawList batched = list;
+  batched.BatchOffsets.assign(n + 1, 1);
+  batched.BatchOffsets[0] = 0;
+  batched.BatchFirst = { 0 };
+  batched.BatchEnd = { 1 };
+  bad = input;
+  bad.List = &batched;
+  bad.SurfaceVertices = &vertices;
+  bad.SurfaceTriangles = &triangles;
+  fails(bad, "names surface triangle 0");
+  std::vector<float> out;
+  const std::size_t dims[3] = { 2, 2, 2 };
+  const float few[3] = { 0.0f, 0.0f, 0.0f };
+  check.Check(!B::MeasureBlockRanges(few, 3, dims, out, error) &&
+      error.find("3 texels for a 2x2x2 brick") != std::string::npos,
+    "texels that do not fill the brick: '" + error + "'");
+  return check.Result();
+}
 } // namespace
 
 int TestHybridOctreeBridge(int argc, char* argv[])
@@ -692,7 +812,11 @@ int TestHybridOctreeBridge(int argc, char* argv[])
   {
     return Points();
   }
+  if (scenario == "geometry")
+  {
+    return Geometry();
+  }
   std::cerr << "unknown scenario '" << scenario
-            << "': use draw_list, texels, surface, transparent or errors\n";
+            << "': use draw_list, texels, surface, transparent, errors, points or geometry\n";
   return EXIT_FAILURE;
 }

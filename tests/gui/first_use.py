@@ -25,6 +25,7 @@ the widgets; paraview.simple reads the proxies and saves the pictures.
 """
 import json
 import os
+import time
 import traceback
 
 from paraview.simple import (ColorBy, Delete, FindSource, GetActiveSource, GetActiveView,
@@ -98,6 +99,18 @@ def pick(text):
     if index < 0:
         raise RuntimeError("%r not offered: %s" % (text, [combo.itemText(i) for i in range(combo.count())]))
     combo.setCurrentIndex(index)  # what a click on the item does
+
+
+def wait_for(predicate, seconds=30.0):
+    """Processes Qt events until `predicate()` holds or `seconds` pass (a loaded
+    machine may take longer than a step to update the panel); its last value."""
+    deadline = time.monotonic() + seconds
+    value = predicate()
+    while not value and time.monotonic() < deadline:
+        QtWidgets.QApplication.processEvents(QtCore.QEventLoop.AllEvents, 100)
+        time.sleep(0.05)
+        value = predicate()
+    return value
 
 
 def display_panel():
@@ -188,10 +201,17 @@ def step_read_hybrid():
                                            for c in color_button.findChildren(QtWidgets.QWidget)))
     budget = panel.findChild(QtWidgets.QWidget, "TextureBudgetMB")
     sliders = [w for w in budget.findChildren(QtWidgets.QWidget) if class_name(w) == "pqDoubleRangeWidget"]
-    maximum = sliders[0].property("maximum") if sliders else None
+
+    def slider_max():
+        return sliders[0].property("maximum") if sliders else None
+
+    full_mb = float(os.environ["HO_GUI_FULL_MB"])
+    # The range arrives with the statistics pulled after the render.
+    wait_for(lambda: slider_max() is not None and abs(slider_max() - full_mb) < 0.01)
+    maximum = slider_max()
     result["budget_slider_max"] = maximum
     check("budget is a slider ending at the full-resolution bytes",
-          maximum is not None and abs(maximum - float(os.environ["HO_GUI_FULL_MB"])) < 0.01, maximum)
+          maximum is not None and abs(maximum - full_mb) < 0.01, maximum)
     check("advanced button found", set_advanced(True))
 
 

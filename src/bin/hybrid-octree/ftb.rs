@@ -84,20 +84,7 @@ struct FtbRow {
 
 /// Builds the octree and displays it along each view.
 pub fn run(args: &FtbArgs) -> Result<()> {
-    if args.image_size < 8 || args.image_size > 8192 {
-        return Err(Error::InvalidArgument(format!(
-            "--image-size {} is out of range: use 8 to 8192 pixels",
-            args.image_size
-        )));
-    }
-    if args.repeats == 0 {
-        return Err(Error::InvalidArgument("--repeats must be at least 1".into()));
-    }
-    let inside = match (args.isovalue, args.label) {
-        (Some(v), None) => Inside::AtOrAbove(v),
-        (None, Some(l)) => Inside::Label(l),
-        _ => return Err(Error::InvalidArgument("give --isovalue V or --label L".into())),
-    };
+    let inside = checked_inside(args)?;
     let vpns: Vec<[f64; 3]> = args.vpn.map_or_else(|| PAPER_VPNS.to_vec(), |v| vec![v]);
     let views = vpns.iter().map(|&v| View::new(v)).collect::<Result<Vec<_>>>()?;
     let volume = args.input.load()?;
@@ -105,97 +92,18 @@ pub fn run(args: &FtbArgs) -> Result<()> {
     let started = Instant::now();
     let octree = with_threads(args.input.threads, || BinaryOctree::from_grid(&grid, inside))?;
     let build_ms = started.elapsed().as_secs_f64() * 1e3;
-    let counts = octree.counts();
     if !args.json {
-        println!(
-            "{}: binary octree n = {} ({}^3), {} W, {} B, {} G octants, built in {:.1} ms",
-            args.input.describe(),
-            octree.n,
-            octree.side(),
-            counts.white,
-            counts.black,
-            counts.gray,
-            build_ms
-        );
-        println!(
-            "{:<14} {:>5} {:>10} {:>10} {:>9} {:>11} {:>11} {:>9} {:>9} {:>8} {:>11} {:>11} {:>10} {:>6}",
-            "vpn",
-            "case",
-            "BTF ms",
-            "FTB ms",
-            "reduct %",
-            "BTF faces",
-            "FTB faces",
-            "FTB B vis",
-            "FTB W vis",
-            "FTB G",
-            "BTF pixels",
-            "FTB pixels",
-            "bitmap B",
-            "same"
-        );
+        print_header(args, &octree, build_ms);
     }
     for view in &views {
-        let mut bytes = 0;
-        let (b, f) = median_runs(
-            args.repeats,
-            args.image_size,
-            |image| btf::display_into(&octree, view, image),
-            |image| {
-                let (d, by) = ftb::display_into(&octree, view, image);
-                bytes = by;
-                d
-            },
-        );
-        let identical = f.image.identical(&b.image);
-        let tag = vpn_tag(view.vpn);
-        let depth_png = format!("{}-depth-{tag}.png", args.output);
-        let shaded_png = format!("{}-shaded-{tag}.png", args.output);
-        depth_picture(&f).to_png(&depth_png)?;
-        shade::shade(&f.image, view).to_png(&shaded_png)?;
-        let row = FtbRow {
-            input: args.input.describe(),
-            vpn: view.vpn,
-            view_case: view.case(),
-            resolution: octree.n,
-            white_octants: counts.white,
-            black_octants: counts.black,
-            gray_octants: counts.gray,
-            octree_build_ms: build_ms,
-            btf_ms: b.ms,
-            ftb_ms: f.ms,
-            reduction_pct: 100.0 * (b.ms - f.ms) / b.ms,
-            depth_identical: identical,
-            painted_pixels: f.image.painted(),
-            bitmap_bytes: bytes,
-            btf: b.counters,
-            ftb: f.counters,
-            depth_png,
-            shaded_png,
-        };
+        let row = display_view(args, &octree, view, build_ms)?;
         if args.json {
             let line = serde_json::to_string(&row).map_err(|e| Error::Internal(format!("JSON output: {e}")))?;
             println!("{line}");
         } else {
-            println!(
-                "{:<14} {:>5} {:>10.2} {:>10.2} {:>9.1} {:>11} {:>11} {:>9} {:>9} {:>8} {:>11} {:>11} {:>10} {:>6}",
-                tag,
-                format!("{:?}", row.view_case),
-                row.btf_ms,
-                row.ftb_ms,
-                row.reduction_pct,
-                row.btf.faces,
-                row.ftb.faces,
-                row.ftb.black_visited,
-                row.ftb.white_visited,
-                row.ftb.gray_visited,
-                row.btf.pixels,
-                row.ftb.pixels,
-                row.bitmap_bytes,
-                if identical { "yes" } else { "NO" }
-            );
+            print_row(&row);
         }
-        if !identical {
+        if !row.depth_identical {
             return Err(Error::Internal(format!(
                 "the FTB and BTF depth images differ for vpn {:?}: please report it",
                 view.vpn
@@ -205,11 +113,120 @@ pub fn run(args: &FtbArgs) -> Result<()> {
     Ok(())
 }
 
-/// Runs the baseline and the display under test alternately, `repeats`
-/// times each (so a slow spell of the machine falls on both), each reusing
-/// its own `size x size` z-buffer from run to run; returns the last run of
-/// each (every run paints the same image and counts the same work) with the
-/// median time.
+/// The arguments' checks: image size, repeats, and what is inside (an
+/// isovalue or a label, exactly one).
+fn checked_inside(args: &FtbArgs) -> Result<Inside> {
+    if args.image_size < 8 || args.image_size > 8192 {
+        return Err(Error::InvalidArgument(format!(
+            "--image-size {} is out of range: use 8 to 8192 pixels",
+            args.image_size
+        )));
+    }
+    if args.repeats == 0 {
+        return Err(Error::InvalidArgument("--repeats must be at least 1".into()));
+    }
+    match (args.isovalue, args.label) {
+        (Some(v), None) => Ok(Inside::AtOrAbove(v)),
+        (None, Some(l)) => Ok(Inside::Label(l)),
+        _ => Err(Error::InvalidArgument("give --isovalue V or --label L".into())),
+    }
+}
+
+/// One view: back to front and front to back (the median of the repeats),
+/// both pictures written, the row of counters.
+fn display_view(args: &FtbArgs, octree: &BinaryOctree, view: &View, build_ms: f64) -> Result<FtbRow> {
+    let mut bytes = 0;
+    let (b, f) = median_runs(
+        args.repeats,
+        args.image_size,
+        |image| btf::display_into(octree, view, image),
+        |image| {
+            let (d, by) = ftb::display_into(octree, view, image);
+            bytes = by;
+            d
+        },
+    );
+    let tag = vpn_tag(view.vpn);
+    let depth_png = format!("{}-depth-{tag}.png", args.output);
+    let shaded_png = format!("{}-shaded-{tag}.png", args.output);
+    depth_picture(&f).to_png(&depth_png)?;
+    shade::shade(&f.image, view).to_png(&shaded_png)?;
+    let counts = octree.counts();
+    Ok(FtbRow {
+        input: args.input.describe(),
+        vpn: view.vpn,
+        view_case: view.case(),
+        resolution: octree.n,
+        white_octants: counts.white,
+        black_octants: counts.black,
+        gray_octants: counts.gray,
+        octree_build_ms: build_ms,
+        btf_ms: b.ms,
+        ftb_ms: f.ms,
+        reduction_pct: 100.0 * (b.ms - f.ms) / b.ms,
+        depth_identical: f.image.identical(&b.image),
+        painted_pixels: f.image.painted(),
+        bitmap_bytes: bytes,
+        btf: b.counters,
+        ftb: f.counters,
+        depth_png,
+        shaded_png,
+    })
+}
+
+/// The table's title line: the octree, then the column names.
+fn print_header(args: &FtbArgs, octree: &BinaryOctree, build_ms: f64) {
+    let counts = octree.counts();
+    println!(
+        "{}: binary octree n = {} ({}^3), {} W, {} B, {} G octants, built in {:.1} ms",
+        args.input.describe(),
+        octree.n,
+        octree.side(),
+        counts.white,
+        counts.black,
+        counts.gray,
+        build_ms
+    );
+    println!(
+        "{:<14} {:>5} {:>10} {:>10} {:>9} {:>11} {:>11} {:>9} {:>9} {:>8} {:>11} {:>11} {:>10} {:>6}",
+        "vpn",
+        "case",
+        "BTF ms",
+        "FTB ms",
+        "reduct %",
+        "BTF faces",
+        "FTB faces",
+        "FTB B vis",
+        "FTB W vis",
+        "FTB G",
+        "BTF pixels",
+        "FTB pixels",
+        "bitmap B",
+        "same"
+    );
+}
+
+/// One view's line of the table.
+fn print_row(row: &FtbRow) {
+    println!(
+        "{:<14} {:>5} {:>10.2} {:>10.2} {:>9.1} {:>11} {:>11} {:>9} {:>9} {:>8} {:>11} {:>11} {:>10} {:>6}",
+        vpn_tag(row.vpn),
+        format!("{:?}", row.view_case),
+        row.btf_ms,
+        row.ftb_ms,
+        row.reduction_pct,
+        row.btf.faces,
+        row.ftb.faces,
+        row.ftb.black_visited,
+        row.ftb.white_visited,
+        row.ftb.gray_visited,
+        row.btf.pixels,
+        row.ftb.pixels,
+        row.bitmap_bytes,
+        if row.depth_identical { "yes" } else { "NO" }
+    );
+}
+
 fn median_runs(
     repeats: usize,
     size: usize,
