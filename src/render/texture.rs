@@ -153,6 +153,45 @@ pub fn brick_texels_f32_into(grid: &Grid<'_>, brick: &Brick, texels: &mut [f32])
     Ok(())
 }
 
+/// [`brick_texels_f32_into`] for a picture of blend mode `mode`: a coarse
+/// brick (stride > 1) of a MIP or MinIP gets its peak-keeping texels
+/// (`pool`), every other brick its plain ones. What a GPU executor of a
+/// maximum or minimum intensity DrawList uploads.
+///
+/// # Errors
+///
+/// As [`brick_texels_f32_into`].
+pub fn brick_texels_for_blend_f32_into(
+    grid: &Grid<'_>,
+    brick: &Brick,
+    mode: BlendMode,
+    texels: &mut [f32],
+) -> Result<()> {
+    if !(mode.is_extremum() && brick.stride > 1) {
+        return brick_texels_f32_into(grid, brick, texels);
+    }
+    let count = texel_count(grid, brick)?;
+    if texels.len() != count {
+        return Err(Error::InvalidArgument(format!(
+            "a buffer of {} texels for brick (node {}) of {count} texels",
+            texels.len(),
+            brick.node.0
+        )));
+    }
+    struct Pooled<'b, 't>(&'b Brick, bool, &'t mut [f32]);
+    impl GridVisitor for Pooled<'_, '_> {
+        type Output = ();
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) {
+            let Pooled(brick, largest, texels) = self;
+            if let Some(values) = pool::pooled_values(&g, brick, largest, |v| Some(v as f32)) {
+                texels.copy_from_slice(&values);
+            }
+        }
+    }
+    grid.visit(Pooled(brick, mode == BlendMode::Mip, texels));
+    Ok(())
+}
+
 /// One brick's texture: its texels, contiguous, x fastest.
 #[derive(Debug, Clone)]
 pub(crate) struct Texture<S> {
@@ -361,6 +400,30 @@ mod tests {
         let data: Vec<f32> = data.iter().map(|&v| v as f32).collect();
         let g = Grid::scalar(Samples::F32(&data), [11, 11, 11]).unwrap();
         g.visit(SameAsTp::<f32>(std::marker::PhantomData));
+    }
+
+    /// The GPU upload of a blend mode's brick is the CPU texture of a list of that mode.
+    #[test]
+    fn blend_upload_is_the_compositor_texture() {
+        let data: Vec<f32> = (0..11 * 11 * 11).map(|i| ((i * 7919) % 101) as f32).collect();
+        let g = Grid::scalar(Samples::F32(&data), [11, 11, 11]).unwrap();
+        for (lo, hi, s) in BRICKS {
+            let b = brick(lo, hi, s);
+            for mode in BlendMode::ALL {
+                let mut out = vec![0.0f32; b.texels.iter().product()];
+                brick_texels_for_blend_f32_into(&g, &b, mode, &mut out).unwrap();
+                struct Copy<'b>(&'b Brick, BlendMode);
+                impl GridVisitor for Copy<'_> {
+                    type Output = Vec<f32>;
+                    fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f32> {
+                        Texture::<f32>::copy_for(&g, self.0, self.1).unwrap().data
+                    }
+                }
+                assert_eq!(out, g.visit(Copy(&b, mode)), "{mode:?} {lo:?} s {s}");
+            }
+            let mut short = vec![0.0f32; 1];
+            assert!(brick_texels_for_blend_f32_into(&g, &b, BlendMode::Mip, &mut short).is_err());
+        }
     }
 
     /// f32 storage only when exact: an f32 grid uploads as f32, an f64 grid
