@@ -773,3 +773,26 @@ fn negative_numbers_are_accepted_as_values_everywhere() {
     }
     let _ = std::fs::remove_file(png);
 }
+
+/// `render --blend` names its pass and carries the mode in the JSON plan;
+/// an unknown mode is a clean error naming the five.
+#[test]
+fn render_blend_modes_name_their_pass() {
+    let png = temp("blend.png");
+    for (mode, pass) in [
+        ("composite", "volume"),
+        ("mip", "volume-mip"),
+        ("minip", "volume-minip"),
+        ("average", "volume-average"),
+        ("additive", "volume-additive"),
+    ] {
+        let args = ["--dataset", "vessels", "--size", "17", "--width", "16", "--height", "16", "--blend", mode];
+        let json = json_of("render", &[&args[..], &["--output", png.to_str().unwrap()]].concat());
+        assert_eq!(json["passes"], serde_json::json!([pass]), "{json}");
+        assert_eq!(json["blend"]["mode"], mode, "{json}");
+    }
+    let out =
+        run(&["render", "--dataset", "sphere", "--size", "9", "--blend", "max", "--output", png.to_str().unwrap()]);
+    assert_clean_failure(&out, "give one of composite, mip, minip, average, additive");
+    let _ = std::fs::remove_file(png);
+}

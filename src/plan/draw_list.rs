@@ -15,7 +15,11 @@
 //!   `ambient = 1, diffuse = specular = 0` under the headlight): then the
 //!   plan says `volume-shaded` and the DrawList carries the lighting, its
 //!   lights in world space.
+//! - the blend mode ([`Blend`]): `volume` for Composite, `volume-mip`,
+//!   `volume-minip`, `volume-average` or `volume-additive` for the others
+//!   (shading is for Composite only).
 
+use super::blend::Blend;
 use super::select::Brick;
 use super::slab::Batch;
 use crate::geometry::camera::Camera;
@@ -45,6 +49,8 @@ pub struct Plan {
     pub shading: bool,
     /// Nodes not selected because the transfer function makes them fully transparent.
     pub skipped_bricks: usize,
+    /// How the samples along a ray become a pixel.
+    pub blend: Blend,
     /// The passes, in the order they run (e.g. `["surface-opaque", "volume"]`).
     pub passes: Vec<String>,
 }
@@ -118,6 +124,8 @@ pub struct Scene<'a> {
     /// Gradient shading of the volume: `Some` when the volume property asks
     /// (vtkVolumeProperty's Shade), with its material and the lights.
     pub shading: Option<&'a Lighting>,
+    /// The blend mode (VTK's `vtkVolumeMapper::SetBlendMode`) and its ranges.
+    pub blend: Blend,
 }
 
 /// The plan for a scene (see the module documentation).
@@ -135,11 +143,14 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         SurfacePass::Translucent => passes.push("surface-in-slabs".to_string()),
         SurfacePass::None => {}
     }
-    let shading = shades(volume, scene.shading);
+    let shading = shades(volume, scene.shading) && scene.blend.mode == super::BlendMode::Composite;
     if volume {
-        passes.push(if shading { "volume-shaded" } else { "volume" }.to_string());
+        passes.push(match scene.blend.mode {
+            super::BlendMode::Composite if shading => "volume-shaded".to_string(),
+            mode => mode.pass(),
+        });
     }
-    Plan { volume, surface, shading, skipped_bricks: selection.skipped, passes }
+    Plan { volume, surface, shading, skipped_bricks: selection.skipped, blend: scene.blend, passes }
 }
 
 /// The planner's shading rule: shade a volume, when the scene asks, unless
@@ -160,7 +171,7 @@ pub fn relight(mut list: DrawList, lighting: Option<&Lighting>) -> crate::Result
     if let Some(l) = lighting {
         l.check()?;
     }
-    let shading = shades(list.plan.volume, lighting);
+    let shading = shades(list.plan.volume, lighting) && list.plan.blend.mode == super::BlendMode::Composite;
     for pass in &mut list.plan.passes {
         if pass == "volume" || pass == "volume-shaded" {
             *pass = if shading { "volume-shaded" } else { "volume" }.to_string();
@@ -277,7 +288,11 @@ mod tests {
     #[test]
     fn volume_only_without_a_surface() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: None }, |_, _| true);
+        let l = list(
+            &f,
+            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default() },
+            |_, _| true,
+        );
         assert_eq!(l.plan.passes, vec!["volume"]);
         assert_eq!(l.plan.surface, SurfacePass::None);
         assert!(l.opaque_triangles.is_empty() && l.bricks.iter().all(|b| b.batches.is_empty()));
@@ -287,7 +302,11 @@ mod tests {
     #[test]
     fn opaque_surface_first_then_volume_without_interleaving() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: None }, |_, _| true);
+        let l = list(
+            &f,
+            &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: None, blend: Default::default() },
+            |_, _| true,
+        );
         assert_eq!(l.plan.passes, vec!["surface-opaque", "volume"]);
         assert_eq!(l.opaque_triangles.len(), f.surface.polygon_count());
         assert!(l.bricks.iter().all(|b| b.batches.is_empty()), "no batches in the slabs");
@@ -297,8 +316,16 @@ mod tests {
     fn translucent_surface_goes_into_the_slabs_every_triangle_at_least_once() {
         let f = fixture();
         let shaded = Lighting::headlight(Default::default());
-        let l =
-            list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: Some(&shaded) }, |_, _| true);
+        let l = list(
+            &f,
+            &Scene {
+                surface: Some(&f.surface),
+                surface_opacity: 0.4,
+                shading: Some(&shaded),
+                blend: Default::default(),
+            },
+            |_, _| true,
+        );
         assert_eq!(l.plan.passes, vec!["surface-in-slabs", "volume-shaded"]);
         assert!(l.opaque_triangles.is_empty());
         let mut seen = vec![false; f.surface.polygon_count()];
@@ -320,7 +347,7 @@ mod tests {
         let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
         let selection = select(&f.octree, &options, |_, _| true).unwrap();
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None };
+        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None, blend: Default::default() };
         for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
             let camera =
                 Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), azimuth, elevation, parallel).unwrap();
@@ -343,7 +370,7 @@ mod tests {
         assert_ne!(nodes(&all), nodes(&fewer));
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None };
+        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None, blend: Default::default() };
         let e = draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons)).unwrap_err().to_string();
         assert!(e.contains("made for another selection or surface"), "{e}");
     }
@@ -351,12 +378,20 @@ mod tests {
     #[test]
     fn transparent_nodes_cost_no_texture_and_a_hidden_surface_no_pass() {
         let f = fixture();
-        let l = list(&f, &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: None }, |_, max| max > 0.9);
+        let l = list(
+            &f,
+            &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: None, blend: Default::default() },
+            |_, max| max > 0.9,
+        );
         assert!(l.plan.skipped_bricks > 0);
         assert_eq!(l.plan.surface, SurfacePass::None);
         assert!(!l.plan.shading);
         let shaded = Lighting::headlight(Default::default());
-        let none = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded) }, |_, _| false);
+        let none = list(
+            &f,
+            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded), blend: Default::default() },
+            |_, _| false,
+        );
         assert!(!none.plan.volume && none.bricks.is_empty() && none.plan.passes.is_empty() && !none.plan.shading);
     }
 
@@ -371,15 +406,27 @@ mod tests {
             specular: 0.0,
             specular_power: 10.0,
         });
-        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: Some(&identity) }, |_, _| true);
+        let l = list(
+            &f,
+            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&identity), blend: Default::default() },
+            |_, _| true,
+        );
         assert_eq!(l.plan.passes, vec!["volume"]);
         assert!(!l.plan.shading && l.lighting.is_none());
         let shaded = Lighting::headlight(Default::default());
-        let l = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded) }, |_, _| true);
+        let l = list(
+            &f,
+            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded), blend: Default::default() },
+            |_, _| true,
+        );
         assert_eq!(l.plan.passes, vec!["volume-shaded"]);
         assert!(l.plan.shading && l.lighting.is_some());
         // Planned again: the same as planned with the scene's shading.
-        let plain = list(&f, &Scene { surface: None, surface_opacity: 1.0, shading: None }, |_, _| true);
+        let plain = list(
+            &f,
+            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default() },
+            |_, _| true,
+        );
         assert_eq!(relight(plain.clone(), Some(&shaded)).unwrap(), l);
         assert_eq!(relight(l, Some(&identity)).unwrap(), plain);
     }

@@ -6,6 +6,7 @@
 //! a scene needs and what each draws, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
+pub mod blend;
 pub mod draw_geometry;
 mod draw_list;
 pub mod order;
@@ -13,6 +14,7 @@ pub mod point_slabs;
 pub mod select;
 pub mod slab;
 
+pub use blend::{Blend, BlendMode};
 pub use draw_list::{draw_list, plan, relight, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
 pub use point_slabs::add_points;
 pub use slab::Batch;

@@ -63,6 +63,8 @@
 //! before the frame, and blended in that slab like a batch hit (after slices
 //! `0 .. s`, before slice `s`), nearest last within the slab; a pixel whose
 //! ray misses the brick's box blends the brick's points it still sees.
+//! Blend modes besides Composite (the list's [`crate::plan::Plan::blend`])
+//! reduce the same samples instead of blending them: `projection`.
 //! Bands of rows run in parallel; every pixel is computed on its own, so the picture
 //! does not depend on the number of threads.
 
@@ -86,6 +88,8 @@ use crate::transfer::lighting::Lighting;
 use crate::transfer::lut::Lut;
 use crate::transfer::TransferFunction;
 use rayon::prelude::*;
+
+mod projection;
 
 /// Early ray termination: a pixel whose accumulated opacity reaches this
 /// stops. Whatever lies behind would add at most `(1 - A) <= 1 - OPAQUE`
@@ -471,6 +475,9 @@ impl<S: Texel> Executor<'_, S> {
                 pr.limit = pr.depth(h.t);
                 surface_hit = Some((tris.shade(surface, &h, ray.direction, colour), colour[3] as f64));
             }
+        }
+        if self.list.plan.blend.mode != crate::plan::BlendMode::Composite {
+            return self.project(x, y, &pr, scratch, surface_hit);
         }
         scratch.hits.clear();
         if let Some((_, tris, _, _)) = self.translucent {

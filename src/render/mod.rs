@@ -18,6 +18,7 @@ mod check;
 pub mod compositor;
 mod geometry;
 pub mod image;
+mod intensity;
 pub mod metrics;
 pub mod reference;
 mod sample;
@@ -27,5 +28,7 @@ mod triangles;
 
 pub use crate::transfer;
 
+#[cfg(test)]
+mod blend_tests;
 #[cfg(test)]
 mod tests;

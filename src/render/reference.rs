@@ -22,6 +22,10 @@
 //! (opacity 1) ends the ray at its first hit; opacity 0 hides it. Rows run in parallel; every
 //! pixel is computed on its own, so the picture does not depend on the
 //! number of threads.
+//!
+//! Blend modes besides Composite ([`reference_blend`]) reduce the same
+//! samples, each standing for `l / d0` reference spacings, instead of
+//! blending them: `projection`.
 
 use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_size};
@@ -33,10 +37,13 @@ use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::{Error, Result};
 use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::geometry::camera::Camera;
+use crate::plan::{Blend, BlendMode};
 use crate::surface::Surface;
 use crate::transfer::lighting::Lighting;
 use crate::transfer::TransferFunction;
 use rayon::prelude::*;
+
+mod projection;
 
 /// Accumulated opacity past which a ray stops.
 pub const EARLY_TERMINATION: f64 = 0.999;
@@ -63,6 +70,20 @@ pub fn reference(
     height: usize,
     options: &ReferenceOptions<'_>,
 ) -> Result<Image> {
+    reference_blend(grid, tf, camera, width, height, options, &Blend::default())
+}
+
+/// [`reference()`] under `blend`'s mode: Composite as there; the other modes
+/// reduce the same samples (see `projection`).
+pub fn reference_blend(
+    grid: &Grid<'_>,
+    tf: &TransferFunction,
+    camera: &Camera,
+    width: usize,
+    height: usize,
+    options: &ReferenceOptions<'_>,
+    blend: &Blend,
+) -> Result<Image> {
     check_size(width, height)?;
     let shape = *grid.shape();
     let d0 = crate::data::spacing::reference_spacing(&shape);
@@ -83,7 +104,18 @@ pub fn reference(
         None => None,
     };
     let lighting = lighting.as_ref();
-    Ok(grid.visit(Caster { tf, camera, width, height, shape, step, d0, surface: surface.as_ref(), lighting }))
+    Ok(grid.visit(Caster {
+        tf,
+        camera,
+        width,
+        height,
+        shape,
+        step,
+        d0,
+        surface: surface.as_ref(),
+        lighting,
+        blend: *blend,
+    }))
 }
 
 struct Caster<'a> {
@@ -97,6 +129,7 @@ struct Caster<'a> {
     surface: Option<&'a (&'a Surface, TriangleGrid, [f32; 4])>,
     /// Lights in world space.
     lighting: Option<&'a Lighting>,
+    blend: Blend,
 }
 
 impl GridVisitor for Caster<'_> {
@@ -120,6 +153,9 @@ impl Caster<'_> {
             } else {
                 tris.all_hits(&ray, f64::INFINITY, hits);
             }
+        }
+        if self.blend.mode != BlendMode::Composite {
+            return self.project(g, &ray, hits.first());
         }
         let mut acc: Rgba = [0.0; 4];
         let mut next_hit = 0;

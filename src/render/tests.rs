@@ -48,7 +48,14 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         .collect();
     let centre = |d: &BrickDraw| camera.depth([0, 1, 2].map(|a| 0.5 * (d.world_lo[a] + d.world_hi[a])));
     draws.sort_by(|a, b| centre(b).total_cmp(&centre(a)));
-    let plan = Plan { volume: true, surface, shading: false, skipped_bricks: 0, passes: Vec::new() };
+    let plan = Plan {
+        volume: true,
+        surface,
+        shading: false,
+        skipped_bricks: 0,
+        blend: Default::default(),
+        passes: Vec::new(),
+    };
     DrawList {
         plan,
         camera: *camera,
@@ -347,7 +354,8 @@ fn the_pipeline_tracks_the_reference() {
         ("full, translucent surface", &full, 0.4, 0.01),
         ("1/4 budget, translucent surface", &coarse, 0.4, 0.05),
     ] {
-        let scene = Scene { surface: Some(&surface), surface_opacity: opacity, shading: None };
+        let scene =
+            Scene { surface: Some(&surface), surface_opacity: opacity, shading: None, blend: Default::default() };
         // Translucent: the selection's SlabPolygons made once, apart from the view.
         let polygons = (opacity > 0.0 && opacity < 1.0)
             .then(|| crate::plan::slab::SlabPolygons::new(&octree, &surface, grid.shape(), selection));

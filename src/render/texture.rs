@@ -15,6 +15,10 @@
 //! T_p(x)    = lerp(w(i0), w(i1), tx)
 //! ```
 //!
+//! A coarse brick of a maximum (minimum) intensity picture holds instead
+//! the largest (smallest) grid value within a stride of each texel
+//! position, so that it never hides a peak (`pool`).
+//!
 //! Textures are made once per DrawList, bricks in parallel; a frame reads
 //! only them, never the grid.
 
@@ -23,8 +27,10 @@ use crate::base::error::{Error, Result};
 use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear::lerp;
 use crate::plan::select::Brick;
-use crate::plan::DrawList;
+use crate::plan::{BlendMode, DrawList};
 use rayon::prelude::*;
+
+mod pool;
 
 /// A stored texel: `f32` or `f64`, read back as `f64`.
 pub(crate) trait Texel: Copy + Send + Sync + 'static {
@@ -199,6 +205,45 @@ fn texels_f32_into(grid: &Grid<'_>, brick: &Brick, border: usize, texels: &mut [
     Ok(())
 }
 
+/// [`brick_texels_f32_into`] for a picture of blend mode `mode`: a coarse
+/// brick (stride > 1) of a MIP or MinIP gets its peak-keeping texels
+/// (`pool`), every other brick its plain ones. What a GPU executor of a
+/// maximum or minimum intensity DrawList uploads.
+///
+/// # Errors
+///
+/// As [`brick_texels_f32_into`].
+pub fn brick_texels_for_blend_f32_into(
+    grid: &Grid<'_>,
+    brick: &Brick,
+    mode: BlendMode,
+    texels: &mut [f32],
+) -> Result<()> {
+    if !(mode.is_extremum() && brick.stride > 1) {
+        return brick_texels_f32_into(grid, brick, texels);
+    }
+    let count = texel_count(grid, brick)?;
+    if texels.len() != count {
+        return Err(Error::InvalidArgument(format!(
+            "a buffer of {} texels for brick (node {}) of {count} texels",
+            texels.len(),
+            brick.node.0
+        )));
+    }
+    struct Pooled<'b, 't>(&'b Brick, bool, &'t mut [f32]);
+    impl GridVisitor for Pooled<'_, '_> {
+        type Output = ();
+        fn visit<T: Sample>(self, g: TypedGrid<'_, T>) {
+            let Pooled(brick, largest, texels) = self;
+            if let Some(values) = pool::pooled_values(&g, brick, largest, |v| Some(v as f32)) {
+                texels.copy_from_slice(&values);
+            }
+        }
+    }
+    grid.visit(Pooled(brick, mode == BlendMode::Mip, texels));
+    Ok(())
+}
+
 /// One brick's texture: its texels, contiguous, x fastest.
 #[derive(Debug, Clone)]
 pub(crate) struct Texture<S> {
@@ -218,8 +263,21 @@ pub(crate) struct Texture<S> {
 impl<S: Texel> Texture<S> {
     /// Copies `brick`'s texels from `g` (the brick checked to lie in the grid);
     /// `None` when a value is not exactly an `S`.
+    #[cfg(test)]
     fn copy<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick, border: usize) -> Option<Texture<S>> {
-        let data = texel_values(g, brick, border, S::exact)?;
+        Texture::copy_for(g, brick, border, BlendMode::Composite)
+    }
+
+    /// [`Self::copy`] for a picture of blend mode `mode`: a coarse brick of a
+    /// MIP or MinIP holds its peak-keeping texels (`pool`); those modes are
+    /// not shaded, so they have no gradient border.
+    fn copy_for<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick, border: usize, mode: BlendMode) -> Option<Texture<S>> {
+        let data = match mode {
+            BlendMode::Mip | BlendMode::Minip if brick.stride > 1 && border == 0 => {
+                pool::pooled_values(g, brick, mode == BlendMode::Mip, S::exact)?
+            }
+            _ => texel_values(g, brick, border, S::exact)?,
+        };
         let n = brick.texels.map(|n| n + 2 * border);
         let (lo, hi, stride, last) = (brick.lo, brick.hi, brick.stride, n.map(|n| (n - 1) as f64));
         Some(Texture { lo, hi, stride, n, border, last, data })
@@ -341,11 +399,16 @@ impl GridVisitor for Upload<'_> {
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Texels {
         let bricks = &self.0.bricks;
         let border = usize::from(self.0.plan.shading);
-        let f32s: Option<Vec<Texture<f32>>> = bricks.par_iter().map(|d| Texture::copy(&g, &d.brick, border)).collect();
+        let mode = self.0.plan.blend.mode;
+        let f32s: Option<Vec<Texture<f32>>> =
+            bricks.par_iter().map(|d| Texture::copy_for(&g, &d.brick, border, mode)).collect();
         match f32s {
             Some(t) => Texels::F32(t),
             None => Texels::F64(
-                bricks.par_iter().map(|d| Texture::copy(&g, &d.brick, border).expect("f64 holds f64")).collect(),
+                bricks
+                    .par_iter()
+                    .map(|d| Texture::copy_for(&g, &d.brick, border, mode).expect("f64 holds f64"))
+                    .collect(),
             ),
         }
     }
@@ -410,6 +473,30 @@ mod tests {
         g.visit(SameAsTp::<f32>(std::marker::PhantomData));
     }
 
+    /// The GPU upload of a blend mode's brick is the CPU texture of a list of that mode.
+    #[test]
+    fn blend_upload_is_the_compositor_texture() {
+        let data: Vec<f32> = (0..11 * 11 * 11).map(|i| ((i * 7919) % 101) as f32).collect();
+        let g = Grid::scalar(Samples::F32(&data), [11, 11, 11]).unwrap();
+        for (lo, hi, s) in BRICKS {
+            let b = brick(lo, hi, s);
+            for mode in BlendMode::ALL {
+                let mut out = vec![0.0f32; b.texels.iter().product()];
+                brick_texels_for_blend_f32_into(&g, &b, mode, &mut out).unwrap();
+                struct Copy<'b>(&'b Brick, BlendMode);
+                impl GridVisitor for Copy<'_> {
+                    type Output = Vec<f32>;
+                    fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f32> {
+                        Texture::<f32>::copy_for(&g, self.0, 0, self.1).unwrap().data
+                    }
+                }
+                assert_eq!(out, g.visit(Copy(&b, mode)), "{mode:?} {lo:?} s {s}");
+            }
+            let mut short = vec![0.0f32; 1];
+            assert!(brick_texels_for_blend_f32_into(&g, &b, BlendMode::Mip, &mut short).is_err());
+        }
+    }
+
     /// f32 storage only when exact: an f32 grid uploads as f32, an f64 grid
     /// of values that are not f32s as f64.
     #[test]
@@ -422,6 +509,7 @@ mod tests {
                 surface: SurfacePass::None,
                 shading: false,
                 skipped_bricks: 0,
+                blend: Default::default(),
                 passes: Vec::new(),
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),

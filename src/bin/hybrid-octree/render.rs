@@ -56,6 +56,8 @@ struct RenderReport {
     passes: Vec<String>,
     /// The shading the frame used, lights in world space (the plan says `volume-shaded`).
     lighting: Option<hybrid_octree::transfer::lighting::Lighting>,
+    /// The blend mode and its ranges (the plan's).
+    blend: hybrid_octree::plan::Blend,
     skipped_bricks: usize,
     warning: Option<String>,
     select_ms: f64,
@@ -82,7 +84,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let scene = load(&grid, &args.scene)?;
         let options = SelectOptions {
             roi: args.scene.roi,
-            gradient_border: args.scene.shade.shades(),
+            gradient_border: args.scene.shade.shades() && scene.blend.mode == hybrid_octree::plan::BlendMode::Composite,
+            pooled: scene.blend.mode.is_extremum(),
             ..SelectOptions::new(budget_bytes, args.tolerance)
         };
         let started = Instant::now();
@@ -109,6 +112,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             estimated_error: selection.estimated_error,
             passes: f.list.plan.passes.clone(),
             lighting: f.list.lighting.clone(),
+            blend: f.list.plan.blend,
             skipped_bricks: f.list.plan.skipped_bricks,
             warning: selection.warning.clone(),
             select_ms,

@@ -10,11 +10,11 @@ use hybrid_octree::camera::Camera;
 use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::point_slabs::add_points;
-use hybrid_octree::plan::{draw_list, plan, DrawList, Scene, SurfacePass};
+use hybrid_octree::plan::{draw_list, plan, Blend, BlendMode, DrawList, Scene, SurfacePass};
 use hybrid_octree::points::{shade, Footprint, PointSet};
 use hybrid_octree::render::compositor::composite_with_points;
 use hybrid_octree::render::image::Image;
-use hybrid_octree::render::reference::{reference, ReferenceOptions};
+use hybrid_octree::render::reference::{reference_blend, ReferenceOptions};
 use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, Selection};
@@ -56,6 +56,14 @@ pub struct SceneArgs {
     /// Volume shading.
     #[command(flatten)]
     pub shade: crate::shade::ShadeArgs,
+    /// Blend mode (VTK's SetBlendMode): composite, mip (maximum intensity),
+    /// minip (minimum intensity), average (average intensity) or additive.
+    #[arg(long, default_value = "composite", value_parser = blend_mode)]
+    pub blend: BlendMode,
+}
+
+fn blend_mode(s: &str) -> std::result::Result<BlendMode, String> {
+    s.parse::<BlendMode>().map_err(|e| e.to_string())
 }
 
 fn roi(s: &str) -> std::result::Result<Roi, String> {
@@ -79,6 +87,8 @@ pub struct Loaded {
     pub tf: TransferFunction,
     /// The camera.
     pub camera: Camera,
+    /// The blend mode over the data range.
+    pub blend: Blend,
 }
 
 /// Builds the octree, the surface and the camera for `grid`.
@@ -106,7 +116,8 @@ pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
     let lo = shape.world([0.0; 3]);
     let hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
     let camera = Camera::around(lo, hi, args.azimuth, args.elevation, args.parallel)?;
-    Ok(Loaded { octree, surface, tf, camera })
+    let blend = Blend::new(args.blend, [min, max]);
+    Ok(Loaded { octree, surface, tf, camera, blend })
 }
 
 /// One frame: its DrawList, image and step times.
@@ -137,8 +148,12 @@ pub fn frame(
     points: Option<(&PointSet, Footprint)>,
 ) -> Result<Frame> {
     let lighting = args.shade.lighting();
-    let view =
-        Scene { surface: scene.surface.as_ref(), surface_opacity: args.surface_opacity, shading: lighting.as_ref() };
+    let view = Scene {
+        surface: scene.surface.as_ref(),
+        surface_opacity: args.surface_opacity,
+        shading: lighting.as_ref(),
+        blend: scene.blend,
+    };
     let started = Instant::now();
     let polygons = match (plan(selection, &view).surface, &scene.surface) {
         (SurfacePass::Translucent, Some(s)) => Some(SlabPolygons::new(&scene.octree, s, grid.shape(), selection)),
@@ -176,19 +191,24 @@ pub fn surface_colour(args: &SceneArgs) -> [f32; 4] {
 pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Result<Image> {
     let surface = scene.surface.as_ref().map(|s| (s, surface_colour(args)));
     let lighting = args.shade.lighting();
-    reference(
+    reference_blend(
         grid,
         &scene.tf,
         &scene.camera,
         args.width,
         args.height,
         &ReferenceOptions { surface, lighting: lighting.as_ref(), ..ReferenceOptions::default() },
+        &scene.blend,
     )
 }
 
 /// The transfer function's visibility test for the selection: a node shows
 /// unless the transfer function is transparent over its whole range (and,
-/// with a surface, it holds none of it).
+/// with a surface, it holds none of it); under the blend mode's rule
+/// ([`Blend::visible`]).
 pub fn visible<'a>(scene: &'a Loaded, isovalue: Option<f64>) -> impl Fn(f64, f64) -> bool + 'a {
-    move |min, max| !scene.tf.is_transparent_over(min, max) || isovalue.is_some_and(|iso| min < iso && iso <= max)
+    move |min, max| {
+        scene.blend.visible(min, max, &|a, b| !scene.tf.is_transparent_over(a, b))
+            || isovalue.is_some_and(|iso| min < iso && iso <= max)
+    }
 }

@@ -35,6 +35,10 @@ pub struct SelectOptions {
     /// border the gradient of a shaded volume reads (`(n + 2)` texels per
     /// axis instead of `n`); set when the scene shades.
     pub gradient_border: bool,
+    /// Coarse bricks hold peak-keeping texels (maximum and minimum
+    /// intensity, [`crate::plan::BlendMode::is_extremum`]): a coarse form of
+    /// a node is exact only when it is constant.
+    pub pooled: bool,
 }
 
 impl SelectOptions {
@@ -50,6 +54,7 @@ impl SelectOptions {
             bytes_per_texel: 4,
             max_brick_log2: 7,
             gradient_border: false,
+            pooled: false,
         }
     }
 }

@@ -20,9 +20,27 @@ use crate::octree::{NodeId, NodeRef, VolumeOctree};
 /// keeps a coarser level from passing for one of no more error
 /// ([`cheapest`]): a node at full resolution has mass 0, and only an exact
 /// coarse form (`E_q = 0`) matches it.
-pub(super) fn error_mass(n: &NodeRef<'_>, p: usize, removed: f64) -> f64 {
+///
+/// Maximum and minimum intensity draw a coarse brick from peak-keeping
+/// texels ([`crate::render::texture`]'s `pool`): they are exact only for a
+/// constant node, elsewhere they may show any value of the node's range a
+/// stride away. With `pooled = Some(1 / range)` (the data range) a node
+/// drawn coarser than its full resolution (`p < L - level`) keeps at least
+/// that error,
+///
+/// ```text
+/// E_pool(n) = (max(n) - min(n)) / range,   mass(n, p) >= E_pool(n)^2   (p < L - level)
+/// ```
+///
+/// (normalised like `E_p`), so that only a constant node passes for exact
+/// at a coarse level and a peak's node is refined first.
+pub(super) fn error_mass(n: &NodeRef<'_>, p: usize, removed: f64, pooled: Option<f64>) -> f64 {
     let e = n.error(p) as f64;
-    (n.squared_error(p) as f64 - removed).max(e * e)
+    let e_pool = match pooled {
+        Some(inv_range) if p < n.errors.len() => (n.max - n.min) * inv_range,
+        _ => 0.0,
+    };
+    (n.squared_error(p) as f64 - removed).max(e * e).max(e_pool * e_pool)
 }
 
 /// What a step buys: error mass removed per byte added, and a step that
@@ -47,6 +65,7 @@ pub(super) fn gain(removed: f64, added_bytes: f64) -> f64 {
 /// the bytes go where the error is. Returns the bricks and how many
 /// transparent nodes were left out. Results are kept in `memo` by (node, p):
 /// they depend on nothing else within one selection.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn cheapest(
     octree: &VolumeOctree,
     n: &NodeRef<'_>,
@@ -55,15 +74,16 @@ pub(super) fn cheapest(
     max_p: &dyn Fn(&NodeRef<'_>) -> usize,
     visible: &dyn Fn(f64, f64) -> bool,
     memo: &Memo,
+    pooled: Option<f64>,
 ) -> (Vec<Brick>, usize) {
     if let Some(known) = memo.borrow().get(&(n.id, p)) {
         return known.clone();
     }
-    let q = (0..p).find(|&q| error_mass(n, q, 0.0) <= error_mass(n, p, 0.0)).unwrap_or(p);
+    let q = (0..p).find(|&q| error_mass(n, q, 0.0, pooled) <= error_mass(n, p, 0.0, pooled)).unwrap_or(p);
     let own = brick_of(n.id, q);
     let mut form = (vec![own], 0);
     if !(n.is_terminal() || p == 0) {
-        let (children, hidden, bytes) = children_forms(octree, n, p, own.bytes, brick_of, max_p, visible, memo);
+        let (children, hidden, bytes) = children_forms(octree, n, p, own.bytes, brick_of, max_p, visible, memo, pooled);
         if bytes < own.bytes {
             form = (children, hidden);
         }
@@ -86,6 +106,7 @@ pub(super) fn children_forms(
     max_p: &dyn Fn(&NodeRef<'_>) -> usize,
     visible: &dyn Fn(f64, f64) -> bool,
     memo: &Memo,
+    pooled: Option<f64>,
 ) -> (Vec<Brick>, usize, usize) {
     let mut children = Vec::new();
     let (mut hidden, mut bytes) = (0, 0);
@@ -95,7 +116,7 @@ pub(super) fn children_forms(
             hidden += 1;
             continue;
         }
-        let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, visible, memo);
+        let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, visible, memo, pooled);
         bytes += bricks.iter().map(|b| b.bytes).sum::<usize>();
         children.extend(bricks);
         hidden += h;

@@ -160,14 +160,19 @@ impl Refiner<'_> {
     /// Node `id` drawn at level `p`, with its importance.
     fn brick_of(&self, id: NodeId, p: usize) -> Brick {
         let n = self.octree.node(id);
-        make_brick(
+        let mut b = make_brick(
             self.octree,
             &n,
             p,
             importance(self.options.roi.as_ref(), n.lo, n.hi),
             self.options.bytes_per_texel,
             self.options.gradient_border,
-        )
+        );
+        // Peak-keeping texels: a coarse brick's error is at least E_pool (see [`error_mass`]).
+        if let Some(inv_range) = self.pooled().filter(|_| p < n.errors.len()) {
+            b.error = b.error.max(((n.max - n.min) * inv_range) as f32);
+        }
+        b
     }
 
     /// The squared error the points a brick took correct (0 without points).
@@ -181,7 +186,14 @@ impl Refiner<'_> {
     /// The error mass of a brick: `Imp(n) mass(n, p)` ([`error_mass`]), its
     /// squared error summed over its samples, less what its points correct.
     fn mass(&self, b: &Brick) -> f64 {
-        b.importance * error_mass(&self.octree.node(b.node), b.p, self.removed(b))
+        b.importance * error_mass(&self.octree.node(b.node), b.p, self.removed(b), self.pooled())
+    }
+
+    /// `Some(1 / data range)` when coarse bricks hold peak-keeping texels
+    /// ([`SelectOptions::pooled`]; see [`error_mass`]).
+    fn pooled(&self) -> Option<f64> {
+        let (lo, hi) = self.octree.value_range();
+        (self.options.pooled && hi > lo).then(|| 1.0 / (hi - lo))
     }
 
     /// Bytes a brick holds: its texture and its points.
@@ -191,7 +203,16 @@ impl Refiner<'_> {
 
     /// [`cheapest`] form of node `n` at level `p` in this selection.
     fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> (Vec<Brick>, usize) {
-        cheapest(self.octree, n, p, &|id, p| self.brick_of(id, p), &|n| self.max_p(n), &self.visible, &self.memo)
+        cheapest(
+            self.octree,
+            n,
+            p,
+            &|id, p| self.brick_of(id, p),
+            &|n| self.max_p(n),
+            &self.visible,
+            &self.memo,
+            self.pooled(),
+        )
     }
 
     /// The best next step of a brick in the cut, if it still violates the
@@ -250,6 +271,7 @@ impl Refiner<'_> {
                 &|n| self.max_p(n),
                 &self.visible,
                 &self.memo,
+                self.pooled(),
             );
             let after: f64 = children.iter().map(|c| self.mass(c)).sum();
             let split_bytes = added as f64 - Self::cost(b) as f64;
@@ -544,7 +566,7 @@ mod tests {
         for p in 1..=l {
             let own = brick_of(root.id, p);
             for visible in [&(|_: f64, _: f64| true) as &dyn Fn(f64, f64) -> bool, &|_, max| max > 0.5] {
-                let (bricks, _) = cheapest(&o, &root, p, &brick_of, &max_p, visible, &Memo::default());
+                let (bricks, _) = cheapest(&o, &root, p, &brick_of, &max_p, visible, &Memo::default(), None);
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
                 assert!(bytes <= own.bytes, "p {p}: {bytes} > {}", own.bytes);

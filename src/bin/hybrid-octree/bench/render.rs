@@ -224,7 +224,11 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
                 u,
                 select_ms,
             )?);
-            let options = SelectOptions { roi: args.scene.roi, ..SelectOptions::new(bytes, 0.0) };
+            let options = SelectOptions {
+                roi: args.scene.roi,
+                pooled: scene.blend.mode.is_extremum(),
+                ..SelectOptions::new(bytes, 0.0)
+            };
             let started = Instant::now();
             let s = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
             let select_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -236,7 +240,11 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
             )?);
         }
         for &tolerance in &args.tolerances {
-            let options = SelectOptions { roi: args.scene.roi, ..SelectOptions::new(largest, tolerance) };
+            let options = SelectOptions {
+                roi: args.scene.roi,
+                pooled: scene.blend.mode.is_extremum(),
+                ..SelectOptions::new(largest, tolerance)
+            };
             let started = Instant::now();
             let s = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
             let select_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -348,7 +356,11 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
         let ms = started.elapsed().as_secs_f64() * 1e3;
         let mass = PointMass::voxel_means(bench.grid, &set, bench.scene.octree.layout().leaf_size());
         for &budget in &bytes {
-            let options = SelectOptions { roi: bench.args.roi, ..SelectOptions::new(budget, 0.0) };
+            let options = SelectOptions {
+                roi: bench.args.roi,
+                pooled: bench.scene.blend.mode.is_extremum(),
+                ..SelectOptions::new(budget, 0.0)
+            };
             let started = Instant::now();
             let s =
                 select_with_points(&bench.scene.octree, &options, visible(bench.scene, bench.args.isovalue), &mass)?;
