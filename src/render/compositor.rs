@@ -120,6 +120,28 @@ impl<S> Prepared<'_, S> {
                 && (p[a] < hi[a] || (self.closed[a].1 && p[a] == hi[a]))
         })
     }
+
+    /// The run `s0..s1` of the brick's slices (back to front, decreasing)
+    /// that pixel ray `pr` samples between the depths `za`, `zb` where it
+    /// enters and leaves the box: the candidates `z < limit`,
+    /// `za - tol <= z <= zb + tol`, whose point `p(z)` is in the box (a
+    /// contiguous run: `p(z)` is monotone per axis).
+    fn sampled_run(&self, pr: &PixelRay, za: f64, zb: f64) -> (usize, usize) {
+        let tol = 1e-9 * (1.0 + za.abs().max(zb.abs()));
+        let slices = &self.draw.slices;
+        let c0 = slices.partition_point(|&z| z > zb + tol).max(slices.partition_point(|&z| z >= pr.limit));
+        let c1 = slices.partition_point(|&z| z >= za - tol).max(c0);
+        let inside = |j: usize| self.contains(at_depth(&pr.ray, pr.z_origin, pr.cos, slices[j]));
+        let mut s0 = c0;
+        while s0 < c1 && !inside(s0) {
+            s0 += 1;
+        }
+        let mut s1 = c1;
+        while s1 > s0 && !inside(s1 - 1) {
+            s1 -= 1;
+        }
+        (s0, s1)
+    }
 }
 
 /// Which (brick position, batch index) pairs draw each surface polygon.
@@ -514,21 +536,8 @@ impl<S: Texel> Executor<'_, S> {
             return acc;
         };
         let (za, zb) = (pr.depth(ta), pr.depth(tb));
-        let tol = 1e-9 * (1.0 + za.abs().max(zb.abs()));
         let slices = &brick.draw.slices;
-        // Slices are back to front (decreasing). Candidates: z < limit and za - tol <= z <= zb + tol.
-        let c0 = slices.partition_point(|&z| z > zb + tol).max(slices.partition_point(|&z| z >= pr.limit));
-        let c1 = slices.partition_point(|&z| z >= za - tol).max(c0);
-        // Sampled: the candidates whose p(z) is in the box, a contiguous run (p(z) is monotone per axis).
-        let inside = |j: usize| brick.contains(at_depth(&pr.ray, pr.z_origin, pr.cos, slices[j]));
-        let mut s0 = c0;
-        while s0 < c1 && !inside(s0) {
-            s0 += 1;
-        }
-        let mut s1 = c1;
-        while s1 > s0 && !inside(s1 - 1) {
-            s1 -= 1;
-        }
+        let (s0, s1) = brick.sampled_run(pr, za, zb);
         // All slices when batches interleave.
         let (j0, j1) = if scratch.events.is_empty() { (s0, s1) } else { (0, slices.len()) };
         // The texel line u(z) = ua + (z - za) ub (see the module documentation).

@@ -50,20 +50,9 @@ impl<S: Texel> Executor<'_, S> {
         let brick = &self.bricks[b];
         let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else { return };
         let (za, zb) = (pr.depth(ta), pr.depth(tb));
-        let tol = 1e-9 * (1.0 + za.abs().max(zb.abs()));
         let slices = &brick.draw.slices;
-        // As Composite's brick(): candidates z < limit, za - tol <= z <= zb + tol; the run inside the box.
-        let c0 = slices.partition_point(|&z| z > zb + tol).max(slices.partition_point(|&z| z >= pr.limit));
-        let c1 = slices.partition_point(|&z| z >= za - tol).max(c0);
-        let inside = |j: usize| brick.contains(at_depth(&pr.ray, pr.z_origin, pr.cos, slices[j]));
-        let mut s0 = c0;
-        while s0 < c1 && !inside(s0) {
-            s0 += 1;
-        }
-        let mut s1 = c1;
-        while s1 > s0 && !inside(s1 - 1) {
-            s1 -= 1;
-        }
+        // The slices Composite's brick() samples.
+        let (s0, s1) = brick.sampled_run(pr, za, zb);
         if s0 == s1 {
             return;
         }
