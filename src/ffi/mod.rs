@@ -17,6 +17,8 @@
 //! does not match is an error; after any error the buffer's contents are
 //! unspecified).
 
+#[cfg(test)]
+mod crop_tests;
 mod ftb;
 mod geometry;
 mod grid;
@@ -237,6 +239,26 @@ mod bridge {
         /// Count one border texel per side of each brick in its bytes (the
         /// volume is shaded: the gradient reads them; see `brick_texels_bordered`).
         gradient_border: bool,
+        /// VTK's cropping and clipping planes: nodes whose box they remove
+        /// get no texture (counted as skipped), and the selection's
+        /// DrawLists keep only their samples (`plan::crop`).
+        region: RegionDesc,
+    }
+
+    /// VTK's cropping (`vtkVolumeMapper`) and clipping planes
+    /// (`vtkAbstractMapper`) in the octree's frame, the image's world
+    /// coordinates (origin + index * spacing): see `plan::crop`.
+    #[derive(Debug)]
+    struct RegionDesc {
+        /// GetCropping(): off, the cropping planes and flags are not read.
+        cropping: bool,
+        /// GetCroppingRegionPlanes(): xmin, xmax, ymin, ymax, zmin, zmax.
+        cropping_planes: [f64; 6],
+        /// GetCroppingRegionFlags(): bit i + 3 j + 9 k keeps region (i, j, k).
+        cropping_flags: u32,
+        /// 6 per plane (origin x, y, z, normal x, y, z), at most 8 planes:
+        /// samples with normal . (x - origin) >= 0 are kept.
+        clipping_planes: Vec<f64>,
     }
 
     /// Summary of a selection.
@@ -326,6 +348,13 @@ mod bridge {
         slices: Vec<f64>,
         /// The plan's passes in order, comma-joined ("volume", "" with no brick).
         passes: String,
+        /// What removes volume samples in every pass, comma-joined:
+        /// "cropping", "clipping", "cropping,clipping" or "" (nothing).
+        effects: String,
+        /// The cropping and planes that act (those of the selection's
+        /// region that remove part of the volume; `cropping` false and no
+        /// planes when nothing does).
+        region: RegionDesc,
         /// d0, world units.
         reference_spacing: f64,
         /// The camera's unit view direction.
@@ -663,8 +692,8 @@ mod bridge {
 use bridge::BuildProgress;
 pub use bridge::{
     BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
-    OctreeSummary, PointsDesc, PointsSummary, ScalarType, SelectDesc, SelectionSummary, ShadingDesc, SurfaceMode,
-    SurfaceSummary,
+    OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, SelectDesc, SelectionSummary, ShadingDesc,
+    SurfaceMode, SurfaceSummary,
 };
 use ftb::ftb_display;
 use geometry::{block_ranges_len, brick_block_ranges, frame_brick_geometry as brick_geometry};

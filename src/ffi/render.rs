@@ -13,14 +13,15 @@ use super::grid::{grid_of, grid_unscanned, same_image};
 use super::guard::{check_len, guarded, Bridged};
 use super::octree::HybridOctreeHandle;
 use super::transfer::{opacity_function, transfer_function};
-use super::{CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary, ShadingDesc};
+use super::{CameraDesc, DrawListOutput, GridDesc, RegionDesc, SelectDesc, SelectionSummary, ShadingDesc};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::grid::{GridShape, ScalarType};
+use crate::plan::crop::{ClippingPlane, Cropping, KeptRegion};
 use crate::plan::point_slabs::add_points;
 use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
-use crate::plan::{plan, relight, DrawList, SurfacePass};
+use crate::plan::{plan, recrop, relight, DrawList, SurfacePass};
 use crate::points::Footprint;
 use crate::points::PointSet;
 use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_f32_into};
@@ -41,6 +42,44 @@ pub struct SelectionHandle {
     points: Option<Arc<PointSet>>,
     /// The shading of its DrawLists ([`SelectionHandle::set_shading`]).
     lighting: Mutex<Option<Lighting>>,
+    /// The cropping and clipping planes it was selected for, world
+    /// coordinates: its DrawLists keep only their samples.
+    region: Option<KeptRegion>,
+}
+
+/// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
+pub(crate) fn region(desc: &RegionDesc) -> Result<Option<KeptRegion>> {
+    let planes = &desc.clipping_planes;
+    if planes.len() % 6 != 0 {
+        return Err(Error::InvalidArgument(format!(
+            "{} clipping plane values: give 6 per plane (origin x, y, z, normal x, y, z)",
+            planes.len()
+        )));
+    }
+    let planes: Vec<ClippingPlane> = planes
+        .chunks_exact(6)
+        .map(|p| ClippingPlane { origin: [p[0], p[1], p[2]], normal: [p[3], p[4], p[5]] })
+        .collect();
+    let cropping = desc.cropping.then_some(Cropping { planes: desc.cropping_planes, flags: desc.cropping_flags });
+    if cropping.is_none() && planes.is_empty() {
+        return Ok(None);
+    }
+    KeptRegion::new(cropping, &planes).map(Some)
+}
+
+/// `region` as the bridge describes it (cropping off and no planes for `None`).
+fn region_desc(region: Option<&KeptRegion>) -> RegionDesc {
+    let cropping = region.and_then(|r| r.cropping);
+    RegionDesc {
+        cropping: cropping.is_some(),
+        cropping_planes: cropping.map_or([0.0; 6], |c| c.planes),
+        cropping_flags: cropping.map_or(0, |c| c.flags),
+        clipping_planes: region
+            .iter()
+            .flat_map(|r| r.planes())
+            .flat_map(|p| p.origin.into_iter().chain(p.normal))
+            .collect(),
+    }
 }
 
 /// The lighting of `desc` (`None` when it does not shade), checked.
@@ -106,6 +145,7 @@ pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<Sel
     Ok(SelectOptions {
         roi,
         gradient_border: desc.gradient_border,
+        region: region(&desc.region)?.map(|r| r.to_index(shape)),
         ..SelectOptions::new(desc.budget_bytes, desc.tolerance)
     })
 }
@@ -153,6 +193,8 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         slice_offsets: Vec::with_capacity(n + 1),
         slices: Vec::new(),
         passes: list.plan.passes.join(","),
+        effects: list.plan.effects.join(","),
+        region: region_desc(list.region.as_ref()),
         reference_spacing: list.reference_spacing,
         forward: list.camera.forward(),
         batch_offsets: Vec::with_capacity(n + 1),
@@ -253,6 +295,7 @@ impl HybridOctreeHandle {
                 polygons: Mutex::new(None),
                 points: self.hybrid.points.as_ref().map(|p| Arc::clone(&p.set)),
                 lighting: Mutex::new(None),
+                region: region(&desc.region)?,
             }))
         })
     }
@@ -288,7 +331,7 @@ impl SelectionHandle {
             add_points(&mut list, &octree.shape, set)?;
         }
         let lighting = self.lighting.lock().unwrap_or_else(|e| e.into_inner()).clone();
-        relight(list, lighting.as_ref())
+        Ok(recrop(relight(list, lighting.as_ref())?, self.region.as_ref(), &octree.shape))
     }
 
     /// [`Self::list`] without the points.

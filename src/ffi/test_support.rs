@@ -2,7 +2,7 @@
 //! and a build without progress.
 
 use super::octree::{build_with, HybridOctreeHandle};
-use super::{GridDesc, ScalarType, SelectDesc};
+use super::{GridDesc, RegionDesc, ScalarType, SelectDesc};
 
 /// The bytes of an f32 slice, as the C++ side hands them over.
 pub(crate) fn as_bytes(data: &[f32]) -> &[u8] {
@@ -27,7 +27,13 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         has_isovalue: false,
         isovalue: 0.0,
         gradient_border: false,
+        region: no_region(),
     }
+}
+
+/// No cropping, no clipping planes.
+pub(crate) fn no_region() -> RegionDesc {
+    RegionDesc { cropping: false, cropping_planes: [0.0; 6], cropping_flags: 0, clipping_planes: Vec::new() }
 }
 
 /// Builds without progress.

@@ -18,8 +18,16 @@
 //! - the blend mode ([`Blend`]): `volume` for Composite, `volume-mip`,
 //!   `volume-minip`, `volume-average` or `volume-additive` for the others
 //!   (shading is for Composite only).
+//! - cropping and clipping planes ([`crate::plan::crop`]) only where they
+//!   remove part of the volume's box: a cropping that keeps the whole box
+//!   and a plane with the whole box on its kept side are dropped; what is
+//!   left is [`DrawList::region`] and the plan's [`Plan::effects`]
+//!   (`cropping`, `clipping`). Bricks whose box it removes are not selected
+//!   ([`crate::plan::select::SelectOptions::region`]). They act on the
+//!   volume's samples only: the isosurface and the points are drawn whole.
 
 use super::blend::Blend;
+use super::crop::KeptRegion;
 use super::select::Brick;
 use super::slab::Batch;
 use crate::geometry::camera::Camera;
@@ -53,6 +61,9 @@ pub struct Plan {
     pub blend: Blend,
     /// The passes, in the order they run (e.g. `["surface-opaque", "volume"]`).
     pub passes: Vec<String>,
+    /// What removes volume samples in every pass: `cropping`, `clipping`
+    /// (the DrawList's [`DrawList::region`]); empty when nothing does.
+    pub effects: Vec<String>,
 }
 
 /// One brick of the DrawList.
@@ -112,6 +123,10 @@ pub struct DrawList {
     /// [`Plan::shading`]); brick textures then carry one border texel per
     /// side for the gradient ([`crate::plan::select::SelectOptions::gradient_border`]).
     pub lighting: Option<Lighting>,
+    /// The samples kept, world coordinates (`Some` exactly when
+    /// [`Plan::effects`] is not empty): the cropping and planes that remove
+    /// part of the volume's box.
+    pub region: Option<KeptRegion>,
 }
 
 /// What the scene holds besides the volume.
@@ -126,6 +141,9 @@ pub struct Scene<'a> {
     pub shading: Option<&'a Lighting>,
     /// The blend mode (VTK's `vtkVolumeMapper::SetBlendMode`) and its ranges.
     pub blend: Blend,
+    /// VTK's cropping and clipping planes, world coordinates (`None`: every
+    /// sample is kept).
+    pub region: Option<&'a KeptRegion>,
 }
 
 /// The plan for a scene (see the module documentation).
@@ -150,7 +168,39 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
             mode => mode.pass(),
         });
     }
-    Plan { volume, surface, shading, skipped_bricks: selection.skipped, blend: scene.blend, passes }
+    Plan {
+        volume,
+        surface,
+        shading,
+        skipped_bricks: selection.skipped,
+        blend: scene.blend,
+        passes,
+        effects: Vec::new(),
+    }
+}
+
+/// The planner's cropping rule: of `region`, what removes part of the
+/// volume's box `[lo, hi]` ([`KeptRegion::acting_on`]), when there is a volume.
+fn crops(volume: bool, region: Option<&KeptRegion>, lo: [f64; 3], hi: [f64; 3]) -> Option<KeptRegion> {
+    region.filter(|_| volume).and_then(|r| r.acting_on(lo, hi))
+}
+
+/// `list` planned again for `region` (world coordinates) over the grid of
+/// `shape`, as [`draw_list`] plans [`Scene::region`]: [`Plan::effects`] and
+/// [`DrawList::region`] say what removes part of the volume, or are cleared.
+/// The bricks are not selected again: those `region` removes entirely still
+/// draw (nothing); select with [`crate::plan::select::SelectOptions::region`]
+/// to leave them out.
+pub fn recrop(mut list: DrawList, region: Option<&KeptRegion>, shape: &crate::data::grid::GridShape) -> DrawList {
+    let (lo, hi) = volume_box(shape);
+    list.region = crops(list.plan.volume, region, lo, hi);
+    list.plan.effects = list.region.map(|r| r.effects()).unwrap_or_default();
+    list
+}
+
+/// The world box of the grid's samples.
+fn volume_box(shape: &crate::data::grid::GridShape) -> ([f64; 3], [f64; 3]) {
+    (shape.world([0.0; 3]), shape.world(shape.dims.map(|d| (d - 1) as f64)))
 }
 
 /// The planner's shading rule: shade a volume, when the scene asks, unless
@@ -210,8 +260,11 @@ pub fn draw_list(
     if let Some(l) = scene.shading {
         l.check()?;
     }
-    let plan = plan(selection, scene);
+    let mut plan = plan(selection, scene);
     let lighting = scene.shading.filter(|_| plan.shading).map(|l| l.in_world(camera));
+    let (lo, hi) = volume_box(shape);
+    let region = crops(plan.volume, scene.region, lo, hi);
+    plan.effects = region.map(|r| r.effects()).unwrap_or_default();
     let d0 = crate::data::spacing::reference_spacing(shape);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
     let order = crate::plan::order::brick_order(camera, octree, shape, &ids, true);
@@ -250,7 +303,7 @@ pub fn draw_list(
         (SurfacePass::Opaque, Some(s)) => (0..s.polygon_count() as u32).collect(),
         _ => Vec::new(),
     };
-    Ok(DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0, lighting })
+    Ok(DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0, lighting, region })
 }
 
 #[cfg(test)]
@@ -290,7 +343,7 @@ mod tests {
         let f = fixture();
         let l = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default() },
+            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["volume"]);
@@ -304,7 +357,13 @@ mod tests {
         let f = fixture();
         let l = list(
             &f,
-            &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: None, blend: Default::default() },
+            &Scene {
+                surface: Some(&f.surface),
+                surface_opacity: 1.0,
+                shading: None,
+                blend: Default::default(),
+                region: None,
+            },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["surface-opaque", "volume"]);
@@ -323,6 +382,7 @@ mod tests {
                 surface_opacity: 0.4,
                 shading: Some(&shaded),
                 blend: Default::default(),
+                region: None,
             },
             |_, _| true,
         );
@@ -347,7 +407,13 @@ mod tests {
         let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
         let selection = select(&f.octree, &options, |_, _| true).unwrap();
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None, blend: Default::default() };
+        let scene = Scene {
+            surface: Some(&f.surface),
+            surface_opacity: 0.4,
+            shading: None,
+            blend: Default::default(),
+            region: None,
+        };
         for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
             let camera =
                 Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), azimuth, elevation, parallel).unwrap();
@@ -370,7 +436,13 @@ mod tests {
         assert_ne!(nodes(&all), nodes(&fewer));
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None, blend: Default::default() };
+        let scene = Scene {
+            surface: Some(&f.surface),
+            surface_opacity: 0.4,
+            shading: None,
+            blend: Default::default(),
+            region: None,
+        };
         let e = draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons)).unwrap_err().to_string();
         assert!(e.contains("made for another selection or surface"), "{e}");
     }
@@ -380,7 +452,13 @@ mod tests {
         let f = fixture();
         let l = list(
             &f,
-            &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: None, blend: Default::default() },
+            &Scene {
+                surface: Some(&f.surface),
+                surface_opacity: 0.0,
+                shading: None,
+                blend: Default::default(),
+                region: None,
+            },
             |_, max| max > 0.9,
         );
         assert!(l.plan.skipped_bricks > 0);
@@ -389,7 +467,13 @@ mod tests {
         let shaded = Lighting::headlight(Default::default());
         let none = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded), blend: Default::default() },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: Some(&shaded),
+                blend: Default::default(),
+                region: None,
+            },
             |_, _| false,
         );
         assert!(!none.plan.volume && none.bricks.is_empty() && none.plan.passes.is_empty() && !none.plan.shading);
@@ -408,7 +492,13 @@ mod tests {
         });
         let l = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&identity), blend: Default::default() },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: Some(&identity),
+                blend: Default::default(),
+                region: None,
+            },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["volume"]);
@@ -416,7 +506,13 @@ mod tests {
         let shaded = Lighting::headlight(Default::default());
         let l = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded), blend: Default::default() },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: Some(&shaded),
+                blend: Default::default(),
+                region: None,
+            },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["volume-shaded"]);
@@ -424,7 +520,7 @@ mod tests {
         // Planned again: the same as planned with the scene's shading.
         let plain = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default() },
+            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None },
             |_, _| true,
         );
         assert_eq!(relight(plain.clone(), Some(&shaded)).unwrap(), l);

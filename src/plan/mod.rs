@@ -3,10 +3,12 @@
 //! back to front, [`slab`] places the surface triangles between the slices
 //! of each brick, [`point_slabs`] buckets the points of the hybrid
 //! representation into them, the draw list (`draw_list`) says which passes
-//! a scene needs and what each draws, and [`draw_geometry`] makes the OpenGL
+//! a scene needs and what each draws, [`crop`] says which samples VTK's
+//! cropping and clipping planes keep, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
 pub mod blend;
+pub mod crop;
 pub mod draw_geometry;
 mod draw_list;
 pub mod order;
@@ -15,6 +17,6 @@ pub mod select;
 pub mod slab;
 
 pub use blend::{Blend, BlendMode};
-pub use draw_list::{draw_list, plan, relight, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
+pub use draw_list::{draw_list, plan, recrop, relight, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
 pub use point_slabs::add_points;
 pub use slab::Batch;

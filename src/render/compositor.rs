@@ -63,6 +63,10 @@
 //! before the frame, and blended in that slab like a batch hit (after slices
 //! `0 .. s`, before slice `s`), nearest last within the slab; a pixel whose
 //! ray misses the brick's box blends the brick's points it still sees.
+//! Cropping and clipping planes ([`DrawList::region`], the plan's
+//! `effects`): a sample whose point `p(z)` the region does not keep
+//! ([`crate::plan::crop::KeptRegion::keeps`]) is empty, skipped like a
+//! transparent one, in every blend mode; surfaces and points are drawn whole.
 //! Blend modes besides Composite (the list's [`crate::plan::Plan::blend`])
 //! reduce the same samples instead of blending them: `projection`.
 //! Bands of rows run in parallel; every pixel is computed on its own, so the picture
@@ -80,6 +84,7 @@ use crate::base::error::Result;
 use crate::data::grid::{Grid, GridShape};
 use crate::geometry::camera::Ray;
 use crate::geometry::vec3::dot;
+use crate::plan::crop::KeptRegion;
 use crate::plan::{BrickDraw, DrawList};
 use crate::points::footprint::{footprint, project, Footprint};
 use crate::points::{PointSet, PointShade};
@@ -313,6 +318,7 @@ fn execute<S: Texel>(
         shape,
         bricks: &bricks,
         lighting: list.lighting.as_ref().filter(|_| list.plan.shading),
+        region: list.region.as_ref().filter(|_| !list.plan.effects.is_empty()),
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
@@ -412,6 +418,8 @@ struct Executor<'a, S> {
     bricks: &'a [Prepared<'a, S>],
     /// The shading, lights in world space (`None`: unshaded, no gradients).
     lighting: Option<&'a Lighting>,
+    /// The samples kept (`None`: all).
+    region: Option<&'a KeptRegion>,
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
@@ -554,7 +562,7 @@ impl<S: Texel> Executor<'_, S> {
                 acc = under(acc, c, a);
                 e -= 1;
             }
-            if (s0..s1).contains(&j) {
+            if (s0..s1).contains(&j) && self.keeps(pr, slices[j]) {
                 let dz = slices[j] - za;
                 let u = [0, 1, 2].map(|k| ua[k] + dz * ub[k]);
                 let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel(u));
@@ -575,6 +583,12 @@ impl<S: Texel> Executor<'_, S> {
             acc = under(acc, c, a);
         }
         acc
+    }
+
+    /// True when the sample of `pr` at depth `z` is kept (always without a region).
+    #[inline]
+    fn keeps(&self, pr: &PixelRay, z: f64) -> bool {
+        self.region.is_none_or(|r| r.keeps(at_depth(&pr.ray, pr.z_origin, pr.cos, z)))
     }
 
     /// Colour `c` of the sample at texel coordinates `u` of `texture` (its

@@ -31,4 +31,6 @@ pub use crate::transfer;
 #[cfg(test)]
 mod blend_tests;
 #[cfg(test)]
+mod crop_tests;
+#[cfg(test)]
 mod tests;

@@ -25,7 +25,9 @@
 //!
 //! Blend modes besides Composite ([`reference_blend`]) reduce the same
 //! samples, each standing for `l / d0` reference spacings, instead of
-//! blending them: `projection`.
+//! blending them: `projection`. With a region ([`ReferenceOptions::region`],
+//! VTK's cropping and clipping planes) a sample it removes is empty (not
+//! blended, not reduced); surfaces are drawn whole.
 
 use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_size};
@@ -37,6 +39,7 @@ use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::{Error, Result};
 use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::geometry::camera::Camera;
+use crate::plan::crop::KeptRegion;
 use crate::plan::{Blend, BlendMode};
 use crate::surface::Surface;
 use crate::transfer::lighting::Lighting;
@@ -58,6 +61,9 @@ pub struct ReferenceOptions<'a> {
     /// Shade the volume with this material and these lights (view-space
     /// lights follow the camera).
     pub lighting: Option<&'a Lighting>,
+    /// Keep only these samples (cropping, clipping planes; world
+    /// coordinates): a removed sample is empty.
+    pub region: Option<&'a KeptRegion>,
 }
 
 /// Ray-casts `grid` classified by `tf`, seen by `camera`, into a
@@ -115,6 +121,7 @@ pub fn reference_blend(
         surface: surface.as_ref(),
         lighting,
         blend: *blend,
+        region: options.region,
     }))
 }
 
@@ -130,6 +137,7 @@ struct Caster<'a> {
     /// Lights in world space.
     lighting: Option<&'a Lighting>,
     blend: Blend,
+    region: Option<&'a KeptRegion>,
 }
 
 impl GridVisitor for Caster<'_> {
@@ -181,6 +189,9 @@ impl Caster<'_> {
                     return acc.map(|v| v as f32);
                 }
                 let p = [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]);
+                if self.region.is_some_and(|r| !r.keeps(p)) {
+                    continue;
+                }
                 let u = to_index(&self.shape, p);
                 let [r, gr, b, a] = self.tf.eval(grid_value(g, u));
                 let mut rgb = [r as f64, gr as f64, b as f64];
@@ -219,14 +230,21 @@ mod tests {
                 .unwrap();
         let exact = 1.0 - 0.9f64.powf(4.0 / 0.5); // L = 4, d0 = 0.5
         for step in [None, Some(0.3), Some(0.05)] {
-            let img = reference(&grid, &tf, &camera, 4, 4, &ReferenceOptions { step, surface: None, lighting: None })
-                .unwrap();
+            let img = reference(
+                &grid,
+                &tf,
+                &camera,
+                4,
+                4,
+                &ReferenceOptions { step, surface: None, lighting: None, region: None },
+            )
+            .unwrap();
             for p in &img.rgba {
                 assert!((p[3] as f64 - exact).abs() < 1e-6, "{step:?}: {} vs {exact}", p[3]);
                 assert!((p[1] as f64 - 0.5 * exact).abs() < 1e-6);
             }
         }
-        let bad = ReferenceOptions { step: Some(0.0), surface: None, lighting: None };
+        let bad = ReferenceOptions { step: Some(0.0), surface: None, lighting: None, region: None };
         assert!(reference(&grid, &tf, &camera, 4, 4, &bad).unwrap_err().to_string().contains("positive"));
         assert!(reference(&grid, &tf, &camera, 0, 4, &ReferenceOptions::default()).is_err());
     }
@@ -247,8 +265,12 @@ mod tests {
         ]);
         let front = 1.0 - 0.9f64.powi(2); // the volume in front of the plane: 2 units
         for opacity in [1.0f32, 0.5] {
-            let options =
-                ReferenceOptions { step: None, surface: Some((&plane, [0.0, 0.0, 1.0, opacity])), lighting: None };
+            let options = ReferenceOptions {
+                step: None,
+                surface: Some((&plane, [0.0, 0.0, 1.0, opacity])),
+                lighting: None,
+                region: None,
+            };
             let img = reference(&grid, &tf, &camera, 3, 3, &options).unwrap();
             let p = img.rgba[4].map(|v| v as f64);
             let a = opacity as f64;

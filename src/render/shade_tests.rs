@@ -169,8 +169,13 @@ fn gradients_only_when_shading() {
         })
         .unwrap();
     let identity = Lighting::headlight(Material { ambient: 1.0, diffuse: 0.0, specular: 0.0, specular_power: 10.0 });
-    let scene =
-        crate::plan::Scene { surface: None, surface_opacity: 1.0, shading: Some(&identity), blend: Default::default() };
+    let scene = crate::plan::Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: Some(&identity),
+        blend: Default::default(),
+        region: None,
+    };
     let list = crate::plan::draw_list(&octree, &shape, &selection, &camera, &scene, None).unwrap();
     assert_eq!(list.plan.passes, vec!["volume"]);
     assert_eq!(count(&list).1, 0);

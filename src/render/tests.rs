@@ -55,6 +55,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         skipped_bricks: 0,
         blend: Default::default(),
         passes: Vec::new(),
+        effects: Vec::new(),
     };
     DrawList {
         plan,
@@ -63,6 +64,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         opaque_triangles: Vec::new(),
         reference_spacing: d0,
         lighting: None,
+        region: None,
     }
 }
 
@@ -220,7 +222,7 @@ fn opaque_surface_matches_the_reference() {
     list.opaque_triangles = (0..surface.polygon_count() as u32).collect();
     let colour = [1.0, 0.8, 0.5, 1.0];
     let image = composite(&grid, &list, &tf, 64, 64, Some((&surface, colour))).unwrap();
-    let options = ReferenceOptions { step: None, surface: Some((&surface, colour)), lighting: None };
+    let options = ReferenceOptions { step: None, surface: Some((&surface, colour)), lighting: None, region: None };
     let truth = reference(&grid, &tf, &camera, 64, 64, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
     eprintln!("opaque surface: {m:?}");
@@ -270,7 +272,7 @@ fn translucent_batches_are_blended_inside_their_slab() {
             assert!((p[k] as f64 - acc[k]).abs() < 1e-6, "{p:?} vs {acc:?}");
         }
     }
-    let options = ReferenceOptions { step: None, surface: Some((&plane, colour)), lighting: None };
+    let options = ReferenceOptions { step: None, surface: Some((&plane, colour)), lighting: None, region: None };
     let truth = reference(&grid, &tf, &camera, 6, 6, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
     eprintln!("translucent plane: {m:?}");
@@ -354,8 +356,13 @@ fn the_pipeline_tracks_the_reference() {
         ("full, translucent surface", &full, 0.4, 0.01),
         ("1/4 budget, translucent surface", &coarse, 0.4, 0.05),
     ] {
-        let scene =
-            Scene { surface: Some(&surface), surface_opacity: opacity, shading: None, blend: Default::default() };
+        let scene = Scene {
+            surface: Some(&surface),
+            surface_opacity: opacity,
+            shading: None,
+            blend: Default::default(),
+            region: None,
+        };
         // Translucent: the selection's SlabPolygons made once, apart from the view.
         let polygons = (opacity > 0.0 && opacity < 1.0)
             .then(|| crate::plan::slab::SlabPolygons::new(&octree, &surface, grid.shape(), selection));
@@ -363,7 +370,7 @@ fn the_pipeline_tracks_the_reference() {
             crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref()).unwrap();
         let with = (opacity > 0.0).then_some((&surface, [colour[0], colour[1], colour[2], opacity as f32]));
         let image = composite(&grid, &list, &tf, 96, 96, with).unwrap();
-        let options = ReferenceOptions { step: None, surface: with, lighting: None };
+        let options = ReferenceOptions { step: None, surface: with, lighting: None, region: None };
         let truth = reference(&grid, &tf, &camera, 96, 96, &options).unwrap();
         let m = compare(&image, &truth).unwrap();
         let strides: Vec<usize> =

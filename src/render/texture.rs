@@ -511,6 +511,7 @@ mod tests {
                 skipped_bricks: 0,
                 blend: Default::default(),
                 passes: Vec::new(),
+                effects: Vec::new(),
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),
             bricks: vec![BrickDraw {
@@ -525,6 +526,7 @@ mod tests {
             opaque_triangles: Vec::new(),
             reference_spacing: 1.0,
             lighting: None,
+            region: None,
         };
         let l = list(brick([0; 3], [4; 3], 1));
         let f64s: Vec<f64> = (0..125).map(|i| i as f64 / 10.0).collect();

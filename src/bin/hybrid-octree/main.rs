@@ -16,6 +16,7 @@
 
 mod bench;
 mod build;
+mod crop;
 mod extension;
 mod ftb;
 mod generate;

@@ -54,6 +54,10 @@ struct RenderReport {
     /// mapper's `GetLastEstimatedError()` is the same number.
     estimated_error: f64,
     passes: Vec<String>,
+    /// What removes volume samples: `cropping`, `clipping` (empty: nothing).
+    effects: Vec<String>,
+    /// The cropping and clipping planes that act on the volume (world coordinates).
+    region: Option<hybrid_octree::plan::crop::KeptRegion>,
     /// The shading the frame used, lights in world space (the plan says `volume-shaded`).
     lighting: Option<hybrid_octree::transfer::lighting::Lighting>,
     /// The blend mode and its ranges (the plan's).
@@ -86,6 +90,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             roi: args.scene.roi,
             gradient_border: args.scene.shade.shades() && scene.blend.mode == hybrid_octree::plan::BlendMode::Composite,
             pooled: scene.blend.mode.is_extremum(),
+            region: scene.select_region,
             ..SelectOptions::new(budget_bytes, args.tolerance)
         };
         let started = Instant::now();
@@ -111,6 +116,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             bricks: selection.bricks.len(),
             estimated_error: selection.estimated_error,
             passes: f.list.plan.passes.clone(),
+            effects: f.list.plan.effects.clone(),
+            region: f.list.region,
             lighting: f.list.lighting.clone(),
             blend: f.list.plan.blend,
             skipped_bricks: f.list.plan.skipped_bricks,
@@ -134,7 +141,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
 fn print_text(r: &RenderReport) {
     println!("wrote {} ({}x{})", r.output, r.width, r.height);
-    println!("plan:            {} ({} transparent nodes skipped)", r.passes.join(" -> "), r.skipped_bricks);
+    let effects = if r.effects.is_empty() { String::new() } else { format!(" with {}", r.effects.join(", ")) };
+    println!(
+        "plan:            {}{effects} ({} transparent or removed nodes skipped)",
+        r.passes.join(" -> "),
+        r.skipped_bricks
+    );
     println!(
         "bricks:          {} using {:.2} MB of a {:.2} MB budget, estimated error {:.4}",
         r.bricks,

@@ -9,6 +9,7 @@ use clap::Args;
 use hybrid_octree::camera::Camera;
 use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
+use hybrid_octree::plan::crop::KeptRegion;
 use hybrid_octree::plan::point_slabs::add_points;
 use hybrid_octree::plan::{draw_list, plan, Blend, BlendMode, DrawList, Scene, SurfacePass};
 use hybrid_octree::points::{shade, Footprint, PointSet};
@@ -60,6 +61,9 @@ pub struct SceneArgs {
     /// minip (minimum intensity), average (average intensity) or additive.
     #[arg(long, default_value = "composite", value_parser = blend_mode)]
     pub blend: BlendMode,
+    /// Cropping and clipping planes of the volume.
+    #[command(flatten)]
+    pub crop: crate::crop::CropArgs,
 }
 
 fn blend_mode(s: &str) -> std::result::Result<BlendMode, String> {
@@ -89,6 +93,10 @@ pub struct Loaded {
     pub camera: Camera,
     /// The blend mode over the data range.
     pub blend: Blend,
+    /// The cropping and clipping planes, world coordinates.
+    pub region: Option<KeptRegion>,
+    /// The same in index space, what the selection leaves out by.
+    pub select_region: Option<KeptRegion>,
 }
 
 /// Builds the octree, the surface and the camera for `grid`.
@@ -105,6 +113,7 @@ pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
             args.surface_opacity
         )));
     }
+    let region = args.crop.region()?;
     let octree = build_octree(grid, &BuildOptions { leaf_size: args.leaf_size })?;
     let surface = match args.isovalue {
         Some(iso) => Some(Surface::extract(grid, &octree, &SurfaceOptions::discretized(iso))?),
@@ -117,7 +126,8 @@ pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
     let hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
     let camera = Camera::around(lo, hi, args.azimuth, args.elevation, args.parallel)?;
     let blend = Blend::new(args.blend, [min, max]);
-    Ok(Loaded { octree, surface, tf, camera, blend })
+    let select_region = region.map(|r| r.to_index(shape));
+    Ok(Loaded { octree, surface, tf, camera, blend, region, select_region })
 }
 
 /// One frame: its DrawList, image and step times.
@@ -153,6 +163,7 @@ pub fn frame(
         surface_opacity: args.surface_opacity,
         shading: lighting.as_ref(),
         blend: scene.blend,
+        region: scene.region.as_ref(),
     };
     let started = Instant::now();
     let polygons = match (plan(selection, &view).surface, &scene.surface) {
@@ -197,7 +208,12 @@ pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Res
         &scene.camera,
         args.width,
         args.height,
-        &ReferenceOptions { surface, lighting: lighting.as_ref(), ..ReferenceOptions::default() },
+        &ReferenceOptions {
+            surface,
+            lighting: lighting.as_ref(),
+            region: scene.region.as_ref(),
+            ..ReferenceOptions::default()
+        },
         &scene.blend,
     )
 }

@@ -39,6 +39,11 @@ pub struct SelectOptions {
     /// intensity, [`crate::plan::BlendMode::is_extremum`]): a coarse form of
     /// a node is exact only when it is constant.
     pub pooled: bool,
+    /// The samples the frame keeps (cropping, clipping planes), in index
+    /// space ([`KeptRegion::to_index`](crate::plan::crop::KeptRegion::to_index)):
+    /// a node whose box it removes draws nothing and is never selected
+    /// (counted in [`Selection::skipped`]).
+    pub region: Option<crate::plan::crop::KeptRegion>,
 }
 
 impl SelectOptions {
@@ -55,6 +60,7 @@ impl SelectOptions {
             max_brick_log2: 7,
             gradient_border: false,
             pooled: false,
+            region: None,
         }
     }
 }
@@ -118,7 +124,8 @@ pub struct Selection {
     /// all draw the full-resolution field. What the CLI, the bridge and the
     /// volume mapper report.
     pub estimated_error: f64,
-    /// Nodes left out as fully transparent.
+    /// Nodes left out as fully transparent, or removed by the kept region
+    /// ([`SelectOptions::region`]).
     pub skipped: usize,
     /// Set when the budget is below the coarsest representation (then the
     /// coarsest one is returned anyway) or the tolerance was not reached.

@@ -72,7 +72,7 @@ pub(super) fn cheapest(
     p: usize,
     brick_of: &dyn Fn(NodeId, usize) -> Brick,
     max_p: &dyn Fn(&NodeRef<'_>) -> usize,
-    visible: &dyn Fn(f64, f64) -> bool,
+    shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
 ) -> (Vec<Brick>, usize) {
@@ -83,7 +83,7 @@ pub(super) fn cheapest(
     let own = brick_of(n.id, q);
     let mut form = (vec![own], 0);
     if !(n.is_terminal() || p == 0) {
-        let (children, hidden, bytes) = children_forms(octree, n, p, own.bytes, brick_of, max_p, visible, memo, pooled);
+        let (children, hidden, bytes) = children_forms(octree, n, p, own.bytes, brick_of, max_p, shows, memo, pooled);
         if bytes < own.bytes {
             form = (children, hidden);
         }
@@ -92,9 +92,9 @@ pub(super) fn cheapest(
     form
 }
 
-/// The visible children of `n` (not terminal, `p >= 1`), each in its
+/// The children of `n` that show (not terminal, `p >= 1`), each in its
 /// [`cheapest`] form at `p - 1` (the stride of `n` at `p`): their bricks, the
-/// transparent nodes left out, and their bytes. Stops early once the bytes
+/// nodes left out (transparent or removed: `shows` is false), and their bytes. Stops early once the bytes
 /// reach `enough`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn children_forms(
@@ -104,7 +104,7 @@ pub(super) fn children_forms(
     enough: usize,
     brick_of: &dyn Fn(NodeId, usize) -> Brick,
     max_p: &dyn Fn(&NodeRef<'_>) -> usize,
-    visible: &dyn Fn(f64, f64) -> bool,
+    shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
 ) -> (Vec<Brick>, usize, usize) {
@@ -112,11 +112,11 @@ pub(super) fn children_forms(
     let (mut hidden, mut bytes) = (0, 0);
     for c in octree.children(n.id) {
         let cn = octree.node(c);
-        if !visible(cn.min, cn.max) {
+        if !shows(&cn) {
             hidden += 1;
             continue;
         }
-        let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, visible, memo, pooled);
+        let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, shows, memo, pooled);
         bytes += bricks.iter().map(|b| b.bytes).sum::<usize>();
         children.extend(bricks);
         hidden += h;

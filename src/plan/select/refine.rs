@@ -65,7 +65,13 @@ fn select_impl(
 ) -> Result<Selection> {
     check_options(options)?;
     let root = octree.node(octree.root());
-    if !visible(root.min, root.max) {
+    let region = options.region;
+    // A node shows when the transfer function shows its values and the kept region does not remove its box.
+    let shows = move |n: &NodeRef<'_>| {
+        visible(n.min, n.max)
+            && region.as_ref().is_none_or(|r| !r.removes_box(n.lo.map(|v| v as f64), n.hi.map(|v| v as f64)))
+    };
+    if !shows(&root) {
         return Ok(Selection {
             bricks: Vec::new(),
             texture_bytes: 0,
@@ -81,6 +87,7 @@ fn select_impl(
         octree,
         options,
         visible,
+        shows: &shows,
         points,
         root_log2: octree.layout().root_log2 as usize,
         memo: Memo::default(),
@@ -121,6 +128,14 @@ fn check_options(options: &SelectOptions) -> Result<()> {
             )));
         }
     }
+    if let Some(region) = &options.region {
+        if let Some(c) = &region.cropping {
+            c.check()?;
+        }
+        for p in region.planes() {
+            p.check()?;
+        }
+    }
     if options.bytes_per_texel == 0 {
         return Err(Error::InvalidArgument("bytes per texel must be at least 1".into()));
     }
@@ -140,6 +155,8 @@ struct Refiner<'a> {
     octree: &'a VolumeOctree,
     options: &'a SelectOptions,
     visible: &'a dyn Fn(f64, f64) -> bool,
+    /// `visible` on the node's values, and its box not removed by [`SelectOptions::region`].
+    shows: &'a dyn Fn(&NodeRef<'_>) -> bool,
     points: Option<&'a PointMass>,
     /// `L`: the root's level count, `log2` of the root's size.
     root_log2: usize,
@@ -209,7 +226,7 @@ impl Refiner<'_> {
             p,
             &|id, p| self.brick_of(id, p),
             &|n| self.max_p(n),
-            &self.visible,
+            self.shows,
             &self.memo,
             self.pooled(),
         )
@@ -269,7 +286,7 @@ impl Refiner<'_> {
                 usize::MAX,
                 &|id, p| self.brick_of(id, p),
                 &|n| self.max_p(n),
-                &self.visible,
+                self.shows,
                 &self.memo,
                 self.pooled(),
             );
@@ -565,14 +582,47 @@ mod tests {
         let root = o.node(o.root());
         for p in 1..=l {
             let own = brick_of(root.id, p);
-            for visible in [&(|_: f64, _: f64| true) as &dyn Fn(f64, f64) -> bool, &|_, max| max > 0.5] {
-                let (bricks, _) = cheapest(&o, &root, p, &brick_of, &max_p, visible, &Memo::default(), None);
+            for shows in [&(|_: &NodeRef<'_>| true) as &dyn Fn(&NodeRef<'_>) -> bool, &|n| n.max > 0.5] {
+                let (bricks, _) = cheapest(&o, &root, p, &brick_of, &max_p, shows, &Memo::default(), None);
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
                 assert!(bytes <= own.bytes, "p {p}: {bytes} > {}", own.bytes);
                 assert!(mass <= root.squared_error(p) as f64 * (1.0 + 1e-5) + 1e-9, "p {p}");
             }
         }
+    }
+
+    /// Nodes whose box the kept region removes cost no texture and are
+    /// counted as skipped; the bricks left cover exactly the kept part.
+    #[test]
+    fn removed_nodes_are_not_selected() {
+        use crate::plan::crop::{ClippingPlane, Cropping, KeptRegion};
+        let o = octree(65);
+        let all = select(&o, &SelectOptions::new(1 << 30, 0.0), |_, _| true).unwrap();
+        let half =
+            KeptRegion::new(None, &[ClippingPlane { origin: [40.0, 0.0, 0.0], normal: [1.0, 0.0, 0.0] }]).unwrap();
+        let options = SelectOptions { region: Some(half), ..SelectOptions::new(1 << 30, 0.0) };
+        let clipped = select(&o, &options, |_, _| true).unwrap();
+        // The half at x < 32 is left out (the bricks across x = 40 are drawn whole).
+        assert!(clipped.skipped > all.skipped && 2 * clipped.texture_bytes <= all.texture_bytes);
+        assert!(clipped.bricks.iter().all(|b| b.hi[0] >= 40), "a brick entirely at x < 40 was selected");
+        // Every kept sample is still in a brick.
+        let covered = |x: usize| clipped.bricks.iter().any(|b| b.lo[0] <= x && x <= b.hi[0]);
+        assert!((40..65).all(covered));
+        let corner = Cropping::subvolume([0.0, 10.0, 0.0, 10.0, 0.0, 10.0]);
+        let options = SelectOptions {
+            region: Some(KeptRegion::new(Some(corner), &[]).unwrap()),
+            ..SelectOptions::new(1 << 30, 0.0)
+        };
+        let cropped = select(&o, &options, |_, _| true).unwrap();
+        assert!(cropped.bricks.iter().all(|b| b.lo.iter().all(|&v| v <= 10)));
+        assert!(cropped.texture_bytes * 20 < all.texture_bytes, "{} vs {}", cropped.texture_bytes, all.texture_bytes);
+        // A region removing everything selects nothing.
+        let none =
+            KeptRegion::new(None, &[ClippingPlane { origin: [70.0, 0.0, 0.0], normal: [1.0, 0.0, 0.0] }]).unwrap();
+        let options = SelectOptions { region: Some(none), ..SelectOptions::new(1 << 30, 0.0) };
+        let empty = select(&o, &options, |_, _| true).unwrap();
+        assert!(empty.bricks.is_empty() && empty.skipped == 1);
     }
 
     #[test]

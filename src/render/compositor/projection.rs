@@ -5,7 +5,8 @@
 //! in the brick's half-open box, in front of the opaque surface), feed one
 //! [`Reduction`] per pixel with weight `w = d / d0`; bricks in any order,
 //! no early termination. The opaque surface goes under the result, as
-//! VTK blends its ray-cast image over the geometry. Translucent surface
+//! VTK blends its ray-cast image over the geometry. Samples the list's
+//! region removes are not fed. Translucent surface
 //! batches and points are drawn in Composite only.
 
 use super::{Executor, PixelRay, Scratch};
@@ -62,7 +63,7 @@ impl<S: Texel> Executor<'_, S> {
             [0, 1, 2].map(|a| pr.ray.direction[a] / (spacing[a] * pr.cos)),
         );
         let blend = &self.list.plan.blend;
-        for &z in &slices[s0..s1] {
+        for &z in slices[s0..s1].iter().filter(|&&z| self.keeps(pr, z)) {
             let dz = z - za;
             let v = brick.texture.at_texel([0, 1, 2].map(|k| ua[k] + dz * ub[k]));
             reduction.add(blend, v, brick.ratio, lookup);

@@ -33,6 +33,9 @@ impl Caster<'_> {
                     break;
                 }
                 let p = [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]);
+                if self.region.is_some_and(|r| !r.keeps(p)) {
+                    continue;
+                }
                 reduction.add(&self.blend, grid_value(g, to_index(&self.shape, p)), l / self.d0, lookup);
             }
         }

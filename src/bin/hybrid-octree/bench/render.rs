@@ -227,6 +227,7 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
             let options = SelectOptions {
                 roi: args.scene.roi,
                 pooled: scene.blend.mode.is_extremum(),
+                region: scene.select_region,
                 ..SelectOptions::new(bytes, 0.0)
             };
             let started = Instant::now();
@@ -243,6 +244,7 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
             let options = SelectOptions {
                 roi: args.scene.roi,
                 pooled: scene.blend.mode.is_extremum(),
+                region: scene.select_region,
                 ..SelectOptions::new(largest, tolerance)
             };
             let started = Instant::now();
@@ -359,6 +361,7 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
             let options = SelectOptions {
                 roi: bench.args.roi,
                 pooled: bench.scene.blend.mode.is_extremum(),
+                region: bench.scene.select_region,
                 ..SelectOptions::new(budget, 0.0)
             };
             let started = Instant::now();
