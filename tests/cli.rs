@@ -796,3 +796,44 @@ fn render_blend_modes_name_their_pass() {
     assert_clean_failure(&out, "give one of composite, mip, minip, average, additive");
     let _ = std::fs::remove_file(png);
 }
+
+/// `render --crop` and `--clip` say what acts in the JSON plan (`effects`,
+/// `region`), leave removed bricks out, and match the reference caster
+/// under the same region; a box or plane removing nothing is dropped; bad
+/// values are clean errors naming the problem.
+#[test]
+fn render_crop_and_clip_report_their_effects() {
+    let png = temp("crop.png");
+    let reference = temp("crop-reference.png");
+    let base = ["--dataset", "sphere", "--size", "33", "--width", "48", "--height", "48", "--leaf-size", "8"];
+    let render = |extra: &[&str]| {
+        let args = [&base[..], extra, &["--output", png.to_str().unwrap(), "--reference", reference.to_str().unwrap()]];
+        json_of("render", &args.concat())
+    };
+    let plain = render(&[]);
+    assert_eq!(plain["effects"], serde_json::json!([]), "{plain}");
+    assert!(plain["region"].is_null(), "{plain}");
+    let cut = render(&["--crop", "0,20,-5,40,0,32", "--clip", "16,16,16,0,-1,-1", "--clip", "-1,0,0,1,0,0"]);
+    assert_eq!(cut["effects"], serde_json::json!(["cropping", "clipping"]), "{cut}");
+    assert_eq!(cut["region"]["cropping"]["planes"], serde_json::json!([0.0, 20.0, -5.0, 40.0, 0.0, 32.0]), "{cut}");
+    // The plane with the whole volume on its kept side is dropped.
+    assert_eq!(cut["region"]["clipping_planes"].as_array().unwrap().len(), 1, "{cut}");
+    assert!(cut["skipped_bricks"].as_u64() > plain["skipped_bricks"].as_u64(), "{cut}");
+    assert!(cut["texture_bytes"].as_u64() < plain["texture_bytes"].as_u64(), "{cut}");
+    assert!(cut["rmse"].as_f64().unwrap() < 0.02, "{cut}");
+    let whole = render(&["--crop", "-1,40,0,32,0,32", "--clip", "0,0,0,1,1,1"]);
+    assert_eq!(whole["effects"], serde_json::json!([]), "{whole}");
+    assert_eq!(whole["texture_bytes"], plain["texture_bytes"], "{whole}");
+    for (flag, value, reason) in [
+        ("--crop", "0,1,0,1,0", "has 5 numbers"),
+        ("--crop", "0,NaN,0,1,0,1", "finite"),
+        ("--crop", "0,1,5,1,0,1", "y min 5 is above its max 1"),
+        ("--clip", "0,0,0,0,0,0", "normal of length > 0"),
+        ("--clip", "0,0,0,1,0", "has 5 numbers"),
+    ] {
+        let out = run(&[&["render"][..], &base[..], &[flag, value, "--output", png.to_str().unwrap()]].concat());
+        assert_clean_failure(&out, reason);
+    }
+    let _ = std::fs::remove_file(png);
+    let _ = std::fs::remove_file(reference);
+}

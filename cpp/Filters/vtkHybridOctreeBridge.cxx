@@ -154,6 +154,14 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   CopyInto(out.slice_offsets, list.SliceOffsets);
   CopyInto(out.slices, list.Slices);
   list.Passes = std::string(out.passes);
+  list.Effects = std::string(out.effects);
+  list.Region.Cropping = out.region.cropping;
+  for (int k = 0; k < 6; ++k)
+  {
+    list.Region.CroppingPlanes[k] = out.region.cropping_planes[k];
+  }
+  list.Region.CroppingFlags = out.region.cropping_flags;
+  CopyInto(out.region.clipping_planes, list.Region.ClippingPlanes);
   list.ReferenceSpacing = out.reference_spacing;
   for (int axis = 0; axis < 3; ++axis)
   {
@@ -190,6 +198,16 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   desc.has_isovalue = options.HasIsovalue;
   desc.isovalue = options.Isovalue;
   desc.gradient_border = options.GradientBorder;
+  desc.region.cropping = options.Region.Cropping;
+  for (int k = 0; k < 6; ++k)
+  {
+    desc.region.cropping_planes[k] = options.Region.CroppingPlanes[k];
+  }
+  desc.region.cropping_flags = options.Region.CroppingFlags;
+  for (double v : options.Region.ClippingPlanes)
+  {
+    desc.region.clipping_planes.push_back(v);
+  }
   return desc;
 }
 

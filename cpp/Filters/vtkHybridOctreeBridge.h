@@ -128,6 +128,19 @@ struct SurfaceMeshBuffers
   vtkIdType* PolygonFace = nullptr;
 };
 
+/// VTK's cropping and clipping planes (see RegionDesc in src/ffi/mod.rs), in
+/// the octree's frame (the image's origin + index * spacing): a sample is
+/// kept when the cropping's region flags keep its region and it is on the
+/// kept side, normal . (x - origin) >= 0, of every plane.
+struct RegionDescription
+{
+  bool Cropping = false; ///< vtkVolumeMapper::GetCropping(); off: planes and flags are not read
+  double CroppingPlanes[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 }; ///< xmin, xmax, ymin, ymax, zmin, zmax
+  std::uint32_t CroppingFlags = 0x2000; ///< bit i + 3 j + 9 k keeps region (i, j, k)
+  /// 6 per plane: origin x, y, z, normal x, y, z; at most 8 planes.
+  std::vector<double> ClippingPlanes;
+};
+
 /// What to select for drawing (see SelectDesc in src/ffi/mod.rs).
 struct SelectDescription
 {
@@ -144,6 +157,9 @@ struct SelectDescription
   /// Count one border texel per side of each brick in its bytes (a shaded
   /// volume's gradient reads them).
   bool GradientBorder = false;
+  /// Cropping and clipping planes: nodes whose box they remove get no
+  /// texture (counted as skipped); the selection's DrawLists keep only their samples.
+  RegionDescription Region;
 };
 
 /// The volume's shading (see ShadingDesc in src/ffi/mod.rs): vtkVolumeProperty's
@@ -221,6 +237,10 @@ struct DrawList
   std::vector<std::size_t> SliceOffsets;
   std::vector<double> Slices;
   std::string Passes;                     ///< comma-joined, e.g. "volume"; empty without bricks
+  /// What removes volume samples: "cropping", "clipping", "cropping,clipping" or "".
+  std::string Effects;
+  /// The cropping and planes that act (those that remove part of the volume).
+  RegionDescription Region;
   double ReferenceSpacing = 0.0;          ///< d0, world units
   double Forward[3] = { 0.0, 0.0, -1.0 }; ///< unit view direction
   std::vector<std::size_t> BatchOffsets;  ///< bricks + 1 values

@@ -81,20 +81,6 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
                  "scalar opacity functions are drawn; switch to the 1D mode, or use " +
       elsewhere);
   }
-  if (mapper->GetCropping())
-  {
-    on.push_back("cropping (vtkVolumeMapper::CroppingOn) is not implemented: the whole volume "
-                 "is drawn; turn cropping off and crop the image instead (vtkExtractVOI; "
-                 "ParaView: the Extract Subset filter)");
-  }
-  const int planes = mapper->GetNumberOfClippingPlanes();
-  if (planes > 0)
-  {
-    on.push_back(std::to_string(planes) +
-      " clipping plane(s) (vtkAbstractMapper::SetClippingPlanes) are not implemented: the whole "
-      "volume is drawn; remove them and clip the image instead (vtkExtractVOI; ParaView: the "
-      "Extract Subset filter)");
-  }
   if (components > 1 && !property->GetIndependentComponents())
   {
     on.push_back("dependent components (vtkVolumeProperty::IndependentComponentsOff; ParaView: "

@@ -25,6 +25,8 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
@@ -122,6 +124,41 @@ ShadingDescription DescribeShading(
   return shading;
 }
 
+/// The mapper's cropping (vtkVolumeMapper: region planes in the image's data
+/// coordinates, taken as the octree's frame) and clipping planes
+/// (vtkAbstractMapper: world coordinates, into the octree's frame through
+/// `modelInverse`: origin o' = M^-1 o, normal n' = A^T n with A the linear
+/// part of `model`, so that n' . (x' - o') = n . (x - o)).
+RegionDescription DescribeRegion(
+  vtkVolumeMapper* mapper, vtkMatrix4x4* model, vtkMatrix4x4* modelInverse)
+{
+  RegionDescription region;
+  region.Cropping = mapper->GetCropping() != 0;
+  mapper->GetCroppingRegionPlanes(region.CroppingPlanes);
+  region.CroppingFlags = static_cast<std::uint32_t>(mapper->GetCroppingRegionFlags());
+  vtkPlaneCollection* planes = mapper->GetClippingPlanes();
+  if (!planes)
+  {
+    return region;
+  }
+  vtkCollectionSimpleIterator it;
+  planes->InitTraversal(it);
+  while (vtkPlane* plane = planes->GetNextPlane(it))
+  {
+    double origin[3], normal[3];
+    TransformPoint(modelInverse, plane->GetOrigin(), origin);
+    const double* n = plane->GetNormal();
+    for (int c = 0; c < 3; ++c)
+    {
+      normal[c] = model->GetElement(0, c) * n[0] + model->GetElement(1, c) * n[1] +
+        model->GetElement(2, c) * n[2];
+    }
+    region.ClippingPlanes.insert(region.ClippingPlanes.end(),
+      { origin[0], origin[1], origin[2], normal[0], normal[1], normal[2] });
+  }
+  return region;
+}
+
 /// The passes an interactive frame runs for the DrawList's `passes`: a
 /// translucent surface per brick instead of in the slabs, no points.
 std::string InteractivePlan(const std::string& passes)
@@ -216,6 +253,8 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   vtkHybridOctreeUnsupportedEffects Unsupported;
   /// The frame's shading (Prepare), light directions in the octree's frame.
   ShadingDescription Shading;
+  /// The frame's cropping and clipping planes (Prepare), in the octree's frame.
+  RegionDescription Region;
   /// Whether the resident brick textures carry gradient borders.
   bool BorderedTextures = false;
   // Interactive frames' sampling, from the times of the frames before.
@@ -526,11 +565,15 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   select.Isovalue = this->Isovalue;
   // Shaded: the bricks' gradient borders count in the budget.
   select.GradientBorder = property->GetShade(0) != 0;
+  select.Region = in.Region;
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
     in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0,
-    select.GradientBorder ? 1.0 : 0.0 };
+    select.GradientBorder ? 1.0 : 0.0, select.Region.Cropping ? 1.0 : 0.0,
+    static_cast<double>(select.Region.CroppingFlags) };
+  key.insert(key.end(), select.Region.CroppingPlanes, select.Region.CroppingPlanes + 6);
+  key.insert(key.end(), select.Region.ClippingPlanes.begin(), select.Region.ClippingPlanes.end());
   return select;
 }
 
@@ -651,6 +694,8 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   }
   this->UpdateModelMatrix(image, vol);
   this->Internals->Shading = DescribeShading(ren, property, this->Internals->ModelInverse);
+  this->Internals->Region =
+    DescribeRegion(this, this->Internals->Model, this->Internals->ModelInverse);
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
@@ -706,6 +751,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastUploadedBytes = 0;
   this->LastNaNSamples = 0;
   this->LastPlan.clear();
+  this->LastEffects.clear();
   this->LastImageSampleDistance = 1.0;
   this->LastSampleSpacing = 1;
   const bool interactive = this->IsInteractive(ren);
@@ -745,6 +791,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->LastRenderOK = true;
   }
   this->LastPlan = interactive ? InteractivePlan(list.Passes) : list.Passes;
+  this->LastEffects = list.Effects;
   this->LastEstimatedError = in.Frame->Summary.EstimatedError;
   this->LastPointBytes = static_cast<vtkTypeInt64>(in.Frame->Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
@@ -803,6 +850,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   vtkOpenGLState::ScopedglActiveTexture activeTexture(state);
   state->vtkglEnable(GL_DEPTH_TEST);
   state->vtkglDisable(GL_CULL_FACE);
+  in.Drawer.SetRegion(list.Region);
   return this->DrawOpaqueSurface(window, mcdc, cam, list, rgba) &&
     this->DrawBricks(ren, window, mcdc, cam, list, textures, interactive,
       sampling.ImageSampleDistance, sampling.SampleSpacing, rgba);
@@ -1227,6 +1275,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastPoints: " << this->LastPoints << "\n";
   os << indent << "LastPointBytes: " << this->LastPointBytes << "\n";
   os << indent << "LastPlan: " << this->LastPlan << "\n";
+  os << indent << "LastEffects: " << this->LastEffects << "\n";
   os << indent << "LastFrameMilliseconds: " << this->LastFrameMilliseconds << "\n";
   os << indent << "LastEstimatedError: " << this->LastEstimatedError << "\n";
   os << indent << "LastNaNSamples: " << this->LastNaNSamples << "\n";

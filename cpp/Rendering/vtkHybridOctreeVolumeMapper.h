@@ -40,10 +40,15 @@
  * and are drawn in the slabs between the slices (see SetUsePoints()).
  *
  * Drawn: Composite blending of one scalar component through the colour (RGB
- * or grey) and scalar opacity functions, unshaded. Settings asking for more
- * (another blend mode, Shade, a gradient opacity, a 2D transfer function,
- * cropping, clipping planes, dependent components) are drawn as off and
- * named in one warning each, given again when the setting changes.
+ * or grey) and scalar opacity functions, shaded when the property asks,
+ * cropped (SetCropping, SetCroppingRegionPlanes in the image's data
+ * coordinates, SetCroppingRegionFlags) and clipped (SetClippingPlanes,
+ * world coordinates, at most 8 planes) as VTK's GPU ray caster: a removed
+ * sample is transparent, and bricks entirely removed get no texture; the
+ * isosurface and the points are not cropped or clipped. Settings asking for
+ * more (another blend mode, a gradient opacity, a 2D transfer function,
+ * dependent components) are drawn as off and named in one warning each,
+ * given again when the setting changes.
  *
  * Interactive frames (the window's desired update rate above
  * InteractiveUpdateRate, as while the camera is dragged) draw the bricks of
@@ -237,6 +242,9 @@ public:
   vtkGetMacro(LastPoints, vtkTypeInt64);
   vtkGetMacro(LastPointBytes, vtkTypeInt64);
   const char* GetLastPlan() const { return this->LastPlan.c_str(); }
+  /// What removed volume samples in the last frame: "cropping", "clipping",
+  /// "cropping,clipping", or "" (neither on, or neither removing any part of the volume).
+  const char* GetLastEffects() const { return this->LastEffects.c_str(); }
   vtkGetMacro(LastFrameMilliseconds, double);
   vtkGetMacro(LastEstimatedError, double);
   /// NaN samples (no data: transparent) of the image drawn last.
@@ -310,6 +318,7 @@ protected:
   vtkTypeInt64 LastPoints = 0;
   vtkTypeInt64 LastPointBytes = 0;
   std::string LastPlan;
+  std::string LastEffects;
   double LastFrameMilliseconds = 0.0;
   double LastEstimatedError = 0.0;
   vtkTypeInt64 LastNaNSamples = 0;

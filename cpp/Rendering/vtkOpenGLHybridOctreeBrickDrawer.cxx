@@ -47,14 +47,27 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
 {
   vtkTextureObject* depth = target.GetDepth();
   const bool shade = this->Shading.Shade;
+  const bool crop = this->Region.Cropping;
+  const bool clip = !this->Region.ClippingPlanes.empty();
   std::string fragment = vtkHybridOctreeBrickFS;
+  // The variants: each its own program; the plain one is unchanged.
+  std::string defines;
   if (shade)
   {
-    // The shading variant: its own program; the unshaded one is unchanged.
+    defines += "\n#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+  }
+  if (crop)
+  {
+    defines += "\n#define HO_CROP\n";
+  }
+  if (clip)
+  {
+    defines += "\n#define HO_CLIP\n#define HO_MAX_CLIP " + std::to_string(MaxClippingPlanes) + "\n";
+  }
+  if (!defines.empty())
+  {
     const std::string system = "//VTK::System::Dec";
     const std::size_t at = fragment.find(system);
-    const std::string defines =
-      "\n#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
     fragment.insert(at == std::string::npos ? 0 : at + system.size(), defines);
   }
   vtkShaderProgram* previous = this->Program;
@@ -151,6 +164,48 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   {
     return false;
   }
+  return (!crop && !clip) || this->SetRegionUniforms(error);
+}
+
+bool vtkOpenGLHybridOctreeBrickDrawer::SetRegionUniforms(std::string& error)
+{
+  const vtkHybridOctreeBridge::RegionDescription& r = this->Region;
+  if (r.Cropping)
+  {
+    const float lo[3] = { static_cast<float>(r.CroppingPlanes[0]),
+      static_cast<float>(r.CroppingPlanes[2]), static_cast<float>(r.CroppingPlanes[4]) };
+    const float hi[3] = { static_cast<float>(r.CroppingPlanes[1]),
+      static_cast<float>(r.CroppingPlanes[3]), static_cast<float>(r.CroppingPlanes[5]) };
+    this->Program->SetUniform3f("croppingLo", lo);
+    this->Program->SetUniform3f("croppingHi", hi);
+    this->Program->SetUniformi("croppingFlags", static_cast<int>(r.CroppingFlags));
+  }
+  const std::size_t count = r.ClippingPlanes.size() / 6;
+  if (count == 0)
+  {
+    return true;
+  }
+  if (count > static_cast<std::size_t>(MaxClippingPlanes) || r.ClippingPlanes.size() != 6 * count)
+  {
+    error = "clipping takes 1 to " + std::to_string(MaxClippingPlanes) + " planes, " +
+      std::to_string(r.ClippingPlanes.size()) + " values given: remove some planes";
+    return false;
+  }
+  std::vector<float> origins(3 * MaxClippingPlanes, 0.0f), normals(3 * MaxClippingPlanes, 0.0f);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      origins[3 * i + a] = static_cast<float>(r.ClippingPlanes[6 * i + a]);
+      normals[3 * i + a] = static_cast<float>(r.ClippingPlanes[6 * i + 3 + a]);
+    }
+  }
+  using Vec3 = const float(*)[3];
+  this->Program->SetUniformi("clipCount", static_cast<int>(count));
+  this->Program->SetUniform3fv(
+    "clipOrigin", MaxClippingPlanes, reinterpret_cast<Vec3>(origins.data()));
+  this->Program->SetUniform3fv(
+    "clipNormal", MaxClippingPlanes, reinterpret_cast<Vec3>(normals.data()));
   return true;
 }
 

@@ -53,6 +53,13 @@
  *     a_p = (A_t - A_v) / (1 - A_v),   c_p = (C_t - C_v) / (A_t - A_v)
  *
  * drawn `(c_p a_p w, a_p w)` with coverage w; points adding nothing are not drawn.
+ *
+ * Cropping and clipping planes (SetRegion(), the DrawList's Region, what
+ * acts of the mapper's; src/plan/crop.rs): a volume sample at model
+ * position x, in a slice or along a ray-marched brick, is transparent
+ * unless its cropping region is kept and normal . (x - origin) >= 0 for
+ * every plane. Only the program variants HO_CROP and HO_CLIP test them,
+ * made when the list has the effect. Surfaces and points are drawn whole.
  */
 #ifndef vtkOpenGLHybridOctreeBrickDrawer_h
 #define vtkOpenGLHybridOctreeBrickDrawer_h
@@ -116,6 +123,16 @@ public:
   /// The most lights the shaded program takes.
   static constexpr int MaxLights = 8;
 
+  /// The cropping and clipping planes that act (the DrawList's Region, model
+  /// coordinates); none: the programs without the test. Call before Bind().
+  void SetRegion(const vtkHybridOctreeBridge::RegionDescription& region)
+  {
+    this->Region = region;
+  }
+
+  /// The most clipping planes the clipping program takes (the core's limit).
+  static constexpr int MaxClippingPlanes = 8;
+
   /// Ray-marched bricks sample every max(d, factor d0) along the view (d
   /// their slice spacing; `factor` a power of two, 1 by default: the slice lattice).
   void SetSampleSpacing(int factor) { this->SampleSpacing = factor > 1 ? factor : 1; }
@@ -143,6 +160,8 @@ public:
 private:
   /// The shaded program's material and light uniforms.
   bool SetShadingUniforms(std::string& error);
+  /// The cropping and clipping programs' uniforms.
+  bool SetRegionUniforms(std::string& error);
 
   vtkOpenGLHybridOctreeBrickDrawer(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
   vtkOpenGLHybridOctreeBrickDrawer& operator=(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
@@ -153,6 +172,7 @@ private:
   float PointSpacing = 1.0f;
   int SampleSpacing = 1;
   vtkHybridOctreeBridge::ShadingDescription Shading;
+  vtkHybridOctreeBridge::RegionDescription Region;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

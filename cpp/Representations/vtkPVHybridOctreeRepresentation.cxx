@@ -150,6 +150,12 @@ const char* vtkPVHybridOctreeRepresentation::GetLastPlan()
   return this->LastPlan.c_str();
 }
 
+const char* vtkPVHybridOctreeRepresentation::GetLastEffects()
+{
+  this->LastEffects = this->Mapper()->GetLastEffects();
+  return this->LastEffects.c_str();
+}
+
 double vtkPVHybridOctreeRepresentation::GetLastFrameMilliseconds()
 {
   return this->Mapper()->GetLastFrameMilliseconds();

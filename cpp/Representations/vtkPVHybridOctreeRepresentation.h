@@ -58,6 +58,8 @@ public:
   int GetLastBricks();
   double GetLastTextureMB();
   const char* GetLastPlan();
+  /// What removed volume samples: "cropping", "clipping", both, or "".
+  const char* GetLastEffects();
   double GetLastFrameMilliseconds();
   double GetLastEstimatedError();
   int GetLastPoints();
@@ -91,6 +93,7 @@ private:
 
   vtkHybridOctreeVolumeMapper* Mapper() const;
   std::string LastPlan;
+  std::string LastEffects;
   double TextureBudgetRangeMB[2] = { 0.1, 64.0 };
 };
 

@@ -52,6 +52,19 @@
  *   gpu_shaded, gpu_light_kit: Shade on, the full volume in the budget,
  *                against vtkGPUVolumeRayCastMapper with the default
  *                headlight and with a vtkLightKit: RMSE < 0.03.
+ *   cropped:     cropping (fence flags) and a clipping plane, mixed strides:
+ *                GetLastEffects() is "cropping,clipping", the plan "volume",
+ *                the GL picture within RMSE 0.005 of the CPU compositor on
+ *                the same DrawList, it differs from the uncropped one, no
+ *                warning; a cropping box around the whole volume and a plane
+ *                with the volume on its kept side remove nothing: no effect,
+ *                the uncropped picture.
+ *   gpu_cropped, gpu_cropped_moved: cropping (the subvolume) and two
+ *                clipping planes, the full volume in the budget, against
+ *                vtkGPUVolumeRayCastMapper with the same settings: RMSE <
+ *                0.03; moved: the vtkVolume rotated and translated (the
+ *                cropping planes stay in data coordinates, the clipping
+ *                planes in world coordinates).
  *   matrix:      the volume rotated and moved with its vtkVolume matrix, and
  *                the camera and the region of interest moved alike: the same
  *                bricks and picture, RMSE < 0.01.
@@ -63,6 +76,8 @@
 #include "vtkAutoInit.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkLightKit.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
@@ -236,6 +251,21 @@ int CpuMatch(const std::string& scenario)
     }
     mapper->SetInputData(holed);
   }
+  std::vector<double> uncropped;
+  vtkNew<vtkPlaneCollection> planes;
+  if (scenario == "cropped")
+  {
+    scene.Window->Render();
+    uncropped = Grab(scene.Window);
+    mapper->CroppingOn();
+    mapper->SetCroppingRegionPlanes(-12.0, 14.0, -10.0, 18.0, -16.0, 9.0);
+    mapper->SetCroppingRegionFlagsToFence();
+    vtkNew<vtkPlane> plane;
+    plane->SetOrigin(4.0, 0.0, 0.0);
+    plane->SetNormal(-1.0, 0.3, 0.2);
+    planes->AddItem(plane);
+    mapper->SetClippingPlanes(planes);
+  }
   std::vector<double> unshaded;
   if (scenario == "shaded")
   {
@@ -252,6 +282,28 @@ int CpuMatch(const std::string& scenario)
     check.Check(change > 0.01, "the shading shows");
     check.Check(errors->Errors.empty() && errors->Warnings.empty(),
       "Shade is drawn, no warning:\n" + errors->AllErrors());
+  }
+  if (scenario == "cropped")
+  {
+    const double change = Rmse(Grab(scene.Window), uncropped);
+    std::cout << "effects '" << mapper->GetLastEffects() << "', RGB RMSE cropped vs uncropped "
+              << change << "\n";
+    check.Check(std::string(mapper->GetLastEffects()) == "cropping,clipping",
+      std::string("effects 'cropping,clipping', not '") + mapper->GetLastEffects() + "'");
+    check.Check(change > 0.01, "the cropping and the plane show");
+    check.Check(errors->Errors.empty() && errors->Warnings.empty(),
+      "cropping and clipping are drawn, no warning:\n" + errors->AllErrors());
+    // Removing nothing: no effect, the uncropped picture.
+    mapper->SetCroppingRegionPlanes(-40.0, 40.0, -32.0, 32.0, -33.0, 50.0);
+    mapper->SetCroppingRegionFlagsToSubVolume();
+    vtkPlane::SafeDownCast(planes->GetItemAsObject(0))->SetOrigin(-32.0, -32.0, -32.0);
+    vtkPlane::SafeDownCast(planes->GetItemAsObject(0))->SetNormal(1.0, 1.0, 1.0);
+    scene.Window->Render();
+    const double none = Rmse(Grab(scene.Window), uncropped);
+    std::cout << "a region removing nothing: effects '" << mapper->GetLastEffects()
+              << "', RGB RMSE against uncropped " << none << "\n";
+    check.Check(std::string(mapper->GetLastEffects()).empty() && none < 1e-6,
+      "a region removing nothing is not drawn");
   }
   check.Check(mapper->GetLastBricks() > 8, "many bricks");
   if (scenario == "nan_hole")
@@ -351,6 +403,89 @@ int GpuShaded(bool lightKit)
             << " (threshold 0.03), signal " << Signal(b) << "\n";
   check.Check(Signal(b) > 0.02, "the reference shows the volume");
   check.Check(rmse < 0.03, "within 0.03 of vtkGPUVolumeRayCastMapper");
+  return check.Result();
+}
+
+/// Cropping (the subvolume) and two clipping planes, the full volume in the
+/// budget, against vtkGPUVolumeRayCastMapper; `moved`: the vtkVolume
+/// rotated and translated, the camera with it.
+int GpuCropped(bool moved)
+{
+  Checker check;
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  mapper->SetLeafSize(8);
+  mapper->SetBudgetMB(4.0);
+  Scene ours(mapper);
+  vtkNew<vtkGPUVolumeRayCastMapper> gpu = MakeReference();
+  Scene theirs(gpu);
+  vtkNew<vtkTransform> transform;
+  transform->Translate(30.0, -20.0, 10.0);
+  transform->RotateWXYZ(40.0, 1.0, 2.0, 0.5);
+  vtkNew<vtkPlaneCollection> planes;
+  vtkNew<vtkPlane> oblique;
+  vtkNew<vtkPlane> side;
+  // Planes in data coordinates, moved into world coordinates with the volume.
+  double o1[3] = { 2.0, 0.0, 4.0 }, n1[3] = { -1.0, 0.4, 0.3 };
+  double o2[3] = { 0.0, -14.0, 0.0 }, n2[3] = { 0.0, 1.0, 0.0 };
+  if (moved)
+  {
+    transform->TransformPoint(o1, o1);
+    transform->TransformNormal(n1, n1);
+    transform->TransformPoint(o2, o2);
+    transform->TransformNormal(n2, n2);
+  }
+  oblique->SetOrigin(o1);
+  oblique->SetNormal(n1);
+  side->SetOrigin(o2);
+  side->SetNormal(n2);
+  planes->AddItem(oblique);
+  planes->AddItem(side);
+  for (Scene* s : { &ours, &theirs })
+  {
+    vtkVolumeMapper* m = vtkVolumeMapper::SafeDownCast(s->Volume->GetMapper());
+    m->CroppingOn();
+    m->SetCroppingRegionPlanes(-20.0, 18.0, -25.0, 22.0, -30.0, 12.0);
+    m->SetClippingPlanes(planes);
+    if (moved)
+    {
+      s->Volume->SetUserTransform(transform);
+      vtkCamera* camera = s->Renderer->GetActiveCamera();
+      double p[3], f[3], up[3];
+      transform->TransformPoint(camera->GetPosition(), p);
+      transform->TransformPoint(camera->GetFocalPoint(), f);
+      transform->TransformVector(camera->GetViewUp(), up);
+      camera->SetPosition(p);
+      camera->SetFocalPoint(f);
+      camera->SetViewUp(up);
+      s->Renderer->ResetCameraClippingRange();
+    }
+  }
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  errors->Watch(mapper);
+  ours.Window->Render();
+  theirs.Window->Render();
+  check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
+  check.Check(std::string(mapper->GetLastEffects()) == "cropping,clipping",
+    std::string("effects 'cropping,clipping', not '") + mapper->GetLastEffects() + "'");
+  const std::vector<double> a = Grab(ours.Window);
+  const std::vector<double> b = Grab(theirs.Window);
+  const double rmse = Rmse(a, b);
+  // Without the cropping and the planes: how much they change the picture.
+  gpu->CroppingOff();
+  gpu->RemoveAllClippingPlanes();
+  theirs.Window->Render();
+  const double change = Rmse(Grab(theirs.Window), b);
+  std::cout << (moved ? "moved: " : "") << "bricks " << mapper->GetLastBricks()
+            << ", texture bytes " << mapper->GetLastTextureBytes()
+            << "; RGB RMSE against vtkGPUVolumeRayCastMapper " << rmse
+            << " (threshold 0.03), signal " << Signal(b)
+            << ", the cropping and planes change it by " << change << "\n";
+  check.Check(Signal(b) > 0.01, "the reference shows the volume");
+  check.Check(change > 2.0 * rmse, "the cropping and planes show");
+  check.Check(rmse < 0.03, "within 0.03 of vtkGPUVolumeRayCastMapper");
+  check.Check(errors->Errors.empty() && errors->Warnings.empty(),
+    "no error or warning:\n" + errors->AllErrors());
   return check.Result();
 }
 
@@ -472,13 +607,17 @@ int TestHybridOctreeVolumeMapper(int argc, char* argv[])
   if (scenario == "cpu_match" || scenario == "multisample" || scenario == "tiny_opacity" ||
     scenario == "inside" || scenario == "opaque_surface" || scenario == "translucent_surface" ||
     scenario == "points_square" || scenario == "points_gaussian" || scenario == "points_surface" ||
-    scenario == "nan_hole" || scenario == "shaded")
+    scenario == "nan_hole" || scenario == "shaded" || scenario == "cropped")
   {
     return CpuMatch(scenario);
   }
   if (scenario == "gpu_shaded" || scenario == "gpu_light_kit")
   {
     return GpuShaded(scenario == "gpu_light_kit");
+  }
+  if (scenario == "gpu_cropped" || scenario == "gpu_cropped_moved")
+  {
+    return GpuCropped(scenario == "gpu_cropped_moved");
   }
   if (scenario == "gpu_reference" || scenario == "actor")
   {

@@ -12,7 +12,7 @@
  *                PrintSelf shows every setting and statistic.
  *   warnings:    each setting the mapper does not draw (a blend mode other
  *                than Composite, a gradient opacity, a 2D transfer
- *                function, cropping, a clipping plane, dependent components)
+ *                function, dependent components)
  *                gives one warning naming it, once while it stays on; the
  *                picture is the one without it; turned off and on again, or
  *                changed (Maximum Intensity to Additive), it is warned about
@@ -41,8 +41,6 @@
 
 #include "vtkAutoInit.h"
 #include "vtkDoubleArray.h"
-#include "vtkPlane.h"
-#include "vtkPlaneCollection.h"
 #include "vtkPolyData.h"
 
 #include <functional>
@@ -180,9 +178,6 @@ int Warnings()
   vtkNew<vtkPiecewiseFunction> gradient;
   gradient->AddPoint(0.0, 0.0);
   gradient->AddPoint(10.0, 1.0);
-  vtkNew<vtkPlaneCollection> planes;
-  vtkNew<vtkPlane> plane;
-  planes->AddItem(plane);
   // Each setting: turn it on, the fragment its warning must hold, turn it off.
   struct Setting
   {
@@ -202,9 +197,6 @@ int Warnings()
         scene.Property->SetTransferFunctionMode(
           on ? vtkVolumeProperty::TF_2D : vtkVolumeProperty::TF_1D);
       } },
-    { "cropping (vtkVolumeMapper::CroppingOn)", [&](bool on) { mapper->SetCropping(on); } },
-    { "1 clipping plane(s)",
-      [&](bool on) { mapper->SetClippingPlanes(on ? planes.Get() : nullptr); } },
   };
   for (const Setting& s : settings)
   {

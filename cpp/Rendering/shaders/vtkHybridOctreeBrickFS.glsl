@@ -39,6 +39,19 @@ uniform vec3 lightAmbient[HO_MAX_LIGHTS];
 uniform vec3 lightDiffuse[HO_MAX_LIGHTS];
 uniform vec3 lightSpecular[HO_MAX_LIGHTS];
 #endif
+#ifdef HO_CROP
+// VTK's cropping (src/plan/crop.rs), model coordinates: the region planes
+// (xmin, ymin, zmin), (xmax, ymax, zmax) and the 27 region flags.
+uniform vec3 croppingLo;
+uniform vec3 croppingHi;
+uniform int croppingFlags;
+#endif
+#ifdef HO_CLIP
+// VTK's clipping planes (src/plan/crop.rs), model coordinates.
+uniform int clipCount;
+uniform vec3 clipOrigin[HO_MAX_CLIP];
+uniform vec3 clipNormal[HO_MAX_CLIP];
+#endif
 //VTK::Output::Dec
 
 // The primitive kinds (the vertex attribute kindMC, a whole number).
@@ -115,13 +128,47 @@ vec3 shade(vec3 u, vec3 c, vec3 v)
 }
 #endif
 
+#if defined(HO_CROP) || defined(HO_CLIP)
+// Whether the sample at model position p is removed (src/plan/crop.rs):
+// cropping keeps region (i, j, k) when bit i + 3 j + 9 k of the flags is
+// set, a coordinate being 0 below the min plane, 1 from min to max (both
+// included), 2 above the max plane; a clipping plane keeps n . (p - o) >= 0.
+bool removed(vec3 p)
+{
+#ifdef HO_CROP
+  ivec3 r = ivec3(greaterThanEqual(p, croppingLo)) + ivec3(greaterThan(p, croppingHi));
+  if (((croppingFlags >> (r.x + 3 * r.y + 9 * r.z)) & 1) == 0)
+  {
+    return true;
+  }
+#endif
+#ifdef HO_CLIP
+  for (int i = 0; i < clipCount; ++i)
+  {
+    if (dot(clipNormal[i], p - clipOrigin[i]) < 0.0)
+    {
+      return true;
+    }
+  }
+#endif
+  return false;
+}
+#endif
+
 // Opacity a' of the sample at model position p, and its colour (shaded
 // along the ray direction v with HO_SHADE). NaN texels
 // are no data: the linear filter of a sample touching one is NaN (every
 // corner is weighed, 0 * NaN = NaN), and such a sample is transparent black,
-// as in the CPU compositor.
+// as in the CPU compositor. A sample cropping or a clipping plane removes
+// is transparent black (slices and ray-marched bricks both sample here).
 vec4 sampleAt(vec3 p, vec3 v)
 {
+#if defined(HO_CROP) || defined(HO_CLIP)
+  if (removed(p))
+  {
+    return vec4(0.0);
+  }
+#endif
 #ifdef HO_SHADE
   vec3 u = clamp((p - brickLo) * inverseStep + vec3(1.0), vec3(1.0), texels - vec3(2.0));
 #else
