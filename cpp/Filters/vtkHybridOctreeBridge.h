@@ -135,7 +135,8 @@ struct SurfaceMeshBuffers
 struct RegionDescription
 {
   bool Cropping = false; ///< vtkVolumeMapper::GetCropping(); off: planes and flags are not read
-  double CroppingPlanes[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 }; ///< xmin, xmax, ymin, ymax, zmin, zmax
+  double CroppingPlanes[6] = { 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0 };                              ///< xmin, xmax, ymin, ymax, zmin, zmax
   std::uint32_t CroppingFlags = 0x2000; ///< bit i + 3 j + 9 k keeps region (i, j, k)
   /// 6 per plane: origin x, y, z, normal x, y, z; at most 8 planes.
   std::vector<double> ClippingPlanes;
@@ -236,7 +237,7 @@ struct DrawList
   std::vector<double> OpacityRatio;
   std::vector<std::size_t> SliceOffsets;
   std::vector<double> Slices;
-  std::string Passes;                     ///< comma-joined, e.g. "volume"; empty without bricks
+  std::string Passes; ///< comma-joined, e.g. "volume"; empty without bricks
   /// What removes volume samples: "cropping", "clipping", "cropping,clipping" or "".
   std::string Effects;
   /// The cropping and planes that act (those that remove part of the volume).

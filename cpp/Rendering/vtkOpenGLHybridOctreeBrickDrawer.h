@@ -125,10 +125,7 @@ public:
 
   /// The cropping and clipping planes that act (the DrawList's Region, model
   /// coordinates); none: the programs without the test. Call before Bind().
-  void SetRegion(const vtkHybridOctreeBridge::RegionDescription& region)
-  {
-    this->Region = region;
-  }
+  void SetRegion(const vtkHybridOctreeBridge::RegionDescription& region) { this->Region = region; }
 
   /// The most clipping planes the clipping program takes (the core's limit).
   static constexpr int MaxClippingPlanes = 8;

@@ -158,7 +158,8 @@ impl ClippingPlane {
     pub fn check(&self) -> Result<()> {
         let finite = self.origin.iter().chain(&self.normal).all(|v| v.is_finite());
         let length = self.normal.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if !finite || !(length > 0.0 && length.is_finite()) {
+        let usable = finite && length > 0.0 && length.is_finite();
+        if !usable {
             return Err(Error::InvalidArgument(format!(
                 "clipping plane of origin {:?} and normal {:?}: give finite numbers and a normal of length > 0",
                 self.origin, self.normal
