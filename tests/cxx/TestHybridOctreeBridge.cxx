@@ -17,7 +17,11 @@
  * DrawList, and the errors), `geometry` (the OpenGL mapper's vertices of a
  * DrawList: each brick's block ranges from its texels, the boxes of its
  * visible blocks under an opaque and a transparent table, one ray-marched
- * box a brick without a surface, and mismatched inputs: clear errors).
+ * box a brick without a surface, and mismatched inputs: clear errors),
+ * `shading`, `region` (cropping and a clipping plane in the selection:
+ * fewer bricks, more skipped, the DrawList's Effects and Region say what
+ * acts; a region around the whole image acts not at all; a plane of 5
+ * numbers is refused with a message).
  */
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeCameraInput.h"
@@ -877,6 +881,73 @@ int Geometry()
 }
 } // namespace
 
+int Region()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  vtkNew<vtkCamera> camera;
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double diagonal[3] = { 1.0, 0.8, 0.6 };
+  Aim(camera, centre, diagonal, false);
+  const B::CameraDescription cam = vtkHybridOctreeCameraInput::DescribeCamera(camera);
+  // Selects under `region`: its summary and DrawList; false on failure (`error` set).
+  auto run = [&](const B::RegionDescription& region, B::SelectionSummary& summary,
+               B::DrawList& list, std::string& error) {
+    B::SelectDescription options;
+    options.BudgetBytes = 10000000;
+    options.Region = region;
+    std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+    return selection && selection->GetSummary(summary, error) &&
+      selection->GetDrawList(*f.Octree, cam, 0.0, list, error);
+  };
+  std::string error;
+  B::SelectionSummary plain, cut, whole;
+  B::DrawList plainList, cutList, wholeList;
+  if (!check.Check(run(B::RegionDescription(), plain, plainList, error), "plain: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  check.Check(plainList.Effects.empty() && !plainList.Region.Cropping, "no region: no effect");
+  // The image spans x 0..24, y 0..20, z 0..16: keep x <= 10 and z <= 8.
+  B::RegionDescription region;
+  region.Cropping = true;
+  const double planes[6] = { -5.0, 10.0, 0.0, 20.0, 0.0, 16.0 };
+  std::copy(planes, planes + 6, region.CroppingPlanes);
+  region.ClippingPlanes = { 0.0, 0.0, 8.0, 0.0, 0.0, -1.0 };
+  if (!check.Check(run(region, cut, cutList, error), "cut: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  std::cout << "bricks " << plain.Bricks << " -> " << cut.Bricks << ", skipped " << plain.Skipped
+            << " -> " << cut.Skipped << ", bytes " << plain.TextureBytes << " -> "
+            << cut.TextureBytes << ", effects '" << cutList.Effects << "'\n";
+  check.Check(cutList.Effects == "cropping,clipping", "effects: '" + cutList.Effects + "'");
+  check.Check(cutList.Region.Cropping && cutList.Region.CroppingPlanes[1] == 10.0 &&
+      cutList.Region.CroppingFlags == 0x2000 &&
+      cutList.Region.ClippingPlanes == region.ClippingPlanes,
+    "the region that acts comes back");
+  check.Check(cut.Skipped > plain.Skipped && cut.TextureBytes < plain.TextureBytes,
+    "removed bricks are not selected");
+  // Around the whole image, a plane with the image on its kept side: nothing acts.
+  const double around[6] = { -1.0, 30.0, 0.0, 20.0, 0.0, 16.0 };
+  std::copy(around, around + 6, region.CroppingPlanes);
+  region.ClippingPlanes = { 0.0, 0.0, -1.0, 0.0, 0.0, 1.0 };
+  check.Check(run(region, whole, wholeList, error), "whole: " + error);
+  check.Check(wholeList.Effects.empty() && !wholeList.Region.Cropping &&
+      wholeList.Region.ClippingPlanes.empty() && whole.TextureBytes == plain.TextureBytes,
+    "a region removing nothing acts not at all: '" + wholeList.Effects + "'");
+  region.ClippingPlanes = { 0.0, 0.0, 8.0, 0.0, 0.0 };
+  error.clear();
+  check.Check(
+    !run(region, whole, wholeList, error) && error.find("6 per plane") != std::string::npos,
+    "5 plane values refused: " + error);
+  return check.Result();
+}
+
 int TestHybridOctreeBridge(int argc, char* argv[])
 {
   const std::string scenario = argc > 1 ? argv[1] : "";
@@ -912,8 +983,12 @@ int TestHybridOctreeBridge(int argc, char* argv[])
   {
     return Shading();
   }
-  std::cerr
-    << "unknown scenario '" << scenario
-    << "': use draw_list, texels, surface, transparent, errors, points, geometry or shading\n";
+  if (scenario == "region")
+  {
+    return Region();
+  }
+  std::cerr << "unknown scenario '" << scenario
+            << "': use draw_list, texels, surface, transparent, errors, points, geometry, shading "
+               "or region\n";
   return EXIT_FAILURE;
 }
