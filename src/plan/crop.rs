@@ -271,9 +271,11 @@ impl KeptRegion {
     /// it keeps the whole box, the planes that cut it or remove it; `None`
     /// when nothing is left.
     pub fn acting_on(&self, lo: [f64; 3], hi: [f64; 3]) -> Option<KeptRegion> {
-        let cropping = self.cropping.filter(|c| c.regions_met(lo, hi) & !c.flags != 0);
-        let planes: Vec<ClippingPlane> = self.planes().filter(|p| p.box_range(lo, hi).0 < 0.0).copied().collect();
-        let region = KeptRegion::new(cropping, &planes).expect("a subset of a checked region");
+        let mut region =
+            KeptRegion { cropping: self.cropping.filter(|c| c.regions_met(lo, hi) & !c.flags != 0), ..*self };
+        // The planes that cut the box, in order (a subset: they fit).
+        let mut cutting = self.planes().filter(|p| p.box_range(lo, hi).0 < 0.0).copied();
+        region.planes = [(); MAX_CLIPPING_PLANES].map(|_| cutting.next());
         (!region.is_empty()).then_some(region)
     }
 
