@@ -190,6 +190,9 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   desc.has_isovalue = options.HasIsovalue;
   desc.isovalue = options.Isovalue;
   desc.gradient_border = options.GradientBorder;
+  desc.blend_mode = options.BlendMode;
+  desc.average_range[0] = options.AverageRange[0];
+  desc.average_range[1] = options.AverageRange[1];
   return desc;
 }
 

@@ -144,6 +144,11 @@ struct SelectDescription
   /// Count one border texel per side of each brick in its bytes (a shaded
   /// volume's gradient reads them).
   bool GradientBorder = false;
+  /// vtkVolumeMapper::BlendModes value, 0 (composite) to 4 (additive); it
+  /// changes which nodes show and the texels of coarse MIP/MinIP bricks.
+  int BlendMode = 0;
+  /// vtkVolumeMapper's AverageIPScalarRange: the values an average counts.
+  double AverageRange[2] = { -1.0e300, 1.0e300 };
 };
 
 /// The volume's shading (see ShadingDesc in src/ffi/mod.rs): vtkVolumeProperty's

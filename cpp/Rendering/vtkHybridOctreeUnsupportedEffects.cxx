@@ -53,19 +53,27 @@ std::string vtkHybridOctreeUnsupportedEffects::BlendModeName(int mode)
 }
 
 std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
-  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components)
+  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components, bool translucentSurface)
 {
   // The VTK mapper that draws the effect.
   const std::string elsewhere =
     "vtkGPUVolumeRayCastMapper (ParaView: the Volume representation), which draws it";
   std::vector<std::string> on;
   const int mode = mapper->GetBlendMode();
-  if (mode != vtkVolumeMapper::COMPOSITE_BLEND)
+  if (mode < vtkVolumeMapper::COMPOSITE_BLEND || mode > vtkVolumeMapper::ADDITIVE_BLEND)
   {
     const std::string name = BlendModeName(mode);
     on.push_back("the " + name + " blend mode (vtkVolumeMapper::SetBlendMode(" +
       std::to_string(mode) + "); ParaView: Blend Mode) is not implemented: the volume is drawn " +
-      "with Composite blending; set the blend mode to Composite, or use " + elsewhere);
+      "with Composite blending; set the blend mode to Composite, maximum, minimum or average " +
+      "intensity or additive, or use " + elsewhere);
+  }
+  if (translucentSurface && mode > vtkVolumeMapper::COMPOSITE_BLEND &&
+    mode <= vtkVolumeMapper::ADDITIVE_BLEND)
+  {
+    on.push_back("a translucent isosurface is not drawn under the " + BlendModeName(mode) +
+      " blend mode (its ray is reduced, not composited in depth order): set the surface opacity "
+      "to 1 (drawn opaque, under the volume) or the blend mode to Composite");
   }
   if (ModulatesOpacity(property))
   {
@@ -107,9 +115,9 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
 }
 
 std::vector<std::string> vtkHybridOctreeUnsupportedEffects::Update(
-  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components)
+  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components, bool translucentSurface)
 {
-  const std::vector<std::string> now = TurnedOn(mapper, property, components);
+  const std::vector<std::string> now = TurnedOn(mapper, property, components, translucentSurface);
   std::vector<std::string> fresh;
   for (const std::string& message : now)
   {

@@ -31,13 +31,14 @@ class vtkHybridOctreeUnsupportedEffects
 {
 public:
   /// The messages of the effects `mapper` and `property` turn on for scalars
-  /// of `components` components that were not on at the previous call.
-  std::vector<std::string> Update(
-    vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components);
+  /// of `components` components that were not on at the previous call
+  /// (`translucentSurface`: the mapper draws a translucent isosurface).
+  std::vector<std::string> Update(vtkVolumeMapper* mapper, vtkVolumeProperty* property,
+    int components, bool translucentSurface = false);
 
   /// Every effect turned on now (one message each), whether warned or not.
-  static std::vector<std::string> TurnedOn(
-    vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components);
+  static std::vector<std::string> TurnedOn(vtkVolumeMapper* mapper, vtkVolumeProperty* property,
+    int components, bool translucentSurface = false);
 
   /// VTK's name of a vtkVolumeMapper blend mode ("Maximum Intensity"), or
   /// "blend mode N" for a value VTK does not define.

@@ -124,6 +124,22 @@ ShadingDescription DescribeShading(
 
 /// The passes an interactive frame runs for the DrawList's `passes`: a
 /// translucent surface per brick instead of in the slabs, no points.
+/// The reduction of the plan's volume pass: 0 Composite (`volume`,
+/// `volume-shaded`), 1 `volume-mip`, 2 `volume-minip`, 3 `volume-average`,
+/// 4 `volume-additive` (the brick shader's reduceMode).
+int ReduceMode(const std::string& passes)
+{
+  const char* names[] = { "volume-mip", "volume-minip", "volume-average", "volume-additive" };
+  for (int mode = 1; mode <= 4; ++mode)
+  {
+    if (passes.find(names[mode - 1]) != std::string::npos)
+    {
+      return mode;
+    }
+  }
+  return 0;
+}
+
 std::string InteractivePlan(const std::string& passes)
 {
   std::string plan;
@@ -158,6 +174,9 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   int LeafSize = 0;
   /// NaN samples (no data) of the image the octree was built from.
   vtkTypeInt64 NaNSamples = 0;
+  /// The octree's value range (NaN left out): what average and additive
+  /// blending normalise by.
+  double ValueRange[2] = { 0.0, 1.0 };
   /// When the octree was built: the caches below are current when made after it.
   vtkTimeStamp OctreeTime;
   vtkDataArray* Scalars = nullptr;
@@ -218,6 +237,8 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   ShadingDescription Shading;
   /// Whether the resident brick textures carry gradient borders.
   bool BorderedTextures = false;
+  /// Whether the resident coarse brick textures keep their peaks (MIP or MinIP).
+  bool PooledTextures = false;
   // Interactive frames' sampling, from the times of the frames before.
   vtkHybridOctreeInteractiveReduction Reduction;
 };
@@ -351,6 +372,8 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
     return false;
   }
   in.NaNSamples = static_cast<vtkTypeInt64>(summary.NaNSamples);
+  in.ValueRange[0] = summary.ValueMin;
+  in.ValueRange[1] = summary.ValueMax;
   this->LastNaNSamples = in.NaNSamples;
   in.Array = scalars;
   in.ArrayMTime = scalars->GetMTime();
@@ -524,13 +547,19 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   select.RoiRadius = this->RoiRadius;
   select.HasIsovalue = this->ShowSurface;
   select.Isovalue = this->Isovalue;
-  // Shaded: the bricks' gradient borders count in the budget.
-  select.GradientBorder = property->GetShade(0) != 0;
+  // The blend modes the bridge draws (the others are warned about and drawn Composite).
+  const int mode = this->BlendMode;
+  select.BlendMode = mode >= COMPOSITE_BLEND && mode <= ADDITIVE_BLEND ? mode : COMPOSITE_BLEND;
+  select.AverageRange[0] = this->AverageIPScalarRange[0];
+  select.AverageRange[1] = this->AverageIPScalarRange[1];
+  // Shaded: the bricks' gradient borders count in the budget (Composite only).
+  select.GradientBorder = property->GetShade(0) != 0 && select.BlendMode == COMPOSITE_BLEND;
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
     in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0,
-    select.GradientBorder ? 1.0 : 0.0 };
+    select.GradientBorder ? 1.0 : 0.0, static_cast<double>(select.BlendMode),
+    select.AverageRange[0], select.AverageRange[1] };
   return select;
 }
 
@@ -636,7 +665,8 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   }
   // The picture stays the Composite, unshaded one: said once per setting, not silently.
   for (const std::string& message :
-    this->Internals->Unsupported.Update(this, property, scalars->GetNumberOfComponents()))
+    this->Internals->Unsupported.Update(this, property, scalars->GetNumberOfComponents(),
+      this->ShowSurface && this->SurfaceOpacity > 0.0 && this->SurfaceOpacity < 1.0))
   {
     vtkWarningMacro(<< message);
   }
@@ -822,10 +852,15 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   // Shaded: textures with one border texel per side (the gradient reads
   // them); the resident ones of the other kind are released first.
   const bool shaded = list.Passes.find("volume-shaded") != std::string::npos;
-  if (shaded != in.BorderedTextures)
+  // MIP and MinIP: coarse textures keep their peaks (other texels, so the
+  // resident textures of the other kind go too).
+  const int reduceMode = ReduceMode(list.Passes);
+  const bool pooled = reduceMode == 1 || reduceMode == 2;
+  if (shaded != in.BorderedTextures || pooled != in.PooledTextures)
   {
     in.Bricks.Clear(window);
     in.BorderedTextures = shaded;
+    in.PooledTextures = pooled;
   }
   ShadingDescription shading = in.Shading;
   shading.Shade = shaded;
@@ -985,13 +1020,27 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
   {
     this->ScreenRegion(mcdc, list.Bounds, region);
   }
-  if (!in.Target.Begin(ren, window, imageSampleDistance, region, error))
+  // The blend modes besides Composite reduce each ray in the target by the
+  // blend equation (maximum: GL_MAX, sums: GL_FUNC_ADD) and resolve it at End().
+  const int reduceMode = ReduceMode(list.Passes);
+  const bool extremum = reduceMode == 1 || reduceMode == 2;
+  const float clear[4] = { extremum ? -3.0e38f : 0.0f, 0.0f, 0.0f, 0.0f };
+  if (!in.Target.Begin(ren, window, imageSampleDistance, region, error, clear))
   {
     vtkErrorMacro(<< error);
     return false;
   }
   state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  if (reduceMode == 0)
+  {
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  }
+  else
+  {
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    state->vtkglBlendEquation(extremum ? GL_MAX : GL_FUNC_ADD);
+  }
+  in.Drawer.SetReduction(reduceMode, in.ValueRange, this->AverageIPScalarRange);
   state->vtkglDisable(GL_DEPTH_TEST); // the shader tests against the copied opaque depth
   state->vtkglDepthMask(GL_FALSE);
   in.TableTexture->Activate();
@@ -1057,9 +1106,22 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
     }
     in.Drawer.Unbind();
   }
+  state->vtkglBlendEquation(GL_FUNC_ADD);
   in.Target.GetDepth()->Deactivate();
   in.TableTexture->Deactivate();
-  in.Target.End(window);
+  vtkOpenGLHybridOctreeFloatTarget::Resolve resolve;
+  resolve.ReduceMode = reduceMode;
+  resolve.Table = in.TableTexture;
+  resolve.TableEntries = this->TableSize;
+  resolve.TableRange[0] = in.RangeLo;
+  resolve.TableRange[1] = in.RangeHi;
+  resolve.MCDC = mcdc;
+  for (int a = 0; a < 3; ++a)
+  {
+    resolve.VolumeLo[a] = in.Grid.Origin[a];
+    resolve.VolumeHi[a] = in.Grid.Origin[a] + (in.Grid.Dims[a] - 1.0) * in.Grid.Spacing[a];
+  }
+  in.Target.End(window, reduceMode != 0 ? &resolve : nullptr);
   if (!ok)
   {
     vtkErrorMacro(<< error);

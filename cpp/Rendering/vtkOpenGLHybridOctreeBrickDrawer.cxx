@@ -46,15 +46,23 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   const double surfaceRGBA[4], std::string& error)
 {
   vtkTextureObject* depth = target.GetDepth();
-  const bool shade = this->Shading.Shade;
+  const bool shade = this->Shading.Shade && this->ReduceMode == 0;
   std::string fragment = vtkHybridOctreeBrickFS;
+  // The shading and reducing variants: each its own program; the plain
+  // composite one is unchanged.
+  std::string defines;
   if (shade)
   {
-    // The shading variant: its own program; the unshaded one is unchanged.
+    defines = "\n#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+  }
+  else if (this->ReduceMode != 0)
+  {
+    defines = "\n#define HO_REDUCE\n";
+  }
+  if (!defines.empty())
+  {
     const std::string system = "//VTK::System::Dec";
     const std::size_t at = fragment.find(system);
-    const std::string defines =
-      "\n#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
     fragment.insert(at == std::string::npos ? 0 : at + system.size(), defines);
   }
   vtkShaderProgram* previous = this->Program;
@@ -90,17 +98,26 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
     this->Uploaded = true;
   }
   const int stride = static_cast<int>(Stride * sizeof(float));
-  if (this->Geometry.VertexFloats > 0 &&
-    (!this->Vao->AddAttributeArray(
-       this->Program, this->Vertices, "vertexMC", 0, stride, VTK_FLOAT, 3, false) ||
-      !this->Vao->AddAttributeArray(this->Program, this->Vertices, "normalMC", 3 * sizeof(float),
-        stride, VTK_FLOAT, 3, false) ||
-      !this->Vao->AddAttributeArray(
-        this->Program, this->Vertices, "clipMC", 6 * sizeof(float), stride, VTK_FLOAT, 2, false) ||
-      !this->Vao->AddAttributeArray(
-        this->Program, this->Vertices, "kindMC", 8 * sizeof(float), stride, VTK_FLOAT, 1, false) ||
-      !this->Vao->AddAttributeArray(
-        this->Program, this->Vertices, "alphaMC", 9 * sizeof(float), stride, VTK_FLOAT, 1, false)))
+  // The attributes a program reads (the reducing one reads no normal).
+  struct Attribute
+  {
+    const char* Name;
+    int Offset;
+    int Components;
+  };
+  const Attribute attributes[] = { { "vertexMC", 0, 3 }, { "normalMC", 3, 3 }, { "clipMC", 6, 2 },
+    { "kindMC", 8, 1 }, { "alphaMC", 9, 1 } };
+  bool bound = true;
+  for (const Attribute& a : attributes)
+  {
+    if (this->Geometry.VertexFloats > 0 && this->Program->IsAttributeUsed(a.Name))
+    {
+      bound = bound &&
+        this->Vao->AddAttributeArray(this->Program, this->Vertices, a.Name,
+          a.Offset * static_cast<int>(sizeof(float)), stride, VTK_FLOAT, a.Components, false);
+    }
+  }
+  if (!bound)
   {
     error = "could not bind the brick vertices";
     this->Vao->Release();
@@ -147,6 +164,17 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   this->Program->SetUniform4f("surfaceColor", c);
   this->Program->SetUniform3f("pointUp", this->Geometry.PointUp);
   this->Program->SetUniformf("pointSpacing", this->PointSpacing);
+  if (this->ReduceMode != 0)
+  {
+    this->Program->SetUniformi("reduceMode", this->ReduceMode);
+    const float valueRange[2] = { static_cast<float>(this->ValueRange[0]),
+      static_cast<float>(this->ValueRange[1]) };
+    // Clamped to float's range: VTK's default average range is the doubles'.
+    const float averageRange[2] = { static_cast<float>(std::max(this->AverageRange[0], -3.0e38)),
+      static_cast<float>(std::min(this->AverageRange[1], 3.0e38)) };
+    this->Program->SetUniform2f("scalarRange", valueRange);
+    this->Program->SetUniform2f("averageRange", averageRange);
+  }
   if (shade && !this->SetShadingUniforms(error))
   {
     return false;

@@ -113,6 +113,24 @@ public:
     this->Shading = shading;
   }
 
+  /**
+   * The blend mode's reduction (see the float target): 0 Composite (the
+   * composite program), 1 maximum, 2 minimum, 3 average, 4 additive
+   * intensity (the reducing program: every slice fragment and ray sample
+   * writes its share of the reduction, surface triangles and points draw
+   * nothing); `valueRange` what average and additive normalise by,
+   * `averageRange` the values an average counts. Call before Bind().
+   */
+  void SetReduction(int mode, const double valueRange[2], const double averageRange[2])
+  {
+    this->ReduceMode = mode;
+    for (int i = 0; i < 2; ++i)
+    {
+      this->ValueRange[i] = valueRange[i];
+      this->AverageRange[i] = averageRange[i];
+    }
+  }
+
   /// The most lights the shaded program takes.
   static constexpr int MaxLights = 8;
 
@@ -153,6 +171,9 @@ private:
   float PointSpacing = 1.0f;
   int SampleSpacing = 1;
   vtkHybridOctreeBridge::ShadingDescription Shading;
+  int ReduceMode = 0;
+  double ValueRange[2] = { 0.0, 1.0 };
+  double AverageRange[2] = { 0.0, 1.0 };
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

@@ -237,6 +237,14 @@ mod bridge {
         /// Count one border texel per side of each brick in its bytes (the
         /// volume is shaded: the gradient reads them; see `brick_texels_bordered`).
         gradient_border: bool,
+        /// The blend mode, VTK's `vtkVolumeMapper::BlendModes` value (0
+        /// composite, 1 maximum, 2 minimum, 3 average intensity, 4 additive;
+        /// others are refused). It changes the selection (MIP and MinIP keep
+        /// nodes that hold a ray's extreme, and coarse bricks get peak-keeping
+        /// texels) and the plan (`volume-mip`, ...).
+        blend_mode: i32,
+        /// VTK's AverageIPScalarRange: the values an average intensity counts.
+        average_range: [f64; 2],
     }
 
     /// Summary of a selection.

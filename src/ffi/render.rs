@@ -20,10 +20,11 @@ use crate::grid::{GridShape, ScalarType};
 use crate::plan::point_slabs::add_points;
 use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
-use crate::plan::{plan, relight, DrawList, SurfacePass};
+use crate::plan::{plan, relight, DrawList, Scene, SurfacePass};
+use crate::plan::{Blend, BlendMode};
 use crate::points::Footprint;
 use crate::points::PointSet;
-use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_f32_into};
+use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into};
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
 use std::sync::{Arc, Mutex};
 
@@ -41,6 +42,8 @@ pub struct SelectionHandle {
     points: Option<Arc<PointSet>>,
     /// The shading of its DrawLists ([`SelectionHandle::set_shading`]).
     lighting: Mutex<Option<Lighting>>,
+    /// The blend mode it was selected for, over the octree's value range.
+    blend: Blend,
 }
 
 /// The lighting of `desc` (`None` when it does not shade), checked.
@@ -106,8 +109,32 @@ pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<Sel
     Ok(SelectOptions {
         roi,
         gradient_border: desc.gradient_border,
+        pooled: blend_mode(desc.blend_mode)?.is_extremum(),
         ..SelectOptions::new(desc.budget_bytes, desc.tolerance)
     })
+}
+
+/// The blend mode of VTK's value `mode` (0 to 4).
+fn blend_mode(mode: i32) -> Result<BlendMode> {
+    BlendMode::from_vtk(mode).ok_or_else(|| {
+        Error::InvalidArgument(format!(
+            "blend mode {mode}: give 0 (composite), 1 (maximum intensity), 2 (minimum intensity), 3 (average \
+             intensity) or 4 (additive)"
+        ))
+    })
+}
+
+/// The blend of `desc` over `value_range` (the octree's), its average range checked.
+pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend> {
+    let [lo, hi] = desc.average_range;
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return Err(Error::InvalidArgument(format!(
+            "average intensity range [{lo}, {hi}]: give two numbers, the first not above the second"
+        )));
+    }
+    let mut blend = Blend::new(blend_mode(desc.blend_mode)?, [value_range.0, value_range.1]);
+    blend.average_range = [lo, hi];
+    Ok(blend)
 }
 
 /// The CLI's visibility test (`scene::visible`): a node shows unless the
@@ -120,9 +147,9 @@ pub(crate) fn select_with(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Res
     if iso.is_some_and(|v| !v.is_finite()) {
         return Err(Error::InvalidArgument(format!("isovalue {} must be a finite number", desc.isovalue)));
     }
-    let visible = |min: f64, max: f64| {
-        tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max)) || iso.is_some_and(|v| min < v && v <= max)
-    };
+    let blend = blend(desc, octree.volume().value_range())?;
+    let shows = |min: f64, max: f64| tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max));
+    let visible = |min: f64, max: f64| blend.visible(min, max, &shows) || iso.is_some_and(|v| min < v && v <= max);
     match &octree.hybrid.points {
         Some(points) => select_with_points(octree.volume(), &options, visible, &points.mass),
         None => select(octree.volume(), &options, visible),
@@ -245,7 +272,9 @@ impl HybridOctreeHandle {
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
             let selection = select_with(self, desc)?;
+            let blend = blend(desc, self.volume().value_range())?;
             Ok(Box::new(SelectionHandle {
+                blend,
                 selection,
                 octree_id: self.id,
                 shape: self.shape,
@@ -308,15 +337,16 @@ impl SelectionHandle {
             return Err(Error::InvalidArgument(format!("surface opacity {surface_opacity} must be between 0 and 1")));
         }
         let hybrid = &octree.hybrid;
-        if plan(&self.selection, &hybrid.scene(surface_opacity)).surface != SurfacePass::Translucent {
-            return hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, None);
+        let scene = Scene { blend: self.blend, ..hybrid.scene(surface_opacity) };
+        if plan(&self.selection, &scene).surface != SurfacePass::Translucent {
+            return hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, self.blend, None);
         }
         let mut cache = self.polygons.lock().unwrap_or_else(|e| e.into_inner());
         if cache.as_ref().is_none_or(|(id, _)| *id != octree.surface_id) {
             *cache = hybrid.slab_polygons(&octree.shape, &self.selection).map(|made| (octree.surface_id, made));
         }
         let polygons = cache.as_ref().map(|(_, p)| p);
-        hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, polygons)
+        hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, self.blend, polygons)
     }
 
     pub(crate) fn draw_list(
@@ -412,7 +442,7 @@ impl SelectionHandle {
             if bordered {
                 brick_texels_f32_bordered_into(&grid, b, texels)?;
             } else {
-                brick_texels_f32_into(&grid, b, texels)?;
+                brick_texels_for_blend_f32_into(&grid, b, self.blend.mode, texels)?;
             }
             check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
             if let Some(i) = texels.iter().position(|v| v.is_infinite()) {

@@ -17,7 +17,9 @@
 //!   lights in world space.
 //! - the blend mode ([`Blend`]): `volume` for Composite, `volume-mip`,
 //!   `volume-minip`, `volume-average` or `volume-additive` for the others
-//!   (shading is for Composite only).
+//!   (shading is for Composite only; a translucent surface too: it is sorted
+//!   into the slabs of a composite, and a reduced ray has no order, so under
+//!   the other modes it is not drawn, while an opaque surface still is).
 
 use super::blend::Blend;
 use super::select::Brick;
@@ -131,10 +133,13 @@ pub struct Scene<'a> {
 /// The plan for a scene (see the module documentation).
 pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Plan {
     let has_surface = scene.surface.is_some_and(|s| s.polygon_count() > 0) && scene.surface_opacity > 0.0;
+    let composite = scene.blend.mode == super::BlendMode::Composite;
     let surface = match (has_surface, scene.surface_opacity >= 1.0) {
         (false, _) => SurfacePass::None,
         (true, true) => SurfacePass::Opaque,
-        (true, false) => SurfacePass::Translucent,
+        (true, false) if composite => SurfacePass::Translucent,
+        // Sorted into the slabs of a composite only: a reduced ray has no order.
+        (true, false) => SurfacePass::None,
     };
     let volume = !selection.bricks.is_empty();
     let mut passes = Vec::new();
@@ -393,6 +398,23 @@ mod tests {
             |_, _| false,
         );
         assert!(!none.plan.volume && none.bricks.is_empty() && none.plan.passes.is_empty() && !none.plan.shading);
+    }
+
+    /// A reduced ray has no depth order: under the blend modes besides
+    /// Composite a translucent surface gets no pass (an opaque one keeps its).
+    #[test]
+    fn a_translucent_surface_is_composited_only() {
+        let f = fixture();
+        for mode in [super::super::BlendMode::Mip, super::super::BlendMode::Additive] {
+            let blend = Blend::new(mode, [0.0, 1.0]);
+            let scene = |opacity| Scene { surface: Some(&f.surface), surface_opacity: opacity, shading: None, blend };
+            let l = list(&f, &scene(0.4), |_, _| true);
+            assert_eq!(l.plan.surface, SurfacePass::None);
+            assert_eq!(l.plan.passes, vec![mode.pass()]);
+            assert!(l.bricks.iter().all(|b| b.batches.is_empty()));
+            let l = list(&f, &scene(1.0), |_, _| true);
+            assert_eq!(l.plan.passes, vec!["surface-opaque".to_string(), mode.pass()]);
+        }
     }
 
     /// Shading that changes no colour (ambient 1, diffuse and specular 0,

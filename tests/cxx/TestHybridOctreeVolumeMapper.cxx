@@ -52,6 +52,15 @@
  *   gpu_shaded, gpu_light_kit: Shade on, the full volume in the budget,
  *                against vtkGPUVolumeRayCastMapper with the default
  *                headlight and with a vtkLightKit: RMSE < 0.03.
+ *   mip, minip, average, additive: cpu_match under the blend mode (an
+ *                opacity above 0 everywhere, so that MinIP shows too), mixed
+ *                strides (MIP and MinIP bricks with peak-keeping texels): the
+ *                plan is "volume-<mode>", the GL reduction resolved through
+ *                the transfer function within RMSE 0.005 of the CPU
+ *                compositor, no warning, and the picture is not Composite's.
+ *   gpu_mip, gpu_minip, gpu_average, gpu_additive: the blend mode with the
+ *                full volume in the budget, against vtkGPUVolumeRayCastMapper
+ *                under the same mode: RMSE < 0.03.
  *   matrix:      the volume rotated and moved with its vtkVolume matrix, and
  *                the camera and the region of interest moved alike: the same
  *                bricks and picture, RMSE < 0.01.
@@ -100,6 +109,36 @@ void CompareWithCpu(Checker& check, Scene& scene, vtkHybridOctreeVolumeMapper* m
   check.Check(Signal(reference) > 0.005, "the scene shows something");
   check.Check(rmse < threshold, "GL picture within the threshold of the CPU compositor");
   check.Check(NoGLError(scene.Window), "no OpenGL error left behind");
+}
+
+/// The blend mode of a scenario ("mip", "gpu_minip", ...), -1 for the others.
+int BlendOf(std::string scenario)
+{
+  if (scenario.rfind("gpu_", 0) == 0)
+  {
+    scenario = scenario.substr(4);
+  }
+  const char* names[] = { "mip", "minip", "average", "additive" };
+  for (int mode = 1; mode <= 4; ++mode)
+  {
+    if (scenario == names[mode - 1])
+    {
+      return mode;
+    }
+  }
+  return -1;
+}
+
+/// An opacity above 0 over the whole range (the blend scenarios: a minimum
+/// projection of the default function, 0 below the middle, shows nothing).
+void OpacityEverywhere(Scene& scene)
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  const double lo = scene.Range[0], hi = scene.Range[1];
+  opacity->AddPoint(lo, 0.5);
+  opacity->AddPoint(0.5 * (lo + hi), 0.05);
+  opacity->AddPoint(hi, 0.6);
+  scene.Property->SetScalarOpacity(opacity);
 }
 
 int CpuMatch(const std::string& scenario)
@@ -236,6 +275,16 @@ int CpuMatch(const std::string& scenario)
     }
     mapper->SetInputData(holed);
   }
+  const int blend = BlendOf(scenario);
+  std::vector<double> composited;
+  if (blend > 0)
+  {
+    OpacityEverywhere(scene);
+    scene.Window->Render();
+    composited = Grab(scene.Window);
+    mapper->SetBlendMode(blend);
+    plan = "volume-" + scenario;
+  }
   std::vector<double> unshaded;
   if (scenario == "shaded")
   {
@@ -252,6 +301,14 @@ int CpuMatch(const std::string& scenario)
     check.Check(change > 0.01, "the shading shows");
     check.Check(errors->Errors.empty() && errors->Warnings.empty(),
       "Shade is drawn, no warning:\n" + errors->AllErrors());
+  }
+  if (blend > 0)
+  {
+    const double change = Rmse(Grab(scene.Window), composited);
+    std::cout << "RGB RMSE " << scenario << " vs composite " << change << "\n";
+    check.Check(change > 0.01, "the blend mode shows");
+    check.Check(errors->Errors.empty() && errors->Warnings.empty(),
+      "the blend mode is drawn, no warning:\n" + errors->AllErrors());
   }
   check.Check(mapper->GetLastBricks() > 8, "many bricks");
   if (scenario == "nan_hole")
@@ -351,6 +408,42 @@ int GpuShaded(bool lightKit)
             << " (threshold 0.03), signal " << Signal(b) << "\n";
   check.Check(Signal(b) > 0.02, "the reference shows the volume");
   check.Check(rmse < 0.03, "within 0.03 of vtkGPUVolumeRayCastMapper");
+  return check.Result();
+}
+
+/// A blend mode with the full volume in the budget, against vtkGPUVolumeRayCastMapper.
+int GpuBlend(const std::string& scenario)
+{
+  Checker check;
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  mapper->SetLeafSize(8);
+  mapper->SetBudgetMB(4.0);
+  Scene ours(mapper);
+  vtkNew<vtkGPUVolumeRayCastMapper> gpu = MakeReference();
+  Scene theirs(gpu);
+  const int blend = BlendOf(scenario);
+  mapper->SetBlendMode(blend);
+  gpu->SetBlendMode(blend);
+  OpacityEverywhere(ours);
+  OpacityEverywhere(theirs);
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  errors->Watch(mapper);
+  ours.Window->Render();
+  theirs.Window->Render();
+  check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
+  const std::string plan = "volume-" + scenario.substr(4);
+  check.Check(std::string(mapper->GetLastPlan()) == plan,
+    "plan '" + plan + "', not '" + mapper->GetLastPlan() + "'");
+  const std::vector<double> a = Grab(ours.Window);
+  const std::vector<double> b = Grab(theirs.Window);
+  const double rmse = Rmse(a, b);
+  std::cout << scenario << ": bricks " << mapper->GetLastBricks() << ", texture bytes "
+            << mapper->GetLastTextureBytes() << "; RGB RMSE against vtkGPUVolumeRayCastMapper "
+            << rmse << " (threshold 0.03), signal " << Signal(b) << "\n";
+  check.Check(Signal(b) > 0.02, "the reference shows the volume");
+  check.Check(rmse < 0.03, "within 0.03 of vtkGPUVolumeRayCastMapper");
+  check.Check(NoGLError(ours.Window), "no OpenGL error left behind");
   return check.Result();
 }
 
@@ -472,9 +565,14 @@ int TestHybridOctreeVolumeMapper(int argc, char* argv[])
   if (scenario == "cpu_match" || scenario == "multisample" || scenario == "tiny_opacity" ||
     scenario == "inside" || scenario == "opaque_surface" || scenario == "translucent_surface" ||
     scenario == "points_square" || scenario == "points_gaussian" || scenario == "points_surface" ||
-    scenario == "nan_hole" || scenario == "shaded")
+    scenario == "nan_hole" || scenario == "shaded" ||
+    (BlendOf(scenario) > 0 && scenario.rfind("gpu_", 0) != 0))
   {
     return CpuMatch(scenario);
+  }
+  if (BlendOf(scenario) > 0)
+  {
+    return GpuBlend(scenario);
   }
   if (scenario == "gpu_shaded" || scenario == "gpu_light_kit")
   {

@@ -10,12 +10,12 @@
  *   interactive: a window asking for 30 frames a second gets the interactive
  *                budget; a still frame after it refines to the full budget;
  *                PrintSelf shows every setting and statistic.
- *   warnings:    each setting the mapper does not draw (a blend mode other
- *                than Composite, a gradient opacity, a 2D transfer
+ *   warnings:    each setting the mapper does not draw (the Isosurface and
+ *                Slice blend modes, a gradient opacity, a 2D transfer
  *                function, cropping, a clipping plane, dependent components)
  *                gives one warning naming it, once while it stays on; the
  *                picture is the one without it; turned off and on again, or
- *                changed (Maximum Intensity to Additive), it is warned about
+ *                changed (Isosurface to Slice), it is warned about
  *                again.
  *   grey:        a grey colour function (SetColor(vtkPiecewiseFunction*))
  *                draws the picture of the equal RGB function and stays grey
@@ -190,8 +190,8 @@ int Warnings()
     std::function<void(bool)> Turn;
   };
   const std::vector<Setting> settings = {
-    { "the Maximum Intensity blend mode",
-      [&](bool on) { mapper->SetBlendMode(on ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND : 0); } },
+    { "the Isosurface blend mode",
+      [&](bool on) { mapper->SetBlendMode(on ? vtkVolumeMapper::ISOSURFACE_BLEND : 0); } },
     { "the gradient opacity",
       [&](bool on) {
         scene.Property->SetGradientOpacity(gradient);
@@ -232,12 +232,12 @@ int Warnings()
     errors->Clear();
   }
   // Another value of the same setting is another warning.
-  mapper->SetBlendModeToMaximumIntensity();
+  mapper->SetBlendModeToIsoSurface();
   scene.Window->Render();
-  mapper->SetBlendModeToAdditive();
+  mapper->SetBlendModeToSlice();
   scene.Window->Render();
-  check.Check(TakeWarnings(errors, "the Additive blend mode", all) == 1,
-    "Additive after Maximum Intensity:\n" + all);
+  check.Check(
+    TakeWarnings(errors, "the Slice blend mode", all) == 1, "Slice after Isosurface:\n" + all);
   mapper->SetBlendModeToComposite();
 
   // Dependent components: a two-component image, component 0 drawn.

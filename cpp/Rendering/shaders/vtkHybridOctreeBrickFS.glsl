@@ -39,6 +39,17 @@ uniform vec3 lightAmbient[HO_MAX_LIGHTS];
 uniform vec3 lightDiffuse[HO_MAX_LIGHTS];
 uniform vec3 lightSpecular[HO_MAX_LIGHTS];
 #endif
+#ifdef HO_REDUCE
+// The blend modes besides Composite (src/plan/blend.rs): every sample feeds
+// the float target's reduction through the blend equation, resolved through
+// the transfer function afterwards (vtkHybridOctreeResolveFS.glsl):
+//   maximum, minimum: (v, 1, 0, 0), (-v, 1, 0, 0) under GL_MAX;
+//   average, additive: (w a(v) n(v), w, 0, 0) under GL_FUNC_ADD, w = l / d0
+//   (opacityRatio), n(v) = (v - lo) / (hi - lo); an average counts v in averageRange.
+uniform int reduceMode; // 1 maximum, 2 minimum, 3 average, 4 additive
+uniform vec2 scalarRange;
+uniform vec2 averageRange;
+#endif
 //VTK::Output::Dec
 
 // The primitive kinds (the vertex attribute kindMC, a whole number).
@@ -115,6 +126,42 @@ vec3 shade(vec3 u, vec3 c, vec3 v)
 }
 #endif
 
+#ifdef HO_REDUCE
+// The reduction's share of the value v (not NaN) of a sample standing for w
+// reference spacings.
+vec4 reductionOf(float v, float w)
+{
+  if (reduceMode == 1)
+  {
+    return vec4(v, 1.0, 0.0, 0.0);
+  }
+  if (reduceMode == 2)
+  {
+    return vec4(-v, 1.0, 0.0, 0.0);
+  }
+  if (reduceMode == 3 && (v < averageRange.x || v > averageRange.y))
+  {
+    return vec4(0.0);
+  }
+  float a = clamp(texture(transferTable, vec2(v * tableScaleShift.x + tableScaleShift.y, 0.5)).a, 0.0, 1.0);
+  float n = scalarRange.y > scalarRange.x ? (v - scalarRange.x) / (scalarRange.y - scalarRange.x) : 0.0;
+  return vec4(w * a * n, w, 0.0, 0.0);
+}
+
+// Two reductions combined as the blend equation combines them.
+vec4 combined(vec4 a, vec4 b)
+{
+  return reduceMode <= 2 ? max(a, b) : a + b;
+}
+
+// The texel value at model position p (the unshaded lattice).
+float valueAt(vec3 p)
+{
+  vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
+  return texture(brickTexture, (u + vec3(0.5)) / texels).r;
+}
+#endif
+
 // Opacity a' of the sample at model position p, and its colour (shaded
 // along the ray direction v with HO_SHADE). NaN texels
 // are no data: the linear filter of a sample touching one is NaN (every
@@ -187,6 +234,26 @@ void main()
       : 0.0;
     int k0 = int(ceil(zIn / sliceSpacing - j));
     int k1 = min(int(ceil(zOut / sliceSpacing - j)) - 1, k0 + 4096);
+#ifdef HO_REDUCE
+    // Every sample, no early termination; NaN (no data) is no sample.
+    vec4 R = reduceMode <= 2 ? vec4(-3.0e38, 0.0, 0.0, 0.0) : vec4(0.0);
+    bool sampled = false;
+    for (int k = k0; k <= k1; ++k)
+    {
+      float v = valueAt(origin + dir * ((float(k) + j) * sliceSpacing / cosA));
+      if (!isnan(v))
+      {
+        R = combined(R, reductionOf(v, opacityRatio));
+        sampled = true;
+      }
+    }
+    if (!sampled)
+    {
+      discard;
+    }
+    gl_FragData[0] = R;
+    return;
+#endif
     vec3 C = vec3(0.0);
     float A = 0.0;
     for (int k = k0; k <= k1 && A < 0.999; ++k)
@@ -207,6 +274,20 @@ void main()
   {
     discard;
   }
+#ifdef HO_REDUCE
+  // A reduced ray has no order: only the volume's samples feed it.
+  if (kind != SLICE)
+  {
+    discard;
+  }
+  float v = valueAt(positionMC);
+  if (isnan(v))
+  {
+    discard;
+  }
+  gl_FragData[0] = reductionOf(v, opacityRatio);
+  return;
+#endif
   if (kind == SQUARE_POINT || kind == GAUSSIAN_POINT)
   {
     // A point (paper 3 section 4): its colour and opacity a_p (see the
