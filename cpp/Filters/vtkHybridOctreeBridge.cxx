@@ -193,6 +193,10 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   desc.blend_mode = options.BlendMode;
   desc.average_range[0] = options.AverageRange[0];
   desc.average_range[1] = options.AverageRange[1];
+  for (double v : options.IsosurfaceValues)
+  {
+    desc.isosurface_values.push_back(v);
+  }
   return desc;
 }
 

@@ -144,11 +144,13 @@ struct SelectDescription
   /// Count one border texel per side of each brick in its bytes (a shaded
   /// volume's gradient reads them).
   bool GradientBorder = false;
-  /// vtkVolumeMapper::BlendModes value, 0 (composite) to 4 (additive); it
+  /// vtkVolumeMapper::BlendModes value, 0 (composite) to 5 (isosurface); it
   /// changes which nodes show and the texels of coarse MIP/MinIP bricks.
   int BlendMode = 0;
   /// vtkVolumeMapper's AverageIPScalarRange: the values an average counts.
   double AverageRange[2] = { -1.0e300, 1.0e300 };
+  /// The isosurface values of blend mode 5 (1 to 16).
+  std::vector<double> IsosurfaceValues;
 };
 
 /// The volume's shading (see ShadingDesc in src/ffi/mod.rs): vtkVolumeProperty's

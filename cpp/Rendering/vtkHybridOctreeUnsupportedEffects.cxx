@@ -60,13 +60,13 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
     "vtkGPUVolumeRayCastMapper (ParaView: the Volume representation), which draws it";
   std::vector<std::string> on;
   const int mode = mapper->GetBlendMode();
-  if (mode < vtkVolumeMapper::COMPOSITE_BLEND || mode > vtkVolumeMapper::ADDITIVE_BLEND)
+  if (mode < vtkVolumeMapper::COMPOSITE_BLEND || mode > vtkVolumeMapper::ISOSURFACE_BLEND)
   {
     const std::string name = BlendModeName(mode);
     on.push_back("the " + name + " blend mode (vtkVolumeMapper::SetBlendMode(" +
       std::to_string(mode) + "); ParaView: Blend Mode) is not implemented: the volume is drawn " +
       "with Composite blending; set the blend mode to Composite, maximum, minimum or average " +
-      "intensity or additive, or use " + elsewhere);
+      "intensity, additive or Isosurface, or use " + elsewhere);
   }
   if (translucentSurface && mode > vtkVolumeMapper::COMPOSITE_BLEND &&
     mode <= vtkVolumeMapper::ADDITIVE_BLEND)

@@ -1,5 +1,6 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 
+#include "vtkContourValues.h"
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
@@ -237,6 +238,8 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   ShadingDescription Shading;
   /// Whether the resident brick textures carry gradient borders.
   bool BorderedTextures = false;
+  /// The isosurface values of the Isosurface blend mode (the selection's).
+  std::vector<double> Isosurfaces;
   /// Whether the resident coarse brick textures keep their peaks (MIP or MinIP).
   bool PooledTextures = false;
   // Interactive frames' sampling, from the times of the frames before.
@@ -549,17 +552,28 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   select.Isovalue = this->Isovalue;
   // The blend modes the bridge draws (the others are warned about and drawn Composite).
   const int mode = this->BlendMode;
-  select.BlendMode = mode >= COMPOSITE_BLEND && mode <= ADDITIVE_BLEND ? mode : COMPOSITE_BLEND;
+  select.BlendMode = mode >= COMPOSITE_BLEND && mode <= ISOSURFACE_BLEND ? mode : COMPOSITE_BLEND;
+  if (select.BlendMode == ISOSURFACE_BLEND)
+  {
+    vtkContourValues* values = property->GetIsoSurfaceValues();
+    for (int i = 0; values && i < values->GetNumberOfContours(); ++i)
+    {
+      select.IsosurfaceValues.push_back(values->GetValue(i));
+    }
+  }
   select.AverageRange[0] = this->AverageIPScalarRange[0];
   select.AverageRange[1] = this->AverageIPScalarRange[1];
-  // Shaded: the bricks' gradient borders count in the budget (Composite only).
-  select.GradientBorder = property->GetShade(0) != 0 && select.BlendMode == COMPOSITE_BLEND;
+  // Shaded: the bricks' gradient borders count in the budget (Composite and
+  // Isosurface only; Isosurface always has them).
+  select.GradientBorder = property->GetShade(0) != 0 &&
+    (select.BlendMode == COMPOSITE_BLEND || select.BlendMode == ISOSURFACE_BLEND);
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
     in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0,
     select.GradientBorder ? 1.0 : 0.0, static_cast<double>(select.BlendMode),
     select.AverageRange[0], select.AverageRange[1] };
+  key.insert(key.end(), select.IsosurfaceValues.begin(), select.IsosurfaceValues.end());
   return select;
 }
 
@@ -608,6 +622,11 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
 bool vtkHybridOctreeVolumeMapper::ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property)
 {
   const bool interactive = this->IsInteractive(ren);
+  // The frame's isosurface values (the Isosurface blend mode), whichever
+  // selection it draws: every selection's key holds them.
+  std::vector<double> key;
+  this->Internals->Isosurfaces =
+    this->DescribeSelection(property, this->BudgetMB, key).IsosurfaceValues;
   if (interactive && this->IsStillSelectionCurrent(property))
   {
     this->Internals->Frame = &this->Internals->Still;
@@ -849,23 +868,27 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   const Selection& selected = *in.Frame->Selected;
   const double textureBudget =
     this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
-  // Shaded: textures with one border texel per side (the gradient reads
-  // them); the resident ones of the other kind are released first.
-  const bool shaded = list.Passes.find("volume-shaded") != std::string::npos;
+  // Shaded or Isosurface: textures with one border texel per side (the
+  // gradient and the sample before a brick's first read them); the
+  // resident ones of the other kind are released first.
+  const bool shaded = list.Passes.find("shaded") != std::string::npos;
+  const bool isosurface = list.Passes.find("volume-isosurface") != std::string::npos;
+  const bool bordered = shaded || isosurface;
   // MIP and MinIP: coarse textures keep their peaks (other texels, so the
   // resident textures of the other kind go too).
   const int reduceMode = ReduceMode(list.Passes);
   const bool pooled = reduceMode == 1 || reduceMode == 2;
-  if (shaded != in.BorderedTextures || pooled != in.PooledTextures)
+  if (bordered != in.BorderedTextures || pooled != in.PooledTextures)
   {
     in.Bricks.Clear(window);
-    in.BorderedTextures = shaded;
+    in.BorderedTextures = bordered;
     in.PooledTextures = pooled;
   }
   ShadingDescription shading = in.Shading;
   shading.Shade = shaded;
   in.Drawer.SetShading(shading);
-  const std::size_t border = shaded ? 1 : 0;
+  in.Drawer.SetIsosurfaces(isosurface ? in.Isosurfaces : std::vector<double>());
+  const std::size_t border = bordered ? 1 : 0;
   in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   textures.assign(bricks, nullptr);
   // The frame's geometry is made from each brick's block ranges (kept with its texture).
@@ -878,10 +901,10 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, dims,
       [&](float* texels, std::size_t count) {
-        return shaded ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
-                          in.Grid, brick, texels, count, error)
-                      : selected.GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
-                          brick, texels, count, error);
+        return bordered ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
+                            in.Grid, brick, texels, count, error)
+                        : selected.GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+                            brick, texels, count, error);
       },
       error, border);
     if (!resident)

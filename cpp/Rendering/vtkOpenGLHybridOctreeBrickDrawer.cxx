@@ -59,6 +59,12 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   {
     defines = "\n#define HO_REDUCE\n";
   }
+  const bool isosurface = !this->Isosurfaces.empty() && this->ReduceMode == 0;
+  if (isosurface)
+  {
+    defines += "\n#define HO_ISOSURFACE\n#define HO_MAX_ISOSURFACES " +
+      std::to_string(MaxIsosurfaces) + "\n";
+  }
   if (!defines.empty())
   {
     const std::string system = "//VTK::System::Dec";
@@ -175,6 +181,18 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
     this->Program->SetUniform2f("scalarRange", valueRange);
     this->Program->SetUniform2f("averageRange", averageRange);
   }
+  if (isosurface)
+  {
+    float values[MaxIsosurfaces] = {};
+    const int count =
+      static_cast<int>(std::min<std::size_t>(this->Isosurfaces.size(), MaxIsosurfaces));
+    for (int i = 0; i < count; ++i)
+    {
+      values[i] = static_cast<float>(this->Isosurfaces[i]);
+    }
+    this->Program->SetUniformi("isosurfaceCount", count);
+    this->Program->SetUniform1fv("isosurfaceValues", MaxIsosurfaces, values);
+  }
   if (shade && !this->SetShadingUniforms(error))
   {
     return false;
@@ -243,15 +261,15 @@ void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::Dr
   float inverseStep[3];
   float n[3];
   float gradientStep[3];
-  // Shaded: the texture carries one border texel per side.
-  const std::size_t border = this->Shading.Shade ? 2 : 0;
+  // Shaded or Isosurface: the texture carries one border texel per side.
+  const std::size_t border = this->Shading.Shade || !this->Isosurfaces.empty() ? 2 : 0;
   for (int a = 0; a < 3; ++a)
   {
     inverseStep[a] = static_cast<float>(1.0 / (list.Stride[i] * spacing[a]));
     gradientStep[a] = static_cast<float>(list.Stride[i] * spacing[a]);
     n[a] = static_cast<float>(list.Texels[3 * i + a] + border);
   }
-  if (border)
+  if (this->Shading.Shade)
   {
     this->Program->SetUniform3f("gradientStep", gradientStep);
   }

@@ -63,6 +63,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 class vtkOpenGLHybridOctreeFloatTarget;
 class vtkMatrix4x4;
@@ -131,6 +132,17 @@ public:
     }
   }
 
+  /**
+   * The isovalues of the Isosurface blend mode (increasing; empty for the
+   * other modes): a sample shows the isovalue crossed since the sample one
+   * step nearer the eye (src/plan/blend.rs), its textures bordered as
+   * shaded ones. Call before Bind().
+   */
+  void SetIsosurfaces(const std::vector<double>& values) { this->Isosurfaces = values; }
+
+  /// The most isosurface values the Isosurface program takes.
+  static constexpr int MaxIsosurfaces = 16;
+
   /// The most lights the shaded program takes.
   static constexpr int MaxLights = 8;
 
@@ -172,6 +184,7 @@ private:
   int SampleSpacing = 1;
   vtkHybridOctreeBridge::ShadingDescription Shading;
   int ReduceMode = 0;
+  std::vector<double> Isosurfaces;
   double ValueRange[2] = { 0.0, 1.0 };
   double AverageRange[2] = { 0.0, 1.0 };
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;

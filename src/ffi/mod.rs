@@ -239,12 +239,15 @@ mod bridge {
         gradient_border: bool,
         /// The blend mode, VTK's `vtkVolumeMapper::BlendModes` value (0
         /// composite, 1 maximum, 2 minimum, 3 average intensity, 4 additive;
-        /// others are refused). It changes the selection (MIP and MinIP keep
+        /// 5 isosurface; others are refused). It changes the selection (MIP and MinIP keep
         /// nodes that hold a ray's extreme, and coarse bricks get peak-keeping
         /// texels) and the plan (`volume-mip`, ...).
         blend_mode: i32,
         /// VTK's AverageIPScalarRange: the values an average intensity counts.
         average_range: [f64; 2],
+        /// The isosurface values of blend mode 5 (vtkVolumeProperty's
+        /// IsoSurfaceValues; 1 to 16 finite values), ignored by the others.
+        isosurface_values: Vec<f64>,
     }
 
     /// Summary of a selection.

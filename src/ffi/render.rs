@@ -108,18 +108,19 @@ pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<Sel
     };
     Ok(SelectOptions {
         roi,
-        gradient_border: desc.gradient_border,
         pooled: blend_mode(desc.blend_mode)?.is_extremum(),
+        // Isosurface reads the sample before a brick's first one, in the border.
+        gradient_border: desc.gradient_border || blend_mode(desc.blend_mode)? == BlendMode::Isosurface,
         ..SelectOptions::new(desc.budget_bytes, desc.tolerance)
     })
 }
 
-/// The blend mode of VTK's value `mode` (0 to 4).
+/// The blend mode of VTK's value `mode` (0 to 5).
 fn blend_mode(mode: i32) -> Result<BlendMode> {
     BlendMode::from_vtk(mode).ok_or_else(|| {
         Error::InvalidArgument(format!(
             "blend mode {mode}: give 0 (composite), 1 (maximum intensity), 2 (minimum intensity), 3 (average \
-             intensity) or 4 (additive)"
+             intensity), 4 (additive) or 5 (isosurface)"
         ))
     })
 }
@@ -132,7 +133,12 @@ pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend>
             "average intensity range [{lo}, {hi}]: give two numbers, the first not above the second"
         )));
     }
-    let mut blend = Blend::new(blend_mode(desc.blend_mode)?, [value_range.0, value_range.1]);
+    let mode = blend_mode(desc.blend_mode)?;
+    let mut blend = if mode == BlendMode::Isosurface {
+        Blend::isosurfaces(&desc.isosurface_values, [value_range.0, value_range.1])?
+    } else {
+        Blend::new(mode, [value_range.0, value_range.1])
+    };
     blend.average_range = [lo, hi];
     Ok(blend)
 }

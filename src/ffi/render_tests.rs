@@ -470,8 +470,14 @@ fn blend_modes_through_the_bridge() {
         let s = h.select_bricks(&SelectDesc { blend_mode: mode, ..options(30_000) }).unwrap();
         assert_eq!(s.draw_list(&h, c, 0.0).unwrap().passes, pass);
     }
+    let e = h.select_bricks(&SelectDesc { blend_mode: 6, ..options(30_000) }).map(|_| ()).unwrap_err();
+    assert!(e.contains("blend mode 6") && e.contains("isosurface"), "{e}");
     let e = h.select_bricks(&SelectDesc { blend_mode: 5, ..options(30_000) }).map(|_| ()).unwrap_err();
-    assert!(e.contains("blend mode 5") && e.contains("additive"), "{e}");
+    assert!(e.contains("0 isosurface values"), "{e}");
+    let iso = SelectDesc { blend_mode: 5, isosurface_values: vec![0.5], ..options(30_000) };
+    let s = h.select_bricks(&iso).unwrap();
+    assert_eq!(s.draw_list(&h, c, 0.0).unwrap().passes, "volume-isosurface");
+    assert!(s.list(&h, c, 0.0).unwrap().plan.bordered(), "textures with the border the step back reads");
     let e = h.select_bricks(&SelectDesc { average_range: [1.0, 0.0], ..options(30_000) }).map(|_| ()).unwrap_err();
     assert!(e.contains("average intensity range"), "{e}");
 }

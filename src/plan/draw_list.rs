@@ -17,9 +17,10 @@
 //!   lights in world space.
 //! - the blend mode ([`Blend`]): `volume` for Composite, `volume-mip`,
 //!   `volume-minip`, `volume-average` or `volume-additive` for the others
-//!   (shading is for Composite only; a translucent surface too: it is sorted
-//!   into the slabs of a composite, and a reduced ray has no order, so under
-//!   the other modes it is not drawn, while an opaque surface still is).
+//!   or `volume-isosurface` (shading, `-shaded`, is for the compositing
+//!   modes only, Composite and Isosurface; a translucent surface too: it is
+//!   sorted into the slabs of a composite, and a reduced ray has no order,
+//!   so under the other modes it is not drawn, while an opaque surface still is).
 
 use super::blend::Blend;
 use super::select::Brick;
@@ -55,6 +56,14 @@ pub struct Plan {
     pub blend: Blend,
     /// The passes, in the order they run (e.g. `["surface-opaque", "volume"]`).
     pub passes: Vec<String>,
+}
+
+impl Plan {
+    /// Whether brick textures carry one border texel per side: shading
+    /// reads the gradient there, Isosurface the sample before a brick's first.
+    pub fn bordered(&self) -> bool {
+        self.shading || (self.volume && self.blend.mode == super::BlendMode::Isosurface)
+    }
 }
 
 /// One brick of the DrawList.
@@ -133,7 +142,7 @@ pub struct Scene<'a> {
 /// The plan for a scene (see the module documentation).
 pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Plan {
     let has_surface = scene.surface.is_some_and(|s| s.polygon_count() > 0) && scene.surface_opacity > 0.0;
-    let composite = scene.blend.mode == super::BlendMode::Composite;
+    let composite = scene.blend.mode.composites();
     let surface = match (has_surface, scene.surface_opacity >= 1.0) {
         (false, _) => SurfacePass::None,
         (true, true) => SurfacePass::Opaque,
@@ -148,14 +157,21 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         SurfacePass::Translucent => passes.push("surface-in-slabs".to_string()),
         SurfacePass::None => {}
     }
-    let shading = shades(volume, scene.shading) && scene.blend.mode == super::BlendMode::Composite;
+    let shading = shades(volume, scene.shading) && scene.blend.mode.composites();
     if volume {
-        passes.push(match scene.blend.mode {
-            super::BlendMode::Composite if shading => "volume-shaded".to_string(),
-            mode => mode.pass(),
-        });
+        passes.push(volume_pass(scene.blend.mode, shading));
     }
     Plan { volume, surface, shading, skipped_bricks: selection.skipped, blend: scene.blend, passes }
+}
+
+/// The volume pass: the blend mode's ([`super::BlendMode::pass`]), `-shaded`
+/// appended when shaded (`volume-shaded`, `volume-isosurface-shaded`).
+fn volume_pass(mode: super::BlendMode, shading: bool) -> String {
+    match (mode, shading) {
+        (super::BlendMode::Composite, true) => "volume-shaded".to_string(),
+        (mode, true) => format!("{}-shaded", mode.pass()),
+        (mode, false) => mode.pass(),
+    }
 }
 
 /// The planner's shading rule: shade a volume, when the scene asks, unless
@@ -176,10 +192,12 @@ pub fn relight(mut list: DrawList, lighting: Option<&Lighting>) -> crate::Result
     if let Some(l) = lighting {
         l.check()?;
     }
-    let shading = shades(list.plan.volume, lighting) && list.plan.blend.mode == super::BlendMode::Composite;
+    let mode = list.plan.blend.mode;
+    let shading = shades(list.plan.volume, lighting) && mode.composites();
+    let (plain, shaded) = (volume_pass(mode, false), volume_pass(mode, true));
     for pass in &mut list.plan.passes {
-        if pass == "volume" || pass == "volume-shaded" {
-            *pass = if shading { "volume-shaded" } else { "volume" }.to_string();
+        if *pass == plain || *pass == shaded {
+            *pass = volume_pass(mode, shading);
         }
     }
     list.plan.shading = shading;

@@ -50,6 +50,11 @@
 //! (`super::shade`), the ray direction as `V`. Without lighting no gradient
 //! is taken (the executor counts them).
 //!
+//! Isosurface ([`crate::plan::blend`], the plan's `volume-isosurface`): a
+//! sample at `u(z)` shows the isovalue `c` crossed since the sample before
+//! it, `u(z - d)` (on the bordered texture, so the step back may leave the
+//! brick by a texel), as `(c(c), a(c))`, not corrected for `d`; else nothing.
+//!
 //! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
 //! pixel's depth and its shaded colour goes under the volume in front of it,
 //! last; samples at or behind that depth are dropped (a depth test).
@@ -313,6 +318,7 @@ fn execute<S: Texel>(
         shape,
         bricks: &bricks,
         lighting: list.lighting.as_ref().filter(|_| list.plan.shading),
+        isosurfaces: Some(&list.plan.blend).filter(|b| b.mode == crate::plan::BlendMode::Isosurface),
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
@@ -412,6 +418,8 @@ struct Executor<'a, S> {
     bricks: &'a [Prepared<'a, S>],
     /// The shading, lights in world space (`None`: unshaded, no gradients).
     lighting: Option<&'a Lighting>,
+    /// The Isosurface blend mode's values (`None` for Composite).
+    isosurfaces: Option<&'a crate::plan::Blend>,
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
@@ -498,7 +506,7 @@ impl<S: Texel> Executor<'_, S> {
                 surface_hit = Some((tris.shade(surface, &h, ray.direction, colour), colour[3] as f64));
             }
         }
-        if self.list.plan.blend.mode != crate::plan::BlendMode::Composite {
+        if !self.list.plan.blend.mode.composites() {
             return self.project(x, y, &pr, scratch, surface_hit);
         }
         scratch.hits.clear();
@@ -557,17 +565,20 @@ impl<S: Texel> Executor<'_, S> {
             if (s0..s1).contains(&j) {
                 let dz = slices[j] - za;
                 let u = [0, 1, 2].map(|k| ua[k] + dz * ub[k]);
-                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel(u));
-                if a > 0.0 {
-                    let mut rgb = [r, gr, bl];
-                    if let Some(lighting) = self.lighting {
-                        rgb = self.shade(lighting, brick.texture, u, rgb, pr.ray.direction);
-                        scratch.gradients += 1;
+                let v = brick.texture.at_texel(u);
+                match self.isosurfaces {
+                    None => acc = self.sample(brick, u, v, brick.ratio, pr, acc, scratch),
+                    Some(blend) => {
+                        // The values crossed since the sample one step nearer the eye, uncorrected.
+                        let d = brick.draw.slice_spacing;
+                        let before = brick.texture.at_texel([0, 1, 2].map(|k| u[k] - d * ub[k]));
+                        for c in blend.crossings(before, v) {
+                            acc = self.sample(brick, u, c, 1.0, pr, acc, scratch);
+                        }
                     }
-                    acc = under(acc, rgb, correct_opacity(a, brick.ratio));
-                    if acc[3] >= OPAQUE {
-                        return acc;
-                    }
+                }
+                if acc[3] >= OPAQUE {
+                    return acc;
                 }
             }
         }
@@ -575,6 +586,33 @@ impl<S: Texel> Executor<'_, S> {
             acc = under(acc, c, a);
         }
         acc
+    }
+
+    /// `acc` with the sample at texel coordinates `u` of value `value` (the
+    /// texel's, or an isovalue crossed) under it: transfer function, shading,
+    /// opacity corrected by `ratio = d / d0` (1 for an isovalue).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn sample(
+        &self,
+        brick: &Prepared<'_, S>,
+        u: [f64; 3],
+        value: f64,
+        ratio: f64,
+        pr: &PixelRay,
+        acc: Rgba,
+        scratch: &mut Scratch,
+    ) -> Rgba {
+        let [r, gr, bl, a] = self.lut.eval(value);
+        if a <= 0.0 {
+            return acc;
+        }
+        let mut rgb = [r, gr, bl];
+        if let Some(lighting) = self.lighting {
+            rgb = self.shade(lighting, brick.texture, u, rgb, pr.ray.direction);
+            scratch.gradients += 1;
+        }
+        under(acc, rgb, correct_opacity(a, ratio))
     }
 
     /// Colour `c` of the sample at texel coordinates `u` of `texture` (its

@@ -23,7 +23,11 @@
 //! pixel is computed on its own, so the picture does not depend on the
 //! number of threads.
 //!
-//! Blend modes besides Composite ([`reference_blend`]) reduce the same
+//! Under the Isosurface blend mode a sample shows the isovalues crossed
+//! since the sample before it (the entry point for the first), each
+//! `(c(c), a(c))` uncorrected, nearest first, and nothing without one ([`crate::plan::blend`]).
+//!
+//! Blend modes besides Composite and Isosurface ([`reference_blend`]) reduce the same
 //! samples, each standing for `l / d0` reference spacings, instead of
 //! blending them: `projection`.
 
@@ -154,9 +158,10 @@ impl Caster<'_> {
                 tris.all_hits(&ray, f64::INFINITY, hits);
             }
         }
-        if self.blend.mode != BlendMode::Composite {
+        if !self.blend.mode.composites() {
             return self.project(g, &ray, hits.first());
         }
+        let isosurfaces = Some(&self.blend).filter(|b| b.mode == BlendMode::Isosurface);
         let mut acc: Rgba = [0.0; 4];
         let mut next_hit = 0;
         // Composites the surface hits up to `t`; true when an opaque one ends the ray.
@@ -175,6 +180,8 @@ impl Caster<'_> {
         if let Some((t0, t1)) = ray_box(&ray, lo, hi) {
             let n = ((t1 - t0) / self.step).ceil().max(1.0) as usize;
             let l = (t1 - t0) / n as f64;
+            let at = |t: f64| to_index(&self.shape, [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]));
+            let mut before = grid_value(g, at(t0));
             for i in 0..n {
                 let t = t0 + (i as f64 + 0.5) * l;
                 if surface_until(&mut acc, t) {
@@ -182,13 +189,32 @@ impl Caster<'_> {
                 }
                 let p = [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]);
                 let u = to_index(&self.shape, p);
-                let [r, gr, b, a] = self.tf.eval(grid_value(g, u));
-                let mut rgb = [r as f64, gr as f64, b as f64];
-                if let (Some(lighting), true) = (self.lighting, a > 0.0) {
-                    let n = normal(gradient(|v| grid_value(g, v), u, self.shape.spacing));
-                    rgb = lighting.shade(rgb, n, ray.direction);
+                let v = grid_value(g, u);
+                let shade = |rgb: [f64; 3]| match self.lighting {
+                    Some(lighting) => lighting.shade(
+                        rgb,
+                        normal(gradient(|v| grid_value(g, v), u, self.shape.spacing)),
+                        ray.direction,
+                    ),
+                    None => rgb,
+                };
+                let mut sample = |acc: Rgba, value: f64, ratio: f64| {
+                    let [r, gr, b, a] = self.tf.eval(value);
+                    if a > 0.0 {
+                        under(acc, shade([r as f64, gr as f64, b as f64]), correct_opacity(a as f64, ratio))
+                    } else {
+                        acc
+                    }
+                };
+                match isosurfaces {
+                    None => acc = sample(acc, v, l / self.d0),
+                    Some(blend) => {
+                        for c in blend.crossings(before, v) {
+                            acc = sample(acc, c, 1.0);
+                        }
+                    }
                 }
-                acc = under(acc, rgb, correct_opacity(a as f64, l / self.d0));
+                before = v;
                 if acc[3] > EARLY_TERMINATION {
                     return acc.map(|v| v as f32);
                 }

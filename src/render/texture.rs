@@ -366,7 +366,7 @@ impl Textures {
     /// Checks that these are the textures of `list`'s bricks.
     pub(crate) fn check(&self, list: &DrawList) -> Result<()> {
         fn all<S: Texel>(t: &[Texture<S>], list: &DrawList) -> bool {
-            let border = usize::from(list.plan.shading);
+            let border = usize::from(list.plan.bordered());
             t.len() == list.bricks.len()
                 && t.iter().zip(&list.bricks).all(|(t, d)| t.is_of(&d.brick) && t.border == border)
         }
@@ -398,7 +398,7 @@ impl GridVisitor for Upload<'_> {
     type Output = Texels;
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Texels {
         let bricks = &self.0.bricks;
-        let border = usize::from(self.0.plan.shading);
+        let border = usize::from(self.0.plan.bordered());
         let mode = self.0.plan.blend.mode;
         let f32s: Option<Vec<Texture<f32>>> =
             bricks.par_iter().map(|d| Texture::copy_for(&g, &d.brick, border, mode)).collect();

@@ -39,6 +39,17 @@ uniform vec3 lightAmbient[HO_MAX_LIGHTS];
 uniform vec3 lightDiffuse[HO_MAX_LIGHTS];
 uniform vec3 lightSpecular[HO_MAX_LIGHTS];
 #endif
+#ifdef HO_ISOSURFACE
+// The Isosurface blend mode (src/plan/blend.rs): a sample shows the values
+// c_k crossed since the sample one step s nearer the eye (v0 < c_k <= v1 or
+// v1 <= c_k < v0), each (c(c_k), a(c_k)) uncorrected, nearest v0 first.
+uniform int isosurfaceCount;
+uniform float isosurfaceValues[HO_MAX_ISOSURFACES];
+#endif
+#if defined(HO_SHADE) || defined(HO_ISOSURFACE)
+// The brick texture carries one border texel per side.
+#define HO_BORDER
+#endif
 #ifdef HO_REDUCE
 // The blend modes besides Composite (src/plan/blend.rs): every sample feeds
 // the float target's reduction through the blend equation, resolved through
@@ -162,6 +173,34 @@ float valueAt(vec3 p)
 }
 #endif
 
+#ifdef HO_ISOSURFACE
+// Straight colour and opacity at isovalue c.
+vec4 isosurfaceColor(float c)
+{
+  vec4 t = texture(transferTable, vec2(c * tableScaleShift.x + tableScaleShift.y, 0.5));
+  return vec4(clamp(t.rgb, 0.0, 1.0), clamp(t.a, 0.0, 1.0));
+}
+
+// The isovalues crossed going from v0 to v1 composited front to back into
+// one premultiplied (C, A): C = sum (1 - A_k) a_k c_k, A = sum (1 - A_k) a_k.
+vec4 crossings(float v0, float v1)
+{
+  vec4 acc = vec4(0.0);
+  for (int i = 0; i < isosurfaceCount; ++i)
+  {
+    // Rising: ascending values; falling: descending.
+    int k = v0 < v1 ? i : isosurfaceCount - 1 - i;
+    float c = isosurfaceValues[k];
+    if ((v0 < v1 && v0 < c && c <= v1) || (v1 < v0 && v1 <= c && c < v0))
+    {
+      vec4 s = isosurfaceColor(c);
+      acc += (1.0 - acc.a) * vec4(s.rgb * s.a, s.a);
+    }
+  }
+  return acc;
+}
+#endif
+
 // Opacity a' of the sample at model position p, and its colour (shaded
 // along the ray direction v with HO_SHADE). NaN texels
 // are no data: the linear filter of a sample touching one is NaN (every
@@ -169,7 +208,7 @@ float valueAt(vec3 p)
 // as in the CPU compositor.
 vec4 sampleAt(vec3 p, vec3 v)
 {
-#ifdef HO_SHADE
+#ifdef HO_BORDER
   vec3 u = clamp((p - brickLo) * inverseStep + vec3(1.0), vec3(1.0), texels - vec3(2.0));
 #else
   vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
@@ -179,12 +218,27 @@ vec4 sampleAt(vec3 p, vec3 v)
   {
     return vec4(0.0);
   }
+#ifdef HO_ISOSURFACE
+  // The sample one step nearer the eye: p - v s / (v . forward), in the border when it leaves the brick.
+  vec3 b = clamp((p - v * (sliceSpacing / dot(v, forward)) - brickLo) * inverseStep + vec3(1.0),
+    vec3(0.0), texels - vec3(1.0));
+  vec4 crossed = crossings(texture(brickTexture, (b + vec3(0.5)) / texels).r, value);
+  if (crossed.a <= 0.0)
+  {
+    return vec4(0.0);
+  }
+  // One sample standing for them all: straight colour C / A, opacity A.
+  vec4 c = vec4(crossed.rgb / crossed.a, crossed.a);
+#else
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
+#endif
   float a = clamp(c.a, 0.0, 1.0);
+#ifndef HO_ISOSURFACE
   if (opacityRatio != 1.0 && a > 0.0 && a < 1.0)
   {
     a = 1.0 - exp(opacityRatio * log(1.0 - a));
   }
+#endif
   vec3 rgb = clamp(c.rgb, 0.0, 1.0);
 #ifdef HO_SHADE
   if (a > 0.0)

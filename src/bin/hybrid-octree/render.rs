@@ -84,7 +84,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let scene = load(&grid, &args.scene)?;
         let options = SelectOptions {
             roi: args.scene.roi,
-            gradient_border: args.scene.shade.shades() && scene.blend.mode == hybrid_octree::plan::BlendMode::Composite,
+            gradient_border: (args.scene.shade.shades() && scene.blend.mode.composites())
+                || scene.blend.mode == hybrid_octree::plan::BlendMode::Isosurface,
             pooled: scene.blend.mode.is_extremum(),
             ..SelectOptions::new(budget_bytes, args.tolerance)
         };

@@ -57,9 +57,13 @@ pub struct SceneArgs {
     #[command(flatten)]
     pub shade: crate::shade::ShadeArgs,
     /// Blend mode (VTK's SetBlendMode): composite, mip (maximum intensity),
-    /// minip (minimum intensity), average (average intensity) or additive.
+    /// minip (minimum intensity), average (average intensity), additive, or
+    /// isosurface (the surfaces of --isosurface-values, ray cast).
     #[arg(long, default_value = "composite", value_parser = blend_mode)]
     pub blend: BlendMode,
+    /// The values the isosurface blend mode draws, comma-separated (data units).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub isosurface_values: Vec<f64>,
 }
 
 fn blend_mode(s: &str) -> std::result::Result<BlendMode, String> {
@@ -116,7 +120,15 @@ pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
     let lo = shape.world([0.0; 3]);
     let hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
     let camera = Camera::around(lo, hi, args.azimuth, args.elevation, args.parallel)?;
-    let blend = Blend::new(args.blend, [min, max]);
+    let blend = match (args.blend, args.isosurface_values.is_empty()) {
+        (BlendMode::Isosurface, _) => Blend::isosurfaces(&args.isosurface_values, [min, max])?,
+        (_, true) => Blend::new(args.blend, [min, max]),
+        (_, false) => {
+            return Err(hybrid_octree::Error::InvalidArgument(
+                "--isosurface-values is for --blend isosurface: add it, or leave the values out".into(),
+            ))
+        }
+    };
     Ok(Loaded { octree, surface, tf, camera, blend })
 }
 
