@@ -122,6 +122,21 @@ ShadingDescription DescribeShading(
   return shading;
 }
 
+/// The gradient opacity VTK 9.2's GPU ray caster applies (vtkVolumeShaderComposer.h,
+/// HasGradientOpacity; vtkVolumeInputHelper): the 1D mode's function of the
+/// first component, when one was set and is not disabled, as (magnitude,
+/// opacity) pairs (magnitudes per mean voxel spacing, VTK's convention);
+/// empty for none.
+std::vector<double> GradientOpacityPoints(vtkVolumeProperty* property)
+{
+  if (property->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D ||
+    property->GetDisableGradientOpacity(0) || !property->HasGradientOpacity(0))
+  {
+    return {};
+  }
+  return vtkHybridOctreeBridge::OpacityPoints(property->GetStoredGradientOpacity(0));
+}
+
 /// The passes an interactive frame runs for the DrawList's `passes`: a
 /// translucent surface per brick instead of in the slabs, no points.
 std::string InteractivePlan(const std::string& passes)
@@ -216,6 +231,8 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   vtkHybridOctreeUnsupportedEffects Unsupported;
   /// The frame's shading (Prepare), light directions in the octree's frame.
   ShadingDescription Shading;
+  /// The frame's gradient opacity (Prepare), VTK's points.
+  std::vector<double> GradientOpacity;
   /// Whether the resident brick textures carry gradient borders.
   bool BorderedTextures = false;
   // Interactive frames' sampling, from the times of the frames before.
@@ -524,13 +541,17 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   select.RoiRadius = this->RoiRadius;
   select.HasIsovalue = this->ShowSurface;
   select.Isovalue = this->Isovalue;
-  // Shaded: the bricks' gradient borders count in the budget.
+  // Shaded: the bricks' gradient borders count in the budget (the core adds
+  // them for a gradient opacity that takes gradients).
   select.GradientBorder = property->GetShade(0) != 0;
+  select.GradientOpacityPoints = GradientOpacityPoints(property);
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
     in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0,
     select.GradientBorder ? 1.0 : 0.0 };
+  key.push_back(static_cast<double>(select.GradientOpacityPoints.size()));
+  key.insert(key.end(), select.GradientOpacityPoints.begin(), select.GradientOpacityPoints.end());
   return select;
 }
 
@@ -651,6 +672,7 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   }
   this->UpdateModelMatrix(image, vol);
   this->Internals->Shading = DescribeShading(ren, property, this->Internals->ModelInverse);
+  this->Internals->GradientOpacity = GradientOpacityPoints(property);
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
@@ -686,6 +708,7 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   const CameraDescription cam = this->ModelCamera(ren);
   const bool surface = in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0;
   const bool ok = in.Frame->Selected->SetShading(in.Shading, error) &&
+    in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) &&
     in.Frame->Selected->GetDrawList(
       *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
   if (!ok)
@@ -706,6 +729,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastUploadedBytes = 0;
   this->LastNaNSamples = 0;
   this->LastPlan.clear();
+  this->LastEffects.clear();
   this->LastImageSampleDistance = 1.0;
   this->LastSampleSpacing = 1;
   const bool interactive = this->IsInteractive(ren);
@@ -745,6 +769,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->LastRenderOK = true;
   }
   this->LastPlan = interactive ? InteractivePlan(list.Passes) : list.Passes;
+  this->LastEffects = list.Effects;
   this->LastEstimatedError = in.Frame->Summary.EstimatedError;
   this->LastPointBytes = static_cast<vtkTypeInt64>(in.Frame->Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
@@ -819,18 +844,21 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   const Selection& selected = *in.Frame->Selected;
   const double textureBudget =
     this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
-  // Shaded: textures with one border texel per side (the gradient reads
-  // them); the resident ones of the other kind are released first.
-  const bool shaded = list.Passes.find("volume-shaded") != std::string::npos;
-  if (shaded != in.BorderedTextures)
+  // Gradients (shading, gradient opacity): textures with one border texel
+  // per side (the gradient reads them); the resident ones of the other kind
+  // are released first.
+  const bool bordered = list.Gradients;
+  if (bordered != in.BorderedTextures)
   {
     in.Bricks.Clear(window);
-    in.BorderedTextures = shaded;
+    in.BorderedTextures = bordered;
   }
   ShadingDescription shading = in.Shading;
-  shading.Shade = shaded;
+  shading.Shade = list.Passes.find("volume-shaded") != std::string::npos;
   in.Drawer.SetShading(shading);
-  const std::size_t border = shaded ? 1 : 0;
+  in.Drawer.SetOpacityEffects(
+    bordered, list.GradientOpacityTable, list.GradientOpacityEnd, list.OpacityScale);
+  const std::size_t border = bordered ? 1 : 0;
   in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   textures.assign(bricks, nullptr);
   // The frame's geometry is made from each brick's block ranges (kept with its texture).
@@ -843,10 +871,10 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, dims,
       [&](float* texels, std::size_t count) {
-        return shaded ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
-                          in.Grid, brick, texels, count, error)
-                      : selected.GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
-                          brick, texels, count, error);
+        return bordered ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
+                            in.Grid, brick, texels, count, error)
+                        : selected.GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+                            brick, texels, count, error);
       },
       error, border);
     if (!resident)
@@ -1163,6 +1191,7 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   rgba->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
   std::string error;
   if (!in.Frame->Selected->SetShading(in.Shading, error) ||
+    !in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) ||
     !in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
       ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
       static_cast<std::size_t>(height), rgba->GetPointer(0), error))

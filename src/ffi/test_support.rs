@@ -27,6 +27,7 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         has_isovalue: false,
         isovalue: 0.0,
         gradient_border: false,
+        gradient_opacity_points: Vec::new(),
     }
 }
 

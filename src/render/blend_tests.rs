@@ -31,7 +31,7 @@ fn list(
     let visible = |a: f64, b: f64| blend.visible(a, b, &|a, b| !tf.is_transparent_over(a, b));
     let options = SelectOptions { pooled: mode.is_extremum(), ..SelectOptions::new(budget, 0.0) };
     let selection = select(octree, &options, visible).unwrap();
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend };
+    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, gradient_opacity: None, blend };
     draw_list(octree, shape, &selection, camera, &scene, None).unwrap()
 }
 

@@ -47,8 +47,15 @@
 //! of opacity `a > 0` has its colour `c` shaded
 //! ([`crate::transfer::lighting`]) at the normal of the brick's gradient,
 //! central differences one texel away on its bordered texture
-//! (`super::shade`), the ray direction as `V`. Without lighting no gradient
-//! is taken (the executor counts them).
+//! (`super::shade`), the ray direction as `V`.
+//!
+//! Gradient opacity ([`DrawList::gradient_opacity`], the plan's effect
+//! `gradient-opacity`): the opacity `a` of each sample with `a > 0` is
+//! multiplied by `a_grad(|g|)` of the same gradient
+//! ([`crate::transfer::gradient_opacity`]), before the slice-spacing
+//! correction; a constant one ([`crate::plan::Plan::opacity_scale`]) multiplies
+//! it without a gradient. The gradient is taken once per sample for both
+//! effects, and without either none is taken (the executor counts them).
 //!
 //! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
 //! pixel's depth and its shaded colour goes under the volume in front of it,
@@ -86,7 +93,7 @@ use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
 use crate::transfer::lighting::Lighting;
 use crate::transfer::lut::Lut;
-use crate::transfer::TransferFunction;
+use crate::transfer::{GradientOpacity, TransferFunction};
 use rayon::prelude::*;
 
 mod projection;
@@ -313,6 +320,8 @@ fn execute<S: Texel>(
         shape,
         bricks: &bricks,
         lighting: list.lighting.as_ref().filter(|_| list.plan.shading),
+        gradient_opacity: list.gradient_opacity.as_ref().filter(|_| list.plan.gradient_opacity),
+        opacity_scale: list.plan.opacity_scale,
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
@@ -410,8 +419,12 @@ struct Executor<'a, S> {
     height: usize,
     shape: GridShape,
     bricks: &'a [Prepared<'a, S>],
-    /// The shading, lights in world space (`None`: unshaded, no gradients).
+    /// The shading, lights in world space (`None`: unshaded).
     lighting: Option<&'a Lighting>,
+    /// The gradient opacity (`None`: none, or a constant in `opacity_scale`).
+    gradient_opacity: Option<&'a GradientOpacity>,
+    /// Every opacity's constant factor (1: none).
+    opacity_scale: f64,
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
@@ -426,7 +439,7 @@ struct Scratch {
     hits: Vec<Hit>,
     /// `(slab, depth, straight colour, opacity)` of one brick's batch hits.
     events: Vec<(usize, f64, [f64; 3], f64)>,
-    /// Gradients taken (shading).
+    /// Gradients taken (shading, gradient opacity).
     gradients: usize,
 }
 
@@ -559,14 +572,12 @@ impl<S: Texel> Executor<'_, S> {
                 let u = [0, 1, 2].map(|k| ua[k] + dz * ub[k]);
                 let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel(u));
                 if a > 0.0 {
-                    let mut rgb = [r, gr, bl];
-                    if let Some(lighting) = self.lighting {
-                        rgb = self.shade(lighting, brick.texture, u, rgb, pr.ray.direction);
-                        scratch.gradients += 1;
-                    }
-                    acc = under(acc, rgb, correct_opacity(a, brick.ratio));
-                    if acc[3] >= OPAQUE {
-                        return acc;
+                    let (rgb, a) = self.effects(brick.texture, u, [r, gr, bl], a, pr.ray.direction, scratch);
+                    if a > 0.0 {
+                        acc = under(acc, rgb, correct_opacity(a, brick.ratio));
+                        if acc[3] >= OPAQUE {
+                            return acc;
+                        }
                     }
                 }
             }
@@ -577,12 +588,34 @@ impl<S: Texel> Executor<'_, S> {
         acc
     }
 
-    /// Colour `c` of the sample at texel coordinates `u` of `texture` (its
-    /// gradient border included), shaded along `view` (module documentation).
+    /// Colour `c` and opacity `a` of the sample at texel coordinates `u` of
+    /// `texture` (its gradient border included) after the plan's effects:
+    /// the opacity scaled, or times the gradient opacity, the colour shaded
+    /// along `view` (module documentation); one gradient for both.
     #[inline]
-    fn shade(&self, lighting: &Lighting, texture: &Texture<S>, u: [f64; 3], c: [f64; 3], view: [f64; 3]) -> [f64; 3] {
+    fn effects(
+        &self,
+        texture: &Texture<S>,
+        u: [f64; 3],
+        c: [f64; 3],
+        a: f64,
+        view: [f64; 3],
+        scratch: &mut Scratch,
+    ) -> ([f64; 3], f64) {
+        let mut a = a * self.opacity_scale;
+        if self.lighting.is_none() && self.gradient_opacity.is_none() {
+            return (c, a);
+        }
         let h = self.shape.spacing.map(|s| s * texture.stride());
-        lighting.shade(c, normal(gradient(|v| texture.at_texel(v), u, h)), view)
+        let g = gradient(|v| texture.at_texel(v), u, h);
+        scratch.gradients += 1;
+        if let Some(f) = self.gradient_opacity {
+            a *= f64::from(f.eval(dot(g, g).sqrt()));
+        }
+        match self.lighting {
+            Some(lighting) if a > 0.0 => (lighting.shade(c, normal(g), view), a),
+            _ => (c, a),
+        }
     }
 
     /// The pixel's hits of brick `b`'s batch triangles in front of the

@@ -11,8 +11,8 @@
  *                budget; a still frame after it refines to the full budget;
  *                PrintSelf shows every setting and statistic.
  *   warnings:    each setting the mapper does not draw (a blend mode other
- *                than Composite, a gradient opacity, a 2D transfer
- *                function, cropping, a clipping plane, dependent components)
+ *                than Composite, a 2D transfer function, cropping, a
+ *                clipping plane, dependent components)
  *                gives one warning naming it, once while it stays on; the
  *                picture is the one without it; turned off and on again, or
  *                changed (Maximum Intensity to Additive), it is warned about
@@ -177,9 +177,6 @@ int Warnings()
   std::string all;
   check.Check(TakeWarnings(errors, "", all) == 0, "no warning for the supported settings:\n" + all);
 
-  vtkNew<vtkPiecewiseFunction> gradient;
-  gradient->AddPoint(0.0, 0.0);
-  gradient->AddPoint(10.0, 1.0);
   vtkNew<vtkPlaneCollection> planes;
   vtkNew<vtkPlane> plane;
   planes->AddItem(plane);
@@ -192,11 +189,6 @@ int Warnings()
   const std::vector<Setting> settings = {
     { "the Maximum Intensity blend mode",
       [&](bool on) { mapper->SetBlendMode(on ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND : 0); } },
-    { "the gradient opacity",
-      [&](bool on) {
-        scene.Property->SetGradientOpacity(gradient);
-        scene.Property->SetDisableGradientOpacity(!on);
-      } },
     { "the 2D transfer function",
       [&](bool on) {
         scene.Property->SetTransferFunctionMode(
