@@ -89,7 +89,8 @@ fn gradient_opacity_full_resolution_matches_the_reference() {
             list.plan.shading = shading.is_some();
             list.lighting = shading.map(|l| l.in_world(&camera));
             let image = composite(&grid, &list, &tf, 64, 64, None).unwrap();
-            let with = ReferenceOptions { lighting: shading, gradient_opacity: Some(&f), ..ReferenceOptions::default() };
+            let with =
+                ReferenceOptions { lighting: shading, gradient_opacity: Some(&f), ..ReferenceOptions::default() };
             let truth = reference(&grid, &tf, &camera, 64, 64, &with).unwrap();
             let without = ReferenceOptions { lighting: shading, ..ReferenceOptions::default() };
             let plain = reference(&grid, &tf, &camera, 64, 64, &without).unwrap();
