@@ -75,7 +75,13 @@ impl HybridOctree {
     /// The scene of this octree: its surface (when it holds one) at
     /// `surface_opacity` (1 opaque, in (0, 1) translucent, 0 hidden), no shading.
     pub fn scene(&self, surface_opacity: f64) -> Scene<'_> {
-        Scene { surface: self.surface.as_ref(), surface_opacity, shading: None, blend: Default::default() }
+        Scene {
+            surface: self.surface.as_ref(),
+            surface_opacity,
+            shading: None,
+            gradient_opacity: None,
+            blend: Default::default(),
+        }
     }
 
     /// The DrawList of `selection` (made from this octree's volume over the

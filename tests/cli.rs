@@ -796,3 +796,39 @@ fn render_blend_modes_name_their_pass() {
     assert_clean_failure(&out, "give one of composite, mip, minip, average, additive");
     let _ = std::fs::remove_file(png);
 }
+
+/// `render --gradient-opacity` reports its effect in the JSON plan (one that
+/// varies: `gradient-opacity`, with `--shade` before `shading`; a constant
+/// other than 1: `opacity-scale`; 1 everywhere: none, the picture of no
+/// gradient opacity), stays within the reference, and bad points are clean
+/// errors naming the problem.
+#[test]
+fn render_gradient_opacity_names_its_effect() {
+    let png = temp("gradient-opacity.png");
+    let reference = temp("gradient-opacity-reference.png");
+    let (out, truth) = (png.to_str().unwrap(), reference.to_str().unwrap());
+    let base = ["--dataset", "sphere", "--size", "17", "--width", "24", "--height", "24", "--output", out];
+    let json = |extra: &[&str]| json_of("render", &[&base[..], extra].concat());
+    let plain = json(&[]);
+    assert_eq!(plain["effects"], serde_json::json!([]), "{plain}");
+    let plain_png = std::fs::read(&png).unwrap();
+    let one = json(&["--gradient-opacity", "0,1,5,1"]);
+    assert_eq!(one["effects"], serde_json::json!([]), "{one}");
+    assert_eq!(std::fs::read(&png).unwrap(), plain_png, "1 everywhere draws the plain picture");
+    let half = json(&["--gradient-opacity", "0,0.5"]);
+    assert_eq!(half["effects"], serde_json::json!(["opacity-scale"]), "{half}");
+    let varying = json(&["--gradient-opacity", "0,0,0.05,1", "--shade", "--reference", truth]);
+    assert_eq!(varying["effects"], serde_json::json!(["gradient-opacity", "shading"]), "{varying}");
+    assert_eq!(varying["passes"], serde_json::json!(["volume-shaded"]), "{varying}");
+    assert!(varying["rmse"].as_f64().unwrap() < 0.05, "{varying}");
+    for (points, reason) in [
+        ("0,1,2", "give pairs G,A"),
+        ("0,x", "'x' is not a number"),
+        ("0,1.5", "[0, 1]"),
+        ("1,0.5,0,0.5", "increasing magnitude order"),
+    ] {
+        assert_clean_failure(&run(&[&["render"][..], &base[..], &["--gradient-opacity", points]].concat()), reason);
+    }
+    let _ = std::fs::remove_file(png);
+    let _ = std::fs::remove_file(reference);
+}

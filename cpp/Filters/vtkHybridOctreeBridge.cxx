@@ -154,6 +154,11 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   CopyInto(out.slice_offsets, list.SliceOffsets);
   CopyInto(out.slices, list.Slices);
   list.Passes = std::string(out.passes);
+  list.Effects = std::string(out.effects);
+  list.Gradients = out.gradients;
+  list.OpacityScale = out.opacity_scale;
+  CopyInto(out.gradient_opacity_table, list.GradientOpacityTable);
+  list.GradientOpacityEnd = out.gradient_opacity_end;
   list.ReferenceSpacing = out.reference_spacing;
   for (int axis = 0; axis < 3; ++axis)
   {
@@ -196,6 +201,10 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   for (double v : options.IsosurfaceValues)
   {
     desc.isosurface_values.push_back(v);
+  }
+  for (double v : options.GradientOpacityPoints)
+  {
+    desc.gradient_opacity_points.push_back(v);
   }
   return desc;
 }
@@ -530,6 +539,14 @@ bool Selection::SetShading(const ShadingDescription& shading, std::string& error
     toRust(shading.LightDiffuse, desc.light_diffuse);
     toRust(shading.LightSpecular, desc.light_specular);
     HandleFor(this->Impl).set_shading(desc);
+  });
+}
+
+bool Selection::SetGradientOpacity(const std::vector<double>& points, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .set_gradient_opacity(rust::Slice<const double>(points.data(), points.size()));
   });
 }
 

@@ -151,6 +151,12 @@ struct SelectDescription
   double AverageRange[2] = { -1.0e300, 1.0e300 };
   /// The isosurface values of blend mode 5 (1 to 16).
   std::vector<double> IsosurfaceValues;
+  /// vtkVolumeProperty's GradientOpacity as VTK's GPU ray caster reads it
+  /// (OpacityPoints() of it: magnitudes per mean voxel spacing, VTK's
+  /// convention), (magnitude, opacity) pairs flattened;
+  /// empty: none. One that is 0 everywhere hides every node; one that is
+  /// not constant counts the gradient border as GradientBorder does.
+  std::vector<double> GradientOpacityPoints;
 };
 
 /// The volume's shading (see ShadingDesc in src/ffi/mod.rs): vtkVolumeProperty's
@@ -227,7 +233,18 @@ struct DrawList
   std::vector<double> OpacityRatio;
   std::vector<std::size_t> SliceOffsets;
   std::vector<double> Slices;
-  std::string Passes;                     ///< comma-joined, e.g. "volume"; empty without bricks
+  std::string Passes; ///< comma-joined, e.g. "volume"; empty without bricks
+  /// The volume's effects in order, comma-joined: "gradient-opacity" or
+  /// "opacity-scale", then "shading"; empty for none.
+  std::string Effects;
+  /// The samples take gradients (shading or gradient opacity): the brick
+  /// textures carry the gradient border (GetBrickTexelsBordered()).
+  bool Gradients = false;
+  double OpacityScale = 1.0; ///< every opacity times this before the correction
+  /// With "gradient-opacity": the function at magnitudes k End / (n - 1),
+  /// k = 0 .. n (data units per model unit), held past the ends; else empty.
+  std::vector<float> GradientOpacityTable;
+  double GradientOpacityEnd = 0.0;
   double ReferenceSpacing = 0.0;          ///< d0, world units
   double Forward[3] = { 0.0, 0.0, -1.0 }; ///< unit view direction
   std::vector<std::size_t> BatchOffsets;  ///< bricks + 1 values
@@ -531,6 +548,15 @@ public:
    * False and `error` on failure (a bad number, no light, lights not in threes).
    */
   bool SetShading(const ShadingDescription& shading, std::string& error) const;
+
+  /**
+   * The gradient opacity of the DrawLists and pictures made after this call:
+   * `points` as SelectDescription::GradientOpacityPoints (empty: none). The
+   * plan's effects then say "gradient-opacity" (or "opacity-scale" for a
+   * constant other than 1). False and `error` on failure (an odd count,
+   * magnitudes not finite or decreasing, opacities outside [0, 1]).
+   */
+  bool SetGradientOpacity(const std::vector<double>& points, std::string& error) const;
 
   /**
    * The CPU compositor's picture of the DrawList (GetDrawList(octree,

@@ -1,33 +1,9 @@
 #include "vtkHybridOctreeUnsupportedEffects.h"
 
-#include "vtkPiecewiseFunction.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
 #include <string>
-
-namespace
-{
-/// Whether a gradient opacity function changes any opacity: VTK's default
-/// (and a disabled one) is 1 at every gradient magnitude.
-bool ModulatesOpacity(vtkVolumeProperty* property)
-{
-  if (property->GetDisableGradientOpacity(0))
-  {
-    return false;
-  }
-  vtkPiecewiseFunction* gradient = property->GetGradientOpacity(0);
-  double node[4];
-  for (int i = 0; gradient && i < gradient->GetSize(); ++i)
-  {
-    if (gradient->GetNodeValue(i, node) && node[1] != 1.0)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-} // namespace
 
 std::string vtkHybridOctreeUnsupportedEffects::BlendModeName(int mode)
 {
@@ -74,13 +50,6 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
     on.push_back("a translucent isosurface is not drawn under the " + BlendModeName(mode) +
       " blend mode (its ray is reduced, not composited in depth order): set the surface opacity "
       "to 1 (drawn opaque, under the volume) or the blend mode to Composite");
-  }
-  if (ModulatesOpacity(property))
-  {
-    on.push_back("the gradient opacity (vtkVolumeProperty::SetGradientOpacity) is not "
-                 "implemented: the opacity is the scalar opacity alone; disable it "
-                 "(vtkVolumeProperty::DisableGradientOpacityOn), or use " +
-      elsewhere);
   }
   if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
   {

@@ -5,11 +5,11 @@
  *
  * vtkHybridOctreeVolumeMapper draws Composite blending of one scalar
  * component through a 1D colour and scalar opacity function, shaded when
- * the property asks (Shade).
- * Settings that ask for more (another blend mode, a gradient
- * opacity, a 2D transfer function, cropping, clipping planes, dependent
- * components) are drawn as if off; each one the user has turned on is named
- * in one warning that says what is drawn instead and what to do.
+ * the property asks (Shade), its opacity times the gradient opacity when one
+ * is set (GradientOpacity).
+ * Settings that ask for more (another blend mode, a 2D transfer function,
+ * cropping, clipping planes, dependent components) are drawn as if off; each one the user has
+ * turned on is named in one warning that says what is drawn instead and what to do.
  *
  * Each warning is given once while its setting stays as it is: Update()
  * returns the messages of the settings on now that were not on (with the

@@ -123,6 +123,21 @@ ShadingDescription DescribeShading(
   return shading;
 }
 
+/// The gradient opacity VTK 9.2's GPU ray caster applies (vtkVolumeShaderComposer.h,
+/// HasGradientOpacity; vtkVolumeInputHelper): the 1D mode's function of the
+/// first component, when one was set and is not disabled, as (magnitude,
+/// opacity) pairs (magnitudes per mean voxel spacing, VTK's convention);
+/// empty for none.
+std::vector<double> GradientOpacityPoints(vtkVolumeProperty* property)
+{
+  if (property->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D ||
+    property->GetDisableGradientOpacity(0) || !property->HasGradientOpacity(0))
+  {
+    return {};
+  }
+  return vtkHybridOctreeBridge::OpacityPoints(property->GetStoredGradientOpacity(0));
+}
+
 /// The passes an interactive frame runs for the DrawList's `passes`: a
 /// translucent surface per brick instead of in the slabs, no points.
 /// The reduction of the plan's volume pass: 0 Composite (`volume`,
@@ -236,6 +251,8 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   vtkHybridOctreeUnsupportedEffects Unsupported;
   /// The frame's shading (Prepare), light directions in the octree's frame.
   ShadingDescription Shading;
+  /// The frame's gradient opacity (Prepare), VTK's points.
+  std::vector<double> GradientOpacity;
   /// Whether the resident brick textures carry gradient borders.
   bool BorderedTextures = false;
   /// The isosurface values of the Isosurface blend mode (the selection's).
@@ -567,6 +584,7 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   // Isosurface only; Isosurface always has them).
   select.GradientBorder = property->GetShade(0) != 0 &&
     (select.BlendMode == COMPOSITE_BLEND || select.BlendMode == ISOSURFACE_BLEND);
+  select.GradientOpacityPoints = GradientOpacityPoints(property);
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
@@ -574,6 +592,8 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
     select.GradientBorder ? 1.0 : 0.0, static_cast<double>(select.BlendMode),
     select.AverageRange[0], select.AverageRange[1] };
   key.insert(key.end(), select.IsosurfaceValues.begin(), select.IsosurfaceValues.end());
+  key.push_back(static_cast<double>(select.GradientOpacityPoints.size()));
+  key.insert(key.end(), select.GradientOpacityPoints.begin(), select.GradientOpacityPoints.end());
   return select;
 }
 
@@ -700,6 +720,7 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   }
   this->UpdateModelMatrix(image, vol);
   this->Internals->Shading = DescribeShading(ren, property, this->Internals->ModelInverse);
+  this->Internals->GradientOpacity = GradientOpacityPoints(property);
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
@@ -735,6 +756,7 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   const CameraDescription cam = this->ModelCamera(ren);
   const bool surface = in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0;
   const bool ok = in.Frame->Selected->SetShading(in.Shading, error) &&
+    in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) &&
     in.Frame->Selected->GetDrawList(
       *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
   if (!ok)
@@ -755,6 +777,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastUploadedBytes = 0;
   this->LastNaNSamples = 0;
   this->LastPlan.clear();
+  this->LastEffects.clear();
   this->LastImageSampleDistance = 1.0;
   this->LastSampleSpacing = 1;
   const bool interactive = this->IsInteractive(ren);
@@ -794,6 +817,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->LastRenderOK = true;
   }
   this->LastPlan = interactive ? InteractivePlan(list.Passes) : list.Passes;
+  this->LastEffects = list.Effects;
   this->LastEstimatedError = in.Frame->Summary.EstimatedError;
   this->LastPointBytes = static_cast<vtkTypeInt64>(in.Frame->Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
@@ -868,12 +892,11 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   const Selection& selected = *in.Frame->Selected;
   const double textureBudget =
     this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
-  // Shaded or Isosurface: textures with one border texel per side (the
-  // gradient and the sample before a brick's first read them); the
-  // resident ones of the other kind are released first.
-  const bool shaded = list.Passes.find("shaded") != std::string::npos;
+  // Gradients (shading, gradient opacity) or Isosurface: textures with one
+  // border texel per side (the gradient and the sample before a brick's
+  // first read them); the resident ones of the other kind are released first.
   const bool isosurface = list.Passes.find("volume-isosurface") != std::string::npos;
-  const bool bordered = shaded || isosurface;
+  const bool bordered = list.Gradients || isosurface;
   // MIP and MinIP: coarse textures keep their peaks (other texels, so the
   // resident textures of the other kind go too).
   const int reduceMode = ReduceMode(list.Passes);
@@ -885,9 +908,11 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     in.PooledTextures = pooled;
   }
   ShadingDescription shading = in.Shading;
-  shading.Shade = shaded;
+  shading.Shade = list.Passes.find("shaded") != std::string::npos;
   in.Drawer.SetShading(shading);
   in.Drawer.SetIsosurfaces(isosurface ? in.Isosurfaces : std::vector<double>());
+  in.Drawer.SetOpacityEffects(
+    list.Gradients, list.GradientOpacityTable, list.GradientOpacityEnd, list.OpacityScale);
   const std::size_t border = bordered ? 1 : 0;
   in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   textures.assign(bricks, nullptr);
@@ -1248,6 +1273,7 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   rgba->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
   std::string error;
   if (!in.Frame->Selected->SetShading(in.Shading, error) ||
+    !in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) ||
     !in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
       ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
       static_cast<std::size_t>(height), rgba->GetPointer(0), error))

@@ -237,6 +237,10 @@ public:
   vtkGetMacro(LastPoints, vtkTypeInt64);
   vtkGetMacro(LastPointBytes, vtkTypeInt64);
   const char* GetLastPlan() const { return this->LastPlan.c_str(); }
+  /// The last frame's volume effects, comma-joined: "gradient-opacity" (the
+  /// property's gradient opacity varies) or "opacity-scale" (it is a
+  /// constant other than 1), then "shading"; empty for none.
+  const char* GetLastEffects() const { return this->LastEffects.c_str(); }
   vtkGetMacro(LastFrameMilliseconds, double);
   vtkGetMacro(LastEstimatedError, double);
   /// NaN samples (no data: transparent) of the image drawn last.
@@ -310,6 +314,7 @@ protected:
   vtkTypeInt64 LastPoints = 0;
   vtkTypeInt64 LastPointBytes = 0;
   std::string LastPlan;
+  std::string LastEffects;
   double LastFrameMilliseconds = 0.0;
   double LastEstimatedError = 0.0;
   vtkTypeInt64 LastNaNSamples = 0;

@@ -48,25 +48,11 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   vtkTextureObject* depth = target.GetDepth();
   const bool shade = this->Shading.Shade && this->ReduceMode == 0;
   std::string fragment = vtkHybridOctreeBrickFS;
-  // The shading and reducing variants: each its own program; the plain
-  // composite one is unchanged.
-  std::string defines;
-  if (shade)
-  {
-    defines = "\n#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
-  }
-  else if (this->ReduceMode != 0)
-  {
-    defines = "\n#define HO_REDUCE\n";
-  }
   const bool isosurface = !this->Isosurfaces.empty() && this->ReduceMode == 0;
-  if (isosurface)
-  {
-    defines += "\n#define HO_ISOSURFACE\n#define HO_MAX_ISOSURFACES " +
-      std::to_string(MaxIsosurfaces) + "\n";
-  }
+  const std::string defines = this->VariantDefines();
   if (!defines.empty())
   {
+    // A variant: its own program; the plain one is unchanged.
     const std::string system = "//VTK::System::Dec";
     const std::size_t at = fragment.find(system);
     fragment.insert(at == std::string::npos ? 0 : at + system.size(), defines);
@@ -193,10 +179,91 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
     this->Program->SetUniformi("isosurfaceCount", count);
     this->Program->SetUniform1fv("isosurfaceValues", MaxIsosurfaces, values);
   }
+  this->Program->SetUniformf("opacityScale", static_cast<float>(this->OpacityScale));
   if (shade && !this->SetShadingUniforms(error))
   {
     return false;
   }
+  return this->GradientOpacityTable.empty() || this->SetGradientOpacityUniforms(window, error);
+}
+
+std::string vtkOpenGLHybridOctreeBrickDrawer::VariantDefines() const
+{
+  if (this->ReduceMode != 0)
+  {
+    // A reduced ray: only the samples' values, no per-sample effect.
+    return "\n#define HO_REDUCE\n";
+  }
+  std::string defines;
+  if (this->Gradients || this->Shading.Shade || !this->GradientOpacityTable.empty())
+  {
+    defines += "\n#define HO_GRADIENTS\n";
+  }
+  if (this->Shading.Shade)
+  {
+    defines += "#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+  }
+  if (!this->GradientOpacityTable.empty())
+  {
+    defines += "#define HO_GRADIENT_OPACITY\n";
+  }
+  if (!this->Isosurfaces.empty())
+  {
+    defines += "\n#define HO_ISOSURFACE\n#define HO_MAX_ISOSURFACES " +
+      std::to_string(MaxIsosurfaces) + "\n";
+  }
+  return defines;
+}
+
+void vtkOpenGLHybridOctreeBrickDrawer::SetOpacityEffects(
+  bool gradients, const std::vector<float>& table, double end, double scale)
+{
+  this->Gradients = gradients;
+  this->OpacityScale = scale;
+  if (table != this->GradientOpacityTable || end != this->GradientOpacityEnd)
+  {
+    this->GradientOpacityTable = table;
+    this->GradientOpacityEnd = end;
+    this->GradientOpacityUploaded = false;
+  }
+}
+
+bool vtkOpenGLHybridOctreeBrickDrawer::SetGradientOpacityUniforms(
+  vtkOpenGLRenderWindow* window, std::string& error)
+{
+  const std::size_t n = this->GradientOpacityTable.size();
+  if (n < 2 || !(this->GradientOpacityEnd > 0.0))
+  {
+    error = "the gradient opacity table needs 2 or more cells over a positive magnitude range";
+    return false;
+  }
+  if (!this->GradientOpacityTexture)
+  {
+    this->GradientOpacityTexture = vtkSmartPointer<vtkTextureObject>::New();
+    this->GradientOpacityUploaded = false;
+  }
+  vtkTextureObject* texture = this->GradientOpacityTexture;
+  if (!this->GradientOpacityUploaded || texture->GetContext() != window)
+  {
+    texture->SetContext(window);
+    texture->SetWrapS(vtkTextureObject::ClampToEdge);
+    texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    texture->SetMinificationFilter(vtkTextureObject::Linear);
+    texture->SetMagnificationFilter(vtkTextureObject::Linear);
+    if (!texture->Create2DFromRaw(static_cast<unsigned int>(n), 1, 1, VTK_FLOAT,
+          const_cast<float*>(this->GradientOpacityTable.data())))
+    {
+      error = "OpenGL could not create the gradient opacity table texture";
+      return false;
+    }
+    this->GradientOpacityUploaded = true;
+  }
+  texture->Activate();
+  // Cell k (centre at texture coordinate (k + 0.5) / n) holds magnitude k end / (n - 1).
+  const double scale = (n - 1.0) / (n * this->GradientOpacityEnd);
+  const float scaleShift[2] = { static_cast<float>(scale), static_cast<float>(0.5 / n) };
+  this->Program->SetUniform2f("gradientOpacityScaleShift", scaleShift);
+  this->Program->SetUniformi("gradientOpacityTable", texture->GetTextureUnit());
   return true;
 }
 
@@ -261,15 +328,19 @@ void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::Dr
   float inverseStep[3];
   float n[3];
   float gradientStep[3];
-  // Shaded or Isosurface: the texture carries one border texel per side.
-  const std::size_t border = this->Shading.Shade || !this->Isosurfaces.empty() ? 2 : 0;
+  // Gradients (shading, gradient opacity) or Isosurface: the texture carries one border texel per
+  // side.
+  const std::size_t border = (this->Gradients || this->Shading.Shade ||
+                               !this->GradientOpacityTable.empty() || !this->Isosurfaces.empty())
+    ? 2
+    : 0;
   for (int a = 0; a < 3; ++a)
   {
     inverseStep[a] = static_cast<float>(1.0 / (list.Stride[i] * spacing[a]));
     gradientStep[a] = static_cast<float>(list.Stride[i] * spacing[a]);
     n[a] = static_cast<float>(list.Texels[3 * i + a] + border);
   }
-  if (this->Shading.Shade)
+  if (this->Gradients || this->Shading.Shade || !this->GradientOpacityTable.empty())
   {
     this->Program->SetUniform3f("gradientStep", gradientStep);
   }
@@ -312,6 +383,10 @@ void vtkOpenGLHybridOctreeBrickDrawer::Unbind()
   {
     this->Vao->Release();
   }
+  if (this->GradientOpacityTexture && this->GradientOpacityTexture->GetContext())
+  {
+    this->GradientOpacityTexture->Deactivate();
+  }
 }
 
 void vtkOpenGLHybridOctreeBrickDrawer::ReleaseGraphicsResources()
@@ -325,4 +400,11 @@ void vtkOpenGLHybridOctreeBrickDrawer::ReleaseGraphicsResources()
   this->Vao = nullptr;
   this->Program = nullptr;
   this->Uploaded = false;
+  if (this->GradientOpacityTexture && this->GradientOpacityTexture->GetContext())
+  {
+    this->GradientOpacityTexture->ReleaseGraphicsResources(
+      this->GradientOpacityTexture->GetContext());
+  }
+  this->GradientOpacityTexture = nullptr;
+  this->GradientOpacityUploaded = false;
 }

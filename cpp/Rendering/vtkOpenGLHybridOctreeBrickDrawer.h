@@ -53,6 +53,14 @@
  *     a_p = (A_t - A_v) / (1 - A_v),   c_p = (C_t - C_v) / (A_t - A_v)
  *
  * drawn `(c_p a_p w, a_p w)` with coverage w; points adding nothing are not drawn.
+ *
+ * The DrawList's volume effects (src/plan/draw_list.rs) choose the program's
+ * variant: HO_GRADIENTS (bordered textures, central-difference gradients) when
+ * shading or gradient opacity take gradients, HO_SHADE for shading,
+ * HO_GRADIENT_OPACITY for gradient opacity, a 1D table of a_grad(|g|)
+ * multiplying the opacity before the slice-spacing correction
+ * (src/transfer/gradient_opacity.rs). A constant gradient opacity is the
+ * uniform opacityScale of every variant.
  */
 #ifndef vtkOpenGLHybridOctreeBrickDrawer_h
 #define vtkOpenGLHybridOctreeBrickDrawer_h
@@ -143,6 +151,14 @@ public:
   /// The most isosurface values the Isosurface program takes.
   static constexpr int MaxIsosurfaces = 16;
 
+  /**
+   * The DrawList's opacity effects: `gradients` whether the samples take
+   * gradients (the textures carry one border texel per side), `table` the
+   * gradient opacity at magnitudes k `end` / (n - 1) (empty: none, the program
+   * without it), `scale` every opacity's constant factor. Call before Bind().
+   */
+  void SetOpacityEffects(bool gradients, const std::vector<float>& table, double end, double scale);
+
   /// The most lights the shaded program takes.
   static constexpr int MaxLights = 8;
 
@@ -173,6 +189,10 @@ public:
 private:
   /// The shaded program's material and light uniforms.
   bool SetShadingUniforms(std::string& error);
+  /// The gradient opacity table (uploaded when it changed), activated, and its uniforms.
+  bool SetGradientOpacityUniforms(vtkOpenGLRenderWindow* window, std::string& error);
+  /// The program's variant defines for this frame's effects.
+  std::string VariantDefines() const;
 
   vtkOpenGLHybridOctreeBrickDrawer(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
   vtkOpenGLHybridOctreeBrickDrawer& operator=(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
@@ -187,6 +207,12 @@ private:
   std::vector<double> Isosurfaces;
   double ValueRange[2] = { 0.0, 1.0 };
   double AverageRange[2] = { 0.0, 1.0 };
+  bool Gradients = false;
+  double OpacityScale = 1.0;
+  std::vector<float> GradientOpacityTable;
+  double GradientOpacityEnd = 1.0;
+  bool GradientOpacityUploaded = false;
+  vtkSmartPointer<vtkTextureObject> GradientOpacityTexture;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

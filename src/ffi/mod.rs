@@ -19,6 +19,8 @@
 
 mod ftb;
 mod geometry;
+#[cfg(test)]
+mod gradient_opacity_tests;
 mod grid;
 mod guard;
 mod octree;
@@ -248,6 +250,12 @@ mod bridge {
         /// The isosurface values of blend mode 5 (vtkVolumeProperty's
         /// IsoSurfaceValues; 1 to 16 finite values), ignored by the others.
         isosurface_values: Vec<f64>,
+        /// vtkVolumeProperty's GradientOpacity as VTK's GPU ray caster reads
+        /// it, (magnitude, opacity) pairs flattened, magnitudes per mean
+        /// voxel spacing (`transfer::gradient_opacity`, `from_vtk`); empty:
+        /// none. One that is 0 everywhere hides every node; one that is not
+        /// constant counts the gradient border as `gradient_border` does.
+        gradient_opacity_points: Vec<f64>,
     }
 
     /// Summary of a selection.
@@ -337,6 +345,19 @@ mod bridge {
         slices: Vec<f64>,
         /// The plan's passes in order, comma-joined ("volume", "" with no brick).
         passes: String,
+        /// The plan's volume effects in order, comma-joined ("gradient-opacity,shading", "" none).
+        effects: String,
+        /// The samples take gradients (shading or gradient opacity): the
+        /// brick textures carry the gradient border (`brick_texels_bordered`).
+        gradients: bool,
+        /// Every sample's opacity times this before the correction (1: none).
+        opacity_scale: f64,
+        /// With the effect "gradient-opacity": the function at magnitudes
+        /// k end / (n - 1), k = 0 .. n (data units per world unit of the
+        /// octree's frame), held past the ends; empty otherwise.
+        gradient_opacity_table: Vec<f32>,
+        /// The magnitude of the table's last entry.
+        gradient_opacity_end: f64,
         /// d0, world units.
         reference_spacing: f64,
         /// The camera's unit view direction.
@@ -628,6 +649,13 @@ mod bridge {
         /// (errors: a bad number; a shade without lights or lights not in
         /// threes). The plan then says "volume-shaded" unless it changes no colour.
         fn set_shading(self: &SelectionHandle, shading: &ShadingDesc) -> Result<()>;
+        /// The gradient opacity of the DrawLists and pictures made after
+        /// this call: vtkVolumeProperty's GradientOpacity points as
+        /// `SelectDesc::gradient_opacity_points` (empty: none; errors: an odd
+        /// count, magnitudes not finite or decreasing, opacities outside
+        /// [0, 1]). The plan's effects then say "gradient-opacity", or
+        /// "opacity-scale" for a constant other than 1.
+        fn set_gradient_opacity(self: &SelectionHandle, points: &[f64]) -> Result<()>;
 
         /// Floats of the block ranges of a brick of `dims` texels (x, y, z):
         /// 2 per block of 4^3 cells (see `plan::draw_geometry::occupancy`).

@@ -12,7 +12,7 @@
 use super::grid::{grid_of, grid_unscanned, same_image};
 use super::guard::{check_len, guarded, Bridged};
 use super::octree::HybridOctreeHandle;
-use super::transfer::{opacity_function, transfer_function};
+use super::transfer::{opacity_function, transfer_function, vtk_gradient_opacity};
 use super::{CameraDesc, DrawListOutput, GridDesc, SelectDesc, SelectionSummary, ShadingDesc};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
@@ -20,13 +20,17 @@ use crate::grid::{GridShape, ScalarType};
 use crate::plan::point_slabs::add_points;
 use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
-use crate::plan::{plan, relight, DrawList, Scene, SurfacePass};
-use crate::plan::{Blend, BlendMode};
+use crate::plan::{needs_gradients, plan, replan_effects, Blend, BlendMode, DrawList, Scene, SurfacePass};
 use crate::points::Footprint;
 use crate::points::PointSet;
 use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into};
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
+use crate::transfer::GradientOpacity;
 use std::sync::{Arc, Mutex};
+
+/// Cells of the gradient opacity table a DrawList carries
+/// ([`super::DrawListOutput::gradient_opacity_table`]).
+const GRADIENT_OPACITY_TABLE: usize = 4096;
 
 /// A selection, with the octree and grid it was made from.
 #[derive(Debug)]
@@ -44,6 +48,8 @@ pub struct SelectionHandle {
     lighting: Mutex<Option<Lighting>>,
     /// The blend mode it was selected for, over the octree's value range.
     blend: Blend,
+    /// The gradient opacity of its DrawLists ([`SelectionHandle::set_gradient_opacity`]).
+    gradient_opacity: Mutex<Option<GradientOpacity>>,
 }
 
 /// The lighting of `desc` (`None` when it does not shade), checked.
@@ -93,7 +99,11 @@ pub(crate) fn lighting(desc: &ShadingDesc) -> Result<Option<Lighting>> {
 /// The select options of `desc` for a grid of `shape`: the ROI from world
 /// to index space (centre through origin and spacing, radius divided by the
 /// smallest spacing).
-pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<SelectOptions> {
+pub(crate) fn select_options(
+    shape: &GridShape,
+    desc: &SelectDesc,
+    gradient_opacity: Option<&GradientOpacity>,
+) -> Result<SelectOptions> {
     let roi = if desc.has_roi {
         let (c, r) = (desc.roi_center, desc.roi_radius);
         if c.iter().any(|v| !v.is_finite()) || !(r > 0.0 && r.is_finite()) {
@@ -110,7 +120,9 @@ pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<Sel
         roi,
         pooled: blend_mode(desc.blend_mode)?.is_extremum(),
         // Isosurface reads the sample before a brick's first one, in the border.
-        gradient_border: desc.gradient_border || blend_mode(desc.blend_mode)? == BlendMode::Isosurface,
+        gradient_border: desc.gradient_border
+            || blend_mode(desc.blend_mode)? == BlendMode::Isosurface
+            || needs_gradients(None, gradient_opacity, blend_mode(desc.blend_mode)?),
         ..SelectOptions::new(desc.budget_bytes, desc.tolerance)
     })
 }
@@ -144,17 +156,23 @@ pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend>
 }
 
 /// The CLI's visibility test (`scene::visible`): a node shows unless the
-/// opacity is 0 over its whole range, or when it holds the isovalue; with
-/// the octree's points, bytes go to textures or points ([`select_with_points`]).
+/// opacity is 0 over its whole range or the gradient opacity is 0
+/// everywhere, or when it holds the isovalue; with the octree's points,
+/// bytes go to textures or points ([`select_with_points`]).
 pub(crate) fn select_with(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Result<Selection> {
-    let options = select_options(&octree.shape, desc)?;
+    let gradient_opacity =
+        vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, octree.volume().value_range())?;
+    let options = select_options(&octree.shape, desc, gradient_opacity.as_ref())?;
+    let hidden = gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     let tf = opacity_function(&desc.opacity_points)?;
     let iso = desc.has_isovalue.then_some(desc.isovalue);
     if iso.is_some_and(|v| !v.is_finite()) {
         return Err(Error::InvalidArgument(format!("isovalue {} must be a finite number", desc.isovalue)));
     }
     let blend = blend(desc, octree.volume().value_range())?;
-    let shows = |min: f64, max: f64| tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max));
+    // Gradient opacity applies in Composite only.
+    let hidden = hidden && blend.mode == BlendMode::Composite;
+    let shows = |min: f64, max: f64| !hidden && tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max));
     let visible = |min: f64, max: f64| blend.visible(min, max, &shows) || iso.is_some_and(|v| min < v && v <= max);
     match &octree.hybrid.points {
         Some(points) => select_with_points(octree.volume(), &options, visible, &points.mass),
@@ -186,6 +204,11 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         slice_offsets: Vec::with_capacity(n + 1),
         slices: Vec::new(),
         passes: list.plan.passes.join(","),
+        effects: list.plan.effects.join(","),
+        gradients: list.plan.gradients(),
+        opacity_scale: list.plan.opacity_scale,
+        gradient_opacity_table: Vec::new(),
+        gradient_opacity_end: 0.0,
         reference_spacing: list.reference_spacing,
         forward: list.camera.forward(),
         batch_offsets: Vec::with_capacity(n + 1),
@@ -199,6 +222,10 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         bucket_point_offsets: Vec::new(),
         bucket_points: Vec::new(),
     };
+    if let Some(f) = list.gradient_opacity.as_ref().filter(|_| list.plan.gradient_opacity) {
+        out.gradient_opacity_end = f.table_end();
+        out.gradient_opacity_table = f.table(out.gradient_opacity_end, GRADIENT_OPACITY_TABLE);
+    }
     out.slice_offsets.push(0);
     out.batch_offsets.push(0);
     if list.plan.passes.iter().any(|p| p == "points") {
@@ -288,6 +315,7 @@ impl HybridOctreeHandle {
                 polygons: Mutex::new(None),
                 points: self.hybrid.points.as_ref().map(|p| Arc::clone(&p.set)),
                 lighting: Mutex::new(None),
+                gradient_opacity: Mutex::new(None),
             }))
         })
     }
@@ -323,7 +351,8 @@ impl SelectionHandle {
             add_points(&mut list, &octree.shape, set)?;
         }
         let lighting = self.lighting.lock().unwrap_or_else(|e| e.into_inner()).clone();
-        relight(list, lighting.as_ref())
+        let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
+        replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())
     }
 
     /// [`Self::list`] without the points.
@@ -412,6 +441,16 @@ impl SelectionHandle {
         guarded(|| {
             let made = lighting(desc)?;
             *self.lighting.lock().unwrap_or_else(|e| e.into_inner()) = made;
+            Ok(())
+        })
+    }
+
+    /// The gradient opacity of the DrawLists made after this call (VTK's
+    /// points for this selection's grid and value range).
+    pub(crate) fn set_gradient_opacity(&self, points: &[f64]) -> Bridged<()> {
+        guarded(|| {
+            let made = vtk_gradient_opacity(points, &self.shape, self.value_range)?;
+            *self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()) = made;
             Ok(())
         })
     }

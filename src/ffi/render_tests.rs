@@ -152,7 +152,13 @@ fn draw_list_through_the_bridge_is_plan_draw_list() {
         .unwrap();
     for c in cameras() {
         let out = s.draw_list(&h, &c, 0.0).unwrap();
-        let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default() };
+        let scene = Scene {
+            surface: None,
+            surface_opacity: 1.0,
+            shading: None,
+            gradient_opacity: None,
+            blend: Default::default(),
+        };
         let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera(&c).unwrap(), &scene, None).unwrap();
         assert_eq!(direct, s.list(&h, &c, 0.0).unwrap());
         let n = direct.bricks.len();
@@ -309,8 +315,13 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
     for c in cameras() {
         let camera = camera(&c).unwrap();
         for (opacity, passes) in [(0.4, "surface-in-slabs,volume"), (1.0, "surface-opaque,volume"), (0.0, "volume")] {
-            let scene =
-                Scene { surface: Some(&surface), surface_opacity: opacity, shading: None, blend: Default::default() };
+            let scene = Scene {
+                surface: Some(&surface),
+                surface_opacity: opacity,
+                shading: None,
+                gradient_opacity: None,
+                blend: Default::default(),
+            };
             let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera, &scene, None).unwrap();
             assert_eq!(s.list(&h, &c, opacity).unwrap(), direct);
             let out = s.draw_list(&h, &c, opacity).unwrap();
@@ -335,7 +346,13 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
             }
         }
         // Hidden is the volume alone, as without a surface.
-        let volume = Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default() };
+        let volume = Scene {
+            surface: None,
+            surface_opacity: 1.0,
+            shading: None,
+            gradient_opacity: None,
+            blend: Default::default(),
+        };
         let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera, &volume, None).unwrap();
         assert_eq!(s.list(&h, &c, 0.0).unwrap(), direct);
     }
@@ -343,7 +360,13 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
     h.integrate_surface(bytes(&d), &desc(), 0.3, SurfaceMode::Discretized, false).unwrap();
     let other = h.hybrid.surface.clone().unwrap();
     let c = &cameras()[1];
-    let scene = Scene { surface: Some(&other), surface_opacity: 0.4, shading: None, blend: Default::default() };
+    let scene = Scene {
+        surface: Some(&other),
+        surface_opacity: 0.4,
+        shading: None,
+        gradient_opacity: None,
+        blend: Default::default(),
+    };
     let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera(c).unwrap(), &scene, None).unwrap();
     assert_eq!(s.list(&h, c, 0.4).unwrap(), direct);
     // Without a surface any opacity draws the volume alone.

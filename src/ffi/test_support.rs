@@ -30,6 +30,7 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         blend_mode: 0,
         average_range: [f64::MIN, f64::MAX],
         isosurface_values: Vec::new(),
+        gradient_opacity_points: Vec::new(),
     }
 }
 

@@ -21,12 +21,24 @@
 //!   modes only, Composite and Isosurface; a translucent surface too: it is
 //!   sorted into the slabs of a composite, and a reduced ray has no order,
 //!   so under the other modes it is not drawn, while an opaque surface still is).
+//! - gradient opacity ([`GradientOpacity`], Composite only) only when it
+//!   changes an opacity: not when it is 1 at every magnitude; a constant
+//!   `c != 1` scales every opacity without a gradient ([`Plan::opacity_scale`],
+//!   effect `opacity-scale`); otherwise each sample's gradient is taken
+//!   ([`Plan::gradient_opacity`], effect `gradient-opacity`, the DrawList
+//!   carries the function).
+//! - [`Plan::effects`] names what each volume sample does besides its
+//!   classification, in the order applied: `gradient-opacity` or
+//!   `opacity-scale`, then `shading`. Gradients are taken exactly when
+//!   [`Plan::gradients`]; brick textures carry their border when
+//!   [`Plan::bordered`] (gradients, or Isosurface's step back).
 
 use super::blend::Blend;
 use super::select::Brick;
 use super::slab::Batch;
 use crate::geometry::camera::Camera;
 use crate::transfer::lighting::Lighting;
+use crate::transfer::GradientOpacity;
 use rayon::prelude::*;
 
 /// How the surface is drawn.
@@ -50,19 +62,35 @@ pub struct Plan {
     pub surface: SurfacePass,
     /// Gradient shading of the volume (the DrawList's [`DrawList::lighting`]).
     pub shading: bool,
+    /// Gradient opacity taken per sample from its gradient (the DrawList's
+    /// [`DrawList::gradient_opacity`]).
+    pub gradient_opacity: bool,
+    /// A constant factor of every sample's opacity before the slice-spacing
+    /// correction: a gradient opacity that is this at every magnitude (1: none).
+    pub opacity_scale: f64,
     /// Nodes not selected because the transfer function makes them fully transparent.
     pub skipped_bricks: usize,
     /// How the samples along a ray become a pixel.
     pub blend: Blend,
     /// The passes, in the order they run (e.g. `["surface-opaque", "volume"]`).
     pub passes: Vec<String>,
+    /// What each volume sample does besides its classification, in the
+    /// order applied (e.g. `["gradient-opacity", "shading"]`; see the module
+    /// documentation).
+    pub effects: Vec<String>,
 }
 
 impl Plan {
-    /// Whether brick textures carry one border texel per side: shading
-    /// reads the gradient there, Isosurface the sample before a brick's first.
+    /// Whether the volume's samples take gradients (shading or gradient
+    /// opacity): brick textures then carry one border texel per side.
+    pub fn gradients(&self) -> bool {
+        self.shading || self.gradient_opacity
+    }
+
+    /// Whether brick textures carry one border texel per side: gradients
+    /// read it, and Isosurface the sample before a brick's first.
     pub fn bordered(&self) -> bool {
-        self.shading || (self.volume && self.blend.mode == super::BlendMode::Isosurface)
+        self.gradients() || (self.volume && self.blend.mode == super::BlendMode::Isosurface)
     }
 }
 
@@ -123,6 +151,9 @@ pub struct DrawList {
     /// [`Plan::shading`]); brick textures then carry one border texel per
     /// side for the gradient ([`crate::plan::select::SelectOptions::gradient_border`]).
     pub lighting: Option<Lighting>,
+    /// The gradient opacity (`Some` exactly when [`Plan::gradient_opacity`]);
+    /// brick textures then carry the gradient border too.
+    pub gradient_opacity: Option<GradientOpacity>,
 }
 
 /// What the scene holds besides the volume.
@@ -135,6 +166,8 @@ pub struct Scene<'a> {
     /// Gradient shading of the volume: `Some` when the volume property asks
     /// (vtkVolumeProperty's Shade), with its material and the lights.
     pub shading: Option<&'a Lighting>,
+    /// Gradient opacity of the volume (vtkVolumeProperty's GradientOpacity).
+    pub gradient_opacity: Option<&'a GradientOpacity>,
     /// The blend mode (VTK's `vtkVolumeMapper::SetBlendMode`) and its ranges.
     pub blend: Blend,
 }
@@ -157,11 +190,64 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         SurfacePass::Translucent => passes.push("surface-in-slabs".to_string()),
         SurfacePass::None => {}
     }
-    let shading = shades(volume, scene.shading) && scene.blend.mode.composites();
+    let mut plan = Plan {
+        volume,
+        surface,
+        shading: false,
+        gradient_opacity: false,
+        opacity_scale: 1.0,
+        skipped_bricks: selection.skipped,
+        blend: scene.blend,
+        passes,
+        effects: Vec::new(),
+    };
     if volume {
-        passes.push(volume_pass(scene.blend.mode, shading));
+        plan.passes.push(scene.blend.mode.pass());
     }
-    Plan { volume, surface, shading, skipped_bricks: selection.skipped, blend: scene.blend, passes }
+    plan_effects(&mut plan, scene.shading, scene.gradient_opacity);
+    plan
+}
+
+/// Whether a scene of this shading, gradient opacity and blend mode takes
+/// gradients (the planner's rules): what a selection's
+/// [`crate::plan::select::SelectOptions::gradient_border`] should be.
+pub fn needs_gradients(
+    lighting: Option<&Lighting>,
+    gradient_opacity: Option<&GradientOpacity>,
+    mode: super::BlendMode,
+) -> bool {
+    (mode.composites() && shades(true, lighting))
+        || (mode == super::BlendMode::Composite && gradient_opacity.is_some_and(|g| g.constant().is_none()))
+}
+
+/// Sets `plan`'s per-sample effects (shading, gradient opacity, the volume
+/// pass's name and [`Plan::effects`]) for this lighting and gradient opacity.
+fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: Option<&GradientOpacity>) {
+    let composite = plan.volume && plan.blend.mode == super::BlendMode::Composite;
+    // Shading in both compositing modes, gradient opacity in Composite only.
+    plan.shading = plan.volume && plan.blend.mode.composites() && shades(true, lighting);
+    let constant = gradient_opacity.map(|g| g.constant());
+    plan.gradient_opacity = composite && matches!(constant, Some(None));
+    plan.opacity_scale = match constant {
+        Some(Some(c)) if composite => f64::from(c),
+        _ => 1.0,
+    };
+    plan.effects.clear();
+    if plan.gradient_opacity {
+        plan.effects.push("gradient-opacity".to_string());
+    } else if plan.opacity_scale != 1.0 {
+        plan.effects.push("opacity-scale".to_string());
+    }
+    if plan.shading {
+        plan.effects.push("shading".to_string());
+    }
+    let mode = plan.blend.mode;
+    let (plain, shaded) = (volume_pass(mode, false), volume_pass(mode, true));
+    for pass in &mut plan.passes {
+        if *pass == plain || *pass == shaded {
+            *pass = volume_pass(mode, plan.shading);
+        }
+    }
 }
 
 /// The volume pass: the blend mode's ([`super::BlendMode::pass`]), `-shaded`
@@ -181,27 +267,26 @@ fn shades(volume: bool, lighting: Option<&Lighting>) -> bool {
 }
 
 /// `list` planned again for `lighting` (lights in world or view space, for
-/// the list's camera), as [`draw_list`] plans [`Scene::shading`]: the plan's
-/// `volume` pass becomes `volume-shaded` (or back) and [`DrawList::lighting`]
-/// is set, or cleared when it does not shade.
+/// the list's camera) and `gradient_opacity`, as [`draw_list`] plans
+/// [`Scene::shading`] and [`Scene::gradient_opacity`]: the plan's `volume`
+/// pass becomes `volume-shaded` (or back), its effects are made again, and
+/// [`DrawList::lighting`] and [`DrawList::gradient_opacity`] are set, or
+/// cleared when not applied.
 ///
 /// # Errors
 ///
 /// [`crate::Error::InvalidArgument`] for a bad number in the lighting ([`Lighting::check`]).
-pub fn relight(mut list: DrawList, lighting: Option<&Lighting>) -> crate::Result<DrawList> {
+pub fn replan_effects(
+    mut list: DrawList,
+    lighting: Option<&Lighting>,
+    gradient_opacity: Option<&GradientOpacity>,
+) -> crate::Result<DrawList> {
     if let Some(l) = lighting {
         l.check()?;
     }
-    let mode = list.plan.blend.mode;
-    let shading = shades(list.plan.volume, lighting) && mode.composites();
-    let (plain, shaded) = (volume_pass(mode, false), volume_pass(mode, true));
-    for pass in &mut list.plan.passes {
-        if *pass == plain || *pass == shaded {
-            *pass = volume_pass(mode, shading);
-        }
-    }
-    list.plan.shading = shading;
-    list.lighting = lighting.filter(|_| shading).map(|l| l.in_world(&list.camera));
+    plan_effects(&mut list.plan, lighting, gradient_opacity);
+    list.lighting = lighting.filter(|_| list.plan.shading).map(|l| l.in_world(&list.camera));
+    list.gradient_opacity = gradient_opacity.filter(|_| list.plan.gradient_opacity).cloned();
     Ok(list)
 }
 
@@ -235,6 +320,7 @@ pub fn draw_list(
     }
     let plan = plan(selection, scene);
     let lighting = scene.shading.filter(|_| plan.shading).map(|l| l.in_world(camera));
+    let gradient_opacity = scene.gradient_opacity.filter(|_| plan.gradient_opacity).cloned();
     let d0 = crate::data::spacing::reference_spacing(shape);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
     let order = crate::plan::order::brick_order(camera, octree, shape, &ids, true);
@@ -273,7 +359,7 @@ pub fn draw_list(
         (SurfacePass::Opaque, Some(s)) => (0..s.polygon_count() as u32).collect(),
         _ => Vec::new(),
     };
-    Ok(DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0, lighting })
+    Ok(DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0, lighting, gradient_opacity })
 }
 
 #[cfg(test)]
@@ -313,7 +399,13 @@ mod tests {
         let f = fixture();
         let l = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default() },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: None,
+                gradient_opacity: None,
+                blend: Default::default(),
+            },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["volume"]);
@@ -327,7 +419,13 @@ mod tests {
         let f = fixture();
         let l = list(
             &f,
-            &Scene { surface: Some(&f.surface), surface_opacity: 1.0, shading: None, blend: Default::default() },
+            &Scene {
+                surface: Some(&f.surface),
+                surface_opacity: 1.0,
+                shading: None,
+                gradient_opacity: None,
+                blend: Default::default(),
+            },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["surface-opaque", "volume"]);
@@ -345,6 +443,7 @@ mod tests {
                 surface: Some(&f.surface),
                 surface_opacity: 0.4,
                 shading: Some(&shaded),
+                gradient_opacity: None,
                 blend: Default::default(),
             },
             |_, _| true,
@@ -370,7 +469,13 @@ mod tests {
         let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
         let selection = select(&f.octree, &options, |_, _| true).unwrap();
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &selection);
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None, blend: Default::default() };
+        let scene = Scene {
+            surface: Some(&f.surface),
+            surface_opacity: 0.4,
+            shading: None,
+            gradient_opacity: None,
+            blend: Default::default(),
+        };
         for (azimuth, elevation, parallel) in [(0.0, 0.0, true), (45.0, 35.0, false), (200.0, -60.0, false)] {
             let camera =
                 Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), azimuth, elevation, parallel).unwrap();
@@ -393,7 +498,13 @@ mod tests {
         assert_ne!(nodes(&all), nodes(&fewer));
         let polygons = crate::plan::slab::SlabPolygons::new(&f.octree, &f.surface, shape, &fewer);
         let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
-        let scene = Scene { surface: Some(&f.surface), surface_opacity: 0.4, shading: None, blend: Default::default() };
+        let scene = Scene {
+            surface: Some(&f.surface),
+            surface_opacity: 0.4,
+            shading: None,
+            gradient_opacity: None,
+            blend: Default::default(),
+        };
         let e = draw_list(&f.octree, shape, &all, &camera, &scene, Some(&polygons)).unwrap_err().to_string();
         assert!(e.contains("made for another selection or surface"), "{e}");
     }
@@ -403,7 +514,13 @@ mod tests {
         let f = fixture();
         let l = list(
             &f,
-            &Scene { surface: Some(&f.surface), surface_opacity: 0.0, shading: None, blend: Default::default() },
+            &Scene {
+                surface: Some(&f.surface),
+                surface_opacity: 0.0,
+                shading: None,
+                gradient_opacity: None,
+                blend: Default::default(),
+            },
             |_, max| max > 0.9,
         );
         assert!(l.plan.skipped_bricks > 0);
@@ -412,7 +529,13 @@ mod tests {
         let shaded = Lighting::headlight(Default::default());
         let none = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded), blend: Default::default() },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: Some(&shaded),
+                gradient_opacity: None,
+                blend: Default::default(),
+            },
             |_, _| false,
         );
         assert!(!none.plan.volume && none.bricks.is_empty() && none.plan.passes.is_empty() && !none.plan.shading);
@@ -448,7 +571,13 @@ mod tests {
         });
         let l = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&identity), blend: Default::default() },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: Some(&identity),
+                gradient_opacity: None,
+                blend: Default::default(),
+            },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["volume"]);
@@ -456,7 +585,13 @@ mod tests {
         let shaded = Lighting::headlight(Default::default());
         let l = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: Some(&shaded), blend: Default::default() },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: Some(&shaded),
+                gradient_opacity: None,
+                blend: Default::default(),
+            },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["volume-shaded"]);
@@ -464,10 +599,69 @@ mod tests {
         // Planned again: the same as planned with the scene's shading.
         let plain = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default() },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: None,
+                gradient_opacity: None,
+                blend: Default::default(),
+            },
             |_, _| true,
         );
-        assert_eq!(relight(plain.clone(), Some(&shaded)).unwrap(), l);
-        assert_eq!(relight(l, Some(&identity)).unwrap(), plain);
+        assert_eq!(replan_effects(plain.clone(), Some(&shaded), None).unwrap(), l);
+        assert_eq!(replan_effects(l, Some(&identity), None).unwrap(), plain);
+    }
+
+    /// Gradient opacity: none or 1 everywhere is no effect; a constant `c !=
+    /// 1` is the effect `opacity-scale` without gradients; one that varies is
+    /// `gradient-opacity` with gradients and the function in the list, before
+    /// `shading`; only for Composite; planned again the same.
+    #[test]
+    fn gradient_opacity_is_planned_only_when_it_changes_an_opacity() {
+        let f = fixture();
+        fn scene<'a>(
+            g: Option<&'a GradientOpacity>,
+            shading: Option<&'a Lighting>,
+            mode: super::super::BlendMode,
+        ) -> Scene<'a> {
+            Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading,
+                gradient_opacity: g,
+                blend: super::super::Blend::new(mode, [0.0, 1.0]),
+            }
+        }
+        let composite = super::super::BlendMode::Composite;
+        let plain = list(&f, &scene(None, None, composite), |_, _| true);
+        let one = GradientOpacity::new(vec![(0.0, 1.0), (2.0, 1.0)]).unwrap();
+        assert_eq!(list(&f, &scene(Some(&one), None, composite), |_, _| true), plain);
+        assert!(!needs_gradients(None, Some(&one), composite));
+
+        let half = GradientOpacity::new(vec![(0.0, 0.5)]).unwrap();
+        let l = list(&f, &scene(Some(&half), None, composite), |_, _| true);
+        assert_eq!((l.plan.effects.clone(), l.plan.opacity_scale), (vec!["opacity-scale".to_string()], 0.5));
+        assert!(!l.plan.gradients() && l.gradient_opacity.is_none() && !needs_gradients(None, Some(&half), composite));
+
+        let ramp = GradientOpacity::new(vec![(0.0, 0.0), (0.1, 1.0)]).unwrap();
+        let l = list(&f, &scene(Some(&ramp), None, composite), |_, _| true);
+        assert_eq!(l.plan.effects, vec!["gradient-opacity"]);
+        assert_eq!(l.plan.passes, vec!["volume"]);
+        assert!(l.plan.gradients() && l.plan.gradient_opacity && l.plan.opacity_scale == 1.0);
+        assert_eq!(l.gradient_opacity.as_ref(), Some(&ramp));
+        assert!(needs_gradients(None, Some(&ramp), composite));
+        let shaded = Lighting::headlight(Default::default());
+        let both = list(&f, &scene(Some(&ramp), Some(&shaded), composite), |_, _| true);
+        assert_eq!(both.plan.effects, vec!["gradient-opacity", "shading"]);
+        assert_eq!(both.plan.passes, vec!["volume-shaded"]);
+        assert_eq!(replan_effects(plain.clone(), Some(&shaded), Some(&ramp)).unwrap(), both);
+        assert_eq!(replan_effects(both, None, None).unwrap(), plain);
+
+        let mip = super::super::BlendMode::Mip;
+        let l = list(&f, &scene(Some(&ramp), None, mip), |_, _| true);
+        assert!(l.plan.effects.is_empty() && !l.plan.gradients() && l.gradient_opacity.is_none());
+        assert!(!needs_gradients(Some(&shaded), Some(&ramp), mip));
+        let none = list(&f, &scene(Some(&ramp), None, composite), |_, _| false);
+        assert!(none.plan.effects.is_empty() && !none.plan.gradients());
     }
 }

@@ -15,6 +15,8 @@ pub mod select;
 pub mod slab;
 
 pub use blend::{Blend, BlendMode};
-pub use draw_list::{draw_list, plan, relight, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
+pub use draw_list::{
+    draw_list, needs_gradients, plan, replan_effects, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass,
+};
 pub use point_slabs::add_points;
 pub use slab::Batch;

@@ -39,7 +39,7 @@ fn list(
         ..SelectOptions::new(budget, 0.0)
     };
     let selection = select(octree, &options, visible).unwrap();
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend };
+    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, gradient_opacity: None, blend };
     draw_list(octree, shape, &selection, camera, &scene, None).unwrap()
 }
 

@@ -18,7 +18,11 @@
 //! ([`ReferenceOptions::lighting`]) each sample of opacity `a > 0` has its
 //! colour shaded ([`crate::transfer::lighting`]) at the normal of the full
 //! grid's gradient, central differences one sample away (`super::shade`,
-//! the compositor's rule at stride 1), the ray direction as `V`. An opaque surface
+//! the compositor's rule at stride 1), the ray direction as `V`. With a
+//! gradient opacity ([`ReferenceOptions::gradient_opacity`]) each sample's
+//! opacity is multiplied by `a_grad(|g|)` of that gradient
+//! ([`crate::transfer::gradient_opacity`]) before the correction:
+//! `a' = 1 - (1 - a a_grad)^(l / d0)`. An opaque surface
 //! (opacity 1) ends the ray at its first hit; opacity 0 hides it. Rows run in parallel; every
 //! pixel is computed on its own, so the picture does not depend on the
 //! number of threads.
@@ -44,7 +48,7 @@ use crate::geometry::camera::Camera;
 use crate::plan::{Blend, BlendMode};
 use crate::surface::Surface;
 use crate::transfer::lighting::Lighting;
-use crate::transfer::TransferFunction;
+use crate::transfer::{GradientOpacity, TransferFunction};
 use rayon::prelude::*;
 
 mod projection;
@@ -62,6 +66,8 @@ pub struct ReferenceOptions<'a> {
     /// Shade the volume with this material and these lights (view-space
     /// lights follow the camera).
     pub lighting: Option<&'a Lighting>,
+    /// Multiply each sample's opacity by this function of its gradient magnitude.
+    pub gradient_opacity: Option<&'a GradientOpacity>,
 }
 
 /// Ray-casts `grid` classified by `tf`, seen by `camera`, into a
@@ -118,6 +124,7 @@ pub fn reference_blend(
         d0,
         surface: surface.as_ref(),
         lighting,
+        gradient_opacity: options.gradient_opacity,
         blend: *blend,
     }))
 }
@@ -133,6 +140,7 @@ struct Caster<'a> {
     surface: Option<&'a (&'a Surface, TriangleGrid, [f32; 4])>,
     /// Lights in world space.
     lighting: Option<&'a Lighting>,
+    gradient_opacity: Option<&'a GradientOpacity>,
     blend: Blend,
 }
 
@@ -190,18 +198,11 @@ impl Caster<'_> {
                 let p = [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]);
                 let u = to_index(&self.shape, p);
                 let v = grid_value(g, u);
-                let shade = |rgb: [f64; 3]| match self.lighting {
-                    Some(lighting) => lighting.shade(
-                        rgb,
-                        normal(gradient(|v| grid_value(g, v), u, self.shape.spacing)),
-                        ray.direction,
-                    ),
-                    None => rgb,
-                };
-                let mut sample = |acc: Rgba, value: f64, ratio: f64| {
+                let sample = |acc: Rgba, value: f64, ratio: f64| {
                     let [r, gr, b, a] = self.tf.eval(value);
+                    let (rgb, a) = self.effects(g, u, [r, gr, b].map(f64::from), f64::from(a), ray.direction);
                     if a > 0.0 {
-                        under(acc, shade([r as f64, gr as f64, b as f64]), correct_opacity(a as f64, ratio))
+                        under(acc, rgb, correct_opacity(a, ratio))
                     } else {
                         acc
                     }
@@ -225,6 +226,33 @@ impl Caster<'_> {
     }
 }
 
+impl Caster<'_> {
+    /// Colour `c` and opacity `a` of the sample at index point `u` after the
+    /// gradient opacity and the shading (module documentation).
+    #[inline]
+    fn effects<T: Sample>(
+        &self,
+        g: &TypedGrid<'_, T>,
+        u: [f64; 3],
+        c: [f64; 3],
+        a: f64,
+        view: [f64; 3],
+    ) -> ([f64; 3], f64) {
+        if a <= 0.0 || (self.lighting.is_none() && self.gradient_opacity.is_none()) {
+            return (c, a);
+        }
+        let grad = gradient(|v| grid_value(g, v), u, self.shape.spacing);
+        let a = match self.gradient_opacity {
+            Some(f) => a * f64::from(f.eval(crate::geometry::vec3::dot(grad, grad).sqrt())),
+            None => a,
+        };
+        match self.lighting {
+            Some(lighting) if a > 0.0 => (lighting.shade(c, normal(grad), view), a),
+            _ => (c, a),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -245,14 +273,21 @@ mod tests {
                 .unwrap();
         let exact = 1.0 - 0.9f64.powf(4.0 / 0.5); // L = 4, d0 = 0.5
         for step in [None, Some(0.3), Some(0.05)] {
-            let img = reference(&grid, &tf, &camera, 4, 4, &ReferenceOptions { step, surface: None, lighting: None })
-                .unwrap();
+            let img = reference(
+                &grid,
+                &tf,
+                &camera,
+                4,
+                4,
+                &ReferenceOptions { step, surface: None, lighting: None, gradient_opacity: None },
+            )
+            .unwrap();
             for p in &img.rgba {
                 assert!((p[3] as f64 - exact).abs() < 1e-6, "{step:?}: {} vs {exact}", p[3]);
                 assert!((p[1] as f64 - 0.5 * exact).abs() < 1e-6);
             }
         }
-        let bad = ReferenceOptions { step: Some(0.0), surface: None, lighting: None };
+        let bad = ReferenceOptions { step: Some(0.0), surface: None, lighting: None, gradient_opacity: None };
         assert!(reference(&grid, &tf, &camera, 4, 4, &bad).unwrap_err().to_string().contains("positive"));
         assert!(reference(&grid, &tf, &camera, 0, 4, &ReferenceOptions::default()).is_err());
     }
@@ -273,8 +308,12 @@ mod tests {
         ]);
         let front = 1.0 - 0.9f64.powi(2); // the volume in front of the plane: 2 units
         for opacity in [1.0f32, 0.5] {
-            let options =
-                ReferenceOptions { step: None, surface: Some((&plane, [0.0, 0.0, 1.0, opacity])), lighting: None };
+            let options = ReferenceOptions {
+                step: None,
+                surface: Some((&plane, [0.0, 0.0, 1.0, opacity])),
+                lighting: None,
+                gradient_opacity: None,
+            };
             let img = reference(&grid, &tf, &camera, 3, 3, &options).unwrap();
             let p = img.rgba[4].map(|v| v as f64);
             let a = opacity as f64;

@@ -52,9 +52,12 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         volume: true,
         surface,
         shading: false,
+        gradient_opacity: false,
+        opacity_scale: 1.0,
         skipped_bricks: 0,
         blend: Default::default(),
         passes: Vec::new(),
+        effects: Vec::new(),
     };
     DrawList {
         plan,
@@ -63,6 +66,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         opaque_triangles: Vec::new(),
         reference_spacing: d0,
         lighting: None,
+        gradient_opacity: None,
     }
 }
 
@@ -220,7 +224,8 @@ fn opaque_surface_matches_the_reference() {
     list.opaque_triangles = (0..surface.polygon_count() as u32).collect();
     let colour = [1.0, 0.8, 0.5, 1.0];
     let image = composite(&grid, &list, &tf, 64, 64, Some((&surface, colour))).unwrap();
-    let options = ReferenceOptions { step: None, surface: Some((&surface, colour)), lighting: None };
+    let options =
+        ReferenceOptions { step: None, surface: Some((&surface, colour)), lighting: None, gradient_opacity: None };
     let truth = reference(&grid, &tf, &camera, 64, 64, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
     eprintln!("opaque surface: {m:?}");
@@ -270,7 +275,8 @@ fn translucent_batches_are_blended_inside_their_slab() {
             assert!((p[k] as f64 - acc[k]).abs() < 1e-6, "{p:?} vs {acc:?}");
         }
     }
-    let options = ReferenceOptions { step: None, surface: Some((&plane, colour)), lighting: None };
+    let options =
+        ReferenceOptions { step: None, surface: Some((&plane, colour)), lighting: None, gradient_opacity: None };
     let truth = reference(&grid, &tf, &camera, 6, 6, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
     eprintln!("translucent plane: {m:?}");
@@ -354,8 +360,13 @@ fn the_pipeline_tracks_the_reference() {
         ("full, translucent surface", &full, 0.4, 0.01),
         ("1/4 budget, translucent surface", &coarse, 0.4, 0.05),
     ] {
-        let scene =
-            Scene { surface: Some(&surface), surface_opacity: opacity, shading: None, blend: Default::default() };
+        let scene = Scene {
+            surface: Some(&surface),
+            surface_opacity: opacity,
+            shading: None,
+            gradient_opacity: None,
+            blend: Default::default(),
+        };
         // Translucent: the selection's SlabPolygons made once, apart from the view.
         let polygons = (opacity > 0.0 && opacity < 1.0)
             .then(|| crate::plan::slab::SlabPolygons::new(&octree, &surface, grid.shape(), selection));
@@ -363,7 +374,7 @@ fn the_pipeline_tracks_the_reference() {
             crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref()).unwrap();
         let with = (opacity > 0.0).then_some((&surface, [colour[0], colour[1], colour[2], opacity as f32]));
         let image = composite(&grid, &list, &tf, 96, 96, with).unwrap();
-        let options = ReferenceOptions { step: None, surface: with, lighting: None };
+        let options = ReferenceOptions { step: None, surface: with, lighting: None, gradient_opacity: None };
         let truth = reference(&grid, &tf, &camera, 96, 96, &options).unwrap();
         let m = compare(&image, &truth).unwrap();
         let strides: Vec<usize> =
@@ -399,3 +410,6 @@ fn rays_stop_once_opaque_within_the_bound() {
 
 #[path = "shade_tests.rs"]
 mod shade_tests;
+
+#[path = "gradient_opacity_tests.rs"]
+mod gradient_opacity_tests;

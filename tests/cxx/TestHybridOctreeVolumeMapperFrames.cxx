@@ -10,12 +10,12 @@
  *   interactive: a window asking for 30 frames a second gets the interactive
  *                budget; a still frame after it refines to the full budget;
  *                PrintSelf shows every setting and statistic.
- *   warnings:    each setting the mapper does not draw (the Isosurface and
- *                Slice blend modes, a gradient opacity, a 2D transfer
- *                function, cropping, a clipping plane, dependent components)
+ *   warnings:    each setting the mapper does not draw (the Slice blend
+ *                mode, a 2D transfer function, cropping, a clipping plane,
+ *                dependent components)
  *                gives one warning naming it, once while it stays on; the
  *                picture is the one without it; turned off and on again, or
- *                changed (Isosurface to Slice), it is warned about
+ *                changed (Slice to an unknown mode), it is warned about
  *                again.
  *   grey:        a grey colour function (SetColor(vtkPiecewiseFunction*))
  *                draws the picture of the equal RGB function and stays grey
@@ -177,9 +177,6 @@ int Warnings()
   std::string all;
   check.Check(TakeWarnings(errors, "", all) == 0, "no warning for the supported settings:\n" + all);
 
-  vtkNew<vtkPiecewiseFunction> gradient;
-  gradient->AddPoint(0.0, 0.0);
-  gradient->AddPoint(10.0, 1.0);
   vtkNew<vtkPlaneCollection> planes;
   vtkNew<vtkPlane> plane;
   planes->AddItem(plane);
@@ -190,13 +187,8 @@ int Warnings()
     std::function<void(bool)> Turn;
   };
   const std::vector<Setting> settings = {
-    { "the Isosurface blend mode",
-      [&](bool on) { mapper->SetBlendMode(on ? vtkVolumeMapper::ISOSURFACE_BLEND : 0); } },
-    { "the gradient opacity",
-      [&](bool on) {
-        scene.Property->SetGradientOpacity(gradient);
-        scene.Property->SetDisableGradientOpacity(!on);
-      } },
+    { "the Slice blend mode",
+      [&](bool on) { mapper->SetBlendMode(on ? vtkVolumeMapper::SLICE_BLEND : 0); } },
     { "the 2D transfer function",
       [&](bool on) {
         scene.Property->SetTransferFunctionMode(
@@ -232,12 +224,12 @@ int Warnings()
     errors->Clear();
   }
   // Another value of the same setting is another warning.
-  mapper->SetBlendModeToIsoSurface();
-  scene.Window->Render();
   mapper->SetBlendModeToSlice();
   scene.Window->Render();
-  check.Check(
-    TakeWarnings(errors, "the Slice blend mode", all) == 1, "Slice after Isosurface:\n" + all);
+  mapper->SetBlendMode(7); // no VTK blend mode
+  scene.Window->Render();
+  check.Check(TakeWarnings(errors, "the blend mode 7 blend mode", all) == 1,
+    "blend mode 7 after Slice:\n" + all);
   mapper->SetBlendModeToComposite();
 
   // Dependent components: a two-component image, component 0 drawn.

@@ -13,6 +13,7 @@ uniform vec3 inverseStep;
 uniform vec3 texels;
 uniform vec2 tableScaleShift;
 uniform float opacityRatio;
+uniform float opacityScale; // every opacity's constant factor (1: none)
 uniform vec3 eye;
 uniform vec3 forward;
 uniform int parallel;
@@ -25,11 +26,21 @@ uniform mat4 DCMC;
 uniform vec2 viewportSize;
 uniform vec2 depthScale;
 uniform float nearDepth;
-#ifdef HO_SHADE
-// Volume shading (VTK 9.2's model, src/transfer/lighting.rs): the brick
+#ifdef HO_GRADIENTS
+// Gradients (shading, gradient opacity; src/render/shade.rs): the brick
 // texture carries one border texel per side; the gradient is the central
 // difference one texel away, over gradientStep (stride * spacing, model units).
 uniform vec3 gradientStep;
+#endif
+#ifdef HO_GRADIENT_OPACITY
+// Gradient opacity (src/transfer/gradient_opacity.rs): the function of the
+// gradient magnitude tabulated, cell k at magnitude k end / (n - 1); its
+// texture coordinate is |g| * scaleShift.x + scaleShift.y.
+uniform sampler2D gradientOpacityTable;
+uniform vec2 gradientOpacityScaleShift;
+#endif
+#ifdef HO_SHADE
+// Volume shading (VTK 9.2's model, src/transfer/lighting.rs).
 uniform vec4 material; // ambient, diffuse, specular, specular power
 uniform int twoSided;
 uniform int headlight;
@@ -46,7 +57,7 @@ uniform vec3 lightSpecular[HO_MAX_LIGHTS];
 uniform int isosurfaceCount;
 uniform float isosurfaceValues[HO_MAX_ISOSURFACES];
 #endif
-#if defined(HO_SHADE) || defined(HO_ISOSURFACE)
+#if defined(HO_GRADIENTS) || defined(HO_ISOSURFACE)
 // The brick texture carries one border texel per side.
 #define HO_BORDER
 #endif
@@ -70,24 +81,43 @@ const int RAY_MARCHED_BOX = 2;
 const int SQUARE_POINT = 3;
 const int GAUSSIAN_POINT = 4;
 
-#ifdef HO_SHADE
+#ifdef HO_GRADIENTS
 float texelAt(vec3 u)
 {
   return texture(brickTexture, (u + vec3(0.5)) / texels).r;
 }
 
-// The shaded colour of c at texel coordinates u (border included), seen
-// along the unit ray direction v: N the normalised central-difference
-// gradient (0 where it is 0 or touches no data), then
+// The gradient at texel coordinates u (border included): central differences
+// one texel away, g_a = (F(u + e_a) - F(u - e_a)) / (2 h_a).
+vec3 gradientAt(vec3 u)
+{
+  return vec3(texelAt(u + vec3(1.0, 0.0, 0.0)) - texelAt(u - vec3(1.0, 0.0, 0.0)),
+           texelAt(u + vec3(0.0, 1.0, 0.0)) - texelAt(u - vec3(0.0, 1.0, 0.0)),
+           texelAt(u + vec3(0.0, 0.0, 1.0)) - texelAt(u - vec3(0.0, 0.0, 1.0))) /
+    (2.0 * gradientStep);
+}
+#endif
+
+#ifdef HO_GRADIENT_OPACITY
+// a_grad(|g|), piecewise linear, held past its ends; a magnitude that is not
+// a number (a difference touching no data) counts as 0.
+float gradientOpacity(vec3 g)
+{
+  float m = length(g);
+  m = isnan(m) ? 0.0 : m;
+  float t = clamp(m * gradientOpacityScaleShift.x + gradientOpacityScaleShift.y, 0.0, 1.0);
+  return clamp(texture(gradientOpacityTable, vec2(t, 0.5)).r, 0.0, 1.0);
+}
+#endif
+
+#ifdef HO_SHADE
+// The shaded colour of c with gradient g, seen along the unit ray direction
+// v: N the normalised gradient (0 where it is 0 or touches no data), then
 // headlight: ka c + [d > 0] (kd d Ld c + ks max(R.V, 0)^p Ls), R = 2 (N.L) N - L, L = V;
 // lights:    ka sum La + kd sum [d > 0] d Ld c + ks sum [d > 0][R.V > 0] (R.V)^p Ls,
 //            R = normalize(2 d N - L); d = N.L, |N.L| when two-sided; clamped to [0, 1].
-vec3 shade(vec3 u, vec3 c, vec3 v)
+vec3 shade(vec3 g, vec3 c, vec3 v)
 {
-  vec3 g = vec3(texelAt(u + vec3(1.0, 0.0, 0.0)) - texelAt(u - vec3(1.0, 0.0, 0.0)),
-             texelAt(u + vec3(0.0, 1.0, 0.0)) - texelAt(u - vec3(0.0, 1.0, 0.0)),
-             texelAt(u + vec3(0.0, 0.0, 1.0)) - texelAt(u - vec3(0.0, 0.0, 1.0))) /
-    (2.0 * gradientStep);
   float len = length(g);
   vec3 n = (len > 0.0 && !isnan(len) && !isinf(len)) ? g / len : vec3(0.0);
   vec3 outColor;
@@ -201,8 +231,10 @@ vec4 crossings(float v0, float v1)
 }
 #endif
 
-// Opacity a' of the sample at model position p, and its colour (shaded
-// along the ray direction v with HO_SHADE). NaN texels
+// Opacity a' of the sample at model position p (times opacityScale, times
+// the gradient opacity with HO_GRADIENT_OPACITY, then corrected for the
+// slice spacing), and its colour (shaded along the ray direction v with
+// HO_SHADE). NaN texels
 // are no data: the linear filter of a sample touching one is NaN (every
 // corner is weighed, 0 * NaN = NaN), and such a sample is transparent black,
 // as in the CPU compositor.
@@ -232,7 +264,13 @@ vec4 sampleAt(vec3 p, vec3 v)
 #else
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
 #endif
-  float a = clamp(c.a, 0.0, 1.0);
+  float a = clamp(c.a, 0.0, 1.0) * opacityScale;
+#ifdef HO_GRADIENTS
+  vec3 g = a > 0.0 ? gradientAt(u) : vec3(0.0);
+#endif
+#ifdef HO_GRADIENT_OPACITY
+  a *= gradientOpacity(g);
+#endif
 #ifndef HO_ISOSURFACE
   if (opacityRatio != 1.0 && a > 0.0 && a < 1.0)
   {
@@ -243,7 +281,7 @@ vec4 sampleAt(vec3 p, vec3 v)
 #ifdef HO_SHADE
   if (a > 0.0)
   {
-    rgb = shade(u, rgb, v);
+    rgb = shade(g, rgb, v);
   }
 #endif
   return vec4(rgb, a);

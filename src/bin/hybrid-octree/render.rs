@@ -54,6 +54,9 @@ struct RenderReport {
     /// mapper's `GetLastEstimatedError()` is the same number.
     estimated_error: f64,
     passes: Vec<String>,
+    /// What each volume sample does besides its classification (the plan's
+    /// effects: `gradient-opacity` or `opacity-scale`, `shading`).
+    effects: Vec<String>,
     /// The shading the frame used, lights in world space (the plan says `volume-shaded`).
     lighting: Option<hybrid_octree::transfer::lighting::Lighting>,
     /// The blend mode and its ranges (the plan's).
@@ -84,8 +87,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let scene = load(&grid, &args.scene)?;
         let options = SelectOptions {
             roi: args.scene.roi,
-            gradient_border: (args.scene.shade.shades() && scene.blend.mode.composites())
-                || scene.blend.mode == hybrid_octree::plan::BlendMode::Isosurface,
+            gradient_border: hybrid_octree::plan::needs_gradients(
+                args.scene.shade.lighting().as_ref(),
+                args.scene.gradient_opacity.as_ref(),
+                scene.blend.mode,
+            ) || scene.blend.mode == hybrid_octree::plan::BlendMode::Isosurface,
             pooled: scene.blend.mode.is_extremum(),
             ..SelectOptions::new(budget_bytes, args.tolerance)
         };
@@ -112,6 +118,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             bricks: selection.bricks.len(),
             estimated_error: selection.estimated_error,
             passes: f.list.plan.passes.clone(),
+            effects: f.list.plan.effects.clone(),
             lighting: f.list.lighting.clone(),
             blend: f.list.plan.blend,
             skipped_bricks: f.list.plan.skipped_bricks,
@@ -136,6 +143,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 fn print_text(r: &RenderReport) {
     println!("wrote {} ({}x{})", r.output, r.width, r.height);
     println!("plan:            {} ({} transparent nodes skipped)", r.passes.join(" -> "), r.skipped_bricks);
+    if !r.effects.is_empty() {
+        println!("volume effects:  {}", r.effects.join(", "));
+    }
     println!(
         "bricks:          {} using {:.2} MB of a {:.2} MB budget, estimated error {:.4}",
         r.bricks,

@@ -20,6 +20,7 @@ use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, Selection};
 use hybrid_octree::slab::SlabPolygons;
 use hybrid_octree::surface::{Surface, SurfaceOptions};
+use hybrid_octree::transfer::GradientOpacity;
 use hybrid_octree::{Error, Result};
 use std::time::Instant;
 
@@ -64,6 +65,27 @@ pub struct SceneArgs {
     /// The values the isosurface blend mode draws, comma-separated (data units).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub isosurface_values: Vec<f64>,
+    /// Gradient opacity G0,A0,G1,A1,...: opacity A (in [0, 1]) at gradient
+    /// magnitude G (data units per world unit, increasing), piecewise linear,
+    /// multiplying each sample's opacity (vtkVolumeProperty's GradientOpacity; Composite only).
+    #[arg(long, value_parser = gradient_opacity, allow_hyphen_values = true)]
+    pub gradient_opacity: Option<GradientOpacity>,
+}
+
+/// The `--gradient-opacity` points, checked ([`GradientOpacity::new`]).
+fn gradient_opacity(s: &str) -> std::result::Result<GradientOpacity, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f64>().map_err(|_| format!("'{}' is not a number", p.trim())))
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| format!("'{s}' is not G0,A0,G1,A1,...: {e}"))?;
+    if v.len() % 2 != 0 {
+        return Err(format!(
+            "'{s}' has {} numbers: give pairs G,A (gradient magnitude, opacity), an even count",
+            v.len()
+        ));
+    }
+    GradientOpacity::new(v.chunks_exact(2).map(|p| (p[0], p[1] as f32)).collect()).map_err(|e| e.to_string())
 }
 
 fn blend_mode(s: &str) -> std::result::Result<BlendMode, String> {
@@ -93,6 +115,9 @@ pub struct Loaded {
     pub camera: Camera,
     /// The blend mode over the data range.
     pub blend: Blend,
+    /// A gradient opacity that is 0 at every magnitude (Composite): every
+    /// sample is transparent.
+    pub hidden_by_gradient_opacity: bool,
 }
 
 /// Builds the octree, the surface and the camera for `grid`.
@@ -129,7 +154,9 @@ pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
             ))
         }
     };
-    Ok(Loaded { octree, surface, tf, camera, blend })
+    let hidden_by_gradient_opacity =
+        args.blend == BlendMode::Composite && args.gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
+    Ok(Loaded { octree, surface, tf, camera, blend, hidden_by_gradient_opacity })
 }
 
 /// One frame: its DrawList, image and step times.
@@ -164,6 +191,7 @@ pub fn frame(
         surface: scene.surface.as_ref(),
         surface_opacity: args.surface_opacity,
         shading: lighting.as_ref(),
+        gradient_opacity: args.gradient_opacity.as_ref(),
         blend: scene.blend,
     };
     let started = Instant::now();
@@ -209,18 +237,24 @@ pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Res
         &scene.camera,
         args.width,
         args.height,
-        &ReferenceOptions { surface, lighting: lighting.as_ref(), ..ReferenceOptions::default() },
+        &ReferenceOptions {
+            surface,
+            lighting: lighting.as_ref(),
+            gradient_opacity: args.gradient_opacity.as_ref(),
+            ..ReferenceOptions::default()
+        },
         &scene.blend,
     )
 }
 
 /// The transfer function's visibility test for the selection: a node shows
-/// unless the transfer function is transparent over its whole range (and,
-/// with a surface, it holds none of it); under the blend mode's rule
-/// ([`Blend::visible`]).
+/// unless the transfer function is transparent over its whole range, or a
+/// gradient opacity is 0 everywhere (and, with a surface, it holds none of
+/// it); under the blend mode's rule ([`Blend::visible`]).
 pub fn visible<'a>(scene: &'a Loaded, isovalue: Option<f64>) -> impl Fn(f64, f64) -> bool + 'a {
     move |min, max| {
-        scene.blend.visible(min, max, &|a, b| !scene.tf.is_transparent_over(a, b))
+        (!scene.hidden_by_gradient_opacity
+            && scene.blend.visible(min, max, &|a, b| !scene.tf.is_transparent_over(a, b)))
             || isovalue.is_some_and(|iso| min < iso && iso <= max)
     }
 }
