@@ -157,7 +157,7 @@ fn draw_list_through_the_bridge_is_plan_draw_list() {
             surface_opacity: 1.0,
             shading: None,
             gradient_opacity: None,
-            blend: Default::default(),
+            blend: bridge_blend(&h),
         };
         let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera(&c).unwrap(), &scene, None).unwrap();
         assert_eq!(direct, s.list(&h, &c, 0.0).unwrap());
@@ -320,7 +320,7 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
                 surface_opacity: opacity,
                 shading: None,
                 gradient_opacity: None,
-                blend: Default::default(),
+                blend: bridge_blend(&h),
             };
             let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera, &scene, None).unwrap();
             assert_eq!(s.list(&h, &c, opacity).unwrap(), direct);
@@ -351,7 +351,7 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
             surface_opacity: 1.0,
             shading: None,
             gradient_opacity: None,
-            blend: Default::default(),
+            blend: bridge_blend(&h),
         };
         let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera, &volume, None).unwrap();
         assert_eq!(s.list(&h, &c, 0.0).unwrap(), direct);
@@ -365,7 +365,7 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
         surface_opacity: 0.4,
         shading: None,
         gradient_opacity: None,
-        blend: Default::default(),
+        blend: bridge_blend(&h),
     };
     let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera(c).unwrap(), &scene, None).unwrap();
     assert_eq!(s.list(&h, c, 0.4).unwrap(), direct);
@@ -503,4 +503,10 @@ fn blend_modes_through_the_bridge() {
     assert!(s.list(&h, c, 0.0).unwrap().plan.bordered(), "textures with the border the step back reads");
     let e = h.select_bricks(&SelectDesc { average_range: [1.0, 0.0], ..options(30_000) }).map(|_| ()).unwrap_err();
     assert!(e.contains("average intensity range"), "{e}");
+}
+
+/// The blend of the bridge's selections: Composite over the octree's value range.
+fn bridge_blend(h: &HybridOctreeHandle) -> crate::plan::Blend {
+    let (lo, hi) = h.volume().value_range();
+    crate::plan::Blend::new(crate::plan::BlendMode::Composite, [lo, hi])
 }

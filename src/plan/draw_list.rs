@@ -548,7 +548,13 @@ mod tests {
         let f = fixture();
         for mode in [super::super::BlendMode::Mip, super::super::BlendMode::Additive] {
             let blend = Blend::new(mode, [0.0, 1.0]);
-            let scene = |opacity| Scene { surface: Some(&f.surface), surface_opacity: opacity, shading: None, blend };
+            let scene = |opacity| Scene {
+                surface: Some(&f.surface),
+                surface_opacity: opacity,
+                shading: None,
+                gradient_opacity: None,
+                blend,
+            };
             let l = list(&f, &scene(0.4), |_, _| true);
             assert_eq!(l.plan.surface, SurfacePass::None);
             assert_eq!(l.plan.passes, vec![mode.pass()]);
