@@ -17,9 +17,9 @@ Scene (tests/paraview/representation_scene.py): one display whose
 representation type is switched between "Volume" and "Hybrid Octree
 Volume", ParaView's cool-to-warm colours and a fixed opacity ramp over the
 data range, a fixed oblique perspective camera, ParaView's light kit. The
-hybrid representation draws at the full budget: Texture Budget 4x its
-slider's end (the whole input at stride 1; the gradient border of a shaded
-frame needs more), its estimated error 0. Each row of EFFECTS sets display
+hybrid representation draws at the full budget: Texture Budget the bytes of
+every leaf brick at stride 1 with its gradient border (its estimated error
+then 0). Each row of EFFECTS sets display
 properties over ParaView's defaults (the properties every row touches are
 put back before the next row).
 
@@ -62,10 +62,10 @@ VOLUME = "Volume"
 EFFECTS = [
     ("plain", {}),
     ("shade", {"Shade": 1}),
-    ("shade ambient 0.3", {"Shade": 1, "Ambient": 0.3, "Diffuse": 0.7}),
-    ("shade diffuse 0.5", {"Shade": 1, "Diffuse": 0.5}),
-    ("shade specular 0.5 power 30", {"Shade": 1, "Specular": 0.5, "SpecularPower": 30.0}),
-    ("shade specular 1 power 100", {"Shade": 1, "Specular": 1.0, "SpecularPower": 100.0}),
+    ("shade-ambient", {"Shade": 1, "Ambient": 0.3, "Diffuse": 0.7}),
+    ("shade-diffuse", {"Shade": 1, "Diffuse": 0.5}),
+    ("shade-specular", {"Shade": 1, "Specular": 0.5, "SpecularPower": 30.0}),
+    ("shade-glossy", {"Shade": 1, "Specular": 1.0, "SpecularPower": 100.0}),
 ]
 
 parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -108,6 +108,18 @@ def info(display, name):
     return display.GetPropertyValue(name)
 
 
+def full_budget_mb(extent, leaf):
+    """The texture MB of every leaf brick at stride 1 with its gradient
+    border: per axis ceil(cells / leaf) bricks of leaf + 3 texels, 4 bytes a
+    texel (as `hybrid-octree bench effects`; the budget slider's end, the
+    whole input at stride 1, leaves the border out)."""
+    texels = 1
+    for a in range(3):
+        cells = max(extent[2 * a + 1] - extent[2 * a], 1)
+        texels *= -(-cells // leaf) * (leaf + 3)
+    return 4.0 * texels / 1e6
+
+
 def source_of(dataset):
     if dataset == "phantom":
         return XMLImageDataReader(FileName=[generate_phantom(args.cli, workdir, args.size)])
@@ -134,17 +146,18 @@ def run_dataset(dataset):
     view.ViewSize = [args.width, args.height]
     display = show_volume(source, view, array, HYBRID, value_range)
     look_at(view, bounds)
-    # The full budget: the slider's end is the whole input at stride 1.
-    display.TextureBudgetMB = 4.0 * info(display, "TextureBudgetRangeInfo")[1]
+    display.TextureBudgetMB = full_budget_mb(source.GetDataInformation().GetExtent(),
+                                             display.SMProxy.GetProperty("OctreeLeafSize").GetElement(0))
     touched = sorted({k for _, p in EFFECTS for k in (p(bounds) if callable(p) else p)})
     defaults = {k: display.GetPropertyValue(k) for k in touched}
+    defaults_seen.update(defaults)
     rows = []
     for name, properties in effects:
         for k, v in defaults.items():
             setattr(display, k, v)
         for k, v in (properties(bounds) if callable(properties) else properties).items():
             setattr(display, k, v)
-        stem = "%s-%s" % (dataset, name.replace(" ", "-"))
+        stem = "%s-%s" % (dataset, name)
         volume_ms, volume_picture = measure(view, display, VOLUME, stem + "-volume")
         hybrid_ms, hybrid_picture = measure(view, display, HYBRID, stem + "-hybrid")
         rows.append({"dataset": dataset, "effect": name, "properties": properties if isinstance(properties, dict)
@@ -160,6 +173,7 @@ def run_dataset(dataset):
 
 
 rows = []
+defaults_seen = {}
 for dataset in args.datasets.split(","):
     rows.extend(run_dataset(dataset))
 peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
@@ -170,12 +184,15 @@ if args.json:
 else:
     report("%d^3, %dx%d, median of %d still frames after a warm-up (StillRender + glFinish), ms; "
            "Hybrid at the full budget" % (args.size, args.width, args.height, args.frames))
-    report("| dataset | effect | Volume ms | Hybrid ms | Hybrid / Volume | RMSE | plan | texture MB | est. error |")
-    report("|---|---|---:|---:|---:|---:|---|---:|---:|")
+    report("| dataset | effect | Volume ms | Hybrid ms | Hybrid / Volume | RMSE | plan | texture MB | est. error "
+           "| properties |")
+    report("|---|---|---:|---:|---:|---:|---|---:|---:|---|")
     for r in rows:
-        report("| %s | %s | %.1f | %.1f | %.2f | %.4f | %s | %.1f | %.4f |" % (
+        report("| %s | %s | %.1f | %.1f | %.2f | %.4f | %s | %.1f | %.4f | %s |" % (
             r["dataset"], r["effect"], r["volume_ms"], r["hybrid_ms"], r["ratio"], r["rmse"], r["plan"],
-            r["texture_mb"], r["estimated_error"]))
+            r["texture_mb"], r["estimated_error"],
+            ", ".join("%s %s" % kv for kv in sorted(r["properties"].items())) or "-"))
+    report("ParaView's defaults: " + ", ".join("%s %s" % kv for kv in sorted(defaults_seen.items())))
     report("peak RSS %.0f MB; %.1f s" % (peak_mb, time.perf_counter() - started))
 if args.check:
     t = Checks("effects_vs_paraview")
