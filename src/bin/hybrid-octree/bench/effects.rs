@@ -26,7 +26,7 @@ use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::VolumeOctree;
 use hybrid_octree::plan::BlendMode;
 use hybrid_octree::render::image::Image;
-use hybrid_octree::render::metrics::compare;
+use hybrid_octree::render::metrics::{compare, Metrics};
 use hybrid_octree::select::{select, Selection};
 use hybrid_octree::{Error, Result};
 use list::{chosen, Context, Effect, TRANSLUCENT};
@@ -178,6 +178,36 @@ impl<'e> Case<'e> {
     }
 }
 
+/// One untimed frame of each case: its RMSE against the reference and the plan's passes.
+fn first_frames(grid: &Grid<'_>, cases: &[Case<'_>]) -> Result<Vec<(Metrics, Vec<String>)>> {
+    cases
+        .iter()
+        .map(|c| {
+            let f = frame(grid, &c.scene, &c.selection, &c.args, None)?;
+            Ok((compare(&f.image, &c.truth)?, f.list.plan.passes))
+        })
+        .collect()
+}
+
+/// The median frame and compositing times of each case over `frames`
+/// rounds, one frame of every case a round (the order reversed every other
+/// round, so that a change of the machine's load falls on all alike), ms.
+fn timed_medians(grid: &Grid<'_>, cases: &[Case<'_>], frames: usize) -> Result<Vec<(f64, f64)>> {
+    let mut times = vec![(Vec::new(), Vec::new()); cases.len()];
+    for round in 0..frames {
+        let order: Vec<usize> =
+            if round % 2 == 0 { (0..cases.len()).collect() } else { (0..cases.len()).rev().collect() };
+        for i in order {
+            let c = &cases[i];
+            let started = Instant::now();
+            let f = frame(grid, &c.scene, &c.selection, &c.args, None)?;
+            times[i].0.push(started.elapsed().as_secs_f64() * 1e3);
+            times[i].1.push(f.composite_ms);
+        }
+    }
+    Ok(times.into_iter().map(|(f, c)| (median(f), median(c))).collect())
+}
+
 /// The median of `values` (not empty).
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
@@ -208,26 +238,8 @@ pub fn run(args: &BenchEffectsArgs) -> Result<()> {
             .iter()
             .map(|e| Case::new(&grid, &base, &plain_args, e, &context, budget_bytes))
             .collect::<Result<Vec<_>>>()?;
-        // One untimed frame each: its picture and plan.
-        let mut first = Vec::with_capacity(cases.len());
-        for c in &cases {
-            let f = frame(&grid, &c.scene, &c.selection, &c.args, None)?;
-            first.push((compare(&f.image, &c.truth)?, f.list.plan.passes));
-        }
-        // The timed frames, every row in turn (the order reversed every other round).
-        let mut times = vec![(Vec::new(), Vec::new()); cases.len()];
-        for round in 0..args.frames {
-            let order: Vec<usize> =
-                if round % 2 == 0 { (0..cases.len()).collect() } else { (0..cases.len()).rev().collect() };
-            for i in order {
-                let c = &cases[i];
-                let started = Instant::now();
-                let f = frame(&grid, &c.scene, &c.selection, &c.args, None)?;
-                times[i].0.push(started.elapsed().as_secs_f64() * 1e3);
-                times[i].1.push(f.composite_ms);
-            }
-        }
-        let medians: Vec<(f64, f64)> = times.into_iter().map(|(f, c)| (median(f), median(c))).collect();
+        let first = first_frames(&grid, &cases)?;
+        let medians = timed_medians(&grid, &cases, args.frames)?;
         let (plain_frame, plain_composite) = medians[0];
         let rows = cases
             .iter()
