@@ -6,10 +6,10 @@ use crate::extension::require_extension;
 use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::pool::with_threads;
-use crate::scene::{frame, load, reference_image, visible, SceneArgs};
+use crate::scene::{frame, load, reference_image, select_options, visible, SceneArgs};
 use clap::Args;
 use hybrid_octree::render::metrics::compare;
-use hybrid_octree::select::{select, SelectOptions};
+use hybrid_octree::select::select;
 use hybrid_octree::Result;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -85,16 +85,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let volume = args.input.load()?;
         let grid = args.input.grid(&volume)?;
         let scene = load(&grid, &args.scene)?;
-        let options = SelectOptions {
-            roi: args.scene.roi,
-            gradient_border: hybrid_octree::plan::needs_gradients(
-                args.scene.shade.lighting().as_ref(),
-                args.scene.gradient_opacity.as_ref(),
-                scene.blend.mode,
-            ) || scene.blend.mode == hybrid_octree::plan::BlendMode::Isosurface,
-            pooled: scene.blend.mode.is_extremum(),
-            ..SelectOptions::new(budget_bytes, args.tolerance)
-        };
+        let options = select_options(&scene, &args.scene, budget_bytes, args.tolerance);
         let started = Instant::now();
         let selection = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
         let select_ms = started.elapsed().as_secs_f64() * 1e3;

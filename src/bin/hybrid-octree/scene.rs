@@ -17,7 +17,7 @@ use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference_blend, ReferenceOptions};
 use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
-use hybrid_octree::select::{Roi, Selection};
+use hybrid_octree::select::{Roi, SelectOptions, Selection};
 use hybrid_octree::slab::SlabPolygons;
 use hybrid_octree::surface::{Surface, SurfaceOptions};
 use hybrid_octree::transfer::GradientOpacity;
@@ -122,19 +122,16 @@ pub struct Loaded {
 
 /// Builds the octree, the surface and the camera for `grid`.
 pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
-    if args.width == 0 || args.height == 0 || args.width > 8192 || args.height > 8192 {
-        return Err(Error::InvalidArgument(format!(
-            "image size {}x{} is out of range: use 1..=8192 pixels per side",
-            args.width, args.height
-        )));
-    }
-    if !(0.0..=1.0).contains(&args.surface_opacity) {
-        return Err(Error::InvalidArgument(format!(
-            "surface opacity {} must be between 0 and 1",
-            args.surface_opacity
-        )));
-    }
+    check_view(args)?;
     let octree = build_octree(grid, &BuildOptions { leaf_size: args.leaf_size })?;
+    dress(grid, octree, args)
+}
+
+/// The scene of `args` around an octree already built for `grid` (with
+/// `args.leaf_size`): the surface, the transfer function, the camera and
+/// the blend mode.
+pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<Loaded> {
+    check_view(args)?;
     let surface = match args.isovalue {
         Some(iso) => Some(Surface::extract(grid, &octree, &SurfaceOptions::discretized(iso))?),
         None => None,
@@ -157,6 +154,39 @@ pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
     let hidden_by_gradient_opacity =
         args.blend == BlendMode::Composite && args.gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     Ok(Loaded { octree, surface, tf, camera, blend, hidden_by_gradient_opacity })
+}
+
+/// The image size and the surface opacity: in range, or a clear error.
+fn check_view(args: &SceneArgs) -> Result<()> {
+    if args.width == 0 || args.height == 0 || args.width > 8192 || args.height > 8192 {
+        return Err(Error::InvalidArgument(format!(
+            "image size {}x{} is out of range: use 1..=8192 pixels per side",
+            args.width, args.height
+        )));
+    }
+    if !(0.0..=1.0).contains(&args.surface_opacity) {
+        return Err(Error::InvalidArgument(format!(
+            "surface opacity {} must be between 0 and 1",
+            args.surface_opacity
+        )));
+    }
+    Ok(())
+}
+
+/// The selection's options for `scene` under `budget_bytes` and `tolerance`:
+/// the region of interest, the gradient border when the frame is shaded
+/// (Composite only), peak-keeping texels for MIP and MinIP.
+pub fn select_options(scene: &Loaded, args: &SceneArgs, budget_bytes: usize, tolerance: f64) -> SelectOptions {
+    SelectOptions {
+        roi: args.roi,
+        gradient_border: hybrid_octree::plan::needs_gradients(
+            args.shade.lighting().as_ref(),
+            args.gradient_opacity.as_ref(),
+            scene.blend.mode,
+        ) || scene.blend.mode == BlendMode::Isosurface,
+        pooled: scene.blend.mode.is_extremum(),
+        ..SelectOptions::new(budget_bytes, tolerance)
+    }
 }
 
 /// One frame: its DrawList, image and step times.
