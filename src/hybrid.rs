@@ -79,6 +79,7 @@ impl HybridOctree {
             surface: self.surface.as_ref(),
             surface_opacity,
             shading: None,
+            gradient_opacity: None,
             blend: Default::default(),
             region: None,
         }
@@ -87,16 +88,17 @@ impl HybridOctree {
     /// The DrawList of `selection` (made from this octree's volume over the
     /// grid of `shape`) for `camera`, with the surface at `surface_opacity`
     /// (see [`draw_list`]; `polygons`: the selection's [`SlabPolygons`] for
-    /// this surface, made here when `None` and needed).
+    /// this surface, made here when `None` and needed), under `blend`.
     pub fn draw_list(
         &self,
         shape: &GridShape,
         selection: &Selection,
         camera: &Camera,
         surface_opacity: f64,
+        blend: crate::plan::Blend,
         polygons: Option<&SlabPolygons>,
     ) -> Result<DrawList> {
-        draw_list(&self.volume, shape, selection, camera, &self.scene(surface_opacity), polygons)
+        draw_list(&self.volume, shape, selection, camera, &Scene { blend, ..self.scene(surface_opacity) }, polygons)
     }
 
     /// The surface's polygons sorted into `selection`'s bricks and slabs, what

@@ -579,6 +579,127 @@ fn points_writes_a_file_that_reads_back_and_draws_the_difference_pictures() {
     assert_clean_failure(&out, "--threshold");
 }
 
+/// `bench effects` on a small phantom at the full budget: a row per effect,
+/// the plain frame first with ratio 1, every ratio finite, every picture
+/// close to the reference caster drawing the same effect, the plan naming
+/// each effect (and the plain frame none), shading's gradient border in the
+/// bytes, the peak RSS and the plot.
+#[test]
+fn bench_effects_measures_each_effect_against_the_plain_frame() {
+    let dir = std::env::temp_dir().join(format!("ho-bench-effects-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plot = dir.join("effects.png");
+    let out = run(&[
+        "bench",
+        "effects",
+        "--dataset",
+        "shepp-logan",
+        "--size",
+        "33",
+        "--leaf-size",
+        "8",
+        "--width",
+        "40",
+        "--height",
+        "40",
+        "--frames",
+        "1",
+        "--plot",
+        plot.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(report["full_budget"], true, "{report}");
+    let rows = report["rows"].as_array().unwrap();
+    let row = |name: &str| rows.iter().find(|r| r["effect"] == name).unwrap_or_else(|| panic!("no row {name}"));
+    let passes = |name: &str| -> Vec<String> {
+        row(name)["passes"].as_array().unwrap().iter().map(|p| p.as_str().unwrap().to_string()).collect()
+    };
+    let names = [
+        "plain",
+        "shade",
+        "shade+specular",
+        "mip",
+        "minip",
+        "average",
+        "additive",
+        "translucent-iso",
+        "shade+translucent-iso",
+        "cropping",
+        "clipping",
+    ];
+    assert_eq!(rows.len(), names.len(), "{report}");
+    assert_eq!(rows[0]["effect"], "plain");
+    assert_eq!(rows[0]["frame_ratio"].as_f64(), Some(1.0));
+    for r in rows {
+        for key in ["frame_ratio", "composite_ratio"] {
+            let v = r[key].as_f64().unwrap();
+            assert!(v.is_finite() && v > 0.0, "{key} of {r}");
+        }
+        // At the full budget only the samples' places differ from the
+        // reference (the average's silhouette rays: up to 0.05, see
+        // render::blend_tests).
+        let rmse = r["rmse"].as_f64().unwrap();
+        assert!(rmse < 0.05, "RMSE {rmse} of {r}");
+        assert_eq!(r["estimated_error"].as_f64(), Some(0.0), "full budget: {r}");
+    }
+    assert_eq!(passes("plain"), ["volume"]);
+    assert_eq!(passes("shade"), ["volume-shaded"]);
+    assert_eq!(passes("shade+specular"), ["volume-shaded"]);
+    for mode in ["mip", "minip", "average", "additive"] {
+        assert_eq!(passes(mode), [format!("volume-{mode}")]);
+    }
+    assert_eq!(passes("translucent-iso"), ["surface-in-slabs", "volume"]);
+    assert_eq!(passes("shade+translucent-iso"), ["surface-in-slabs", "volume-shaded"]);
+    let effects = |name: &str| row(name)["effects"].clone();
+    assert_eq!(effects("plain"), serde_json::json!([]), "{report}");
+    assert_eq!(effects("shade"), serde_json::json!(["shading"]), "{report}");
+    assert_eq!(
+        (passes("cropping"), effects("cropping")),
+        (vec!["volume".to_string()], serde_json::json!(["cropping"]))
+    );
+    assert_eq!(
+        (passes("clipping"), effects("clipping")),
+        (vec!["volume".to_string()], serde_json::json!(["clipping"]))
+    );
+    let bytes = |name: &str| row(name)["texture_bytes"].as_u64().unwrap();
+    for cut in ["cropping", "clipping"] {
+        assert!(bytes(cut) < bytes("plain"), "{cut}: the removed bricks get no texture: {report}");
+    }
+    assert!(bytes("shade") > bytes("plain"), "the gradient border costs bytes: {report}");
+    assert_eq!(bytes("mip"), bytes("plain"), "{report}");
+    assert!(report["peak_rss_bytes"].as_u64().is_some_and(|b| b > 1 << 20), "{report}");
+    assert_eq!(&std::fs::read(&plot).unwrap()[..4], b"\x89PNG");
+    // A subset by name (plain always first), and an unknown name refused.
+    let out = run(&[
+        "bench",
+        "effects",
+        "--dataset",
+        "sphere",
+        "--size",
+        "9",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--frames",
+        "1",
+        "--effects",
+        "mip",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let effects: Vec<&str> = report["rows"].as_array().unwrap().iter().map(|r| r["effect"].as_str().unwrap()).collect();
+    assert_eq!(effects, ["plain", "mip"]);
+    let bad = run(&["bench", "effects", "--dataset", "sphere", "--size", "9", "--effects", "glow"]);
+    assert_clean_failure(&bad, "unknown effect 'glow'");
+    let bad = run(&["bench", "effects", "--dataset", "sphere", "--size", "9", "--shade"]);
+    assert_clean_failure(&bad, "--shade");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn bench_render_points_rows_carry_bytes_and_error() {
     let out = run(&[
@@ -833,6 +954,42 @@ fn render_crop_and_clip_report_their_effects() {
     ] {
         let out = run(&[&["render"][..], &base[..], &[flag, value, "--output", png.to_str().unwrap()]].concat());
         assert_clean_failure(&out, reason);
+    }
+    let _ = std::fs::remove_file(png);
+    let _ = std::fs::remove_file(reference);
+}
+
+/// `render --gradient-opacity` reports its effect in the JSON plan (one that
+/// varies: `gradient-opacity`, with `--shade` before `shading`; a constant
+/// other than 1: `opacity-scale`; 1 everywhere: none, the picture of no
+/// gradient opacity), stays within the reference, and bad points are clean
+/// errors naming the problem.
+#[test]
+fn render_gradient_opacity_names_its_effect() {
+    let png = temp("gradient-opacity.png");
+    let reference = temp("gradient-opacity-reference.png");
+    let (out, truth) = (png.to_str().unwrap(), reference.to_str().unwrap());
+    let base = ["--dataset", "sphere", "--size", "17", "--width", "24", "--height", "24", "--output", out];
+    let json = |extra: &[&str]| json_of("render", &[&base[..], extra].concat());
+    let plain = json(&[]);
+    assert_eq!(plain["effects"], serde_json::json!([]), "{plain}");
+    let plain_png = std::fs::read(&png).unwrap();
+    let one = json(&["--gradient-opacity", "0,1,5,1"]);
+    assert_eq!(one["effects"], serde_json::json!([]), "{one}");
+    assert_eq!(std::fs::read(&png).unwrap(), plain_png, "1 everywhere draws the plain picture");
+    let half = json(&["--gradient-opacity", "0,0.5"]);
+    assert_eq!(half["effects"], serde_json::json!(["opacity-scale"]), "{half}");
+    let varying = json(&["--gradient-opacity", "0,0,0.05,1", "--shade", "--reference", truth]);
+    assert_eq!(varying["effects"], serde_json::json!(["gradient-opacity", "shading"]), "{varying}");
+    assert_eq!(varying["passes"], serde_json::json!(["volume-shaded"]), "{varying}");
+    assert!(varying["rmse"].as_f64().unwrap() < 0.05, "{varying}");
+    for (points, reason) in [
+        ("0,1,2", "give pairs G,A"),
+        ("0,x", "'x' is not a number"),
+        ("0,1.5", "[0, 1]"),
+        ("1,0.5,0,0.5", "increasing magnitude order"),
+    ] {
+        assert_clean_failure(&run(&[&["render"][..], &base[..], &["--gradient-opacity", points]].concat()), reason);
     }
     let _ = std::fs::remove_file(png);
     let _ = std::fs::remove_file(reference);

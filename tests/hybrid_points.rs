@@ -50,7 +50,14 @@ fn list(f: &Fixture, grid: &Grid<'_>, stride: usize, points: Option<&PointSet>) 
     if let Some(p) = points {
         take_all_points(&mut s, &PointMass::new(p, f.octree.layout().leaf_size()));
     }
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+    let scene = Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: None,
+        gradient_opacity: None,
+        region: None,
+        blend: Default::default(),
+    };
     let mut list = draw_list(&f.octree, grid.shape(), &s, &f.camera, &scene, None).unwrap();
     if let Some(p) = points {
         add_points(&mut list, grid.shape(), p).unwrap();
@@ -79,7 +86,14 @@ fn draw_selection(
     s: &Selection,
     points: Option<&PointSet>,
 ) -> (f64, usize) {
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+    let scene = Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: None,
+        gradient_opacity: None,
+        region: None,
+        blend: Default::default(),
+    };
     let mut l = draw_list(&f.octree, grid.shape(), s, &f.camera, &scene, None).unwrap();
     if let Some(p) = points {
         add_points(&mut l, grid.shape(), p).unwrap();

@@ -82,7 +82,14 @@ fn tf() -> TransferFunction {
 }
 
 fn cpu(g: &Grid<'_>, o: &VolumeOctree, s: &Selection) -> Image {
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+    let scene = Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: None,
+        gradient_opacity: None,
+        region: None,
+        blend: Default::default(),
+    };
     let list = draw_list(o, g.shape(), s, &camera(g), &scene, None).unwrap();
     composite(g, &list, &tf(), PIXELS, PIXELS, None).unwrap()
 }
@@ -316,7 +323,14 @@ fn points_on_a_holed_volume_have_finite_shades() {
     assert!(!set.points.is_empty());
     let shades = shade(&g, &set, &tf()).unwrap();
     assert!(shades.iter().all(|s| s.alpha.is_finite() && s.rgb.iter().all(|c| c.is_finite())));
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+    let scene = Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: None,
+        gradient_opacity: None,
+        region: None,
+        blend: Default::default(),
+    };
     let mut s = uniform(&o, 4, 4).unwrap();
     hybrid_octree::select::take_all_points(&mut s, &hybrid_octree::points::PointMass::voxel_means(&g, &set, 8));
     let mut list = draw_list(&o, g.shape(), &s, &camera(&g), &scene, None).unwrap();

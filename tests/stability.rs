@@ -74,7 +74,14 @@ fn frame(grid: &Grid<'_>, camera: &Camera) -> Frame {
     let tf = TransferFunction::ramp(lo, hi);
     let selection =
         select(&octree, &SelectOptions::new(64_000_000, 0.0), |a, b| !tf.is_transparent_over(a, b)).unwrap();
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+    let scene = Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: None,
+        gradient_opacity: None,
+        region: None,
+        blend: Default::default(),
+    };
     let list = draw_list(&octree, grid.shape(), &selection, camera, &scene, None).unwrap();
     let image = composite(grid, &list, &tf, PIXELS, PIXELS, None).unwrap();
     let truth = reference(grid, &tf, camera, PIXELS, PIXELS, &ReferenceOptions::default()).unwrap();
@@ -233,8 +240,14 @@ fn needles_and_slabs_cost_linear_work() {
         let surface = Surface::extract(&g, &octree, &SurfaceOptions::discretized(0.1)).unwrap();
         let camera = around(g.shape(), 30.0, 20.0, true);
         let s = uniform(&octree, 1, 4).unwrap();
-        let scene =
-            Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+        let scene = Scene {
+            surface: None,
+            surface_opacity: 1.0,
+            shading: None,
+            gradient_opacity: None,
+            blend: Default::default(),
+            region: None,
+        };
         let list = draw_list(&octree, g.shape(), &s, &camera, &scene, None).unwrap();
         (longest, layout.node_slots(), surface.polygon_count(), slices(&list))
     };
@@ -297,6 +310,7 @@ fn isovalues_on_samples_and_vertices_on_slices() {
             surface: Some(&surface),
             surface_opacity: 0.5,
             shading: None,
+            gradient_opacity: None,
             blend: Default::default(),
             region: None,
         };
@@ -315,7 +329,14 @@ fn full_resolution(v: &Volume, tf: &TransferFunction, camera: &Camera, pixels: u
     let g = v.grid(None).unwrap();
     let octree = VolumeOctree::build(&g, &BuildOptions { leaf_size: 8 }).unwrap();
     let s = uniform(&octree, 1, 4).unwrap();
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+    let scene = Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: None,
+        gradient_opacity: None,
+        region: None,
+        blend: Default::default(),
+    };
     let list = draw_list(&octree, g.shape(), &s, camera, &scene, None).unwrap();
     let image = composite(&g, &list, tf, pixels, pixels, None).unwrap();
     let truth = reference(&g, tf, camera, pixels, pixels, &ReferenceOptions::default()).unwrap();

@@ -155,6 +155,10 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   CopyInto(out.slices, list.Slices);
   list.Passes = std::string(out.passes);
   list.Effects = std::string(out.effects);
+  list.Gradients = out.gradients;
+  list.OpacityScale = out.opacity_scale;
+  CopyInto(out.gradient_opacity_table, list.GradientOpacityTable);
+  list.GradientOpacityEnd = out.gradient_opacity_end;
   list.Region.Cropping = out.region.cropping;
   for (int k = 0; k < 6; ++k)
   {
@@ -198,6 +202,17 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   desc.has_isovalue = options.HasIsovalue;
   desc.isovalue = options.Isovalue;
   desc.gradient_border = options.GradientBorder;
+  desc.blend_mode = options.BlendMode;
+  desc.average_range[0] = options.AverageRange[0];
+  desc.average_range[1] = options.AverageRange[1];
+  for (double v : options.IsosurfaceValues)
+  {
+    desc.isosurface_values.push_back(v);
+  }
+  for (double v : options.GradientOpacityPoints)
+  {
+    desc.gradient_opacity_points.push_back(v);
+  }
   desc.region.cropping = options.Region.Cropping;
   for (int k = 0; k < 6; ++k)
   {
@@ -541,6 +556,14 @@ bool Selection::SetShading(const ShadingDescription& shading, std::string& error
     toRust(shading.LightDiffuse, desc.light_diffuse);
     toRust(shading.LightSpecular, desc.light_specular);
     HandleFor(this->Impl).set_shading(desc);
+  });
+}
+
+bool Selection::SetGradientOpacity(const std::vector<double>& points, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .set_gradient_opacity(rust::Slice<const double>(points.data(), points.size()));
   });
 }
 

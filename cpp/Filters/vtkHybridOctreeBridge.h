@@ -158,6 +158,19 @@ struct SelectDescription
   /// Count one border texel per side of each brick in its bytes (a shaded
   /// volume's gradient reads them).
   bool GradientBorder = false;
+  /// vtkVolumeMapper::BlendModes value, 0 (composite) to 5 (isosurface); it
+  /// changes which nodes show and the texels of coarse MIP/MinIP bricks.
+  int BlendMode = 0;
+  /// vtkVolumeMapper's AverageIPScalarRange: the values an average counts.
+  double AverageRange[2] = { -1.0e300, 1.0e300 };
+  /// The isosurface values of blend mode 5 (1 to 16).
+  std::vector<double> IsosurfaceValues;
+  /// vtkVolumeProperty's GradientOpacity as VTK's GPU ray caster reads it
+  /// (OpacityPoints() of it: magnitudes per mean voxel spacing, VTK's
+  /// convention), (magnitude, opacity) pairs flattened;
+  /// empty: none. One that is 0 everywhere hides every node; one that is
+  /// not constant counts the gradient border as GradientBorder does.
+  std::vector<double> GradientOpacityPoints;
   /// Cropping and clipping planes: nodes whose box they remove get no
   /// texture (counted as skipped); the selection's DrawLists keep only their samples.
   RegionDescription Region;
@@ -238,8 +251,18 @@ struct DrawList
   std::vector<std::size_t> SliceOffsets;
   std::vector<double> Slices;
   std::string Passes; ///< comma-joined, e.g. "volume"; empty without bricks
-  /// What removes volume samples: "cropping", "clipping", "cropping,clipping" or "".
+  /// The volume's effects in order, comma-joined: "gradient-opacity" or
+  /// "opacity-scale", then "shading", then what removes samples,
+  /// "cropping", "clipping"; empty for none.
   std::string Effects;
+  /// The samples take gradients (shading or gradient opacity): the brick
+  /// textures carry the gradient border (GetBrickTexelsBordered()).
+  bool Gradients = false;
+  double OpacityScale = 1.0; ///< every opacity times this before the correction
+  /// With "gradient-opacity": the function at magnitudes k End / (n - 1),
+  /// k = 0 .. n (data units per model unit), held past the ends; else empty.
+  std::vector<float> GradientOpacityTable;
+  double GradientOpacityEnd = 0.0;
   /// The cropping and planes that act (those that remove part of the volume).
   RegionDescription Region;
   double ReferenceSpacing = 0.0;          ///< d0, world units
@@ -545,6 +568,15 @@ public:
    * False and `error` on failure (a bad number, no light, lights not in threes).
    */
   bool SetShading(const ShadingDescription& shading, std::string& error) const;
+
+  /**
+   * The gradient opacity of the DrawLists and pictures made after this call:
+   * `points` as SelectDescription::GradientOpacityPoints (empty: none). The
+   * plan's effects then say "gradient-opacity" (or "opacity-scale" for a
+   * constant other than 1). False and `error` on failure (an odd count,
+   * magnitudes not finite or decreasing, opacities outside [0, 1]).
+   */
+  bool SetGradientOpacity(const std::vector<double>& points, std::string& error) const;
 
   /**
    * The CPU compositor's picture of the DrawList (GetDrawList(octree,

@@ -1,33 +1,9 @@
 #include "vtkHybridOctreeUnsupportedEffects.h"
 
-#include "vtkPiecewiseFunction.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
 #include <string>
-
-namespace
-{
-/// Whether a gradient opacity function changes any opacity: VTK's default
-/// (and a disabled one) is 1 at every gradient magnitude.
-bool ModulatesOpacity(vtkVolumeProperty* property)
-{
-  if (property->GetDisableGradientOpacity(0))
-  {
-    return false;
-  }
-  vtkPiecewiseFunction* gradient = property->GetGradientOpacity(0);
-  double node[4];
-  for (int i = 0; gradient && i < gradient->GetSize(); ++i)
-  {
-    if (gradient->GetNodeValue(i, node) && node[1] != 1.0)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-} // namespace
 
 std::string vtkHybridOctreeUnsupportedEffects::BlendModeName(int mode)
 {
@@ -53,26 +29,27 @@ std::string vtkHybridOctreeUnsupportedEffects::BlendModeName(int mode)
 }
 
 std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
-  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components)
+  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components, bool translucentSurface)
 {
   // The VTK mapper that draws the effect.
   const std::string elsewhere =
     "vtkGPUVolumeRayCastMapper (ParaView: the Volume representation), which draws it";
   std::vector<std::string> on;
   const int mode = mapper->GetBlendMode();
-  if (mode != vtkVolumeMapper::COMPOSITE_BLEND)
+  if (mode < vtkVolumeMapper::COMPOSITE_BLEND || mode > vtkVolumeMapper::ISOSURFACE_BLEND)
   {
     const std::string name = BlendModeName(mode);
     on.push_back("the " + name + " blend mode (vtkVolumeMapper::SetBlendMode(" +
       std::to_string(mode) + "); ParaView: Blend Mode) is not implemented: the volume is drawn " +
-      "with Composite blending; set the blend mode to Composite, or use " + elsewhere);
+      "with Composite blending; set the blend mode to Composite, maximum, minimum or average " +
+      "intensity, additive or Isosurface, or use " + elsewhere);
   }
-  if (ModulatesOpacity(property))
+  if (translucentSurface && mode > vtkVolumeMapper::COMPOSITE_BLEND &&
+    mode <= vtkVolumeMapper::ADDITIVE_BLEND)
   {
-    on.push_back("the gradient opacity (vtkVolumeProperty::SetGradientOpacity) is not "
-                 "implemented: the opacity is the scalar opacity alone; disable it "
-                 "(vtkVolumeProperty::DisableGradientOpacityOn), or use " +
-      elsewhere);
+    on.push_back("a translucent isosurface is not drawn under the " + BlendModeName(mode) +
+      " blend mode (its ray is reduced, not composited in depth order): set the surface opacity "
+      "to 1 (drawn opaque, under the volume) or the blend mode to Composite");
   }
   if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
   {
@@ -93,9 +70,9 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
 }
 
 std::vector<std::string> vtkHybridOctreeUnsupportedEffects::Update(
-  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components)
+  vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components, bool translucentSurface)
 {
-  const std::vector<std::string> now = TurnedOn(mapper, property, components);
+  const std::vector<std::string> now = TurnedOn(mapper, property, components, translucentSurface);
   std::vector<std::string> fresh;
   for (const std::string& message : now)
   {

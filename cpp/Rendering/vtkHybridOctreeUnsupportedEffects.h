@@ -5,11 +5,12 @@
  *
  * vtkHybridOctreeVolumeMapper draws Composite blending of one scalar
  * component through a 1D colour and scalar opacity function, shaded when
- * the property asks (Shade), cropped and clipped by the mapper's cropping
- * and clipping planes. Settings that ask for more (another blend mode, a
- * gradient opacity, a 2D transfer function, dependent components) are drawn
- * as if off; each one the user has turned on is named
- * in one warning that says what is drawn instead and what to do.
+ * the property asks (Shade), its opacity times the gradient opacity when one
+ * is set (GradientOpacity), cropped and clipped by the mapper's cropping and
+ * clipping planes. Settings that ask for more (the Slice blend mode, a 2D
+ * transfer function, dependent components) are drawn as if off; each one the
+ * user has turned on is named in one warning that says what is drawn instead
+ * and what to do.
  *
  * Each warning is given once while its setting stays as it is: Update()
  * returns the messages of the settings on now that were not on (with the
@@ -31,13 +32,14 @@ class vtkHybridOctreeUnsupportedEffects
 {
 public:
   /// The messages of the effects `mapper` and `property` turn on for scalars
-  /// of `components` components that were not on at the previous call.
-  std::vector<std::string> Update(
-    vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components);
+  /// of `components` components that were not on at the previous call
+  /// (`translucentSurface`: the mapper draws a translucent isosurface).
+  std::vector<std::string> Update(vtkVolumeMapper* mapper, vtkVolumeProperty* property,
+    int components, bool translucentSurface = false);
 
   /// Every effect turned on now (one message each), whether warned or not.
-  static std::vector<std::string> TurnedOn(
-    vtkVolumeMapper* mapper, vtkVolumeProperty* property, int components);
+  static std::vector<std::string> TurnedOn(vtkVolumeMapper* mapper, vtkVolumeProperty* property,
+    int components, bool translucentSurface = false);
 
   /// VTK's name of a vtkVolumeMapper blend mode ("Maximum Intensity"), or
   /// "blend mode N" for a value VTK does not define.

@@ -1,5 +1,6 @@
 #include "vtkHybridOctreeVolumeMapper.h"
 
+#include "vtkContourValues.h"
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
@@ -159,8 +160,39 @@ RegionDescription DescribeRegion(
   return region;
 }
 
+/// The gradient opacity VTK 9.2's GPU ray caster applies (vtkVolumeShaderComposer.h,
+/// HasGradientOpacity; vtkVolumeInputHelper): the 1D mode's function of the
+/// first component, when one was set and is not disabled, as (magnitude,
+/// opacity) pairs (magnitudes per mean voxel spacing, VTK's convention);
+/// empty for none.
+std::vector<double> GradientOpacityPoints(vtkVolumeProperty* property)
+{
+  if (property->GetTransferFunctionMode() != vtkVolumeProperty::TF_1D ||
+    property->GetDisableGradientOpacity(0) || !property->HasGradientOpacity(0))
+  {
+    return {};
+  }
+  return vtkHybridOctreeBridge::OpacityPoints(property->GetStoredGradientOpacity(0));
+}
+
 /// The passes an interactive frame runs for the DrawList's `passes`: a
 /// translucent surface per brick instead of in the slabs, no points.
+/// The reduction of the plan's volume pass: 0 Composite (`volume`,
+/// `volume-shaded`), 1 `volume-mip`, 2 `volume-minip`, 3 `volume-average`,
+/// 4 `volume-additive` (the brick shader's reduceMode).
+int ReduceMode(const std::string& passes)
+{
+  const char* names[] = { "volume-mip", "volume-minip", "volume-average", "volume-additive" };
+  for (int mode = 1; mode <= 4; ++mode)
+  {
+    if (passes.find(names[mode - 1]) != std::string::npos)
+    {
+      return mode;
+    }
+  }
+  return 0;
+}
+
 std::string InteractivePlan(const std::string& passes)
 {
   std::string plan;
@@ -195,6 +227,9 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   int LeafSize = 0;
   /// NaN samples (no data) of the image the octree was built from.
   vtkTypeInt64 NaNSamples = 0;
+  /// The octree's value range (NaN left out): what average and additive
+  /// blending normalise by.
+  double ValueRange[2] = { 0.0, 1.0 };
   /// When the octree was built: the caches below are current when made after it.
   vtkTimeStamp OctreeTime;
   vtkDataArray* Scalars = nullptr;
@@ -255,8 +290,14 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   ShadingDescription Shading;
   /// The frame's cropping and clipping planes (Prepare), in the octree's frame.
   RegionDescription Region;
+  /// The frame's gradient opacity (Prepare), VTK's points.
+  std::vector<double> GradientOpacity;
   /// Whether the resident brick textures carry gradient borders.
   bool BorderedTextures = false;
+  /// The isosurface values of the Isosurface blend mode (the selection's).
+  std::vector<double> Isosurfaces;
+  /// Whether the resident coarse brick textures keep their peaks (MIP or MinIP).
+  bool PooledTextures = false;
   // Interactive frames' sampling, from the times of the frames before.
   vtkHybridOctreeInteractiveReduction Reduction;
 };
@@ -390,6 +431,8 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
     return false;
   }
   in.NaNSamples = static_cast<vtkTypeInt64>(summary.NaNSamples);
+  in.ValueRange[0] = summary.ValueMin;
+  in.ValueRange[1] = summary.ValueMax;
   this->LastNaNSamples = in.NaNSamples;
   in.Array = scalars;
   in.ArrayMTime = scalars->GetMTime();
@@ -563,17 +606,39 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   select.RoiRadius = this->RoiRadius;
   select.HasIsovalue = this->ShowSurface;
   select.Isovalue = this->Isovalue;
-  // Shaded: the bricks' gradient borders count in the budget.
-  select.GradientBorder = property->GetShade(0) != 0;
+  // The blend modes the bridge draws (the others are warned about and drawn Composite).
+  const int mode = this->BlendMode;
+  select.BlendMode = mode >= COMPOSITE_BLEND && mode <= ISOSURFACE_BLEND ? mode : COMPOSITE_BLEND;
+  if (select.BlendMode == ISOSURFACE_BLEND)
+  {
+    vtkContourValues* values = property->GetIsoSurfaceValues();
+    for (int i = 0; values && i < values->GetNumberOfContours(); ++i)
+    {
+      select.IsosurfaceValues.push_back(values->GetValue(i));
+    }
+  }
+  select.AverageRange[0] = this->AverageIPScalarRange[0];
+  select.AverageRange[1] = this->AverageIPScalarRange[1];
+  // Shaded: the bricks' gradient borders count in the budget (Composite and
+  // Isosurface only; Isosurface always has them).
+  select.GradientBorder = property->GetShade(0) != 0 &&
+    (select.BlendMode == COMPOSITE_BLEND || select.BlendMode == ISOSURFACE_BLEND);
+  select.GradientOpacityPoints = GradientOpacityPoints(property);
   select.Region = in.Region;
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
     in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0,
-    select.GradientBorder ? 1.0 : 0.0, select.Region.Cropping ? 1.0 : 0.0,
+    select.GradientBorder ? 1.0 : 0.0, static_cast<double>(select.BlendMode),
+    select.AverageRange[0], select.AverageRange[1], select.Region.Cropping ? 1.0 : 0.0,
     static_cast<double>(select.Region.CroppingFlags) };
   key.insert(key.end(), select.Region.CroppingPlanes, select.Region.CroppingPlanes + 6);
+  key.push_back(static_cast<double>(select.Region.ClippingPlanes.size()));
   key.insert(key.end(), select.Region.ClippingPlanes.begin(), select.Region.ClippingPlanes.end());
+  key.push_back(static_cast<double>(select.IsosurfaceValues.size()));
+  key.insert(key.end(), select.IsosurfaceValues.begin(), select.IsosurfaceValues.end());
+  key.push_back(static_cast<double>(select.GradientOpacityPoints.size()));
+  key.insert(key.end(), select.GradientOpacityPoints.begin(), select.GradientOpacityPoints.end());
   return select;
 }
 
@@ -622,6 +687,11 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
 bool vtkHybridOctreeVolumeMapper::ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property)
 {
   const bool interactive = this->IsInteractive(ren);
+  // The frame's isosurface values (the Isosurface blend mode), whichever
+  // selection it draws: every selection's key holds them.
+  std::vector<double> key;
+  this->Internals->Isosurfaces =
+    this->DescribeSelection(property, this->BudgetMB, key).IsosurfaceValues;
   if (interactive && this->IsStillSelectionCurrent(property))
   {
     this->Internals->Frame = &this->Internals->Still;
@@ -679,7 +749,8 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   }
   // The picture stays the Composite, unshaded one: said once per setting, not silently.
   for (const std::string& message :
-    this->Internals->Unsupported.Update(this, property, scalars->GetNumberOfComponents()))
+    this->Internals->Unsupported.Update(this, property, scalars->GetNumberOfComponents(),
+      this->ShowSurface && this->SurfaceOpacity > 0.0 && this->SurfaceOpacity < 1.0))
   {
     vtkWarningMacro(<< message);
   }
@@ -696,6 +767,7 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   this->Internals->Shading = DescribeShading(ren, property, this->Internals->ModelInverse);
   this->Internals->Region =
     DescribeRegion(this, this->Internals->Model, this->Internals->ModelInverse);
+  this->Internals->GradientOpacity = GradientOpacityPoints(property);
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
@@ -731,6 +803,7 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   const CameraDescription cam = this->ModelCamera(ren);
   const bool surface = in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0;
   const bool ok = in.Frame->Selected->SetShading(in.Shading, error) &&
+    in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) &&
     in.Frame->Selected->GetDrawList(
       *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
   if (!ok)
@@ -867,18 +940,28 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   const Selection& selected = *in.Frame->Selected;
   const double textureBudget =
     this->BudgetMB * 1.0e6 - static_cast<double>(in.Frame->Summary.PointBytes);
-  // Shaded: textures with one border texel per side (the gradient reads
-  // them); the resident ones of the other kind are released first.
-  const bool shaded = list.Passes.find("volume-shaded") != std::string::npos;
-  if (shaded != in.BorderedTextures)
+  // Gradients (shading, gradient opacity) or Isosurface: textures with one
+  // border texel per side (the gradient and the sample before a brick's
+  // first read them); the resident ones of the other kind are released first.
+  const bool isosurface = list.Passes.find("volume-isosurface") != std::string::npos;
+  const bool bordered = list.Gradients || isosurface;
+  // MIP and MinIP: coarse textures keep their peaks (other texels, so the
+  // resident textures of the other kind go too).
+  const int reduceMode = ReduceMode(list.Passes);
+  const bool pooled = reduceMode == 1 || reduceMode == 2;
+  if (bordered != in.BorderedTextures || pooled != in.PooledTextures)
   {
     in.Bricks.Clear(window);
-    in.BorderedTextures = shaded;
+    in.BorderedTextures = bordered;
+    in.PooledTextures = pooled;
   }
   ShadingDescription shading = in.Shading;
-  shading.Shade = shaded;
+  shading.Shade = list.Passes.find("shaded") != std::string::npos;
   in.Drawer.SetShading(shading);
-  const std::size_t border = shaded ? 1 : 0;
+  in.Drawer.SetIsosurfaces(isosurface ? in.Isosurfaces : std::vector<double>());
+  in.Drawer.SetOpacityEffects(
+    list.Gradients, list.GradientOpacityTable, list.GradientOpacityEnd, list.OpacityScale);
+  const std::size_t border = bordered ? 1 : 0;
   in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   textures.assign(bricks, nullptr);
   // The frame's geometry is made from each brick's block ranges (kept with its texture).
@@ -891,10 +974,10 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, dims,
       [&](float* texels, std::size_t count) {
-        return shaded ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
-                          in.Grid, brick, texels, count, error)
-                      : selected.GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
-                          brick, texels, count, error);
+        return bordered ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
+                            in.Grid, brick, texels, count, error)
+                        : selected.GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+                            brick, texels, count, error);
       },
       error, border);
     if (!resident)
@@ -1027,19 +1110,45 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
   // translucent triangles of each slab between them; blended premultiplied,
   // depth tested, not written. The region of the window drawn: the bricks'
   // boxes (their triangles included); points' footprints may reach past
-  // them, so all of it then.
+  // them, so all of it then. Additive shows every ray crossing the volume's
+  // box (opaque, black without a sample), so its region is that box: the
+  // bricks' boxes leave out those cropping and clipping remove whole.
+  const int reduceMode = ReduceMode(list.Passes);
   double region[4] = { -1.0, 1.0, -1.0, 1.0 };
-  if (this->LastPoints == 0)
+  if (this->LastPoints == 0 && reduceMode == 4)
+  {
+    std::vector<double> volume(6);
+    for (int a = 0; a < 3; ++a)
+    {
+      volume[2 * a] = in.Grid.Origin[a];
+      volume[2 * a + 1] = in.Grid.Origin[a] + (in.Grid.Dims[a] - 1.0) * in.Grid.Spacing[a];
+    }
+    this->ScreenRegion(mcdc, volume, region);
+  }
+  else if (this->LastPoints == 0)
   {
     this->ScreenRegion(mcdc, list.Bounds, region);
   }
-  if (!in.Target.Begin(ren, window, imageSampleDistance, region, error))
+  // The blend modes besides Composite reduce each ray in the target by the
+  // blend equation (maximum: GL_MAX, sums: GL_FUNC_ADD) and resolve it at End().
+  const bool extremum = reduceMode == 1 || reduceMode == 2;
+  const float clear[4] = { extremum ? -3.0e38f : 0.0f, 0.0f, 0.0f, 0.0f };
+  if (!in.Target.Begin(ren, window, imageSampleDistance, region, error, clear))
   {
     vtkErrorMacro(<< error);
     return false;
   }
   state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  if (reduceMode == 0)
+  {
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  }
+  else
+  {
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    state->vtkglBlendEquation(extremum ? GL_MAX : GL_FUNC_ADD);
+  }
+  in.Drawer.SetReduction(reduceMode, in.ValueRange, this->AverageIPScalarRange);
   state->vtkglDisable(GL_DEPTH_TEST); // the shader tests against the copied opaque depth
   state->vtkglDepthMask(GL_FALSE);
   in.TableTexture->Activate();
@@ -1105,9 +1214,22 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
     }
     in.Drawer.Unbind();
   }
+  state->vtkglBlendEquation(GL_FUNC_ADD);
   in.Target.GetDepth()->Deactivate();
   in.TableTexture->Deactivate();
-  in.Target.End(window);
+  vtkOpenGLHybridOctreeFloatTarget::Resolve resolve;
+  resolve.ReduceMode = reduceMode;
+  resolve.Table = in.TableTexture;
+  resolve.TableEntries = this->TableSize;
+  resolve.TableRange[0] = in.RangeLo;
+  resolve.TableRange[1] = in.RangeHi;
+  resolve.MCDC = mcdc;
+  for (int a = 0; a < 3; ++a)
+  {
+    resolve.VolumeLo[a] = in.Grid.Origin[a];
+    resolve.VolumeHi[a] = in.Grid.Origin[a] + (in.Grid.Dims[a] - 1.0) * in.Grid.Spacing[a];
+  }
+  in.Target.End(window, reduceMode != 0 ? &resolve : nullptr);
   if (!ok)
   {
     vtkErrorMacro(<< error);
@@ -1211,6 +1333,7 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   rgba->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
   std::string error;
   if (!in.Frame->Selected->SetShading(in.Shading, error) ||
+    !in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) ||
     !in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
       ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
       static_cast<std::size_t>(height), rgba->GetPointer(0), error))

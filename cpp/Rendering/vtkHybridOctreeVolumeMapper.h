@@ -242,8 +242,10 @@ public:
   vtkGetMacro(LastPoints, vtkTypeInt64);
   vtkGetMacro(LastPointBytes, vtkTypeInt64);
   const char* GetLastPlan() const { return this->LastPlan.c_str(); }
-  /// What removed volume samples in the last frame: "cropping", "clipping",
-  /// "cropping,clipping", or "" (neither on, or neither removing any part of the volume).
+  /// The last frame's volume effects, comma-joined: "gradient-opacity" (the
+  /// property's gradient opacity varies) or "opacity-scale" (it is a
+  /// constant other than 1), then "shading", then "cropping", "clipping"
+  /// (those on that remove part of the volume); empty for none.
   const char* GetLastEffects() const { return this->LastEffects.c_str(); }
   vtkGetMacro(LastFrameMilliseconds, double);
   vtkGetMacro(LastEstimatedError, double);

@@ -46,26 +46,15 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   const double surfaceRGBA[4], std::string& error)
 {
   vtkTextureObject* depth = target.GetDepth();
-  const bool shade = this->Shading.Shade;
+  const bool shade = this->Shading.Shade && this->ReduceMode == 0;
   const bool crop = this->Region.Cropping;
   const bool clip = !this->Region.ClippingPlanes.empty();
   std::string fragment = vtkHybridOctreeBrickFS;
-  // The variants: each its own program; the plain one is unchanged.
-  std::string defines;
-  if (shade)
-  {
-    defines += "\n#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
-  }
-  if (crop)
-  {
-    defines += "\n#define HO_CROP\n";
-  }
-  if (clip)
-  {
-    defines += "\n#define HO_CLIP\n#define HO_MAX_CLIP " + std::to_string(MaxClippingPlanes) + "\n";
-  }
+  const bool isosurface = !this->Isosurfaces.empty() && this->ReduceMode == 0;
+  const std::string defines = this->VariantDefines();
   if (!defines.empty())
   {
+    // A variant: its own program; the plain one is unchanged.
     const std::string system = "//VTK::System::Dec";
     const std::size_t at = fragment.find(system);
     fragment.insert(at == std::string::npos ? 0 : at + system.size(), defines);
@@ -103,17 +92,26 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
     this->Uploaded = true;
   }
   const int stride = static_cast<int>(Stride * sizeof(float));
-  if (this->Geometry.VertexFloats > 0 &&
-    (!this->Vao->AddAttributeArray(
-       this->Program, this->Vertices, "vertexMC", 0, stride, VTK_FLOAT, 3, false) ||
-      !this->Vao->AddAttributeArray(this->Program, this->Vertices, "normalMC", 3 * sizeof(float),
-        stride, VTK_FLOAT, 3, false) ||
-      !this->Vao->AddAttributeArray(
-        this->Program, this->Vertices, "clipMC", 6 * sizeof(float), stride, VTK_FLOAT, 2, false) ||
-      !this->Vao->AddAttributeArray(
-        this->Program, this->Vertices, "kindMC", 8 * sizeof(float), stride, VTK_FLOAT, 1, false) ||
-      !this->Vao->AddAttributeArray(
-        this->Program, this->Vertices, "alphaMC", 9 * sizeof(float), stride, VTK_FLOAT, 1, false)))
+  // The attributes a program reads (the reducing one reads no normal).
+  struct Attribute
+  {
+    const char* Name;
+    int Offset;
+    int Components;
+  };
+  const Attribute attributes[] = { { "vertexMC", 0, 3 }, { "normalMC", 3, 3 }, { "clipMC", 6, 2 },
+    { "kindMC", 8, 1 }, { "alphaMC", 9, 1 } };
+  bool bound = true;
+  for (const Attribute& a : attributes)
+  {
+    if (this->Geometry.VertexFloats > 0 && this->Program->IsAttributeUsed(a.Name))
+    {
+      bound = bound &&
+        this->Vao->AddAttributeArray(this->Program, this->Vertices, a.Name,
+          a.Offset * static_cast<int>(sizeof(float)), stride, VTK_FLOAT, a.Components, false);
+    }
+  }
+  if (!bound)
   {
     error = "could not bind the brick vertices";
     this->Vao->Release();
@@ -160,11 +158,128 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   this->Program->SetUniform4f("surfaceColor", c);
   this->Program->SetUniform3f("pointUp", this->Geometry.PointUp);
   this->Program->SetUniformf("pointSpacing", this->PointSpacing);
+  if (this->ReduceMode != 0)
+  {
+    this->Program->SetUniformi("reduceMode", this->ReduceMode);
+    const float valueRange[2] = { static_cast<float>(this->ValueRange[0]),
+      static_cast<float>(this->ValueRange[1]) };
+    // Clamped to float's range: VTK's default average range is the doubles'.
+    const float averageRange[2] = { static_cast<float>(std::max(this->AverageRange[0], -3.0e38)),
+      static_cast<float>(std::min(this->AverageRange[1], 3.0e38)) };
+    this->Program->SetUniform2f("scalarRange", valueRange);
+    this->Program->SetUniform2f("averageRange", averageRange);
+  }
+  if (isosurface)
+  {
+    float values[MaxIsosurfaces] = {};
+    const int count =
+      static_cast<int>(std::min<std::size_t>(this->Isosurfaces.size(), MaxIsosurfaces));
+    for (int i = 0; i < count; ++i)
+    {
+      values[i] = static_cast<float>(this->Isosurfaces[i]);
+    }
+    this->Program->SetUniformi("isosurfaceCount", count);
+    this->Program->SetUniform1fv("isosurfaceValues", MaxIsosurfaces, values);
+  }
+  this->Program->SetUniformf("opacityScale", static_cast<float>(this->OpacityScale));
   if (shade && !this->SetShadingUniforms(error))
   {
     return false;
   }
+  if (!this->GradientOpacityTable.empty() && !this->SetGradientOpacityUniforms(window, error))
+  {
+    return false;
+  }
   return (!crop && !clip) || this->SetRegionUniforms(error);
+}
+
+std::string vtkOpenGLHybridOctreeBrickDrawer::VariantDefines() const
+{
+  // The region removes samples in every variant (a removed sample is no sample).
+  std::string defines;
+  if (this->Region.Cropping)
+  {
+    defines += "\n#define HO_CROP\n";
+  }
+  if (!this->Region.ClippingPlanes.empty())
+  {
+    defines += "\n#define HO_CLIP\n#define HO_MAX_CLIP " + std::to_string(MaxClippingPlanes) + "\n";
+  }
+  if (this->ReduceMode != 0)
+  {
+    // A reduced ray: only the samples' values, no per-sample effect.
+    return defines + "\n#define HO_REDUCE\n";
+  }
+  if (this->Gradients || this->Shading.Shade || !this->GradientOpacityTable.empty())
+  {
+    defines += "\n#define HO_GRADIENTS\n";
+  }
+  if (this->Shading.Shade)
+  {
+    defines += "#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+  }
+  if (!this->GradientOpacityTable.empty())
+  {
+    defines += "#define HO_GRADIENT_OPACITY\n";
+  }
+  if (!this->Isosurfaces.empty())
+  {
+    defines += "\n#define HO_ISOSURFACE\n#define HO_MAX_ISOSURFACES " +
+      std::to_string(MaxIsosurfaces) + "\n";
+  }
+  return defines;
+}
+
+void vtkOpenGLHybridOctreeBrickDrawer::SetOpacityEffects(
+  bool gradients, const std::vector<float>& table, double end, double scale)
+{
+  this->Gradients = gradients;
+  this->OpacityScale = scale;
+  if (table != this->GradientOpacityTable || end != this->GradientOpacityEnd)
+  {
+    this->GradientOpacityTable = table;
+    this->GradientOpacityEnd = end;
+    this->GradientOpacityUploaded = false;
+  }
+}
+
+bool vtkOpenGLHybridOctreeBrickDrawer::SetGradientOpacityUniforms(
+  vtkOpenGLRenderWindow* window, std::string& error)
+{
+  const std::size_t n = this->GradientOpacityTable.size();
+  if (n < 2 || !(this->GradientOpacityEnd > 0.0))
+  {
+    error = "the gradient opacity table needs 2 or more cells over a positive magnitude range";
+    return false;
+  }
+  if (!this->GradientOpacityTexture)
+  {
+    this->GradientOpacityTexture = vtkSmartPointer<vtkTextureObject>::New();
+    this->GradientOpacityUploaded = false;
+  }
+  vtkTextureObject* texture = this->GradientOpacityTexture;
+  if (!this->GradientOpacityUploaded || texture->GetContext() != window)
+  {
+    texture->SetContext(window);
+    texture->SetWrapS(vtkTextureObject::ClampToEdge);
+    texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    texture->SetMinificationFilter(vtkTextureObject::Linear);
+    texture->SetMagnificationFilter(vtkTextureObject::Linear);
+    if (!texture->Create2DFromRaw(static_cast<unsigned int>(n), 1, 1, VTK_FLOAT,
+          const_cast<float*>(this->GradientOpacityTable.data())))
+    {
+      error = "OpenGL could not create the gradient opacity table texture";
+      return false;
+    }
+    this->GradientOpacityUploaded = true;
+  }
+  texture->Activate();
+  // Cell k (centre at texture coordinate (k + 0.5) / n) holds magnitude k end / (n - 1).
+  const double scale = (n - 1.0) / (n * this->GradientOpacityEnd);
+  const float scaleShift[2] = { static_cast<float>(scale), static_cast<float>(0.5 / n) };
+  this->Program->SetUniform2f("gradientOpacityScaleShift", scaleShift);
+  this->Program->SetUniformi("gradientOpacityTable", texture->GetTextureUnit());
+  return true;
 }
 
 bool vtkOpenGLHybridOctreeBrickDrawer::SetRegionUniforms(std::string& error)
@@ -270,15 +385,19 @@ void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::Dr
   float inverseStep[3];
   float n[3];
   float gradientStep[3];
-  // Shaded: the texture carries one border texel per side.
-  const std::size_t border = this->Shading.Shade ? 2 : 0;
+  // Gradients (shading, gradient opacity) or Isosurface: the texture carries one border texel per
+  // side.
+  const std::size_t border = (this->Gradients || this->Shading.Shade ||
+                               !this->GradientOpacityTable.empty() || !this->Isosurfaces.empty())
+    ? 2
+    : 0;
   for (int a = 0; a < 3; ++a)
   {
     inverseStep[a] = static_cast<float>(1.0 / (list.Stride[i] * spacing[a]));
     gradientStep[a] = static_cast<float>(list.Stride[i] * spacing[a]);
     n[a] = static_cast<float>(list.Texels[3 * i + a] + border);
   }
-  if (border)
+  if (this->Gradients || this->Shading.Shade || !this->GradientOpacityTable.empty())
   {
     this->Program->SetUniform3f("gradientStep", gradientStep);
   }
@@ -321,6 +440,10 @@ void vtkOpenGLHybridOctreeBrickDrawer::Unbind()
   {
     this->Vao->Release();
   }
+  if (this->GradientOpacityTexture && this->GradientOpacityTexture->GetContext())
+  {
+    this->GradientOpacityTexture->Deactivate();
+  }
 }
 
 void vtkOpenGLHybridOctreeBrickDrawer::ReleaseGraphicsResources()
@@ -334,4 +457,11 @@ void vtkOpenGLHybridOctreeBrickDrawer::ReleaseGraphicsResources()
   this->Vao = nullptr;
   this->Program = nullptr;
   this->Uploaded = false;
+  if (this->GradientOpacityTexture && this->GradientOpacityTexture->GetContext())
+  {
+    this->GradientOpacityTexture->ReleaseGraphicsResources(
+      this->GradientOpacityTexture->GetContext());
+  }
+  this->GradientOpacityTexture = nullptr;
+  this->GradientOpacityUploaded = false;
 }

@@ -54,12 +54,21 @@
  *
  * drawn `(c_p a_p w, a_p w)` with coverage w; points adding nothing are not drawn.
  *
+ * The DrawList's volume effects (src/plan/draw_list.rs) choose the program's
+ * variant: HO_GRADIENTS (bordered textures, central-difference gradients) when
+ * shading or gradient opacity take gradients, HO_SHADE for shading,
+ * HO_GRADIENT_OPACITY for gradient opacity, a 1D table of a_grad(|g|)
+ * multiplying the opacity before the slice-spacing correction
+ * (src/transfer/gradient_opacity.rs). A constant gradient opacity is the
+ * uniform opacityScale of every variant.
+ *
  * Cropping and clipping planes (SetRegion(), the DrawList's Region, what
  * acts of the mapper's; src/plan/crop.rs): a volume sample at model
  * position x, in a slice or along a ray-marched brick, is transparent
  * unless its cropping region is kept and normal . (x - origin) >= 0 for
- * every plane. Only the program variants HO_CROP and HO_CLIP test them,
- * made when the list has the effect. Surfaces and points are drawn whole.
+ * every plane; a removed sample is no sample in every blend mode (not
+ * blended, not reduced, no isosurface). Only the program variants HO_CROP
+ * and HO_CLIP test them, made when the list has the effect. Surfaces and points are drawn whole.
  */
 #ifndef vtkOpenGLHybridOctreeBrickDrawer_h
 #define vtkOpenGLHybridOctreeBrickDrawer_h
@@ -70,6 +79,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 class vtkOpenGLHybridOctreeFloatTarget;
 class vtkMatrix4x4;
@@ -120,6 +130,43 @@ public:
     this->Shading = shading;
   }
 
+  /**
+   * The blend mode's reduction (see the float target): 0 Composite (the
+   * composite program), 1 maximum, 2 minimum, 3 average, 4 additive
+   * intensity (the reducing program: every slice fragment and ray sample
+   * writes its share of the reduction, surface triangles and points draw
+   * nothing); `valueRange` what average and additive normalise by,
+   * `averageRange` the values an average counts. Call before Bind().
+   */
+  void SetReduction(int mode, const double valueRange[2], const double averageRange[2])
+  {
+    this->ReduceMode = mode;
+    for (int i = 0; i < 2; ++i)
+    {
+      this->ValueRange[i] = valueRange[i];
+      this->AverageRange[i] = averageRange[i];
+    }
+  }
+
+  /**
+   * The isovalues of the Isosurface blend mode (increasing; empty for the
+   * other modes): a sample shows the isovalue crossed since the sample one
+   * step nearer the eye (src/plan/blend.rs), its textures bordered as
+   * shaded ones. Call before Bind().
+   */
+  void SetIsosurfaces(const std::vector<double>& values) { this->Isosurfaces = values; }
+
+  /// The most isosurface values the Isosurface program takes.
+  static constexpr int MaxIsosurfaces = 16;
+
+  /**
+   * The DrawList's opacity effects: `gradients` whether the samples take
+   * gradients (the textures carry one border texel per side), `table` the
+   * gradient opacity at magnitudes k `end` / (n - 1) (empty: none, the program
+   * without it), `scale` every opacity's constant factor. Call before Bind().
+   */
+  void SetOpacityEffects(bool gradients, const std::vector<float>& table, double end, double scale);
+
   /// The most lights the shaded program takes.
   static constexpr int MaxLights = 8;
 
@@ -159,6 +206,10 @@ private:
   bool SetShadingUniforms(std::string& error);
   /// The cropping and clipping programs' uniforms.
   bool SetRegionUniforms(std::string& error);
+  /// The gradient opacity table (uploaded when it changed), activated, and its uniforms.
+  bool SetGradientOpacityUniforms(vtkOpenGLRenderWindow* window, std::string& error);
+  /// The program's variant defines for this frame's effects.
+  std::string VariantDefines() const;
 
   vtkOpenGLHybridOctreeBrickDrawer(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
   vtkOpenGLHybridOctreeBrickDrawer& operator=(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
@@ -170,6 +221,16 @@ private:
   int SampleSpacing = 1;
   vtkHybridOctreeBridge::ShadingDescription Shading;
   vtkHybridOctreeBridge::RegionDescription Region;
+  int ReduceMode = 0;
+  std::vector<double> Isosurfaces;
+  double ValueRange[2] = { 0.0, 1.0 };
+  double AverageRange[2] = { 0.0, 1.0 };
+  bool Gradients = false;
+  double OpacityScale = 1.0;
+  std::vector<float> GradientOpacityTable;
+  double GradientOpacityEnd = 1.0;
+  bool GradientOpacityUploaded = false;
+  vtkSmartPointer<vtkTextureObject> GradientOpacityTexture;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

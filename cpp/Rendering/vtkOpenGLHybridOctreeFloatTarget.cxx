@@ -1,7 +1,10 @@
 #include "vtkOpenGLHybridOctreeFloatTarget.h"
 
 #include "vtkHybridOctreeCompositeFS.h"
+#include "vtkHybridOctreeResolveFS.h"
 
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -24,7 +27,7 @@ vtkOpenGLHybridOctreeFloatTarget::vtkOpenGLHybridOctreeFloatTarget() = default;
 vtkOpenGLHybridOctreeFloatTarget::~vtkOpenGLHybridOctreeFloatTarget() = default;
 
 bool vtkOpenGLHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
-  double imageSampleDistance, const double region[4], std::string& error)
+  double imageSampleDistance, const double region[4], std::string& error, const float clear[4])
 {
   int width = 0, height = 0, x = 0, y = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
@@ -47,6 +50,7 @@ bool vtkOpenGLHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWi
     this->DepthFramebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
     this->DepthFramebuffer->SetContext(window);
     this->Quad.reset();
+    this->ResolveQuad.reset();
     this->Size[0] = this->Size[1] = 0;
     this->DepthSize[0] = this->DepthSize[1] = 0;
   }
@@ -141,12 +145,19 @@ bool vtkOpenGLHybridOctreeFloatTarget::Begin(vtkRenderer* ren, vtkOpenGLRenderWi
   state->vtkglEnable(GL_SCISSOR_TEST);
   state->vtkglScissor(cleared[0], cleared[2], cleared[1] - cleared[0], cleared[3] - cleared[2]);
   vtkOpenGLState::ScopedglClearColor clearColor(state);
-  state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  if (clear)
+  {
+    state->vtkglClearColor(clear[0], clear[1], clear[2], clear[3]);
+  }
+  else
+  {
+    state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  }
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
   return true;
 }
 
-void vtkOpenGLHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
+void vtkOpenGLHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window, const Resolve* resolve)
 {
   vtkOpenGLState* state = window->GetState();
   state->PopFramebufferBindings();
@@ -164,7 +175,7 @@ void vtkOpenGLHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
     hi[a] = std::max(hi[a], lo[a]);
   }
   state->vtkglScissor(lo[0], lo[1], hi[0] - lo[0], hi[1] - lo[1]);
-  this->Composite(window);
+  this->Composite(window, resolve);
   state->vtkglScissor(this->Scissor[0], this->Scissor[1], this->Scissor[2], this->Scissor[3]);
   if (!this->ScissorTest)
   {
@@ -172,18 +183,21 @@ void vtkOpenGLHybridOctreeFloatTarget::End(vtkOpenGLRenderWindow* window)
   }
 }
 
-void vtkOpenGLHybridOctreeFloatTarget::Composite(vtkOpenGLRenderWindow* window)
+void vtkOpenGLHybridOctreeFloatTarget::Composite(
+  vtkOpenGLRenderWindow* window, const Resolve* resolve)
 {
   vtkOpenGLState* state = window->GetState();
-  if (!this->Quad)
+  std::unique_ptr<vtkOpenGLQuadHelper>& quad = resolve ? this->ResolveQuad : this->Quad;
+  if (!quad)
   {
-    this->Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, vtkHybridOctreeCompositeFS, ""));
+    quad.reset(new vtkOpenGLQuadHelper(
+      window, nullptr, resolve ? vtkHybridOctreeResolveFS : vtkHybridOctreeCompositeFS, ""));
   }
-  if (!this->Quad->Program)
+  if (!quad->Program)
   {
     return;
   }
-  window->GetShaderCache()->ReadyShaderProgram(this->Quad->Program);
+  window->GetShaderCache()->ReadyShaderProgram(quad->Program);
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
@@ -193,17 +207,63 @@ void vtkOpenGLHybridOctreeFloatTarget::Composite(vtkOpenGLRenderWindow* window)
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
   this->Color->Activate();
-  this->Quad->Program->SetUniformi("composited", this->Color->GetTextureUnit());
-  this->Quad->Render();
+  quad->Program->SetUniformi("composited", this->Color->GetTextureUnit());
+  if (resolve)
+  {
+    resolve->Table->Activate();
+    this->Depth->Activate();
+    this->SetResolveUniforms(*resolve);
+  }
+  quad->Render();
+  if (resolve)
+  {
+    this->Depth->Deactivate();
+    resolve->Table->Deactivate();
+  }
   this->Color->Deactivate();
+}
+
+void vtkOpenGLHybridOctreeFloatTarget::SetResolveUniforms(const Resolve& resolve)
+{
+  vtkShaderProgram* program = this->ResolveQuad->Program;
+  program->SetUniformi("transferTable", resolve.Table->GetTextureUnit());
+  program->SetUniformi("opaqueDepth", this->Depth->GetTextureUnit());
+  program->SetUniformi("reduceMode", resolve.ReduceMode);
+  // Table cell k holds the value lo + (hi - lo) k / (entries - 1), its centre at (k + 0.5) /
+  // entries.
+  const double lo = resolve.TableRange[0];
+  const double hi = resolve.TableRange[1];
+  const double n = resolve.TableEntries;
+  const double scale = hi > lo ? (n - 1.0) / (n * (hi - lo)) : 0.0;
+  const float scaleShift[2] = { static_cast<float>(scale),
+    static_cast<float>(0.5 / n - lo * scale) };
+  program->SetUniform2f("tableScaleShift", scaleShift);
+  const float size[2] = { static_cast<float>(this->Size[0]), static_cast<float>(this->Size[1]) };
+  program->SetUniform2f("targetSize", size);
+  program->SetUniform2f("depthScale", this->DepthScale);
+  const float depthSize[2] = { static_cast<float>(this->DepthSize[0]),
+    static_cast<float>(this->DepthSize[1]) };
+  program->SetUniform2f("depthSize", depthSize);
+  vtkNew<vtkMatrix4x4> dcmc;
+  vtkMatrix4x4::Invert(resolve.MCDC, dcmc);
+  program->SetUniformMatrix("DCMC", dcmc);
+  const float lo3[3] = { static_cast<float>(resolve.VolumeLo[0]),
+    static_cast<float>(resolve.VolumeLo[1]), static_cast<float>(resolve.VolumeLo[2]) };
+  const float hi3[3] = { static_cast<float>(resolve.VolumeHi[0]),
+    static_cast<float>(resolve.VolumeHi[1]), static_cast<float>(resolve.VolumeHi[2]) };
+  program->SetUniform3f("volumeLo", lo3);
+  program->SetUniform3f("volumeHi", hi3);
 }
 
 void vtkOpenGLHybridOctreeFloatTarget::ReleaseGraphicsResources(vtkWindow* window)
 {
-  if (this->Quad)
+  for (std::unique_ptr<vtkOpenGLQuadHelper>* quad : { &this->Quad, &this->ResolveQuad })
   {
-    this->Quad->ReleaseGraphicsResources(window);
-    this->Quad.reset();
+    if (*quad)
+    {
+      (*quad)->ReleaseGraphicsResources(window);
+      quad->reset();
+    }
   }
   if (this->Framebuffer)
   {

@@ -21,6 +21,11 @@
  * blended over the viewport with linear filtering. The depth texture stays
  * viewport-sized: the shaders read it at their fragment's position times
  * GetDepthScale().
+ *
+ * The blend modes besides Composite reduce each ray in the target instead
+ * (the brick shader's HO_REDUCE: a maximum, a minimum or sums) and End()
+ * resolves each texel through the transfer function before it is blended
+ * (vtkHybridOctreeResolveFS.glsl).
  */
 #ifndef vtkOpenGLHybridOctreeFloatTarget_h
 #define vtkOpenGLHybridOctreeFloatTarget_h
@@ -37,9 +42,23 @@ class vtkRenderer;
 class vtkTextureObject;
 class vtkWindow;
 
+class vtkMatrix4x4;
+
 class vtkOpenGLHybridOctreeFloatTarget
 {
 public:
+  /// How End() resolves a reduction (blend modes besides Composite).
+  struct Resolve
+  {
+    int ReduceMode = 0;                ///< 1 maximum, 2 minimum, 3 average, 4 additive intensity
+    vtkTextureObject* Table = nullptr; ///< the transfer function table
+    int TableEntries = 1;
+    double TableRange[2] = { 0.0, 1.0 };    ///< the values of its first and last cells
+    vtkMatrix4x4* MCDC = nullptr;           ///< model to clip (VTK's transposed layout)
+    double VolumeLo[3] = { 0.0, 0.0, 0.0 }; ///< the volume's box, model coordinates
+    double VolumeHi[3] = { 0.0, 0.0, 0.0 };
+  };
+
   vtkOpenGLHybridOctreeFloatTarget();
   ~vtkOpenGLHybridOctreeFloatTarget();
 
@@ -48,15 +67,16 @@ public:
    * a viewport of the viewport's size divided by `imageSampleDistance` (>= 1,
    * rounded up), cleared to 0 and drawn only within `region` (xmin, xmax,
    * ymin, ymax in normalized device coordinates: what is drawn covers no
-   * more) by the scissor test. False and `error` when OpenGL refuses (the
-   * window's bindings are then unchanged).
+   * more) by the scissor test. `clear`: the value cleared to (transparent
+   * black by default; a reduction's identity). False and `error` when OpenGL
+   * refuses (the window's bindings are then unchanged).
    */
   bool Begin(vtkRenderer* ren, vtkOpenGLRenderWindow* window, double imageSampleDistance,
-    const double region[4], std::string& error);
+    const double region[4], std::string& error, const float clear[4] = nullptr);
 
   /// Restores the window's framebuffer, viewport and scissor and blends the
-  /// target's region over the window.
-  void End(vtkOpenGLRenderWindow* window);
+  /// target's region over the window, resolved first by `resolve` when given.
+  void End(vtkOpenGLRenderWindow* window, const Resolve* resolve = nullptr);
 
   /// The opaque depth copied by Begin(), viewport-sized (valid until End()).
   vtkTextureObject* GetDepth() { return this->Depth; }
@@ -72,7 +92,10 @@ private:
   vtkOpenGLHybridOctreeFloatTarget& operator=(const vtkOpenGLHybridOctreeFloatTarget&) = delete;
 
   /// Draws the target over the window's viewport, blended premultiplied.
-  void Composite(vtkOpenGLRenderWindow* window);
+  void Composite(vtkOpenGLRenderWindow* window, const Resolve* resolve);
+
+  /// The resolve program's uniforms for `resolve`.
+  void SetResolveUniforms(const Resolve& resolve);
 
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   vtkSmartPointer<vtkTextureObject> Color;
@@ -80,6 +103,7 @@ private:
   /// Holds Depth as its depth attachment, the blit's destination.
   vtkSmartPointer<vtkOpenGLFramebufferObject> DepthFramebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+  std::unique_ptr<vtkOpenGLQuadHelper> ResolveQuad;
   int Size[2] = { 0, 0 };
   int DepthSize[2] = { 0, 0 };
   float DepthScale[2] = { 1.0f, 1.0f };

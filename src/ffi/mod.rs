@@ -21,6 +21,8 @@
 mod crop_tests;
 mod ftb;
 mod geometry;
+#[cfg(test)]
+mod gradient_opacity_tests;
 mod grid;
 mod guard;
 mod octree;
@@ -239,6 +241,23 @@ mod bridge {
         /// Count one border texel per side of each brick in its bytes (the
         /// volume is shaded: the gradient reads them; see `brick_texels_bordered`).
         gradient_border: bool,
+        /// The blend mode, VTK's `vtkVolumeMapper::BlendModes` value (0
+        /// composite, 1 maximum, 2 minimum, 3 average intensity, 4 additive;
+        /// 5 isosurface; others are refused). It changes the selection (MIP and MinIP keep
+        /// nodes that hold a ray's extreme, and coarse bricks get peak-keeping
+        /// texels) and the plan (`volume-mip`, ...).
+        blend_mode: i32,
+        /// VTK's AverageIPScalarRange: the values an average intensity counts.
+        average_range: [f64; 2],
+        /// The isosurface values of blend mode 5 (vtkVolumeProperty's
+        /// IsoSurfaceValues; 1 to 16 finite values), ignored by the others.
+        isosurface_values: Vec<f64>,
+        /// vtkVolumeProperty's GradientOpacity as VTK's GPU ray caster reads
+        /// it, (magnitude, opacity) pairs flattened, magnitudes per mean
+        /// voxel spacing (`transfer::gradient_opacity`, `from_vtk`); empty:
+        /// none. One that is 0 everywhere hides every node; one that is not
+        /// constant counts the gradient border as `gradient_border` does.
+        gradient_opacity_points: Vec<f64>,
         /// VTK's cropping and clipping planes: nodes whose box they remove
         /// get no texture (counted as skipped), and the selection's
         /// DrawLists keep only their samples (`plan::crop`).
@@ -348,9 +367,22 @@ mod bridge {
         slices: Vec<f64>,
         /// The plan's passes in order, comma-joined ("volume", "" with no brick).
         passes: String,
-        /// What removes volume samples in every pass, comma-joined:
-        /// "cropping", "clipping", "cropping,clipping" or "" (nothing).
+        /// The plan's volume effects in order, comma-joined: per sample
+        /// "gradient-opacity" or "opacity-scale", then "shading", then what
+        /// removes samples in every pass, "cropping", "clipping"
+        /// (e.g. "gradient-opacity,shading,cropping"; "" none).
         effects: String,
+        /// The samples take gradients (shading or gradient opacity): the
+        /// brick textures carry the gradient border (`brick_texels_bordered`).
+        gradients: bool,
+        /// Every sample's opacity times this before the correction (1: none).
+        opacity_scale: f64,
+        /// With the effect "gradient-opacity": the function at magnitudes
+        /// k end / (n - 1), k = 0 .. n (data units per world unit of the
+        /// octree's frame), held past the ends; empty otherwise.
+        gradient_opacity_table: Vec<f32>,
+        /// The magnitude of the table's last entry.
+        gradient_opacity_end: f64,
         /// The cropping and planes that act (those of the selection's
         /// region that remove part of the volume; `cropping` false and no
         /// planes when nothing does).
@@ -646,6 +678,13 @@ mod bridge {
         /// (errors: a bad number; a shade without lights or lights not in
         /// threes). The plan then says "volume-shaded" unless it changes no colour.
         fn set_shading(self: &SelectionHandle, shading: &ShadingDesc) -> Result<()>;
+        /// The gradient opacity of the DrawLists and pictures made after
+        /// this call: vtkVolumeProperty's GradientOpacity points as
+        /// `SelectDesc::gradient_opacity_points` (empty: none; errors: an odd
+        /// count, magnitudes not finite or decreasing, opacities outside
+        /// [0, 1]). The plan's effects then say "gradient-opacity", or
+        /// "opacity-scale" for a constant other than 1.
+        fn set_gradient_opacity(self: &SelectionHandle, points: &[f64]) -> Result<()>;
 
         /// Floats of the block ranges of a brick of `dims` texels (x, y, z):
         /// 2 per block of 4^3 cells (see `plan::draw_geometry::occupancy`).

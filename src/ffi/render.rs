@@ -12,7 +12,7 @@
 use super::grid::{grid_of, grid_unscanned, same_image};
 use super::guard::{check_len, guarded, Bridged};
 use super::octree::HybridOctreeHandle;
-use super::transfer::{opacity_function, transfer_function};
+use super::transfer::{opacity_function, transfer_function, vtk_gradient_opacity};
 use super::{CameraDesc, DrawListOutput, GridDesc, RegionDesc, SelectDesc, SelectionSummary, ShadingDesc};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
@@ -21,12 +21,17 @@ use crate::plan::crop::{ClippingPlane, Cropping, KeptRegion};
 use crate::plan::point_slabs::add_points;
 use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
-use crate::plan::{plan, recrop, relight, DrawList, SurfacePass};
+use crate::plan::{needs_gradients, plan, recrop, replan_effects, Blend, BlendMode, DrawList, Scene, SurfacePass};
 use crate::points::Footprint;
 use crate::points::PointSet;
-use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_f32_into};
+use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into};
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
+use crate::transfer::GradientOpacity;
 use std::sync::{Arc, Mutex};
+
+/// Cells of the gradient opacity table a DrawList carries
+/// ([`super::DrawListOutput::gradient_opacity_table`]).
+const GRADIENT_OPACITY_TABLE: usize = 4096;
 
 /// A selection, with the octree and grid it was made from.
 #[derive(Debug)]
@@ -42,6 +47,10 @@ pub struct SelectionHandle {
     points: Option<Arc<PointSet>>,
     /// The shading of its DrawLists ([`SelectionHandle::set_shading`]).
     lighting: Mutex<Option<Lighting>>,
+    /// The blend mode it was selected for, over the octree's value range.
+    blend: Blend,
+    /// The gradient opacity of its DrawLists ([`SelectionHandle::set_gradient_opacity`]).
+    gradient_opacity: Mutex<Option<GradientOpacity>>,
     /// The cropping and clipping planes it was selected for, world
     /// coordinates: its DrawLists keep only their samples.
     region: Option<KeptRegion>,
@@ -129,7 +138,11 @@ pub(crate) fn lighting(desc: &ShadingDesc) -> Result<Option<Lighting>> {
 /// The select options of `desc` for a grid of `shape`: the ROI from world
 /// to index space (centre through origin and spacing, radius divided by the
 /// smallest spacing).
-pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<SelectOptions> {
+pub(crate) fn select_options(
+    shape: &GridShape,
+    desc: &SelectDesc,
+    gradient_opacity: Option<&GradientOpacity>,
+) -> Result<SelectOptions> {
     let roi = if desc.has_roi {
         let (c, r) = (desc.roi_center, desc.roi_radius);
         if c.iter().any(|v| !v.is_finite()) || !(r > 0.0 && r.is_finite()) {
@@ -144,25 +157,63 @@ pub(crate) fn select_options(shape: &GridShape, desc: &SelectDesc) -> Result<Sel
     };
     Ok(SelectOptions {
         roi,
-        gradient_border: desc.gradient_border,
+        pooled: blend_mode(desc.blend_mode)?.is_extremum(),
+        // Isosurface reads the sample before a brick's first one, in the border.
+        gradient_border: desc.gradient_border
+            || blend_mode(desc.blend_mode)? == BlendMode::Isosurface
+            || needs_gradients(None, gradient_opacity, blend_mode(desc.blend_mode)?),
         region: region(&desc.region)?.map(|r| r.to_index(shape)),
         ..SelectOptions::new(desc.budget_bytes, desc.tolerance)
     })
 }
 
+/// The blend mode of VTK's value `mode` (0 to 5).
+fn blend_mode(mode: i32) -> Result<BlendMode> {
+    BlendMode::from_vtk(mode).ok_or_else(|| {
+        Error::InvalidArgument(format!(
+            "blend mode {mode}: give 0 (composite), 1 (maximum intensity), 2 (minimum intensity), 3 (average \
+             intensity), 4 (additive) or 5 (isosurface)"
+        ))
+    })
+}
+
+/// The blend of `desc` over `value_range` (the octree's), its average range checked.
+pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend> {
+    let [lo, hi] = desc.average_range;
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return Err(Error::InvalidArgument(format!(
+            "average intensity range [{lo}, {hi}]: give two numbers, the first not above the second"
+        )));
+    }
+    let mode = blend_mode(desc.blend_mode)?;
+    let mut blend = if mode == BlendMode::Isosurface {
+        Blend::isosurfaces(&desc.isosurface_values, [value_range.0, value_range.1])?
+    } else {
+        Blend::new(mode, [value_range.0, value_range.1])
+    };
+    blend.average_range = [lo, hi];
+    Ok(blend)
+}
+
 /// The CLI's visibility test (`scene::visible`): a node shows unless the
-/// opacity is 0 over its whole range, or when it holds the isovalue; with
-/// the octree's points, bytes go to textures or points ([`select_with_points`]).
+/// opacity is 0 over its whole range or the gradient opacity is 0
+/// everywhere, or when it holds the isovalue; with the octree's points,
+/// bytes go to textures or points ([`select_with_points`]).
 pub(crate) fn select_with(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Result<Selection> {
-    let options = select_options(&octree.shape, desc)?;
+    let gradient_opacity =
+        vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, octree.volume().value_range())?;
+    let options = select_options(&octree.shape, desc, gradient_opacity.as_ref())?;
+    let hidden = gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     let tf = opacity_function(&desc.opacity_points)?;
     let iso = desc.has_isovalue.then_some(desc.isovalue);
     if iso.is_some_and(|v| !v.is_finite()) {
         return Err(Error::InvalidArgument(format!("isovalue {} must be a finite number", desc.isovalue)));
     }
-    let visible = |min: f64, max: f64| {
-        tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max)) || iso.is_some_and(|v| min < v && v <= max)
-    };
+    let blend = blend(desc, octree.volume().value_range())?;
+    // Gradient opacity applies in Composite only.
+    let hidden = hidden && blend.mode == BlendMode::Composite;
+    let shows = |min: f64, max: f64| !hidden && tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max));
+    let visible = |min: f64, max: f64| blend.visible(min, max, &shows) || iso.is_some_and(|v| min < v && v <= max);
     match &octree.hybrid.points {
         Some(points) => select_with_points(octree.volume(), &options, visible, &points.mass),
         None => select(octree.volume(), &options, visible),
@@ -194,6 +245,10 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         slices: Vec::new(),
         passes: list.plan.passes.join(","),
         effects: list.plan.effects.join(","),
+        gradients: list.plan.gradients(),
+        opacity_scale: list.plan.opacity_scale,
+        gradient_opacity_table: Vec::new(),
+        gradient_opacity_end: 0.0,
         region: region_desc(list.region.as_ref()),
         reference_spacing: list.reference_spacing,
         forward: list.camera.forward(),
@@ -208,6 +263,10 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         bucket_point_offsets: Vec::new(),
         bucket_points: Vec::new(),
     };
+    if let Some(f) = list.gradient_opacity.as_ref().filter(|_| list.plan.gradient_opacity) {
+        out.gradient_opacity_end = f.table_end();
+        out.gradient_opacity_table = f.table(out.gradient_opacity_end, GRADIENT_OPACITY_TABLE);
+    }
     out.slice_offsets.push(0);
     out.batch_offsets.push(0);
     if list.plan.passes.iter().any(|p| p == "points") {
@@ -287,7 +346,9 @@ impl HybridOctreeHandle {
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
             let selection = select_with(self, desc)?;
+            let blend = blend(desc, self.volume().value_range())?;
             Ok(Box::new(SelectionHandle {
+                blend,
                 selection,
                 octree_id: self.id,
                 shape: self.shape,
@@ -295,6 +356,7 @@ impl HybridOctreeHandle {
                 polygons: Mutex::new(None),
                 points: self.hybrid.points.as_ref().map(|p| Arc::clone(&p.set)),
                 lighting: Mutex::new(None),
+                gradient_opacity: Mutex::new(None),
                 region: region(&desc.region)?,
             }))
         })
@@ -331,7 +393,9 @@ impl SelectionHandle {
             add_points(&mut list, &octree.shape, set)?;
         }
         let lighting = self.lighting.lock().unwrap_or_else(|e| e.into_inner()).clone();
-        Ok(recrop(relight(list, lighting.as_ref())?, self.region.as_ref(), &octree.shape))
+        let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
+        let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
+        Ok(recrop(list, self.region.as_ref(), &octree.shape))
     }
 
     /// [`Self::list`] without the points.
@@ -351,15 +415,16 @@ impl SelectionHandle {
             return Err(Error::InvalidArgument(format!("surface opacity {surface_opacity} must be between 0 and 1")));
         }
         let hybrid = &octree.hybrid;
-        if plan(&self.selection, &hybrid.scene(surface_opacity)).surface != SurfacePass::Translucent {
-            return hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, None);
+        let scene = Scene { blend: self.blend, ..hybrid.scene(surface_opacity) };
+        if plan(&self.selection, &scene).surface != SurfacePass::Translucent {
+            return hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, self.blend, None);
         }
         let mut cache = self.polygons.lock().unwrap_or_else(|e| e.into_inner());
         if cache.as_ref().is_none_or(|(id, _)| *id != octree.surface_id) {
             *cache = hybrid.slab_polygons(&octree.shape, &self.selection).map(|made| (octree.surface_id, made));
         }
         let polygons = cache.as_ref().map(|(_, p)| p);
-        hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, polygons)
+        hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, self.blend, polygons)
     }
 
     pub(crate) fn draw_list(
@@ -423,6 +488,16 @@ impl SelectionHandle {
         })
     }
 
+    /// The gradient opacity of the DrawLists made after this call (VTK's
+    /// points for this selection's grid and value range).
+    pub(crate) fn set_gradient_opacity(&self, points: &[f64]) -> Bridged<()> {
+        guarded(|| {
+            let made = vtk_gradient_opacity(points, &self.shape, self.value_range)?;
+            *self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()) = made;
+            Ok(())
+        })
+    }
+
     pub(crate) fn brick_texels(&self, bytes: &[u8], desc: &GridDesc, brick: usize, texels: &mut [f32]) -> Bridged<()> {
         self.texels(bytes, desc, brick, false, texels)
     }
@@ -455,7 +530,7 @@ impl SelectionHandle {
             if bordered {
                 brick_texels_f32_bordered_into(&grid, b, texels)?;
             } else {
-                brick_texels_f32_into(&grid, b, texels)?;
+                brick_texels_for_blend_f32_into(&grid, b, self.blend.mode, texels)?;
             }
             check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
             if let Some(i) = texels.iter().position(|v| v.is_infinite()) {

@@ -152,8 +152,14 @@ fn draw_list_through_the_bridge_is_plan_draw_list() {
         .unwrap();
     for c in cameras() {
         let out = s.draw_list(&h, &c, 0.0).unwrap();
-        let scene =
-            Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+        let scene = Scene {
+            surface: None,
+            surface_opacity: 1.0,
+            shading: None,
+            gradient_opacity: None,
+            blend: bridge_blend(&h),
+            region: None,
+        };
         let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera(&c).unwrap(), &scene, None).unwrap();
         assert_eq!(direct, s.list(&h, &c, 0.0).unwrap());
         let n = direct.bricks.len();
@@ -314,7 +320,8 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
                 surface: Some(&surface),
                 surface_opacity: opacity,
                 shading: None,
-                blend: Default::default(),
+                gradient_opacity: None,
+                blend: bridge_blend(&h),
                 region: None,
             };
             let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera, &scene, None).unwrap();
@@ -341,8 +348,14 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
             }
         }
         // Hidden is the volume alone, as without a surface.
-        let volume =
-            Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None };
+        let volume = Scene {
+            surface: None,
+            surface_opacity: 1.0,
+            shading: None,
+            gradient_opacity: None,
+            blend: bridge_blend(&h),
+            region: None,
+        };
         let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera, &volume, None).unwrap();
         assert_eq!(s.list(&h, &c, 0.0).unwrap(), direct);
     }
@@ -350,8 +363,14 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
     h.integrate_surface(bytes(&d), &desc(), 0.3, SurfaceMode::Discretized, false).unwrap();
     let other = h.hybrid.surface.clone().unwrap();
     let c = &cameras()[1];
-    let scene =
-        Scene { surface: Some(&other), surface_opacity: 0.4, shading: None, blend: Default::default(), region: None };
+    let scene = Scene {
+        surface: Some(&other),
+        surface_opacity: 0.4,
+        shading: None,
+        gradient_opacity: None,
+        blend: bridge_blend(&h),
+        region: None,
+    };
     let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera(c).unwrap(), &scene, None).unwrap();
     assert_eq!(s.list(&h, c, 0.4).unwrap(), direct);
     // Without a surface any opacity draws the volume alone.
@@ -438,4 +457,60 @@ fn composite_through_the_bridge_is_the_cpu_compositor() {
     assert!(e.unwrap_err().contains("tuples"));
     let e = s.composite(&h, c, bytes(&d), &desc(), &colors, &opacities, false, &[0.0; 4], 8, 8, &mut out[1..]);
     assert!(e.unwrap_err().contains("the picture"));
+}
+
+/// A blend mode through the bridge: the plan names it, a coarse MIP brick's
+/// texels keep the peak of the samples they stand for, MinIP's the low, and
+/// a translucent surface is not planned under it; unknown modes and a bad
+/// average range are refused.
+#[test]
+fn blend_modes_through_the_bridge() {
+    let d = data();
+    let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+    let c = &cameras()[0];
+    for (mode, pass, largest) in [(1, "volume-mip", true), (2, "volume-minip", false)] {
+        let s = h.select_bricks(&SelectDesc { blend_mode: mode, ..options(6_000) }).unwrap();
+        assert_eq!(s.draw_list(&h, c, 0.0).unwrap().passes, pass);
+        let coarse = (0..s.selection.bricks.len()).find(|&i| s.selection.bricks[i].stride > 1).expect("a coarse brick");
+        let b = s.selection.bricks[coarse];
+        let t = texels(&s, bytes(&d), &desc(), coarse).unwrap();
+        // The extreme of the samples of the brick's box against the extreme texel.
+        let mut extreme = if largest { f32::MIN } else { f32::MAX };
+        for z in b.lo[2]..=b.hi[2] {
+            for y in b.lo[1]..=b.hi[1] {
+                for x in b.lo[0]..=b.hi[0] {
+                    let v = d[x + N * (y + N * z)];
+                    extreme = if largest { extreme.max(v) } else { extreme.min(v) };
+                }
+            }
+        }
+        let got = t.iter().copied().fold(if largest { f32::MIN } else { f32::MAX }, |a, v| {
+            if largest {
+                a.max(v)
+            } else {
+                a.min(v)
+            }
+        });
+        assert_eq!(got, extreme, "mode {mode}: brick {coarse} stride {}", b.stride);
+    }
+    for (mode, pass) in [(0, "volume"), (3, "volume-average"), (4, "volume-additive")] {
+        let s = h.select_bricks(&SelectDesc { blend_mode: mode, ..options(30_000) }).unwrap();
+        assert_eq!(s.draw_list(&h, c, 0.0).unwrap().passes, pass);
+    }
+    let e = h.select_bricks(&SelectDesc { blend_mode: 6, ..options(30_000) }).map(|_| ()).unwrap_err();
+    assert!(e.contains("blend mode 6") && e.contains("isosurface"), "{e}");
+    let e = h.select_bricks(&SelectDesc { blend_mode: 5, ..options(30_000) }).map(|_| ()).unwrap_err();
+    assert!(e.contains("0 isosurface values"), "{e}");
+    let iso = SelectDesc { blend_mode: 5, isosurface_values: vec![0.5], ..options(30_000) };
+    let s = h.select_bricks(&iso).unwrap();
+    assert_eq!(s.draw_list(&h, c, 0.0).unwrap().passes, "volume-isosurface");
+    assert!(s.list(&h, c, 0.0).unwrap().plan.bordered(), "textures with the border the step back reads");
+    let e = h.select_bricks(&SelectDesc { average_range: [1.0, 0.0], ..options(30_000) }).map(|_| ()).unwrap_err();
+    assert!(e.contains("average intensity range"), "{e}");
+}
+
+/// The blend of the bridge's selections: Composite over the octree's value range.
+fn bridge_blend(h: &HybridOctreeHandle) -> crate::plan::Blend {
+    let (lo, hi) = h.volume().value_range();
+    crate::plan::Blend::new(crate::plan::BlendMode::Composite, [lo, hi])
 }

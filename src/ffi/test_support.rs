@@ -27,6 +27,10 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         has_isovalue: false,
         isovalue: 0.0,
         gradient_border: false,
+        blend_mode: 0,
+        average_range: [f64::MIN, f64::MAX],
+        isosurface_values: Vec::new(),
+        gradient_opacity_points: Vec::new(),
         region: no_region(),
     }
 }

@@ -23,6 +23,20 @@
 //! combine by max, min or sum in any order. An additive pixel is opaque
 //! (alpha 1) wherever its ray crosses the volume's box, as VTK's: its
 //! proxy geometry is that box.
+//!
+//! Isosurface (VTK's `ISOSURFACE_BLEND`, ParaView's *Blend Mode* Isosurface
+//! with *Isosurfaces*) composites front to back like Composite, but a
+//! sample shows only the isovalues the ray crossed since the sample before
+//! it (one lattice step `s` nearer the eye):
+//!
+//! ```text
+//! the c_k crossed from v(p - s) = v0 to v(p) = v1:  v0 < c_k <= v1 or v1 <= c_k < v0,
+//! each composited, nearest v0 first, as (c(c_k), a(c_k)), shaded at p when Shade is on
+//! ```
+//!
+//! (VTK's `findIsoSurfaceIndex` walk takes the same crossings, one a step
+//! when a jump crosses several), the opacity not corrected for the
+//! spacing: one crossing is one surface.
 
 /// A blend mode, named as the plan's passes and the CLI's `--blend` name it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
@@ -39,14 +53,22 @@ pub enum BlendMode {
     Average,
     /// Additive (`ADDITIVE_BLEND`).
     Additive,
+    /// Isosurfaces of the given values (`ISOSURFACE_BLEND`).
+    Isosurface,
 }
 
 impl BlendMode {
     /// Every mode, in VTK's order.
-    pub const ALL: [BlendMode; 5] =
-        [BlendMode::Composite, BlendMode::Mip, BlendMode::Minip, BlendMode::Average, BlendMode::Additive];
+    pub const ALL: [BlendMode; 6] = [
+        BlendMode::Composite,
+        BlendMode::Mip,
+        BlendMode::Minip,
+        BlendMode::Average,
+        BlendMode::Additive,
+        BlendMode::Isosurface,
+    ];
 
-    /// The mode's name: `composite`, `mip`, `minip`, `average`, `additive`.
+    /// The mode's name: `composite`, `mip`, `minip`, `average`, `additive`, `isosurface`.
     pub fn name(self) -> &'static str {
         match self {
             BlendMode::Composite => "composite",
@@ -54,6 +76,7 @@ impl BlendMode {
             BlendMode::Minip => "minip",
             BlendMode::Average => "average",
             BlendMode::Additive => "additive",
+            BlendMode::Isosurface => "isosurface",
         }
     }
 
@@ -66,8 +89,8 @@ impl BlendMode {
     }
 
     /// The mode of VTK's `vtkVolumeMapper::BlendModes` value (0 composite,
-    /// 1 maximum, 2 minimum, 3 average, 4 additive); `None` for the others
-    /// (5 isosurface, 6 slice) and unknown values.
+    /// 1 maximum, 2 minimum, 3 average, 4 additive, 5 isosurface); `None`
+    /// for the others (6 slice) and unknown values.
     pub fn from_vtk(value: i32) -> Option<BlendMode> {
         BlendMode::ALL.get(usize::try_from(value).ok()?).copied()
     }
@@ -76,6 +99,12 @@ impl BlendMode {
     pub fn is_extremum(self) -> bool {
         matches!(self, BlendMode::Mip | BlendMode::Minip)
     }
+
+    /// True for the modes that composite samples front to back (Composite,
+    /// Isosurface): shading and a translucent surface in the slabs apply.
+    pub fn composites(self) -> bool {
+        matches!(self, BlendMode::Composite | BlendMode::Isosurface)
+    }
 }
 
 impl std::str::FromStr for BlendMode {
@@ -83,7 +112,7 @@ impl std::str::FromStr for BlendMode {
     fn from_str(s: &str) -> crate::Result<BlendMode> {
         BlendMode::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
             crate::Error::InvalidArgument(format!(
-                "blend mode '{}': give one of composite, mip, minip, average, additive",
+                "blend mode '{}': give one of composite, mip, minip, average, additive, isosurface",
                 crate::base::limits::excerpt(s)
             ))
         })
@@ -101,7 +130,15 @@ pub struct Blend {
     /// VTK's AverageIPScalarRange: the values an average counts (default
     /// everything, VTK's `[VTK_DOUBLE_MIN, VTK_DOUBLE_MAX]`).
     pub average_range: [f64; 2],
+    /// The isosurface values (Isosurface), increasing; the first
+    /// `isovalue_count` are used.
+    pub isovalues: [f64; MAX_ISOVALUES],
+    /// How many of `isovalues` are set.
+    pub isovalue_count: usize,
 }
+
+/// The most isosurface values a blend takes.
+pub const MAX_ISOVALUES: usize = 16;
 
 impl Default for Blend {
     fn default() -> Blend {
@@ -112,7 +149,56 @@ impl Default for Blend {
 impl Blend {
     /// `mode` over a volume of scalar range `scalar_range`, averaging every value.
     pub fn new(mode: BlendMode, scalar_range: [f64; 2]) -> Blend {
-        Blend { mode, scalar_range, average_range: [f64::MIN, f64::MAX] }
+        Blend {
+            mode,
+            scalar_range,
+            average_range: [f64::MIN, f64::MAX],
+            isovalues: [0.0; MAX_ISOVALUES],
+            isovalue_count: 0,
+        }
+    }
+
+    /// Isosurfaces of `values` (any order, repeats merged) over a volume of
+    /// scalar range `scalar_range`.
+    ///
+    /// # Errors
+    ///
+    /// [`crate::Error::InvalidArgument`] for no value, more than
+    /// [`MAX_ISOVALUES`], or a value that is not finite.
+    pub fn isosurfaces(values: &[f64], scalar_range: [f64; 2]) -> crate::Result<Blend> {
+        let mut sorted = values.to_vec();
+        if let Some(bad) = sorted.iter().find(|v| !v.is_finite()) {
+            return Err(crate::Error::InvalidArgument(format!("isosurface value {bad}: give finite numbers")));
+        }
+        sorted.sort_by(f64::total_cmp);
+        sorted.dedup();
+        if sorted.is_empty() || sorted.len() > MAX_ISOVALUES {
+            return Err(crate::Error::InvalidArgument(format!(
+                "{} isosurface values: give 1 to {MAX_ISOVALUES} (the Isosurface blend mode draws the surfaces of \
+                 those values)",
+                sorted.len()
+            )));
+        }
+        let mut blend = Blend::new(BlendMode::Isosurface, scalar_range);
+        blend.isovalues[..sorted.len()].copy_from_slice(&sorted);
+        blend.isovalue_count = sorted.len();
+        Ok(blend)
+    }
+
+    /// The isosurface values in use, increasing.
+    pub fn isovalues(&self) -> &[f64] {
+        &self.isovalues[..self.isovalue_count.min(MAX_ISOVALUES)]
+    }
+
+    /// The isovalues the ray crosses going from value `v0` to `v1` (see the
+    /// module documentation), nearest `v0` first: `v0 < c <= v1` or
+    /// `v1 <= c < v0`; none when either is NaN.
+    #[inline]
+    pub fn crossings(&self, v0: f64, v1: f64) -> impl Iterator<Item = f64> + '_ {
+        let values = self.isovalues();
+        let rising = values.iter().copied().filter(move |&c| v0 < v1 && v0 < c && c <= v1);
+        let falling = values.iter().rev().copied().filter(move |&c| v1 < v0 && v1 <= c && c < v0);
+        rising.chain(falling)
     }
 
     /// `n(v) = (v - lo) / (hi - lo)`, 0 when `hi <= lo`.
@@ -143,6 +229,9 @@ impl Blend {
     /// - Minimum: likewise on `[min, hi]`.
     /// - Average: a sample counts whatever its opacity: only a node of no
     ///   value in AverageIPScalarRange is left out.
+    /// - Isosurface: a crossing shows in the brick of the sample after it,
+    ///   which need not hold the isovalue itself: every node is kept unless
+    ///   no isovalue is visible (`a(c) = 0` for each).
     pub fn visible(&self, min: f64, max: f64, visible: &dyn Fn(f64, f64) -> bool) -> bool {
         let [lo, hi] = self.scalar_range;
         match self.mode {
@@ -150,6 +239,7 @@ impl Blend {
             BlendMode::Mip => visible(lo.min(min), max),
             BlendMode::Minip => visible(min, hi.max(max)),
             BlendMode::Average => !(max < self.average_range[0] || min > self.average_range[1]),
+            BlendMode::Isosurface => self.isovalues().iter().any(|&c| visible(c, c)),
         }
     }
 }
@@ -164,7 +254,7 @@ mod tests {
             assert_eq!(m.name().parse::<BlendMode>().unwrap(), m);
             assert_eq!(BlendMode::from_vtk(i as i32), Some(m));
         }
-        assert_eq!(BlendMode::from_vtk(5), None);
+        assert_eq!(BlendMode::from_vtk(6), None);
         assert_eq!(BlendMode::from_vtk(-1), None);
         assert_eq!(BlendMode::Mip.pass(), "volume-mip");
         assert_eq!(BlendMode::Composite.pass(), "volume");
@@ -188,5 +278,27 @@ mod tests {
         average.average_range = [0.25, 0.75];
         assert!(!average.visible(0.8, 1.0, &band) && average.visible(0.7, 1.0, &band));
         assert_eq!(Blend::new(BlendMode::Average, [2.0, 2.0]).normalise(2.0), 0.0);
+        let iso = Blend::isosurfaces(&[0.4, 0.9], [0.0, 1.0]).unwrap();
+        assert!(iso.visible(0.0, 0.1, &band), "a crossing may show in a brick without the value");
+        assert!(!Blend::isosurfaces(&[0.9], [0.0, 1.0]).unwrap().visible(0.0, 1.0, &band));
+    }
+
+    /// Every value crossed in a step, nearest where the ray comes from first.
+    #[test]
+    fn crossings() {
+        let iso = Blend::isosurfaces(&[0.7, 0.3, 0.5, 0.3], [0.0, 1.0]).unwrap();
+        assert_eq!(iso.isovalues(), &[0.3, 0.5, 0.7]);
+        let all = |v0, v1| iso.crossings(v0, v1).collect::<Vec<_>>();
+        assert_eq!(all(0.2, 0.6), vec![0.3, 0.5]);
+        assert_eq!(all(0.6, 0.2), vec![0.5, 0.3]);
+        assert_eq!(all(0.3, 0.4), vec![], "leaving a value is no crossing");
+        assert_eq!(all(0.2, 0.3), vec![0.3], "reaching it is");
+        assert_eq!(all(0.5, 0.5), vec![]);
+        assert_eq!(all(f64::NAN, 0.5), vec![]);
+        assert_eq!(all(0.5, f64::NAN), vec![]);
+        assert!(Blend::isosurfaces(&[], [0.0, 1.0]).is_err());
+        assert!(Blend::isosurfaces(&[f64::NAN], [0.0, 1.0]).unwrap_err().to_string().contains("finite"));
+        let many: Vec<f64> = (0..20).map(f64::from).collect();
+        assert!(Blend::isosurfaces(&many, [0.0, 1.0]).unwrap_err().to_string().contains("20 isosurface values"));
     }
 }

@@ -17,14 +17,30 @@
 //!   lights in world space.
 //! - the blend mode ([`Blend`]): `volume` for Composite, `volume-mip`,
 //!   `volume-minip`, `volume-average` or `volume-additive` for the others
-//!   (shading is for Composite only).
+//!   or `volume-isosurface` (shading, `-shaded`, is for the compositing
+//!   modes only, Composite and Isosurface; a translucent surface too: it is
+//!   sorted into the slabs of a composite, and a reduced ray has no order,
+//!   so under the other modes it is not drawn, while an opaque surface still is).
+//! - gradient opacity ([`GradientOpacity`], Composite only) only when it
+//!   changes an opacity: not when it is 1 at every magnitude; a constant
+//!   `c != 1` scales every opacity without a gradient ([`Plan::opacity_scale`],
+//!   effect `opacity-scale`); otherwise each sample's gradient is taken
+//!   ([`Plan::gradient_opacity`], effect `gradient-opacity`, the DrawList
+//!   carries the function).
+//! - [`Plan::effects`] names what each volume sample does besides its
+//!   classification, in the order applied: `gradient-opacity` or
+//!   `opacity-scale`, then `shading`. Gradients are taken exactly when
+//!   [`Plan::gradients`]; brick textures carry their border when
+//!   [`Plan::bordered`] (gradients, or Isosurface's step back).
 //! - cropping and clipping planes ([`crate::plan::crop`]) only where they
 //!   remove part of the volume's box: a cropping that keeps the whole box
 //!   and a plane with the whole box on its kept side are dropped; what is
-//!   left is [`DrawList::region`] and the plan's [`Plan::effects`]
-//!   (`cropping`, `clipping`). Bricks whose box it removes are not selected
+//!   left is [`DrawList::region`], and [`Plan::effects`] ends with
+//!   `cropping`, `clipping`. Bricks whose box it removes are not selected
 //!   ([`crate::plan::select::SelectOptions::region`]). They act on the
-//!   volume's samples only: the isosurface and the points are drawn whole.
+//!   volume's samples only, in every blend mode (a removed sample is no
+//!   sample; Isosurface shows nothing there): the isosurface and the points
+//!   are drawn whole.
 
 use super::blend::Blend;
 use super::crop::KeptRegion;
@@ -32,6 +48,7 @@ use super::select::Brick;
 use super::slab::Batch;
 use crate::geometry::camera::Camera;
 use crate::transfer::lighting::Lighting;
+use crate::transfer::GradientOpacity;
 use rayon::prelude::*;
 
 /// How the surface is drawn.
@@ -55,15 +72,37 @@ pub struct Plan {
     pub surface: SurfacePass,
     /// Gradient shading of the volume (the DrawList's [`DrawList::lighting`]).
     pub shading: bool,
+    /// Gradient opacity taken per sample from its gradient (the DrawList's
+    /// [`DrawList::gradient_opacity`]).
+    pub gradient_opacity: bool,
+    /// A constant factor of every sample's opacity before the slice-spacing
+    /// correction: a gradient opacity that is this at every magnitude (1: none).
+    pub opacity_scale: f64,
     /// Nodes not selected because the transfer function makes them fully transparent.
     pub skipped_bricks: usize,
     /// How the samples along a ray become a pixel.
     pub blend: Blend,
     /// The passes, in the order they run (e.g. `["surface-opaque", "volume"]`).
     pub passes: Vec<String>,
-    /// What removes volume samples in every pass: `cropping`, `clipping`
-    /// (the DrawList's [`DrawList::region`]); empty when nothing does.
+    /// What each volume sample does besides its classification, in the
+    /// order applied (e.g. `["gradient-opacity", "shading"]`), then what
+    /// removes samples in every pass, `cropping`, `clipping` (the DrawList's
+    /// [`DrawList::region`]); see the module documentation.
     pub effects: Vec<String>,
+}
+
+impl Plan {
+    /// Whether the volume's samples take gradients (shading or gradient
+    /// opacity): brick textures then carry one border texel per side.
+    pub fn gradients(&self) -> bool {
+        self.shading || self.gradient_opacity
+    }
+
+    /// Whether brick textures carry one border texel per side: gradients
+    /// read it, and Isosurface the sample before a brick's first.
+    pub fn bordered(&self) -> bool {
+        self.gradients() || (self.volume && self.blend.mode == super::BlendMode::Isosurface)
+    }
 }
 
 /// One brick of the DrawList.
@@ -127,6 +166,9 @@ pub struct DrawList {
     /// [`Plan::effects`] is not empty): the cropping and planes that remove
     /// part of the volume's box.
     pub region: Option<KeptRegion>,
+    /// The gradient opacity (`Some` exactly when [`Plan::gradient_opacity`]);
+    /// brick textures then carry the gradient border too.
+    pub gradient_opacity: Option<GradientOpacity>,
 }
 
 /// What the scene holds besides the volume.
@@ -139,6 +181,8 @@ pub struct Scene<'a> {
     /// Gradient shading of the volume: `Some` when the volume property asks
     /// (vtkVolumeProperty's Shade), with its material and the lights.
     pub shading: Option<&'a Lighting>,
+    /// Gradient opacity of the volume (vtkVolumeProperty's GradientOpacity).
+    pub gradient_opacity: Option<&'a GradientOpacity>,
     /// The blend mode (VTK's `vtkVolumeMapper::SetBlendMode`) and its ranges.
     pub blend: Blend,
     /// VTK's cropping and clipping planes, world coordinates (`None`: every
@@ -146,13 +190,17 @@ pub struct Scene<'a> {
     pub region: Option<&'a KeptRegion>,
 }
 
-/// The plan for a scene (see the module documentation).
+/// The plan for a scene (see the module documentation). Its [`Plan::effects`]
+/// name the region's only in [`draw_list`], which knows the volume's box.
 pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Plan {
     let has_surface = scene.surface.is_some_and(|s| s.polygon_count() > 0) && scene.surface_opacity > 0.0;
+    let composite = scene.blend.mode.composites();
     let surface = match (has_surface, scene.surface_opacity >= 1.0) {
         (false, _) => SurfacePass::None,
         (true, true) => SurfacePass::Opaque,
-        (true, false) => SurfacePass::Translucent,
+        (true, false) if composite => SurfacePass::Translucent,
+        // Sorted into the slabs of a composite only: a reduced ray has no order.
+        (true, false) => SurfacePass::None,
     };
     let volume = !selection.bricks.is_empty();
     let mut passes = Vec::new();
@@ -161,21 +209,83 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         SurfacePass::Translucent => passes.push("surface-in-slabs".to_string()),
         SurfacePass::None => {}
     }
-    let shading = shades(volume, scene.shading) && scene.blend.mode == super::BlendMode::Composite;
-    if volume {
-        passes.push(match scene.blend.mode {
-            super::BlendMode::Composite if shading => "volume-shaded".to_string(),
-            mode => mode.pass(),
-        });
-    }
-    Plan {
+    let mut plan = Plan {
         volume,
         surface,
-        shading,
+        shading: false,
+        gradient_opacity: false,
+        opacity_scale: 1.0,
         skipped_bricks: selection.skipped,
         blend: scene.blend,
         passes,
         effects: Vec::new(),
+    };
+    if volume {
+        plan.passes.push(scene.blend.mode.pass());
+    }
+    plan_effects(&mut plan, scene.shading, scene.gradient_opacity);
+    plan.effects = effects(&plan, None);
+    plan
+}
+
+/// Whether a scene of this shading, gradient opacity and blend mode takes
+/// gradients (the planner's rules): what a selection's
+/// [`crate::plan::select::SelectOptions::gradient_border`] should be.
+pub fn needs_gradients(
+    lighting: Option<&Lighting>,
+    gradient_opacity: Option<&GradientOpacity>,
+    mode: super::BlendMode,
+) -> bool {
+    (mode.composites() && shades(true, lighting))
+        || (mode == super::BlendMode::Composite && gradient_opacity.is_some_and(|g| g.constant().is_none()))
+}
+
+/// Sets `plan`'s per-sample effects (shading, gradient opacity and the volume
+/// pass's name) for this lighting and gradient opacity; [`effects`] names them.
+fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: Option<&GradientOpacity>) {
+    let composite = plan.volume && plan.blend.mode == super::BlendMode::Composite;
+    // Shading in both compositing modes, gradient opacity in Composite only.
+    plan.shading = plan.volume && plan.blend.mode.composites() && shades(true, lighting);
+    let constant = gradient_opacity.map(|g| g.constant());
+    plan.gradient_opacity = composite && matches!(constant, Some(None));
+    plan.opacity_scale = match constant {
+        Some(Some(c)) if composite => f64::from(c),
+        _ => 1.0,
+    };
+    let mode = plan.blend.mode;
+    let (plain, shaded) = (volume_pass(mode, false), volume_pass(mode, true));
+    for pass in &mut plan.passes {
+        if *pass == plain || *pass == shaded {
+            *pass = volume_pass(mode, plan.shading);
+        }
+    }
+}
+
+/// The plan's [`Plan::effects`]: what each sample does besides its
+/// classification, in the order applied (`gradient-opacity` or
+/// `opacity-scale`, then `shading`), then what `region` (the cropping and
+/// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`).
+fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
+    let mut effects = Vec::new();
+    if plan.gradient_opacity {
+        effects.push("gradient-opacity".to_string());
+    } else if plan.opacity_scale != 1.0 {
+        effects.push("opacity-scale".to_string());
+    }
+    if plan.shading {
+        effects.push("shading".to_string());
+    }
+    effects.extend(region.map(|r| r.effects()).unwrap_or_default());
+    effects
+}
+
+/// The volume pass: the blend mode's ([`super::BlendMode::pass`]), `-shaded`
+/// appended when shaded (`volume-shaded`, `volume-isosurface-shaded`).
+fn volume_pass(mode: super::BlendMode, shading: bool) -> String {
+    match (mode, shading) {
+        (super::BlendMode::Composite, true) => "volume-shaded".to_string(),
+        (mode, true) => format!("{}-shaded", mode.pass()),
+        (mode, false) => mode.pass(),
     }
 }
 
@@ -194,7 +304,7 @@ fn crops(volume: bool, region: Option<&KeptRegion>, lo: [f64; 3], hi: [f64; 3]) 
 pub fn recrop(mut list: DrawList, region: Option<&KeptRegion>, shape: &crate::data::grid::GridShape) -> DrawList {
     let (lo, hi) = volume_box(shape);
     list.region = crops(list.plan.volume, region, lo, hi);
-    list.plan.effects = list.region.map(|r| r.effects()).unwrap_or_default();
+    list.plan.effects = effects(&list.plan, list.region.as_ref());
     list
 }
 
@@ -210,25 +320,27 @@ fn shades(volume: bool, lighting: Option<&Lighting>) -> bool {
 }
 
 /// `list` planned again for `lighting` (lights in world or view space, for
-/// the list's camera), as [`draw_list`] plans [`Scene::shading`]: the plan's
-/// `volume` pass becomes `volume-shaded` (or back) and [`DrawList::lighting`]
-/// is set, or cleared when it does not shade.
+/// the list's camera) and `gradient_opacity`, as [`draw_list`] plans
+/// [`Scene::shading`] and [`Scene::gradient_opacity`]: the plan's `volume`
+/// pass becomes `volume-shaded` (or back), its effects are made again, and
+/// [`DrawList::lighting`] and [`DrawList::gradient_opacity`] are set, or
+/// cleared when not applied.
 ///
 /// # Errors
 ///
 /// [`crate::Error::InvalidArgument`] for a bad number in the lighting ([`Lighting::check`]).
-pub fn relight(mut list: DrawList, lighting: Option<&Lighting>) -> crate::Result<DrawList> {
+pub fn replan_effects(
+    mut list: DrawList,
+    lighting: Option<&Lighting>,
+    gradient_opacity: Option<&GradientOpacity>,
+) -> crate::Result<DrawList> {
     if let Some(l) = lighting {
         l.check()?;
     }
-    let shading = shades(list.plan.volume, lighting) && list.plan.blend.mode == super::BlendMode::Composite;
-    for pass in &mut list.plan.passes {
-        if pass == "volume" || pass == "volume-shaded" {
-            *pass = if shading { "volume-shaded" } else { "volume" }.to_string();
-        }
-    }
-    list.plan.shading = shading;
-    list.lighting = lighting.filter(|_| shading).map(|l| l.in_world(&list.camera));
+    plan_effects(&mut list.plan, lighting, gradient_opacity);
+    list.plan.effects = effects(&list.plan, list.region.as_ref());
+    list.lighting = lighting.filter(|_| list.plan.shading).map(|l| l.in_world(&list.camera));
+    list.gradient_opacity = gradient_opacity.filter(|_| list.plan.gradient_opacity).cloned();
     Ok(list)
 }
 
@@ -262,9 +374,10 @@ pub fn draw_list(
     }
     let mut plan = plan(selection, scene);
     let lighting = scene.shading.filter(|_| plan.shading).map(|l| l.in_world(camera));
+    let gradient_opacity = scene.gradient_opacity.filter(|_| plan.gradient_opacity).cloned();
     let (lo, hi) = volume_box(shape);
     let region = crops(plan.volume, scene.region, lo, hi);
-    plan.effects = region.map(|r| r.effects()).unwrap_or_default();
+    plan.effects = effects(&plan, region.as_ref());
     let d0 = crate::data::spacing::reference_spacing(shape);
     let ids: Vec<crate::octree::NodeId> = selection.bricks.iter().map(|b| b.node).collect();
     let order = crate::plan::order::brick_order(camera, octree, shape, &ids, true);
@@ -303,7 +416,16 @@ pub fn draw_list(
         (SurfacePass::Opaque, Some(s)) => (0..s.polygon_count() as u32).collect(),
         _ => Vec::new(),
     };
-    Ok(DrawList { plan, camera: *camera, bricks, opaque_triangles, reference_spacing: d0, lighting, region })
+    Ok(DrawList {
+        plan,
+        camera: *camera,
+        bricks,
+        opaque_triangles,
+        reference_spacing: d0,
+        lighting,
+        gradient_opacity,
+        region,
+    })
 }
 
 #[cfg(test)]
@@ -343,7 +465,14 @@ mod tests {
         let f = fixture();
         let l = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: None,
+                gradient_opacity: None,
+                blend: Default::default(),
+                region: None,
+            },
             |_, _| true,
         );
         assert_eq!(l.plan.passes, vec!["volume"]);
@@ -361,6 +490,7 @@ mod tests {
                 surface: Some(&f.surface),
                 surface_opacity: 1.0,
                 shading: None,
+                gradient_opacity: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -381,6 +511,7 @@ mod tests {
                 surface: Some(&f.surface),
                 surface_opacity: 0.4,
                 shading: Some(&shaded),
+                gradient_opacity: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -411,6 +542,7 @@ mod tests {
             surface: Some(&f.surface),
             surface_opacity: 0.4,
             shading: None,
+            gradient_opacity: None,
             blend: Default::default(),
             region: None,
         };
@@ -440,6 +572,7 @@ mod tests {
             surface: Some(&f.surface),
             surface_opacity: 0.4,
             shading: None,
+            gradient_opacity: None,
             blend: Default::default(),
             region: None,
         };
@@ -456,6 +589,7 @@ mod tests {
                 surface: Some(&f.surface),
                 surface_opacity: 0.0,
                 shading: None,
+                gradient_opacity: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -471,12 +605,37 @@ mod tests {
                 surface: None,
                 surface_opacity: 1.0,
                 shading: Some(&shaded),
+                gradient_opacity: None,
                 blend: Default::default(),
                 region: None,
             },
             |_, _| false,
         );
         assert!(!none.plan.volume && none.bricks.is_empty() && none.plan.passes.is_empty() && !none.plan.shading);
+    }
+
+    /// A reduced ray has no depth order: under the blend modes besides
+    /// Composite a translucent surface gets no pass (an opaque one keeps its).
+    #[test]
+    fn a_translucent_surface_is_composited_only() {
+        let f = fixture();
+        for mode in [super::super::BlendMode::Mip, super::super::BlendMode::Additive] {
+            let blend = Blend::new(mode, [0.0, 1.0]);
+            let scene = |opacity| Scene {
+                surface: Some(&f.surface),
+                surface_opacity: opacity,
+                shading: None,
+                gradient_opacity: None,
+                blend,
+                region: None,
+            };
+            let l = list(&f, &scene(0.4), |_, _| true);
+            assert_eq!(l.plan.surface, SurfacePass::None);
+            assert_eq!(l.plan.passes, vec![mode.pass()]);
+            assert!(l.bricks.iter().all(|b| b.batches.is_empty()));
+            let l = list(&f, &scene(1.0), |_, _| true);
+            assert_eq!(l.plan.passes, vec!["surface-opaque".to_string(), mode.pass()]);
+        }
     }
 
     /// Shading that changes no colour (ambient 1, diffuse and specular 0,
@@ -496,6 +655,7 @@ mod tests {
                 surface: None,
                 surface_opacity: 1.0,
                 shading: Some(&identity),
+                gradient_opacity: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -510,6 +670,7 @@ mod tests {
                 surface: None,
                 surface_opacity: 1.0,
                 shading: Some(&shaded),
+                gradient_opacity: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -520,10 +681,71 @@ mod tests {
         // Planned again: the same as planned with the scene's shading.
         let plain = list(
             &f,
-            &Scene { surface: None, surface_opacity: 1.0, shading: None, blend: Default::default(), region: None },
+            &Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading: None,
+                gradient_opacity: None,
+                blend: Default::default(),
+                region: None,
+            },
             |_, _| true,
         );
-        assert_eq!(relight(plain.clone(), Some(&shaded)).unwrap(), l);
-        assert_eq!(relight(l, Some(&identity)).unwrap(), plain);
+        assert_eq!(replan_effects(plain.clone(), Some(&shaded), None).unwrap(), l);
+        assert_eq!(replan_effects(l, Some(&identity), None).unwrap(), plain);
+    }
+
+    /// Gradient opacity: none or 1 everywhere is no effect; a constant `c !=
+    /// 1` is the effect `opacity-scale` without gradients; one that varies is
+    /// `gradient-opacity` with gradients and the function in the list, before
+    /// `shading`; only for Composite; planned again the same.
+    #[test]
+    fn gradient_opacity_is_planned_only_when_it_changes_an_opacity() {
+        let f = fixture();
+        fn scene<'a>(
+            g: Option<&'a GradientOpacity>,
+            shading: Option<&'a Lighting>,
+            mode: super::super::BlendMode,
+        ) -> Scene<'a> {
+            Scene {
+                surface: None,
+                surface_opacity: 1.0,
+                shading,
+                gradient_opacity: g,
+                blend: super::super::Blend::new(mode, [0.0, 1.0]),
+                region: None,
+            }
+        }
+        let composite = super::super::BlendMode::Composite;
+        let plain = list(&f, &scene(None, None, composite), |_, _| true);
+        let one = GradientOpacity::new(vec![(0.0, 1.0), (2.0, 1.0)]).unwrap();
+        assert_eq!(list(&f, &scene(Some(&one), None, composite), |_, _| true), plain);
+        assert!(!needs_gradients(None, Some(&one), composite));
+
+        let half = GradientOpacity::new(vec![(0.0, 0.5)]).unwrap();
+        let l = list(&f, &scene(Some(&half), None, composite), |_, _| true);
+        assert_eq!((l.plan.effects.clone(), l.plan.opacity_scale), (vec!["opacity-scale".to_string()], 0.5));
+        assert!(!l.plan.gradients() && l.gradient_opacity.is_none() && !needs_gradients(None, Some(&half), composite));
+
+        let ramp = GradientOpacity::new(vec![(0.0, 0.0), (0.1, 1.0)]).unwrap();
+        let l = list(&f, &scene(Some(&ramp), None, composite), |_, _| true);
+        assert_eq!(l.plan.effects, vec!["gradient-opacity"]);
+        assert_eq!(l.plan.passes, vec!["volume"]);
+        assert!(l.plan.gradients() && l.plan.gradient_opacity && l.plan.opacity_scale == 1.0);
+        assert_eq!(l.gradient_opacity.as_ref(), Some(&ramp));
+        assert!(needs_gradients(None, Some(&ramp), composite));
+        let shaded = Lighting::headlight(Default::default());
+        let both = list(&f, &scene(Some(&ramp), Some(&shaded), composite), |_, _| true);
+        assert_eq!(both.plan.effects, vec!["gradient-opacity", "shading"]);
+        assert_eq!(both.plan.passes, vec!["volume-shaded"]);
+        assert_eq!(replan_effects(plain.clone(), Some(&shaded), Some(&ramp)).unwrap(), both);
+        assert_eq!(replan_effects(both, None, None).unwrap(), plain);
+
+        let mip = super::super::BlendMode::Mip;
+        let l = list(&f, &scene(Some(&ramp), None, mip), |_, _| true);
+        assert!(l.plan.effects.is_empty() && !l.plan.gradients() && l.gradient_opacity.is_none());
+        assert!(!needs_gradients(Some(&shaded), Some(&ramp), mip));
+        let none = list(&f, &scene(Some(&ramp), None, composite), |_, _| false);
+        assert!(none.plan.effects.is_empty() && !none.plan.gradients());
     }
 }

@@ -17,6 +17,9 @@ pub mod select;
 pub mod slab;
 
 pub use blend::{Blend, BlendMode};
-pub use draw_list::{draw_list, plan, recrop, relight, BrickDraw, DrawList, Plan, PointBucket, Scene, SurfacePass};
+pub use draw_list::{
+    draw_list, needs_gradients, plan, recrop, replan_effects, BrickDraw, DrawList, Plan, PointBucket, Scene,
+    SurfacePass,
+};
 pub use point_slabs::add_points;
 pub use slab::Batch;

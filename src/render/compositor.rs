@@ -47,8 +47,20 @@
 //! of opacity `a > 0` has its colour `c` shaded
 //! ([`crate::transfer::lighting`]) at the normal of the brick's gradient,
 //! central differences one texel away on its bordered texture
-//! (`super::shade`), the ray direction as `V`. Without lighting no gradient
-//! is taken (the executor counts them).
+//! (`super::shade`), the ray direction as `V`.
+//!
+//! Gradient opacity ([`DrawList::gradient_opacity`], the plan's effect
+//! `gradient-opacity`): the opacity `a` of each sample with `a > 0` is
+//! multiplied by `a_grad(|g|)` of the same gradient
+//! ([`crate::transfer::gradient_opacity`]), before the slice-spacing
+//! correction; a constant one ([`crate::plan::Plan::opacity_scale`]) multiplies
+//! it without a gradient. The gradient is taken once per sample for both
+//! effects, and without either none is taken (the executor counts them).
+//!
+//! Isosurface ([`crate::plan::blend`], the plan's `volume-isosurface`): a
+//! sample at `u(z)` shows the isovalue `c` crossed since the sample before
+//! it, `u(z - d)` (on the bordered texture, so the step back may leave the
+//! brick by a texel), as `(c(c), a(c))`, not corrected for `d`; else nothing.
 //!
 //! Opaque surface ([`DrawList::opaque_triangles`]): the first hit gives the
 //! pixel's depth and its shaded colour goes under the volume in front of it,
@@ -91,7 +103,7 @@ use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
 use crate::transfer::lighting::Lighting;
 use crate::transfer::lut::Lut;
-use crate::transfer::TransferFunction;
+use crate::transfer::{GradientOpacity, TransferFunction};
 use rayon::prelude::*;
 
 mod projection;
@@ -319,6 +331,9 @@ fn execute<S: Texel>(
         bricks: &bricks,
         lighting: list.lighting.as_ref().filter(|_| list.plan.shading),
         region: list.region.as_ref().filter(|_| !list.plan.effects.is_empty()),
+        isosurfaces: Some(&list.plan.blend).filter(|b| b.mode == crate::plan::BlendMode::Isosurface),
+        gradient_opacity: list.gradient_opacity.as_ref().filter(|_| list.plan.gradient_opacity),
+        opacity_scale: list.plan.opacity_scale,
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
@@ -416,10 +431,16 @@ struct Executor<'a, S> {
     height: usize,
     shape: GridShape,
     bricks: &'a [Prepared<'a, S>],
-    /// The shading, lights in world space (`None`: unshaded, no gradients).
+    /// The shading, lights in world space (`None`: unshaded).
     lighting: Option<&'a Lighting>,
     /// The samples kept (`None`: all).
     region: Option<&'a KeptRegion>,
+    /// The Isosurface blend mode's values (`None` for Composite).
+    isosurfaces: Option<&'a crate::plan::Blend>,
+    /// The gradient opacity (`None`: none, or a constant in `opacity_scale`).
+    gradient_opacity: Option<&'a GradientOpacity>,
+    /// Every opacity's constant factor (1: none).
+    opacity_scale: f64,
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
@@ -434,7 +455,7 @@ struct Scratch {
     hits: Vec<Hit>,
     /// `(slab, depth, straight colour, opacity)` of one brick's batch hits.
     events: Vec<(usize, f64, [f64; 3], f64)>,
-    /// Gradients taken (shading).
+    /// Gradients taken (shading, gradient opacity).
     gradients: usize,
 }
 
@@ -506,7 +527,7 @@ impl<S: Texel> Executor<'_, S> {
                 surface_hit = Some((tris.shade(surface, &h, ray.direction, colour), colour[3] as f64));
             }
         }
-        if self.list.plan.blend.mode != crate::plan::BlendMode::Composite {
+        if !self.list.plan.blend.mode.composites() {
             return self.project(x, y, &pr, scratch, surface_hit);
         }
         scratch.hits.clear();
@@ -565,17 +586,20 @@ impl<S: Texel> Executor<'_, S> {
             if (s0..s1).contains(&j) && self.keeps(pr, slices[j]) {
                 let dz = slices[j] - za;
                 let u = [0, 1, 2].map(|k| ua[k] + dz * ub[k]);
-                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel(u));
-                if a > 0.0 {
-                    let mut rgb = [r, gr, bl];
-                    if let Some(lighting) = self.lighting {
-                        rgb = self.shade(lighting, brick.texture, u, rgb, pr.ray.direction);
-                        scratch.gradients += 1;
+                let v = brick.texture.at_texel(u);
+                match self.isosurfaces {
+                    None => acc = self.sample(brick, u, v, brick.ratio, pr, acc, scratch),
+                    Some(blend) => {
+                        // The values crossed since the sample one step nearer the eye, uncorrected.
+                        let d = brick.draw.slice_spacing;
+                        let before = brick.texture.at_texel([0, 1, 2].map(|k| u[k] - d * ub[k]));
+                        for c in blend.crossings(before, v) {
+                            acc = self.sample(brick, u, c, 1.0, pr, acc, scratch);
+                        }
                     }
-                    acc = under(acc, rgb, correct_opacity(a, brick.ratio));
-                    if acc[3] >= OPAQUE {
-                        return acc;
-                    }
+                }
+                if acc[3] >= OPAQUE {
+                    return acc;
                 }
             }
         }
@@ -591,12 +615,62 @@ impl<S: Texel> Executor<'_, S> {
         self.region.is_none_or(|r| r.keeps(at_depth(&pr.ray, pr.z_origin, pr.cos, z)))
     }
 
-    /// Colour `c` of the sample at texel coordinates `u` of `texture` (its
-    /// gradient border included), shaded along `view` (module documentation).
+    /// `acc` with the sample at texel coordinates `u` of value `value` (the
+    /// texel's, or an isovalue crossed) under it: transfer function, the
+    /// plan's effects ([`Self::effects`]), opacity corrected by
+    /// `ratio = d / d0` (1 for an isovalue).
+    #[allow(clippy::too_many_arguments)]
     #[inline]
-    fn shade(&self, lighting: &Lighting, texture: &Texture<S>, u: [f64; 3], c: [f64; 3], view: [f64; 3]) -> [f64; 3] {
+    fn sample(
+        &self,
+        brick: &Prepared<'_, S>,
+        u: [f64; 3],
+        value: f64,
+        ratio: f64,
+        pr: &PixelRay,
+        acc: Rgba,
+        scratch: &mut Scratch,
+    ) -> Rgba {
+        let [r, gr, bl, a] = self.lut.eval(value);
+        if a <= 0.0 {
+            return acc;
+        }
+        let (rgb, a) = self.effects(brick.texture, u, [r, gr, bl], a, pr.ray.direction, scratch);
+        if a > 0.0 {
+            under(acc, rgb, correct_opacity(a, ratio))
+        } else {
+            acc
+        }
+    }
+
+    /// Colour `c` and opacity `a` of the sample at texel coordinates `u` of
+    /// `texture` (its gradient border included) after the plan's effects:
+    /// the opacity scaled, or times the gradient opacity, the colour shaded
+    /// along `view` (module documentation); one gradient for both.
+    #[inline]
+    fn effects(
+        &self,
+        texture: &Texture<S>,
+        u: [f64; 3],
+        c: [f64; 3],
+        a: f64,
+        view: [f64; 3],
+        scratch: &mut Scratch,
+    ) -> ([f64; 3], f64) {
+        let mut a = a * self.opacity_scale;
+        if self.lighting.is_none() && self.gradient_opacity.is_none() {
+            return (c, a);
+        }
         let h = self.shape.spacing.map(|s| s * texture.stride());
-        lighting.shade(c, normal(gradient(|v| texture.at_texel(v), u, h)), view)
+        let g = gradient(|v| texture.at_texel(v), u, h);
+        scratch.gradients += 1;
+        if let Some(f) = self.gradient_opacity {
+            a *= f64::from(f.eval(dot(g, g).sqrt()));
+        }
+        match self.lighting {
+            Some(lighting) if a > 0.0 => (lighting.shade(c, normal(g), view), a),
+            _ => (c, a),
+        }
     }
 
     /// The pixel's hits of brick `b`'s batch triangles in front of the

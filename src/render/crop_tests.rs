@@ -53,11 +53,16 @@ fn list(
     blend: Blend,
 ) -> DrawList {
     let tf = ramp();
-    let options = SelectOptions { region: region.map(|r| r.to_index(shape)), ..SelectOptions::new(1 << 30, 0.0) };
-    let selection = select(octree, &options, |a, b| !tf.is_transparent_over(a, b)).unwrap();
+    let options = SelectOptions {
+        region: region.map(|r| r.to_index(shape)),
+        gradient_border: blend.mode == BlendMode::Isosurface,
+        ..SelectOptions::new(1 << 30, 0.0)
+    };
+    let selection =
+        select(octree, &options, |a, b| blend.visible(a, b, &|a, b| !tf.is_transparent_over(a, b))).unwrap();
     assert!(selection.bricks.iter().all(|b| b.stride == 1));
     let camera = Camera::around([0.0; 3], [32.0; 3], 35.0, 25.0, false).unwrap();
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, blend, region };
+    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, gradient_opacity: None, blend, region };
     draw_list(octree, shape, &selection, &camera, &scene, None).unwrap()
 }
 
@@ -78,8 +83,13 @@ fn cropped_and_clipped_compositor_matches_the_reference() {
     let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 8 }).unwrap();
     let tf = ramp();
     let (lo, hi) = octree.value_range();
-    for mode in [BlendMode::Composite, BlendMode::Mip] {
-        let blend = Blend::new(mode, [lo, hi]);
+    for mode in [BlendMode::Composite, BlendMode::Mip, BlendMode::Additive, BlendMode::Isosurface] {
+        let blend = match mode {
+            BlendMode::Isosurface => {
+                Blend::isosurfaces(&[lo + 0.3 * (hi - lo), lo + 0.6 * (hi - lo)], [lo, hi]).unwrap()
+            }
+            _ => Blend::new(mode, [lo, hi]),
+        };
         let whole = list(&octree, &shape, None, blend);
         let full = reference_blend(&grid, &tf, &whole.camera, 64, 64, &ReferenceOptions::default(), &blend).unwrap();
         let uncut = compare(&composite(&grid, &whole, &tf, 64, 64, None).unwrap(), &full).unwrap();
@@ -133,4 +143,44 @@ fn a_no_op_region_does_no_work_and_removed_bricks_are_not_drawn() {
     assert_eq!(crate::plan::recrop(cut.clone(), Some(&half), &shape), cut);
     let cleared = crate::plan::recrop(cut, None, &shape);
     assert!(cleared.region.is_none() && cleared.plan.effects.is_empty());
+}
+
+/// The plan's effects are one list: the per-sample effects in their order
+/// (`gradient-opacity`, `shading`), then `cropping`, `clipping`; planning
+/// the shading and gradient opacity again keeps the region's, cropping
+/// again keeps theirs.
+#[test]
+fn region_effects_follow_the_per_sample_effects() {
+    let volume = generate(Dataset::SheppLogan, 33, ScalarType::F32);
+    let grid = volume.grid(None).unwrap();
+    let shape = *grid.shape();
+    let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 8 }).unwrap();
+    let region = &regions()[4].1;
+    let lighting = crate::transfer::lighting::Lighting::headlight(Default::default());
+    let ramp_g = crate::transfer::GradientOpacity::new(vec![(0.0, 0.0), (0.1, 1.0)]).unwrap();
+    let options = SelectOptions {
+        region: Some(region.to_index(&shape)),
+        gradient_border: true,
+        ..SelectOptions::new(1 << 30, 0.0)
+    };
+    let selection = select(&octree, &options, |_, _| true).unwrap();
+    let camera = Camera::around([0.0; 3], [32.0; 3], 35.0, 25.0, false).unwrap();
+    let scene = Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: Some(&lighting),
+        gradient_opacity: Some(&ramp_g),
+        blend: Blend::default(),
+        region: Some(region),
+    };
+    let all = draw_list(&octree, &shape, &selection, &camera, &scene, None).unwrap();
+    assert_eq!(all.plan.effects, ["gradient-opacity", "shading", "cropping", "clipping"]);
+    assert_eq!(all.plan.passes, ["volume-shaded"]);
+    let unlit = crate::plan::replan_effects(all.clone(), None, None).unwrap();
+    assert_eq!(unlit.plan.effects, ["cropping", "clipping"]);
+    assert_eq!(unlit.region.as_ref(), Some(region));
+    assert_eq!(crate::plan::replan_effects(unlit, Some(&lighting), Some(&ramp_g)).unwrap(), all);
+    let uncut = crate::plan::recrop(all.clone(), None, &shape);
+    assert_eq!(uncut.plan.effects, ["gradient-opacity", "shading"]);
+    assert_eq!(crate::plan::recrop(uncut, Some(region), &shape), all);
 }

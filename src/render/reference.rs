@@ -18,12 +18,20 @@
 //! ([`ReferenceOptions::lighting`]) each sample of opacity `a > 0` has its
 //! colour shaded ([`crate::transfer::lighting`]) at the normal of the full
 //! grid's gradient, central differences one sample away (`super::shade`,
-//! the compositor's rule at stride 1), the ray direction as `V`. An opaque surface
+//! the compositor's rule at stride 1), the ray direction as `V`. With a
+//! gradient opacity ([`ReferenceOptions::gradient_opacity`]) each sample's
+//! opacity is multiplied by `a_grad(|g|)` of that gradient
+//! ([`crate::transfer::gradient_opacity`]) before the correction:
+//! `a' = 1 - (1 - a a_grad)^(l / d0)`. An opaque surface
 //! (opacity 1) ends the ray at its first hit; opacity 0 hides it. Rows run in parallel; every
 //! pixel is computed on its own, so the picture does not depend on the
 //! number of threads.
 //!
-//! Blend modes besides Composite ([`reference_blend`]) reduce the same
+//! Under the Isosurface blend mode a sample shows the isovalues crossed
+//! since the sample before it (the entry point for the first), each
+//! `(c(c), a(c))` uncorrected, nearest first, and nothing without one ([`crate::plan::blend`]).
+//!
+//! Blend modes besides Composite and Isosurface ([`reference_blend`]) reduce the same
 //! samples, each standing for `l / d0` reference spacings, instead of
 //! blending them: `projection`. With a region ([`ReferenceOptions::region`],
 //! VTK's cropping and clipping planes) a sample it removes is empty (not
@@ -43,7 +51,7 @@ use crate::plan::crop::KeptRegion;
 use crate::plan::{Blend, BlendMode};
 use crate::surface::Surface;
 use crate::transfer::lighting::Lighting;
-use crate::transfer::TransferFunction;
+use crate::transfer::{GradientOpacity, TransferFunction};
 use rayon::prelude::*;
 
 mod projection;
@@ -64,6 +72,8 @@ pub struct ReferenceOptions<'a> {
     /// Keep only these samples (cropping, clipping planes; world
     /// coordinates): a removed sample is empty.
     pub region: Option<&'a KeptRegion>,
+    /// Multiply each sample's opacity by this function of its gradient magnitude.
+    pub gradient_opacity: Option<&'a GradientOpacity>,
 }
 
 /// Ray-casts `grid` classified by `tf`, seen by `camera`, into a
@@ -120,6 +130,7 @@ pub fn reference_blend(
         d0,
         surface: surface.as_ref(),
         lighting,
+        gradient_opacity: options.gradient_opacity,
         blend: *blend,
         region: options.region,
     }))
@@ -136,6 +147,7 @@ struct Caster<'a> {
     surface: Option<&'a (&'a Surface, TriangleGrid, [f32; 4])>,
     /// Lights in world space.
     lighting: Option<&'a Lighting>,
+    gradient_opacity: Option<&'a GradientOpacity>,
     blend: Blend,
     region: Option<&'a KeptRegion>,
 }
@@ -162,9 +174,10 @@ impl Caster<'_> {
                 tris.all_hits(&ray, f64::INFINITY, hits);
             }
         }
-        if self.blend.mode != BlendMode::Composite {
+        if !self.blend.mode.composites() {
             return self.project(g, &ray, hits.first());
         }
+        let isosurfaces = Some(&self.blend).filter(|b| b.mode == BlendMode::Isosurface);
         let mut acc: Rgba = [0.0; 4];
         let mut next_hit = 0;
         // Composites the surface hits up to `t`; true when an opaque one ends the ray.
@@ -183,23 +196,39 @@ impl Caster<'_> {
         if let Some((t0, t1)) = ray_box(&ray, lo, hi) {
             let n = ((t1 - t0) / self.step).ceil().max(1.0) as usize;
             let l = (t1 - t0) / n as f64;
+            let at = |t: f64| to_index(&self.shape, [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]));
+            let mut before = grid_value(g, at(t0));
             for i in 0..n {
                 let t = t0 + (i as f64 + 0.5) * l;
                 if surface_until(&mut acc, t) {
                     return acc.map(|v| v as f32);
                 }
                 let p = [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]);
+                let u = to_index(&self.shape, p);
+                let v = grid_value(g, u);
                 if self.region.is_some_and(|r| !r.keeps(p)) {
+                    // Empty; still the value one step nearer for Isosurface's next sample.
+                    before = v;
                     continue;
                 }
-                let u = to_index(&self.shape, p);
-                let [r, gr, b, a] = self.tf.eval(grid_value(g, u));
-                let mut rgb = [r as f64, gr as f64, b as f64];
-                if let (Some(lighting), true) = (self.lighting, a > 0.0) {
-                    let n = normal(gradient(|v| grid_value(g, v), u, self.shape.spacing));
-                    rgb = lighting.shade(rgb, n, ray.direction);
+                let sample = |acc: Rgba, value: f64, ratio: f64| {
+                    let [r, gr, b, a] = self.tf.eval(value);
+                    let (rgb, a) = self.effects(g, u, [r, gr, b].map(f64::from), f64::from(a), ray.direction);
+                    if a > 0.0 {
+                        under(acc, rgb, correct_opacity(a, ratio))
+                    } else {
+                        acc
+                    }
+                };
+                match isosurfaces {
+                    None => acc = sample(acc, v, l / self.d0),
+                    Some(blend) => {
+                        for c in blend.crossings(before, v) {
+                            acc = sample(acc, c, 1.0);
+                        }
+                    }
                 }
-                acc = under(acc, rgb, correct_opacity(a as f64, l / self.d0));
+                before = v;
                 if acc[3] > EARLY_TERMINATION {
                     return acc.map(|v| v as f32);
                 }
@@ -207,6 +236,33 @@ impl Caster<'_> {
         }
         surface_until(&mut acc, f64::INFINITY);
         acc.map(|v| v as f32)
+    }
+}
+
+impl Caster<'_> {
+    /// Colour `c` and opacity `a` of the sample at index point `u` after the
+    /// gradient opacity and the shading (module documentation).
+    #[inline]
+    fn effects<T: Sample>(
+        &self,
+        g: &TypedGrid<'_, T>,
+        u: [f64; 3],
+        c: [f64; 3],
+        a: f64,
+        view: [f64; 3],
+    ) -> ([f64; 3], f64) {
+        if a <= 0.0 || (self.lighting.is_none() && self.gradient_opacity.is_none()) {
+            return (c, a);
+        }
+        let grad = gradient(|v| grid_value(g, v), u, self.shape.spacing);
+        let a = match self.gradient_opacity {
+            Some(f) => a * f64::from(f.eval(crate::geometry::vec3::dot(grad, grad).sqrt())),
+            None => a,
+        };
+        match self.lighting {
+            Some(lighting) if a > 0.0 => (lighting.shade(c, normal(grad), view), a),
+            _ => (c, a),
+        }
     }
 }
 
@@ -236,7 +292,7 @@ mod tests {
                 &camera,
                 4,
                 4,
-                &ReferenceOptions { step, surface: None, lighting: None, region: None },
+                &ReferenceOptions { step, surface: None, lighting: None, gradient_opacity: None, region: None },
             )
             .unwrap();
             for p in &img.rgba {
@@ -244,7 +300,8 @@ mod tests {
                 assert!((p[1] as f64 - 0.5 * exact).abs() < 1e-6);
             }
         }
-        let bad = ReferenceOptions { step: Some(0.0), surface: None, lighting: None, region: None };
+        let bad =
+            ReferenceOptions { step: Some(0.0), surface: None, lighting: None, gradient_opacity: None, region: None };
         assert!(reference(&grid, &tf, &camera, 4, 4, &bad).unwrap_err().to_string().contains("positive"));
         assert!(reference(&grid, &tf, &camera, 0, 4, &ReferenceOptions::default()).is_err());
     }
@@ -269,6 +326,7 @@ mod tests {
                 step: None,
                 surface: Some((&plane, [0.0, 0.0, 1.0, opacity])),
                 lighting: None,
+                gradient_opacity: None,
                 region: None,
             };
             let img = reference(&grid, &tf, &camera, 3, 3, &options).unwrap();

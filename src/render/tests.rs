@@ -52,6 +52,8 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         volume: true,
         surface,
         shading: false,
+        gradient_opacity: false,
+        opacity_scale: 1.0,
         skipped_bricks: 0,
         blend: Default::default(),
         passes: Vec::new(),
@@ -65,6 +67,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         reference_spacing: d0,
         lighting: None,
         region: None,
+        gradient_opacity: None,
     }
 }
 
@@ -222,7 +225,13 @@ fn opaque_surface_matches_the_reference() {
     list.opaque_triangles = (0..surface.polygon_count() as u32).collect();
     let colour = [1.0, 0.8, 0.5, 1.0];
     let image = composite(&grid, &list, &tf, 64, 64, Some((&surface, colour))).unwrap();
-    let options = ReferenceOptions { step: None, surface: Some((&surface, colour)), lighting: None, region: None };
+    let options = ReferenceOptions {
+        step: None,
+        surface: Some((&surface, colour)),
+        lighting: None,
+        gradient_opacity: None,
+        region: None,
+    };
     let truth = reference(&grid, &tf, &camera, 64, 64, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
     eprintln!("opaque surface: {m:?}");
@@ -272,7 +281,13 @@ fn translucent_batches_are_blended_inside_their_slab() {
             assert!((p[k] as f64 - acc[k]).abs() < 1e-6, "{p:?} vs {acc:?}");
         }
     }
-    let options = ReferenceOptions { step: None, surface: Some((&plane, colour)), lighting: None, region: None };
+    let options = ReferenceOptions {
+        step: None,
+        surface: Some((&plane, colour)),
+        lighting: None,
+        gradient_opacity: None,
+        region: None,
+    };
     let truth = reference(&grid, &tf, &camera, 6, 6, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
     eprintln!("translucent plane: {m:?}");
@@ -360,6 +375,7 @@ fn the_pipeline_tracks_the_reference() {
             surface: Some(&surface),
             surface_opacity: opacity,
             shading: None,
+            gradient_opacity: None,
             blend: Default::default(),
             region: None,
         };
@@ -370,7 +386,8 @@ fn the_pipeline_tracks_the_reference() {
             crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref()).unwrap();
         let with = (opacity > 0.0).then_some((&surface, [colour[0], colour[1], colour[2], opacity as f32]));
         let image = composite(&grid, &list, &tf, 96, 96, with).unwrap();
-        let options = ReferenceOptions { step: None, surface: with, lighting: None, region: None };
+        let options =
+            ReferenceOptions { step: None, surface: with, lighting: None, gradient_opacity: None, region: None };
         let truth = reference(&grid, &tf, &camera, 96, 96, &options).unwrap();
         let m = compare(&image, &truth).unwrap();
         let strides: Vec<usize> =
@@ -406,3 +423,6 @@ fn rays_stop_once_opaque_within_the_bound() {
 
 #[path = "shade_tests.rs"]
 mod shade_tests;
+
+#[path = "gradient_opacity_tests.rs"]
+mod gradient_opacity_tests;

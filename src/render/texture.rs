@@ -67,8 +67,9 @@ impl Texel for f64 {
 /// `i + n_x (j + n_y k)` (x fastest), each stored by `f`; `None` at the first
 /// value `f` refuses. The one texel layout of every brick texture (the
 /// uploads here and the bridge's `brick_texels`); the brick must lie in the grid.
-/// With a `border` of 1 (shading), one more texel on each side: texel `i`
-/// of `n + 2` at `lo + (i - 1) stride`, clamped to the grid (see [`bordered_position`]).
+/// With a `border` of 1 (the plan takes gradients: shading, gradient
+/// opacity), one more texel on each side: texel `i` of `n + 2` at
+/// `lo + (i - 1) stride`, clamped to the grid (see [`bordered_position`]).
 fn texel_values<T: Sample, S>(
     g: &TypedGrid<'_, T>,
     brick: &Brick,
@@ -253,7 +254,7 @@ pub(crate) struct Texture<S> {
     stride: usize,
     /// Texels per axis, the border included.
     n: [usize; 3],
-    /// Border texels per side: 0, or 1 with shading ([`bordered_position`]).
+    /// Border texels per side: 0, or 1 when the plan takes gradients ([`bordered_position`]).
     border: usize,
     /// `n - 1`, per axis.
     last: [f64; 3],
@@ -366,7 +367,7 @@ impl Textures {
     /// Checks that these are the textures of `list`'s bricks.
     pub(crate) fn check(&self, list: &DrawList) -> Result<()> {
         fn all<S: Texel>(t: &[Texture<S>], list: &DrawList) -> bool {
-            let border = usize::from(list.plan.shading);
+            let border = usize::from(list.plan.bordered());
             t.len() == list.bricks.len()
                 && t.iter().zip(&list.bricks).all(|(t, d)| t.is_of(&d.brick) && t.border == border)
         }
@@ -385,7 +386,7 @@ impl Textures {
 }
 
 /// Uploads `list`'s brick textures from `grid` (bricks in parallel), with
-/// a gradient border when the list shades ([`bordered_position`]).
+/// a gradient border when the list takes gradients ([`bordered_position`]).
 pub fn upload(grid: &Grid<'_>, list: &DrawList) -> Result<Textures> {
     let shape = *grid.shape();
     check_bricks(list, &shape)?;
@@ -398,7 +399,7 @@ impl GridVisitor for Upload<'_> {
     type Output = Texels;
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Texels {
         let bricks = &self.0.bricks;
-        let border = usize::from(self.0.plan.shading);
+        let border = usize::from(self.0.plan.bordered());
         let mode = self.0.plan.blend.mode;
         let f32s: Option<Vec<Texture<f32>>> =
             bricks.par_iter().map(|d| Texture::copy_for(&g, &d.brick, border, mode)).collect();
@@ -508,6 +509,8 @@ mod tests {
                 volume: true,
                 surface: SurfacePass::None,
                 shading: false,
+                gradient_opacity: false,
+                opacity_scale: 1.0,
                 skipped_bricks: 0,
                 blend: Default::default(),
                 passes: Vec::new(),
@@ -526,6 +529,7 @@ mod tests {
             opaque_triangles: Vec::new(),
             reference_spacing: 1.0,
             lighting: None,
+            gradient_opacity: None,
             region: None,
         };
         let l = list(brick([0; 3], [4; 3], 1));

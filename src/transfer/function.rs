@@ -31,7 +31,7 @@ pub struct TransferFunction {
 
 /// `f(v)` of the module documentation over points `(x, y)` sorted by `x`
 /// (at a step, the value right of it).
-fn piecewise<P, const N: usize>(points: &[P], v: f64, get: impl Fn(&P) -> (f64, [f32; N])) -> [f32; N] {
+pub(super) fn piecewise<P, const N: usize>(points: &[P], v: f64, get: impl Fn(&P) -> (f64, [f32; N])) -> [f32; N] {
     let i = points.partition_point(|p| get(p).0 <= v);
     if i == 0 {
         return get(&points[0]).1;
@@ -47,7 +47,7 @@ fn piecewise<P, const N: usize>(points: &[P], v: f64, get: impl Fn(&P) -> (f64, 
     std::array::from_fn(|k| y0[k] + (y1[k] - y0[k]) * t)
 }
 
-fn check<const N: usize>(what: &str, points: &[(f64, [f32; N])]) -> Result<()> {
+pub(super) fn check<const N: usize>(what: &str, points: &[(f64, [f32; N])]) -> Result<()> {
     let bad = |message: String| Err(Error::InvalidArgument(format!("transfer function: {message}")));
     if points.is_empty() {
         return bad(format!("the {what} function has no points: give at least one (value, {what}) point"));

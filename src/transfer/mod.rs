@@ -2,10 +2,13 @@
 //! classifies values ([`TransferFunction`]: piecewise-linear colour and
 //! opacity, exact transparency test), `lut` tabulates it for the inner loops
 //! of the compositor and the point shader, [`lighting`] shades a sample
-//! (material, lights, VTK's volume shading model).
+//! (material, lights, VTK's volume shading model), [`gradient_opacity`]
+//! scales a sample's opacity by its gradient magnitude.
 
 pub mod function;
+pub mod gradient_opacity;
 pub mod lighting;
 pub(crate) mod lut;
 
 pub use function::TransferFunction;
+pub use gradient_opacity::GradientOpacity;

@@ -464,6 +464,74 @@ int Shading()
   return check.Result();
 }
 
+/// Gradient opacity through the bridge: VTK's points in the selection count
+/// the border of a varying function and hide everything under one that is 0
+/// everywhere; SetGradientOpacity() gives the DrawList the effect
+/// "gradient-opacity", bordered textures and its table (or "opacity-scale"
+/// for a constant 0.5, nothing for 1); bad points are refused with a message.
+int GradientOpacity()
+{
+  Checker check;
+  Fixture f;
+  if (!f.Octree)
+  {
+    return EXIT_FAILURE;
+  }
+  std::string error;
+  B::SelectDescription options;
+  options.BudgetBytes = 30000;
+  options.GradientOpacityPoints = { 0.0, 0.0, 5.0, 0.0 };
+  B::SelectionSummary summary;
+  std::unique_ptr<B::Selection> hidden = f.Octree->Select(options, error);
+  check.Check(hidden && hidden->GetSummary(summary, error) && summary.Bricks == 0,
+    "a gradient opacity of 0 everywhere selects no brick: " + error);
+  options.GradientOpacityPoints = { 0.0, 0.0, 1.0, 1.0 };
+  std::unique_ptr<B::Selection> selection = f.Octree->Select(options, error);
+  if (!check.Check(selection && selection->GetSummary(summary, error), "select: " + error))
+  {
+    return EXIT_FAILURE;
+  }
+  check.Check(summary.Bricks > 0 && summary.TextureBytes <= options.BudgetBytes,
+    "bricks within the budget, borders counted");
+  vtkNew<vtkCamera> camera;
+  const double centre[3] = { 12.0, 10.0, 8.0 };
+  const double diagonal[3] = { 1.0, 0.8, 0.6 };
+  Aim(camera, centre, diagonal, false);
+  const B::CameraDescription cam = vtkHybridOctreeCameraInput::DescribeCamera(camera);
+  B::DrawList list;
+  check.Check(selection->SetGradientOpacity(options.GradientOpacityPoints, error) &&
+      selection->GetDrawList(*f.Octree, cam, 0.0, list, error),
+    "list: " + error);
+  check.Check(list.Effects == "gradient-opacity" && list.Gradients && list.Passes == "volume",
+    "effects '" + list.Effects + "', passes '" + list.Passes + "'");
+  check.Check(list.GradientOpacityTable.size() == 4096 && list.GradientOpacityEnd > 0.0 &&
+      list.GradientOpacityTable.front() == 0.0f,
+    "the gradient opacity table");
+  std::vector<float> texels;
+  if (list.GetNumberOfBricks() > 0)
+  {
+    texels.assign((list.Texels[0] + 2) * (list.Texels[1] + 2) * (list.Texels[2] + 2), 0.0f);
+    check.Check(selection->GetBrickTexelsBordered(f.Bytes(), f.ByteCount(), f.Grid, list.Brick[0],
+                  texels.data(), texels.size(), error),
+      "bordered texels: " + error);
+  }
+  check.Check(selection->SetGradientOpacity({ 0.0, 1.0, 9.0, 1.0 }, error) &&
+      selection->GetDrawList(*f.Octree, cam, 0.0, list, error) && list.Effects.empty() &&
+      !list.Gradients && list.GradientOpacityTable.empty(),
+    "1 everywhere is no effect: '" + list.Effects + "' " + error);
+  check.Check(selection->SetGradientOpacity({ 0.0, 0.5 }, error) &&
+      selection->GetDrawList(*f.Octree, cam, 0.0, list, error) && list.Effects == "opacity-scale" &&
+      list.OpacityScale == 0.5 && !list.Gradients,
+    "a constant 0.5 scales the opacity: '" + list.Effects + "' " + error);
+  check.Check(!selection->SetGradientOpacity({ 0.0, 0.5, 1.0 }, error) &&
+      error.find("pairs") != std::string::npos,
+    "an odd count refused: '" + error + "'");
+  check.Check(!selection->SetGradientOpacity({ 0.0, 1.5 }, error) &&
+      error.find("[0, 1]") != std::string::npos,
+    "an opacity above 1 refused: '" + error + "'");
+  return check.Result();
+}
+
 int SurfaceBatches()
 {
   Checker check;
@@ -983,12 +1051,16 @@ int TestHybridOctreeBridge(int argc, char* argv[])
   {
     return Shading();
   }
+  if (scenario == "gradient_opacity")
+  {
+    return GradientOpacity();
+  }
   if (scenario == "region")
   {
     return Region();
   }
   std::cerr << "unknown scenario '" << scenario
-            << "': use draw_list, texels, surface, transparent, errors, points, geometry, shading "
-               "or region\n";
+            << "': use draw_list, texels, surface, transparent, errors, points, geometry, shading, "
+               "gradient_opacity or region\n";
   return EXIT_FAILURE;
 }

@@ -13,6 +13,7 @@ uniform vec3 inverseStep;
 uniform vec3 texels;
 uniform vec2 tableScaleShift;
 uniform float opacityRatio;
+uniform float opacityScale; // every opacity's constant factor (1: none)
 uniform vec3 eye;
 uniform vec3 forward;
 uniform int parallel;
@@ -25,11 +26,21 @@ uniform mat4 DCMC;
 uniform vec2 viewportSize;
 uniform vec2 depthScale;
 uniform float nearDepth;
-#ifdef HO_SHADE
-// Volume shading (VTK 9.2's model, src/transfer/lighting.rs): the brick
+#ifdef HO_GRADIENTS
+// Gradients (shading, gradient opacity; src/render/shade.rs): the brick
 // texture carries one border texel per side; the gradient is the central
 // difference one texel away, over gradientStep (stride * spacing, model units).
 uniform vec3 gradientStep;
+#endif
+#ifdef HO_GRADIENT_OPACITY
+// Gradient opacity (src/transfer/gradient_opacity.rs): the function of the
+// gradient magnitude tabulated, cell k at magnitude k end / (n - 1); its
+// texture coordinate is |g| * scaleShift.x + scaleShift.y.
+uniform sampler2D gradientOpacityTable;
+uniform vec2 gradientOpacityScaleShift;
+#endif
+#ifdef HO_SHADE
+// Volume shading (VTK 9.2's model, src/transfer/lighting.rs).
 uniform vec4 material; // ambient, diffuse, specular, specular power
 uniform int twoSided;
 uniform int headlight;
@@ -52,6 +63,28 @@ uniform int clipCount;
 uniform vec3 clipOrigin[HO_MAX_CLIP];
 uniform vec3 clipNormal[HO_MAX_CLIP];
 #endif
+#ifdef HO_ISOSURFACE
+// The Isosurface blend mode (src/plan/blend.rs): a sample shows the values
+// c_k crossed since the sample one step s nearer the eye (v0 < c_k <= v1 or
+// v1 <= c_k < v0), each (c(c_k), a(c_k)) uncorrected, nearest v0 first.
+uniform int isosurfaceCount;
+uniform float isosurfaceValues[HO_MAX_ISOSURFACES];
+#endif
+#if defined(HO_GRADIENTS) || defined(HO_ISOSURFACE)
+// The brick texture carries one border texel per side.
+#define HO_BORDER
+#endif
+#ifdef HO_REDUCE
+// The blend modes besides Composite (src/plan/blend.rs): every sample feeds
+// the float target's reduction through the blend equation, resolved through
+// the transfer function afterwards (vtkHybridOctreeResolveFS.glsl):
+//   maximum, minimum: (v, 1, 0, 0), (-v, 1, 0, 0) under GL_MAX;
+//   average, additive: (w a(v) n(v), w, 0, 0) under GL_FUNC_ADD, w = l / d0
+//   (opacityRatio), n(v) = (v - lo) / (hi - lo); an average counts v in averageRange.
+uniform int reduceMode; // 1 maximum, 2 minimum, 3 average, 4 additive
+uniform vec2 scalarRange;
+uniform vec2 averageRange;
+#endif
 //VTK::Output::Dec
 
 // The primitive kinds (the vertex attribute kindMC, a whole number).
@@ -61,24 +94,43 @@ const int RAY_MARCHED_BOX = 2;
 const int SQUARE_POINT = 3;
 const int GAUSSIAN_POINT = 4;
 
-#ifdef HO_SHADE
+#ifdef HO_GRADIENTS
 float texelAt(vec3 u)
 {
   return texture(brickTexture, (u + vec3(0.5)) / texels).r;
 }
 
-// The shaded colour of c at texel coordinates u (border included), seen
-// along the unit ray direction v: N the normalised central-difference
-// gradient (0 where it is 0 or touches no data), then
+// The gradient at texel coordinates u (border included): central differences
+// one texel away, g_a = (F(u + e_a) - F(u - e_a)) / (2 h_a).
+vec3 gradientAt(vec3 u)
+{
+  return vec3(texelAt(u + vec3(1.0, 0.0, 0.0)) - texelAt(u - vec3(1.0, 0.0, 0.0)),
+           texelAt(u + vec3(0.0, 1.0, 0.0)) - texelAt(u - vec3(0.0, 1.0, 0.0)),
+           texelAt(u + vec3(0.0, 0.0, 1.0)) - texelAt(u - vec3(0.0, 0.0, 1.0))) /
+    (2.0 * gradientStep);
+}
+#endif
+
+#ifdef HO_GRADIENT_OPACITY
+// a_grad(|g|), piecewise linear, held past its ends; a magnitude that is not
+// a number (a difference touching no data) counts as 0.
+float gradientOpacity(vec3 g)
+{
+  float m = length(g);
+  m = isnan(m) ? 0.0 : m;
+  float t = clamp(m * gradientOpacityScaleShift.x + gradientOpacityScaleShift.y, 0.0, 1.0);
+  return clamp(texture(gradientOpacityTable, vec2(t, 0.5)).r, 0.0, 1.0);
+}
+#endif
+
+#ifdef HO_SHADE
+// The shaded colour of c with gradient g, seen along the unit ray direction
+// v: N the normalised gradient (0 where it is 0 or touches no data), then
 // headlight: ka c + [d > 0] (kd d Ld c + ks max(R.V, 0)^p Ls), R = 2 (N.L) N - L, L = V;
 // lights:    ka sum La + kd sum [d > 0] d Ld c + ks sum [d > 0][R.V > 0] (R.V)^p Ls,
 //            R = normalize(2 d N - L); d = N.L, |N.L| when two-sided; clamped to [0, 1].
-vec3 shade(vec3 u, vec3 c, vec3 v)
+vec3 shade(vec3 g, vec3 c, vec3 v)
 {
-  vec3 g = vec3(texelAt(u + vec3(1.0, 0.0, 0.0)) - texelAt(u - vec3(1.0, 0.0, 0.0)),
-             texelAt(u + vec3(0.0, 1.0, 0.0)) - texelAt(u - vec3(0.0, 1.0, 0.0)),
-             texelAt(u + vec3(0.0, 0.0, 1.0)) - texelAt(u - vec3(0.0, 0.0, 1.0))) /
-    (2.0 * gradientStep);
   float len = length(g);
   vec3 n = (len > 0.0 && !isnan(len) && !isinf(len)) ? g / len : vec3(0.0);
   vec3 outColor;
@@ -128,11 +180,12 @@ vec3 shade(vec3 u, vec3 c, vec3 v)
 }
 #endif
 
-#if defined(HO_CROP) || defined(HO_CLIP)
 // Whether the sample at model position p is removed (src/plan/crop.rs):
 // cropping keeps region (i, j, k) when bit i + 3 j + 9 k of the flags is
 // set, a coordinate being 0 below the min plane, 1 from min to max (both
 // included), 2 above the max plane; a clipping plane keeps n . (p - o) >= 0.
+// Never without HO_CROP and HO_CLIP. A removed sample is no sample in every
+// blend mode: not blended, not reduced, no isosurface.
 bool removed(vec3 p)
 {
 #ifdef HO_CROP
@@ -153,10 +206,75 @@ bool removed(vec3 p)
 #endif
   return false;
 }
+
+#ifdef HO_REDUCE
+// The reduction's share of the value v (not NaN) of a sample standing for w
+// reference spacings.
+vec4 reductionOf(float v, float w)
+{
+  if (reduceMode == 1)
+  {
+    return vec4(v, 1.0, 0.0, 0.0);
+  }
+  if (reduceMode == 2)
+  {
+    return vec4(-v, 1.0, 0.0, 0.0);
+  }
+  if (reduceMode == 3 && (v < averageRange.x || v > averageRange.y))
+  {
+    return vec4(0.0);
+  }
+  float a = clamp(texture(transferTable, vec2(v * tableScaleShift.x + tableScaleShift.y, 0.5)).a, 0.0, 1.0);
+  float n = scalarRange.y > scalarRange.x ? (v - scalarRange.x) / (scalarRange.y - scalarRange.x) : 0.0;
+  return vec4(w * a * n, w, 0.0, 0.0);
+}
+
+// Two reductions combined as the blend equation combines them.
+vec4 combined(vec4 a, vec4 b)
+{
+  return reduceMode <= 2 ? max(a, b) : a + b;
+}
+
+// The texel value at model position p (the unshaded lattice).
+float valueAt(vec3 p)
+{
+  vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
+  return texture(brickTexture, (u + vec3(0.5)) / texels).r;
+}
 #endif
 
-// Opacity a' of the sample at model position p, and its colour (shaded
-// along the ray direction v with HO_SHADE). NaN texels
+#ifdef HO_ISOSURFACE
+// Straight colour and opacity at isovalue c.
+vec4 isosurfaceColor(float c)
+{
+  vec4 t = texture(transferTable, vec2(c * tableScaleShift.x + tableScaleShift.y, 0.5));
+  return vec4(clamp(t.rgb, 0.0, 1.0), clamp(t.a, 0.0, 1.0));
+}
+
+// The isovalues crossed going from v0 to v1 composited front to back into
+// one premultiplied (C, A): C = sum (1 - A_k) a_k c_k, A = sum (1 - A_k) a_k.
+vec4 crossings(float v0, float v1)
+{
+  vec4 acc = vec4(0.0);
+  for (int i = 0; i < isosurfaceCount; ++i)
+  {
+    // Rising: ascending values; falling: descending.
+    int k = v0 < v1 ? i : isosurfaceCount - 1 - i;
+    float c = isosurfaceValues[k];
+    if ((v0 < v1 && v0 < c && c <= v1) || (v1 < v0 && v1 <= c && c < v0))
+    {
+      vec4 s = isosurfaceColor(c);
+      acc += (1.0 - acc.a) * vec4(s.rgb * s.a, s.a);
+    }
+  }
+  return acc;
+}
+#endif
+
+// Opacity a' of the sample at model position p (times opacityScale, times
+// the gradient opacity with HO_GRADIENT_OPACITY, then corrected for the
+// slice spacing), and its colour (shaded along the ray direction v with
+// HO_SHADE). NaN texels
 // are no data: the linear filter of a sample touching one is NaN (every
 // corner is weighed, 0 * NaN = NaN), and such a sample is transparent black,
 // as in the CPU compositor. A sample cropping or a clipping plane removes
@@ -169,7 +287,7 @@ vec4 sampleAt(vec3 p, vec3 v)
     return vec4(0.0);
   }
 #endif
-#ifdef HO_SHADE
+#ifdef HO_BORDER
   vec3 u = clamp((p - brickLo) * inverseStep + vec3(1.0), vec3(1.0), texels - vec3(2.0));
 #else
   vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
@@ -179,17 +297,38 @@ vec4 sampleAt(vec3 p, vec3 v)
   {
     return vec4(0.0);
   }
+#ifdef HO_ISOSURFACE
+  // The sample one step nearer the eye: p - v s / (v . forward), in the border when it leaves the brick.
+  vec3 b = clamp((p - v * (sliceSpacing / dot(v, forward)) - brickLo) * inverseStep + vec3(1.0),
+    vec3(0.0), texels - vec3(1.0));
+  vec4 crossed = crossings(texture(brickTexture, (b + vec3(0.5)) / texels).r, value);
+  if (crossed.a <= 0.0)
+  {
+    return vec4(0.0);
+  }
+  // One sample standing for them all: straight colour C / A, opacity A.
+  vec4 c = vec4(crossed.rgb / crossed.a, crossed.a);
+#else
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
-  float a = clamp(c.a, 0.0, 1.0);
+#endif
+  float a = clamp(c.a, 0.0, 1.0) * opacityScale;
+#ifdef HO_GRADIENTS
+  vec3 g = a > 0.0 ? gradientAt(u) : vec3(0.0);
+#endif
+#ifdef HO_GRADIENT_OPACITY
+  a *= gradientOpacity(g);
+#endif
+#ifndef HO_ISOSURFACE
   if (opacityRatio != 1.0 && a > 0.0 && a < 1.0)
   {
     a = 1.0 - exp(opacityRatio * log(1.0 - a));
   }
+#endif
   vec3 rgb = clamp(c.rgb, 0.0, 1.0);
 #ifdef HO_SHADE
   if (a > 0.0)
   {
-    rgb = shade(u, rgb, v);
+    rgb = shade(g, rgb, v);
   }
 #endif
   return vec4(rgb, a);
@@ -234,6 +373,27 @@ void main()
       : 0.0;
     int k0 = int(ceil(zIn / sliceSpacing - j));
     int k1 = min(int(ceil(zOut / sliceSpacing - j)) - 1, k0 + 4096);
+#ifdef HO_REDUCE
+    // Every sample, no early termination; NaN (no data) or removed is no sample.
+    vec4 R = reduceMode <= 2 ? vec4(-3.0e38, 0.0, 0.0, 0.0) : vec4(0.0);
+    bool sampled = false;
+    for (int k = k0; k <= k1; ++k)
+    {
+      vec3 p = origin + dir * ((float(k) + j) * sliceSpacing / cosA);
+      float v = valueAt(p);
+      if (!isnan(v) && !removed(p))
+      {
+        R = combined(R, reductionOf(v, opacityRatio));
+        sampled = true;
+      }
+    }
+    if (!sampled)
+    {
+      discard;
+    }
+    gl_FragData[0] = R;
+    return;
+#endif
     vec3 C = vec3(0.0);
     float A = 0.0;
     for (int k = k0; k <= k1 && A < 0.999; ++k)
@@ -254,6 +414,20 @@ void main()
   {
     discard;
   }
+#ifdef HO_REDUCE
+  // A reduced ray has no order: only the volume's samples feed it.
+  if (kind != SLICE)
+  {
+    discard;
+  }
+  float v = valueAt(positionMC);
+  if (isnan(v) || removed(positionMC))
+  {
+    discard;
+  }
+  gl_FragData[0] = reductionOf(v, opacityRatio);
+  return;
+#endif
   if (kind == SQUARE_POINT || kind == GAUSSIAN_POINT)
   {
     // A point (paper 3 section 4): its colour and opacity a_p (see the

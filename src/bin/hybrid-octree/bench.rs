@@ -1,8 +1,11 @@
 //! Benchmarks that print tables: `bench build` (the Volume Octree) and
 //! `bench surface` (the Surface Octree's extraction and face compression),
-//! `bench render` (what accuracy costs in time and memory when rendering).
+//! `bench render` (what accuracy costs in time and memory when rendering),
+//! `bench effects` (what each rendering effect costs).
 
 mod build;
+mod effects;
+mod memory;
 pub mod render;
 mod surface;
 
@@ -19,6 +22,8 @@ pub enum BenchCommand {
     Surface(surface::BenchSurfaceArgs),
     /// Rendering under a texture budget: error against time and memory, octree vs uniform downsampling.
     Render(Box<render::BenchRenderArgs>),
+    /// Each rendering effect (shading, blend modes, surfaces): frame time against the plain frame, RMSE, bytes, plan.
+    Effects(Box<effects::BenchEffectsArgs>),
 }
 
 /// Runs a benchmark.
@@ -27,6 +32,7 @@ pub fn run(command: &BenchCommand) -> Result<()> {
         BenchCommand::Build(args) => build::run(args),
         BenchCommand::Surface(args) => surface::run(args),
         BenchCommand::Render(args) => render::run(args),
+        BenchCommand::Effects(args) => effects::run(args),
     }
 }
 

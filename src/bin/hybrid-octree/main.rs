@@ -9,6 +9,7 @@
 //! hybrid-octree generate --dataset NAME --size N [--type T] --output FILE.vti
 //! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--repeats 3] [--json]
 //! hybrid-octree bench render (--dataset NAME --size N | --file PATH) [--strides 2,4,8] [--tolerances ...] [--plot P.png] [--json]
+//! hybrid-octree bench effects (--dataset NAME --size N | --file PATH) [--budget-mb M] [--frames 5] [--effects plain,shade,...] [--plot P.png] [--json]
 //! hybrid-octree bench surface [--cases shepp-logan:0.5,...] [--size 256] [--modes discmc,...] [--threads 1,2] [--json]
 //! ```
 //!
@@ -50,7 +51,7 @@ enum Command {
     /// Extract the Hybrid Octree's isosurface (DiscMC + face compression, or interpolated MC).
     Surface(surface::SurfaceArgs),
     /// Render one frame under a texture budget to a PNG (CPU compositor), optionally against the reference.
-    Render(render::RenderArgs),
+    Render(Box<render::RenderArgs>),
     /// Write a built-in dataset to a VTK XML image file (.vti).
     Generate(generate::GenerateArgs),
     /// Display the binary octree of an isovalue front to back with blocking quadtrees, against back to front.

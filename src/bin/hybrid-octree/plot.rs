@@ -32,7 +32,20 @@ pub fn error_plot(path: &Path, title: &str, series: &[(&str, Vec<Point>)]) -> Re
     let all: Vec<Point> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
     let max = |f: fn(&Point) -> f64| all.iter().map(f).fold(0.0f64, f64::max) * 1.1 + 1e-9;
     let min = |f: fn(&Point) -> f64| all.iter().map(f).filter(|v| *v > 0.0).fold(f64::INFINITY, f64::min);
-    let colours = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK, RGBColor(230, 140, 0), RGBColor(120, 60, 160)];
+    let colours = [
+        RED,
+        BLUE,
+        GREEN,
+        MAGENTA,
+        CYAN,
+        BLACK,
+        RGBColor(230, 140, 0),
+        RGBColor(120, 60, 160),
+        RGBColor(140, 90, 40),
+        RGBColor(0, 120, 120),
+        RGBColor(150, 150, 150),
+        RGBColor(200, 90, 140),
+    ];
     type Axis = (fn(&Point) -> f64, &'static str);
     let axes: [Axis; 2] =
         [(|p| p.ms, "time per frame (ms)"), (|p| p.mb, "memory (MB: textures, plus points where drawn)")];

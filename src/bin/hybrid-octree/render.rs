@@ -6,10 +6,10 @@ use crate::extension::require_extension;
 use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::pool::with_threads;
-use crate::scene::{frame, load, reference_image, visible, SceneArgs};
+use crate::scene::{frame, load, reference_image, select_options, visible, SceneArgs};
 use clap::Args;
 use hybrid_octree::render::metrics::compare;
-use hybrid_octree::select::{select, SelectOptions};
+use hybrid_octree::select::select;
 use hybrid_octree::Result;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -54,7 +54,9 @@ struct RenderReport {
     /// mapper's `GetLastEstimatedError()` is the same number.
     estimated_error: f64,
     passes: Vec<String>,
-    /// What removes volume samples: `cropping`, `clipping` (empty: nothing).
+    /// What each volume sample does besides its classification, then what
+    /// removes samples (the plan's effects: `gradient-opacity` or
+    /// `opacity-scale`, `shading`, `cropping`, `clipping`; empty: nothing).
     effects: Vec<String>,
     /// The cropping and clipping planes that act on the volume (world coordinates).
     region: Option<hybrid_octree::plan::crop::KeptRegion>,
@@ -86,13 +88,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let volume = args.input.load()?;
         let grid = args.input.grid(&volume)?;
         let scene = load(&grid, &args.scene)?;
-        let options = SelectOptions {
-            roi: args.scene.roi,
-            gradient_border: args.scene.shade.shades() && scene.blend.mode == hybrid_octree::plan::BlendMode::Composite,
-            pooled: scene.blend.mode.is_extremum(),
-            region: scene.select_region,
-            ..SelectOptions::new(budget_bytes, args.tolerance)
-        };
+        let options = select_options(&scene, &args.scene, budget_bytes, args.tolerance);
         let started = Instant::now();
         let selection = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
         let select_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -141,12 +137,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
 fn print_text(r: &RenderReport) {
     println!("wrote {} ({}x{})", r.output, r.width, r.height);
-    let effects = if r.effects.is_empty() { String::new() } else { format!(" with {}", r.effects.join(", ")) };
-    println!(
-        "plan:            {}{effects} ({} transparent or removed nodes skipped)",
-        r.passes.join(" -> "),
-        r.skipped_bricks
-    );
+    println!("plan:            {} ({} transparent or removed nodes skipped)", r.passes.join(" -> "), r.skipped_bricks);
+    if !r.effects.is_empty() {
+        println!("volume effects:  {}", r.effects.join(", "));
+    }
     println!(
         "bricks:          {} using {:.2} MB of a {:.2} MB budget, estimated error {:.4}",
         r.bricks,

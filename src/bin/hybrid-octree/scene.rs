@@ -18,9 +18,10 @@ use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference_blend, ReferenceOptions};
 use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
-use hybrid_octree::select::{Roi, Selection};
+use hybrid_octree::select::{Roi, SelectOptions, Selection};
 use hybrid_octree::slab::SlabPolygons;
 use hybrid_octree::surface::{Surface, SurfaceOptions};
+use hybrid_octree::transfer::GradientOpacity;
 use hybrid_octree::{Error, Result};
 use std::time::Instant;
 
@@ -58,12 +59,37 @@ pub struct SceneArgs {
     #[command(flatten)]
     pub shade: crate::shade::ShadeArgs,
     /// Blend mode (VTK's SetBlendMode): composite, mip (maximum intensity),
-    /// minip (minimum intensity), average (average intensity) or additive.
+    /// minip (minimum intensity), average (average intensity), additive, or
+    /// isosurface (the surfaces of --isosurface-values, ray cast).
     #[arg(long, default_value = "composite", value_parser = blend_mode)]
     pub blend: BlendMode,
+    /// The values the isosurface blend mode draws, comma-separated (data units).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub isosurface_values: Vec<f64>,
+    /// Gradient opacity G0,A0,G1,A1,...: opacity A (in [0, 1]) at gradient
+    /// magnitude G (data units per world unit, increasing), piecewise linear,
+    /// multiplying each sample's opacity (vtkVolumeProperty's GradientOpacity; Composite only).
+    #[arg(long, value_parser = gradient_opacity, allow_hyphen_values = true)]
+    pub gradient_opacity: Option<GradientOpacity>,
     /// Cropping and clipping planes of the volume.
     #[command(flatten)]
     pub crop: crate::crop::CropArgs,
+}
+
+/// The `--gradient-opacity` points, checked ([`GradientOpacity::new`]).
+fn gradient_opacity(s: &str) -> std::result::Result<GradientOpacity, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f64>().map_err(|_| format!("'{}' is not a number", p.trim())))
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| format!("'{s}' is not G0,A0,G1,A1,...: {e}"))?;
+    if v.len() % 2 != 0 {
+        return Err(format!(
+            "'{s}' has {} numbers: give pairs G,A (gradient magnitude, opacity), an even count",
+            v.len()
+        ));
+    }
+    GradientOpacity::new(v.chunks_exact(2).map(|p| (p[0], p[1] as f32)).collect()).map_err(|e| e.to_string())
 }
 
 fn blend_mode(s: &str) -> std::result::Result<BlendMode, String> {
@@ -93,6 +119,9 @@ pub struct Loaded {
     pub camera: Camera,
     /// The blend mode over the data range.
     pub blend: Blend,
+    /// A gradient opacity that is 0 at every magnitude (Composite): every
+    /// sample is transparent.
+    pub hidden_by_gradient_opacity: bool,
     /// The cropping and clipping planes, world coordinates.
     pub region: Option<KeptRegion>,
     /// The same in index space, what the selection leaves out by.
@@ -101,6 +130,44 @@ pub struct Loaded {
 
 /// Builds the octree, the surface and the camera for `grid`.
 pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
+    check_view(args)?;
+    let octree = build_octree(grid, &BuildOptions { leaf_size: args.leaf_size })?;
+    dress(grid, octree, args)
+}
+
+/// The scene of `args` around an octree already built for `grid` (with
+/// `args.leaf_size`): the surface, the transfer function, the camera and
+/// the blend mode.
+pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<Loaded> {
+    check_view(args)?;
+    let region = args.crop.region()?;
+    let surface = match args.isovalue {
+        Some(iso) => Some(Surface::extract(grid, &octree, &SurfaceOptions::discretized(iso))?),
+        None => None,
+    };
+    let (min, max) = octree.value_range();
+    let tf = TransferFunction::ramp(min, max);
+    let shape = grid.shape();
+    let lo = shape.world([0.0; 3]);
+    let hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
+    let camera = Camera::around(lo, hi, args.azimuth, args.elevation, args.parallel)?;
+    let blend = match (args.blend, args.isosurface_values.is_empty()) {
+        (BlendMode::Isosurface, _) => Blend::isosurfaces(&args.isosurface_values, [min, max])?,
+        (_, true) => Blend::new(args.blend, [min, max]),
+        (_, false) => {
+            return Err(hybrid_octree::Error::InvalidArgument(
+                "--isosurface-values is for --blend isosurface: add it, or leave the values out".into(),
+            ))
+        }
+    };
+    let hidden_by_gradient_opacity =
+        args.blend == BlendMode::Composite && args.gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
+    let select_region = region.map(|r| r.to_index(shape));
+    Ok(Loaded { octree, surface, tf, camera, blend, hidden_by_gradient_opacity, region, select_region })
+}
+
+/// The image size and the surface opacity: in range, or a clear error.
+fn check_view(args: &SceneArgs) -> Result<()> {
     if args.width == 0 || args.height == 0 || args.width > 8192 || args.height > 8192 {
         return Err(Error::InvalidArgument(format!(
             "image size {}x{} is out of range: use 1..=8192 pixels per side",
@@ -113,21 +180,25 @@ pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
             args.surface_opacity
         )));
     }
-    let region = args.crop.region()?;
-    let octree = build_octree(grid, &BuildOptions { leaf_size: args.leaf_size })?;
-    let surface = match args.isovalue {
-        Some(iso) => Some(Surface::extract(grid, &octree, &SurfaceOptions::discretized(iso))?),
-        None => None,
-    };
-    let (min, max) = octree.value_range();
-    let tf = TransferFunction::ramp(min, max);
-    let shape = grid.shape();
-    let lo = shape.world([0.0; 3]);
-    let hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
-    let camera = Camera::around(lo, hi, args.azimuth, args.elevation, args.parallel)?;
-    let blend = Blend::new(args.blend, [min, max]);
-    let select_region = region.map(|r| r.to_index(shape));
-    Ok(Loaded { octree, surface, tf, camera, blend, region, select_region })
+    Ok(())
+}
+
+/// The selection's options for `scene` under `budget_bytes` and `tolerance`:
+/// the region of interest, the gradient border when the frame is shaded
+/// (Composite only), peak-keeping texels for MIP and MinIP, the nodes the
+/// cropping and clipping planes remove left out.
+pub fn select_options(scene: &Loaded, args: &SceneArgs, budget_bytes: usize, tolerance: f64) -> SelectOptions {
+    SelectOptions {
+        roi: args.roi,
+        gradient_border: hybrid_octree::plan::needs_gradients(
+            args.shade.lighting().as_ref(),
+            args.gradient_opacity.as_ref(),
+            scene.blend.mode,
+        ) || scene.blend.mode == BlendMode::Isosurface,
+        pooled: scene.blend.mode.is_extremum(),
+        region: scene.select_region,
+        ..SelectOptions::new(budget_bytes, tolerance)
+    }
 }
 
 /// One frame: its DrawList, image and step times.
@@ -162,6 +233,7 @@ pub fn frame(
         surface: scene.surface.as_ref(),
         surface_opacity: args.surface_opacity,
         shading: lighting.as_ref(),
+        gradient_opacity: args.gradient_opacity.as_ref(),
         blend: scene.blend,
         region: scene.region.as_ref(),
     };
@@ -211,6 +283,7 @@ pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Res
         &ReferenceOptions {
             surface,
             lighting: lighting.as_ref(),
+            gradient_opacity: args.gradient_opacity.as_ref(),
             region: scene.region.as_ref(),
             ..ReferenceOptions::default()
         },
@@ -219,12 +292,13 @@ pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Res
 }
 
 /// The transfer function's visibility test for the selection: a node shows
-/// unless the transfer function is transparent over its whole range (and,
-/// with a surface, it holds none of it); under the blend mode's rule
-/// ([`Blend::visible`]).
+/// unless the transfer function is transparent over its whole range, or a
+/// gradient opacity is 0 everywhere (and, with a surface, it holds none of
+/// it); under the blend mode's rule ([`Blend::visible`]).
 pub fn visible<'a>(scene: &'a Loaded, isovalue: Option<f64>) -> impl Fn(f64, f64) -> bool + 'a {
     move |min, max| {
-        scene.blend.visible(min, max, &|a, b| !scene.tf.is_transparent_over(a, b))
+        (!scene.hidden_by_gradient_opacity
+            && scene.blend.visible(min, max, &|a, b| !scene.tf.is_transparent_over(a, b)))
             || isovalue.is_some_and(|iso| min < iso && iso <= max)
     }
 }

@@ -36,10 +36,4 @@ impl ShadeArgs {
             })
         })
     }
-
-    /// True when the frame will be shaded (the selection then counts the
-    /// bricks' gradient borders).
-    pub fn shades(&self) -> bool {
-        self.lighting().is_some_and(|l| !l.is_identity())
-    }
 }

@@ -414,8 +414,14 @@ fn a_real_draw_list_with_a_surface() {
     let options = SelectOptions { max_brick_log2: 3, ..SelectOptions::new(200_000, 0.0) };
     let selection = select(&octree, &options, |_, _| true).unwrap();
     let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
-    let scene =
-        Scene { surface: Some(&surface), surface_opacity: 0.4, shading: None, blend: Default::default(), region: None };
+    let scene = Scene {
+        surface: Some(&surface),
+        surface_opacity: 0.4,
+        shading: None,
+        gradient_opacity: None,
+        blend: Default::default(),
+        region: None,
+    };
     let list = draw_list(&octree, shape, &selection, &camera, &scene, None).unwrap();
     // The surface as the mapper uploads it: world positions, triangles (the DrawList's ids).
     let mut v = Vec::new();

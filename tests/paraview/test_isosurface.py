@@ -1,0 +1,94 @@
+"""pvbatch test of the Isosurface blend mode in the "Hybrid Octree Volume" representation.
+
+    pvbatch test_isosurface.py --plugin <HybridOctree.so> --cli <hybrid-octree> --workdir <dir>
+
+The representation inherits BlendMode and IsosurfaceValues (the
+*Isosurfaces* list) from ParaView's volume representation. A 64^3
+Shepp-Logan phantom with two isosurface values, in one view: ParaView's
+"Volume" representation against "Hybrid Octree Volume" at the default
+budget, unshaded and shaded: RMSE at most 0.05 each, the plans
+"volume-isosurface" and "volume-isosurface-shaded"; the picture differs
+from the Composite one (RMSE above 0.01).
+
+Why 0.05, not 0.03: VTK takes a surface's opacity from its opacity table,
+corrected for its own ray step s as 1 - (1 - a)^(s / U), while the Hybrid
+Octree takes the scalar opacity per reference spacing d0, and finds each
+crossing on its slice lattice (d0 apart) rather than VTK's rays, so the
+phantom's staircase surfaces shift by up to a step. With U = d0 (set here)
+the pictures measured 0.043 and 0.037 apart (with ParaView's default U,
+the cell diagonal, 0.076 and 0.062); the same scene through
+vtkGPUVolumeRayCastMapper at s = U = d0 is 0.0075 from the mapper
+(CTest HybridOctree.Mapper.gpu_isosurface).
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from paraview.simple import *  # noqa: E402,F401,F403
+from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
+from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--cli", required=True)
+parser.add_argument("--workdir", required=True)
+args = parser.parse_args()
+os.makedirs(args.workdir, exist_ok=True)
+
+t = Checks("HybridOctree isosurface blend mode test")
+LoadPlugin(args.plugin, remote=False, ns=globals())
+
+HYBRID = "Hybrid Octree Volume"
+reader = XMLImageDataReader(FileName=[generate_phantom(args.cli, args.workdir, 64)])
+reader.UpdatePipeline()
+array = reader.PointData.keys()[0]
+value_range = reader.PointData[array].GetRange()
+bounds = reader.GetDataInformation().GetBounds()
+lo, hi = value_range
+values = [lo + 0.25 * (hi - lo), lo + 0.7 * (hi - lo)]
+
+
+def screenshot(view, name):
+    path = os.path.join(args.workdir, name + ".png")
+    SaveScreenshot(path, view, ImageResolution=list(SIZE))
+    return read_png_rgb(path)
+
+
+def plan(display):
+    display.SMProxy.UpdatePropertyInformation()
+    return display.GetPropertyValue("LastPlan")
+
+
+def isosurfaces(display, shade):
+    display.BlendMode = "Isosurface"
+    display.IsosurfaceValues = values
+    display.Shade = shade
+    display.ScalarOpacityUnitDistance = 1.0  # the phantom's spacing, d0
+
+
+view = make_view()
+baseline_display = show_volume(reader, view, array, "Volume", value_range)
+baselines = {}
+for shade in (0, 1):
+    isosurfaces(baseline_display, shade)
+    look_at(view, bounds)
+    baselines[shade] = screenshot(view, "volume-isosurface-%d" % shade)
+display = show_volume(reader, view, array, HYBRID, value_range)
+# One display proxy per source and view: the Volume's settings are its own.
+display.BlendMode = "Composite"
+display.Shade = 0
+look_at(view, bounds)
+composite = screenshot(view, "hybrid-composite")
+for shade, expected in ((0, "volume-isosurface"), (1, "volume-isosurface-shaded")):
+    isosurfaces(display, shade)
+    picture = screenshot(view, "hybrid-isosurface-%d" % shade)
+    error = rmse(picture, baselines[shade])
+    change = rmse(picture, composite)
+    report("isosurface, shade %d: RMSE %.4f against ParaView's Volume, %.4f against Composite"
+           % (shade, error, change))
+    t.check(plan(display) == expected, "plan %r: %r" % (expected, plan(display)))
+    t.check(error <= 0.05, "RMSE %.4f against ParaView's Volume (threshold 0.05)" % error)
+    t.check(change > 0.01, "the isosurfaces show: RMSE %.4f against Composite" % change)
+t.finish()
