@@ -67,9 +67,9 @@ EFFECTS = [
     ("shade-diffuse", {"Shade": 1, "Diffuse": 0.5}),
     ("shade-specular", {"Shade": 1, "Specular": 0.5, "SpecularPower": 30.0}),
     ("shade-glossy", {"Shade": 1, "Specular": 1.0, "SpecularPower": 100.0}),
-    # Use Cropping: the box [o + min s, o + max s] keeps 15 % to 75 % of each axis of the bounds b.
-    ("cropping", lambda b: {"UseCropping": 1, "CroppingScale": [0.6] * 3,
-                            "CroppingOrigin": [0.4 * b[2 * a] + 0.15 * (b[2 * a + 1] - b[2 * a]) for a in range(3)]}),
+    # Use Cropping: the box [o + min s, o + max s] keeps 20 % to 70 % of each axis of the bounds b.
+    ("cropping", lambda b: {"UseCropping": 1, "CroppingScale": [0.5] * 3,
+                            "CroppingOrigin": [0.5 * b[2 * a] + 0.2 * (b[2 * a + 1] - b[2 * a]) for a in range(3)]}),
 ]
 
 parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])

@@ -71,11 +71,11 @@ fn shaded_translucent_surface(s: &mut SceneArgs, c: &Context) {
 }
 
 /// The cropping box of the cropping row: VTK's subvolume keeping the middle
-/// 60 % of each axis of the bounds, off centre (from 15 % to 75 %).
+/// half of each axis of the bounds, off centre (from 20 % to 70 %).
 fn central_box(c: &Context) -> [f64; 6] {
     let (lo, hi) = c.bounds;
     let at = |a: usize, f: f64| lo[a] + f * (hi[a] - lo[a]);
-    [at(0, 0.15), at(0, 0.75), at(1, 0.15), at(1, 0.75), at(2, 0.15), at(2, 0.75)]
+    [at(0, 0.2), at(0, 0.7), at(1, 0.2), at(1, 0.7), at(2, 0.2), at(2, 0.7)]
 }
 
 /// The clipping row's plane: through the bounds' centre, oblique, keeping
