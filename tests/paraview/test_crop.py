@@ -12,32 +12,21 @@ the cropped picture differs from the uncropped one (RMSE above 0.01);
 ParaView's default box (origin 0, scale 1: the data bounds) removes
 nothing: no effect, the uncropped picture (RMSE below 0.002).
 """
-import argparse
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from paraview.simple import *  # noqa: E402,F401,F403
-from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
-from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
+from effect_test import EffectTest, statistic  # noqa: E402
+from pvtest import Checks, report, rmse  # noqa: E402
+from representation_scene import look_at, make_view, show_volume  # noqa: E402
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--cli", required=True)
-parser.add_argument("--workdir", required=True)
-args = parser.parse_args()
-os.makedirs(args.workdir, exist_ok=True)
-
+test = EffectTest()
 t = Checks("HybridOctree cropping test")
-LoadPlugin(args.plugin, remote=False, ns=globals())
-
 HYBRID = "Hybrid Octree Volume"
-reader = XMLImageDataReader(FileName=[generate_phantom(args.cli, args.workdir, 64)])
-reader.UpdatePipeline()
-array = reader.PointData.keys()[0]
-value_range = reader.PointData[array].GetRange()
-bounds = reader.GetDataInformation().GetBounds()
+args, reader, array = test.args, test.reader, test.array
+value_range, bounds = test.value_range, test.bounds
 # The box [o + bounds_min s, o + bounds_max s] per axis: about the middle
 # 60 to 75 % of each axis, off centre.
 extent = [bounds[2 * a + 1] - bounds[2 * a] for a in range(3)]
@@ -45,15 +34,11 @@ scale = [0.6, 0.75, 0.7]
 origin = [bounds[2 * a] * (1.0 - scale[a]) + f * extent[a] for a, f in enumerate([0.1, 0.05, 0.25])]
 
 
-def screenshot(view, name):
-    path = os.path.join(args.workdir, name + ".png")
-    SaveScreenshot(path, view, ImageResolution=list(SIZE))
-    return read_png_rgb(path)
+screenshot = test.screenshot
 
 
 def effects(display):
-    display.SMProxy.UpdatePropertyInformation()
-    return display.GetPropertyValue("LastEffects")
+    return statistic(display, "LastEffects")
 
 
 def crop(display, on):

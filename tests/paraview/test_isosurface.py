@@ -20,45 +20,30 @@ the cell diagonal, 0.076 and 0.062); the same scene through
 vtkGPUVolumeRayCastMapper at s = U = d0 is 0.0075 from the mapper
 (CTest HybridOctree.Mapper.gpu_isosurface).
 """
-import argparse
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from paraview.simple import *  # noqa: E402,F401,F403
-from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
-from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
+from effect_test import EffectTest, statistic  # noqa: E402
+from pvtest import Checks, report, rmse  # noqa: E402
+from representation_scene import look_at, make_view, show_volume  # noqa: E402
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--cli", required=True)
-parser.add_argument("--workdir", required=True)
-args = parser.parse_args()
-os.makedirs(args.workdir, exist_ok=True)
-
+test = EffectTest()
 t = Checks("HybridOctree isosurface blend mode test")
-LoadPlugin(args.plugin, remote=False, ns=globals())
-
 HYBRID = "Hybrid Octree Volume"
-reader = XMLImageDataReader(FileName=[generate_phantom(args.cli, args.workdir, 64)])
-reader.UpdatePipeline()
-array = reader.PointData.keys()[0]
-value_range = reader.PointData[array].GetRange()
-bounds = reader.GetDataInformation().GetBounds()
+args, reader, array = test.args, test.reader, test.array
+value_range, bounds = test.value_range, test.bounds
 lo, hi = value_range
 values = [lo + 0.25 * (hi - lo), lo + 0.7 * (hi - lo)]
 
 
-def screenshot(view, name):
-    path = os.path.join(args.workdir, name + ".png")
-    SaveScreenshot(path, view, ImageResolution=list(SIZE))
-    return read_png_rgb(path)
+screenshot = test.screenshot
 
 
 def plan(display):
-    display.SMProxy.UpdatePropertyInformation()
-    return display.GetPropertyValue("LastPlan")
+    return statistic(display, "LastPlan")
 
 
 def isosurfaces(display, shade):

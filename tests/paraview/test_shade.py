@@ -12,43 +12,28 @@ picture differs from the unshaded one (RMSE above 0.01); with Ambient 1,
 Diffuse 0 and Specular 0 under the default headlight (light kit off) the plan is
 "volume" again.
 """
-import argparse
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from paraview.simple import *  # noqa: E402,F401,F403
-from pvtest import Checks, generate_phantom, read_png_rgb, report, rmse  # noqa: E402
-from representation_scene import SIZE, look_at, make_view, show_volume  # noqa: E402
+from effect_test import EffectTest, statistic  # noqa: E402
+from pvtest import Checks, report, rmse  # noqa: E402
+from representation_scene import look_at, make_view, show_volume  # noqa: E402
 
-parser = argparse.ArgumentParser()
-parser.add_argument("--plugin", required=True)
-parser.add_argument("--cli", required=True)
-parser.add_argument("--workdir", required=True)
-args = parser.parse_args()
-os.makedirs(args.workdir, exist_ok=True)
-
+test = EffectTest()
 t = Checks("HybridOctree shading test")
-LoadPlugin(args.plugin, remote=False, ns=globals())
-
 HYBRID = "Hybrid Octree Volume"
-reader = XMLImageDataReader(FileName=[generate_phantom(args.cli, args.workdir, 64)])
-reader.UpdatePipeline()
-array = reader.PointData.keys()[0]
-value_range = reader.PointData[array].GetRange()
-bounds = reader.GetDataInformation().GetBounds()
+args, reader, array = test.args, test.reader, test.array
+value_range, bounds = test.value_range, test.bounds
 
 
-def screenshot(view, name):
-    path = os.path.join(args.workdir, name + ".png")
-    SaveScreenshot(path, view, ImageResolution=list(SIZE))
-    return read_png_rgb(path)
+screenshot = test.screenshot
 
 
 def plan(display):
-    display.SMProxy.UpdatePropertyInformation()
-    return display.GetPropertyValue("LastPlan")
+    return statistic(display, "LastPlan")
 
 
 view = make_view()
