@@ -95,7 +95,7 @@ use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::Result;
 use crate::data::grid::{Grid, GridShape};
 use crate::geometry::camera::Ray;
-use crate::geometry::vec3::dot;
+use crate::geometry::vec3::{add, dot, scale, sub};
 use crate::plan::crop::KeptRegion;
 use crate::plan::{BrickDraw, DrawList};
 use crate::points::footprint::{footprint, project, Footprint};
@@ -606,7 +606,7 @@ impl<S: Texel> Executor<'_, S> {
             }
             if PLAIN && (s0..s1).contains(&j) {
                 let dz = slices[j] - za;
-                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel([0, 1, 2].map(|k| ua[k] + dz * ub[k])));
+                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel(add(ua, scale(ub, dz))));
                 if a > 0.0 {
                     acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
                     if acc[3] >= OPAQUE {
@@ -615,14 +615,14 @@ impl<S: Texel> Executor<'_, S> {
                 }
             } else if !PLAIN && (s0..s1).contains(&j) && self.keeps(pr, slices[j]) {
                 let dz = slices[j] - za;
-                let u = [0, 1, 2].map(|k| ua[k] + dz * ub[k]);
+                let u = add(ua, scale(ub, dz));
                 let v = brick.texture.at_texel(u);
                 match self.isosurfaces {
                     None => acc = self.sample(brick, u, v, brick.ratio, pr, acc, scratch),
                     Some(blend) => {
                         // The values crossed since the sample one step nearer the eye, uncorrected.
                         let d = brick.draw.slice_spacing;
-                        let before = brick.texture.at_texel([0, 1, 2].map(|k| u[k] - d * ub[k]));
+                        let before = brick.texture.at_texel(sub(u, scale(ub, d)));
                         for c in blend.crossings(before, v) {
                             acc = self.sample(brick, u, c, 1.0, pr, acc, scratch);
                         }
@@ -691,7 +691,7 @@ impl<S: Texel> Executor<'_, S> {
         if self.lighting.is_none() && self.gradient_opacity.is_none() {
             return (c, a);
         }
-        let h = self.shape.spacing.map(|s| s * texture.stride());
+        let h = scale(self.shape.spacing, texture.stride());
         let g = texture.gradient_at(u, h);
         scratch.gradients += 1;
         if let Some(f) = self.gradient_opacity {

@@ -35,7 +35,7 @@ pub(crate) fn gradient(f: impl Fn([f64; 3]) -> f64, u: [f64; 3], h: [f64; 3]) ->
 pub(crate) fn normal(g: [f64; 3]) -> [f64; 3] {
     let l = dot(g, g).sqrt();
     if l > 0.0 && l.is_finite() {
-        g.map(|v| v / l)
+        [g[0] / l, g[1] / l, g[2] / l]
     } else {
         [0.0; 3]
     }

@@ -260,6 +260,10 @@ pub(crate) struct Texture<S> {
     /// `n - 1`, per axis.
     last: [f64; 3],
     data: Vec<S>,
+    /// With gradients, the CPU compositor's lattice differences
+    /// ([`Self::lattice_differences`]): not texture bytes a GPU holds,
+    /// the executor's working memory (empty otherwise).
+    lattice: Vec<[f32; 3]>,
 }
 
 impl<S: Texel> Texture<S> {
@@ -282,7 +286,23 @@ impl<S: Texel> Texture<S> {
         };
         let n = brick.texels.map(|n| n + 2 * border);
         let (lo, hi, stride, last) = (brick.lo, brick.hi, brick.stride, n.map(|n| (n - 1) as f64));
-        Some(Texture { lo, hi, stride, n, border, last, data })
+        Some(Texture { lo, hi, stride, n, border, last, data, lattice: Vec::new() })
+    }
+
+    /// [`Self::copy_for`], with the [`Self::lattice_differences`] when the
+    /// plan takes `gradients`.
+    fn prepared<T: Sample>(
+        g: &TypedGrid<'_, T>,
+        brick: &Brick,
+        border: usize,
+        mode: BlendMode,
+        gradients: bool,
+    ) -> Option<Texture<S>> {
+        let mut t = Texture::copy_for(g, brick, border, mode)?;
+        if gradients {
+            t.lattice = t.lattice_differences();
+        }
+        Some(t)
     }
 
     /// True when this is the texture of `brick`.
@@ -332,14 +352,19 @@ impl<S: Texel> Texture<S> {
         let base = i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2];
         // The 8 texels lie in data[base ..= base + step0 + step1 + step2]: one bounds check.
         let d = &self.data[base..=base + step[0] + step[1] + step[2]];
-        let f = |o: usize| d[o].get();
-        let w = |o: usize| {
-            let v0 = lerp(f(o), f(o + step[2]), t[2]);
-            let v1 = lerp(f(o + step[1]), f(o + step[1] + step[2]), t[2]);
-            lerp(v0, v1, t[1])
-        };
-        lerp(w(0), w(step[0]), t[0])
+        lerp(bilinear(d, 0, step, t), bilinear(d, step[0], step, t), t[0])
     }
+}
+
+/// The bilinear interpolation over y and z (z first) of the texels of `d`
+/// from offset `o`, `step` apart per axis, with weights `t`: half of a
+/// trilinear read. A function of its own, always inlined (a closure
+/// here is not, and this is the compositor's inner loop).
+#[inline(always)]
+fn bilinear<S: Texel>(d: &[S], o: usize, step: [usize; 3], t: [f64; 3]) -> f64 {
+    let v0 = lerp(d[o].get(), d[o + step[2]].get(), t[2]);
+    let v1 = lerp(d[o + step[1]].get(), d[o + step[1] + step[2]].get(), t[2]);
+    lerp(v0, v1, t[1])
 }
 
 /// Every brick's texture of a DrawList, in list order (see the module documentation).
@@ -402,14 +427,15 @@ impl GridVisitor for Upload<'_> {
         let bricks = &self.0.bricks;
         let border = usize::from(self.0.plan.bordered());
         let mode = self.0.plan.blend.mode;
+        let gradients = self.0.plan.gradients();
         let f32s: Option<Vec<Texture<f32>>> =
-            bricks.par_iter().map(|d| Texture::copy_for(&g, &d.brick, border, mode)).collect();
+            bricks.par_iter().map(|d| Texture::prepared(&g, &d.brick, border, mode, gradients)).collect();
         match f32s {
             Some(t) => Texels::F32(t),
             None => Texels::F64(
                 bricks
                     .par_iter()
-                    .map(|d| Texture::copy_for(&g, &d.brick, border, mode).expect("f64 holds f64"))
+                    .map(|d| Texture::prepared(&g, &d.brick, border, mode, gradients).expect("f64 holds f64"))
                     .collect(),
             ),
         }

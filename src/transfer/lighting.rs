@@ -32,7 +32,7 @@
 
 use crate::base::error::{Error, Result};
 use crate::geometry::camera::Camera;
-use crate::geometry::vec3::{dot, normalize};
+use crate::geometry::vec3::{add, dot, normalize, scale, sub};
 
 /// vtkVolumeProperty's shading coefficients.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -202,7 +202,7 @@ impl Lighting {
             Lights::Headlight { diffuse, specular } => {
                 let l = view;
                 let mut d = dot(n, l);
-                let r = [0, 1, 2].map(|a| 2.0 * d * n[a] - l[a]);
+                let r = sub(scale(n, 2.0 * d), l);
                 let rv = dot(r, view).max(0.0);
                 if d < 0.0 && self.two_sided {
                     d = -d;
@@ -226,7 +226,7 @@ impl Lighting {
                     }
                     if d > 0.0 {
                         // Not unit when two-sided lighting flipped d: normalised, as VTK does.
-                        let r = normalize([0, 1, 2].map(|a| 2.0 * d * n[a] - l[a]));
+                        let r = normalize(sub(scale(n, 2.0 * d), l));
                         let rv = dot(r, view);
                         let sf = if rv > 0.0 && m.specular > 0.0 { rv.powf(m.specular_power) } else { 0.0 };
                         for a in 0..3 {
@@ -234,14 +234,14 @@ impl Lighting {
                             spe[a] += sf * light.specular[a];
                         }
                     }
-                    amb = [0, 1, 2].map(|a| amb[a] + light.ambient[a]);
+                    amb = add(amb, light.ambient);
                 }
                 for a in 0..3 {
                     out[a] = m.ambient * amb[a] + m.diffuse * dif[a] * c[a] + m.specular * spe[a];
                 }
             }
         }
-        out.map(|v| v.clamp(0.0, 1.0))
+        [out[0].clamp(0.0, 1.0), out[1].clamp(0.0, 1.0), out[2].clamp(0.0, 1.0)]
     }
 }
 
