@@ -8,6 +8,7 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace
 {
@@ -36,8 +37,23 @@ vtkImageData* vtkHybridOctreeTransfer2D::Usable(vtkVolumeProperty* property)
     : nullptr;
 }
 
-bool vtkHybridOctreeTransfer2D::Update(
-  vtkVolumeProperty* property, vtkDataArray* scalars, int component)
+double vtkHybridOctreeTransfer2D::SmartSampleDistance(
+  const double spacing[3], const std::size_t dims[3])
+{
+  double d = (spacing[0] + spacing[1] + spacing[2]) / 6.0;
+  const double cells = static_cast<double>(dims[0] > 0 ? dims[0] - 1 : 0) *
+    static_cast<double>(dims[1] > 0 ? dims[1] - 1 : 0) *
+    static_cast<double>(dims[2] > 0 ? dims[2] - 1 : 0);
+  const double n = std::pow(cells, 0.333);
+  if (n < 100.0)
+  {
+    d *= 0.01 + (1.0 - 0.01) * n / 100.0;
+  }
+  return d;
+}
+
+bool vtkHybridOctreeTransfer2D::Update(vtkVolumeProperty* property, vtkDataArray* scalars,
+  int component, const double spacing[3], const std::size_t dims[3], double sampleDistance)
 {
   vtkImageData* image = Usable(property);
   if (!image || !scalars)
@@ -49,17 +65,22 @@ bool vtkHybridOctreeTransfer2D::Update(
   vtkDataArray* texels = image->GetPointData()->GetScalars();
   double range[2];
   scalars->GetFiniteRange(range, component < 0 ? 0 : component);
-  const bool current = this->ReadFrom == image && this->Width != 0 &&
+  const double lo = std::min({ spacing[0], spacing[1], spacing[2] });
+  const double hi = std::max({ spacing[0], spacing[1], spacing[2] });
+  const double d0 = std::max(lo, hi / 16.0);
+  const double d = sampleDistance > 0.0 ? sampleDistance : SmartSampleDistance(spacing, dims);
+  const double exponent = d > 0.0 ? d0 / d : 1.0;
+  const bool current = this->ReadFrom == image && this->Width != 0 && exponent == this->Exponent &&
     this->ReadTime > image->GetMTime() && this->ReadTime > texels->GetMTime() &&
     range[0] == this->Range[0] && range[1] == this->Range[1];
   if (current)
   {
     return true;
   }
-  int dims[3];
-  image->GetDimensions(dims);
-  this->Width = static_cast<std::size_t>(dims[0]);
-  this->Height = static_cast<std::size_t>(dims[1]);
+  int imageDims[3];
+  image->GetDimensions(imageDims);
+  this->Width = static_cast<std::size_t>(imageDims[0]);
+  this->Height = static_cast<std::size_t>(imageDims[1]);
   this->RGBA.resize(4 * this->Width * this->Height);
   for (vtkIdType t = 0; t < texels->GetNumberOfTuples(); ++t)
   {
@@ -69,6 +90,8 @@ bool vtkHybridOctreeTransfer2D::Update(
       const double v = texels->GetComponent(t, c);
       this->RGBA[4 * t + c] = static_cast<float>(v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v));
     }
+    float& a = this->RGBA[4 * t + 3];
+    a = a < 1.0f ? static_cast<float>(1.0 - std::pow(1.0 - a, exponent)) : a;
   }
   this->Columns.assign(4 * this->Width, 0.0f);
   for (std::size_t j = 0; j < this->Height; ++j)
@@ -81,6 +104,7 @@ bool vtkHybridOctreeTransfer2D::Update(
   }
   this->Range[0] = range[0];
   this->Range[1] = range[1];
+  this->Exponent = exponent;
   this->ReadFrom = image;
   this->ReadTime.Modified();
   this->Uploaded = false;
@@ -104,7 +128,8 @@ void vtkHybridOctreeTransfer2D::Describe(
 std::vector<double> vtkHybridOctreeTransfer2D::Key() const
 {
   return { static_cast<double>(this->Width), static_cast<double>(this->Height), this->Range[0],
-    this->Range[1], this->Empty() ? 0.0 : static_cast<double>(this->ReadTime.GetMTime()) };
+    this->Range[1], this->Exponent,
+    this->Empty() ? 0.0 : static_cast<double>(this->ReadTime.GetMTime()) };
 }
 
 const std::vector<float>& vtkHybridOctreeTransfer2D::ColumnTable(double& lo, double& hi) const

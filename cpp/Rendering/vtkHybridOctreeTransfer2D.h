@@ -39,10 +39,22 @@ public:
   /// components, at most 4096 per side): the one the mapper draws.
   static vtkImageData* Usable(vtkVolumeProperty* property);
 
-  /// Reads `property`'s table for `scalars` (component `component`): false
-  /// (and Empty()) when the property does not draw one. The texels are
-  /// copied again only when something changed.
-  bool Update(vtkVolumeProperty* property, vtkDataArray* scalars, int component);
+  /// Reads `property`'s table for `scalars` (component `component`) on a
+  /// grid of `spacing` and `dims`: false (and Empty()) when the property
+  /// does not draw one. The texels are copied again only when something
+  /// changed. VTK takes the alpha as the opacity of one sample at its sample
+  /// distance `d` (`sampleDistance`; below 0 vtkSmartVolumeMapper's still
+  /// frames', SampleDistance()); the copy holds the opacity over the
+  /// reference spacing d0 = max(min spacing, max spacing / 16) the DrawList
+  /// corrects against, a' = 1 - (1 - a)^(d0 / d).
+  bool Update(vtkVolumeProperty* property, vtkDataArray* scalars, int component,
+    const double spacing[3], const std::size_t dims[3], double sampleDistance);
+
+  /// vtkSmartVolumeMapper's still-frame sample distance (vtkVolumeMapper::
+  /// SpacingAdjustedSampleDistance, LockSampleDistanceToInputSpacing): half
+  /// the mean spacing, times 0.01 + 0.99 n / 100 when the geometric mean n of
+  /// the cells per side is below 100.
+  static double SmartSampleDistance(const double spacing[3], const std::size_t dims[3]);
 
   /// No table (1D mode, or none usable).
   bool Empty() const { return this->Width == 0; }
@@ -73,6 +85,7 @@ private:
   std::vector<float> RGBA;
   std::vector<float> Columns;
   double Range[2] = { 0.0, 1.0 };
+  double Exponent = 1.0;
   vtkTimeStamp ReadTime;
   vtkImageData* ReadFrom = nullptr;
   bool Uploaded = false;

@@ -780,7 +780,8 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
     DescribeRegion(this, this->Internals->Model, this->Internals->ModelInverse);
   this->Internals->GradientOpacity = GradientOpacityPoints(property);
   this->Internals->Transfer2D.Update(property, this->Internals->Scalars,
-    this->Internals->Grid.Component);
+    this->Internals->Grid.Component, this->Internals->Grid.Spacing, this->Internals->Grid.Dims,
+    this->Transfer2DSampleDistance);
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
@@ -1410,6 +1411,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceColor: (" << this->SurfaceColor[0] << ", " << this->SurfaceColor[1]
      << ", " << this->SurfaceColor[2] << ")\n";
   os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
+  os << indent << "Transfer2DSampleDistance: " << this->Transfer2DSampleDistance << "\n";
   os << indent << "UsePoints: " << this->UsePoints << "\n";
   os << indent << "PointFactor: " << this->PointFactor << "\n";
   os << indent << "PointThreshold: " << this->PointThreshold << "\n";

@@ -172,6 +172,8 @@ int Gpu()
   vtkNew<vtkHybridOctreeVolumeMapper> mapper;
   mapper->SetLeafSize(8);
   mapper->SetBudgetMB(4.0);
+  // VTK's alpha is per its sample distance, here 1 (vtkSmartVolumeMapper's otherwise).
+  mapper->SetTransfer2DSampleDistance(1.0);
   Scene ours(mapper);
   vtkNew<vtkGPUVolumeRayCastMapper> gpu;
   gpu->AutoAdjustSampleDistancesOff();
