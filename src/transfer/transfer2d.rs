@@ -28,12 +28,14 @@
 //! of 0 counted as 1: `g_max = (hi - lo) / (4 s)`. The table's own origin and
 //! spacing are not read (VTK ignores them too).
 //!
-//! Opacity: VTK takes the table's alpha as each sample's opacity, with no
-//! sample-distance correction; its samples are `d0` apart (with
-//! AutoAdjustSampleDistances, its and ParaView's default, the smallest
-//! spacing, [`crate::data::spacing::reference_spacing`]). So the alpha is the
-//! opacity of a layer `d0` thick, the 1D function's convention, and the
-//! renderers correct it as theirs, `a' = 1 - (1 - a)^(d / d0)`.
+//! Opacity: the alpha here is the opacity of a layer `d0` thick
+//! ([`crate::data::spacing::reference_spacing`]), the 1D function's
+//! convention, and the renderers correct it as theirs, `a' = 1 - (1 -
+//! a)^(d / d0)`. VTK takes the table's alpha as each sample's opacity with
+//! no correction, at its own sample distance `d_vtk` (vtkGPUVolumeRayCastMapper
+//! with AutoAdjustSampleDistances: the smallest spacing; ParaView's
+//! vtkSmartVolumeMapper: about a third of a voxel): a host converts VTK's
+//! alpha first, `1 - (1 - a)^(d0 / d_vtk)` (vtkHybridOctreeTransfer2D does).
 
 use crate::base::error::{Error, Result};
 
