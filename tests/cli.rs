@@ -1013,7 +1013,9 @@ fn render_transfer_2d_reads_a_json_table() {
     // 8 x 4: opacity rising with the value (x) and the gradient (y).
     let rgba: Vec<String> = (0..4)
         .flat_map(|j| (0..8).map(move |i| (i, j)))
-        .map(|(i, j)| format!("{},{},0.5,{}", i as f64 / 7.0, j as f64 / 3.0, 0.04 * i as f64 * (j as f64 + 1.0) / 28.0))
+        .map(|(i, j)| {
+            format!("{},{},0.5,{}", i as f64 / 7.0, j as f64 / 3.0, 0.04 * i as f64 * (j as f64 + 1.0) / 28.0)
+        })
         .collect();
     std::fs::write(&table, format!("{{\"width\": 8, \"height\": 4, \"rgba\": [{}]}}", rgba.join(","))).unwrap();
     let path = table.to_str().unwrap();
@@ -1037,7 +1039,10 @@ fn render_transfer_2d_reads_a_json_table() {
         ("{\"width\": 1, \"height\": 1, \"rgba\": [0,0,0,1], \"colour\": 3}", "unknown field"),
     ] {
         std::fs::write(&bad, content).unwrap();
-        assert_clean_failure(&run(&[&["render"][..], &base[..], &["--transfer-2d", bad.to_str().unwrap()]].concat()), reason);
+        assert_clean_failure(
+            &run(&[&["render"][..], &base[..], &["--transfer-2d", bad.to_str().unwrap()]].concat()),
+            reason,
+        );
     }
     let missing = temp("transfer-2d-missing.json");
     assert_clean_failure(

@@ -267,6 +267,9 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
             [lo, hi, t.gradient_max()]
         }),
         gradients: list.plan.gradients(),
+        bordered: list.plan.bordered(),
+        blend_mode: list.plan.blend.mode.to_vtk(),
+        shading: list.plan.shading,
         opacity_scale: list.plan.opacity_scale,
         gradient_opacity_table: Vec::new(),
         gradient_opacity_end: 0.0,
