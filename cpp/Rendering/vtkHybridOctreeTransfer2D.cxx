@@ -29,8 +29,8 @@ vtkImageData* vtkHybridOctreeTransfer2D::Usable(vtkVolumeProperty* property)
   {
     image->GetDimensions(dims);
   }
-  const bool sized = dims[0] >= 1 && dims[1] >= 1 && dims[2] == 1 && dims[0] <= MaxSide &&
-    dims[1] <= MaxSide;
+  const bool sized =
+    dims[0] >= 1 && dims[1] >= 1 && dims[2] == 1 && dims[0] <= MaxSide && dims[1] <= MaxSide;
   return sized && scalars && scalars->GetNumberOfComponents() == 4 &&
       scalars->GetNumberOfTuples() == static_cast<vtkIdType>(dims[0]) * dims[1]
     ? image

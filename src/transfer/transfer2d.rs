@@ -16,7 +16,7 @@
 //! T(v, |g|) = bilinear interpolation of the four texels around (tx, ty)
 //! ```
 //!
-//! `|g| = |grad F|` is the gradient of [`crate::render::shade`]'s rule
+//! `|g| = |grad F|` is the gradient of `crate::render::shade`'s rule
 //! (central differences one lattice step away, data units per world unit);
 //! a value or a magnitude that is not a number counts as no data (transparent)
 //! and 0 respectively, as for the 1D function and the gradient opacity.
@@ -133,7 +133,7 @@ impl TransferFunction2D {
         spacing: [f64; 3],
     ) -> Result<TransferFunction2D> {
         let s = spacing.iter().sum::<f64>() / 3.0;
-        if !(s > 0.0 && s.is_finite()) || spacing.iter().any(|&v| !(v > 0.0)) {
+        if !(s > 0.0 && s.is_finite()) || spacing.iter().any(|&v| v <= 0.0 || v.is_nan()) {
             return Err(Error::InvalidArgument(format!(
                 "2D transfer function: the grid's spacing {spacing:?} must be positive"
             )));
