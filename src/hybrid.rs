@@ -80,6 +80,7 @@ impl HybridOctree {
             surface_opacity,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: Default::default(),
             region: None,
         }

@@ -994,3 +994,62 @@ fn render_gradient_opacity_names_its_effect() {
     let _ = std::fs::remove_file(png);
     let _ = std::fs::remove_file(reference);
 }
+
+/// `render --transfer-2d FILE` (JSON): the plan names `transfer-2d`, the
+/// picture differs from the 1D ramp's and stays within RMSE 0.05 of the
+/// reference with the same table (both read it: the check can fail), and
+/// hostile files are refused with the reason before anything is drawn.
+#[test]
+fn render_transfer_2d_reads_a_json_table() {
+    let png = temp("transfer-2d.png");
+    let reference = temp("transfer-2d-reference.png");
+    let table = temp("transfer-2d.json");
+    let (out, truth) = (png.to_str().unwrap(), reference.to_str().unwrap());
+    let base = ["--dataset", "sphere", "--size", "17", "--width", "24", "--height", "24", "--output", out];
+    let json = |extra: &[&str]| json_of("render", &[&base[..], extra].concat());
+    let plain = json(&[]);
+    assert_eq!(plain["effects"], serde_json::json!([]), "{plain}");
+    let plain_png = std::fs::read(&png).unwrap();
+    // 8 x 4: opacity rising with the value (x) and the gradient (y).
+    let rgba: Vec<String> = (0..4)
+        .flat_map(|j| (0..8).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            format!("{},{},0.5,{}", i as f64 / 7.0, j as f64 / 3.0, 0.04 * i as f64 * (j as f64 + 1.0) / 28.0)
+        })
+        .collect();
+    std::fs::write(&table, format!("{{\"width\": 8, \"height\": 4, \"rgba\": [{}]}}", rgba.join(","))).unwrap();
+    let path = table.to_str().unwrap();
+    let two_d = json(&["--transfer-2d", path, "--shade", "--reference", truth]);
+    assert_eq!(two_d["effects"], serde_json::json!(["transfer-2d", "shading"]), "{two_d}");
+    assert_eq!(two_d["passes"], serde_json::json!(["volume-shaded"]), "{two_d}");
+    assert!(two_d["rmse"].as_f64().unwrap() < 0.05, "{two_d}");
+    assert_ne!(std::fs::read(&png).unwrap(), plain_png, "the table classifies");
+    let mip = json(&["--transfer-2d", path, "--blend", "mip"]);
+    assert_eq!(mip["effects"], serde_json::json!([]), "Composite only: {mip}");
+    let bad = temp("transfer-2d-bad.json");
+    for (content, reason) in [
+        ("{\"width\": 2, \"height\": 1, \"rgba\": [0,0,0,0]}", "4 rgba numbers for a 2 x 1 table"),
+        ("{\"width\": 0, \"height\": 1, \"rgba\": []}", "1 to 4096"),
+        ("{\"width\": 100000, \"height\": 100000, \"rgba\": []}", "1 to 4096"),
+        ("{\"width\": 1, \"height\": 1, \"rgba\": [0,0,0,2]}", "[0, 1]"),
+        ("{\"width\": 1, \"height\": 1, \"rgba\": [0,0,0,1], \"gradient_max\": -1}", "gradient magnitude"),
+        ("{\"width\": 1, \"height\": 1, \"rgba\": [0,0,0,1], \"scalar_range\": [1, 0]}", "scalar range"),
+        ("{\"width\": 1, \"height\": 1}", "not a 2D transfer function"),
+        ("[1, 2, 3]", "not a 2D transfer function"),
+        ("{\"width\": 1, \"height\": 1, \"rgba\": [0,0,0,1], \"colour\": 3}", "unknown field"),
+    ] {
+        std::fs::write(&bad, content).unwrap();
+        assert_clean_failure(
+            &run(&[&["render"][..], &base[..], &["--transfer-2d", bad.to_str().unwrap()]].concat()),
+            reason,
+        );
+    }
+    let missing = temp("transfer-2d-missing.json");
+    assert_clean_failure(
+        &run(&[&["render"][..], &base[..], &["--transfer-2d", missing.to_str().unwrap()]].concat()),
+        "cannot read it",
+    );
+    for f in [png, reference, table, bad] {
+        let _ = std::fs::remove_file(f);
+    }
+}

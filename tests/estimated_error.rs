@@ -72,6 +72,7 @@ impl Case {
             surface_opacity: 1.0,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: Default::default(),
             region: None,
         };

@@ -55,6 +55,7 @@ fn list(f: &Fixture, grid: &Grid<'_>, stride: usize, points: Option<&PointSet>) 
         surface_opacity: 1.0,
         shading: None,
         gradient_opacity: None,
+        transfer_2d: None,
         region: None,
         blend: Default::default(),
     };
@@ -91,6 +92,7 @@ fn draw_selection(
         surface_opacity: 1.0,
         shading: None,
         gradient_opacity: None,
+        transfer_2d: None,
         region: None,
         blend: Default::default(),
     };

@@ -87,6 +87,7 @@ fn cpu(g: &Grid<'_>, o: &VolumeOctree, s: &Selection) -> Image {
         surface_opacity: 1.0,
         shading: None,
         gradient_opacity: None,
+        transfer_2d: None,
         region: None,
         blend: Default::default(),
     };
@@ -328,6 +329,7 @@ fn points_on_a_holed_volume_have_finite_shades() {
         surface_opacity: 1.0,
         shading: None,
         gradient_opacity: None,
+        transfer_2d: None,
         region: None,
         blend: Default::default(),
     };

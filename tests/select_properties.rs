@@ -57,7 +57,7 @@ proptest! {
         // The DrawList holds every brick once, back to front.
         let shape = grid.shape();
         let camera = Camera::around(shape.world([0.0; 3]), shape.world(dims.map(|d| (d - 1) as f64)), 40.0, 25.0, false).unwrap();
-        let list = draw_list(&octree, shape, &s, &camera, &Scene { surface: None, surface_opacity: 1.0, shading: None, gradient_opacity: None, region: None , blend: Default::default() }, None).unwrap();
+        let list = draw_list(&octree, shape, &s, &camera, &Scene { surface: None, surface_opacity: 1.0, shading: None, gradient_opacity: None, transfer_2d: None, region: None , blend: Default::default() }, None).unwrap();
         let mut nodes: Vec<_> = list.bricks.iter().map(|b| b.brick.node).collect();
         nodes.sort_unstable();
         prop_assert_eq!(nodes, s.bricks.iter().map(|b| b.node).collect::<Vec<_>>());

@@ -79,6 +79,7 @@ fn frame(grid: &Grid<'_>, camera: &Camera) -> Frame {
         surface_opacity: 1.0,
         shading: None,
         gradient_opacity: None,
+        transfer_2d: None,
         region: None,
         blend: Default::default(),
     };
@@ -245,6 +246,7 @@ fn needles_and_slabs_cost_linear_work() {
             surface_opacity: 1.0,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: Default::default(),
             region: None,
         };
@@ -311,6 +313,7 @@ fn isovalues_on_samples_and_vertices_on_slices() {
             surface_opacity: 0.5,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: Default::default(),
             region: None,
         };
@@ -334,6 +337,7 @@ fn full_resolution(v: &Volume, tf: &TransferFunction, camera: &Camera, pixels: u
         surface_opacity: 1.0,
         shading: None,
         gradient_opacity: None,
+        transfer_2d: None,
         region: None,
         blend: Default::default(),
     };

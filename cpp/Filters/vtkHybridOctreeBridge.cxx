@@ -162,6 +162,10 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   list.OpacityScale = out.opacity_scale;
   CopyInto(out.gradient_opacity_table, list.GradientOpacityTable);
   list.GradientOpacityEnd = out.gradient_opacity_end;
+  for (int k = 0; k < 3; ++k)
+  {
+    list.Transfer2DAxes[k] = out.transfer_2d_axes[k];
+  }
   list.Region.Cropping = out.region.cropping;
   for (int k = 0; k < 6; ++k)
   {
@@ -226,6 +230,15 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   {
     desc.region.clipping_planes.push_back(v);
   }
+  desc.transfer_2d_size[0] = options.Transfer2DSize[0];
+  desc.transfer_2d_size[1] = options.Transfer2DSize[1];
+  desc.transfer_2d_rgba.reserve(options.Transfer2DRGBA.size());
+  for (float v : options.Transfer2DRGBA)
+  {
+    desc.transfer_2d_rgba.push_back(v);
+  }
+  desc.transfer_2d_range[0] = options.Transfer2DRange[0];
+  desc.transfer_2d_range[1] = options.Transfer2DRange[1];
   return desc;
 }
 

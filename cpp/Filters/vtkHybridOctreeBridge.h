@@ -174,6 +174,14 @@ struct SelectDescription
   /// Cropping and clipping planes: nodes whose box they remove get no
   /// texture (counted as skipped); the selection's DrawLists keep only their samples.
   RegionDescription Region;
+  /// vtkVolumeProperty's TransferFunction2D in TF_2D mode (Composite): its
+  /// dimensions (0, 0: none), its texels (4 floats each, row-major, x the
+  /// scalar value, y the gradient magnitude) and the data array's finite
+  /// range its x axis spans (the y axis is VTK's, see src/transfer/transfer2d.rs).
+  /// Nodes over whose range it is 0 at every gradient are skipped.
+  std::size_t Transfer2DSize[2] = { 0, 0 };
+  std::vector<float> Transfer2DRGBA;
+  double Transfer2DRange[2] = { 0.0, 1.0 };
 };
 
 /// The volume's shading (see ShadingDesc in src/ffi/mod.rs): vtkVolumeProperty's
@@ -251,7 +259,7 @@ struct DrawList
   std::vector<std::size_t> SliceOffsets;
   std::vector<double> Slices;
   std::string Passes; ///< comma-joined, e.g. "volume"; empty without bricks
-  /// The volume's effects in order, comma-joined: "gradient-opacity" or
+  /// The volume's effects in order, comma-joined: "transfer-2d", "gradient-opacity" or
   /// "opacity-scale", then "shading", then what removes samples,
   /// "cropping", "clipping"; empty for none.
   std::string Effects;
@@ -269,6 +277,10 @@ struct DrawList
   /// k = 0 .. n (data units per model unit), held past the ends; else empty.
   std::vector<float> GradientOpacityTable;
   double GradientOpacityEnd = 0.0;
+  /// With "transfer-2d" (the first effect): the table's axes, the scalar
+  /// range lo, hi and the gradient magnitude of its last row (data units per
+  /// model unit); zeros otherwise.
+  double Transfer2DAxes[3] = { 0.0, 0.0, 0.0 };
   /// The cropping and planes that act (those that remove part of the volume).
   RegionDescription Region;
   double ReferenceSpacing = 0.0;          ///< d0, world units

@@ -1,4 +1,5 @@
 #include "vtkHybridOctreeUnsupportedEffects.h"
+#include "vtkHybridOctreeTransfer2D.h"
 
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
@@ -53,10 +54,21 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
   }
   if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
   {
-    on.push_back("the 2D transfer function (vtkVolumeProperty::SetTransferFunctionModeTo2D; "
-                 "ParaView: Use 2D Transfer Function) is not implemented: the 1D colour and "
-                 "scalar opacity functions are drawn; switch to the 1D mode, or use " +
-      elsewhere);
+    if (!vtkHybridOctreeTransfer2D::Usable(property))
+    {
+      on.push_back("the 2D transfer function mode (vtkVolumeProperty::SetTransferFunctionModeTo2D) "
+                   "has no usable TransferFunction2D (a 2D vtkImageData of 4 components, at "
+                   "most 4096 per side): the 1D colour and scalar opacity functions are drawn; "
+                   "set one with SetTransferFunction2D(), or switch to the 1D mode");
+    }
+    else if (mode != vtkVolumeMapper::COMPOSITE_BLEND)
+    {
+      on.push_back("the 2D transfer function (ParaView: Use 2D Transfer Function) is drawn under "
+                   "the Composite blend mode only: under " +
+        BlendModeName(mode) +
+        " the 1D colour and scalar opacity functions are drawn (VTK's ray caster reads its "
+        "2D table there with the gradient of another sample); set the blend mode to Composite");
+    }
   }
   if (components > 1 && !property->GetIndependentComponents())
   {

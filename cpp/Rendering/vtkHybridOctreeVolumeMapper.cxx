@@ -5,6 +5,7 @@
 #include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
 #include "vtkHybridOctreeInteractiveReduction.h"
+#include "vtkHybridOctreeTransfer2D.h"
 #include "vtkHybridOctreeUnsupportedEffects.h"
 #include "vtkOpenGLHybridOctreeBrickDrawer.h"
 #include "vtkOpenGLHybridOctreeBrickTextures.h"
@@ -287,6 +288,8 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   RegionDescription Region;
   /// The frame's gradient opacity (Prepare), VTK's points.
   std::vector<double> GradientOpacity;
+  /// The property's 2D transfer function in TF_2D mode (Prepare), and its texture.
+  vtkHybridOctreeTransfer2D Transfer2D;
   /// Whether the resident brick textures carry gradient borders.
   bool BorderedTextures = false;
   /// The isosurface values of the Isosurface blend mode (the selection's).
@@ -620,6 +623,11 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
     (select.BlendMode == COMPOSITE_BLEND || select.BlendMode == ISOSURFACE_BLEND);
   select.GradientOpacityPoints = GradientOpacityPoints(property);
   select.Region = in.Region;
+  // The 2D transfer function classifies under Composite only (VTK's TF_2D mode).
+  if (select.BlendMode == COMPOSITE_BLEND)
+  {
+    in.Transfer2D.Describe(select.Transfer2DSize, select.Transfer2DRGBA, select.Transfer2DRange);
+  }
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
     select.HasIsovalue ? 1.0 : 0.0, select.Isovalue,
@@ -634,6 +642,9 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   key.insert(key.end(), select.IsosurfaceValues.begin(), select.IsosurfaceValues.end());
   key.push_back(static_cast<double>(select.GradientOpacityPoints.size()));
   key.insert(key.end(), select.GradientOpacityPoints.begin(), select.GradientOpacityPoints.end());
+  const std::vector<double> transfer2D = in.Transfer2D.Key();
+  key.push_back(select.Transfer2DSize[0] > 0 ? 1.0 : 0.0);
+  key.insert(key.end(), transfer2D.begin(), transfer2D.end());
   return select;
 }
 
@@ -762,6 +773,9 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   this->Internals->Region =
     DescribeRegion(this, this->Internals->Model, this->Internals->ModelInverse);
   this->Internals->GradientOpacity = GradientOpacityPoints(property);
+  this->Internals->Transfer2D.Update(property, this->Internals->Scalars,
+    this->Internals->Grid.Component, this->Internals->Grid.Spacing, this->Internals->Grid.Dims,
+    this->Transfer2DSampleDistance);
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
@@ -955,6 +969,15 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   in.Drawer.SetIsosurfaces(isosurface ? in.Isosurfaces : std::vector<double>());
   in.Drawer.SetOpacityEffects(
     list.Gradients, list.GradientOpacityTable, list.GradientOpacityEnd, list.OpacityScale);
+  // The 2D transfer function's texture, when the plan classifies by it.
+  vtkTextureObject* transfer2D = nullptr;
+  if (list.Effects.find("transfer-2d") != std::string::npos &&
+    !(transfer2D = in.Transfer2D.Activate(window, error)))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.Drawer.SetTransfer2D(transfer2D, list.Transfer2DAxes);
   const std::size_t border = bordered ? 1 : 0;
   in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)));
   textures.assign(bricks, nullptr);
@@ -1027,6 +1050,11 @@ bool vtkHybridOctreeVolumeMapper::MakeBrickGeometry(const DrawList& list,
   geometryInput.Table = &in.Table;
   geometryInput.TableLo = in.RangeLo;
   geometryInput.TableHi = in.RangeHi;
+  if (list.Effects.find("transfer-2d") != std::string::npos)
+  {
+    // A block is empty when the 2D table is 0 over its values at every gradient.
+    geometryInput.Table = &in.Transfer2D.ColumnTable(geometryInput.TableLo, geometryInput.TableHi);
+  }
   if (batches && !interactive)
   {
     geometryInput.SurfaceVertices = &in.SurfaceDrawer.GetVertexData();
@@ -1349,6 +1377,7 @@ void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
     in.TableUploaded = false;
   }
   in.Drawer.ReleaseGraphicsResources();
+  in.Transfer2D.ReleaseGraphicsResources();
   in.Target.ReleaseGraphicsResources(window);
   in.SurfaceDrawer.ReleaseGraphicsResources();
   this->Superclass::ReleaseGraphicsResources(window);
@@ -1376,6 +1405,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceColor: (" << this->SurfaceColor[0] << ", " << this->SurfaceColor[1]
      << ", " << this->SurfaceColor[2] << ")\n";
   os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
+  os << indent << "Transfer2DSampleDistance: " << this->Transfer2DSampleDistance << "\n";
   os << indent << "UsePoints: " << this->UsePoints << "\n";
   os << indent << "PointFactor: " << this->PointFactor << "\n";
   os << indent << "PointThreshold: " << this->PointThreshold << "\n";

@@ -172,6 +172,21 @@ public:
 
   ///@{
   /**
+   * The sample distance (model units) at which a 2D transfer function's
+   * alpha is a sample's opacity: VTK's ray caster takes it uncorrected at
+   * its own sample distance, so its picture depends on that distance. Below
+   * 0 (the default): vtkSmartVolumeMapper's still frames, ParaView's *Volume*
+   * (LockSampleDistanceToInputSpacing: half the mean spacing, less below
+   * 100 samples a side); give vtkGPUVolumeRayCastMapper's sample distance
+   * to match that mapper (with AutoAdjustSampleDistances, the smallest
+   * spacing).
+   */
+  vtkSetMacro(Transfer2DSampleDistance, double);
+  vtkGetMacro(Transfer2DSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * Points of the hybrid representation (paper 3): with UsePoints on, the
    * mapper also makes points where textures sampled every PointFactor (2, 4
    * or 8) samples underestimate the data by more than PointThreshold (a
@@ -306,6 +321,7 @@ protected:
   double Isovalue = 0.0;
   double SurfaceColor[3] = { 1.0, 1.0, 1.0 };
   double SurfaceOpacity = 1.0;
+  double Transfer2DSampleDistance = -1.0;
   bool UsePoints = false;
   int PointFactor = 2;
   double PointThreshold = 0.1;

@@ -190,6 +190,17 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   {
     return false;
   }
+  if (this->Transfer2DTable && this->ReduceMode == 0)
+  {
+    // x = (v - lo) / (hi - lo) (a range of 0 spans 1e-6, as VTK's), y = min(|g| / g_max, 1).
+    const double* t = this->Transfer2DAxes;
+    const double span = t[1] > t[0] ? t[1] - t[0] : 1.0e-6;
+    const float axes[3] = { static_cast<float>(t[0]), static_cast<float>(1.0 / span),
+      static_cast<float>(t[2] > 0.0 ? 1.0 / t[2] : 0.0) };
+    this->Transfer2DTable->Activate();
+    this->Program->SetUniformi("transfer2DTable", this->Transfer2DTable->GetTextureUnit());
+    this->Program->SetUniform3f("transfer2DAxes", axes);
+  }
   return (!crop && !clip) || this->SetRegionUniforms(error);
 }
 
@@ -222,6 +233,10 @@ std::string vtkOpenGLHybridOctreeBrickDrawer::VariantDefines() const
   {
     defines += "#define HO_GRADIENT_OPACITY\n";
   }
+  if (this->Transfer2DTable)
+  {
+    defines += "#define HO_TRANSFER_2D\n";
+  }
   if (!this->Isosurfaces.empty())
   {
     defines += "\n#define HO_ISOSURFACE\n#define HO_MAX_ISOSURFACES " +
@@ -240,6 +255,15 @@ void vtkOpenGLHybridOctreeBrickDrawer::SetOpacityEffects(
     this->GradientOpacityTable = table;
     this->GradientOpacityEnd = end;
     this->GradientOpacityUploaded = false;
+  }
+}
+
+void vtkOpenGLHybridOctreeBrickDrawer::SetTransfer2D(vtkTextureObject* table, const double axes[3])
+{
+  this->Transfer2DTable = table;
+  for (int k = 0; k < 3; ++k)
+  {
+    this->Transfer2DAxes[k] = axes[k];
   }
 }
 
@@ -443,6 +467,10 @@ void vtkOpenGLHybridOctreeBrickDrawer::Unbind()
   if (this->GradientOpacityTexture && this->GradientOpacityTexture->GetContext())
   {
     this->GradientOpacityTexture->Deactivate();
+  }
+  if (this->Transfer2DTable && this->Transfer2DTable->GetContext())
+  {
+    this->Transfer2DTable->Deactivate();
   }
 }
 

@@ -59,8 +59,9 @@
  * shading or gradient opacity take gradients, HO_SHADE for shading,
  * HO_GRADIENT_OPACITY for gradient opacity, a 1D table of a_grad(|g|)
  * multiplying the opacity before the slice-spacing correction
- * (src/transfer/gradient_opacity.rs). A constant gradient opacity is the
- * uniform opacityScale of every variant.
+ * (src/transfer/gradient_opacity.rs), HO_TRANSFER_2D for the 2D transfer
+ * function (colour and opacity from the value and the gradient magnitude).
+ * A constant gradient opacity is the uniform opacityScale of every variant.
  *
  * Cropping and clipping planes (SetRegion(), the DrawList's Region, what
  * acts of the mapper's; src/plan/crop.rs): a volume sample at model
@@ -167,6 +168,15 @@ public:
    */
   void SetOpacityEffects(bool gradients, const std::vector<float>& table, double end, double scale);
 
+  /**
+   * The 2D transfer function (the DrawList's effect "transfer-2d"): its
+   * texture (an RGBA table, x the value, y the gradient magnitude; nullptr:
+   * none, the program without it) and `axes`, the DrawList's Transfer2DAxes
+   * (lo, hi, g_max). The HO_TRANSFER_2D variant classifies each sample by it
+   * (src/transfer/transfer2d.rs). Call before Bind().
+   */
+  void SetTransfer2D(vtkTextureObject* table, const double axes[3]);
+
   /// The most lights the shaded program takes.
   static constexpr int MaxLights = 8;
 
@@ -231,6 +241,8 @@ private:
   double GradientOpacityEnd = 1.0;
   bool GradientOpacityUploaded = false;
   vtkSmartPointer<vtkTextureObject> GradientOpacityTexture;
+  vtkTextureObject* Transfer2DTable = nullptr;
+  double Transfer2DAxes[3] = { 0.0, 1.0, 1.0 };
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

@@ -48,6 +48,19 @@ void vtkPVHybridOctreeRepresentation::UpdateMapperParameters()
   vtkColorTransferFunction* ctf = this->Property->GetRGBTransferFunction(0);
   const bool component = ctf && ctf->GetVectorMode() == vtkScalarsToColors::COMPONENT;
   this->Mapper()->SetComponent(component ? ctf->GetVectorComponent() : -1);
+  // The 2D transfer function's y axis is the gradient magnitude; a second
+  // array as y axis (UseGradientForTransfer2D off) is not drawn.
+  const bool secondArray =
+    this->UseTransfer2D && !this->UseGradientForTransfer2D && !this->ColorArray2Name.empty();
+  if (secondArray && !this->WarnedTransfer2DArray)
+  {
+    vtkWarningMacro("the 2D transfer function's y axis from a second array ('"
+      << this->ColorArray2Name
+      << "', Use Gradient For Transfer 2D off) is not implemented: Hybrid Octree Volume reads "
+         "the y axis as the gradient magnitude; turn Use Gradient For Transfer 2D on, or use "
+         "the Volume representation");
+  }
+  this->WarnedTransfer2DArray = secondArray;
 }
 
 // ---- Forwarded settings -------------------------------------------------------

@@ -95,6 +95,8 @@ private:
   std::string LastPlan;
   std::string LastEffects;
   double TextureBudgetRangeMB[2] = { 0.1, 64.0 };
+  /// Whether the 2D transfer function's second-array y axis was warned about (while it stays on).
+  bool WarnedTransfer2DArray = false;
 };
 
 #endif

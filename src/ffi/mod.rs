@@ -36,6 +36,9 @@ mod surface;
 #[cfg(test)]
 mod test_support;
 mod transfer;
+mod transfer2d;
+#[cfg(test)]
+mod transfer2d_tests;
 
 #[cxx::bridge(namespace = "hybrid_octree")]
 mod bridge {
@@ -262,6 +265,16 @@ mod bridge {
         /// get no texture (counted as skipped), and the selection's
         /// DrawLists keep only their samples (`plan::crop`).
         region: RegionDesc,
+        /// vtkVolumeProperty's TransferFunction2D in TF_2D mode (`ffi::transfer2d`):
+        /// its dimensions `[width, height]` (`[0, 0]`: none, the 1D functions
+        /// classify), its texels `rgba` (4 floats in [0, 1] per texel,
+        /// row-major, x the scalar value, y the gradient magnitude) and
+        /// `range`, the data array's finite range its scalar axis spans (the
+        /// gradient axis is VTK's). Composite only: nodes over whose range it
+        /// is 0 at every gradient are skipped, and the border is counted.
+        transfer_2d_size: [usize; 2],
+        transfer_2d_rgba: Vec<f32>,
+        transfer_2d_range: [f64; 2],
     }
 
     /// VTK's cropping (`vtkVolumeMapper`) and clipping planes
@@ -370,9 +383,15 @@ mod bridge {
         /// The plan's volume effects in order, comma-joined: per sample
         /// "gradient-opacity" or "opacity-scale", then "shading", then what
         /// removes samples in every pass, "cropping", "clipping"
-        /// (e.g. "gradient-opacity,shading,cropping"; "" none).
+        /// (e.g. "gradient-opacity,shading,cropping"; "" none); first
+        /// "transfer-2d" when the 2D transfer function classifies.
         effects: String,
-        /// The samples take gradients (shading or gradient opacity): the
+        /// With the effect "transfer-2d": its axes, the scalar range
+        /// `[lo, hi]` and the gradient magnitude `g_max` of its last row
+        /// (data units per world unit); zeros otherwise.
+        transfer_2d_axes: [f64; 3],
+        /// The samples take gradients (shading, gradient opacity or the 2D
+        /// transfer function): the
         /// brick textures carry the gradient border (`brick_texels_bordered`).
         gradients: bool,
         /// The brick textures carry one border texel per side

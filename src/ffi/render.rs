@@ -21,12 +21,14 @@ use crate::plan::crop::{ClippingPlane, Cropping, KeptRegion};
 use crate::plan::point_slabs::add_points;
 use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
-use crate::plan::{needs_gradients, plan, recrop, replan_effects, Blend, BlendMode, DrawList, Scene, SurfacePass};
+use crate::plan::{
+    needs_gradients, plan, recrop, replan_effects, replan_transfer_2d, Blend, BlendMode, DrawList, Scene, SurfacePass,
+};
 use crate::points::Footprint;
 use crate::points::PointSet;
 use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into};
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
-use crate::transfer::GradientOpacity;
+use crate::transfer::{GradientOpacity, TransferFunction2D};
 use std::sync::{Arc, Mutex};
 
 /// Cells of the gradient opacity table a DrawList carries
@@ -54,6 +56,9 @@ pub struct SelectionHandle {
     /// The cropping and clipping planes it was selected for, world
     /// coordinates: its DrawLists keep only their samples.
     region: Option<KeptRegion>,
+    /// The 2D transfer function it was selected for (its DrawLists classify
+    /// by it under Composite).
+    transfer_2d: Option<TransferFunction2D>,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -142,6 +147,7 @@ pub(crate) fn select_options(
     shape: &GridShape,
     desc: &SelectDesc,
     gradient_opacity: Option<&GradientOpacity>,
+    transfer_2d: bool,
 ) -> Result<SelectOptions> {
     let roi = if desc.has_roi {
         let (c, r) = (desc.roi_center, desc.roi_radius);
@@ -161,7 +167,7 @@ pub(crate) fn select_options(
         // Isosurface reads the sample before a brick's first one, in the border.
         gradient_border: desc.gradient_border
             || blend_mode(desc.blend_mode)? == BlendMode::Isosurface
-            || needs_gradients(None, gradient_opacity, blend_mode(desc.blend_mode)?),
+            || needs_gradients(None, gradient_opacity, transfer_2d, blend_mode(desc.blend_mode)?),
         region: region(&desc.region)?.map(|r| r.to_index(shape)),
         ..SelectOptions::new(desc.budget_bytes, desc.tolerance)
     })
@@ -197,12 +203,18 @@ pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend>
 
 /// The CLI's visibility test (`scene::visible`): a node shows unless the
 /// opacity is 0 over its whole range or the gradient opacity is 0
-/// everywhere, or when it holds the isovalue; with the octree's points,
-/// bytes go to textures or points ([`select_with_points`]).
-pub(crate) fn select_with(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Result<Selection> {
+/// everywhere (under Composite with a 2D transfer function: unless the
+/// table is 0 over its range at every gradient), or when it holds the
+/// isovalue; with the octree's points, bytes go to textures or points
+/// ([`select_with_points`]). Also the 2D transfer function it read.
+pub(crate) fn select_with(
+    octree: &HybridOctreeHandle,
+    desc: &SelectDesc,
+) -> Result<(Selection, Option<TransferFunction2D>)> {
     let gradient_opacity =
         vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, octree.volume().value_range())?;
-    let options = select_options(&octree.shape, desc, gradient_opacity.as_ref())?;
+    let transfer_2d = super::transfer2d::vtk_transfer_2d(desc, &octree.shape)?;
+    let options = select_options(&octree.shape, desc, gradient_opacity.as_ref(), transfer_2d.is_some())?;
     let hidden = gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     let tf = opacity_function(&desc.opacity_points)?;
     let iso = desc.has_isovalue.then_some(desc.isovalue);
@@ -212,12 +224,17 @@ pub(crate) fn select_with(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Res
     let blend = blend(desc, octree.volume().value_range())?;
     // Gradient opacity applies in Composite only.
     let hidden = hidden && blend.mode == BlendMode::Composite;
-    let shows = |min: f64, max: f64| !hidden && tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max));
+    let classifies = transfer_2d.as_ref().filter(|_| blend.mode == BlendMode::Composite);
+    let shows = |min: f64, max: f64| match classifies {
+        Some(t) => !t.is_transparent_over(min, max),
+        None => !hidden && tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max)),
+    };
     let visible = |min: f64, max: f64| blend.visible(min, max, &shows) || iso.is_some_and(|v| min < v && v <= max);
-    match &octree.hybrid.points {
+    let selection = match &octree.hybrid.points {
         Some(points) => select_with_points(octree.volume(), &options, visible, &points.mass),
         None => select(octree.volume(), &options, visible),
-    }
+    }?;
+    Ok((selection, transfer_2d))
 }
 
 /// The checked camera of `desc`.
@@ -245,6 +262,10 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         slices: Vec::new(),
         passes: list.plan.passes.join(","),
         effects: list.plan.effects.join(","),
+        transfer_2d_axes: list.transfer_2d.as_ref().map_or([0.0; 3], |t| {
+            let [lo, hi] = t.scalar_range();
+            [lo, hi, t.gradient_max()]
+        }),
         gradients: list.plan.gradients(),
         bordered: list.plan.bordered(),
         blend_mode: list.plan.blend.mode.to_vtk(),
@@ -348,7 +369,7 @@ fn surface_rgba(rgba: &[f64]) -> Result<[f64; 4]> {
 impl HybridOctreeHandle {
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
-            let selection = select_with(self, desc)?;
+            let (selection, transfer_2d) = select_with(self, desc)?;
             let blend = blend(desc, self.volume().value_range())?;
             Ok(Box::new(SelectionHandle {
                 blend,
@@ -361,6 +382,7 @@ impl HybridOctreeHandle {
                 lighting: Mutex::new(None),
                 gradient_opacity: Mutex::new(None),
                 region: region(&desc.region)?,
+                transfer_2d,
             }))
         })
     }
@@ -397,6 +419,7 @@ impl SelectionHandle {
         }
         let lighting = self.lighting.lock().unwrap_or_else(|e| e.into_inner()).clone();
         let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
+        let list = replan_transfer_2d(list, self.transfer_2d.as_ref());
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
         Ok(recrop(list, self.region.as_ref(), &octree.shape))
     }

@@ -157,6 +157,7 @@ fn draw_list_through_the_bridge_is_plan_draw_list() {
             surface_opacity: 1.0,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: bridge_blend(&h),
             region: None,
         };
@@ -321,6 +322,7 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
                 surface_opacity: opacity,
                 shading: None,
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: bridge_blend(&h),
                 region: None,
             };
@@ -353,6 +355,7 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
             surface_opacity: 1.0,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: bridge_blend(&h),
             region: None,
         };
@@ -368,6 +371,7 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
         surface_opacity: 0.4,
         shading: None,
         gradient_opacity: None,
+        transfer_2d: None,
         blend: bridge_blend(&h),
         region: None,
     };

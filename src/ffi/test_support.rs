@@ -32,6 +32,9 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         isosurface_values: Vec::new(),
         gradient_opacity_points: Vec::new(),
         region: no_region(),
+        transfer_2d_size: [0, 0],
+        transfer_2d_rgba: Vec::new(),
+        transfer_2d_range: [0.0, 0.0],
     }
 }
 

@@ -27,9 +27,16 @@
 //!   effect `opacity-scale`); otherwise each sample's gradient is taken
 //!   ([`Plan::gradient_opacity`], effect `gradient-opacity`, the DrawList
 //!   carries the function).
+//! - a 2D transfer function ([`TransferFunction2D`], Composite only, as
+//!   VTK 9.2 draws it) classifies each sample by its value and gradient
+//!   magnitude instead of the 1D function: effect `transfer-2d`, gradients
+//!   taken, the DrawList carries the table; the 1D gradient opacity is then
+//!   not applied (VTK's TF_2D mode ignores it). Under the other blend modes
+//!   it is not planned (the 1D function classifies).
 //! - [`Plan::effects`] names what each volume sample does besides its
-//!   classification, in the order applied: `gradient-opacity` or
-//!   `opacity-scale`, then `shading`. Gradients are taken exactly when
+//!   classification, in the order applied: `transfer-2d` (the
+//!   classification itself), `gradient-opacity` or `opacity-scale`, then
+//!   `shading`. Gradients are taken exactly when
 //!   [`Plan::gradients`]; brick textures carry their border when
 //!   [`Plan::bordered`] (gradients, or Isosurface's step back).
 //! - cropping and clipping planes ([`crate::plan::crop`]) only where they
@@ -48,7 +55,7 @@ use super::select::Brick;
 use super::slab::Batch;
 use crate::geometry::camera::Camera;
 use crate::transfer::lighting::Lighting;
-use crate::transfer::GradientOpacity;
+use crate::transfer::{GradientOpacity, TransferFunction2D};
 use rayon::prelude::*;
 
 /// How the surface is drawn.
@@ -78,6 +85,9 @@ pub struct Plan {
     /// A constant factor of every sample's opacity before the slice-spacing
     /// correction: a gradient opacity that is this at every magnitude (1: none).
     pub opacity_scale: f64,
+    /// Each sample classified by the 2D transfer function (the DrawList's
+    /// [`DrawList::transfer_2d`]) from its value and gradient magnitude.
+    pub transfer_2d: bool,
     /// Nodes not selected because the transfer function makes them fully transparent.
     pub skipped_bricks: usize,
     /// How the samples along a ray become a pixel.
@@ -92,10 +102,11 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// Whether the volume's samples take gradients (shading or gradient
-    /// opacity): brick textures then carry one border texel per side.
+    /// Whether the volume's samples take gradients (shading, gradient
+    /// opacity or the 2D transfer function): brick textures then carry one
+    /// border texel per side.
     pub fn gradients(&self) -> bool {
-        self.shading || self.gradient_opacity
+        self.shading || self.gradient_opacity || self.transfer_2d
     }
 
     /// Whether brick textures carry one border texel per side: gradients
@@ -169,6 +180,9 @@ pub struct DrawList {
     /// The gradient opacity (`Some` exactly when [`Plan::gradient_opacity`]);
     /// brick textures then carry the gradient border too.
     pub gradient_opacity: Option<GradientOpacity>,
+    /// The 2D transfer function (`Some` exactly when [`Plan::transfer_2d`]);
+    /// brick textures then carry the gradient border.
+    pub transfer_2d: Option<TransferFunction2D>,
 }
 
 /// What the scene holds besides the volume.
@@ -183,6 +197,9 @@ pub struct Scene<'a> {
     pub shading: Option<&'a Lighting>,
     /// Gradient opacity of the volume (vtkVolumeProperty's GradientOpacity).
     pub gradient_opacity: Option<&'a GradientOpacity>,
+    /// The 2D transfer function (vtkVolumeProperty's TF_2D mode): `Some`
+    /// classifies the volume by value and gradient magnitude (Composite).
+    pub transfer_2d: Option<&'a TransferFunction2D>,
     /// The blend mode (VTK's `vtkVolumeMapper::SetBlendMode`) and its ranges.
     pub blend: Blend,
     /// VTK's cropping and clipping planes, world coordinates (`None`: every
@@ -215,6 +232,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         shading: false,
         gradient_opacity: false,
         opacity_scale: 1.0,
+        transfer_2d: volume && scene.transfer_2d.is_some() && scene.blend.mode == super::BlendMode::Composite,
         skipped_bricks: selection.skipped,
         blend: scene.blend,
         passes,
@@ -228,22 +246,27 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
     plan
 }
 
-/// Whether a scene of this shading, gradient opacity and blend mode takes
-/// gradients (the planner's rules): what a selection's
+/// Whether a scene of this shading, gradient opacity, 2D transfer function
+/// (`transfer_2d`: the scene has one) and blend mode takes gradients (the
+/// planner's rules): what a selection's
 /// [`crate::plan::select::SelectOptions::gradient_border`] should be.
 pub fn needs_gradients(
     lighting: Option<&Lighting>,
     gradient_opacity: Option<&GradientOpacity>,
+    transfer_2d: bool,
     mode: super::BlendMode,
 ) -> bool {
+    let composite = mode == super::BlendMode::Composite;
     (mode.composites() && shades(true, lighting))
-        || (mode == super::BlendMode::Composite && gradient_opacity.is_some_and(|g| g.constant().is_none()))
+        || (composite && transfer_2d)
+        || (composite && gradient_opacity.is_some_and(|g| g.constant().is_none()))
 }
 
 /// Sets `plan`'s per-sample effects (shading, gradient opacity and the volume
 /// pass's name) for this lighting and gradient opacity; [`effects`] names them.
 fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: Option<&GradientOpacity>) {
-    let composite = plan.volume && plan.blend.mode == super::BlendMode::Composite;
+    // The 1D gradient opacity is not applied under a 2D transfer function (VTK's TF_2D).
+    let composite = plan.volume && plan.blend.mode == super::BlendMode::Composite && !plan.transfer_2d;
     // Shading in both compositing modes, gradient opacity in Composite only.
     plan.shading = plan.volume && plan.blend.mode.composites() && shades(true, lighting);
     let constant = gradient_opacity.map(|g| g.constant());
@@ -267,6 +290,9 @@ fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: 
 /// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`).
 fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     let mut effects = Vec::new();
+    if plan.transfer_2d {
+        effects.push("transfer-2d".to_string());
+    }
     if plan.gradient_opacity {
         effects.push("gradient-opacity".to_string());
     } else if plan.opacity_scale != 1.0 {
@@ -344,6 +370,19 @@ pub fn replan_effects(
     Ok(list)
 }
 
+/// `list` planned again for the 2D transfer function `transfer_2d`, as
+/// [`draw_list`] plans [`Scene::transfer_2d`] (Composite only): the plan's
+/// `transfer_2d`, its effects and [`DrawList::transfer_2d`] set or cleared.
+/// Call it before [`replan_effects`], which then leaves the 1D gradient
+/// opacity out under a 2D function.
+pub fn replan_transfer_2d(mut list: DrawList, transfer_2d: Option<&TransferFunction2D>) -> DrawList {
+    list.plan.transfer_2d =
+        list.plan.volume && transfer_2d.is_some() && list.plan.blend.mode == super::BlendMode::Composite;
+    list.transfer_2d = transfer_2d.filter(|_| list.plan.transfer_2d).cloned();
+    list.plan.effects = effects(&list.plan, list.region.as_ref());
+    list
+}
+
 /// The DrawList for `selection` seen from `camera`: the plan, the bricks back
 /// to front with their slices (every `stride` samples along the view: `d =
 /// min(stride, c) d0`, against `d0`, see [`crate::data::spacing`]), and the surface
@@ -375,6 +414,7 @@ pub fn draw_list(
     let mut plan = plan(selection, scene);
     let lighting = scene.shading.filter(|_| plan.shading).map(|l| l.in_world(camera));
     let gradient_opacity = scene.gradient_opacity.filter(|_| plan.gradient_opacity).cloned();
+    let transfer_2d = scene.transfer_2d.filter(|_| plan.transfer_2d).cloned();
     let (lo, hi) = volume_box(shape);
     let region = crops(plan.volume, scene.region, lo, hi);
     plan.effects = effects(&plan, region.as_ref());
@@ -424,6 +464,7 @@ pub fn draw_list(
         reference_spacing: d0,
         lighting,
         gradient_opacity,
+        transfer_2d,
         region,
     })
 }
@@ -470,6 +511,7 @@ mod tests {
                 surface_opacity: 1.0,
                 shading: None,
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -491,6 +533,7 @@ mod tests {
                 surface_opacity: 1.0,
                 shading: None,
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -512,6 +555,7 @@ mod tests {
                 surface_opacity: 0.4,
                 shading: Some(&shaded),
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -543,6 +587,7 @@ mod tests {
             surface_opacity: 0.4,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: Default::default(),
             region: None,
         };
@@ -573,6 +618,7 @@ mod tests {
             surface_opacity: 0.4,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: Default::default(),
             region: None,
         };
@@ -590,6 +636,7 @@ mod tests {
                 surface_opacity: 0.0,
                 shading: None,
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -606,6 +653,7 @@ mod tests {
                 surface_opacity: 1.0,
                 shading: Some(&shaded),
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -626,6 +674,7 @@ mod tests {
                 surface_opacity: opacity,
                 shading: None,
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend,
                 region: None,
             };
@@ -656,6 +705,7 @@ mod tests {
                 surface_opacity: 1.0,
                 shading: Some(&identity),
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -671,6 +721,7 @@ mod tests {
                 surface_opacity: 1.0,
                 shading: Some(&shaded),
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -686,6 +737,7 @@ mod tests {
                 surface_opacity: 1.0,
                 shading: None,
                 gradient_opacity: None,
+                transfer_2d: None,
                 blend: Default::default(),
                 region: None,
             },
@@ -712,6 +764,7 @@ mod tests {
                 surface_opacity: 1.0,
                 shading,
                 gradient_opacity: g,
+                transfer_2d: None,
                 blend: super::super::Blend::new(mode, [0.0, 1.0]),
                 region: None,
             }
@@ -720,12 +773,16 @@ mod tests {
         let plain = list(&f, &scene(None, None, composite), |_, _| true);
         let one = GradientOpacity::new(vec![(0.0, 1.0), (2.0, 1.0)]).unwrap();
         assert_eq!(list(&f, &scene(Some(&one), None, composite), |_, _| true), plain);
-        assert!(!needs_gradients(None, Some(&one), composite));
+        assert!(!needs_gradients(None, Some(&one), false, composite));
 
         let half = GradientOpacity::new(vec![(0.0, 0.5)]).unwrap();
         let l = list(&f, &scene(Some(&half), None, composite), |_, _| true);
         assert_eq!((l.plan.effects.clone(), l.plan.opacity_scale), (vec!["opacity-scale".to_string()], 0.5));
-        assert!(!l.plan.gradients() && l.gradient_opacity.is_none() && !needs_gradients(None, Some(&half), composite));
+        assert!(
+            !l.plan.gradients()
+                && l.gradient_opacity.is_none()
+                && !needs_gradients(None, Some(&half), false, composite)
+        );
 
         let ramp = GradientOpacity::new(vec![(0.0, 0.0), (0.1, 1.0)]).unwrap();
         let l = list(&f, &scene(Some(&ramp), None, composite), |_, _| true);
@@ -733,7 +790,7 @@ mod tests {
         assert_eq!(l.plan.passes, vec!["volume"]);
         assert!(l.plan.gradients() && l.plan.gradient_opacity && l.plan.opacity_scale == 1.0);
         assert_eq!(l.gradient_opacity.as_ref(), Some(&ramp));
-        assert!(needs_gradients(None, Some(&ramp), composite));
+        assert!(needs_gradients(None, Some(&ramp), false, composite));
         let shaded = Lighting::headlight(Default::default());
         let both = list(&f, &scene(Some(&ramp), Some(&shaded), composite), |_, _| true);
         assert_eq!(both.plan.effects, vec!["gradient-opacity", "shading"]);
@@ -744,7 +801,7 @@ mod tests {
         let mip = super::super::BlendMode::Mip;
         let l = list(&f, &scene(Some(&ramp), None, mip), |_, _| true);
         assert!(l.plan.effects.is_empty() && !l.plan.gradients() && l.gradient_opacity.is_none());
-        assert!(!needs_gradients(Some(&shaded), Some(&ramp), mip));
+        assert!(!needs_gradients(Some(&shaded), Some(&ramp), false, mip));
         let none = list(&f, &scene(Some(&ramp), None, composite), |_, _| false);
         assert!(none.plan.effects.is_empty() && !none.plan.gradients());
     }

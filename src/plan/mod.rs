@@ -18,8 +18,8 @@ pub mod slab;
 
 pub use blend::{Blend, BlendMode};
 pub use draw_list::{
-    draw_list, needs_gradients, plan, recrop, replan_effects, BrickDraw, DrawList, Plan, PointBucket, Scene,
-    SurfacePass,
+    draw_list, needs_gradients, plan, recrop, replan_effects, replan_transfer_2d, BrickDraw, DrawList, Plan,
+    PointBucket, Scene, SurfacePass,
 };
 pub use point_slabs::add_points;
 pub use slab::Batch;

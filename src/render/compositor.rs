@@ -57,6 +57,11 @@
 //! it without a gradient. The gradient is taken once per sample for both
 //! effects, and without either none is taken (the executor counts them).
 //!
+//! 2D transfer function ([`DrawList::transfer_2d`], the plan's effect
+//! `transfer-2d`): each sample's colour and opacity come from its value and
+//! gradient magnitude (`super::transfer2d`) instead of the 1D function; the
+//! gradient is taken for every sample and shared with the shading.
+//!
 //! Isosurface ([`crate::plan::blend`], the plan's `volume-isosurface`): a
 //! sample at `u(z)` shows the isovalue `c` crossed since the sample before
 //! it, `u(z - d)` (on the bordered texture, so the step back may leave the
@@ -103,7 +108,7 @@ use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
 use crate::transfer::lighting::Lighting;
 use crate::transfer::lut::Lut;
-use crate::transfer::{GradientOpacity, TransferFunction};
+use crate::transfer::{GradientOpacity, TransferFunction, TransferFunction2D};
 use rayon::prelude::*;
 
 mod projection;
@@ -325,8 +330,10 @@ fn execute<S: Texel>(
     let region = list.region.as_ref().filter(|_| !list.plan.effects.is_empty());
     let isosurfaces = Some(&list.plan.blend).filter(|b| b.mode == crate::plan::BlendMode::Isosurface);
     let gradient_opacity = list.gradient_opacity.as_ref().filter(|_| list.plan.gradient_opacity);
+    let transfer_2d = list.transfer_2d.as_ref().filter(|_| list.plan.transfer_2d);
     let opacity_scale = list.plan.opacity_scale;
     let plain = list.plan.effects.is_empty()
+        && transfer_2d.is_none()
         && lighting.is_none()
         && region.is_none()
         && isosurfaces.is_none()
@@ -344,6 +351,7 @@ fn execute<S: Texel>(
         region,
         isosurfaces,
         gradient_opacity,
+        transfer_2d,
         plain,
         opacity_scale,
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
@@ -451,6 +459,8 @@ struct Executor<'a, S> {
     isosurfaces: Option<&'a crate::plan::Blend>,
     /// The gradient opacity (`None`: none, or a constant in `opacity_scale`).
     gradient_opacity: Option<&'a GradientOpacity>,
+    /// The 2D transfer function (`None`: the 1D function classifies).
+    transfer_2d: Option<&'a TransferFunction2D>,
     /// True when the plan runs no effect and composites: a sample is the
     /// transfer function's colour and opacity alone.
     plain: bool,
@@ -661,11 +671,17 @@ impl<S: Texel> Executor<'_, S> {
         acc: Rgba,
         scratch: &mut Scratch,
     ) -> Rgba {
-        let [r, gr, bl, a] = self.lut.eval(value);
+        let (grad, [r, gr, bl, a]) = match self.transfer_2d {
+            None => (None, self.lut.eval(value)),
+            Some(t) => {
+                let g = self.gradient(brick.texture, u, scratch);
+                (Some(g), super::transfer2d::classify(t, value, g))
+            }
+        };
         if a <= 0.0 {
             return acc;
         }
-        let (rgb, a) = self.effects(brick.texture, u, [r, gr, bl], a, pr.ray.direction, scratch);
+        let (rgb, a) = self.effects(brick.texture, u, grad, [r, gr, bl], a, pr.ray.direction, scratch);
         if a > 0.0 {
             under(acc, rgb, correct_opacity(a, ratio))
         } else {
@@ -676,12 +692,15 @@ impl<S: Texel> Executor<'_, S> {
     /// Colour `c` and opacity `a` of the sample at texel coordinates `u` of
     /// `texture` (its gradient border included) after the plan's effects:
     /// the opacity scaled, or times the gradient opacity, the colour shaded
-    /// along `view` (module documentation); one gradient for both.
+    /// along `view` (module documentation); one gradient for both, `grad`
+    /// when already taken.
+    #[allow(clippy::too_many_arguments)]
     #[inline]
     fn effects(
         &self,
         texture: &Texture<S>,
         u: [f64; 3],
+        grad: Option<[f64; 3]>,
         c: [f64; 3],
         a: f64,
         view: [f64; 3],
@@ -691,9 +710,10 @@ impl<S: Texel> Executor<'_, S> {
         if self.lighting.is_none() && self.gradient_opacity.is_none() {
             return (c, a);
         }
-        let h = scale(self.shape.spacing, texture.stride());
-        let g = texture.gradient_at(u, h);
-        scratch.gradients += 1;
+        let g = match grad {
+            Some(g) => g,
+            None => self.gradient(texture, u, scratch),
+        };
         if let Some(f) = self.gradient_opacity {
             a *= f64::from(f.eval(dot(g, g).sqrt()));
         }
@@ -701,6 +721,15 @@ impl<S: Texel> Executor<'_, S> {
             Some(lighting) if a > 0.0 => (lighting.shade(c, normal(g), view), a),
             _ => (c, a),
         }
+    }
+
+    /// The gradient at texel coordinates `u` of `texture` (`super::shade`'s
+    /// rule, one texel away), counted.
+    #[inline]
+    fn gradient(&self, texture: &Texture<S>, u: [f64; 3], scratch: &mut Scratch) -> [f64; 3] {
+        scratch.gradients += 1;
+        let h = scale(self.shape.spacing, texture.stride());
+        texture.gradient_at(u, h)
     }
 
     /// The pixel's hits of brick `b`'s batch triangles in front of the

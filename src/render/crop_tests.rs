@@ -62,7 +62,15 @@ fn list(
         select(octree, &options, |a, b| blend.visible(a, b, &|a, b| !tf.is_transparent_over(a, b))).unwrap();
     assert!(selection.bricks.iter().all(|b| b.stride == 1));
     let camera = Camera::around([0.0; 3], [32.0; 3], 35.0, 25.0, false).unwrap();
-    let scene = Scene { surface: None, surface_opacity: 1.0, shading: None, gradient_opacity: None, blend, region };
+    let scene = Scene {
+        surface: None,
+        surface_opacity: 1.0,
+        shading: None,
+        gradient_opacity: None,
+        transfer_2d: None,
+        blend,
+        region,
+    };
     draw_list(octree, shape, &selection, &camera, &scene, None).unwrap()
 }
 
@@ -178,6 +186,7 @@ fn region_effects_follow_the_per_sample_effects() {
         surface_opacity: 1.0,
         shading: Some(&lighting),
         gradient_opacity: Some(&ramp_g),
+        transfer_2d: None,
         blend: Blend::default(),
         region: Some(region),
     };

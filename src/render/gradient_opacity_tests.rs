@@ -35,7 +35,7 @@ fn planned(
     gradient_opacity: Option<&GradientOpacity>,
 ) -> DrawList {
     let options = crate::plan::select::SelectOptions {
-        gradient_border: crate::plan::needs_gradients(shading, gradient_opacity, Default::default()),
+        gradient_border: crate::plan::needs_gradients(shading, gradient_opacity, false, Default::default()),
         ..crate::plan::select::SelectOptions::new(1 << 20, 0.0)
     };
     let selection = crate::plan::select::select(octree, &options, |a, b| !tf.is_transparent_over(a, b)).unwrap();
@@ -44,6 +44,7 @@ fn planned(
         surface_opacity: 1.0,
         shading,
         gradient_opacity,
+        transfer_2d: None,
         blend: Default::default(),
         region: None,
     };
@@ -90,8 +91,12 @@ fn gradient_opacity_full_resolution_matches_the_reference() {
             list.plan.shading = shading.is_some();
             list.lighting = shading.map(|l| l.in_world(&camera));
             let image = composite(&grid, &list, &tf, 64, 64, None).unwrap();
-            let with =
-                ReferenceOptions { lighting: shading, gradient_opacity: Some(&f), ..ReferenceOptions::default() };
+            let with = ReferenceOptions {
+                lighting: shading,
+                gradient_opacity: Some(&f),
+                transfer_2d: None,
+                ..ReferenceOptions::default()
+            };
             let truth = reference(&grid, &tf, &camera, 64, 64, &with).unwrap();
             let without = ReferenceOptions { lighting: shading, ..ReferenceOptions::default() };
             let plain = reference(&grid, &tf, &camera, 64, 64, &without).unwrap();

@@ -24,6 +24,7 @@ pub mod reference;
 mod sample;
 mod shade;
 pub mod texture;
+mod transfer2d;
 mod triangles;
 
 pub use crate::transfer;

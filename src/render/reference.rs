@@ -22,7 +22,10 @@
 //! gradient opacity ([`ReferenceOptions::gradient_opacity`]) each sample's
 //! opacity is multiplied by `a_grad(|g|)` of that gradient
 //! ([`crate::transfer::gradient_opacity`]) before the correction:
-//! `a' = 1 - (1 - a a_grad)^(l / d0)`. An opaque surface
+//! `a' = 1 - (1 - a a_grad)^(l / d0)`. With a 2D transfer function
+//! ([`ReferenceOptions::transfer_2d`], Composite only) `(c, a)` is
+//! `T(value, |g|)` of that gradient (`super::transfer2d`) instead of the
+//! 1D function's, corrected and shaded the same way. An opaque surface
 //! (opacity 1) ends the ray at its first hit; opacity 0 hides it. Rows run in parallel; every
 //! pixel is computed on its own, so the picture does not depend on the
 //! number of threads.
@@ -51,7 +54,7 @@ use crate::plan::crop::KeptRegion;
 use crate::plan::{Blend, BlendMode};
 use crate::surface::Surface;
 use crate::transfer::lighting::Lighting;
-use crate::transfer::{GradientOpacity, TransferFunction};
+use crate::transfer::{GradientOpacity, TransferFunction, TransferFunction2D};
 use rayon::prelude::*;
 
 mod projection;
@@ -74,6 +77,9 @@ pub struct ReferenceOptions<'a> {
     pub region: Option<&'a KeptRegion>,
     /// Multiply each sample's opacity by this function of its gradient magnitude.
     pub gradient_opacity: Option<&'a GradientOpacity>,
+    /// Classify each sample by its value and gradient magnitude with this
+    /// table instead of the 1D function (Composite only).
+    pub transfer_2d: Option<&'a TransferFunction2D>,
 }
 
 /// Ray-casts `grid` classified by `tf`, seen by `camera`, into a
@@ -131,6 +137,7 @@ pub fn reference_blend(
         surface: surface.as_ref(),
         lighting,
         gradient_opacity: options.gradient_opacity,
+        transfer_2d: options.transfer_2d.filter(|_| blend.mode == BlendMode::Composite),
         blend: *blend,
         region: options.region,
     }))
@@ -148,6 +155,7 @@ struct Caster<'a> {
     /// Lights in world space.
     lighting: Option<&'a Lighting>,
     gradient_opacity: Option<&'a GradientOpacity>,
+    transfer_2d: Option<&'a TransferFunction2D>,
     blend: Blend,
     region: Option<&'a KeptRegion>,
 }
@@ -212,8 +220,14 @@ impl Caster<'_> {
                     continue;
                 }
                 let sample = |acc: Rgba, value: f64, ratio: f64| {
-                    let [r, gr, b, a] = self.tf.eval(value);
-                    let (rgb, a) = self.effects(g, u, [r, gr, b].map(f64::from), f64::from(a), ray.direction);
+                    let (grad, [r, gr, b, a]) = match self.transfer_2d {
+                        None => (None, self.tf.eval(value).map(f64::from)),
+                        Some(t) => {
+                            let grad = gradient(|v| grid_value(g, v), u, self.shape.spacing);
+                            (Some(grad), super::transfer2d::classify(t, value, grad))
+                        }
+                    };
+                    let (rgb, a) = self.effects(g, u, grad, [r, gr, b], a, ray.direction);
                     if a > 0.0 {
                         under(acc, rgb, correct_opacity(a, ratio))
                     } else {
@@ -241,12 +255,14 @@ impl Caster<'_> {
 
 impl Caster<'_> {
     /// Colour `c` and opacity `a` of the sample at index point `u` after the
-    /// gradient opacity and the shading (module documentation).
+    /// gradient opacity and the shading (module documentation); `grad` the
+    /// gradient when already taken.
     #[inline]
     fn effects<T: Sample>(
         &self,
         g: &TypedGrid<'_, T>,
         u: [f64; 3],
+        grad: Option<[f64; 3]>,
         c: [f64; 3],
         a: f64,
         view: [f64; 3],
@@ -254,7 +270,7 @@ impl Caster<'_> {
         if a <= 0.0 || (self.lighting.is_none() && self.gradient_opacity.is_none()) {
             return (c, a);
         }
-        let grad = gradient(|v| grid_value(g, v), u, self.shape.spacing);
+        let grad = grad.unwrap_or_else(|| gradient(|v| grid_value(g, v), u, self.shape.spacing));
         let a = match self.gradient_opacity {
             Some(f) => a * f64::from(f.eval(crate::geometry::vec3::dot(grad, grad).sqrt())),
             None => a,
@@ -292,7 +308,14 @@ mod tests {
                 &camera,
                 4,
                 4,
-                &ReferenceOptions { step, surface: None, lighting: None, gradient_opacity: None, region: None },
+                &ReferenceOptions {
+                    step,
+                    surface: None,
+                    lighting: None,
+                    gradient_opacity: None,
+                    transfer_2d: None,
+                    region: None,
+                },
             )
             .unwrap();
             for p in &img.rgba {
@@ -300,8 +323,14 @@ mod tests {
                 assert!((p[1] as f64 - 0.5 * exact).abs() < 1e-6);
             }
         }
-        let bad =
-            ReferenceOptions { step: Some(0.0), surface: None, lighting: None, gradient_opacity: None, region: None };
+        let bad = ReferenceOptions {
+            step: Some(0.0),
+            surface: None,
+            lighting: None,
+            gradient_opacity: None,
+            transfer_2d: None,
+            region: None,
+        };
         assert!(reference(&grid, &tf, &camera, 4, 4, &bad).unwrap_err().to_string().contains("positive"));
         assert!(reference(&grid, &tf, &camera, 0, 4, &ReferenceOptions::default()).is_err());
     }
@@ -327,6 +356,7 @@ mod tests {
                 surface: Some((&plane, [0.0, 0.0, 1.0, opacity])),
                 lighting: None,
                 gradient_opacity: None,
+                transfer_2d: None,
                 region: None,
             };
             let img = reference(&grid, &tf, &camera, 3, 3, &options).unwrap();

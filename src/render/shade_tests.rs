@@ -148,7 +148,7 @@ fn assert_four_strides_seamless(
     let list = effects(draw_list(&shape, &camera, &bricks, SurfacePass::None));
     let (w, h) = (65, 65);
     let image = composite(&grid, &list, &tf, w, h, None).unwrap();
-    let options = ReferenceOptions { lighting, gradient_opacity, ..ReferenceOptions::default() };
+    let options = ReferenceOptions { lighting, gradient_opacity, transfer_2d: None, ..ReferenceOptions::default() };
     let truth = reference(&grid, &tf, &camera, w, h, &options).unwrap();
     let (a, b) = (image.luminance(BACKGROUND), truth.luminance(BACKGROUND));
     let error = |px: usize, py: usize| (a[px + w * py] - b[px + w * py]).abs();
@@ -217,6 +217,7 @@ fn gradients_only_when_shading() {
         surface_opacity: 1.0,
         shading: Some(&identity),
         gradient_opacity: None,
+        transfer_2d: None,
         blend: Default::default(),
         region: None,
     };

@@ -53,6 +53,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         surface,
         shading: false,
         gradient_opacity: false,
+        transfer_2d: false,
         opacity_scale: 1.0,
         skipped_bricks: 0,
         blend: Default::default(),
@@ -68,6 +69,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         lighting: None,
         region: None,
         gradient_opacity: None,
+        transfer_2d: None,
     }
 }
 
@@ -230,6 +232,7 @@ fn opaque_surface_matches_the_reference() {
         surface: Some((&surface, colour)),
         lighting: None,
         gradient_opacity: None,
+        transfer_2d: None,
         region: None,
     };
     let truth = reference(&grid, &tf, &camera, 64, 64, &options).unwrap();
@@ -286,6 +289,7 @@ fn translucent_batches_are_blended_inside_their_slab() {
         surface: Some((&plane, colour)),
         lighting: None,
         gradient_opacity: None,
+        transfer_2d: None,
         region: None,
     };
     let truth = reference(&grid, &tf, &camera, 6, 6, &options).unwrap();
@@ -376,6 +380,7 @@ fn the_pipeline_tracks_the_reference() {
             surface_opacity: opacity,
             shading: None,
             gradient_opacity: None,
+            transfer_2d: None,
             blend: Default::default(),
             region: None,
         };
@@ -386,8 +391,14 @@ fn the_pipeline_tracks_the_reference() {
             crate::plan::draw_list(&octree, grid.shape(), selection, &camera, &scene, polygons.as_ref()).unwrap();
         let with = (opacity > 0.0).then_some((&surface, [colour[0], colour[1], colour[2], opacity as f32]));
         let image = composite(&grid, &list, &tf, 96, 96, with).unwrap();
-        let options =
-            ReferenceOptions { step: None, surface: with, lighting: None, gradient_opacity: None, region: None };
+        let options = ReferenceOptions {
+            step: None,
+            surface: with,
+            lighting: None,
+            gradient_opacity: None,
+            transfer_2d: None,
+            region: None,
+        };
         let truth = reference(&grid, &tf, &camera, 96, 96, &options).unwrap();
         let m = compare(&image, &truth).unwrap();
         let strides: Vec<usize> =
@@ -426,6 +437,9 @@ mod shade_tests;
 
 #[path = "gradient_opacity_tests.rs"]
 mod gradient_opacity_tests;
+
+#[path = "transfer2d_tests.rs"]
+mod transfer2d_tests;
 
 /// A plan that names an effect none of whose inputs is set takes the
 /// general loop (every effect's branch) and draws exactly what the plain

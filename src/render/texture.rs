@@ -537,6 +537,7 @@ mod tests {
                 surface: SurfacePass::None,
                 shading: false,
                 gradient_opacity: false,
+                transfer_2d: false,
                 opacity_scale: 1.0,
                 skipped_bricks: 0,
                 blend: Default::default(),
@@ -557,6 +558,7 @@ mod tests {
             reference_spacing: 1.0,
             lighting: None,
             gradient_opacity: None,
+            transfer_2d: None,
             region: None,
         };
         let l = list(brick([0; 3], [4; 3], 1));

@@ -123,6 +123,24 @@ float gradientOpacity(vec3 g)
 }
 #endif
 
+#ifdef HO_TRANSFER_2D
+// The 2D transfer function (src/transfer/transfer2d.rs; always with
+// HO_GRADIENTS): colour and opacity T(v, |g|) read at x = (v - lo) / (hi - lo),
+// y = min(|g| / g_max, 1) from an RGBA table with linear filtering and
+// clamp-to-edge, as VTK 9.2's ray caster reads its TransferFunction2D; a
+// magnitude that is not a number counts as 0. transfer2DAxes = (lo,
+// 1 / (hi - lo), 1 / g_max).
+uniform sampler2D transfer2DTable;
+uniform vec3 transfer2DAxes;
+vec4 transfer2DAt(float v, vec3 g)
+{
+  float m = length(g);
+  m = isnan(m) ? 0.0 : m;
+  vec2 t = vec2((v - transfer2DAxes.x) * transfer2DAxes.y, min(m * transfer2DAxes.z, 1.0));
+  return texture(transfer2DTable, t);
+}
+#endif
+
 #ifdef HO_SHADE
 // The shaded colour of c with gradient g, seen along the unit ray direction
 // v: N the normalised gradient (0 where it is 0 or touches no data), then
@@ -271,7 +289,8 @@ vec4 crossings(float v0, float v1)
 }
 #endif
 
-// Opacity a' of the sample at model position p (times opacityScale, times
+// Opacity a' of the sample at model position p (the 2D transfer function's
+// with HO_TRANSFER_2D, times opacityScale, times
 // the gradient opacity with HO_GRADIENT_OPACITY, then corrected for the
 // slice spacing), and its colour (shaded along the ray direction v with
 // HO_SHADE). NaN texels
@@ -308,11 +327,15 @@ vec4 sampleAt(vec3 p, vec3 v)
   }
   // One sample standing for them all: straight colour C / A, opacity A.
   vec4 c = vec4(crossed.rgb / crossed.a, crossed.a);
+#elif defined(HO_TRANSFER_2D)
+  // The gradient first: the table reads its magnitude (one gradient, shared with the shading).
+  vec3 g = gradientAt(u);
+  vec4 c = transfer2DAt(value, g);
 #else
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
 #endif
   float a = clamp(c.a, 0.0, 1.0) * opacityScale;
-#ifdef HO_GRADIENTS
+#if defined(HO_GRADIENTS) && !defined(HO_TRANSFER_2D)
   vec3 g = a > 0.0 ? gradientAt(u) : vec3(0.0);
 #endif
 #ifdef HO_GRADIENT_OPACITY

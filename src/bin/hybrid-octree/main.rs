@@ -31,6 +31,7 @@ mod render;
 mod scene;
 mod shade;
 mod surface;
+mod transfer2d;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

@@ -55,7 +55,7 @@ struct RenderReport {
     estimated_error: f64,
     passes: Vec<String>,
     /// What each volume sample does besides its classification, then what
-    /// removes samples (the plan's effects: `gradient-opacity` or
+    /// removes samples (the plan's effects: `transfer-2d`, `gradient-opacity` or
     /// `opacity-scale`, `shading`, `cropping`, `clipping`; empty: nothing).
     effects: Vec<String>,
     /// The cropping and clipping planes that act on the volume (world coordinates).

@@ -21,7 +21,7 @@ use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, SelectOptions, Selection};
 use hybrid_octree::slab::SlabPolygons;
 use hybrid_octree::surface::{Surface, SurfaceOptions};
-use hybrid_octree::transfer::GradientOpacity;
+use hybrid_octree::transfer::{GradientOpacity, TransferFunction2D};
 use hybrid_octree::{Error, Result};
 use std::time::Instant;
 
@@ -74,6 +74,11 @@ pub struct SceneArgs {
     /// Cropping and clipping planes of the volume.
     #[command(flatten)]
     pub crop: crate::crop::CropArgs,
+    /// A 2D transfer function (JSON, docs/CLI.md): colour and opacity from
+    /// the value and the gradient magnitude together, instead of the ramp
+    /// and the gradient opacity (vtkVolumeProperty's TF_2D; Composite only).
+    #[arg(long)]
+    pub transfer_2d: Option<std::path::PathBuf>,
 }
 
 /// The `--gradient-opacity` points, checked ([`GradientOpacity::new`]).
@@ -126,6 +131,8 @@ pub struct Loaded {
     pub region: Option<KeptRegion>,
     /// The same in index space, what the selection leaves out by.
     pub select_region: Option<KeptRegion>,
+    /// The 2D transfer function of `--transfer-2d`.
+    pub transfer_2d: Option<TransferFunction2D>,
 }
 
 /// Builds the octree, the surface and the camera for `grid`.
@@ -163,7 +170,11 @@ pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<
     let hidden_by_gradient_opacity =
         args.blend == BlendMode::Composite && args.gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     let select_region = region.map(|r| r.to_index(shape));
-    Ok(Loaded { octree, surface, tf, camera, blend, hidden_by_gradient_opacity, region, select_region })
+    let transfer_2d = match &args.transfer_2d {
+        Some(path) => Some(crate::transfer2d::load(path, (min, max), shape)?),
+        None => None,
+    };
+    Ok(Loaded { octree, surface, tf, camera, blend, hidden_by_gradient_opacity, region, select_region, transfer_2d })
 }
 
 /// The image size and the surface opacity: in range, or a clear error.
@@ -193,6 +204,7 @@ pub fn select_options(scene: &Loaded, args: &SceneArgs, budget_bytes: usize, tol
         gradient_border: hybrid_octree::plan::needs_gradients(
             args.shade.lighting().as_ref(),
             args.gradient_opacity.as_ref(),
+            scene.transfer_2d.is_some(),
             scene.blend.mode,
         ) || scene.blend.mode == BlendMode::Isosurface,
         pooled: scene.blend.mode.is_extremum(),
@@ -234,6 +246,7 @@ pub fn frame(
         surface_opacity: args.surface_opacity,
         shading: lighting.as_ref(),
         gradient_opacity: args.gradient_opacity.as_ref(),
+        transfer_2d: scene.transfer_2d.as_ref(),
         blend: scene.blend,
         region: scene.region.as_ref(),
     };
@@ -284,6 +297,7 @@ pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Res
             surface,
             lighting: lighting.as_ref(),
             gradient_opacity: args.gradient_opacity.as_ref(),
+            transfer_2d: scene.transfer_2d.as_ref(),
             region: scene.region.as_ref(),
             ..ReferenceOptions::default()
         },
@@ -294,11 +308,19 @@ pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Res
 /// The transfer function's visibility test for the selection: a node shows
 /// unless the transfer function is transparent over its whole range, or a
 /// gradient opacity is 0 everywhere (and, with a surface, it holds none of
-/// it); under the blend mode's rule ([`Blend::visible`]).
+/// it); under the blend mode's rule ([`Blend::visible`]). Under Composite
+/// a 2D transfer function decides alone: a node shows unless the table is 0
+/// over its range at every gradient magnitude.
 pub fn visible<'a>(scene: &'a Loaded, isovalue: Option<f64>) -> impl Fn(f64, f64) -> bool + 'a {
+    let classifies = scene.transfer_2d.as_ref().filter(|_| scene.blend.mode == BlendMode::Composite);
     move |min, max| {
-        (!scene.hidden_by_gradient_opacity
-            && scene.blend.visible(min, max, &|a, b| !scene.tf.is_transparent_over(a, b)))
-            || isovalue.is_some_and(|iso| min < iso && iso <= max)
+        let shows = match classifies {
+            Some(t) => !t.is_transparent_over(min, max),
+            None => {
+                !scene.hidden_by_gradient_opacity
+                    && scene.blend.visible(min, max, &|a, b| !scene.tf.is_transparent_over(a, b))
+            }
+        };
+        shows || isovalue.is_some_and(|iso| min < iso && iso <= max)
     }
 }

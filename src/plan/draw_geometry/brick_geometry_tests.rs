@@ -419,6 +419,7 @@ fn a_real_draw_list_with_a_surface() {
         surface_opacity: 0.4,
         shading: None,
         gradient_opacity: None,
+        transfer_2d: None,
         blend: Default::default(),
         region: None,
     };
