@@ -41,7 +41,7 @@ use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_size};
 use super::geometry::ray_box;
 use super::image::Image;
-use super::sample::{grid_value, to_index};
+use super::sample::{grid_value, to_index, trilinear};
 use super::shade::{gradient, normal};
 use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::{Error, Result};
@@ -100,6 +100,24 @@ pub fn reference_blend(
     options: &ReferenceOptions<'_>,
     blend: &Blend,
 ) -> Result<Image> {
+    reference_fields(grid, None, tf, camera, width, height, options, blend)
+}
+
+/// [`reference_blend`] with, when `opacity` is given, each sample's opacity
+/// from the opacity function at that field instead of `grid`'s (two
+/// dependent fields, see [`crate::render::dependent`]); `opacity` must be a
+/// field of the same image.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn reference_fields(
+    grid: &Grid<'_>,
+    opacity: Option<&Grid<'_>>,
+    tf: &TransferFunction,
+    camera: &Camera,
+    width: usize,
+    height: usize,
+    options: &ReferenceOptions<'_>,
+    blend: &Blend,
+) -> Result<Image> {
     check_size(width, height)?;
     let shape = *grid.shape();
     let d0 = crate::data::spacing::reference_spacing(&shape);
@@ -133,6 +151,7 @@ pub fn reference_blend(
         gradient_opacity: options.gradient_opacity,
         blend: *blend,
         region: options.region,
+        opacity,
     }))
 }
 
@@ -150,6 +169,8 @@ struct Caster<'a> {
     gradient_opacity: Option<&'a GradientOpacity>,
     blend: Blend,
     region: Option<&'a KeptRegion>,
+    /// The opacity field of two dependent fields (`None`: the opacity is the grid's).
+    opacity: Option<&'a Grid<'a>>,
 }
 
 impl GridVisitor for Caster<'_> {
@@ -212,7 +233,10 @@ impl Caster<'_> {
                     continue;
                 }
                 let sample = |acc: Rgba, value: f64, ratio: f64| {
-                    let [r, gr, b, a] = self.tf.eval(value);
+                    let [r, gr, b, mut a] = self.tf.eval(value);
+                    if let Some(o) = self.opacity {
+                        a = self.tf.opacity(trilinear(self.shape.dims, u, |i, j, k| o.value(i, j, k)));
+                    }
                     let (rgb, a) = self.effects(g, u, [r, gr, b].map(f64::from), f64::from(a), ray.direction);
                     if a > 0.0 {
                         under(acc, rgb, correct_opacity(a, ratio))
