@@ -38,7 +38,7 @@ const GRADIENT_OPACITY_TABLE: usize = 4096;
 pub struct SelectionHandle {
     pub(crate) selection: Selection,
     octree_id: u64,
-    shape: GridShape,
+    pub(crate) shape: GridShape,
     /// The octree's value range (what 32-bit float texels must resolve).
     value_range: (f64, f64),
     /// The SlabPolygons of the last translucent surface drawn, with its id.
@@ -54,6 +54,8 @@ pub struct SelectionHandle {
     /// The cropping and clipping planes it was selected for, world
     /// coordinates: its DrawLists keep only their samples.
     region: Option<KeptRegion>,
+    /// Selected from two dependent fields: its DrawLists plan them (`plan::dependent`).
+    pub(crate) dependent: bool,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -202,7 +204,10 @@ pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend>
 pub(crate) fn select_with(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Result<Selection> {
     let gradient_opacity =
         vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, octree.volume().value_range())?;
-    let options = select_options(&octree.shape, desc, gradient_opacity.as_ref())?;
+    let mut options = select_options(&octree.shape, desc, gradient_opacity.as_ref())?;
+    // Two dependent fields: two f32 texels a sample, the combined tree (see `dependent.rs`).
+    let tree = octree.dependent.as_ref().unwrap_or(octree.volume());
+    options.bytes_per_texel *= if octree.dependent.is_some() { 2 } else { 1 };
     let hidden = gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     let tf = opacity_function(&desc.opacity_points)?;
     let iso = desc.has_isovalue.then_some(desc.isovalue);
@@ -215,8 +220,8 @@ pub(crate) fn select_with(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Res
     let shows = |min: f64, max: f64| !hidden && tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max));
     let visible = |min: f64, max: f64| blend.visible(min, max, &shows) || iso.is_some_and(|v| min < v && v <= max);
     match &octree.hybrid.points {
-        Some(points) => select_with_points(octree.volume(), &options, visible, &points.mass),
-        None => select(octree.volume(), &options, visible),
+        Some(points) if octree.dependent.is_none() => select_with_points(tree, &options, visible, &points.mass),
+        _ => select(tree, &options, visible),
     }
 }
 
@@ -354,10 +359,11 @@ impl HybridOctreeHandle {
                 shape: self.shape,
                 value_range: self.volume().value_range(),
                 polygons: Mutex::new(None),
-                points: self.hybrid.points.as_ref().map(|p| Arc::clone(&p.set)),
+                points: self.hybrid.points.as_ref().filter(|_| self.dependent.is_none()).map(|p| Arc::clone(&p.set)),
                 lighting: Mutex::new(None),
                 gradient_opacity: Mutex::new(None),
                 region: region(&desc.region)?,
+                dependent: self.dependent.is_some(),
             }))
         })
     }
@@ -395,6 +401,7 @@ impl SelectionHandle {
         let lighting = self.lighting.lock().unwrap_or_else(|e| e.into_inner()).clone();
         let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
+        let list = crate::plan::dependent::plan_dependent(list, self.dependent);
         Ok(recrop(list, self.region.as_ref(), &octree.shape))
     }
 
@@ -463,6 +470,9 @@ impl SelectionHandle {
             let list = self.list(octree, camera_desc, colour[3])?;
             let surface = octree.hybrid.surface.as_ref().filter(|_| colour[3] > 0.0);
             let drawn = surface.map(|s| (s, colour.map(|v| v as f32)));
+            if list.plan.dependent {
+                return super::dependent::composite_into(&list, bytes, desc, &tf, width, height, rgba);
+            }
             let textures = crate::render::texture::upload(&grid, &list)?;
             let shades = match self.points.as_deref() {
                 Some(set) => crate::points::shade(&grid, set, &tf)?,

@@ -107,8 +107,7 @@ impl DependentOctree {
 pub fn combine(colour: &VolumeOctree, opacity: &VolumeOctree) -> Result<VolumeOctree> {
     if colour.layout != opacity.layout || colour.error_offset != opacity.error_offset {
         return Err(Error::InvalidArgument(
-            "the colour and opacity octrees have different layouts: build both from one grid with one leaf size"
-                .into(),
+            "the colour and opacity octrees have different layouts: build both from one grid with one leaf size".into(),
         ));
     }
     let errors = colour.errors.iter().zip(&opacity.errors).map(|(&c, &o)| c.max(o)).collect();

@@ -23,9 +23,7 @@ use super::check::{check_list, check_size};
 use super::compositor::execute_counted;
 use super::image::Image;
 use super::reference::{reference_fields, ReferenceOptions};
-use super::texture::{
-    brick_texels_f32_bordered_into, brick_texels_f32_into, upload, Texels, Textures,
-};
+use super::texture::{brick_texels_f32_bordered_into, brick_texels_f32_into, upload, Texels, Textures};
 use crate::base::error::{Error, Result};
 use crate::data::grid::Grid;
 use crate::geometry::camera::Camera;

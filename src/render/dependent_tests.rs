@@ -42,7 +42,10 @@ fn ball(x: f64, y: f64, z: f64) -> f64 {
 
 fn fields(data: &[f32]) -> (Grid<'_>, Grid<'_>) {
     let shape = GridShape { dims: [N; 3], spacing: [1.0; 3], origin: [0.0; 3] };
-    (Grid::new(Samples::F32(data), shape, 2, Some(0)).unwrap(), Grid::new(Samples::F32(data), shape, 2, Some(1)).unwrap())
+    (
+        Grid::new(Samples::F32(data), shape, 2, Some(0)).unwrap(),
+        Grid::new(Samples::F32(data), shape, 2, Some(1)).unwrap(),
+    )
 }
 
 /// Colour blue to orange over field 0's [0, 1]; opacity 0 at 0 rising to
