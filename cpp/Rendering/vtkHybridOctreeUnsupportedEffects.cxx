@@ -58,12 +58,25 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
                  "scalar opacity functions are drawn; switch to the 1D mode, or use " +
       elsewhere);
   }
-  if (components > 1 && !property->GetIndependentComponents())
+  // Two dependent components (colour, opacity) are drawn in Composite.
+  if (components == 2 && !property->GetIndependentComponents() &&
+    mode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
-    on.push_back("dependent components (vtkVolumeProperty::IndependentComponentsOff; ParaView: "
-                 "Map Scalars off) are not implemented: the component chosen with "
-                 "SetComponent() is drawn through the colour and scalar opacity functions; "
-                 "turn IndependentComponents on, or use " +
+    on.push_back("2 dependent components (vtkVolumeProperty::IndependentComponentsOff; ParaView: "
+                 "Use Separate Opacity Array, or Map Scalars with Multi Components Mapping) are "
+                 "drawn in Composite only: under the " +
+      BlendModeName(mode) +
+      " blend mode the component chosen with SetComponent() is drawn through the colour and "
+      "scalar opacity functions; set the blend mode to Composite, or use " +
+      elsewhere);
+  }
+  if (components > 2 && !property->GetIndependentComponents())
+  {
+    on.push_back("dependent components of a " + std::to_string(components) +
+      "-component array (vtkVolumeProperty::IndependentComponentsOff; ParaView: Map Scalars "
+      "off, or Multi Components Mapping on RGBA) are not implemented: the component chosen with "
+      "SetComponent() is drawn through the colour and scalar opacity functions (2 dependent "
+      "components, colour and opacity, are drawn); turn IndependentComponents on, or use " +
       elsewhere);
   }
   return on;
