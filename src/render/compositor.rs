@@ -94,7 +94,7 @@ use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
 use super::sample::to_index;
-use super::shade::{gradient, normal};
+use super::shade::normal;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::Result;
@@ -714,7 +714,7 @@ impl<S: Texel> Executor<'_, S> {
             return (c, a);
         }
         let h = self.shape.spacing.map(|s| s * texture.stride());
-        let g = gradient(|v| texture.at_texel(v), u, h);
+        let g = texture.gradient_at(u, h);
         scratch.gradients += 1;
         if let Some(f) = self.gradient_opacity {
             a *= f64::from(f.eval(dot(g, g).sqrt()));
