@@ -306,15 +306,15 @@ std::unique_ptr<HybridOctree> HybridOctree::Build(const void* bytes, std::size_t
   return result;
 }
 
-std::unique_ptr<HybridOctree> HybridOctree::BuildDependent(const void* bytes,
-  std::size_t byteCount, const GridDescription& grid, unsigned int leafSize, std::string& error)
+std::unique_ptr<HybridOctree> HybridOctree::BuildDependent(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, unsigned int leafSize, std::string& error)
 {
   std::unique_ptr<HybridOctree> result;
   const std::function<bool(double)> always = [](double) { return true; };
   const FunctionProgress sink(always);
   Guarded(error, [&] {
-    result = Own<HybridOctree>(
-      hybrid_octree::build_dependent_octree(ToSlice(bytes, byteCount), ToRust(grid), leafSize, sink));
+    result = Own<HybridOctree>(hybrid_octree::build_dependent_octree(
+      ToSlice(bytes, byteCount), ToRust(grid), leafSize, sink));
   });
   return result;
 }

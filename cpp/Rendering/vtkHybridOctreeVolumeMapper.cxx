@@ -431,11 +431,10 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   in.HasPoints = false;
   in.Octree.reset();
   std::string error;
-  in.Octree = in.Dependent
-    ? HybridOctree::BuildDependent(
-        Bytes(scalars), ByteCount(scalars), grid, static_cast<unsigned int>(this->LeafSize), error)
-    : HybridOctree::Build(
-        Bytes(scalars), ByteCount(scalars), grid, static_cast<unsigned int>(this->LeafSize), error);
+  in.Octree = in.Dependent ? HybridOctree::BuildDependent(Bytes(scalars), ByteCount(scalars), grid,
+                               static_cast<unsigned int>(this->LeafSize), error)
+                           : HybridOctree::Build(Bytes(scalars), ByteCount(scalars), grid,
+                               static_cast<unsigned int>(this->LeafSize), error);
   in.OctreeDependent = in.Dependent;
   vtkHybridOctreeBridge::OctreeSummary summary;
   if (!in.Octree || !in.Octree->GetSummary(summary, error))
@@ -1016,8 +1015,8 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
       [&](float* texels, std::size_t count) {
         if (dependent)
         {
-          return selected.GetBrickTexelsDependent(Bytes(in.Scalars), ByteCount(in.Scalars),
-            in.Grid, brick, bordered, texels, count, error);
+          return selected.GetBrickTexelsDependent(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+            brick, bordered, texels, count, error);
         }
         return bordered ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
                             in.Grid, brick, texels, count, error)

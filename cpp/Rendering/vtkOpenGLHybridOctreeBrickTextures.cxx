@@ -77,8 +77,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   texture->SetMagnificationFilter(vtkTextureObject::Linear);
   if (!texture->Create3DFromRaw(static_cast<unsigned int>(texels[0]),
         static_cast<unsigned int>(texels[1]), static_cast<unsigned int>(texels[2]), this->Channels,
-        VTK_FLOAT,
-        this->Scratch.data()))
+        VTK_FLOAT, this->Scratch.data()))
   {
     error = "OpenGL could not create a " + std::to_string(texels[0]) + "x" +
       std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " float 3D texture";

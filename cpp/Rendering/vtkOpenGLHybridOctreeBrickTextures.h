@@ -13,8 +13,8 @@
  *
  * Texels are single-channel 32-bit floats (4 bytes each), or two-channel
  * (8 bytes: colour and opacity fields of dependent components, see
- * SetChannels()), filtered linearly and clamped to the edge. With each texture the cache keeps the brick's
- * block value ranges, measured from its texels at upload by the Rust core
+ * SetChannels()), filtered linearly and clamped to the edge. With each texture the cache keeps the
+ * brick's block value ranges, measured from its texels at upload by the Rust core
  * (vtkHybridOctreeBridge::MeasureBlockRanges()) and handed back to it every
  * frame (vtkHybridOctreeBridge::GetBrickGeometry()): which blocks the
  * transfer function leaves visible.

@@ -13,11 +13,11 @@
 //! [`DependentOctree`](crate::octree::DependentOctree)'s combined tree; the
 //! textures carry both fields ([`crate::render::dependent`]).
 
-use super::draw_list::{effects, DrawList, Plan};
+use super::draw_list::{effects, DrawList, Plan, DEPENDENT_EFFECT};
 use super::BlendMode;
 
 /// The effect's name in [`Plan::effects`].
-pub const EFFECT: &str = "dependent-components";
+pub const EFFECT: &str = DEPENDENT_EFFECT;
 
 /// Whether a plan draws two dependent fields: the volume has them
 /// (`two_fields`), and the plan draws a volume in Composite.

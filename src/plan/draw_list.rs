@@ -265,6 +265,9 @@ fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: 
     }
 }
 
+/// The effect of two dependent fields ([`crate::plan::dependent::EFFECT`]).
+pub(crate) const DEPENDENT_EFFECT: &str = "dependent-components";
+
 /// The plan's [`Plan::effects`]: what each sample does besides its
 /// classification, in the order applied (`dependent-components`, then
 /// `gradient-opacity` or `opacity-scale`, then `shading`), then what `region` (the cropping and
@@ -272,7 +275,7 @@ fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: 
 pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     let mut effects = Vec::new();
     if plan.dependent {
-        effects.push(super::dependent::EFFECT.to_string());
+        effects.push(DEPENDENT_EFFECT.to_string());
     }
     if plan.gradient_opacity {
         effects.push("gradient-opacity".to_string());

@@ -263,8 +263,8 @@ int Warnings()
   }
   image->GetPointData()->SetScalars(rgba);
   scene.Window->Render();
-  check.Check(TakeWarnings(errors, "4-component array", all) == 1,
-    "4 dependent components named:\n" + all);
+  check.Check(
+    TakeWarnings(errors, "4-component array", all) == 1, "4 dependent components named:\n" + all);
   check.Check(mapper->GetLastRenderOK(), "4 dependent components: component 0 drawn");
   return check.Result();
 }
