@@ -682,7 +682,8 @@ impl<S: Texel> Executor<'_, S> {
     ) -> Rgba {
         let [r, gr, bl, mut a] = self.lut.eval(value);
         if let Some(o) = brick.opacity {
-            a = self.lut.eval(o.at_texel(u))[3];
+            // No colour value is no data (transparent), as a NaN opacity value.
+            a = if value.is_nan() { 0.0 } else { self.lut.eval(o.at_texel(u))[3] };
         }
         if a <= 0.0 {
             return acc;

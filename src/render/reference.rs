@@ -235,7 +235,12 @@ impl Caster<'_> {
                 let sample = |acc: Rgba, value: f64, ratio: f64| {
                     let [r, gr, b, mut a] = self.tf.eval(value);
                     if let Some(o) = self.opacity {
-                        a = self.tf.opacity(trilinear(self.shape.dims, u, |i, j, k| o.value(i, j, k)));
+                        // No colour value is no data (transparent), as a NaN opacity value.
+                        a = if value.is_nan() {
+                            0.0
+                        } else {
+                            self.tf.opacity(trilinear(self.shape.dims, u, |i, j, k| o.value(i, j, k)))
+                        };
                     }
                     let (rgb, a) = self.effects(g, u, [r, gr, b].map(f64::from), f64::from(a), ray.direction);
                     if a > 0.0 {
