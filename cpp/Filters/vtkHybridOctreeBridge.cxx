@@ -319,6 +319,19 @@ std::unique_ptr<HybridOctree> HybridOctree::Build(const void* bytes, std::size_t
   return result;
 }
 
+std::unique_ptr<HybridOctree> HybridOctree::BuildDependent(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, unsigned int leafSize, std::string& error)
+{
+  std::unique_ptr<HybridOctree> result;
+  const std::function<bool(double)> always = [](double) { return true; };
+  const FunctionProgress sink(always);
+  Guarded(error, [&] {
+    result = Own<HybridOctree>(hybrid_octree::build_dependent_octree(
+      ToSlice(bytes, byteCount), ToRust(grid), leafSize, sink));
+  });
+  return result;
+}
+
 bool HybridOctree::GetSummary(OctreeSummary& summary, std::string& error) const
 {
   return Guarded(error, [&] {
@@ -547,6 +560,17 @@ bool Selection::GetBrickTexelsBordered(const void* bytes, std::size_t byteCount,
   return Guarded(error, [&] {
     HandleFor(this->Impl)
       .brick_texels_bordered(ToSlice(bytes, byteCount), ToRust(grid), brick, Out(texels, count));
+  });
+}
+
+bool Selection::GetBrickTexelsDependent(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, std::size_t brick, bool bordered, float* texels, std::size_t count,
+  std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .brick_texels_dependent(
+        ToSlice(bytes, byteCount), ToRust(grid), brick, bordered, Out(texels, count));
   });
 }
 

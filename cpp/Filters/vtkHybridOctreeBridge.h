@@ -450,6 +450,20 @@ public:
     const GridDescription& grid, unsigned int leafSize, const std::function<bool(double)>& progress,
     std::string& error);
 
+  /**
+   * Builds the octrees of a 2-component image with dependent components
+   * (`grid.Components` 2; `grid.Component` is not read): colour from
+   * component 0, opacity from component 1 (vtkVolumeProperty's
+   * IndependentComponentsOff; ParaView's Use Separate Opacity Array). Its
+   * selections count 8 bytes a texel and are read with
+   * Selection::GetBrickTexelsDependent(); their DrawLists' Effects start
+   * with "dependent-components" (Composite). The summary's value range is
+   * the colour field's. nullptr and `error` on failure (another component
+   * count, and Build()'s errors).
+   */
+  static std::unique_ptr<HybridOctree> BuildDependent(const void* bytes, std::size_t byteCount,
+    const GridDescription& grid, unsigned int leafSize, std::string& error);
+
   /// Node counts, levels, memory and build time. False and `error` on failure.
   bool GetSummary(OctreeSummary& summary, std::string& error) const;
 
@@ -579,6 +593,16 @@ public:
    */
   bool GetBrickTexelsBordered(const void* bytes, std::size_t byteCount, const GridDescription& grid,
     std::size_t brick, float* texels, std::size_t count, std::string& error) const;
+
+  /**
+   * Brick `brick`'s texels of both fields of a selection made from
+   * HybridOctree::BuildDependent()'s octree: (colour, opacity) float pairs,
+   * texels x fastest, `count` = 2 x the texel count, with the gradient
+   * border of GetBrickTexelsBordered() when `bordered`. False and `error` on failure.
+   */
+  bool GetBrickTexelsDependent(const void* bytes, std::size_t byteCount,
+    const GridDescription& grid, std::size_t brick, bool bordered, float* texels, std::size_t count,
+    std::string& error) const;
 
   /**
    * The shading of the DrawLists and pictures made after this call; the

@@ -69,13 +69,34 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
         " the 1D colour and scalar opacity functions are drawn (VTK's ray caster reads its "
         "2D table there with the gradient of another sample); set the blend mode to Composite");
     }
+    else if (components == 2 && !property->GetIndependentComponents())
+    {
+      on.push_back("the 2D transfer function (ParaView: Use 2D Transfer Function) classifies one "
+                   "field, and this volume has 2 dependent components (ParaView: Use Separate "
+                   "Opacity Array): the colour function at component 0 and the scalar opacity "
+                   "function at component 1 are drawn; turn the 2D transfer function or the "
+                   "separate opacity array off");
+    }
   }
-  if (components > 1 && !property->GetIndependentComponents())
+  // Two dependent components (colour, opacity) are drawn in Composite.
+  if (components == 2 && !property->GetIndependentComponents() &&
+    mode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
-    on.push_back("dependent components (vtkVolumeProperty::IndependentComponentsOff; ParaView: "
-                 "Map Scalars off) are not implemented: the component chosen with "
-                 "SetComponent() is drawn through the colour and scalar opacity functions; "
-                 "turn IndependentComponents on, or use " +
+    on.push_back("2 dependent components (vtkVolumeProperty::IndependentComponentsOff; ParaView: "
+                 "Use Separate Opacity Array, or Map Scalars with Multi Components Mapping) are "
+                 "drawn in Composite only: under the " +
+      BlendModeName(mode) +
+      " blend mode the component chosen with SetComponent() is drawn through the colour and "
+      "scalar opacity functions; set the blend mode to Composite, or use " +
+      elsewhere);
+  }
+  if (components > 2 && !property->GetIndependentComponents())
+  {
+    on.push_back("dependent components of a " + std::to_string(components) +
+      "-component array (vtkVolumeProperty::IndependentComponentsOff; ParaView: Map Scalars "
+      "off, or Multi Components Mapping on RGBA) are not implemented: the component chosen with "
+      "SetComponent() is drawn through the colour and scalar opacity functions (2 dependent "
+      "components, colour and opacity, are drawn); turn IndependentComponents on, or use " +
       elsewhere);
   }
   return on;

@@ -269,6 +269,17 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   double RangeHi = 1.0;
   bool TableUploaded = false;
 
+  // Two dependent fields (vtkHybridOctreeDependent.h): asked for by the
+  // property and blend mode (Prepare), drawn for a 2-component array; the
+  // octree built for them; the table's colour column over ColourRange
+  // (component 0's), its opacity column over RangeLo, RangeHi (component 1's).
+  bool WantsDependent = false;
+  bool Dependent = false;
+  bool OctreeDependent = false;
+  double ColourRange[2] = { 0.0, 1.0 };
+  /// When the resident brick textures were made (older than the octree: released).
+  vtkTimeStamp TexturesTime;
+
   // Model matrix (volume matrix x image direction) and its inverse.
   vtkNew<vtkMatrix4x4> Model;
   vtkNew<vtkMatrix4x4> ModelInverse;
@@ -376,7 +387,8 @@ vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
     return nullptr;
   }
   const int components = scalars->GetNumberOfComponents();
-  if (components > 1 && this->Component < 0)
+  const bool dependent = components == 2 && this->Internals->WantsDependent;
+  if (components > 1 && this->Component < 0 && !dependent)
   {
     vtkErrorMacro(
       "the point scalars have " << components << " components: choose one with SetComponent()");
@@ -403,11 +415,14 @@ vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
 bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray* scalars)
 {
   vtkInternals& in = *this->Internals;
-  const GridDescription grid = vtkHybridOctreeImageInput::DescribeGrid(
-    image, scalars, scalars->GetNumberOfComponents() > 1 ? this->Component : -1);
+  in.Dependent = in.WantsDependent && scalars->GetNumberOfComponents() == 2;
+  // Dependent: both components are read; component 0 names the colour field.
+  const GridDescription grid = vtkHybridOctreeImageInput::DescribeGrid(image, scalars,
+    in.Dependent ? 0 : (scalars->GetNumberOfComponents() > 1 ? this->Component : -1));
   in.Scalars = scalars;
   if (in.Octree && in.Array == scalars && in.ArrayMTime == scalars->GetMTime() &&
-    vtkHybridOctreeImageInput::SameGrid(in.Grid, grid) && in.LeafSize == this->LeafSize)
+    vtkHybridOctreeImageInput::SameGrid(in.Grid, grid) && in.LeafSize == this->LeafSize &&
+    in.OctreeDependent == in.Dependent)
   {
     this->LastNaNSamples = in.NaNSamples;
     return true;
@@ -419,8 +434,11 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   in.HasPoints = false;
   in.Octree.reset();
   std::string error;
-  in.Octree = HybridOctree::Build(
-    Bytes(scalars), ByteCount(scalars), grid, static_cast<unsigned int>(this->LeafSize), error);
+  in.Octree = in.Dependent ? HybridOctree::BuildDependent(Bytes(scalars), ByteCount(scalars), grid,
+                               static_cast<unsigned int>(this->LeafSize), error)
+                           : HybridOctree::Build(Bytes(scalars), ByteCount(scalars), grid,
+                               static_cast<unsigned int>(this->LeafSize), error);
+  in.OctreeDependent = in.Dependent;
   vtkHybridOctreeBridge::OctreeSummary summary;
   if (!in.Octree || !in.Octree->GetSummary(summary, error))
   {
@@ -466,16 +484,30 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
 {
   vtkInternals& in = *this->Internals;
   vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  // Dependent: the opacity column over component 1's range, the colour
+  // column over component 0's (VTK's tables: each over its component's range).
   double range[2];
-  in.Scalars->GetRange(range, in.Grid.Component < 0 ? 0 : in.Grid.Component);
+  in.Scalars->GetRange(range, in.Dependent ? 1 : (in.Grid.Component < 0 ? 0 : in.Grid.Component));
   if (!(range[1] > range[0]))
   {
     range[1] = range[0] + 1.0;
   }
+  double colour[2] = { range[0], range[1] };
+  if (in.Dependent)
+  {
+    in.Scalars->GetRange(colour, 0);
+    if (!(colour[1] > colour[0]))
+    {
+      colour[1] = colour[0] + 1.0;
+    }
+  }
   // VTK's opacities are per ScalarOpacityUnitDistance U; the DrawList corrects
   // per d0 = min spacing: a table opacity 1 - (1 - a)^(d0 / U) gives
   // 1 - (1 - a)^(d / U) after the DrawList's correction.
-  const double unit = property->GetScalarOpacityUnitDistance(0);
+  // VTK's GPU ray caster corrects dependent components' opacity with the
+  // unit distance of the last component (vtkVolumeInputHelper: the opacity
+  // table of component numComp - 1), not the first.
+  const double unit = property->GetScalarOpacityUnitDistance(in.Dependent ? 1 : 0);
   const double d0 = std::min({ in.Grid.Spacing[0], in.Grid.Spacing[1], in.Grid.Spacing[2] });
   const double exponent = unit > 0.0 ? d0 / unit : 1.0;
   const int n = this->TableSize;
@@ -486,7 +518,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
     // A grey colour function (SetColor(vtkPiecewiseFunction*)): asking the
     // property for its RGB function would replace it with VTK's default ramp.
     std::vector<double> grey(static_cast<std::size_t>(n));
-    property->GetGrayTransferFunction(0)->GetTable(range[0], range[1], n, grey.data());
+    property->GetGrayTransferFunction(0)->GetTable(colour[0], colour[1], n, grey.data());
     for (int k = 0; k < n; ++k)
     {
       std::fill_n(rgb.begin() + 3 * k, 3, grey[static_cast<std::size_t>(k)]);
@@ -494,7 +526,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   }
   else
   {
-    property->GetRGBTransferFunction(0)->GetTable(range[0], range[1], n, rgb.data());
+    property->GetRGBTransferFunction(0)->GetTable(colour[0], colour[1], n, rgb.data());
   }
   opacity->GetTable(range[0], range[1], n, alpha.data());
   std::vector<float> table(4 * static_cast<std::size_t>(n));
@@ -503,6 +535,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   for (int k = 0; k < n; ++k)
   {
     const double v = range[0] + (range[1] - range[0]) * k / (n - 1);
+    const double vc = colour[0] + (colour[1] - colour[0]) * k / (n - 1);
     double a = std::min(1.0, std::max(0.0, alpha[k]));
     a = a < 1.0 ? 1.0 - std::pow(1.0 - a, exponent) : 1.0;
     for (int c = 0; c < 3; ++c)
@@ -511,16 +544,19 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
     }
     table[4 * k + 3] = static_cast<float>(a);
     in.Transfer.ColorPoints.insert(in.Transfer.ColorPoints.end(),
-      { v, static_cast<double>(table[4 * k]), static_cast<double>(table[4 * k + 1]),
+      { vc, static_cast<double>(table[4 * k]), static_cast<double>(table[4 * k + 1]),
         static_cast<double>(table[4 * k + 2]) });
     in.Transfer.OpacityPoints.insert(
       in.Transfer.OpacityPoints.end(), { v, static_cast<double>(table[4 * k + 3]) });
   }
-  if (table != in.Table || range[0] != in.RangeLo || range[1] != in.RangeHi)
+  if (table != in.Table || range[0] != in.RangeLo || range[1] != in.RangeHi ||
+    colour[0] != in.ColourRange[0] || colour[1] != in.ColourRange[1])
   {
     in.Table.swap(table);
     in.RangeLo = range[0];
     in.RangeHi = range[1];
+    in.ColourRange[0] = colour[0];
+    in.ColourRange[1] = colour[1];
     in.TableUploaded = false;
   }
   return true;
@@ -741,12 +777,15 @@ bool vtkHybridOctreeVolumeMapper::UpdateSurface()
 bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkImageData* image = nullptr;
+  vtkVolumeProperty* property = vol ? vol->GetProperty() : nullptr;
+  // Two dependent fields are drawn in Composite (the other modes reduce one field).
+  this->Internals->WantsDependent =
+    property && !property->GetIndependentComponents() && this->BlendMode == COMPOSITE_BLEND;
   vtkDataArray* scalars = this->CheckInput(image);
   if (!scalars)
   {
     return false;
   }
-  vtkVolumeProperty* property = vol ? vol->GetProperty() : nullptr;
   if (!property)
   {
     vtkErrorMacro("the volume has no vtkVolumeProperty: give it one with a scalar opacity");
@@ -957,8 +996,14 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   // resident textures of the other kind go too).
   const int reduceMode = ReduceMode(list.BlendMode);
   const bool pooled = reduceMode == 1 || reduceMode == 2;
-  if (bordered != in.BorderedTextures || pooled != in.PooledTextures)
+  // Dependent: (colour, opacity) texel pairs.
+  const bool dependent = list.Effects.find("dependent-components") != std::string::npos;
+  in.Bricks.SetChannels(window, dependent ? 2 : 1);
+  in.Drawer.SetDependent(dependent, in.ColourRange);
+  if (bordered != in.BorderedTextures || pooled != in.PooledTextures ||
+    in.TexturesTime < in.OctreeTime)
   {
+    in.TexturesTime.Modified();
     in.Bricks.Clear(window);
     in.BorderedTextures = bordered;
     in.PooledTextures = pooled;
@@ -991,6 +1036,11 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, dims,
       [&](float* texels, std::size_t count) {
+        if (dependent)
+        {
+          return selected.GetBrickTexelsDependent(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+            brick, bordered, texels, count, error);
+        }
         return bordered ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
                             in.Grid, brick, texels, count, error)
                         : selected.GetBrickTexels(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,

@@ -45,10 +45,13 @@
  * coordinates, SetCroppingRegionFlags) and clipped (SetClippingPlanes,
  * world coordinates, at most 8 planes) as VTK's GPU ray caster: a removed
  * sample is transparent, and bricks entirely removed get no texture; the
- * isosurface and the points are not cropped or clipped. Settings asking for
- * more (another blend mode, a gradient opacity, a 2D transfer function,
- * dependent components) are drawn as off and named in one warning each,
- * given again when the setting changes.
+ * isosurface and the points are not cropped or clipped. Two dependent
+ * components (IndependentComponentsOff on a 2-component array, Composite)
+ * are drawn as VTK's GPU ray caster draws them: colour from component 0,
+ * opacity from component 1 (SetComponent is then not read). Settings asking
+ * for more (another blend mode, a 2D transfer function, dependent components
+ * of 4-component arrays or under a reducing blend mode) are drawn as off and
+ * named in one warning each, given again when the setting changes.
  *
  * Interactive frames (the window's desired update rate above
  * InteractiveUpdateRate, as while the camera is dragged) draw the bricks of

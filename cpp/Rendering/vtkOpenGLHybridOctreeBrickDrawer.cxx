@@ -124,6 +124,14 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   const float scaleShift[2] = { static_cast<float>(scale),
     static_cast<float>(0.5 / entries - lo * scale) };
   this->Program->SetUniform2f("tableScaleShift", scaleShift);
+  if (this->Dependent && this->ReduceMode == 0)
+  {
+    // The colour column over the colour field's range (the table's alpha is over [lo, hi]).
+    const double c = (entries - 1.0) / (entries * (this->ColourRange[1] - this->ColourRange[0]));
+    const float colourScaleShift[2] = { static_cast<float>(c),
+      static_cast<float>(0.5 / entries - this->ColourRange[0] * c) };
+    this->Program->SetUniform2f("colourScaleShift", colourScaleShift);
+  }
   this->Program->SetUniformi("transferTable", table->GetTextureUnit());
   this->Program->SetUniformi("opaqueDepth", depth->GetTextureUnit());
   // Clip to model coordinates: the inverse of MCDC (VTK's matrices are transposed).
@@ -220,6 +228,10 @@ std::string vtkOpenGLHybridOctreeBrickDrawer::VariantDefines() const
   {
     // A reduced ray: only the samples' values, no per-sample effect.
     return defines + "\n#define HO_REDUCE\n";
+  }
+  if (this->Dependent)
+  {
+    defines += "\n#define HO_DEPENDENT2\n";
   }
   if (this->Gradients || this->Shading.Shade || !this->GradientOpacityTable.empty())
   {

@@ -177,6 +177,20 @@ public:
    */
   void SetTransfer2D(vtkTextureObject* table, const double axes[3]);
 
+  /**
+   * Two dependent fields (the DrawList's "dependent-components"): the
+   * brick textures hold (colour, opacity) pairs; each sample's colour is the
+   * table's at channel 0 over `colourRange`, its opacity the table's at
+   * channel 1 over Bind()'s range (the HO_DEPENDENT2 program). Off: one
+   * field. Call before Bind().
+   */
+  void SetDependent(bool on, const double colourRange[2])
+  {
+    this->Dependent = on;
+    this->ColourRange[0] = colourRange[0];
+    this->ColourRange[1] = colourRange[1];
+  }
+
   /// The most lights the shaded program takes.
   static constexpr int MaxLights = 8;
 
@@ -236,6 +250,8 @@ private:
   double ValueRange[2] = { 0.0, 1.0 };
   double AverageRange[2] = { 0.0, 1.0 };
   bool Gradients = false;
+  bool Dependent = false;
+  double ColourRange[2] = { 0.0, 1.0 };
   double OpacityScale = 1.0;
   std::vector<float> GradientOpacityTable;
   double GradientOpacityEnd = 1.0;

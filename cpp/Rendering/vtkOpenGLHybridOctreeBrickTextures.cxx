@@ -55,14 +55,15 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
     found->second.LastFrame = this->Frame;
     return &found->second;
   }
-  const std::size_t bytes = 4 * texels[0] * texels[1] * texels[2];
+  const std::size_t channels = static_cast<std::size_t>(this->Channels);
+  const std::size_t bytes = 4 * channels * texels[0] * texels[1] * texels[2];
   if (!this->MakeRoom(bytes))
   {
     error = "the bricks of this frame need more than the texture budget of " +
       std::to_string(this->LimitBytes) + " bytes";
     return nullptr;
   }
-  this->Scratch.resize(texels[0] * texels[1] * texels[2]);
+  this->Scratch.resize(channels * texels[0] * texels[1] * texels[2]);
   if (!fetch(this->Scratch.data(), this->Scratch.size()))
   {
     return nullptr;
@@ -75,8 +76,8 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   texture->SetMinificationFilter(vtkTextureObject::Linear);
   texture->SetMagnificationFilter(vtkTextureObject::Linear);
   if (!texture->Create3DFromRaw(static_cast<unsigned int>(texels[0]),
-        static_cast<unsigned int>(texels[1]), static_cast<unsigned int>(texels[2]), 1, VTK_FLOAT,
-        this->Scratch.data()))
+        static_cast<unsigned int>(texels[1]), static_cast<unsigned int>(texels[2]), this->Channels,
+        VTK_FLOAT, this->Scratch.data()))
   {
     error = "OpenGL could not create a " + std::to_string(texels[0]) + "x" +
       std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " float 3D texture";
@@ -85,7 +86,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   std::vector<float> ranges;
   const float* own = this->Scratch.data();
   std::size_t ownTexels[3] = { texels[0], texels[1], texels[2] };
-  if (border > 0)
+  if (border > 0 || channels > 1)
   {
     // The block ranges describe the brick's own texels, inside the border.
     for (int a = 0; a < 3; ++a)
@@ -98,11 +99,12 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
     {
       for (std::size_t j = 0; j < ownTexels[1]; ++j)
       {
-        const float* row =
-          this->Scratch.data() + border + texels[0] * ((j + border) + texels[1] * (k + border));
+        // The last channel: the field the opacity is read from.
+        const float* row = this->Scratch.data() + channels - 1 +
+          channels * (border + texels[0] * ((j + border) + texels[1] * (k + border)));
         for (std::size_t i = 0; i < ownTexels[0]; ++i)
         {
-          this->Interior[at++] = row[i];
+          this->Interior[at++] = row[channels * i];
         }
       }
     }
@@ -135,6 +137,15 @@ bool vtkOpenGLHybridOctreeBrickTextures::HoldsAll(
     }
   }
   return true;
+}
+
+void vtkOpenGLHybridOctreeBrickTextures::SetChannels(vtkWindow* window, int channels)
+{
+  if (channels != this->Channels)
+  {
+    this->Clear(window);
+    this->Channels = channels;
+  }
 }
 
 void vtkOpenGLHybridOctreeBrickTextures::Clear(vtkWindow* window)

@@ -11,9 +11,10 @@
  * pass the limit. So resident bytes never exceed the limit, as long as one
  * frame's bricks fit it (which the selection guarantees: they fit its budget).
  *
- * Texels are single-channel 32-bit floats (4 bytes each), filtered linearly
- * and clamped to the edge. With each texture the cache keeps the brick's
- * block value ranges, measured from its texels at upload by the Rust core
+ * Texels are single-channel 32-bit floats (4 bytes each), or two-channel
+ * (8 bytes: colour and opacity fields of dependent components, see
+ * SetChannels()), filtered linearly and clamped to the edge. With each texture the cache keeps the
+ * brick's block value ranges, measured from its texels at upload by the Rust core
  * (vtkHybridOctreeBridge::MeasureBlockRanges()) and handed back to it every
  * frame (vtkHybridOctreeBridge::GetBrickGeometry()): which blocks the
  * transfer function leaves visible.
@@ -41,7 +42,7 @@ public:
   /// (octree node id, texel stride): what a brick's texture holds.
   using Key = std::pair<std::uint32_t, std::size_t>;
   /// Writes a brick's texels (x fastest) into the staging buffer it is
-  /// given (`count` floats, the brick's texel count); false and a message in
+  /// given (`count` floats: the brick's texel count times the channels); false and a message in
   /// the caller's error string on failure.
   using Fetch = std::function<bool(float* texels, std::size_t count)>;
 
@@ -80,6 +81,14 @@ public:
   /// Resident textures.
   std::size_t GetNumberOfTextures() const { return this->Entries.size(); }
 
+  /**
+   * Texels of 1 channel (one field) or 2 (colour, opacity: dependent
+   * components; the fetch then writes 2 floats a texel, and the block
+   * ranges are the opacity channel's). A change releases every texture.
+   */
+  void SetChannels(vtkWindow* window, int channels);
+  int GetChannels() const { return this->Channels; }
+
   /// Releases every texture (a new octree, or the context going away).
   void Clear(vtkWindow* window);
 
@@ -95,7 +104,8 @@ private:
   std::uint64_t Frame = 0;
   vtkWindow* Window = nullptr;
   std::vector<float> Scratch;
-  std::vector<float> Interior; ///< a bordered brick's own texels
+  std::vector<float> Interior; ///< a bordered brick's own texels (of the last channel)
+  int Channels = 1;
 };
 
 #endif

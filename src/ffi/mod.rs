@@ -19,6 +19,7 @@
 
 #[cfg(test)]
 mod crop_tests;
+mod dependent;
 mod ftb;
 mod geometry;
 #[cfg(test)]
@@ -540,6 +541,21 @@ mod bridge {
             leaf_size: u32,
             progress: &BuildProgress,
         ) -> Result<Box<HybridOctreeHandle>>;
+        /// Builds the octrees of a 2-component image with dependent
+        /// components (`desc.components` 2, `desc.component` not read):
+        /// colour from component 0, opacity from component 1 (VTK's
+        /// IndependentComponentsOff; ParaView's Use Separate Opacity Array).
+        /// Its selections are made on the opacity field's ranges and both
+        /// fields' errors, count 8 bytes a texel, and their DrawLists say
+        /// `dependent-components` (Composite); read their texels with
+        /// `brick_texels_dependent`. Errors: another component count (4:
+        /// RGBA is not drawn yet), and those of `build_hybrid_octree`.
+        fn build_dependent_octree(
+            bytes: &[u8],
+            desc: &GridDesc,
+            leaf_size: u32,
+            progress: &BuildProgress,
+        ) -> Result<Box<HybridOctreeHandle>>;
         /// Node counts, levels, memory and build time.
         fn summary(self: &HybridOctreeHandle) -> Result<OctreeSummary>;
         /// The cut at normalised tolerance `tolerance` (the first nodes from the
@@ -703,6 +719,18 @@ mod bridge {
             brick: usize,
             texels: &mut [f32],
         ) -> Result<()>;
+        /// Brick `brick`'s texels of both fields of a selection made from
+        /// `build_dependent_octree`'s octree: (colour, opacity) f32 pairs,
+        /// texels x fastest, `2 x` the texel count (with the gradient border
+        /// of `brick_texels_bordered` when `bordered`).
+        fn brick_texels_dependent(
+            self: &SelectionHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            brick: usize,
+            bordered: bool,
+            texels: &mut [f32],
+        ) -> Result<()>;
         /// The shading of the DrawLists and pictures made after this call
         /// (errors: a bad number; a shade without lights or lights not in
         /// threes). The plan then says "volume-shaded" unless it changes no colour.
@@ -763,6 +791,7 @@ pub use bridge::{
     OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, SelectDesc, SelectionSummary, ShadingDesc,
     SurfaceMode, SurfaceSummary,
 };
+use dependent::build_dependent_octree;
 use ftb::ftb_display;
 use geometry::{block_ranges_len, brick_block_ranges, frame_brick_geometry as brick_geometry};
 use octree::build_hybrid_octree;

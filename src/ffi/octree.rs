@@ -17,8 +17,11 @@ pub struct HybridOctreeHandle {
     pub(crate) hybrid: HybridOctree,
     /// The image the octree was built from (dims, spacing, origin).
     pub(crate) shape: GridShape,
-    input_bytes: usize,
-    nan_samples: usize,
+    pub(crate) input_bytes: usize,
+    pub(crate) nan_samples: usize,
+    /// Two dependent fields (see `dependent.rs`): the combined tree the
+    /// selections refine; `hybrid.volume` is then the colour field's.
+    pub(crate) dependent: Option<VolumeOctree>,
     /// Unique per build: a selection remembers the octree it was made from.
     pub(crate) id: u64,
     /// Unique per integrated surface (0: none): a selection's kept
@@ -58,6 +61,7 @@ pub(crate) fn build_with(
             shape: *grid.shape(),
             input_bytes: grid.input_bytes(),
             nan_samples: grid.nan_count(),
+            dependent: None,
             id: next_id(),
             surface_id: 0,
         }))
@@ -80,7 +84,7 @@ impl HybridOctreeHandle {
                 levels: s.levels as u32,
                 leaf_size: s.leaf_size as u32,
                 root_size: s.root_size as u32,
-                octree_bytes: s.octree_bytes,
+                octree_bytes: s.octree_bytes + self.dependent.as_ref().map_or(0, |d| d.octree_bytes()),
                 input_bytes: self.input_bytes,
                 build_ms: s.build_ms,
                 value_min: s.value_range.0,

@@ -40,7 +40,7 @@ const GRADIENT_OPACITY_TABLE: usize = 4096;
 pub struct SelectionHandle {
     pub(crate) selection: Selection,
     octree_id: u64,
-    shape: GridShape,
+    pub(crate) shape: GridShape,
     /// The octree's value range (what 32-bit float texels must resolve).
     value_range: (f64, f64),
     /// The SlabPolygons of the last translucent surface drawn, with its id.
@@ -59,6 +59,8 @@ pub struct SelectionHandle {
     /// The 2D transfer function it was selected for (its DrawLists classify
     /// by it under Composite).
     transfer_2d: Option<TransferFunction2D>,
+    /// Selected from two dependent fields: its DrawLists plan them (`plan::dependent`).
+    pub(crate) dependent: bool,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -213,8 +215,15 @@ pub(crate) fn select_with(
 ) -> Result<(Selection, Option<TransferFunction2D>)> {
     let gradient_opacity =
         vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, octree.volume().value_range())?;
-    let transfer_2d = super::transfer2d::vtk_transfer_2d(desc, &octree.shape)?;
-    let options = select_options(&octree.shape, desc, gradient_opacity.as_ref(), transfer_2d.is_some())?;
+    // A 2D transfer function classifies one field: not two dependent ones (`plan::dependent`).
+    let transfer_2d = match octree.dependent {
+        Some(_) => None,
+        None => super::transfer2d::vtk_transfer_2d(desc, &octree.shape)?,
+    };
+    let mut options = select_options(&octree.shape, desc, gradient_opacity.as_ref(), transfer_2d.is_some())?;
+    // Two dependent fields: two f32 texels a sample, the combined tree (see `dependent.rs`).
+    let tree = octree.dependent.as_ref().unwrap_or(octree.volume());
+    options.bytes_per_texel *= if octree.dependent.is_some() { 2 } else { 1 };
     let hidden = gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     let tf = opacity_function(&desc.opacity_points)?;
     let iso = desc.has_isovalue.then_some(desc.isovalue);
@@ -231,8 +240,8 @@ pub(crate) fn select_with(
     };
     let visible = |min: f64, max: f64| blend.visible(min, max, &shows) || iso.is_some_and(|v| min < v && v <= max);
     let selection = match &octree.hybrid.points {
-        Some(points) => select_with_points(octree.volume(), &options, visible, &points.mass),
-        None => select(octree.volume(), &options, visible),
+        Some(points) if octree.dependent.is_none() => select_with_points(tree, &options, visible, &points.mass),
+        _ => select(tree, &options, visible),
     }?;
     Ok((selection, transfer_2d))
 }
@@ -378,11 +387,12 @@ impl HybridOctreeHandle {
                 shape: self.shape,
                 value_range: self.volume().value_range(),
                 polygons: Mutex::new(None),
-                points: self.hybrid.points.as_ref().map(|p| Arc::clone(&p.set)),
+                points: self.hybrid.points.as_ref().filter(|_| self.dependent.is_none()).map(|p| Arc::clone(&p.set)),
                 lighting: Mutex::new(None),
                 gradient_opacity: Mutex::new(None),
                 region: region(&desc.region)?,
                 transfer_2d,
+                dependent: self.dependent.is_some(),
             }))
         })
     }
@@ -421,6 +431,7 @@ impl SelectionHandle {
         let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
         let list = replan_transfer_2d(list, self.transfer_2d.as_ref());
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
+        let list = crate::plan::dependent::plan_dependent(list, self.dependent);
         Ok(recrop(list, self.region.as_ref(), &octree.shape))
     }
 
@@ -489,6 +500,9 @@ impl SelectionHandle {
             let list = self.list(octree, camera_desc, colour[3])?;
             let surface = octree.hybrid.surface.as_ref().filter(|_| colour[3] > 0.0);
             let drawn = surface.map(|s| (s, colour.map(|v| v as f32)));
+            if list.plan.dependent {
+                return super::dependent::composite_into(&list, bytes, desc, &tf, width, height, rgba);
+            }
             let textures = crate::render::texture::upload(&grid, &list)?;
             let shades = match self.points.as_deref() {
                 Some(set) => crate::points::shade(&grid, set, &tf)?,

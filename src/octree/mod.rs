@@ -10,6 +10,7 @@
 pub mod brute_force;
 pub mod build;
 pub mod cut;
+pub mod dependent;
 pub mod layout;
 pub mod leaf_stats;
 pub mod trilinear;
@@ -17,5 +18,6 @@ pub mod validate;
 pub mod volume_octree;
 
 pub use build::{BuildOptions, DEFAULT_LEAF_SIZE};
+pub use dependent::DependentOctree;
 pub use layout::{Layout, NodeId};
 pub use volume_octree::{NodeRef, OctreeStats, VolumeOctree};

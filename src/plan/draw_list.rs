@@ -94,6 +94,9 @@ pub struct Plan {
     pub blend: Blend,
     /// The passes, in the order they run (e.g. `["surface-opaque", "volume"]`).
     pub passes: Vec<String>,
+    /// Two fields with dependent components: each sample's colour from field
+    /// 0, its opacity from field 1 ([`crate::plan::dependent`]; Composite only).
+    pub dependent: bool,
     /// What each volume sample does besides its classification, in the
     /// order applied (e.g. `["gradient-opacity", "shading"]`), then what
     /// removes samples in every pass, `cropping`, `clipping` (the DrawList's
@@ -236,6 +239,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         skipped_bricks: selection.skipped,
         blend: scene.blend,
         passes,
+        dependent: false,
         effects: Vec::new(),
     };
     if volume {
@@ -284,12 +288,18 @@ fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: 
     }
 }
 
+/// The effect of two dependent fields ([`crate::plan::dependent::EFFECT`]).
+pub(crate) const DEPENDENT_EFFECT: &str = "dependent-components";
+
 /// The plan's [`Plan::effects`]: what each sample does besides its
-/// classification, in the order applied (`gradient-opacity` or
-/// `opacity-scale`, then `shading`), then what `region` (the cropping and
+/// classification, in the order applied (`dependent-components` or
+/// `transfer-2d`, then `gradient-opacity` or `opacity-scale`, then `shading`), then what `region` (the cropping and
 /// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`).
-fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
+pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     let mut effects = Vec::new();
+    if plan.dependent {
+        effects.push(DEPENDENT_EFFECT.to_string());
+    }
     if plan.transfer_2d {
         effects.push("transfer-2d".to_string());
     }

@@ -4,11 +4,13 @@
 //! of each brick, [`point_slabs`] buckets the points of the hybrid
 //! representation into them, the draw list (`draw_list`) says which passes
 //! a scene needs and what each draws, [`crop`] says which samples VTK's
-//! cropping and clipping planes keep, and [`draw_geometry`] makes the OpenGL
+//! cropping and clipping planes keep, [`dependent`] plans a two-field volume
+//! with dependent components, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
 pub mod blend;
 pub mod crop;
+pub mod dependent;
 pub mod draw_geometry;
 mod draw_list;
 pub mod order;

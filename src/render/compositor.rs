@@ -80,6 +80,11 @@
 //! before the frame, and blended in that slab like a batch hit (after slices
 //! `0 .. s`, before slice `s`), nearest last within the slab; a pixel whose
 //! ray misses the brick's box blends the brick's points it still sees.
+//! Two dependent fields ([`crate::plan::Plan::dependent`], see
+//! [`crate::render::dependent`]): each sample's colour is the transfer
+//! function's at the colour texture, its opacity the function's at the
+//! opacity texture, both at the same texel coordinates; the gradient
+//! (shading, gradient opacity) is the colour texture's.
 //! Cropping and clipping planes ([`DrawList::region`], the plan's
 //! `effects`): a sample whose point `p(z)` the region does not keep
 //! ([`crate::plan::crop::KeptRegion::keeps`]) is empty, skipped like a
@@ -124,6 +129,8 @@ struct Prepared<'a, S> {
     index: usize,
     draw: &'a BrickDraw,
     texture: &'a Texture<S>,
+    /// The opacity field's texture of two dependent fields (`None`: one field).
+    opacity: Option<&'a Texture<S>>,
     /// Per axis, whether the min and max faces are in the box.
     closed: [(bool, bool); 3],
     /// `d / d0`.
@@ -222,13 +229,14 @@ pub fn composite_with_points(
     check_list(list, &textures.shape, surface.map(|s| s.0))?;
     check_points(list, points.map(|p| (p.0, p.1)))?;
     textures.check(list)?;
-    Ok(execute_counted(textures, list, tf, width, height, surface, points)?.0)
+    Ok(execute_counted(textures, None, list, tf, width, height, surface, points)?.0)
 }
 
 /// [`composite_with_points`] on checked inputs, and the number of gradients taken.
 #[allow(clippy::too_many_arguments)]
-fn execute_counted(
+pub(crate) fn execute_counted(
     textures: &Textures,
+    opacity: Option<&Textures>,
     list: &DrawList,
     tf: &TransferFunction,
     width: usize,
@@ -236,9 +244,18 @@ fn execute_counted(
     surface: Option<(&Surface, [f32; 4])>,
     points: Option<DrawnPoints<'_>>,
 ) -> Result<(Image, usize)> {
-    match &textures.texels {
-        Texels::F32(t) => execute(t, &textures.shape, list, tf, width, height, surface, points),
-        Texels::F64(t) => execute(t, &textures.shape, list, tf, width, height, surface, points),
+    match (&textures.texels, opacity.map(|o| &o.texels)) {
+        (Texels::F32(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::F64(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::F32(t), Some(Texels::F32(o))) => {
+            execute(t, Some(o), &textures.shape, list, tf, width, height, surface, points)
+        }
+        (Texels::F64(t), Some(Texels::F64(o))) => {
+            execute(t, Some(o), &textures.shape, list, tf, width, height, surface, points)
+        }
+        _ => Err(crate::Error::InvalidArgument(
+            "the colour and opacity textures are stored in different types: upload both with render::dependent".into(),
+        )),
     }
 }
 
@@ -254,7 +271,7 @@ pub(crate) fn composite_counting_gradients(
     check_size(width, height)?;
     check_list(list, &textures.shape, None)?;
     textures.check(list)?;
-    execute_counted(textures, list, tf, width, height, None, None)
+    execute_counted(textures, None, list, tf, width, height, None, None)
 }
 
 /// The points a DrawList draws: the set, each point's shade (one per point
@@ -288,6 +305,7 @@ fn check_points(list: &DrawList, points: Option<(&PointSet, &[PointShade])>) -> 
 #[allow(clippy::too_many_arguments)]
 fn execute<S: Texel>(
     textures: &[Texture<S>],
+    opacity: Option<&[Texture<S>]>,
     shape: &GridShape,
     list: &DrawList,
     tf: &TransferFunction,
@@ -313,7 +331,8 @@ fn execute<S: Texel>(
                 (lo_near || draw.world_lo[a] <= volume_lo[a], hi_near || draw.world_hi[a] >= volume_hi[a])
             });
             let ratio = draw.slice_spacing / d0;
-            Some(Prepared { index, draw, texture: &textures[index], closed, ratio, rect })
+            let opacity = opacity.map(|o| &o[index]);
+            Some(Prepared { index, draw, texture: &textures[index], opacity, closed, ratio, rect })
         })
         .collect();
     let (mut opaque, mut translucent) = (None, None);
@@ -333,6 +352,7 @@ fn execute<S: Texel>(
     let transfer_2d = list.transfer_2d.as_ref().filter(|_| list.plan.transfer_2d);
     let opacity_scale = list.plan.opacity_scale;
     let plain = list.plan.effects.is_empty()
+        && opacity.is_none()
         && transfer_2d.is_none()
         && lighting.is_none()
         && region.is_none()
@@ -671,13 +691,17 @@ impl<S: Texel> Executor<'_, S> {
         acc: Rgba,
         scratch: &mut Scratch,
     ) -> Rgba {
-        let (grad, [r, gr, bl, a]) = match self.transfer_2d {
+        let (grad, [r, gr, bl, mut a]) = match self.transfer_2d {
             None => (None, self.lut.eval(value)),
             Some(t) => {
                 let g = self.gradient(brick.texture, u, scratch);
                 (Some(g), super::transfer2d::classify(t, value, g))
             }
         };
+        if let Some(o) = brick.opacity {
+            // No colour value is no data (transparent), as a NaN opacity value.
+            a = if value.is_nan() { 0.0 } else { self.lut.eval(o.at_texel(u))[3] };
+        }
         if a <= 0.0 {
             return acc;
         }

@@ -5,7 +5,8 @@
 //! correction, over and under), [`image`] holds and writes pictures,
 //! [`metrics`] compares them, [`reference`](mod@reference) ray-casts the
 //! full-resolution volume, [`compositor`] executes a
-//! [`DrawList`](crate::plan::DrawList) slice by slice, brick by brick. The
+//! [`DrawList`](crate::plan::DrawList) slice by slice, brick by brick,
+//! [`dependent`] draws two fields with dependent components. The
 //! transfer function and its table live in [`crate::transfer`], re-exported
 //! here as [`transfer`].
 //! Inside the crate: `check` (inputs), `sample` (trilinear reconstruction of the grid and of a
@@ -16,6 +17,7 @@
 pub mod blend;
 mod check;
 pub mod compositor;
+pub mod dependent;
 mod geometry;
 pub mod image;
 mod intensity;
@@ -33,5 +35,7 @@ pub use crate::transfer;
 mod blend_tests;
 #[cfg(test)]
 mod crop_tests;
+#[cfg(test)]
+mod dependent_tests;
 #[cfg(test)]
 mod tests;

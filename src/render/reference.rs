@@ -44,7 +44,7 @@ use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_size};
 use super::geometry::ray_box;
 use super::image::Image;
-use super::sample::{grid_value, to_index};
+use super::sample::{grid_value, to_index, trilinear};
 use super::shade::{gradient, normal};
 use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::{Error, Result};
@@ -106,6 +106,24 @@ pub fn reference_blend(
     options: &ReferenceOptions<'_>,
     blend: &Blend,
 ) -> Result<Image> {
+    reference_fields(grid, None, tf, camera, width, height, options, blend)
+}
+
+/// [`reference_blend`] with, when `opacity` is given, each sample's opacity
+/// from the opacity function at that field instead of `grid`'s (two
+/// dependent fields, see [`crate::render::dependent`]); `opacity` must be a
+/// field of the same image.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn reference_fields(
+    grid: &Grid<'_>,
+    opacity: Option<&Grid<'_>>,
+    tf: &TransferFunction,
+    camera: &Camera,
+    width: usize,
+    height: usize,
+    options: &ReferenceOptions<'_>,
+    blend: &Blend,
+) -> Result<Image> {
     check_size(width, height)?;
     let shape = *grid.shape();
     let d0 = crate::data::spacing::reference_spacing(&shape);
@@ -140,6 +158,7 @@ pub fn reference_blend(
         transfer_2d: options.transfer_2d.filter(|_| blend.mode == BlendMode::Composite),
         blend: *blend,
         region: options.region,
+        opacity,
     }))
 }
 
@@ -158,6 +177,8 @@ struct Caster<'a> {
     transfer_2d: Option<&'a TransferFunction2D>,
     blend: Blend,
     region: Option<&'a KeptRegion>,
+    /// The opacity field of two dependent fields (`None`: the opacity is the grid's).
+    opacity: Option<&'a Grid<'a>>,
 }
 
 impl GridVisitor for Caster<'_> {
@@ -220,13 +241,21 @@ impl Caster<'_> {
                     continue;
                 }
                 let sample = |acc: Rgba, value: f64, ratio: f64| {
-                    let (grad, [r, gr, b, a]) = match self.transfer_2d {
+                    let (grad, [r, gr, b, mut a]) = match self.transfer_2d {
                         None => (None, self.tf.eval(value).map(f64::from)),
                         Some(t) => {
                             let grad = gradient(|v| grid_value(g, v), u, self.shape.spacing);
                             (Some(grad), super::transfer2d::classify(t, value, grad))
                         }
                     };
+                    if let Some(o) = self.opacity {
+                        // No colour value is no data (transparent), as a NaN opacity value.
+                        a = if value.is_nan() {
+                            0.0
+                        } else {
+                            f64::from(self.tf.opacity(trilinear(self.shape.dims, u, |i, j, k| o.value(i, j, k))))
+                        };
+                    }
                     let (rgb, a) = self.effects(g, u, grad, [r, gr, b], a, ray.direction);
                     if a > 0.0 {
                         under(acc, rgb, correct_opacity(a, ratio))

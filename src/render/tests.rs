@@ -58,6 +58,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         skipped_bricks: 0,
         blend: Default::default(),
         passes: Vec::new(),
+        dependent: false,
         effects: Vec::new(),
     };
     DrawList {

@@ -305,6 +305,20 @@ impl<S: Texel> Texture<S> {
         Some(t)
     }
 
+    /// This texture's box, stride and border holding `data` instead (no lattice differences).
+    fn with_data<D>(&self, data: Vec<D>) -> Texture<D> {
+        Texture {
+            lo: self.lo,
+            hi: self.hi,
+            stride: self.stride,
+            n: self.n,
+            border: self.border,
+            last: self.last,
+            data,
+            lattice: Vec::new(),
+        }
+    }
+
     /// True when this is the texture of `brick`.
     fn is_of(&self, brick: &Brick) -> bool {
         (self.lo, self.hi, self.stride, self.n.map(|n| n - 2 * self.border))
@@ -388,6 +402,17 @@ impl Textures {
             Texels::F32(t) => t.iter().map(|t| t.data.len() * 4).sum(),
             Texels::F64(t) => t.iter().map(|t| t.data.len() * 8).sum(),
         }
+    }
+
+    /// The same textures stored as `f64` (exact: every `f32` is an `f64`).
+    pub(crate) fn widened(self) -> Textures {
+        let texels = match self.texels {
+            Texels::F32(t) => {
+                Texels::F64(t.iter().map(|t| t.with_data(t.data.iter().map(|&v| f64::from(v)).collect())).collect())
+            }
+            wide => wide,
+        };
+        Textures { shape: self.shape, texels }
     }
 
     /// Checks that these are the textures of `list`'s bricks.
@@ -542,6 +567,7 @@ mod tests {
                 skipped_bricks: 0,
                 blend: Default::default(),
                 passes: Vec::new(),
+                dependent: false,
                 effects: Vec::new(),
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),

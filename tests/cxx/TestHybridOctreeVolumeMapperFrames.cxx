@@ -231,18 +231,41 @@ int Warnings()
   values->SetNumberOfTuples(9 * 9 * 9);
   for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
   {
-    values->SetTuple2(i, 0.01 * i, 1.0);
+    // Component 1, the opacity of dependent components: where the scene's opacity shows.
+    values->SetTuple2(i, 0.01 * i, scene.Range[1]);
   }
   image->GetPointData()->SetScalars(values);
   mapper->SetInputDataObject(image);
   mapper->SetComponent(0);
   scene.Window->Render();
   check.Check(TakeWarnings(errors, "", all) == 0, "independent components: no warning\n" + all);
+  // Two dependent components (colour, opacity) are drawn in Composite: no warning.
   scene.Property->IndependentComponentsOff();
   scene.Window->Render();
+  check.Check(TakeWarnings(errors, "", all) == 0, "2 dependent components: no warning\n" + all);
+  check.Check(mapper->GetLastRenderOK() &&
+      std::string(mapper->GetLastEffects()).find("dependent-components") != std::string::npos,
+    "2 dependent components drawn as such: " + std::string(mapper->GetLastEffects()));
+  // Under a reducing blend mode the chosen component is drawn, and said so.
+  mapper->SetBlendModeToMaximumIntensity();
+  scene.Window->Render();
+  check.Check(TakeWarnings(errors, "drawn in Composite only", all) == 1,
+    "2 dependent components under MIP named:\n" + all);
+  check.Check(mapper->GetLastRenderOK(), "2 dependent components under MIP: component 0 drawn");
+  mapper->SetBlendModeToComposite();
+  // Four dependent components (RGBA) are not drawn yet: component 0 drawn, said so.
+  vtkNew<vtkDoubleArray> rgba;
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(9 * 9 * 9);
+  for (vtkIdType i = 0; i < rgba->GetNumberOfTuples(); ++i)
+  {
+    rgba->SetTuple4(i, 0.01 * i, 0.5, 0.5, 1.0);
+  }
+  image->GetPointData()->SetScalars(rgba);
+  scene.Window->Render();
   check.Check(
-    TakeWarnings(errors, "dependent components", all) == 1, "dependent components named:\n" + all);
-  check.Check(mapper->GetLastRenderOK(), "dependent components: component 0 drawn");
+    TakeWarnings(errors, "4-component array", all) == 1, "4 dependent components named:\n" + all);
+  check.Check(mapper->GetLastRenderOK(), "4 dependent components: component 0 drawn");
   return check.Result();
 }
 

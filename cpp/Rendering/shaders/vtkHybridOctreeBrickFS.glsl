@@ -26,6 +26,14 @@ uniform mat4 DCMC;
 uniform vec2 viewportSize;
 uniform vec2 depthScale;
 uniform float nearDepth;
+#ifdef HO_DEPENDENT2
+// Two dependent fields (VTK's IndependentComponentsOff on 2 components):
+// the texture holds (colour, opacity); the colour is the table's at channel
+// 0, its texture coordinate value * colourScaleShift.x + colourScaleShift.y,
+// the opacity the table's at channel 1 through tableScaleShift. The
+// gradient (shading, gradient opacity) is channel 0's, as VTK's.
+uniform vec2 colourScaleShift;
+#endif
 #ifdef HO_GRADIENTS
 // Gradients (shading, gradient opacity; src/render/shade.rs): the brick
 // texture carries one border texel per side; the gradient is the central
@@ -331,6 +339,14 @@ vec4 sampleAt(vec3 p, vec3 v)
   // The gradient first: the table reads its magnitude (one gradient, shared with the shading).
   vec3 g = gradientAt(u);
   vec4 c = transfer2DAt(value, g);
+#elif defined(HO_DEPENDENT2)
+  float opacityValue = texture(brickTexture, (u + vec3(0.5)) / texels).g;
+  if (isnan(opacityValue))
+  {
+    return vec4(0.0);
+  }
+  vec4 c = vec4(texture(transferTable, vec2(value * colourScaleShift.x + colourScaleShift.y, 0.5)).rgb,
+    texture(transferTable, vec2(opacityValue * tableScaleShift.x + tableScaleShift.y, 0.5)).a);
 #else
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
 #endif
