@@ -32,6 +32,7 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         isosurface_values: Vec::new(),
         gradient_opacity_points: Vec::new(),
         region: no_region(),
+        slice_plane: [0.0; 6],
     }
 }
 

@@ -4,7 +4,8 @@
 //! of each brick, [`point_slabs`] buckets the points of the hybrid
 //! representation into them, the draw list (`draw_list`) says which passes
 //! a scene needs and what each draws, [`crop`] says which samples VTK's
-//! cropping and clipping planes keep, and [`draw_geometry`] makes the OpenGL
+//! cropping and clipping planes keep, [`slice`] is the Slice blend mode's
+//! plane, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
 pub mod blend;
@@ -15,6 +16,7 @@ pub mod order;
 pub mod point_slabs;
 pub mod select;
 pub mod slab;
+pub mod slice;
 
 pub use blend::{Blend, BlendMode};
 pub use draw_list::{
@@ -23,3 +25,4 @@ pub use draw_list::{
 };
 pub use point_slabs::add_points;
 pub use slab::Batch;
+pub use slice::SlicePlane;

@@ -33,4 +33,6 @@ mod blend_tests;
 #[cfg(test)]
 mod crop_tests;
 #[cfg(test)]
+mod slice_tests;
+#[cfg(test)]
 mod tests;
