@@ -7,8 +7,9 @@
  * component through a 1D colour and scalar opacity function, shaded when
  * the property asks (Shade), its opacity times the gradient opacity when one
  * is set (GradientOpacity), cropped and clipped by the mapper's cropping and
- * clipping planes. Settings that ask for more (the Slice blend mode, a 2D
- * transfer function, dependent components) are drawn as if off; each one the
+ * clipping planes, under every blend mode (Slice with a vtkPlane as its
+ * slice function). Settings that ask for more (a Slice blend mode without a
+ * valid vtkPlane, a 2D transfer function, dependent components) are drawn as if off; each one the
  * user has turned on is named in one warning that says what is drawn instead
  * and what to do.
  *

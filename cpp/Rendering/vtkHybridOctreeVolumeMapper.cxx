@@ -3,6 +3,7 @@
 #include "vtkContourValues.h"
 #include "vtkHybridOctreeBridge.h"
 #include "vtkHybridOctreeCameraInput.h"
+#include "vtkHybridOctreeSlice.h"
 #include "vtkHybridOctreeImageInput.h"
 #include "vtkHybridOctreeInteractiveReduction.h"
 #include "vtkHybridOctreeUnsupportedEffects.h"
@@ -608,7 +609,15 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   select.Isovalue = this->Isovalue;
   // The blend modes the bridge draws (the others are warned about and drawn Composite).
   const int mode = this->BlendMode;
-  select.BlendMode = mode >= COMPOSITE_BLEND && mode <= ISOSURFACE_BLEND ? mode : COMPOSITE_BLEND;
+  select.BlendMode = mode >= COMPOSITE_BLEND && mode <= SLICE_BLEND ? mode : COMPOSITE_BLEND;
+  // Slice on the property's vtkPlane, into the octree's frame as VTK takes
+  // it; without a valid one (warned about) Composite.
+  std::string sliceProblem;
+  if (select.BlendMode == SLICE_BLEND &&
+    !vtkHybridOctreeSlice::Describe(property, in.ModelInverse, select.SlicePlane, sliceProblem))
+  {
+    select.BlendMode = COMPOSITE_BLEND;
+  }
   if (select.BlendMode == ISOSURFACE_BLEND)
   {
     vtkContourValues* values = property->GetIsoSurfaceValues();
@@ -622,7 +631,8 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   // Shaded: the bricks' gradient borders count in the budget (Composite and
   // Isosurface only; Isosurface always has them).
   select.GradientBorder = property->GetShade(0) != 0 &&
-    (select.BlendMode == COMPOSITE_BLEND || select.BlendMode == ISOSURFACE_BLEND);
+    (select.BlendMode == COMPOSITE_BLEND || select.BlendMode == ISOSURFACE_BLEND ||
+      select.BlendMode == SLICE_BLEND);
   select.GradientOpacityPoints = GradientOpacityPoints(property);
   select.Region = in.Region;
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
@@ -637,6 +647,7 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   key.insert(key.end(), select.Region.ClippingPlanes.begin(), select.Region.ClippingPlanes.end());
   key.push_back(static_cast<double>(select.IsosurfaceValues.size()));
   key.insert(key.end(), select.IsosurfaceValues.begin(), select.IsosurfaceValues.end());
+  key.insert(key.end(), select.SlicePlane, select.SlicePlane + 6);
   key.push_back(static_cast<double>(select.GradientOpacityPoints.size()));
   key.insert(key.end(), select.GradientOpacityPoints.begin(), select.GradientOpacityPoints.end());
   return select;
@@ -959,6 +970,7 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   shading.Shade = list.Passes.find("shaded") != std::string::npos;
   in.Drawer.SetShading(shading);
   in.Drawer.SetIsosurfaces(isosurface ? in.Isosurfaces : std::vector<double>());
+  in.Drawer.SetSlice(!list.SlicePlane.empty());
   in.Drawer.SetOpacityEffects(
     list.Gradients, list.GradientOpacityTable, list.GradientOpacityEnd, list.OpacityScale);
   const std::size_t border = bordered ? 1 : 0;
