@@ -478,9 +478,15 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   // VTK's opacities are per ScalarOpacityUnitDistance U; the DrawList corrects
   // per d0 = min spacing: a table opacity 1 - (1 - a)^(d0 / U) gives
   // 1 - (1 - a)^(d / U) after the DrawList's correction.
+  // The Slice blend mode takes VTK's table opacity as it is (VTK corrects
+  // its table for Composite only, vtkOpenGLVolumeOpacityTable).
   const double unit = property->GetScalarOpacityUnitDistance(0);
   const double d0 = std::min({ in.Grid.Spacing[0], in.Grid.Spacing[1], in.Grid.Spacing[2] });
-  const double exponent = unit > 0.0 ? d0 / unit : 1.0;
+  double plane[6];
+  std::string noSlice;
+  const bool slice = this->BlendMode == SLICE_BLEND &&
+    vtkHybridOctreeSlice::Describe(property, nullptr, plane, noSlice);
+  const double exponent = unit > 0.0 && !slice ? d0 / unit : 1.0;
   const int n = this->TableSize;
   std::vector<double> rgb(3 * static_cast<std::size_t>(n));
   std::vector<double> alpha(static_cast<std::size_t>(n));
