@@ -30,7 +30,8 @@ median ms of each, the ratio Hybrid / Volume, the RMSE (RGB in [0, 1])
 between the two pictures, our plan (the passes), texture MB and estimated
 error; then the peak RSS of the process. --json prints one JSON object.
 --check (the CTest smoke run) fails unless every row is complete, the plan
-is "volume-shaded" exactly in the shaded rows, the effects name cropping
+is the row's volume pass ("volume", "volume-isosurface"), "-shaded" exactly
+in the shaded rows, the effects name cropping
 exactly in the cropped row, the estimated error is 0 and
 the RMSE below --max-rmse.
 """
@@ -46,6 +47,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "paraview"))
 
+from paraview import servermanager  # noqa: E402
 from paraview.simple import (Delete, Hide, LoadPlugin, Render, Wavelet,  # noqa: E402
                              XMLImageDataReader)
 from pvtest import Checks, generate_phantom, report, rmse, window_rgb  # noqa: E402
@@ -56,10 +58,8 @@ VOLUME = "Volume"
 
 
 # One line per effect: its name and the display properties it sets (a dict,
-# or a function of the data's bounds (xmin, xmax, ymin, ...) returning one).
-# Cropping, once the plugin draws it, the lower half in x:
-#   ("crop", lambda b: {"UseCropping": 1, "CroppingOrigin": [b[0], b[2], b[4]],
-#                       "CroppingScale": [0.5, 1.0, 1.0]}),
+# or a function of the data's bounds (xmin, xmax, ymin, ...) and value range
+# (lo, hi) returning one).
 EFFECTS = [
     ("plain", {}),
     ("shade", {"Shade": 1}),
@@ -68,9 +68,22 @@ EFFECTS = [
     ("shade-specular", {"Shade": 1, "Specular": 0.5, "SpecularPower": 30.0}),
     ("shade-glossy", {"Shade": 1, "Specular": 1.0, "SpecularPower": 100.0}),
     # Use Cropping: the box [o + min s, o + max s] keeps 20 % to 70 % of each axis of the bounds b.
-    ("cropping", lambda b: {"UseCropping": 1, "CroppingScale": [0.5] * 3,
-                            "CroppingOrigin": [0.5 * b[2 * a] + 0.2 * (b[2 * a + 1] - b[2 * a]) for a in range(3)]}),
+    ("cropping", lambda b, r: {"UseCropping": 1, "CroppingScale": [0.5] * 3,
+                               "CroppingOrigin": [0.5 * b[2 * a] + 0.2 * (b[2 * a + 1] - b[2 * a])
+                                                  for a in range(3)]}),
+    # Isosurface at a quarter and 70 % of the range; the unit distance the
+    # sample spacing (tests/paraview/test_isosurface.py says why).
+    ("isosurface", lambda b, r: {"BlendMode": "Isosurface", "ScalarOpacityUnitDistance": 1.0,
+                                 "IsosurfaceValues": [r[0] + 0.25 * (r[1] - r[0]), r[0] + 0.7 * (r[1] - r[0])]}),
+    ("shade-isosurface", lambda b, r: {"Shade": 1, "BlendMode": "Isosurface", "ScalarOpacityUnitDistance": 1.0,
+                                       "IsosurfaceValues": [r[0] + 0.25 * (r[1] - r[0]),
+                                                            r[0] + 0.7 * (r[1] - r[0])]}),
 ]
+
+
+def properties_of(properties, bounds, value_range):
+    """The display properties of one EFFECTS entry for the data's bounds and value range."""
+    return properties(bounds, value_range) if callable(properties) else properties
 
 parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
 parser.add_argument("--plugin", required=True, help="HybridOctree.so")
@@ -140,6 +153,16 @@ def measure(view, display, representation, name):
     return statistics.median(frames), picture
 
 
+def snapshot(value):
+    """A property's value as plain Python: GetPropertyValue gives vector and
+    enumeration properties as live objects, which later changes would alter."""
+    if isinstance(value, servermanager.EnumerationProperty):
+        return value.GetData()
+    if isinstance(value, servermanager.VectorProperty):
+        return list(value)
+    return value
+
+
 def run_dataset(dataset):
     source = source_of(dataset)
     source.UpdatePipeline()
@@ -152,20 +175,20 @@ def run_dataset(dataset):
     look_at(view, bounds)
     display.TextureBudgetMB = full_budget_mb(source.GetDataInformation().GetExtent(),
                                              display.SMProxy.GetProperty("OctreeLeafSize").GetElement(0))
-    touched = sorted({k for _, p in EFFECTS for k in (p(bounds) if callable(p) else p)})
-    defaults = {k: display.GetPropertyValue(k) for k in touched}
+    touched = sorted({k for _, p in EFFECTS for k in properties_of(p, bounds, value_range)})
+    defaults = {k: snapshot(display.GetPropertyValue(k)) for k in touched}
     defaults_seen.update(defaults)
     rows = []
     for name, properties in effects:
         for k, v in defaults.items():
             setattr(display, k, v)
-        for k, v in (properties(bounds) if callable(properties) else properties).items():
+        for k, v in properties_of(properties, bounds, value_range).items():
             setattr(display, k, v)
         stem = "%s-%s" % (dataset, name)
         volume_ms, volume_picture = measure(view, display, VOLUME, stem + "-volume")
         hybrid_ms, hybrid_picture = measure(view, display, HYBRID, stem + "-hybrid")
-        rows.append({"dataset": dataset, "effect": name, "properties": properties if isinstance(properties, dict)
-                     else properties(bounds), "volume_ms": volume_ms, "hybrid_ms": hybrid_ms,
+        rows.append({"dataset": dataset, "effect": name,
+                     "properties": properties_of(properties, bounds, value_range), "volume_ms": volume_ms, "hybrid_ms": hybrid_ms,
                      "ratio": hybrid_ms / volume_ms, "rmse": rmse(hybrid_picture, volume_picture),
                      "plan": info(display, "LastPlan"), "effects": info(display, "LastEffects"), "texture_mb": info(display, "LastTextureMB"),
                      "estimated_error": info(display, "LastEstimatedError")})
@@ -205,7 +228,9 @@ if args.check:
         what = "%s %s" % (r["dataset"], r["effect"])
         t.check(r["volume_ms"] > 0.0 and r["hybrid_ms"] > 0.0, what + ": times")
         shaded = bool(r["properties"].get("Shade"))
-        t.check((r["plan"] == "volume-shaded") == shaded, what + ": plan %r" % r["plan"])
+        volume_pass = "volume-isosurface" if r["properties"].get("BlendMode") == "Isosurface" else "volume"
+        expected = volume_pass + ("-shaded" if shaded else "")
+        t.check(r["plan"] == expected, what + ": plan %r, not %r" % (r["plan"], expected))
         cropped = bool(r["properties"].get("UseCropping"))
         t.check(("cropping" in r["effects"].split(",")) == cropped, what + ": effects %r" % r["effects"])
         t.check(r["estimated_error"] == 0.0, what + ": full budget, estimated error %g" % r["estimated_error"])

@@ -156,6 +156,9 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   list.Passes = std::string(out.passes);
   list.Effects = std::string(out.effects);
   list.Gradients = out.gradients;
+  list.Bordered = out.bordered;
+  list.BlendMode = out.blend_mode;
+  list.Shading = out.shading;
   list.OpacityScale = out.opacity_scale;
   CopyInto(out.gradient_opacity_table, list.GradientOpacityTable);
   list.GradientOpacityEnd = out.gradient_opacity_end;

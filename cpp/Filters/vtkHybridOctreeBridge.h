@@ -262,6 +262,12 @@ struct DrawList
   /// The samples take gradients (shading or gradient opacity): the brick
   /// textures carry the gradient border (GetBrickTexelsBordered()).
   bool Gradients = false;
+  /// The brick textures carry one border texel per side
+  /// (GetBrickTexelsBordered()): with gradients, or Isosurface blending.
+  bool Bordered = false;
+  /// The volume's blend mode as drawn (vtkVolumeMapper::BlendModes).
+  int BlendMode = 0;
+  bool Shading = false;      ///< the samples are shaded
   double OpacityScale = 1.0; ///< every opacity times this before the correction
   /// With "gradient-opacity": the function at magnitudes k End / (n - 1),
   /// k = 0 .. n (data units per model unit), held past the ends; else empty.

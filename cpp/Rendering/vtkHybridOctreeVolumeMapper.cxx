@@ -176,24 +176,19 @@ std::vector<double> GradientOpacityPoints(vtkVolumeProperty* property)
   return vtkHybridOctreeBridge::OpacityPoints(property->GetStoredGradientOpacity(0));
 }
 
-/// The passes an interactive frame runs for the DrawList's `passes`: a
-/// translucent surface per brick instead of in the slabs, no points.
-/// The reduction of the plan's volume pass: 0 Composite (`volume`,
-/// `volume-shaded`), 1 `volume-mip`, 2 `volume-minip`, 3 `volume-average`,
-/// 4 `volume-additive` (the brick shader's reduceMode).
-int ReduceMode(const std::string& passes)
+/// The reduction of the DrawList's blend mode, the brick shader's
+/// reduceMode: 1 maximum, 2 minimum, 3 average intensity, 4 additive (VTK's
+/// values), 0 for the compositing modes.
+int ReduceMode(int blendMode)
 {
-  const char* names[] = { "volume-mip", "volume-minip", "volume-average", "volume-additive" };
-  for (int mode = 1; mode <= 4; ++mode)
-  {
-    if (passes.find(names[mode - 1]) != std::string::npos)
-    {
-      return mode;
-    }
-  }
-  return 0;
+  return blendMode >= vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND &&
+      blendMode <= vtkVolumeMapper::ADDITIVE_BLEND
+    ? blendMode
+    : 0;
 }
 
+/// The passes an interactive frame runs for the DrawList's `passes`: a
+/// translucent surface per brick instead of in the slabs, no points.
 std::string InteractivePlan(const std::string& passes)
 {
   std::string plan;
@@ -659,13 +654,12 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   return select;
 }
 
-bool vtkHybridOctreeVolumeMapper::IsStillSelectionCurrent(vtkVolumeProperty* property) const
+bool vtkHybridOctreeVolumeMapper::IsStillSelectionCurrent(
+  const SelectDescription& still, const std::vector<double>& key) const
 {
   const vtkInternals& in = *this->Internals;
-  std::vector<double> key;
-  const SelectDescription select = this->DescribeSelection(property, this->BudgetMB, key);
   return in.Still.Selected && in.Still.Time > in.OctreeTime && in.Still.Key == key &&
-    in.Still.Opacity == select.OpacityPoints;
+    in.Still.Opacity == still.OpacityPoints;
 }
 
 bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, bool interactive)
@@ -707,9 +701,9 @@ bool vtkHybridOctreeVolumeMapper::ChooseSelection(vtkRenderer* ren, vtkVolumePro
   // The frame's isosurface values (the Isosurface blend mode), whichever
   // selection it draws: every selection's key holds them.
   std::vector<double> key;
-  this->Internals->Isosurfaces =
-    this->DescribeSelection(property, this->BudgetMB, key).IsosurfaceValues;
-  if (interactive && this->IsStillSelectionCurrent(property))
+  const SelectDescription still = this->DescribeSelection(property, this->BudgetMB, key);
+  this->Internals->Isosurfaces = still.IsosurfaceValues;
+  if (interactive && this->IsStillSelectionCurrent(still, key))
   {
     this->Internals->Frame = &this->Internals->Still;
     return true;
@@ -960,11 +954,11 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   // Gradients (shading, gradient opacity) or Isosurface: textures with one
   // border texel per side (the gradient and the sample before a brick's
   // first read them); the resident ones of the other kind are released first.
-  const bool isosurface = list.Passes.find("volume-isosurface") != std::string::npos;
-  const bool bordered = list.Gradients || isosurface;
+  const bool isosurface = list.BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND;
+  const bool bordered = list.Bordered;
   // MIP and MinIP: coarse textures keep their peaks (other texels, so the
   // resident textures of the other kind go too).
-  const int reduceMode = ReduceMode(list.Passes);
+  const int reduceMode = ReduceMode(list.BlendMode);
   const bool pooled = reduceMode == 1 || reduceMode == 2;
   if (bordered != in.BorderedTextures || pooled != in.PooledTextures)
   {
@@ -973,7 +967,7 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     in.PooledTextures = pooled;
   }
   ShadingDescription shading = in.Shading;
-  shading.Shade = list.Passes.find("shaded") != std::string::npos;
+  shading.Shade = list.Shading;
   in.Drawer.SetShading(shading);
   in.Drawer.SetIsosurfaces(isosurface ? in.Isosurfaces : std::vector<double>());
   in.Drawer.SetSlice(!list.SlicePlane.empty());
@@ -1131,7 +1125,7 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
   // them, so all of it then. Additive shows every ray crossing the volume's
   // box (opaque, black without a sample), so its region is that box: the
   // bricks' boxes leave out those cropping and clipping remove whole.
-  const int reduceMode = ReduceMode(list.Passes);
+  const int reduceMode = ReduceMode(list.BlendMode);
   double region[4] = { -1.0, 1.0, -1.0, 1.0 };
   if (this->LastPoints == 0 && reduceMode == 4)
   {

@@ -286,8 +286,10 @@ protected:
   /// Whether `ren`'s window asks for an interactive frame rate.
   bool IsInteractive(vtkRenderer* ren) const;
   /// Whether the selection of the last still frame is up to date (an
-  /// interactive frame draws it when its textures are resident).
-  bool IsStillSelectionCurrent(vtkVolumeProperty* property) const;
+  /// interactive frame draws it when its textures are resident): made from
+  /// `still`, DescribeSelection()'s at BudgetMB, with its `key`.
+  bool IsStillSelectionCurrent(
+    const vtkHybridOctreeBridge::SelectDescription& still, const std::vector<double>& key) const;
   /// The budget of a frame of `ren`: InteractiveBudgetMB (at most BudgetMB)
   /// when interactive, else BudgetMB.
   double FrameBudgetMB(vtkRenderer* ren) const;

@@ -3,47 +3,8 @@
 //! bad descriptions are refused with a message.
 
 use super::render::region;
-use super::test_support::{build_volume_octree, no_region, select_desc};
-use super::{CameraDesc, GridDesc, RegionDesc, ScalarType, SelectDesc};
-
-const N: usize = 17;
-
-fn data() -> Vec<f32> {
-    (0..N * N * N)
-        .map(|i| {
-            let (x, y, z) = ((i % N) as f32 - 8.0, ((i / N) % N) as f32 - 7.0, (i / (N * N)) as f32 - 9.0);
-            1.0 - (x * x + y * y + z * z).sqrt() / 10.0
-        })
-        .collect()
-}
-
-fn bytes(data: &[f32]) -> &[u8] {
-    // SAFETY: f32 has no padding; the byte view covers exactly the slice's storage.
-    unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, std::mem::size_of_val(data)) }
-}
-
-/// World box x in [-3, 13], y in [2, 26], z in [5, 13].
-fn desc() -> GridDesc {
-    GridDesc {
-        scalar_type: ScalarType::F32,
-        dims: [N; 3],
-        spacing: [1.0, 1.5, 0.5],
-        origin: [-3.0, 2.0, 5.0],
-        components: 1,
-        component: -1,
-    }
-}
-
-fn camera() -> CameraDesc {
-    CameraDesc {
-        position: [30.0, -20.0, 40.0],
-        focal_point: [5.0, 14.0, 9.0],
-        view_up: [0.0, 0.0, 1.0],
-        parallel: false,
-        parallel_scale: 1.0,
-        view_angle: 30.0,
-    }
-}
+use super::test_support::{as_bytes, ball, ball_camera, ball_desc, build_volume_octree, no_region, select_desc};
+use super::{RegionDesc, SelectDesc};
 
 fn cropping(planes: [f64; 6]) -> RegionDesc {
     RegionDesc { cropping: true, cropping_planes: planes, cropping_flags: 0x2000, ..no_region() }
@@ -51,11 +12,11 @@ fn cropping(planes: [f64; 6]) -> RegionDesc {
 
 #[test]
 fn no_op_cropping_and_planes_are_dropped_and_acting_ones_reported() {
-    let d = data();
-    let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+    let d = ball();
+    let h = build_volume_octree(as_bytes(&d), &ball_desc(), 4).unwrap();
     let select = |region: RegionDesc| h.select_bricks(&SelectDesc { region, ..select_desc(1 << 24) }).unwrap();
     let plain = select(no_region());
-    let list = plain.draw_list(&h, &camera(), 0.0).unwrap();
+    let list = plain.draw_list(&h, &ball_camera(), 0.0).unwrap();
     assert_eq!((list.passes.as_str(), list.effects.as_str()), ("volume", ""));
     assert!(!list.region.cropping && list.region.clipping_planes.is_empty());
     // The whole box, a plane with the whole box on its kept side: nothing acts.
@@ -65,13 +26,13 @@ fn no_op_cropping_and_planes_are_dropped_and_acting_ones_reported() {
     };
     let whole = select(around);
     assert_eq!(whole.selection.bricks, plain.selection.bricks);
-    let list = whole.draw_list(&h, &camera(), 0.0).unwrap();
+    let list = whole.draw_list(&h, &ball_camera(), 0.0).unwrap();
     assert_eq!(list.effects, "");
     assert!(!list.region.cropping && list.region.clipping_planes.is_empty());
     // Half the box along x, and a plane cutting y: both act, fewer bricks.
     let plane = vec![0.0, 13.0, 0.0, 0.0, -1.0, 0.0];
     let cut = select(RegionDesc { clipping_planes: plane.clone(), ..cropping([-10.0, 4.5, 0.0, 30.0, 0.0, 20.0]) });
-    let list = cut.draw_list(&h, &camera(), 0.0).unwrap();
+    let list = cut.draw_list(&h, &ball_camera(), 0.0).unwrap();
     assert_eq!((list.passes.as_str(), list.effects.as_str()), ("volume", "cropping,clipping"));
     assert_eq!((list.region.cropping_planes, list.region.clipping_planes), ([-10.0, 4.5, 0.0, 30.0, 0.0, 20.0], plane));
     assert!(cut.selection.skipped > plain.selection.skipped);
@@ -93,8 +54,8 @@ fn bad_regions_are_refused() {
     // Cropping off: its planes are not read.
     let off = RegionDesc { cropping: false, ..cropping([f64::NAN; 6]) };
     assert_eq!(region(&off).unwrap(), None);
-    let d = data();
-    let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+    let d = ball();
+    let h = build_volume_octree(as_bytes(&d), &ball_desc(), 4).unwrap();
     let e = h.select_bricks(&SelectDesc { region: cropping([1.0, 0.0, 0.0, 1.0, 0.0, 1.0]), ..select_desc(1 << 20) });
     assert!(e.unwrap_err().to_string().contains("x min 1 is above its max 0"));
 }

@@ -4,51 +4,13 @@
 //! function that varies and hides everything for one that is 0 everywhere,
 //! bad points are refused with a message.
 
-use super::test_support::{build_volume_octree, select_desc};
-use super::{CameraDesc, GridDesc, ScalarType, SelectDesc};
-
-const N: usize = 17;
-
-fn data() -> Vec<f32> {
-    (0..N * N * N)
-        .map(|i| {
-            let (x, y, z) = ((i % N) as f32 - 8.0, ((i / N) % N) as f32 - 7.0, (i / (N * N)) as f32 - 9.0);
-            1.0 - (x * x + y * y + z * z).sqrt() / 10.0
-        })
-        .collect()
-}
-
-fn bytes(data: &[f32]) -> &[u8] {
-    // SAFETY: f32 has no padding; the byte view covers exactly the slice's storage.
-    unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, std::mem::size_of_val(data)) }
-}
-
-fn desc() -> GridDesc {
-    GridDesc {
-        scalar_type: ScalarType::F32,
-        dims: [N; 3],
-        spacing: [1.0, 1.5, 0.5],
-        origin: [-3.0, 2.0, 5.0],
-        components: 1,
-        component: -1,
-    }
-}
-
-fn camera() -> CameraDesc {
-    CameraDesc {
-        position: [30.0, -20.0, 40.0],
-        focal_point: [5.0, 14.0, 9.0],
-        view_up: [0.0, 0.0, 1.0],
-        parallel: false,
-        parallel_scale: 1.0,
-        view_angle: 30.0,
-    }
-}
+use super::test_support::{as_bytes, ball, ball_camera, ball_desc, build_volume_octree, select_desc};
+use super::SelectDesc;
 
 #[test]
 fn selection_borders_only_a_varying_function_and_hides_under_zero() {
-    let d = data();
-    let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+    let d = ball();
+    let h = build_volume_octree(as_bytes(&d), &ball_desc(), 4).unwrap();
     let with = |points: Vec<f64>| {
         h.select_bricks(&SelectDesc { gradient_opacity_points: points, ..select_desc(40_000) }).unwrap()
     };
@@ -72,10 +34,10 @@ fn selection_borders_only_a_varying_function_and_hides_under_zero() {
 
 #[test]
 fn draw_lists_carry_the_effects_and_the_table() {
-    let d = data();
-    let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+    let d = ball();
+    let h = build_volume_octree(as_bytes(&d), &ball_desc(), 4).unwrap();
     let s = h.select_bricks(&SelectDesc { gradient_border: true, ..select_desc(40_000) }).unwrap();
-    let list = || s.draw_list(&h, &camera(), 0.0).unwrap();
+    let list = || s.draw_list(&h, &ball_camera(), 0.0).unwrap();
     let plain = list();
     assert_eq!((plain.effects.as_str(), plain.gradients, plain.opacity_scale), ("", false, 1.0));
     assert!(plain.gradient_opacity_table.is_empty());

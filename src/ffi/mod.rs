@@ -382,6 +382,16 @@ mod bridge {
         /// The samples take gradients (shading or gradient opacity): the
         /// brick textures carry the gradient border (`brick_texels_bordered`).
         gradients: bool,
+        /// The brick textures carry one border texel per side
+        /// (`brick_texels_bordered`): with gradients, or the Isosurface
+        /// blend mode (the sample before a brick's first reads it).
+        bordered: bool,
+        /// The volume's blend mode as drawn, VTK's value (0 composite,
+        /// 1 maximum, 2 minimum, 3 average intensity, 4 additive,
+        /// 5 isosurface).
+        blend_mode: i32,
+        /// The samples are shaded (the plan's "shading" effect).
+        shading: bool,
         /// Every sample's opacity times this before the correction (1: none).
         opacity_scale: f64,
         /// With the effect "gradient-opacity": the function at magnitudes

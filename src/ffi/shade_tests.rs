@@ -3,49 +3,11 @@
 //! compositor's, bad descriptions are refused with a message.
 
 use super::render::lighting;
-use super::test_support::{build_volume_octree, select_desc};
-use super::{CameraDesc, GridDesc, ScalarType, SelectDesc, ShadingDesc};
+use super::test_support::{as_bytes, ball, ball_camera, ball_desc, build_volume_octree, select_desc, BALL_N};
+use super::{SelectDesc, ShadingDesc};
 use crate::grid::Grid;
 use crate::render::texture::bordered_position;
 use crate::transfer::lighting::{Lighting, Lights, Material};
-
-const N: usize = 17;
-
-fn data() -> Vec<f32> {
-    (0..N * N * N)
-        .map(|i| {
-            let (x, y, z) = ((i % N) as f32 - 8.0, ((i / N) % N) as f32 - 7.0, (i / (N * N)) as f32 - 9.0);
-            1.0 - (x * x + y * y + z * z).sqrt() / 10.0
-        })
-        .collect()
-}
-
-fn bytes(data: &[f32]) -> &[u8] {
-    // SAFETY: f32 has no padding; the byte view covers exactly the slice's storage.
-    unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, std::mem::size_of_val(data)) }
-}
-
-fn desc() -> GridDesc {
-    GridDesc {
-        scalar_type: ScalarType::F32,
-        dims: [N; 3],
-        spacing: [1.0, 1.5, 0.5],
-        origin: [-3.0, 2.0, 5.0],
-        components: 1,
-        component: -1,
-    }
-}
-
-fn camera() -> CameraDesc {
-    CameraDesc {
-        position: [30.0, -20.0, 40.0],
-        focal_point: [5.0, 14.0, 9.0],
-        view_up: [0.0, 0.0, 1.0],
-        parallel: false,
-        parallel_scale: 1.0,
-        view_angle: 30.0,
-    }
-}
 
 /// VTK's default lighting: a white headlight.
 fn headlight(ambient: f64, diffuse: f64, specular: f64) -> ShadingDesc {
@@ -88,8 +50,8 @@ fn shading_desc_becomes_the_lighting() {
 
 #[test]
 fn plan_is_volume_shaded_and_textures_have_borders() {
-    let d = data();
-    let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+    let d = ball();
+    let h = build_volume_octree(as_bytes(&d), &ball_desc(), 4).unwrap();
     let plain = h.select_bricks(&select_desc(40_000)).unwrap();
     let bordered = h.select_bricks(&SelectDesc { gradient_border: true, ..select_desc(40_000) }).unwrap();
     // Border bytes count only when asked for.
@@ -99,25 +61,29 @@ fn plan_is_volume_shaded_and_textures_have_borders() {
     let b = bordered.selection.bricks[0];
     assert_eq!(b.bytes, 4 * b.texels.iter().map(|n| n + 2).product::<usize>());
     assert!(bytes_of(&bordered) <= 40_000);
-    assert_eq!(bordered.draw_list(&h, &camera(), 0.0).unwrap().passes, "volume");
+    assert_eq!(bordered.draw_list(&h, &ball_camera(), 0.0).unwrap().passes, "volume");
     bordered.set_shading(&headlight(0.1, 0.7, 0.2)).unwrap();
-    assert_eq!(bordered.draw_list(&h, &camera(), 0.0).unwrap().passes, "volume-shaded");
+    assert_eq!(bordered.draw_list(&h, &ball_camera(), 0.0).unwrap().passes, "volume-shaded");
     bordered.set_shading(&headlight(1.0, 0.0, 0.0)).unwrap();
-    assert_eq!(bordered.draw_list(&h, &camera(), 0.0).unwrap().passes, "volume", "identity shading is not shading");
+    assert_eq!(
+        bordered.draw_list(&h, &ball_camera(), 0.0).unwrap().passes,
+        "volume",
+        "identity shading is not shading"
+    );
     assert!(bordered.set_shading(&headlight(-1.0, 0.0, 0.0)).is_err());
     // Bordered texels: texel i at clamp(lo + (i - 1) stride, 0, dims - 1).
-    let grid: Grid<'_> = super::grid::grid_of(bytes(&d), &desc()).unwrap();
+    let grid: Grid<'_> = super::grid::grid_of(as_bytes(&d), &ball_desc()).unwrap();
     for (i, b) in bordered.selection.bricks.iter().enumerate() {
         let n = b.texels.map(|n| n + 2);
         let mut texels = vec![0.0f32; n[0] * n[1] * n[2]];
-        bordered.brick_texels_bordered(bytes(&d), &desc(), i, &mut texels).unwrap();
-        let at = |x: usize, y: usize, z: usize| d[x + N * (y + N * z)];
+        bordered.brick_texels_bordered(as_bytes(&d), &ball_desc(), i, &mut texels).unwrap();
+        let at = |x: usize, y: usize, z: usize| d[x + BALL_N * (y + BALL_N * z)];
         for (k, j, ii) in [(0, 0, 0), (n[2] - 1, n[1] - 1, n[0] - 1), (1, n[1] / 2, n[0] - 2)] {
             let p = |a: usize, t: usize| bordered_position(b, grid.dims(), a, t);
             assert_eq!(texels[ii + n[0] * (j + n[1] * k)], at(p(0, ii), p(1, j), p(2, k)));
         }
         let mut short = vec![0.0f32; b.texels.iter().product()];
-        let e = bordered.brick_texels_bordered(bytes(&d), &desc(), i, &mut short).unwrap_err().to_string();
+        let e = bordered.brick_texels_bordered(as_bytes(&d), &ball_desc(), i, &mut short).unwrap_err().to_string();
         assert!(e.contains("texels"), "{e}");
     }
 }

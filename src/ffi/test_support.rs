@@ -2,7 +2,7 @@
 //! and a build without progress.
 
 use super::octree::{build_with, HybridOctreeHandle};
-use super::{GridDesc, RegionDesc, ScalarType, SelectDesc};
+use super::{CameraDesc, GridDesc, RegionDesc, ScalarType, SelectDesc};
 
 /// The bytes of an f32 slice, as the C++ side hands them over.
 pub(crate) fn as_bytes(data: &[f32]) -> &[u8] {
@@ -48,4 +48,42 @@ pub(crate) fn build_volume_octree(
     leaf_size: u32,
 ) -> Result<Box<HybridOctreeHandle>, String> {
     build_with(bytes, desc, leaf_size, &mut |_| true)
+}
+
+/// Samples per axis of [`ball`].
+pub(crate) const BALL_N: usize = 17;
+
+/// A ball, `1 - r / 10` around sample (8, 7, 9) of a [`BALL_N`]^3 grid, x fastest.
+pub(crate) fn ball() -> Vec<f32> {
+    (0..BALL_N * BALL_N * BALL_N)
+        .map(|i| {
+            let n = BALL_N;
+            let (x, y, z) = ((i % n) as f32 - 8.0, ((i / n) % n) as f32 - 7.0, (i / (n * n)) as f32 - 9.0);
+            1.0 - (x * x + y * y + z * z).sqrt() / 10.0
+        })
+        .collect()
+}
+
+/// [`ball`]'s grid, anisotropic and moved: world box x in [-3, 13], y in [2, 26], z in [5, 13].
+pub(crate) fn ball_desc() -> GridDesc {
+    GridDesc {
+        scalar_type: ScalarType::F32,
+        dims: [BALL_N; 3],
+        spacing: [1.0, 1.5, 0.5],
+        origin: [-3.0, 2.0, 5.0],
+        components: 1,
+        component: -1,
+    }
+}
+
+/// A perspective camera that sees all of [`ball_desc`]'s box, obliquely.
+pub(crate) fn ball_camera() -> CameraDesc {
+    CameraDesc {
+        position: [30.0, -20.0, 40.0],
+        focal_point: [5.0, 14.0, 9.0],
+        view_up: [0.0, 0.0, 1.0],
+        parallel: false,
+        parallel_scale: 1.0,
+        view_angle: 30.0,
+    }
 }

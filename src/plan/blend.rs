@@ -104,6 +104,11 @@ impl BlendMode {
         BlendMode::ALL.get(usize::try_from(value).ok()?).copied()
     }
 
+    /// VTK's value of the mode (`vtkVolumeMapper::BlendModes`): the inverse of [`Self::from_vtk`].
+    pub fn to_vtk(self) -> i32 {
+        BlendMode::ALL.iter().position(|&m| m == self).map_or(0, |i| i as i32)
+    }
+
     /// True for the modes that reduce a ray to its largest or smallest value.
     pub fn is_extremum(self) -> bool {
         matches!(self, BlendMode::Mip | BlendMode::Minip)

@@ -90,7 +90,7 @@ use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
 use super::sample::to_index;
-use super::shade::{gradient, normal};
+use super::shade::normal;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::Result;
@@ -323,6 +323,17 @@ fn execute<S: Texel>(
     }
     let lut = Lut::new(tf);
     let splats = points.map(|(set, shades, kind)| splat(list, &shape, set, shades, kind, width, height));
+    let lighting = list.lighting.as_ref().filter(|_| list.plan.shading);
+    let region = list.region.as_ref().filter(|_| !list.plan.effects.is_empty());
+    let isosurfaces = Some(&list.plan.blend).filter(|b| b.mode == crate::plan::BlendMode::Isosurface);
+    let gradient_opacity = list.gradient_opacity.as_ref().filter(|_| list.plan.gradient_opacity);
+    let opacity_scale = list.plan.opacity_scale;
+    let plain = list.plan.effects.is_empty()
+        && lighting.is_none()
+        && region.is_none()
+        && isosurfaces.is_none()
+        && gradient_opacity.is_none()
+        && opacity_scale == 1.0;
     let executor = Executor {
         list,
         splats: splats.as_ref(),
@@ -331,11 +342,12 @@ fn execute<S: Texel>(
         height,
         shape,
         bricks: &bricks,
-        lighting: list.lighting.as_ref().filter(|_| list.plan.shading),
-        region: list.region.as_ref().filter(|_| !list.plan.effects.is_empty()),
-        isosurfaces: Some(&list.plan.blend).filter(|b| b.mode == crate::plan::BlendMode::Isosurface),
-        gradient_opacity: list.gradient_opacity.as_ref().filter(|_| list.plan.gradient_opacity),
-        opacity_scale: list.plan.opacity_scale,
+        lighting,
+        region,
+        isosurfaces,
+        gradient_opacity,
+        plain,
+        opacity_scale,
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
@@ -441,6 +453,9 @@ struct Executor<'a, S> {
     isosurfaces: Option<&'a crate::plan::Blend>,
     /// The gradient opacity (`None`: none, or a constant in `opacity_scale`).
     gradient_opacity: Option<&'a GradientOpacity>,
+    /// True when the plan runs no effect and composites: a sample is the
+    /// transfer function's colour and opacity alone.
+    plain: bool,
     /// Every opacity's constant factor (1: none).
     opacity_scale: f64,
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
@@ -545,7 +560,11 @@ impl<S: Texel> Executor<'_, S> {
             let b = scratch.row[i];
             let rect = self.bricks[b].rect;
             if (rect[0]..rect[1]).contains(&x) && (rect[2]..rect[3]).contains(&y) {
-                acc = self.brick(b, &pr, acc, scratch);
+                acc = if self.plain {
+                    self.brick::<true>(b, &pr, acc, scratch)
+                } else {
+                    self.brick::<false>(b, &pr, acc, scratch)
+                };
                 if acc[3] >= OPAQUE {
                     break;
                 }
@@ -558,8 +577,10 @@ impl<S: Texel> Executor<'_, S> {
     }
 
     /// Blends brick `b`'s slices (and its batches' hits) under `acc`, front
-    /// to back, stopping once `acc` is [`OPAQUE`].
-    fn brick(&self, b: usize, pr: &PixelRay, mut acc: Rgba, scratch: &mut Scratch) -> Rgba {
+    /// to back, stopping once `acc` is [`OPAQUE`]. `PLAIN` ([`Executor::plain`]):
+    /// each sample is the transfer function's colour and corrected opacity
+    /// alone, a loop of its own without the effects' branches.
+    fn brick<const PLAIN: bool>(&self, b: usize, pr: &PixelRay, mut acc: Rgba, scratch: &mut Scratch) -> Rgba {
         let brick = &self.bricks[b];
         self.batch_events(b, pr, scratch);
         let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else {
@@ -588,7 +609,16 @@ impl<S: Texel> Executor<'_, S> {
                 acc = under(acc, c, a);
                 e -= 1;
             }
-            if (s0..s1).contains(&j) && self.keeps(pr, slices[j]) {
+            if PLAIN && (s0..s1).contains(&j) {
+                let dz = slices[j] - za;
+                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel([0, 1, 2].map(|k| ua[k] + dz * ub[k])));
+                if a > 0.0 {
+                    acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
+                    if acc[3] >= OPAQUE {
+                        return acc;
+                    }
+                }
+            } else if !PLAIN && (s0..s1).contains(&j) && self.keeps(pr, slices[j]) {
                 let dz = slices[j] - za;
                 let u = [0, 1, 2].map(|k| ua[k] + dz * ub[k]);
                 let v = brick.texture.at_texel(u);
@@ -667,7 +697,7 @@ impl<S: Texel> Executor<'_, S> {
             return (c, a);
         }
         let h = self.shape.spacing.map(|s| s * texture.stride());
-        let g = gradient(|v| texture.at_texel(v), u, h);
+        let g = texture.gradient_at(u, h);
         scratch.gradients += 1;
         if let Some(f) = self.gradient_opacity {
             a *= f64::from(f.eval(dot(g, g).sqrt()));

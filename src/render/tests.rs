@@ -426,3 +426,23 @@ mod shade_tests;
 
 #[path = "gradient_opacity_tests.rs"]
 mod gradient_opacity_tests;
+
+/// A plan that names an effect none of whose inputs is set takes the
+/// general loop (every effect's branch) and draws exactly what the plain
+/// loop of a plan without effects draws.
+#[test]
+fn the_plain_loop_draws_what_the_general_loop_draws() {
+    let volume = generate(Dataset::MarschnerLobb, 33, ScalarType::F32);
+    let grid = volume.grid(None).unwrap();
+    let tf = TransferFunction::ramp(0.0, 1.0);
+    let camera = Camera::around([0.0; 3], [32.0; 3], 40.0, 30.0, false).unwrap();
+    let bricks = [brick(0, [0, 0, 0], [16, 32, 32], 1), brick(1, [16, 0, 0], [32, 32, 32], 2)];
+    let plain = draw_list(grid.shape(), &camera, &bricks, SurfacePass::None);
+    assert!(plain.plan.effects.is_empty());
+    let mut general = plain.clone();
+    general.plan.effects.push("no-op".into());
+    let a = composite(&grid, &plain, &tf, 48, 40, None).unwrap();
+    let b = composite(&grid, &general, &tf, 48, 40, None).unwrap();
+    assert!(a.rgba.iter().any(|p| p[3] > 0.1), "the volume is drawn");
+    assert_eq!(a, b);
+}

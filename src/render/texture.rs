@@ -30,6 +30,7 @@ use crate::plan::select::Brick;
 use crate::plan::{BlendMode, DrawList};
 use rayon::prelude::*;
 
+mod gradient;
 mod pool;
 
 /// A stored texel: `f32` or `f64`, read back as `f64`.

@@ -208,7 +208,7 @@ impl Lighting {
                     d = -d;
                 }
                 let lit = d > 0.0;
-                let sf = if lit { rv.powf(m.specular_power) } else { 0.0 };
+                let sf = if lit && m.specular > 0.0 { rv.powf(m.specular_power) } else { 0.0 };
                 for a in 0..3 {
                     out[a] = m.ambient * c[a];
                     if lit {
@@ -228,7 +228,7 @@ impl Lighting {
                         // Not unit when two-sided lighting flipped d: normalised, as VTK does.
                         let r = normalize([0, 1, 2].map(|a| 2.0 * d * n[a] - l[a]));
                         let rv = dot(r, view);
-                        let sf = if rv > 0.0 { rv.powf(m.specular_power) } else { 0.0 };
+                        let sf = if rv > 0.0 && m.specular > 0.0 { rv.powf(m.specular_power) } else { 0.0 };
                         for a in 0..3 {
                             dif[a] += d * light.diffuse[a];
                             spe[a] += sf * light.specular[a];

@@ -243,6 +243,8 @@ pub fn run(args: &BenchEffectsArgs) -> Result<()> {
                 let shape = grid.shape();
                 (shape.world([0.0; 3]), shape.world(shape.dims.map(|d| (d - 1) as f64)))
             },
+            value_range: (lo, hi),
+            spacing: grid.shape().spacing.iter().sum::<f64>() / 3.0,
         };
         let budget_bytes = budget.unwrap_or_else(|| full_budget(&grid, &base.octree));
         let cases = effects

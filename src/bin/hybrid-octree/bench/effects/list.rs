@@ -19,6 +19,10 @@ pub struct Context {
     /// The world box of the grid's samples (lowest corner, highest corner):
     /// where the cropping and clipping rows cut.
     pub bounds: ([f64; 3], [f64; 3]),
+    /// The octree's value range (lowest, highest).
+    pub value_range: (f64, f64),
+    /// The mean sample spacing (world units): gradient magnitudes scale with it.
+    pub spacing: f64,
 }
 
 /// A named change of the scene: one row of the table.
@@ -46,6 +50,22 @@ pub const EFFECTS: &[Effect] = &[
     Effect { name: "additive", apply: |s, _| s.blend = BlendMode::Additive },
     Effect { name: "translucent-iso", apply: translucent_surface },
     Effect { name: "shade+translucent-iso", apply: shaded_translucent_surface },
+    Effect { name: "gradient-opacity", apply: gradient_opacity },
+    Effect {
+        name: "shade+gradient-opacity",
+        apply: |s, c| {
+            s.shade.shade = true;
+            gradient_opacity(s, c)
+        },
+    },
+    Effect { name: "isosurface", apply: isosurfaces },
+    Effect {
+        name: "shade+isosurface",
+        apply: |s, c| {
+            s.shade.shade = true;
+            isosurfaces(s, c)
+        },
+    },
     Effect { name: "cropping", apply: |s, c| s.crop.crop = Some(central_box(c)) },
     Effect { name: "clipping", apply: |s, c| s.crop.clip = vec![oblique_plane(c)] },
 ];
@@ -68,6 +88,22 @@ fn translucent_surface(s: &mut SceneArgs, c: &Context) {
 fn shaded_translucent_surface(s: &mut SceneArgs, c: &Context) {
     s.shade.shade = true;
     translucent_surface(s, c);
+}
+
+/// Gradient opacity rising from 0 at magnitude 0 to 1 where the value
+/// changes by a tenth of its range per sample spacing: flat regions fade,
+/// boundaries stay.
+fn gradient_opacity(s: &mut SceneArgs, c: &Context) {
+    let (lo, hi) = c.value_range;
+    let full = 0.1 * (hi - lo).max(f64::MIN_POSITIVE) / c.spacing;
+    s.gradient_opacity = hybrid_octree::transfer::GradientOpacity::new(vec![(0.0, 0.0), (full, 1.0)]).ok();
+}
+
+/// The Isosurface blend mode at a third and two thirds of the value range.
+fn isosurfaces(s: &mut SceneArgs, c: &Context) {
+    let (lo, hi) = c.value_range;
+    s.blend = BlendMode::Isosurface;
+    s.isosurface_values = vec![lo + (hi - lo) / 3.0, lo + 2.0 * (hi - lo) / 3.0];
 }
 
 /// The cropping box of the cropping row: VTK's subvolume keeping the middle

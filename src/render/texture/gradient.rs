@@ -1,0 +1,109 @@
+//! The central-difference gradient of a brick's texture (the rule of
+//! [`crate::render::shade`]) with the texels its seven trilinear samples
+//! share read once.
+//!
+//! The samples `F(u ± e_a)` one texel from `u` have `u`'s fractional
+//! weights `t`, so they interpolate the same z-pairs, y-pairs and x-pairs
+//! one texel over. With `C(dx, dy, dz)` the texel at `i0 + (dx, dy, dz)`,
+//! `i0 = floor(u)`, and the interpolation order of
+//! [`Texture::at_texel`] (z, then y, then x):
+//!
+//! ```text
+//! Z(dx, dy, dz) = lerp(C(dx, dy, dz), C(dx, dy, dz + 1), t_z)
+//! Y(dx, dy, dz) = lerp(Z(dx, dy, dz), Z(dx, dy + 1, dz), t_y)
+//! F(u)          = lerp(Y(0, 0, 0), Y(1, 0, 0), t_x)
+//! F(u + e_x)    = lerp(Y(1, 0, 0), Y(2, 0, 0), t_x)
+//! F(u + e_y)    = lerp(Y(0, 1, 0), Y(1, 1, 0), t_x)
+//! F(u + e_z)    = lerp(Y(0, 0, 1), Y(1, 0, 1), t_x)
+//! ```
+//!
+//! and likewise at `-1`. These are the operations [`Texture::at_texel`]
+//! does at `u ± e_a`, so the gradient is the one of
+//! [`crate::render::shade::gradient`] over `at_texel` up to rounding (the
+//! fraction of `u + 1` may round apart from that of `u`). It computes one
+//! address instead of six and clamps nothing. A point whose
+//! neighbours reach a clamped face (`i0 - 1 < 0` or `i0 + 2 > n - 1` on an
+//! axis) takes the general rule.
+
+use super::{Texel, Texture};
+use crate::octree::trilinear::lerp;
+use crate::render::shade::gradient;
+
+impl<S: Texel> Texture<S> {
+    /// The gradient `g_a = (F(u + e_a) - F(u - e_a)) / (2 h_a)` at texel
+    /// coordinates `u` ([`crate::render::shade`]), `h` the world length of
+    /// one texel step per axis (module documentation).
+    #[inline]
+    pub(crate) fn gradient_at(&self, u: [f64; 3], h: [f64; 3]) -> [f64; 3] {
+        let mut i0 = [0usize; 3];
+        let mut t = [0.0; 3];
+        for a in 0..3 {
+            if !(u[a] >= 1.0 && u[a] < (self.n[a] as f64) - 2.0) {
+                // Inside [1, n - 3] the six neighbours need no clamp.
+                return gradient(|v| self.at_texel(v), u, h);
+            }
+            let i = u[a] as u32;
+            (i0[a], t[a]) = (i as usize, u[a] - i as f64);
+        }
+        let pitch = [1, self.n[0], self.n[0] * self.n[1]];
+        let base = i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2];
+        // Texels from C(-1, -1, -1) to C(2, 2, 2): one bounds check.
+        let lo = base - pitch[0] - pitch[1] - pitch[2];
+        let d = &self.data[lo..=base + 2 * (pitch[0] + pitch[1] + pitch[2])];
+        let at = |dx: isize, dy: isize, dz: isize| {
+            let o = (base - lo) as isize + dx + dy * pitch[1] as isize + dz * pitch[2] as isize;
+            d[o as usize].get()
+        };
+        let z = |dx, dy, dz| lerp(at(dx, dy, dz), at(dx, dy, dz + 1), t[2]);
+        let y = |dx, dy, dz| lerp(z(dx, dy, dz), z(dx, dy + 1, dz), t[1]);
+        let x = |dy, dz, from| lerp(y(from, dy, dz), y(from + 1, dy, dz), t[0]);
+        let y00 = [y(-1, 0, 0), y(0, 0, 0), y(1, 0, 0), y(2, 0, 0)];
+        let up_down = [
+            (lerp(y00[2], y00[3], t[0]), lerp(y00[0], y00[1], t[0])),
+            (x(1, 0, 0), x(-1, 0, 0)),
+            (x(0, 1, 0), x(0, -1, 0)),
+        ];
+        [0, 1, 2].map(|a| (up_down[a].0 - up_down[a].1) / (2.0 * h[a]))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::Texture;
+    use crate::render::shade::gradient;
+
+    /// A bordered-size texture of `n` texels per axis holding an uneven field.
+    fn ramp_texture(n: [usize; 3]) -> Texture<f32> {
+        let data = (0..n[0] * n[1] * n[2])
+            .map(|i| {
+                let (x, y, z) = (i % n[0], (i / n[0]) % n[1], i / (n[0] * n[1]));
+                ((x * x) as f32).sin() + 0.3 * (y * z) as f32 - 0.7 * (z as f32).sqrt()
+            })
+            .collect();
+        let last = n.map(|n| (n - 1) as f64);
+        Texture { lo: [0; 3], hi: n.map(|n| n - 3), stride: 1, n, border: 1, last, data }
+    }
+
+    /// The general rule to rounding (`u + 1` and `u` round their fractions
+    /// apart), inside, at and near every face.
+    #[test]
+    fn the_shared_reads_give_the_general_gradient() {
+        let texture = ramp_texture([7, 6, 8]);
+        let h = [0.5, 1.0, 2.0];
+        let mut checked = 0;
+        for k in 0..=28 {
+            for j in 0..=20 {
+                for i in 0..=24 {
+                    let u = [i as f64 * 0.25, j as f64 * 0.25 + 0.01, k as f64 * 0.25];
+                    let fast = texture.gradient_at(u, h);
+                    let general = gradient(|v| texture.at_texel(v), u, h);
+                    for a in 0..3 {
+                        assert!((fast[a] - general[a]).abs() <= 1e-12, "at {u:?}: {fast:?} against {general:?}");
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 10_000);
+    }
+}
