@@ -1009,7 +1009,16 @@ fn render_slice_draws_the_plane() {
     let base = ["--dataset", "shepp-logan", "--size", "33", "--width", "32", "--height", "32", "--leaf-size", "4"];
     let json = |extra: &[&str]| json_of("render", &[&base[..], extra, &["--output", out]].concat());
     let plain = json(&[]);
-    let slice = json(&["--blend", "slice", "--slice-origin", "16,15,17", "--slice-normal", "0.4,-0.5,0.75", "--reference", truth]);
+    let slice = json(&[
+        "--blend",
+        "slice",
+        "--slice-origin",
+        "16,15,17",
+        "--slice-normal",
+        "0.4,-0.5,0.75",
+        "--reference",
+        truth,
+    ]);
     assert_eq!(slice["passes"], serde_json::json!(["volume-slice"]), "{slice}");
     assert_eq!(slice["blend"]["slice"]["normal"], serde_json::json!([0.4, -0.5, 0.75]), "{slice}");
     assert!(slice["rmse"].as_f64().unwrap() < 0.01, "{slice}");

@@ -15,8 +15,9 @@ bool vtkHybridOctreeSlice::Describe(
                            "SliceFunction (ParaView: Slice Function), ";
   if (!function)
   {
-    problem = what + "and none is set: set a vtkPlane with SetSliceFunction(); the volume is drawn "
-                     "with Composite blending";
+    problem = what +
+      "and none is set: set a vtkPlane with SetSliceFunction(); the volume is drawn "
+      "with Composite blending";
     return false;
   }
   vtkPlane* p = vtkPlane::SafeDownCast(function);

@@ -13,7 +13,9 @@ use super::guard::{check_len, guarded, Bridged};
 use super::{BrickGeometryDesc, BrickGeometryOutput};
 use crate::base::error::{Error, Result};
 use crate::plan::draw_geometry::occupancy::{measure, ranges_len, visible_bounds, visible_box, OpacityTable};
-use crate::plan::draw_geometry::{brick_geometry, slice_plane_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices};
+use crate::plan::draw_geometry::{
+    brick_geometry, slice_plane_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices,
+};
 use std::ops::Range;
 
 /// The texels per axis of a brick, checked: 3 values whose product fits memory.

@@ -4,7 +4,7 @@
 //! of each brick, [`point_slabs`] buckets the points of the hybrid
 //! representation into them, the draw list (`draw_list`) says which passes
 //! a scene needs and what each draws, [`crop`] says which samples VTK's
-//! cropping and clipping planes keep, [`slice`] is the Slice blend mode's
+//! cropping and clipping planes keep, [`slice`](mod@slice) is the Slice blend mode's
 //! plane, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 

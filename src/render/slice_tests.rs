@@ -114,12 +114,18 @@ fn the_selection_spends_texture_on_the_nodes_the_plane_cuts_only() {
         let (bl, bh) = (shape.world(b.lo.map(|v| v as f64)), shape.world(b.hi.map(|v| v as f64)));
         assert!(plane.cuts_box(bl, bh), "{b:?} is not on the plane");
     }
-    let missed = composite.bricks.iter().filter(|b| {
-        !plane.cuts_box(shape.world(b.lo.map(|v| v as f64)), shape.world(b.hi.map(|v| v as f64)))
-    });
+    let missed = composite
+        .bricks
+        .iter()
+        .filter(|b| !plane.cuts_box(shape.world(b.lo.map(|v| v as f64)), shape.world(b.hi.map(|v| v as f64))));
     assert!(missed.count() > 0, "some visible node is off the plane");
     assert!(slice.skipped > composite.skipped, "{} vs {}", slice.skipped, composite.skipped);
-    assert!(2 * slice.texture_bytes < composite.texture_bytes, "{} vs {}", slice.texture_bytes, composite.texture_bytes);
+    assert!(
+        2 * slice.texture_bytes < composite.texture_bytes,
+        "{} vs {}",
+        slice.texture_bytes,
+        composite.texture_bytes
+    );
     // A plane beside the volume: nothing selected, nothing drawn.
     let beside = Blend::slice(SlicePlane::new([40.0, 0.0, 0.0], [1.0, 0.0, 0.0]).unwrap(), [lo, hi]).unwrap();
     let none = selection(&octree, &shape, &beside, 1 << 30, false);

@@ -86,8 +86,8 @@ int Cpu()
               << mapper->GetLastPlan() << "', texture bytes " << mapper->GetLastTextureBytes()
               << " (Composite " << compositeBytes << "), estimated error "
               << mapper->GetLastEstimatedError() << "; RGB RMSE GL vs CPU compositor " << rmse
-              << " (threshold 0.005), vs Composite " << change << ", signal "
-              << Signal(reference) << "\n";
+              << " (threshold 0.005), vs Composite " << change << ", signal " << Signal(reference)
+              << "\n";
     check.Check(mapper->GetLastPlan() == plan, "plan '" + plan + "'");
     check.Check(Signal(reference) > 0.02, "the slice shows");
     check.Check(rmse < 0.005, "GL within 0.005 of the CPU compositor");
@@ -147,8 +147,8 @@ int Gpu()
     check.Check(Signal(b) > 0.02, "the reference shows the slice");
     check.Check(rmse < threshold, what + ": within the threshold of vtkGPUVolumeRayCastMapper");
   }
-  check.Check(errors->Errors.empty() && errors->Warnings.empty(),
-    "no warning:\n" + errors->AllErrors());
+  check.Check(
+    errors->Errors.empty() && errors->Warnings.empty(), "no warning:\n" + errors->AllErrors());
   check.Check(NoGLError(ours.Window), "no OpenGL error left behind");
   return check.Result();
 }

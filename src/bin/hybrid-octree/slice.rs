@@ -67,7 +67,11 @@ mod tests {
         let args = SliceArgs { slice_origin: None, slice_normal: Some([0.0, 1.0, 1.0]) };
         let p = args.plane(BlendMode::Slice, [0.0; 3], [2.0, 4.0, 6.0]).unwrap().unwrap();
         assert_eq!((p.origin, p.normal), ([1.0, 2.0, 3.0], [0.0, 1.0, 1.0]));
-        assert!(args.plane(BlendMode::Composite, [0.0; 3], [1.0; 3]).unwrap_err().to_string().contains("--blend slice"));
+        assert!(args
+            .plane(BlendMode::Composite, [0.0; 3], [1.0; 3])
+            .unwrap_err()
+            .to_string()
+            .contains("--blend slice"));
         let none = SliceArgs::default();
         assert!(none.plane(BlendMode::Slice, [0.0; 3], [1.0; 3]).unwrap_err().to_string().contains("--slice-normal"));
         assert_eq!(none.plane(BlendMode::Mip, [0.0; 3], [1.0; 3]).unwrap(), None);

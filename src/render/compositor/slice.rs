@@ -50,7 +50,7 @@ impl<S: Texel> Executor<'_, S> {
         let u = brick.texture.texel_line(to_index(&self.shape, p), [0.0; 3]).0;
         let v = brick.texture.at_texel(u);
         let [r, g, b, a] = self.lut.eval(v);
-        if !(a > 0.0) {
+        if a.is_nan() || a <= 0.0 {
             return None;
         }
         let (rgb, a) = self.effects(brick.texture, u, [r, g, b], a, ray.direction, scratch);

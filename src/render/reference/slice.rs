@@ -39,12 +39,14 @@ impl Caster<'_> {
         }
         let u = to_index(&self.shape, p);
         let [r, gr, b, a] = self.tf.eval(grid_value(g, u)).map(f64::from);
-        if !(a > 0.0) {
+        if a.is_nan() || a <= 0.0 {
             return None;
         }
         let c = [r, gr, b];
         let rgb = match self.lighting {
-            Some(lighting) => lighting.shade(c, normal(gradient(|v| grid_value(g, v), u, self.shape.spacing)), ray.direction),
+            Some(lighting) => {
+                lighting.shade(c, normal(gradient(|v| grid_value(g, v), u, self.shape.spacing)), ray.direction)
+            }
             None => c,
         };
         Some((rgb, a))
