@@ -173,6 +173,7 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   }
   list.Region.CroppingFlags = out.region.cropping_flags;
   CopyInto(out.region.clipping_planes, list.Region.ClippingPlanes);
+  CopyInto(out.slice_plane, list.SlicePlane);
   list.ReferenceSpacing = out.reference_spacing;
   for (int axis = 0; axis < 3; ++axis)
   {
@@ -239,6 +240,10 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   }
   desc.transfer_2d_range[0] = options.Transfer2DRange[0];
   desc.transfer_2d_range[1] = options.Transfer2DRange[1];
+  for (int k = 0; k < 6; ++k)
+  {
+    desc.slice_plane[k] = options.SlicePlane[k];
+  }
   return desc;
 }
 
@@ -731,6 +736,7 @@ bool GetBrickGeometry(const BrickGeometryInput& input, BrickGeometry& geometry, 
     desc.point_positions = In(input.PointPositions);
     desc.point_shades = In(input.PointShades);
     desc.gaussian_points = input.GaussianPoints;
+    desc.slice_plane = In(list.SlicePlane);
     hybrid_octree::BrickGeometryOutput out = hybrid_octree::brick_geometry(desc);
     // The vertices stay in the Rust core's buffer, kept alive by Storage.
     auto vertices = std::make_shared<rust::Vec<float>>(std::move(out.vertices));

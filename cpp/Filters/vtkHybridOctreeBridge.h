@@ -158,7 +158,7 @@ struct SelectDescription
   /// Count one border texel per side of each brick in its bytes (a shaded
   /// volume's gradient reads them).
   bool GradientBorder = false;
-  /// vtkVolumeMapper::BlendModes value, 0 (composite) to 5 (isosurface); it
+  /// vtkVolumeMapper::BlendModes value, 0 (composite) to 6 (slice); it
   /// changes which nodes show and the texels of coarse MIP/MinIP bricks.
   int BlendMode = 0;
   /// vtkVolumeMapper's AverageIPScalarRange: the values an average counts.
@@ -182,6 +182,10 @@ struct SelectDescription
   std::size_t Transfer2DSize[2] = { 0, 0 };
   std::vector<float> Transfer2DRGBA;
   double Transfer2DRange[2] = { 0.0, 1.0 };
+  /// The plane of blend mode 6 (vtkVolumeProperty's SliceFunction, a
+  /// vtkPlane) in the octree's frame: origin x, y, z, normal x, y, z. Only
+  /// nodes whose box it cuts get a texture (src/plan/slice.rs).
+  double SlicePlane[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 1.0 };
 };
 
 /// The volume's shading (see ShadingDesc in src/ffi/mod.rs): vtkVolumeProperty's
@@ -283,6 +287,9 @@ struct DrawList
   double Transfer2DAxes[3] = { 0.0, 0.0, 0.0 };
   /// The cropping and planes that act (those that remove part of the volume).
   RegionDescription Region;
+  /// Under the Slice blend mode ("volume-slice"): its plane, origin x, y, z,
+  /// normal x, y, z; empty otherwise.
+  std::vector<double> SlicePlane;
   double ReferenceSpacing = 0.0;          ///< d0, world units
   double Forward[3] = { 0.0, 0.0, -1.0 }; ///< unit view direction
   std::vector<std::size_t> BatchOffsets;  ///< bricks + 1 values

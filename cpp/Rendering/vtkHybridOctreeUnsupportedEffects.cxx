@@ -1,6 +1,7 @@
 #include "vtkHybridOctreeUnsupportedEffects.h"
 #include "vtkHybridOctreeTransfer2D.h"
 
+#include "vtkHybridOctreeSlice.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
@@ -37,16 +38,24 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
     "vtkGPUVolumeRayCastMapper (ParaView: the Volume representation), which draws it";
   std::vector<std::string> on;
   const int mode = mapper->GetBlendMode();
-  if (mode < vtkVolumeMapper::COMPOSITE_BLEND || mode > vtkVolumeMapper::ISOSURFACE_BLEND)
+  if (mode < vtkVolumeMapper::COMPOSITE_BLEND || mode > vtkVolumeMapper::SLICE_BLEND)
   {
     const std::string name = BlendModeName(mode);
     on.push_back("the " + name + " blend mode (vtkVolumeMapper::SetBlendMode(" +
       std::to_string(mode) + "); ParaView: Blend Mode) is not implemented: the volume is drawn " +
       "with Composite blending; set the blend mode to Composite, maximum, minimum or average " +
-      "intensity, additive or Isosurface, or use " + elsewhere);
+      "intensity, additive, Isosurface or Slice, or use " + elsewhere);
   }
-  if (translucentSurface && mode > vtkVolumeMapper::COMPOSITE_BLEND &&
-    mode <= vtkVolumeMapper::ADDITIVE_BLEND)
+  double plane[6];
+  std::string problem;
+  if (mode == vtkVolumeMapper::SLICE_BLEND &&
+    !vtkHybridOctreeSlice::Describe(property, nullptr, plane, problem))
+  {
+    on.push_back(problem);
+  }
+  if (translucentSurface &&
+    ((mode > vtkVolumeMapper::COMPOSITE_BLEND && mode <= vtkVolumeMapper::ADDITIVE_BLEND) ||
+      mode == vtkVolumeMapper::SLICE_BLEND))
   {
     on.push_back("a translucent isosurface is not drawn under the " + BlendModeName(mode) +
       " blend mode (its ray is reduced, not composited in depth order): set the surface opacity "

@@ -7,11 +7,13 @@
  * component through a 1D colour and scalar opacity function, shaded when
  * the property asks (Shade), its opacity times the gradient opacity when one
  * is set (GradientOpacity), cropped and clipped by the mapper's cropping and
- * clipping planes, classified by a 2D transfer function under Composite,
- * two dependent components in Composite. Settings that ask for more (the
- * Slice blend mode, a 2D transfer function under another blend mode, without
- * a usable image or with dependent components, dependent components of more
- * than 2 components or under a reducing blend mode) are drawn as if off; each one the
+ * clipping planes, under every blend mode (Slice with a vtkPlane as its
+ * slice function), classified by a 2D transfer function under Composite,
+ * two dependent components in Composite. Settings that ask for more (a
+ * Slice blend mode without a valid vtkPlane, a 2D transfer function under
+ * another blend mode, without a usable image or with dependent components,
+ * dependent components of more than 2 components or under a reducing blend
+ * mode) are drawn as if off; each one the
  * user has turned on is named in one warning that says what is drawn instead
  * and what to do.
  *

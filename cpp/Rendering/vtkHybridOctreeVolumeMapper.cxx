@@ -5,6 +5,7 @@
 #include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
 #include "vtkHybridOctreeInteractiveReduction.h"
+#include "vtkHybridOctreeSlice.h"
 #include "vtkHybridOctreeTransfer2D.h"
 #include "vtkHybridOctreeUnsupportedEffects.h"
 #include "vtkOpenGLHybridOctreeBrickDrawer.h"
@@ -506,10 +507,16 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   // 1 - (1 - a)^(d / U) after the DrawList's correction.
   // VTK's GPU ray caster corrects dependent components' opacity with the
   // unit distance of the last component (vtkVolumeInputHelper: the opacity
-  // table of component numComp - 1), not the first.
+  // table of component numComp - 1), not the first. The Slice blend mode
+  // takes VTK's table opacity as it is (VTK corrects its table for
+  // Composite only, vtkOpenGLVolumeOpacityTable).
   const double unit = property->GetScalarOpacityUnitDistance(in.Dependent ? 1 : 0);
   const double d0 = std::min({ in.Grid.Spacing[0], in.Grid.Spacing[1], in.Grid.Spacing[2] });
-  const double exponent = unit > 0.0 ? d0 / unit : 1.0;
+  double plane[6];
+  std::string noSlice;
+  const bool slice = this->BlendMode == SLICE_BLEND &&
+    vtkHybridOctreeSlice::Describe(property, nullptr, plane, noSlice);
+  const double exponent = unit > 0.0 && !slice ? d0 / unit : 1.0;
   const int n = this->TableSize;
   std::vector<double> rgb(3 * static_cast<std::size_t>(n));
   std::vector<double> alpha(static_cast<std::size_t>(n));
@@ -642,7 +649,15 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   select.Isovalue = this->Isovalue;
   // The blend modes the bridge draws (the others are warned about and drawn Composite).
   const int mode = this->BlendMode;
-  select.BlendMode = mode >= COMPOSITE_BLEND && mode <= ISOSURFACE_BLEND ? mode : COMPOSITE_BLEND;
+  select.BlendMode = mode >= COMPOSITE_BLEND && mode <= SLICE_BLEND ? mode : COMPOSITE_BLEND;
+  // Slice on the property's vtkPlane, into the octree's frame as VTK takes
+  // it; without a valid one (warned about) Composite.
+  std::string sliceProblem;
+  if (select.BlendMode == SLICE_BLEND &&
+    !vtkHybridOctreeSlice::Describe(property, in.ModelInverse, select.SlicePlane, sliceProblem))
+  {
+    select.BlendMode = COMPOSITE_BLEND;
+  }
   if (select.BlendMode == ISOSURFACE_BLEND)
   {
     vtkContourValues* values = property->GetIsoSurfaceValues();
@@ -656,7 +671,8 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   // Shaded: the bricks' gradient borders count in the budget (Composite and
   // Isosurface only; Isosurface always has them).
   select.GradientBorder = property->GetShade(0) != 0 &&
-    (select.BlendMode == COMPOSITE_BLEND || select.BlendMode == ISOSURFACE_BLEND);
+    (select.BlendMode == COMPOSITE_BLEND || select.BlendMode == ISOSURFACE_BLEND ||
+      select.BlendMode == SLICE_BLEND);
   select.GradientOpacityPoints = GradientOpacityPoints(property);
   select.Region = in.Region;
   // The 2D transfer function classifies under Composite only (VTK's TF_2D mode).
@@ -676,6 +692,7 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   key.insert(key.end(), select.Region.ClippingPlanes.begin(), select.Region.ClippingPlanes.end());
   key.push_back(static_cast<double>(select.IsosurfaceValues.size()));
   key.insert(key.end(), select.IsosurfaceValues.begin(), select.IsosurfaceValues.end());
+  key.insert(key.end(), select.SlicePlane, select.SlicePlane + 6);
   key.push_back(static_cast<double>(select.GradientOpacityPoints.size()));
   key.insert(key.end(), select.GradientOpacityPoints.begin(), select.GradientOpacityPoints.end());
   const std::vector<double> transfer2D = in.Transfer2D.Key();
@@ -1012,6 +1029,7 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   shading.Shade = list.Shading;
   in.Drawer.SetShading(shading);
   in.Drawer.SetIsosurfaces(isosurface ? in.Isosurfaces : std::vector<double>());
+  in.Drawer.SetSlice(!list.SlicePlane.empty());
   in.Drawer.SetOpacityEffects(
     list.Gradients, list.GradientOpacityTable, list.GradientOpacityEnd, list.OpacityScale);
   // The 2D transfer function's texture, when the plan classifies by it.

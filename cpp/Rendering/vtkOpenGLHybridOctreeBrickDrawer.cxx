@@ -254,6 +254,10 @@ std::string vtkOpenGLHybridOctreeBrickDrawer::VariantDefines() const
     defines += "\n#define HO_ISOSURFACE\n#define HO_MAX_ISOSURFACES " +
       std::to_string(MaxIsosurfaces) + "\n";
   }
+  if (this->Slice)
+  {
+    defines += "\n#define HO_SLICE\n";
+  }
   return defines;
 }
 

@@ -157,6 +157,13 @@ public:
    */
   void SetIsosurfaces(const std::vector<double>& values) { this->Isosurfaces = values; }
 
+  /**
+   * The Slice blend mode (src/plan/slice.rs): the frame's geometry is the
+   * plane's polygon in each brick, and each fragment is the sample there,
+   * (a c, a), its opacity not corrected (the HO_SLICE variant). Call before Bind().
+   */
+  void SetSlice(bool slice) { this->Slice = slice; }
+
   /// The most isosurface values the Isosurface program takes.
   static constexpr int MaxIsosurfaces = 16;
 
@@ -247,6 +254,7 @@ private:
   vtkHybridOctreeBridge::RegionDescription Region;
   int ReduceMode = 0;
   std::vector<double> Isosurfaces;
+  bool Slice = false;
   double ValueRange[2] = { 0.0, 1.0 };
   double AverageRange[2] = { 0.0, 1.0 };
   bool Gradients = false;

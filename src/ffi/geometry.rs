@@ -13,7 +13,9 @@ use super::guard::{check_len, guarded, Bridged};
 use super::{BrickGeometryDesc, BrickGeometryOutput};
 use crate::base::error::{Error, Result};
 use crate::plan::draw_geometry::occupancy::{measure, ranges_len, visible_bounds, visible_box, OpacityTable};
-use crate::plan::draw_geometry::{brick_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices};
+use crate::plan::draw_geometry::{
+    brick_geometry, slice_plane_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices,
+};
 use std::ops::Range;
 
 /// The texels per axis of a brick, checked: 3 values whose product fits memory.
@@ -131,7 +133,10 @@ pub(crate) fn frame_brick_geometry(desc: &BrickGeometryDesc<'_>) -> Bridged<Bric
             shades: desc.point_shades,
             gaussian: desc.gaussian_points,
         });
-        let g = brick_geometry(&view, &input, surface.as_ref(), points.as_ref())?;
+        let g = match super::slice::geometry_plane(desc.slice_plane)? {
+            Some(plane) => slice_plane_geometry(&plane, &input),
+            None => brick_geometry(&view, &input, surface.as_ref(), points.as_ref())?,
+        };
         out.vertices = g.vertices;
         out.brick_first = g.brick_first;
         out.ray_marched = g.ray_marched.into_iter().map(u8::from).collect();
@@ -204,6 +209,7 @@ mod tests {
             point_positions: &[],
             point_shades: &[],
             gaussian_points: false,
+            slice_plane: &[],
         }
     }
 

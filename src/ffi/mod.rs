@@ -33,6 +33,7 @@ mod render;
 mod render_tests;
 #[cfg(test)]
 mod shade_tests;
+mod slice;
 mod surface;
 #[cfg(test)]
 mod test_support;
@@ -247,7 +248,7 @@ mod bridge {
         gradient_border: bool,
         /// The blend mode, VTK's `vtkVolumeMapper::BlendModes` value (0
         /// composite, 1 maximum, 2 minimum, 3 average intensity, 4 additive;
-        /// 5 isosurface; others are refused). It changes the selection (MIP and MinIP keep
+        /// 5 isosurface; 6 slice; others are refused). It changes the selection (MIP and MinIP keep
         /// nodes that hold a ray's extreme, and coarse bricks get peak-keeping
         /// texels) and the plan (`volume-mip`, ...).
         blend_mode: i32,
@@ -276,6 +277,12 @@ mod bridge {
         transfer_2d_size: [usize; 2],
         transfer_2d_rgba: Vec<f32>,
         transfer_2d_range: [f64; 2],
+        /// The plane of blend mode 6 (vtkVolumeProperty's SliceFunction, a
+        /// vtkPlane, in the octree's frame: the image's data coordinates):
+        /// origin x, y, z, normal x, y, z (finite, the normal not 0);
+        /// ignored by the other modes. Only nodes whose box it cuts get a
+        /// texture (`plan::slice`).
+        slice_plane: [f64; 6],
     }
 
     /// VTK's cropping (`vtkVolumeMapper`) and clipping planes
@@ -417,6 +424,9 @@ mod bridge {
         /// region that remove part of the volume; `cropping` false and no
         /// planes when nothing does).
         region: RegionDesc,
+        /// Under the Slice blend mode (pass "volume-slice[-shaded]") its
+        /// plane, origin x, y, z, normal x, y, z; empty otherwise.
+        slice_plane: Vec<f64>,
         /// d0, world units.
         reference_spacing: f64,
         /// The camera's unit view direction.
@@ -485,6 +495,10 @@ mod bridge {
         point_positions: &'a [f32],
         point_shades: &'a [f32],
         gaussian_points: bool,
+        /// The DrawList's `slice_plane` (Slice: 6 values, each brick drawn as
+        /// the plane's polygon in it, `plan::draw_geometry::slice_plane`;
+        /// empty: the slices and boxes of the other modes).
+        slice_plane: &'a [f64],
     }
 
     /// The vertices of every brick of a frame (`plan::draw_geometry::brick_geometry`).

@@ -171,6 +171,7 @@ pub(crate) fn select_options(
             || blend_mode(desc.blend_mode)? == BlendMode::Isosurface
             || needs_gradients(None, gradient_opacity, transfer_2d, blend_mode(desc.blend_mode)?),
         region: region(&desc.region)?.map(|r| r.to_index(shape)),
+        slice: super::slice::slice_plane(desc)?.map(|p| p.to_index(shape)),
         ..SelectOptions::new(desc.budget_bytes, desc.tolerance)
     })
 }
@@ -180,7 +181,7 @@ fn blend_mode(mode: i32) -> Result<BlendMode> {
     BlendMode::from_vtk(mode).ok_or_else(|| {
         Error::InvalidArgument(format!(
             "blend mode {mode}: give 0 (composite), 1 (maximum intensity), 2 (minimum intensity), 3 (average \
-             intensity), 4 (additive) or 5 (isosurface)"
+             intensity), 4 (additive), 5 (isosurface) or 6 (slice)"
         ))
     })
 }
@@ -196,6 +197,8 @@ pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend>
     let mode = blend_mode(desc.blend_mode)?;
     let mut blend = if mode == BlendMode::Isosurface {
         Blend::isosurfaces(&desc.isosurface_values, [value_range.0, value_range.1])?
+    } else if let Some(plane) = super::slice::slice_plane(desc)? {
+        Blend::slice(plane, [value_range.0, value_range.1])?
     } else {
         Blend::new(mode, [value_range.0, value_range.1])
     };
@@ -283,6 +286,7 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         gradient_opacity_table: Vec::new(),
         gradient_opacity_end: 0.0,
         region: region_desc(list.region.as_ref()),
+        slice_plane: super::slice::plane_values(list.plan.blend.mode, list.plan.blend.slice.as_ref()),
         reference_spacing: list.reference_spacing,
         forward: list.camera.forward(),
         batch_offsets: Vec::with_capacity(n + 1),

@@ -501,8 +501,15 @@ fn blend_modes_through_the_bridge() {
         let s = h.select_bricks(&SelectDesc { blend_mode: mode, ..options(30_000) }).unwrap();
         assert_eq!(s.draw_list(&h, c, 0.0).unwrap().passes, pass);
     }
+    let e = h.select_bricks(&SelectDesc { blend_mode: 7, ..options(30_000) }).map(|_| ()).unwrap_err();
+    assert!(e.contains("blend mode 7") && e.contains("6 (slice)"), "{e}");
+    // Slice: its plane checked, then its pass.
     let e = h.select_bricks(&SelectDesc { blend_mode: 6, ..options(30_000) }).map(|_| ()).unwrap_err();
-    assert!(e.contains("blend mode 6") && e.contains("isosurface"), "{e}");
+    assert!(e.contains("non-zero") && e.contains("SetSliceFunction"), "{e}");
+    let plane = SelectDesc { blend_mode: 6, slice_plane: [4.0, 4.0, 4.0, 0.3, 0.2, 1.0], ..options(30_000) };
+    let s = h.select_bricks(&plane).unwrap();
+    let list = s.draw_list(&h, c, 0.0).unwrap();
+    assert_eq!((list.passes.as_str(), list.slice_plane.len()), ("volume-slice", 6));
     let e = h.select_bricks(&SelectDesc { blend_mode: 5, ..options(30_000) }).map(|_| ()).unwrap_err();
     assert!(e.contains("0 isosurface values"), "{e}");
     let iso = SelectDesc { blend_mode: 5, isosurface_values: vec![0.5], ..options(30_000) };

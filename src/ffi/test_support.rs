@@ -35,6 +35,7 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         transfer_2d_size: [0, 0],
         transfer_2d_rgba: Vec::new(),
         transfer_2d_range: [0.0, 0.0],
+        slice_plane: [0.0; 6],
     }
 }
 

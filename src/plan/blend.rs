@@ -37,6 +37,11 @@
 //! (VTK's `findIsoSurfaceIndex` walk takes the same crossings, one a step
 //! when a jump crosses several), the opacity not corrected for the
 //! spacing: one crossing is one surface.
+//!
+//! Slice (VTK's `SLICE_BLEND`, ParaView's *Blend Mode* Slice with its
+//! *Slice Function*) draws one sample a ray, where it meets a plane
+//! ([`super::slice`]): `(a(v) c(v), a(v))`, the opacity not corrected,
+//! shaded with Shade.
 
 /// A blend mode, named as the plan's passes and the CLI's `--blend` name it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
@@ -55,20 +60,23 @@ pub enum BlendMode {
     Additive,
     /// Isosurfaces of the given values (`ISOSURFACE_BLEND`).
     Isosurface,
+    /// The volume on a plane (`SLICE_BLEND`).
+    Slice,
 }
 
 impl BlendMode {
     /// Every mode, in VTK's order.
-    pub const ALL: [BlendMode; 6] = [
+    pub const ALL: [BlendMode; 7] = [
         BlendMode::Composite,
         BlendMode::Mip,
         BlendMode::Minip,
         BlendMode::Average,
         BlendMode::Additive,
         BlendMode::Isosurface,
+        BlendMode::Slice,
     ];
 
-    /// The mode's name: `composite`, `mip`, `minip`, `average`, `additive`, `isosurface`.
+    /// The mode's name: `composite`, `mip`, `minip`, `average`, `additive`, `isosurface`, `slice`.
     pub fn name(self) -> &'static str {
         match self {
             BlendMode::Composite => "composite",
@@ -77,6 +85,7 @@ impl BlendMode {
             BlendMode::Average => "average",
             BlendMode::Additive => "additive",
             BlendMode::Isosurface => "isosurface",
+            BlendMode::Slice => "slice",
         }
     }
 
@@ -89,8 +98,8 @@ impl BlendMode {
     }
 
     /// The mode of VTK's `vtkVolumeMapper::BlendModes` value (0 composite,
-    /// 1 maximum, 2 minimum, 3 average, 4 additive, 5 isosurface); `None`
-    /// for the others (6 slice) and unknown values.
+    /// 1 maximum, 2 minimum, 3 average, 4 additive, 5 isosurface, 6 slice);
+    /// `None` for unknown values.
     pub fn from_vtk(value: i32) -> Option<BlendMode> {
         BlendMode::ALL.get(usize::try_from(value).ok()?).copied()
     }
@@ -110,6 +119,11 @@ impl BlendMode {
     pub fn composites(self) -> bool {
         matches!(self, BlendMode::Composite | BlendMode::Isosurface)
     }
+
+    /// True for the modes VTK shades with Shade (Composite, Isosurface, Slice).
+    pub fn shades(self) -> bool {
+        self.composites() || self == BlendMode::Slice
+    }
 }
 
 impl std::str::FromStr for BlendMode {
@@ -117,7 +131,7 @@ impl std::str::FromStr for BlendMode {
     fn from_str(s: &str) -> crate::Result<BlendMode> {
         BlendMode::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
             crate::Error::InvalidArgument(format!(
-                "blend mode '{}': give one of composite, mip, minip, average, additive, isosurface",
+                "blend mode '{}': give one of composite, mip, minip, average, additive, isosurface, slice",
                 crate::base::limits::excerpt(s)
             ))
         })
@@ -140,6 +154,9 @@ pub struct Blend {
     pub isovalues: [f64; MAX_ISOVALUES],
     /// How many of `isovalues` are set.
     pub isovalue_count: usize,
+    /// The plane of the Slice mode (`None` for the others; Slice without
+    /// one draws nothing).
+    pub slice: Option<super::slice::SlicePlane>,
 }
 
 /// The most isosurface values a blend takes.
@@ -160,7 +177,19 @@ impl Blend {
             average_range: [f64::MIN, f64::MAX],
             isovalues: [0.0; MAX_ISOVALUES],
             isovalue_count: 0,
+            slice: None,
         }
+    }
+
+    /// The Slice mode on `plane` (data coordinates) over a volume of scalar
+    /// range `scalar_range`.
+    ///
+    /// # Errors
+    ///
+    /// [`crate::Error::InvalidArgument`] for a bad plane ([`super::slice::SlicePlane::check`]).
+    pub fn slice(plane: super::slice::SlicePlane, scalar_range: [f64; 2]) -> crate::Result<Blend> {
+        plane.check()?;
+        Ok(Blend { slice: Some(plane), ..Blend::new(BlendMode::Slice, scalar_range) })
     }
 
     /// Isosurfaces of `values` (any order, repeats merged) over a volume of
@@ -237,6 +266,9 @@ impl Blend {
     /// - Isosurface: a crossing shows in the brick of the sample after it,
     ///   which need not hold the isovalue itself: every node is kept unless
     ///   no isovalue is visible (`a(c) = 0` for each).
+    /// - Slice: the node's own range (its box meeting the plane is the
+    ///   selection's other test, [`super::select::SelectOptions::slice`]);
+    ///   nothing without a plane.
     pub fn visible(&self, min: f64, max: f64, visible: &dyn Fn(f64, f64) -> bool) -> bool {
         let [lo, hi] = self.scalar_range;
         match self.mode {
@@ -245,6 +277,7 @@ impl Blend {
             BlendMode::Minip => visible(min, hi.max(max)),
             BlendMode::Average => !(max < self.average_range[0] || min > self.average_range[1]),
             BlendMode::Isosurface => self.isovalues().iter().any(|&c| visible(c, c)),
+            BlendMode::Slice => self.slice.is_some() && visible(min, max),
         }
     }
 }
@@ -259,7 +292,8 @@ mod tests {
             assert_eq!(m.name().parse::<BlendMode>().unwrap(), m);
             assert_eq!(BlendMode::from_vtk(i as i32), Some(m));
         }
-        assert_eq!(BlendMode::from_vtk(6), None);
+        assert_eq!(BlendMode::from_vtk(7), None);
+        assert_eq!(BlendMode::Slice.pass(), "volume-slice");
         assert_eq!(BlendMode::from_vtk(-1), None);
         assert_eq!(BlendMode::Mip.pass(), "volume-mip");
         assert_eq!(BlendMode::Composite.pass(), "volume");

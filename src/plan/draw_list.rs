@@ -17,8 +17,10 @@
 //!   lights in world space.
 //! - the blend mode ([`Blend`]): `volume` for Composite, `volume-mip`,
 //!   `volume-minip`, `volume-average` or `volume-additive` for the others
-//!   or `volume-isosurface` (shading, `-shaded`, is for the compositing
-//!   modes only, Composite and Isosurface; a translucent surface too: it is
+//!   or `volume-isosurface`, or `volume-slice` (the Slice mode's plane,
+//!   [`crate::plan::slice`]: only the nodes it cuts are selected); shading,
+//!   `-shaded`, is for the compositing modes, Composite and Isosurface, and
+//!   Slice, as VTK shades; a translucent surface is for the first two: it is
 //!   sorted into the slabs of a composite, and a reduced ray has no order,
 //!   so under the other modes it is not drawn, while an opaque surface still is).
 //! - gradient opacity ([`GradientOpacity`], Composite only) only when it
@@ -261,7 +263,7 @@ pub fn needs_gradients(
     mode: super::BlendMode,
 ) -> bool {
     let composite = mode == super::BlendMode::Composite;
-    (mode.composites() && shades(true, lighting))
+    (mode.shades() && shades(true, lighting))
         || (composite && transfer_2d)
         || (composite && gradient_opacity.is_some_and(|g| g.constant().is_none()))
 }
@@ -271,8 +273,8 @@ pub fn needs_gradients(
 fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: Option<&GradientOpacity>) {
     // The 1D gradient opacity is not applied under a 2D transfer function (VTK's TF_2D).
     let composite = plan.volume && plan.blend.mode == super::BlendMode::Composite && !plan.transfer_2d;
-    // Shading in both compositing modes, gradient opacity in Composite only.
-    plan.shading = plan.volume && plan.blend.mode.composites() && shades(true, lighting);
+    // Shading in both compositing modes and Slice, gradient opacity in Composite only.
+    plan.shading = plan.volume && plan.blend.mode.shades() && shades(true, lighting);
     let constant = gradient_opacity.map(|g| g.constant());
     plan.gradient_opacity = composite && matches!(constant, Some(None));
     plan.opacity_scale = match constant {

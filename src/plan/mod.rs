@@ -5,7 +5,8 @@
 //! representation into them, the draw list (`draw_list`) says which passes
 //! a scene needs and what each draws, [`crop`] says which samples VTK's
 //! cropping and clipping planes keep, [`dependent`] plans a two-field volume
-//! with dependent components, and [`draw_geometry`] makes the OpenGL
+//! with dependent components, [`slice`](mod@slice) is the Slice blend mode's
+//! plane, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
 pub mod blend;
@@ -17,6 +18,7 @@ pub mod order;
 pub mod point_slabs;
 pub mod select;
 pub mod slab;
+pub mod slice;
 
 pub use blend::{Blend, BlendMode};
 pub use draw_list::{
@@ -25,3 +27,4 @@ pub use draw_list::{
 };
 pub use point_slabs::add_points;
 pub use slab::Batch;
+pub use slice::SlicePlane;

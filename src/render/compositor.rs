@@ -90,7 +90,8 @@
 //! ([`crate::plan::crop::KeptRegion::keeps`]) is empty, skipped like a
 //! transparent one, in every blend mode; surfaces and points are drawn whole.
 //! Blend modes besides Composite (the list's [`crate::plan::Plan::blend`])
-//! reduce the same samples instead of blending them: `projection`.
+//! reduce the same samples instead of blending them: `projection`; Slice
+//! samples the plane's point only: `slice`.
 //! Bands of rows run in parallel; every pixel is computed on its own, so the picture
 //! does not depend on the number of threads.
 
@@ -117,6 +118,7 @@ use crate::transfer::{GradientOpacity, TransferFunction, TransferFunction2D};
 use rayon::prelude::*;
 
 mod projection;
+mod slice;
 
 /// Early ray termination: a pixel whose accumulated opacity reaches this
 /// stops. Whatever lies behind would add at most `(1 - A) <= 1 - OPAQUE`
@@ -571,6 +573,9 @@ impl<S: Texel> Executor<'_, S> {
                 pr.limit = pr.depth(h.t);
                 surface_hit = Some((tris.shade(surface, &h, ray.direction, colour), colour[3] as f64));
             }
+        }
+        if self.list.plan.blend.mode == crate::plan::BlendMode::Slice {
+            return self.slice_pixel(x, y, &pr, scratch, surface_hit);
         }
         if !self.list.plan.blend.mode.composites() {
             return self.project(x, y, &pr, scratch, surface_hit);

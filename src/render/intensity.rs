@@ -41,7 +41,7 @@ impl Reduction {
                 self.sum += w * lookup(v)[3] * blend.normalise(v);
                 self.weight += w;
             }
-            BlendMode::Composite | BlendMode::Isosurface => {}
+            BlendMode::Composite | BlendMode::Isosurface | BlendMode::Slice => {}
         }
     }
 

@@ -37,5 +37,6 @@ mod blend_tests;
 mod crop_tests;
 #[cfg(test)]
 mod dependent_tests;
+mod slice_tests;
 #[cfg(test)]
 mod tests;

@@ -36,7 +36,8 @@
 //!
 //! Blend modes besides Composite and Isosurface ([`reference_blend`]) reduce the same
 //! samples, each standing for `l / d0` reference spacings, instead of
-//! blending them: `projection`. With a region ([`ReferenceOptions::region`],
+//! blending them: `projection`; Slice draws the ray's point on its plane
+//! only: `slice`. With a region ([`ReferenceOptions::region`],
 //! VTK's cropping and clipping planes) a sample it removes is empty (not
 //! blended, not reduced); surfaces are drawn whole.
 
@@ -58,6 +59,7 @@ use crate::transfer::{GradientOpacity, TransferFunction, TransferFunction2D};
 use rayon::prelude::*;
 
 mod projection;
+mod slice;
 
 /// Accumulated opacity past which a ray stops.
 pub const EARLY_TERMINATION: f64 = 0.999;
@@ -202,6 +204,9 @@ impl Caster<'_> {
             } else {
                 tris.all_hits(&ray, f64::INFINITY, hits);
             }
+        }
+        if self.blend.mode == BlendMode::Slice {
+            return self.slice(g, &ray, hits.first());
         }
         if !self.blend.mode.composites() {
             return self.project(g, &ray, hits.first());

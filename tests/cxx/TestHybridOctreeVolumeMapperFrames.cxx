@@ -11,7 +11,8 @@
  *                budget; a still frame after it refines to the full budget;
  *                PrintSelf shows every setting and statistic.
  *   warnings:    each setting the mapper does not draw (the Slice blend
- *                mode, the 2D transfer function mode without an image, dependent components)
+ *                mode without a slice function, the 2D transfer function mode without
+ *                an image, dependent components)
  *                gives one warning naming it, once while it stays on; the
  *                picture is the one without it; turned off and on again, or
  *                changed (Slice to an unknown mode), it is warned about

@@ -78,6 +78,11 @@ uniform vec3 clipNormal[HO_MAX_CLIP];
 uniform int isosurfaceCount;
 uniform float isosurfaceValues[HO_MAX_ISOSURFACES];
 #endif
+#ifdef HO_SLICE
+// The Slice blend mode (src/plan/slice.rs): the geometry is the plane's
+// polygon in each brick; a fragment is the sample at its position, (a c, a),
+// the opacity not corrected (one sample stands for the ray), shaded with HO_SHADE.
+#endif
 #if defined(HO_GRADIENTS) || defined(HO_ISOSURFACE)
 // The brick texture carries one border texel per side.
 #define HO_BORDER
@@ -357,7 +362,7 @@ vec4 sampleAt(vec3 p, vec3 v)
 #ifdef HO_GRADIENT_OPACITY
   a *= gradientOpacity(g);
 #endif
-#ifndef HO_ISOSURFACE
+#if !defined(HO_ISOSURFACE) && !defined(HO_SLICE)
   if (opacityRatio != 1.0 && a > 0.0 && a < 1.0)
   {
     a = 1.0 - exp(opacityRatio * log(1.0 - a));

@@ -30,6 +30,7 @@ mod pool;
 mod render;
 mod scene;
 mod shade;
+mod slice;
 mod surface;
 mod transfer2d;
 

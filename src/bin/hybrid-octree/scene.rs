@@ -59,8 +59,9 @@ pub struct SceneArgs {
     #[command(flatten)]
     pub shade: crate::shade::ShadeArgs,
     /// Blend mode (VTK's SetBlendMode): composite, mip (maximum intensity),
-    /// minip (minimum intensity), average (average intensity), additive, or
-    /// isosurface (the surfaces of --isosurface-values, ray cast).
+    /// minip (minimum intensity), average (average intensity), additive,
+    /// isosurface (the surfaces of --isosurface-values, ray cast), or slice
+    /// (the volume on the plane of --slice-origin, --slice-normal).
     #[arg(long, default_value = "composite", value_parser = blend_mode)]
     pub blend: BlendMode,
     /// The values the isosurface blend mode draws, comma-separated (data units).
@@ -79,6 +80,9 @@ pub struct SceneArgs {
     /// and the gradient opacity (vtkVolumeProperty's TF_2D; Composite only).
     #[arg(long)]
     pub transfer_2d: Option<std::path::PathBuf>,
+    /// The Slice blend mode's plane.
+    #[command(flatten)]
+    pub slice: crate::slice::SliceArgs,
 }
 
 /// The `--gradient-opacity` points, checked ([`GradientOpacity::new`]).
@@ -133,6 +137,8 @@ pub struct Loaded {
     pub select_region: Option<KeptRegion>,
     /// The 2D transfer function of `--transfer-2d`.
     pub transfer_2d: Option<TransferFunction2D>,
+    /// The Slice mode's plane in index space: the selection keeps the nodes it cuts.
+    pub select_slice: Option<hybrid_octree::plan::SlicePlane>,
 }
 
 /// Builds the octree, the surface and the camera for `grid`.
@@ -158,10 +164,12 @@ pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<
     let lo = shape.world([0.0; 3]);
     let hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
     let camera = Camera::around(lo, hi, args.azimuth, args.elevation, args.parallel)?;
-    let blend = match (args.blend, args.isosurface_values.is_empty()) {
-        (BlendMode::Isosurface, _) => Blend::isosurfaces(&args.isosurface_values, [min, max])?,
-        (_, true) => Blend::new(args.blend, [min, max]),
-        (_, false) => {
+    let plane = args.slice.plane(args.blend, lo, hi)?;
+    let blend = match (args.blend, args.isosurface_values.is_empty(), plane) {
+        (BlendMode::Isosurface, _, _) => Blend::isosurfaces(&args.isosurface_values, [min, max])?,
+        (BlendMode::Slice, true, Some(plane)) => Blend::slice(plane, [min, max])?,
+        (_, true, _) => Blend::new(args.blend, [min, max]),
+        (_, false, _) => {
             return Err(hybrid_octree::Error::InvalidArgument(
                 "--isosurface-values is for --blend isosurface: add it, or leave the values out".into(),
             ))
@@ -174,7 +182,19 @@ pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<
         Some(path) => Some(crate::transfer2d::load(path, (min, max), shape)?),
         None => None,
     };
-    Ok(Loaded { octree, surface, tf, camera, blend, hidden_by_gradient_opacity, region, select_region, transfer_2d })
+    let select_slice = plane.map(|p| p.to_index(shape));
+    Ok(Loaded {
+        octree,
+        surface,
+        tf,
+        camera,
+        blend,
+        hidden_by_gradient_opacity,
+        region,
+        select_region,
+        transfer_2d,
+        select_slice,
+    })
 }
 
 /// The image size and the surface opacity: in range, or a clear error.
@@ -209,6 +229,7 @@ pub fn select_options(scene: &Loaded, args: &SceneArgs, budget_bytes: usize, tol
         ) || scene.blend.mode == BlendMode::Isosurface,
         pooled: scene.blend.mode.is_extremum(),
         region: scene.select_region,
+        slice: scene.select_slice,
         ..SelectOptions::new(budget_bytes, tolerance)
     }
 }

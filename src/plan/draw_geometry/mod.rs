@@ -9,10 +9,13 @@
 //! - [`brick_geometry`](mod@brick_geometry): the vertex stream of every brick: its slices, the
 //!   translucent surface's triangles placed in the slabs between them by the
 //!   rule the CPU compositor uses ([`crate::plan::slab::slab_copies`]), the
-//!   hybrid points, or its ray-marched box.
+//!   hybrid points, or its ray-marched box;
+//! - [`slice_plane`](mod@slice_plane): under the Slice blend mode, the
+//!   polygon where its plane cuts each brick instead.
 
 pub mod brick_geometry;
 pub mod occupancy;
+pub mod slice_plane;
 pub mod slice_polygon;
 
 pub use brick_geometry::{
@@ -20,4 +23,5 @@ pub use brick_geometry::{
     SurfaceVertices, FLOATS_PER_VERTEX, UNBOUNDED,
 };
 pub use occupancy::{OpacityTable, TexelBox};
+pub use slice_plane::slice_plane_geometry;
 pub use slice_polygon::{append_slice_polygon, view_basis};

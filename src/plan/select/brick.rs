@@ -44,6 +44,11 @@ pub struct SelectOptions {
     /// a node whose box it removes draws nothing and is never selected
     /// (counted in [`Selection::skipped`]).
     pub region: Option<crate::plan::crop::KeptRegion>,
+    /// The Slice blend mode's plane, in index space
+    /// ([`SlicePlane::to_index`](crate::plan::slice::SlicePlane::to_index)):
+    /// a node whose box it does not cut draws nothing and is never selected
+    /// (counted in [`Selection::skipped`]).
+    pub slice: Option<crate::plan::slice::SlicePlane>,
 }
 
 impl SelectOptions {
@@ -61,6 +66,7 @@ impl SelectOptions {
             gradient_border: false,
             pooled: false,
             region: None,
+            slice: None,
         }
     }
 }

@@ -65,11 +65,14 @@ fn select_impl(
 ) -> Result<Selection> {
     check_options(options)?;
     let root = octree.node(octree.root());
-    let region = options.region;
-    // A node shows when the transfer function shows its values and the kept region does not remove its box.
+    let (region, slice) = (options.region, options.slice);
+    // A node shows when the transfer function shows its values, the kept
+    // region does not remove its box and the slice plane (if any) cuts it.
     let shows = move |n: &NodeRef<'_>| {
+        let (lo, hi) = (n.lo.map(|v| v as f64), n.hi.map(|v| v as f64));
         visible(n.min, n.max)
-            && region.as_ref().is_none_or(|r| !r.removes_box(n.lo.map(|v| v as f64), n.hi.map(|v| v as f64)))
+            && region.as_ref().is_none_or(|r| !r.removes_box(lo, hi))
+            && slice.as_ref().is_none_or(|s| s.cuts_box(lo, hi))
     };
     if !shows(&root) {
         return Ok(Selection {
@@ -135,6 +138,9 @@ fn check_options(options: &SelectOptions) -> Result<()> {
         for p in region.planes() {
             p.check()?;
         }
+    }
+    if let Some(plane) = &options.slice {
+        plane.check()?;
     }
     if options.bytes_per_texel == 0 {
         return Err(Error::InvalidArgument("bytes per texel must be at least 1".into()));
