@@ -37,6 +37,7 @@ mod blend_tests;
 mod crop_tests;
 #[cfg(test)]
 mod dependent_tests;
+#[cfg(test)]
 mod slice_tests;
 #[cfg(test)]
 mod tests;
