@@ -626,6 +626,10 @@ fn bench_effects_measures_each_effect_against_the_plain_frame() {
         "additive",
         "translucent-iso",
         "shade+translucent-iso",
+        "gradient-opacity",
+        "shade+gradient-opacity",
+        "isosurface",
+        "shade+isosurface",
         "cropping",
         "clipping",
     ];
@@ -655,6 +659,13 @@ fn bench_effects_measures_each_effect_against_the_plain_frame() {
     let effects = |name: &str| row(name)["effects"].clone();
     assert_eq!(effects("plain"), serde_json::json!([]), "{report}");
     assert_eq!(effects("shade"), serde_json::json!(["shading"]), "{report}");
+    assert_eq!(
+        (passes("gradient-opacity"), effects("gradient-opacity")),
+        (vec!["volume".to_string()], serde_json::json!(["gradient-opacity"]))
+    );
+    assert_eq!(effects("shade+gradient-opacity"), serde_json::json!(["gradient-opacity", "shading"]));
+    assert_eq!(passes("isosurface"), ["volume-isosurface"]);
+    assert_eq!(passes("shade+isosurface"), ["volume-isosurface-shaded"]);
     assert_eq!(
         (passes("cropping"), effects("cropping")),
         (vec!["volume".to_string()], serde_json::json!(["cropping"]))
