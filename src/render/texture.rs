@@ -350,7 +350,7 @@ impl<S: Texel> Texture<S> {
 
     /// T_p at texel coordinates `u` (`u = (x - lo) / stride`, clamped to
     /// `[0, n - 1]`; see the module documentation).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn at_texel(&self, u: [f64; 3]) -> f64 {
         let mut i0 = [0; 3];
         let mut step = [0; 3];
