@@ -15,6 +15,7 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
+#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -102,6 +103,17 @@ inline double Signal(const std::vector<double>& rgb)
     sum += std::fabs(rgb[i] - Background[i % 3]);
   }
   return rgb.empty() ? 0.0 : sum / static_cast<double>(rgb.size());
+}
+
+/// VTK's GPU ray caster as the mapper tests' reference: rays sampled every
+/// spacing (1), no automatic adjustment, no jittering.
+inline vtkNew<vtkGPUVolumeRayCastMapper> MakeReference()
+{
+  vtkNew<vtkGPUVolumeRayCastMapper> gpu;
+  gpu->AutoAdjustSampleDistancesOff();
+  gpu->SetSampleDistance(1.0);
+  gpu->SetUseJittering(0);
+  return gpu;
 }
 
 /// A window, renderer and volume around any volume mapper: linear

@@ -41,16 +41,6 @@ namespace
 {
 using namespace MapperScene;
 
-/// vtkGPUVolumeRayCastMapper sampling rays every spacing (as the mapper tests' reference).
-vtkNew<vtkGPUVolumeRayCastMapper> MakeReference()
-{
-  vtkNew<vtkGPUVolumeRayCastMapper> gpu;
-  gpu->AutoAdjustSampleDistancesOff();
-  gpu->SetSampleDistance(1.0);
-  gpu->SetUseJittering(0);
-  return gpu;
-}
-
 /// The two-component image of the file's documentation, and its stage.
 struct DependentScene : Stage
 {

@@ -524,16 +524,6 @@ int CpuMatch(const std::string& scenario)
   return check.Result();
 }
 
-/// vtkGPUVolumeRayCastMapper on the same scene, rays sampled every spacing.
-vtkNew<vtkGPUVolumeRayCastMapper> MakeReference()
-{
-  vtkNew<vtkGPUVolumeRayCastMapper> gpu;
-  gpu->AutoAdjustSampleDistancesOff();
-  gpu->SetSampleDistance(1.0);
-  gpu->SetUseJittering(0);
-  return gpu;
-}
-
 /// Shade on, the full volume in the budget, against vtkGPUVolumeRayCastMapper:
 /// the default headlight, or a vtkLightKit.
 int GpuShaded(bool lightKit)
