@@ -48,8 +48,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "paraview"))
 
 from paraview import servermanager  # noqa: E402
-from paraview.simple import (Delete, Hide, LoadPlugin, Render, Wavelet,  # noqa: E402
-                             XMLImageDataReader)
+from paraview.simple import (Delete, GetTransferFunction2D, Hide, LoadPlugin, Render,  # noqa: E402
+                             Wavelet, XMLImageDataReader)
 from pvtest import Checks, generate_phantom, report, rmse, window_rgb  # noqa: E402
 from representation_scene import look_at, make_view, show_volume  # noqa: E402
 
@@ -58,8 +58,8 @@ VOLUME = "Volume"
 
 
 # One line per effect: its name and the display properties it sets (a dict,
-# or a function of the data's bounds (xmin, xmax, ymin, ...) and value range
-# (lo, hi) returning one).
+# or a function of the data's bounds (xmin, xmax, ymin, ...), value range
+# (lo, hi) and point array name returning one).
 EFFECTS = [
     ("plain", {}),
     ("shade", {"Shade": 1}),
@@ -68,22 +68,45 @@ EFFECTS = [
     ("shade-specular", {"Shade": 1, "Specular": 0.5, "SpecularPower": 30.0}),
     ("shade-glossy", {"Shade": 1, "Specular": 1.0, "SpecularPower": 100.0}),
     # Use Cropping: the box [o + min s, o + max s] keeps 20 % to 70 % of each axis of the bounds b.
-    ("cropping", lambda b, r: {"UseCropping": 1, "CroppingScale": [0.5] * 3,
+    ("cropping", lambda b, r, a: {"UseCropping": 1, "CroppingScale": [0.5] * 3,
                                "CroppingOrigin": [0.5 * b[2 * a] + 0.2 * (b[2 * a + 1] - b[2 * a])
                                                   for a in range(3)]}),
     # Isosurface at a quarter and 70 % of the range; the unit distance the
     # sample spacing (tests/paraview/test_isosurface.py says why).
-    ("isosurface", lambda b, r: {"BlendMode": "Isosurface", "ScalarOpacityUnitDistance": 1.0,
+    ("isosurface", lambda b, r, a: {"BlendMode": "Isosurface", "ScalarOpacityUnitDistance": 1.0,
                                  "IsosurfaceValues": [r[0] + 0.25 * (r[1] - r[0]), r[0] + 0.7 * (r[1] - r[0])]}),
-    ("shade-isosurface", lambda b, r: {"Shade": 1, "BlendMode": "Isosurface", "ScalarOpacityUnitDistance": 1.0,
+    ("shade-isosurface", lambda b, r, a: {"Shade": 1, "BlendMode": "Isosurface", "ScalarOpacityUnitDistance": 1.0,
                                        "IsosurfaceValues": [r[0] + 0.25 * (r[1] - r[0]),
                                                             r[0] + 0.7 * (r[1] - r[0])]}),
+    # Use 2D Transfer Function: tests/paraview/test_transfer2d.py's two boxes
+    # (soft values at low gradient, bright ones at high gradient).
+    ("transfer-2d", lambda b, r, a: {"UseTransfer2D": 1, "UseGradientForTransfer2D": 1,
+                                     "TransferFunction2D": two_boxes(a, r)}),
 ]
 
 
-def properties_of(properties, bounds, value_range):
-    """The display properties of one EFFECTS entry for the data's bounds and value range."""
-    return properties(bounds, value_range) if callable(properties) else properties
+def two_boxes(array, value_range):
+    """ParaView's TransferFunction2D of `array` with two boxes over value and
+    gradient magnitude (its y axis a quarter of the value range)."""
+    lo, hi = value_range
+    w = hi - lo
+    g = 0.25 * w
+    tf2d = GetTransferFunction2D(array)
+    tf2d.Range = [lo, hi, 0.0, g]
+    tf2d.OutputDimensions = [128, 128]
+    tf2d.Boxes = [lo + 0.12 * w, 0.0, 0.36 * w, 0.12 * g, 0.95, 0.75, 0.45, 0.08,
+                  lo + 0.45 * w, 0.08 * g, 0.55 * w, 0.92 * g, 0.35, 0.6, 1.0, 0.5]
+    return tf2d
+
+
+def printable(properties):
+    """`properties` with each proxy (a TransferFunction2D) named by its XML name, for the table and --json."""
+    return {k: v.GetXMLName() if isinstance(v, servermanager.Proxy) else v for k, v in properties.items()}
+
+
+def properties_of(properties, bounds, value_range, array):
+    """The display properties of one EFFECTS entry for the data's bounds, value range and array."""
+    return properties(bounds, value_range, array) if callable(properties) else properties
 
 parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
 parser.add_argument("--plugin", required=True, help="HybridOctree.so")
@@ -175,20 +198,21 @@ def run_dataset(dataset):
     look_at(view, bounds)
     display.TextureBudgetMB = full_budget_mb(source.GetDataInformation().GetExtent(),
                                              display.SMProxy.GetProperty("OctreeLeafSize").GetElement(0))
-    touched = sorted({k for _, p in EFFECTS for k in properties_of(p, bounds, value_range)})
+    touched = sorted({k for _, p in EFFECTS for k in properties_of(p, bounds, value_range, array)})
     defaults = {k: snapshot(display.GetPropertyValue(k)) for k in touched}
     defaults_seen.update(defaults)
     rows = []
     for name, properties in effects:
         for k, v in defaults.items():
             setattr(display, k, v)
-        for k, v in properties_of(properties, bounds, value_range).items():
+        for k, v in properties_of(properties, bounds, value_range, array).items():
             setattr(display, k, v)
         stem = "%s-%s" % (dataset, name)
         volume_ms, volume_picture = measure(view, display, VOLUME, stem + "-volume")
         hybrid_ms, hybrid_picture = measure(view, display, HYBRID, stem + "-hybrid")
         rows.append({"dataset": dataset, "effect": name,
-                     "properties": properties_of(properties, bounds, value_range), "volume_ms": volume_ms, "hybrid_ms": hybrid_ms,
+                     "properties": printable(properties_of(properties, bounds, value_range, array)),
+                     "volume_ms": volume_ms, "hybrid_ms": hybrid_ms,
                      "ratio": hybrid_ms / volume_ms, "rmse": rmse(hybrid_picture, volume_picture),
                      "plan": info(display, "LastPlan"), "effects": info(display, "LastEffects"), "texture_mb": info(display, "LastTextureMB"),
                      "estimated_error": info(display, "LastEstimatedError")})
@@ -219,7 +243,7 @@ else:
             r["dataset"], r["effect"], r["volume_ms"], r["hybrid_ms"], r["ratio"], r["rmse"], r["plan"],
             r["texture_mb"], r["estimated_error"],
             ", ".join("%s %s" % kv for kv in sorted(r["properties"].items())) or "-"))
-    report("ParaView's defaults: " + ", ".join("%s %s" % kv for kv in sorted(defaults_seen.items())))
+    report("ParaView's defaults: " + ", ".join("%s %s" % kv for kv in sorted(printable(defaults_seen).items())))
     report("peak RSS %.0f MB; %.1f s" % (peak_mb, time.perf_counter() - started))
 if args.check:
     t = Checks("effects_vs_paraview")
@@ -231,6 +255,8 @@ if args.check:
         volume_pass = "volume-isosurface" if r["properties"].get("BlendMode") == "Isosurface" else "volume"
         expected = volume_pass + ("-shaded" if shaded else "")
         t.check(r["plan"] == expected, what + ": plan %r, not %r" % (r["plan"], expected))
+        two_d = bool(r["properties"].get("UseTransfer2D"))
+        t.check(("transfer-2d" in r["effects"].split(",")) == two_d, what + ": effects %r" % r["effects"])
         cropped = bool(r["properties"].get("UseCropping"))
         t.check(("cropping" in r["effects"].split(",")) == cropped, what + ": effects %r" % r["effects"])
         t.check(r["estimated_error"] == 0.0, what + ": full budget, estimated error %g" % r["estimated_error"])
