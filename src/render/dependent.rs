@@ -23,7 +23,7 @@ use super::check::{check_list, check_size};
 use super::compositor::execute_counted;
 use super::image::Image;
 use super::reference::{reference_fields, ReferenceOptions};
-use super::texture::{brick_texels_f32_bordered_into, brick_texels_f32_into, upload, Texels, Textures};
+use super::texture::{brick_texels_f32_bordered_into, brick_texels_f32_into, upload, upload_field, Texels, Textures};
 use crate::base::error::{Error, Result};
 use crate::data::grid::Grid;
 use crate::geometry::camera::Camera;
@@ -78,7 +78,8 @@ fn check_dependent(list: &DrawList) -> Result<()> {
 /// [`Error::InvalidArgument`] for fields of different images, and as [`upload`].
 pub fn upload_dependent(colour: &Grid<'_>, opacity: &Grid<'_>, list: &DrawList) -> Result<DependentTextures> {
     check_fields(colour, opacity)?;
-    let (c, o) = (upload(colour, list)?, upload(opacity, list)?);
+    // The gradient is the colour field's (module documentation).
+    let (c, o) = (upload(colour, list)?, upload_field(opacity, list, false)?);
     let (colour, opacity) = match (&c.texels, &o.texels) {
         (Texels::F32(_), Texels::F64(_)) => (c.widened(), o),
         (Texels::F64(_), Texels::F32(_)) => (c, o.widened()),

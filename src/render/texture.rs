@@ -305,7 +305,7 @@ impl<S: Texel> Texture<S> {
         Some(t)
     }
 
-    /// This texture's box, stride and border holding `data` instead (no lattice differences).
+    /// This texture's box, stride, border and lattice differences holding `data` instead.
     fn with_data<D>(&self, data: Vec<D>) -> Texture<D> {
         Texture {
             lo: self.lo,
@@ -315,7 +315,7 @@ impl<S: Texel> Texture<S> {
             border: self.border,
             last: self.last,
             data,
-            lattice: Vec::new(),
+            lattice: self.lattice.clone(),
         }
     }
 
@@ -439,12 +439,21 @@ impl Textures {
 /// Uploads `list`'s brick textures from `grid` (bricks in parallel), with
 /// a gradient border when the list takes gradients ([`bordered_position`]).
 pub fn upload(grid: &Grid<'_>, list: &DrawList) -> Result<Textures> {
-    let shape = *grid.shape();
-    check_bricks(list, &shape)?;
-    Ok(Textures { shape, texels: grid.visit(Upload(list)) })
+    upload_field(grid, list, list.plan.gradients())
 }
 
-struct Upload<'a>(&'a DrawList);
+/// [`upload`] of a field whose gradient the executor reads (`gradients`:
+/// the [`Texture::lattice_differences`] are made) or not (the opacity field
+/// of dependent components: bordered like the colour field, its gradient
+/// never taken).
+pub(crate) fn upload_field(grid: &Grid<'_>, list: &DrawList, gradients: bool) -> Result<Textures> {
+    let shape = *grid.shape();
+    check_bricks(list, &shape)?;
+    Ok(Textures { shape, texels: grid.visit(Upload(list, gradients)) })
+}
+
+/// The DrawList, and whether the textures get their lattice differences.
+struct Upload<'a>(&'a DrawList, bool);
 
 impl GridVisitor for Upload<'_> {
     type Output = Texels;
@@ -452,7 +461,7 @@ impl GridVisitor for Upload<'_> {
         let bricks = &self.0.bricks;
         let border = usize::from(self.0.plan.bordered());
         let mode = self.0.plan.blend.mode;
-        let gradients = self.0.plan.gradients();
+        let gradients = self.1;
         let f32s: Option<Vec<Texture<f32>>> =
             bricks.par_iter().map(|d| Texture::prepared(&g, &d.brick, border, mode, gradients)).collect();
         match f32s {
