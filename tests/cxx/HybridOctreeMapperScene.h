@@ -10,6 +10,7 @@
 #ifndef HybridOctreeMapperScene_h
 #define HybridOctreeMapperScene_h
 
+#include "HybridOctreeTestUtilities.h"
 #include "vtkHybridOctreeVolumeMapper.h"
 
 #include "vtkCamera.h"
@@ -32,6 +33,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <vector>
 
 namespace MapperScene
@@ -187,6 +189,40 @@ inline bool NoGLError(vtkRenderWindow* window)
     clean = false;
   }
   return clean;
+}
+
+/// The CPU compositor's picture (CompositeOnCPU) of the mapper's last frame
+/// of `stage`, over the background; checked to run.
+inline std::vector<double> CpuPicture(
+  Checker& check, Stage& stage, vtkHybridOctreeVolumeMapper* mapper, ErrorRecorder* errors)
+{
+  vtkNew<vtkFloatArray> cpu;
+  check.Check(mapper->CompositeOnCPU(stage.Renderer, stage.Volume, Size, Size, cpu),
+    "the CPU compositor ran:\n" + errors->AllErrors());
+  return OverBackground(cpu, Size);
+}
+
+/// Renders `stage` and checks the mapper's picture against the CPU
+/// compositor's on the same DrawList: RGB RMSE below `threshold`, a scene
+/// that shows something, no OpenGL error; prints the frame's statistics.
+inline void CompareWithCpu(Checker& check, Stage& stage, vtkHybridOctreeVolumeMapper* mapper,
+  double threshold, ErrorRecorder* errors)
+{
+  stage.Window->Render();
+  check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
+  const std::vector<double> gl = Grab(stage.Window);
+  const std::vector<double> reference = CpuPicture(check, stage, mapper, errors);
+  const double rmse = Rmse(gl, reference);
+  std::cout << "bricks " << mapper->GetLastBricks() << ", slices " << mapper->GetLastSlices()
+            << ", surface triangles " << mapper->GetLastSurfaceTriangles() << ", plan '"
+            << mapper->GetLastPlan() << "', effects '" << mapper->GetLastEffects()
+            << "', texture bytes " << mapper->GetLastTextureBytes() << ", estimated error "
+            << mapper->GetLastEstimatedError() << "\n"
+            << "RGB RMSE GL vs CPU compositor " << rmse << " (threshold " << threshold
+            << "), signal " << Signal(reference) << "\n";
+  check.Check(Signal(reference) > 0.005, "the scene shows something");
+  check.Check(rmse < threshold, "GL picture within the threshold of the CPU compositor");
+  check.Check(NoGLError(stage.Window), "no OpenGL error left behind");
 }
 } // namespace MapperScene
 

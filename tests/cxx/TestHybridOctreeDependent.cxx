@@ -109,10 +109,7 @@ int Dependent()
     check.Check(std::string(mapper->GetLastEffects()) == effects,
       "effects '" + effects + "', not '" + mapper->GetLastEffects() + "'");
     const std::vector<double> gl = Grab(scene.Window);
-    vtkNew<vtkFloatArray> cpu;
-    check.Check(mapper->CompositeOnCPU(scene.Renderer, scene.Volume, Size, Size, cpu),
-      "the CPU compositor ran:\n" + errors->AllErrors());
-    const std::vector<double> reference = OverBackground(cpu, Size);
+    const std::vector<double> reference = CpuPicture(check, scene, mapper, errors);
     const double rmse = Rmse(gl, reference);
     std::cout << "shade " << shade << ": bricks " << mapper->GetLastBricks() << ", texture bytes "
               << mapper->GetLastTextureBytes() << ", estimated error "

@@ -75,10 +75,7 @@ int Cpu()
     scene.Window->Render();
     check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
     const std::vector<double> gl = Grab(scene.Window);
-    vtkNew<vtkFloatArray> cpu;
-    check.Check(mapper->CompositeOnCPU(scene.Renderer, scene.Volume, Size, Size, cpu),
-      "the CPU compositor ran:\n" + errors->AllErrors());
-    const std::vector<double> reference = OverBackground(cpu, Size);
+    const std::vector<double> reference = CpuPicture(check, scene, mapper, errors);
     const double rmse = Rmse(gl, reference);
     const double change = Rmse(gl, composited);
     const std::string plan = shade ? "volume-slice-shaded" : "volume-slice";

@@ -69,27 +69,6 @@ void UseTable(vtkVolumeProperty* property, vtkImageData* table)
   property->SetTransferFunctionModeTo2D();
 }
 
-/// The mapper's picture against the CPU compositor's; prints and checks.
-void CompareWithCpu(Checker& check, Scene& scene, vtkHybridOctreeVolumeMapper* mapper,
-  double threshold, ErrorRecorder* errors)
-{
-  scene.Window->Render();
-  check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
-  const std::vector<double> gl = Grab(scene.Window);
-  vtkNew<vtkFloatArray> cpu;
-  check.Check(mapper->CompositeOnCPU(scene.Renderer, scene.Volume, Size, Size, cpu),
-    "the CPU compositor ran:\n" + errors->AllErrors());
-  const std::vector<double> reference = OverBackground(cpu, Size);
-  const double rmse = Rmse(gl, reference);
-  std::cout << "bricks " << mapper->GetLastBricks() << ", plan '" << mapper->GetLastPlan()
-            << "', effects '" << mapper->GetLastEffects() << "', texture bytes "
-            << mapper->GetLastTextureBytes() << "; RGB RMSE GL vs CPU compositor " << rmse
-            << " (threshold " << threshold << "), signal " << Signal(reference) << "\n";
-  check.Check(Signal(reference) > 0.005, "the scene shows something");
-  check.Check(rmse < threshold, "GL picture within the threshold of the CPU compositor");
-  check.Check(NoGLError(scene.Window), "no OpenGL error left behind");
-}
-
 int CpuMatch()
 {
   Checker check;

@@ -138,29 +138,6 @@ void SetGradientOpacity(Stage& scene)
   scene.Property->SetGradientOpacity(gradient);
 }
 
-/// The mapper's picture against the CPU compositor's; prints and checks.
-void CompareWithCpu(Checker& check, Scene& scene, vtkHybridOctreeVolumeMapper* mapper,
-  double threshold, ErrorRecorder* errors)
-{
-  scene.Window->Render();
-  check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
-  const std::vector<double> gl = Grab(scene.Window);
-  vtkNew<vtkFloatArray> cpu;
-  check.Check(mapper->CompositeOnCPU(scene.Renderer, scene.Volume, Size, Size, cpu),
-    "the CPU compositor ran:\n" + errors->AllErrors());
-  const std::vector<double> reference = OverBackground(cpu, Size);
-  const double rmse = Rmse(gl, reference);
-  std::cout << "bricks " << mapper->GetLastBricks() << ", slices " << mapper->GetLastSlices()
-            << ", surface triangles " << mapper->GetLastSurfaceTriangles() << ", plan '"
-            << mapper->GetLastPlan() << "', texture bytes " << mapper->GetLastTextureBytes()
-            << ", estimated error " << mapper->GetLastEstimatedError() << "\n"
-            << "RGB RMSE GL vs CPU compositor " << rmse << " (threshold " << threshold
-            << "), signal " << Signal(reference) << "\n";
-  check.Check(Signal(reference) > 0.005, "the scene shows something");
-  check.Check(rmse < threshold, "GL picture within the threshold of the CPU compositor");
-  check.Check(NoGLError(scene.Window), "no OpenGL error left behind");
-}
-
 /// The blend mode of a scenario ("mip", "gpu_minip", ...), -1 for the others.
 int BlendOf(std::string scenario)
 {
