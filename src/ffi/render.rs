@@ -28,7 +28,7 @@ use crate::plan::{
 use crate::points::Footprint;
 use crate::points::PointSet;
 use crate::render::texture::{
-    brick_texels_encoded_into, brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into,
+    brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into, encoded::brick_texels_encoded_into,
 };
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
 use crate::transfer::{GradientOpacity, TransferFunction2D};

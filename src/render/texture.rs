@@ -31,11 +31,9 @@ use crate::plan::texel_format::TexelFormat;
 use crate::plan::{BlendMode, DrawList};
 use rayon::prelude::*;
 
-mod encoded;
+pub mod encoded;
 mod gradient;
 mod pool;
-
-pub use encoded::{brick_texels_encoded_into, staging_bytes};
 
 /// A stored texel: `f32` or `f64` holding the value, or the `u8` or `u16`
 /// code of a normalized texel format ([`crate::plan::texel_format::TexelEncoding`]), read back as `f64`.
