@@ -93,12 +93,7 @@ impl SelectionHandle {
             }
             let (colour, opacity) = fields(bytes, desc, false)?;
             same_image(&self.shape, &colour)?;
-            let Some(b) = self.selection.bricks.get(brick) else {
-                return Err(Error::InvalidArgument(format!(
-                    "brick {brick} does not exist: the selection has {} bricks",
-                    self.selection.bricks.len()
-                )));
-            };
+            let b = self.selected_brick(brick)?;
             brick_texels_dependent_f32_into(&colour, &opacity, b, bordered, texels)?;
             if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
                 return Err(Error::InvalidArgument(format!(

@@ -580,6 +580,16 @@ impl SelectionHandle {
         self.texels(bytes, desc, brick, true, texels)
     }
 
+    /// Brick `brick` of the selection, or an error naming how many there are.
+    pub(crate) fn selected_brick(&self, brick: usize) -> Result<&crate::plan::select::Brick> {
+        self.selection.bricks.get(brick).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "brick {brick} does not exist: the selection has {} bricks",
+                self.selection.bricks.len()
+            ))
+        })
+    }
+
     /// Brick `brick`'s texels in the selection's texel format (see the bridge's declaration).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn brick_texels_encoded(
@@ -594,23 +604,12 @@ impl SelectionHandle {
         guarded(|| {
             let grid = grid_unscanned(bytes, desc)?;
             same_image(&self.shape, &grid)?;
-            let Some(b) = self.selection.bricks.get(brick) else {
-                return Err(Error::InvalidArgument(format!(
-                    "brick {brick} does not exist: the selection has {} bricks",
-                    self.selection.bricks.len()
-                )));
-            };
+            let b = self.selected_brick(brick)?;
             let how = (usize::from(bordered), self.blend.mode);
             brick_texels_encoded_into(&grid, b, how, &self.texel, decoded, encoded)?;
             // The shader decodes in f32: the values must be f32-resolvable, as f32 texels must.
             check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
-            if let Some(i) = decoded.iter().position(|v| v.is_infinite()) {
-                return Err(Error::InvalidArgument(format!(
-                    "brick {brick} holds a value beyond the range of a 32-bit float (texel {i}): scale the data \
-                     into that range (e.g. with vtkImageShiftScale), or draw with CompositeOnCPU"
-                )));
-            }
-            Ok(())
+            finite_texels(brick, grid.samples().scalar_type(), decoded)
         })
     }
 
@@ -623,33 +622,30 @@ impl SelectionHandle {
             // it goes to the texture, where the shader skips it.
             let grid = grid_unscanned(bytes, desc)?;
             same_image(&self.shape, &grid)?;
-            let Some(b) = self.selection.bricks.get(brick) else {
-                return Err(Error::InvalidArgument(format!(
-                    "brick {brick} does not exist: the selection has {} bricks",
-                    self.selection.bricks.len()
-                )));
-            };
+            let b = self.selected_brick(brick)?;
             if bordered {
                 brick_texels_f32_bordered_into(&grid, b, texels)?;
             } else {
                 brick_texels_for_blend_f32_into(&grid, b, self.blend.mode, texels)?;
             }
             check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
-            if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
-                let why = if grid.samples().scalar_type() == ScalarType::F64 {
-                    "a value beyond the range of a GPU texture's 32-bit float (|value| above 3.4e38), texel {i}: \
-                     scale the data into that range (e.g. with vtkImageShiftScale), or draw with CompositeOnCPU, \
-                     which keeps 64-bit values"
-                } else {
-                    "an infinite value (texel {i}): the image changed since the octree was built; fix the values \
-                     and rebuild it"
-                };
-                return Err(Error::InvalidArgument(format!(
-                    "brick {brick} holds {}",
-                    why.replace("{i}", &i.to_string())
-                )));
-            }
-            Ok(())
+            finite_texels(brick, grid.samples().scalar_type(), texels)
         })
     }
+}
+
+/// Brick `brick`'s texels (of an image of type `scalar`) hold no infinity:
+/// an f64 beyond a GPU texture's 32-bit float, or an image changed since
+/// the octree was built (its build refused infinities).
+fn finite_texels(brick: usize, scalar: ScalarType, texels: &[f32]) -> Result<()> {
+    let Some(i) = texels.iter().position(|v| v.is_infinite()) else { return Ok(()) };
+    let why = if scalar == ScalarType::F64 {
+        format!(
+            "a value beyond the range of a GPU texture's 32-bit float (|value| above 3.4e38), texel {i}: scale the \
+             data into that range (e.g. with vtkImageShiftScale), or draw with CompositeOnCPU, which keeps 64-bit values"
+        )
+    } else {
+        format!("an infinite value (texel {i}): the image changed since the octree was built; fix the values and rebuild it")
+    };
+    Err(Error::InvalidArgument(format!("brick {brick} holds {why}")))
 }
