@@ -829,12 +829,12 @@ fn huge_sizes_are_refused_up_front_with_the_bytes_needed() {
     let capped = |args: &[&str]| {
         Command::new(env!("CARGO_BIN_EXE_hybrid-octree")).args(args).envs(cap).output().expect("the CLI starts")
     };
-    // 100000^3 f32: 4e15 bytes, twice that at the generator's peak.
+    // 100000^3 f32: 4e15 bytes (the generator writes them in place).
     let out = capped(&["render", "--dataset", "sphere", "--size", "100000", "--output", "never.png"]);
-    assert_clean_failure(&out, "needs 7.1 PiB");
-    // 300^3 f64 = 216 MB (432 MB at the peak) is above the 64 MiB cap; 3000^3 far above.
+    assert_clean_failure(&out, "needs 3.6 PiB");
+    // 300^3 f64 = 216 MB is above the 64 MiB cap; 3000^3 far above.
     let out = capped(&["generate", "--dataset", "sphere", "--size", "300", "--type", "f64", "--output", "never.vti"]);
-    assert_clean_failure(&out, "needs 412.0 MiB");
+    assert_clean_failure(&out, "needs 206.0 MiB");
     assert_clean_failure(&capped(&["generate", "--dataset", "ramp", "--size", "3000", "--output", "x.vti"]), "GiB");
     assert_clean_failure(&capped(&["bench", "build", "--sizes", "16,100000", "--repeats", "1"]), "PiB");
     assert_clean_failure(&capped(&["bench", "surface", "--size", "100000", "--repeats", "1"]), "PiB");
