@@ -759,13 +759,13 @@ fn run_capped(cap: &str, args: &[&str]) -> Output {
 
 #[test]
 fn raw_files_are_checked_against_memory_before_reading() {
-    // A sparse 256 MiB file: its layout is right, its size too much for a 64 MiB cap.
+    // A sparse 256 MiB file: its layout is right, its size (read straight into the volume) too much for a 64 MiB cap.
     let path = temp("big.raw");
     std::fs::File::create(&path).unwrap().set_len(256 << 20).unwrap();
     let file = path.to_str().unwrap();
     let out = run_capped("64M", &["info", "--file", file, "--dims", "1024,512,512", "--type", "u8"]);
     std::fs::remove_file(&path).unwrap();
-    assert_clean_failure(&out, "needs 512.0 MiB of memory");
+    assert_clean_failure(&out, "needs 256.0 MiB of memory");
     assert!(stderr(&out).contains("1024x512x512 u8") && stderr(&out).contains("HYBRID_OCTREE_MAX_MEMORY"));
 }
 
