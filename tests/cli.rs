@@ -1109,3 +1109,50 @@ fn render_slice_draws_the_plane() {
     let _ = std::fs::remove_file(png);
     let _ = std::fs::remove_file(reference);
 }
+
+/// `bench scale` writes each size and type to a file, reads it back and
+/// reports every step with its time per voxel and peak memory; its files
+/// are removed afterwards.
+#[test]
+fn bench_scale_reports_every_step_of_every_size() {
+    let dir = temp("scale");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = run(&[
+        "bench",
+        "scale",
+        "--sizes",
+        "9,12",
+        "--type",
+        "u8,u16",
+        "--width",
+        "24",
+        "--height",
+        "24",
+        "--dir",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Value = serde_json::from_str(&stdout(&out)).expect("a JSON array");
+    let rows = rows.as_array().unwrap();
+    let steps = ["generate", "read", "build", "select", "first frame"];
+    assert_eq!(rows.len(), 2 * 2 * steps.len());
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r["step"], steps[i % steps.len()], "{r}");
+        let size = [9, 12][i / (2 * steps.len())];
+        let ty = ["u8", "u16"][i / steps.len() % 2];
+        assert_eq!((r["size"].as_u64(), r["scalar_type"].as_str()), (Some(size), Some(ty)), "{r}");
+        assert_eq!(r["volume_bytes"].as_u64(), Some(size * size * size * if ty == "u8" { 1 } else { 2 }));
+        let (ms, ns) = (r["ms"].as_f64().unwrap(), r["ns_per_voxel"].as_f64().unwrap());
+        assert!(ms >= 0.0 && (ns - ms * 1e6 / (size * size * size) as f64).abs() <= 1e-9 * ns.max(1.0), "{r}");
+        if cfg!(target_os = "linux") {
+            let peak = r["peak_rss_bytes"].as_u64().unwrap();
+            assert!(peak > 1 << 20, "{r}");
+            let ratio = r["peak_rss_ratio"].as_f64().unwrap();
+            assert!((ratio - peak as f64 / r["volume_bytes"].as_f64().unwrap()).abs() < 1e-9 * ratio, "{r}");
+        }
+    }
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "the benchmark's files are removed");
+    std::fs::remove_dir(&dir).unwrap();
+    assert_clean_failure(&run(&["bench", "scale", "--sizes", "9", "--type", "u12"]), "u12");
+}
