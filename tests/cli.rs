@@ -851,6 +851,7 @@ fn absurd_thread_counts_are_refused() {
         &run(&["generate", "--dataset", "sphere", "--size", "9", "--threads", huge, "--output", "t.vti"]),
         "at most 1024",
     );
+    assert!(!std::path::Path::new("t.vti").exists(), "a refused generate writes no file");
     assert_clean_failure(&run(&["bench", "build", "--sizes", "9", "--threads", &format!("1,{huge}")]), "at most 1024");
     assert_clean_failure(&run(&["bench", "surface", "--size", "9", "--threads", &format!("2,{huge}")]), "at most 1024");
     assert_clean_failure(&run(&["build", "--dataset", "sphere", "--size", "9", "--threads", "0"]), "at least 1");

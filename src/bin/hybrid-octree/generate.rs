@@ -53,7 +53,10 @@ pub fn write_dataset(
     threads: Option<usize>,
 ) -> Result<()> {
     let shape = GridShape { dims, spacing: [1.0; 3], origin: [0.0; 3] };
-    let mut writer = VtiWriter::create(path, &shape, 1, dataset.name(), scalar_type)?;
-    with_threads(threads, || generate_slabs(dataset, dims, scalar_type, &mut |slab| writer.write(slab.as_samples())))?;
-    writer.finish()
+    // The file is created once the thread count is accepted: a refused run writes nothing.
+    with_threads(threads, || {
+        let mut writer = VtiWriter::create(path, &shape, 1, dataset.name(), scalar_type)?;
+        generate_slabs(dataset, dims, scalar_type, &mut |slab| writer.write(slab.as_samples()))?;
+        writer.finish()
+    })
 }
