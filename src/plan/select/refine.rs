@@ -142,6 +142,12 @@ fn check_options(options: &SelectOptions) -> Result<()> {
     if let Some(plane) = &options.slice {
         plane.check()?;
     }
+    if !(options.texel_error >= 0.0 && options.texel_error.is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "texel quantization error {} must be a finite number >= 0 (a fraction of the data range)",
+            options.texel_error
+        )));
+    }
     if options.bytes_per_texel == 0 {
         return Err(Error::InvalidArgument("bytes per texel must be at least 1".into()));
     }
@@ -195,6 +201,8 @@ impl Refiner<'_> {
         if let Some(inv_range) = self.pooled().filter(|_| p < n.errors.len()) {
             b.error = b.error.max(((n.max - n.min) * inv_range) as f32);
         }
+        // The texels' quantization error, at every level alike (`E_p + e_q`).
+        b.error += self.options.texel_error as f32;
         b
     }
 
