@@ -96,7 +96,9 @@ impl SampleBuf {
         }
         let size = self.scalar_type().size();
         if size > 1 {
-            self.as_bytes_mut().par_chunks_mut(size * 4096).for_each(|c| c.chunks_exact_mut(size).for_each(<[u8]>::reverse));
+            self.as_bytes_mut()
+                .par_chunks_mut(size * 4096)
+                .for_each(|c| c.chunks_exact_mut(size).for_each(<[u8]>::reverse));
         }
     }
 

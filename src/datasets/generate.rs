@@ -288,7 +288,9 @@ mod tests {
         assert_eq!(slabs, 1);
         let part = generate_slab(Dataset::Vessels, dims, ScalarType::U16, 3..5);
         assert_eq!(part.as_samples().len(), 7 * 5 * 2);
-        assert!(matches!((&part, &whole.samples), (SampleBuf::U16(p), SampleBuf::U16(w)) if p[..] == w[3 * 35..5 * 35]));
+        assert!(
+            matches!((&part, &whole.samples), (SampleBuf::U16(p), SampleBuf::U16(w)) if p[..] == w[3 * 35..5 * 35])
+        );
     }
 
     #[test]

@@ -90,12 +90,8 @@ fn rotations() -> &'static [(f64, f64); 10] {
 pub fn value(t: [f64; 3]) -> f64 {
     let p = [2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0, 2.0 * t[2] - 1.0];
     let rotations = rotations();
-    let sum: f64 = ELLIPSOIDS
-        .iter()
-        .zip(rotations)
-        .filter(|(e, &r)| e.contains_rotated(p, r))
-        .map(|(e, _)| e.intensity)
-        .sum();
+    let sum: f64 =
+        ELLIPSOIDS.iter().zip(rotations).filter(|(e, &r)| e.contains_rotated(p, r)).map(|(e, _)| e.intensity).sum();
     // `<= 0` also maps the -0.0 that cancelling intensities can leave to +0.0.
     if sum <= 0.0 {
         0.0

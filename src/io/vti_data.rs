@@ -229,9 +229,15 @@ impl Words {
 
 /// A cursor over binary data: raw bytes in memory or in the file, or base64 text.
 enum Stream<'a> {
-    Raw { bytes: &'a [u8], pos: usize },
+    Raw {
+        bytes: &'a [u8],
+        pos: usize,
+    },
     /// `left`: bytes of the file after the read position.
-    File { file: std::io::BufReader<&'a mut std::fs::File>, left: u64 },
+    File {
+        file: std::io::BufReader<&'a mut std::fs::File>,
+        left: u64,
+    },
     Base64(Base64<'a>),
 }
 
@@ -305,9 +311,8 @@ impl<'a> Base64<'a> {
 
     /// At most the bytes the text left decodes to.
     fn most(&self) -> usize {
-        let chars: usize = self.runs.iter().skip(self.run).map(|r| r.len()).sum::<usize>() - self.pos.min(
-            self.runs.get(self.run).map_or(0, |r| r.len()),
-        );
+        let chars: usize = self.runs.iter().skip(self.run).map(|r| r.len()).sum::<usize>()
+            - self.pos.min(self.runs.get(self.run).map_or(0, |r| r.len()));
         chars / 4 * 3 + self.pending.len()
     }
 

@@ -128,7 +128,9 @@ impl VtiWriter {
     /// Closes the file once every value is written.
     pub fn finish(mut self) -> Result<()> {
         if self.remaining != 0 {
-            return Err(self.fail(format!("{} bytes of values were never written; the file is incomplete", self.remaining)));
+            return Err(
+                self.fail(format!("{} bytes of values were never written; the file is incomplete", self.remaining))
+            );
         }
         let end = self.out.write_all(b"\n  </AppendedData>\n</VTKFile>\n").and_then(|()| self.out.flush());
         end.map_err(|e| self.fail(format!("cannot write the file: {e}")))

@@ -125,7 +125,8 @@ fn one_size(
         })?;
         row("read", ms, peak);
         let grid = volume.grid(None)?;
-        let (octree, ms, peak) = measured(|| VolumeOctree::build(&grid, &BuildOptions { leaf_size: args.scene.leaf_size }))?;
+        let (octree, ms, peak) =
+            measured(|| VolumeOctree::build(&grid, &BuildOptions { leaf_size: args.scene.leaf_size }))?;
         row("build", ms, peak);
         let scene = dress(&grid, octree, &args.scene)?;
         let options = select_options(&scene, &args.scene, budget_bytes, 0.0);
