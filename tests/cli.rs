@@ -759,13 +759,13 @@ fn run_capped(cap: &str, args: &[&str]) -> Output {
 
 #[test]
 fn raw_files_are_checked_against_memory_before_reading() {
-    // A sparse 256 MiB file: its layout is right, its size too much for a 64 MiB cap.
+    // A sparse 256 MiB file: its layout is right, its size (read straight into the volume) too much for a 64 MiB cap.
     let path = temp("big.raw");
     std::fs::File::create(&path).unwrap().set_len(256 << 20).unwrap();
     let file = path.to_str().unwrap();
     let out = run_capped("64M", &["info", "--file", file, "--dims", "1024,512,512", "--type", "u8"]);
     std::fs::remove_file(&path).unwrap();
-    assert_clean_failure(&out, "needs 512.0 MiB of memory");
+    assert_clean_failure(&out, "needs 256.0 MiB of memory");
     assert!(stderr(&out).contains("1024x512x512 u8") && stderr(&out).contains("HYBRID_OCTREE_MAX_MEMORY"));
 }
 
@@ -829,12 +829,12 @@ fn huge_sizes_are_refused_up_front_with_the_bytes_needed() {
     let capped = |args: &[&str]| {
         Command::new(env!("CARGO_BIN_EXE_hybrid-octree")).args(args).envs(cap).output().expect("the CLI starts")
     };
-    // 100000^3 f32: 4e15 bytes, twice that at the generator's peak.
+    // 100000^3 f32: 4e15 bytes (the generator writes them in place).
     let out = capped(&["render", "--dataset", "sphere", "--size", "100000", "--output", "never.png"]);
-    assert_clean_failure(&out, "needs 7.1 PiB");
-    // 300^3 f64 = 216 MB (432 MB at the peak) is above the 64 MiB cap; 3000^3 far above.
+    assert_clean_failure(&out, "needs 3.6 PiB");
+    // 300^3 f64 = 216 MB is above the 64 MiB cap; 3000^3 far above.
     let out = capped(&["generate", "--dataset", "sphere", "--size", "300", "--type", "f64", "--output", "never.vti"]);
-    assert_clean_failure(&out, "needs 412.0 MiB");
+    assert_clean_failure(&out, "needs 206.0 MiB");
     assert_clean_failure(&capped(&["generate", "--dataset", "ramp", "--size", "3000", "--output", "x.vti"]), "GiB");
     assert_clean_failure(&capped(&["bench", "build", "--sizes", "16,100000", "--repeats", "1"]), "PiB");
     assert_clean_failure(&capped(&["bench", "surface", "--size", "100000", "--repeats", "1"]), "PiB");
@@ -851,6 +851,7 @@ fn absurd_thread_counts_are_refused() {
         &run(&["generate", "--dataset", "sphere", "--size", "9", "--threads", huge, "--output", "t.vti"]),
         "at most 1024",
     );
+    assert!(!std::path::Path::new("t.vti").exists(), "a refused generate writes no file");
     assert_clean_failure(&run(&["bench", "build", "--sizes", "9", "--threads", &format!("1,{huge}")]), "at most 1024");
     assert_clean_failure(&run(&["bench", "surface", "--size", "9", "--threads", &format!("2,{huge}")]), "at most 1024");
     assert_clean_failure(&run(&["build", "--dataset", "sphere", "--size", "9", "--threads", "0"]), "at least 1");
@@ -1108,4 +1109,51 @@ fn render_slice_draws_the_plane() {
     }
     let _ = std::fs::remove_file(png);
     let _ = std::fs::remove_file(reference);
+}
+
+/// `bench scale` writes each size and type to a file, reads it back and
+/// reports every step with its time per voxel and peak memory; its files
+/// are removed afterwards.
+#[test]
+fn bench_scale_reports_every_step_of_every_size() {
+    let dir = temp("scale");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = run(&[
+        "bench",
+        "scale",
+        "--sizes",
+        "9,12",
+        "--type",
+        "u8,u16",
+        "--width",
+        "24",
+        "--height",
+        "24",
+        "--dir",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Value = serde_json::from_str(&stdout(&out)).expect("a JSON array");
+    let rows = rows.as_array().unwrap();
+    let steps = ["generate", "read", "build", "select", "first frame"];
+    assert_eq!(rows.len(), 2 * 2 * steps.len());
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r["step"], steps[i % steps.len()], "{r}");
+        let size = [9, 12][i / (2 * steps.len())];
+        let ty = ["u8", "u16"][i / steps.len() % 2];
+        assert_eq!((r["size"].as_u64(), r["scalar_type"].as_str()), (Some(size), Some(ty)), "{r}");
+        assert_eq!(r["volume_bytes"].as_u64(), Some(size * size * size * if ty == "u8" { 1 } else { 2 }));
+        let (ms, ns) = (r["ms"].as_f64().unwrap(), r["ns_per_voxel"].as_f64().unwrap());
+        assert!(ms >= 0.0 && (ns - ms * 1e6 / (size * size * size) as f64).abs() <= 1e-9 * ns.max(1.0), "{r}");
+        if cfg!(target_os = "linux") {
+            let peak = r["peak_rss_bytes"].as_u64().unwrap();
+            assert!(peak > 1 << 20, "{r}");
+            let ratio = r["peak_rss_ratio"].as_f64().unwrap();
+            assert!((ratio - peak as f64 / r["volume_bytes"].as_f64().unwrap()).abs() < 1e-9 * ratio, "{r}");
+        }
+    }
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "the benchmark's files are removed");
+    std::fs::remove_dir(&dir).unwrap();
+    assert_clean_failure(&run(&["bench", "scale", "--sizes", "9", "--type", "u12"]), "u12");
 }

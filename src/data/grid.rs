@@ -212,6 +212,25 @@ impl<'a> Samples<'a> {
         }
     }
 
+    /// The values' bytes in native byte order: a view, not a copy.
+    pub fn as_bytes(&self) -> &'a [u8] {
+        fn view<T>(v: &[T]) -> &[u8] {
+            // SAFETY: `T` is a plain number type without padding; the byte
+            // slice covers exactly the values and borrows them for its lifetime.
+            unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<u8>(), std::mem::size_of_val(v)) }
+        }
+        match *self {
+            Samples::U8(v) => v,
+            Samples::I8(v) => view(v),
+            Samples::U16(v) => view(v),
+            Samples::I16(v) => view(v),
+            Samples::U32(v) => view(v),
+            Samples::I32(v) => view(v),
+            Samples::F32(v) => view(v),
+            Samples::F64(v) => view(v),
+        }
+    }
+
     /// Reinterprets a byte buffer (VTK's `GetVoidPointer`) as typed samples,
     /// without copying. Fails if the length is not a multiple of the value size
     /// or the pointer is not aligned for the type.

@@ -3,6 +3,7 @@
 
 use crate::base::error::Result;
 use crate::data::grid::{Grid, GridShape, Samples, ScalarType};
+use rayon::prelude::*;
 
 /// Owned samples of one of the supported scalar types.
 #[derive(Debug, Clone, PartialEq)]
@@ -45,38 +46,71 @@ impl SampleBuf {
         self.len() == 0
     }
 
+    /// A zeroed buffer of `n` values of `ty` (the allocator hands out zero
+    /// pages lazily, so nothing is touched before it is written).
+    pub fn zeroed(ty: ScalarType, n: usize) -> SampleBuf {
+        match ty {
+            ScalarType::U8 => SampleBuf::U8(vec![0; n]),
+            ScalarType::I8 => SampleBuf::I8(vec![0; n]),
+            ScalarType::U16 => SampleBuf::U16(vec![0; n]),
+            ScalarType::I16 => SampleBuf::I16(vec![0; n]),
+            ScalarType::U32 => SampleBuf::U32(vec![0; n]),
+            ScalarType::I32 => SampleBuf::I32(vec![0; n]),
+            ScalarType::F32 => SampleBuf::F32(vec![0.0; n]),
+            ScalarType::F64 => SampleBuf::F64(vec![0.0; n]),
+        }
+    }
+
+    /// The values' bytes in native byte order: a view, not a copy.
+    pub fn as_bytes(&self) -> &[u8] {
+        self.as_samples().as_bytes()
+    }
+
+    /// The values' bytes in native byte order, writable: readers decode a
+    /// file's bytes straight into the final buffer. Every bit pattern is a
+    /// value of these plain number types, so any bytes are valid.
+    pub fn as_bytes_mut(&mut self) -> &mut [u8] {
+        fn view<T>(v: &mut [T]) -> &mut [u8] {
+            // SAFETY: `T` is a plain number type (no padding, every bit pattern
+            // valid); the byte slice covers exactly the values and borrows them
+            // mutably for its lifetime.
+            unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast::<u8>(), std::mem::size_of_val(v)) }
+        }
+        match self {
+            SampleBuf::U8(v) => view(v),
+            SampleBuf::I8(v) => view(v),
+            SampleBuf::U16(v) => view(v),
+            SampleBuf::I16(v) => view(v),
+            SampleBuf::U32(v) => view(v),
+            SampleBuf::I32(v) => view(v),
+            SampleBuf::F32(v) => view(v),
+            SampleBuf::F64(v) => view(v),
+        }
+    }
+
+    /// Converts values held in `file_big_endian` byte order (read into
+    /// [`SampleBuf::as_bytes_mut`]) to native order, in place.
+    pub fn fix_byte_order(&mut self, file_big_endian: bool) {
+        if file_big_endian == cfg!(target_endian = "big") {
+            return;
+        }
+        let size = self.scalar_type().size();
+        if size > 1 {
+            self.as_bytes_mut()
+                .par_chunks_mut(size * 4096)
+                .for_each(|c| c.chunks_exact_mut(size).for_each(<[u8]>::reverse));
+        }
+    }
+
     /// Decodes `bytes` (whole values; a trailing partial value is ignored) as
     /// values of `scalar_type` in little- or big-endian byte order.
     pub fn from_bytes(bytes: &[u8], scalar_type: ScalarType, big_endian: bool) -> SampleBuf {
-        macro_rules! conv {
-            ($t:ty, $variant:ident) => {{
-                const N: usize = std::mem::size_of::<$t>();
-                SampleBuf::$variant(
-                    bytes
-                        .chunks_exact(N)
-                        .map(|c| {
-                            let mut a = [0u8; N];
-                            a.copy_from_slice(c);
-                            if big_endian {
-                                <$t>::from_be_bytes(a)
-                            } else {
-                                <$t>::from_le_bytes(a)
-                            }
-                        })
-                        .collect(),
-                )
-            }};
-        }
-        match scalar_type {
-            ScalarType::U8 => SampleBuf::U8(bytes.to_vec()),
-            ScalarType::I8 => SampleBuf::I8(bytes.iter().map(|&b| b as i8).collect()),
-            ScalarType::U16 => conv!(u16, U16),
-            ScalarType::I16 => conv!(i16, I16),
-            ScalarType::U32 => conv!(u32, U32),
-            ScalarType::I32 => conv!(i32, I32),
-            ScalarType::F32 => conv!(f32, F32),
-            ScalarType::F64 => conv!(f64, F64),
-        }
+        let n = bytes.len() / scalar_type.size();
+        let mut out = SampleBuf::zeroed(scalar_type, n);
+        let whole = out.as_bytes().len();
+        out.as_bytes_mut().copy_from_slice(&bytes[..whole]);
+        out.fix_byte_order(big_endian);
+        out
     }
 
     /// Converts `f64` values to `scalar_type`, rounding and saturating for

@@ -22,14 +22,15 @@ use rayon::prelude::*;
 
 /// Checks, before anything is allocated, that `dims` samples of
 /// `scalar_type` can be generated: at least 2 samples per axis, and the
-/// bytes the generator holds at its peak,
+/// volume's bytes,
 ///
 /// ```text
-/// bytes = 2 * nx * ny * nz * size_of(scalar_type)      (the z-slices and the joined array)
+/// bytes = nx * ny * nz * size_of(scalar_type)
 /// ```
 ///
 /// computed without overflow, within the memory this process may use
-/// ([`check_memory`]). Returns the volume's own bytes (half the peak).
+/// ([`check_memory`]): the generator writes every sample once, in place, and
+/// whoever reads the volume back holds it whole. Returns the bytes.
 pub fn check_generate(dims: [usize; 3], scalar_type: ScalarType) -> Result<u128> {
     if let Some(d) = dims.iter().find(|&&d| d < 2) {
         return Err(Error::InvalidArgument(format!(
@@ -47,7 +48,7 @@ pub fn check_generate(dims: [usize; 3], scalar_type: ScalarType) -> Result<u128>
             ))
         })?;
     let what = format!("a {} x {} x {} {} dataset", dims[0], dims[1], dims[2], scalar_type.name());
-    check_memory(2 * bytes, &what, "use a smaller --size or a smaller --type")?;
+    check_memory(bytes, &what, "use a smaller --size or a smaller --type")?;
     Ok(bytes)
 }
 
@@ -59,28 +60,64 @@ pub fn generate(dataset: Dataset, size: usize, scalar_type: ScalarType) -> Volum
 /// `dims` samples of `dataset` as `scalar_type`, spacing 1, origin 0, the
 /// array named after the dataset. Point `(i, j, k)` takes the value at
 /// `t = (i / (nx - 1), j / (ny - 1), k / (nz - 1))` (0 on an axis of one sample).
-/// Parallel over z-slices and deterministic.
+/// Written in place at the native type, one z-slice per rayon task: deterministic.
 pub fn generate_dims(dataset: Dataset, dims: [usize; 3], scalar_type: ScalarType) -> Volume {
-    let field = |t: [f64; 3]| to_type_range(dataset.value(t), scalar_type);
-    let samples = match scalar_type {
-        ScalarType::U8 => SampleBuf::U8(fill(dims, &field, |v| v.round() as u8)),
-        ScalarType::I8 => SampleBuf::I8(fill(dims, &field, |v| v.round() as i8)),
-        ScalarType::U16 => SampleBuf::U16(fill(dims, &field, |v| v.round() as u16)),
-        ScalarType::I16 => SampleBuf::I16(fill(dims, &field, |v| v.round() as i16)),
-        ScalarType::U32 => SampleBuf::U32(fill(dims, &field, |v| v.round() as u32)),
-        ScalarType::I32 => SampleBuf::I32(fill(dims, &field, |v| v.round() as i32)),
-        ScalarType::F32 => SampleBuf::F32(fill(dims, &field, |v| v as f32)),
-        ScalarType::F64 => SampleBuf::F64(fill(dims, &field, |v| v)),
-    };
     Volume {
-        samples,
+        samples: generate_slab(dataset, dims, scalar_type, 0..dims[2]),
         shape: GridShape { dims, spacing: [1.0; 3], origin: [0.0; 3] },
         components: 1,
         name: dataset.name().to_string(),
     }
 }
 
+/// The z-slices `slices` of [`generate_dims`]'s volume, x fastest: the same
+/// values, so a volume generated slab by slab ([`generate_slabs`]) is the
+/// whole volume's bytes in order.
+pub fn generate_slab(
+    dataset: Dataset,
+    dims: [usize; 3],
+    scalar_type: ScalarType,
+    slices: std::ops::Range<usize>,
+) -> SampleBuf {
+    let n = dims[0] * dims[1] * slices.len();
+    let k0 = slices.start;
+    let d = dataset;
+    match scalar_type {
+        ScalarType::U8 => SampleBuf::U8(fill(d, dims, k0, n, |v| to_type_range(v, ScalarType::U8).round() as u8)),
+        ScalarType::I8 => SampleBuf::I8(fill(d, dims, k0, n, |v| to_type_range(v, ScalarType::I8).round() as i8)),
+        ScalarType::U16 => SampleBuf::U16(fill(d, dims, k0, n, |v| to_type_range(v, ScalarType::U16).round() as u16)),
+        ScalarType::I16 => SampleBuf::I16(fill(d, dims, k0, n, |v| to_type_range(v, ScalarType::I16).round() as i16)),
+        ScalarType::U32 => SampleBuf::U32(fill(d, dims, k0, n, |v| to_type_range(v, ScalarType::U32).round() as u32)),
+        ScalarType::I32 => SampleBuf::I32(fill(d, dims, k0, n, |v| to_type_range(v, ScalarType::I32).round() as i32)),
+        ScalarType::F32 => SampleBuf::F32(fill(d, dims, k0, n, |v| v as f32)),
+        ScalarType::F64 => SampleBuf::F64(fill(d, dims, k0, n, |v| v)),
+    }
+}
+
+/// Bytes of one slab of [`generate_slabs`] (at least one z-slice).
+pub const SLAB_BYTES: usize = 64 << 20;
+
+/// Generates [`generate_dims`]'s volume slab by slab, in z order, handing
+/// each slab (whole z-slices, about [`SLAB_BYTES`]) to `sink`: a writer
+/// holds one slab, never the volume. Stops at `sink`'s first error.
+pub fn generate_slabs<E>(
+    dataset: Dataset,
+    dims: [usize; 3],
+    scalar_type: ScalarType,
+    sink: &mut dyn FnMut(SampleBuf) -> std::result::Result<(), E>,
+) -> std::result::Result<(), E> {
+    let slice_bytes = (dims[0] * dims[1] * scalar_type.size()).max(1);
+    let per_slab = (SLAB_BYTES / slice_bytes).clamp(1, dims[2].max(1));
+    let mut k = 0;
+    while k < dims[2] {
+        let end = (k + per_slab).min(dims[2]);
+        sink(generate_slab(dataset, dims, scalar_type, k..end))?;
+        k = end;
+    }
+    Ok(())
+}
 /// Maps `f` in `[0, 1]` to the useful range of `scalar_type` (table in the module docs).
+#[inline(always)]
 pub fn to_type_range(f: f64, scalar_type: ScalarType) -> f64 {
     match scalar_type {
         ScalarType::U8 => 255.0 * f,
@@ -101,25 +138,33 @@ fn normalised(i: usize, n: usize) -> f64 {
     }
 }
 
-/// Evaluates `field` at every point, x fastest, one z-slice per rayon task
-/// (rayon's `collect` keeps the order of the slices).
-fn fill<T: Send>(
+/// Evaluates `dataset` at the `n` points from z-slice `k0` on, x fastest,
+/// a row at a time ([`Dataset::row`]), converted by `convert` (the
+/// [`to_type_range`] map and the rounding) into a buffer of the final type:
+/// one z-slice per rayon task, each writing its own part of the buffer (the
+/// order does not depend on the threads).
+fn fill<T: Send + Copy + Default>(
+    dataset: Dataset,
     dims: [usize; 3],
-    field: &(dyn Fn([f64; 3]) -> f64 + Sync),
+    k0: usize,
+    n: usize,
     convert: impl Fn(f64) -> T + Sync,
 ) -> Vec<T> {
     let [nx, ny, nz] = dims;
-    let convert = &convert;
-    (0..nz)
-        .into_par_iter()
-        .flat_map_iter(|k| {
-            let tz = normalised(k, nz);
-            (0..ny).flat_map(move |j| {
-                let ty = normalised(j, ny);
-                (0..nx).map(move |i| convert(field([normalised(i, nx), ty, tz])))
-            })
-        })
-        .collect()
+    let mut out = vec![T::default(); n];
+    out.par_chunks_mut((nx * ny).max(1)).enumerate().for_each_init(
+        || vec![0.0f64; nx],
+        |values, (dk, slice)| {
+            let tz = normalised(k0 + dk, nz);
+            for (j, row) in slice.chunks_mut(nx.max(1)).enumerate() {
+                dataset.row(normalised(j, ny), tz, values);
+                for (v, &f) in row.iter_mut().zip(values.iter()) {
+                    *v = convert(f);
+                }
+            }
+        },
+    );
+    out
 }
 
 #[cfg(test)]
@@ -223,6 +268,29 @@ mod tests {
         let octree = VolumeOctree::build(&v.grid(None).unwrap(), &BuildOptions { leaf_size: 8 }).unwrap();
         octree.validate().unwrap();
         assert_eq!(octree.stats().terminal_count, 512);
+    }
+
+    #[test]
+    fn slabs_are_the_volume_in_order() {
+        let dims = [7, 5, 9];
+        let whole = generate_dims(Dataset::Vessels, dims, ScalarType::U16);
+        let mut joined = Vec::new();
+        let mut slabs = 0;
+        generate_slabs::<()>(Dataset::Vessels, dims, ScalarType::U16, &mut |s| {
+            slabs += 1;
+            if let SampleBuf::U16(v) = s {
+                joined.extend(v);
+            }
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(SampleBuf::U16(joined), whole.samples);
+        assert_eq!(slabs, 1);
+        let part = generate_slab(Dataset::Vessels, dims, ScalarType::U16, 3..5);
+        assert_eq!(part.as_samples().len(), 7 * 5 * 2);
+        assert!(
+            matches!((&part, &whole.samples), (SampleBuf::U16(p), SampleBuf::U16(w)) if p[..] == w[3 * 35..5 * 35])
+        );
     }
 
     #[test]

@@ -18,6 +18,7 @@ pub mod ramp;
 pub mod shepp_logan;
 pub mod sphere;
 pub mod vessels;
+pub mod wavelet;
 
 pub use dataset::Dataset;
 pub use generate::{generate, generate_dims, to_type_range};

@@ -58,6 +58,38 @@ pub fn read_nifti_bytes(label: &str, file_name: &str, bytes: &[u8], gz: bool) ->
     Ok(volume)
 }
 
+/// Reads the NIfTI-1 file `file` of `len` bytes (gzip-compressed when `gz`)
+/// as a stream: the values go from the file (or the inflater) into the
+/// volume's buffer, the file is never held whole.
+pub fn read_nifti_file(label: &str, file_name: &str, file: std::fs::File, len: u64, gz: bool) -> Result<Volume> {
+    let fail = |m: String| format_error(label, m);
+    let buffered = std::io::BufReader::with_capacity(1 << 16, file);
+    if gz {
+        let mut stream = flate2::read::MultiGzDecoder::new(buffered);
+        let header = read_header(&mut stream).map_err(fail)?;
+        let end = header.data_end();
+        let most = len.saturating_mul(MAX_DEFLATE_RATIO);
+        if end > most {
+            return Err(fail(format!(
+                "the header puts the voxel data at bytes {} to {end}, but {} of gzip data cannot inflate past \
+                 {most} bytes; the header is corrupt",
+                header.vox_offset,
+                human_bytes(u128::from(len))
+            )));
+        }
+        read_volume(label, file_name, &header, &mut stream, None)
+    } else {
+        let mut stream = buffered;
+        let mut head = Vec::with_capacity(HEADER_BYTES);
+        (&mut stream)
+            .take(HEADER_BYTES as u64)
+            .read_to_end(&mut head)
+            .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+        let header = parse(&head).map_err(fail)?;
+        read_volume(label, file_name, &header, &mut stream, Some(len))
+    }
+}
+
 /// The header from the first bytes of `stream`.
 fn read_header(stream: &mut impl Read) -> std::result::Result<NiftiHeader, String> {
     let mut head = Vec::with_capacity(HEADER_BYTES);
@@ -145,6 +177,12 @@ fn target_type(header: &NiftiHeader) -> ScalarType {
 /// (and rescaled) into `target` as they arrive.
 fn read_samples(stream: &mut impl Read, header: &NiftiHeader, target: ScalarType) -> std::io::Result<SampleBuf> {
     const CHUNK_VALUES: usize = 1 << 16;
+    if header.scaling.is_none() {
+        let mut out = SampleBuf::zeroed(target, header.count());
+        stream.read_exact(out.as_bytes_mut())?;
+        out.fix_byte_order(header.big_endian);
+        return Ok(out);
+    }
     let size = header.stored.size();
     let mut out = sample_sink::with_capacity(target, header.count());
     let mut chunk = vec![0u8; CHUNK_VALUES * size];

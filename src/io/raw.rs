@@ -35,9 +35,9 @@ pub fn check_raw_size(label: &str, raw: &RawOptions, actual: u64) -> Result<()> 
     }
     let [x, y, z] = raw.dims;
     check_memory(
-        expected as u128 * 2,
+        expected as u128,
         &format!(
-            "the {x}x{y}x{z} {} raw volume of '{label}' ({} on disk, read and converted)",
+            "the {x}x{y}x{z} {} raw volume of '{label}' ({} on disk)",
             raw.scalar_type.name(),
             human_bytes(expected as u128)
         ),
@@ -50,9 +50,24 @@ pub fn check_raw_size(label: &str, raw: &RawOptions, actual: u64) -> Result<()> 
 /// bytes.
 pub fn read_raw_bytes(label: &str, file_name: &str, bytes: &[u8], raw: &RawOptions) -> Result<Volume> {
     check_raw_size(label, raw, bytes.len() as u64)?;
-    let samples = SampleBuf::from_bytes(bytes, raw.scalar_type, raw.big_endian);
+    Ok(volume_of(SampleBuf::from_bytes(bytes, raw.scalar_type, raw.big_endian), file_name, raw))
+}
+
+/// The raw volume in the open `file` (checked by [`check_raw_size`]), read
+/// straight into the volume's buffer.
+pub fn read_raw_file(label: &str, file_name: &str, file: &mut std::fs::File, raw: &RawOptions) -> Result<Volume> {
+    use std::io::Read;
+    let count = expected_bytes(label, raw)? / raw.scalar_type.size();
+    let mut samples = SampleBuf::zeroed(raw.scalar_type, count);
+    file.read_exact(samples.as_bytes_mut())
+        .map_err(|e| format_error(label, format!("cannot read the file: {e}; it may have shrunk while it was read")))?;
+    samples.fix_byte_order(raw.big_endian);
+    Ok(volume_of(samples, file_name, raw))
+}
+
+fn volume_of(samples: SampleBuf, file_name: &str, raw: &RawOptions) -> Volume {
     let shape = GridShape { dims: raw.dims, spacing: raw.spacing, origin: raw.origin };
     let stem = file_name.rsplit_once('.').map_or(file_name, |(stem, _)| stem);
     let name = if stem.is_empty() { "scalars".to_string() } else { stem.to_string() };
-    Ok(Volume { samples, shape, components: raw.components, name })
+    Volume { samples, shape, components: raw.components, name }
 }

@@ -5,7 +5,7 @@
 
 use super::format_error;
 use super::options::ReadOptions;
-use super::source::{display_path, read_regular_file, regular_file_len};
+use super::source::{display_path, open_regular_file, read_regular_file, regular_file_len};
 use crate::base::error::Result;
 use crate::base::limits::escape_controls;
 use crate::data::volume::Volume;
@@ -49,21 +49,32 @@ impl FileKind {
 
 /// Reads the volume in `path`: raw when `options.raw` is given, otherwise by
 /// extension (`.vti`, `.vtk`, `.nii`, `.nii.gz`; `.raw` and `.bin` need
-/// `options.raw`). Only regular files are read, never past their size. The
+/// `options.raw`). Only regular files are read, never past their size.
+/// Raw, `.vti` (appended raw data) and NIfTI values go from the file
+/// straight into the volume's buffer; a legacy `.vtk` file is read whole
+/// first. The
 /// volume is checked for consistent dims and length, not yet for non-finite
 /// values (that is [`Volume::grid`]'s job).
 pub fn read_volume(path: &Path, options: &ReadOptions) -> Result<Volume> {
     let label = display_path(path);
     let len = regular_file_len(path, &label)?;
     let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    match &options.raw {
-        Some(raw) => super::raw::check_raw_size(&label, raw, len)?,
-        None => {
-            kind(&label, &file_name, options)?;
+    if let Some(raw) = &options.raw {
+        super::raw::check_raw_size(&label, raw, len)?;
+        let mut file = open_regular_file(path, &label)?;
+        return super::raw::read_raw_file(&label, &file_name, &mut file, raw);
+    }
+    match kind(&label, &file_name, options)? {
+        FileKind::Vti => super::vti::read_vti_file(&label, &mut open_regular_file(path, &label)?, len),
+        FileKind::Nifti | FileKind::NiftiGz => {
+            let gz = kind(&label, &file_name, options)? == FileKind::NiftiGz;
+            super::nii::read_nifti_file(&label, &file_name, open_regular_file(path, &label)?, len, gz)
+        }
+        _ => {
+            let bytes = read_regular_file(path, &label, len)?;
+            read_labelled(&label, &file_name, &bytes, options)
         }
     }
-    let bytes = read_regular_file(path, &label, len)?;
-    read_labelled(&label, &file_name, &bytes, options)
 }
 
 /// Reads a volume from `bytes`, the contents of a file named `file_name`

@@ -63,13 +63,20 @@ pub fn read_regular_file(path: &Path, label: &str, len: u64) -> Result<Vec<u8>> 
         &format!("reading '{label}' ({})", human_bytes(u128::from(len))),
         "free memory or raise HYBRID_OCTREE_MAX_MEMORY",
     )?;
+    let file = open_regular_file(path, label)?;
+    let capacity = usize::try_from(len).map_err(|_| format_error(label, "the file is too large to read"))?;
+    let mut bytes = Vec::with_capacity(capacity);
+    file.take(len).read_to_end(&mut bytes).map_err(|e| format_error(label, format!("cannot read the file: {e}")))?;
+    Ok(bytes)
+}
+
+/// Opens the regular file at `path` (checked again once open: it may have
+/// been replaced since it was looked at).
+pub fn open_regular_file(path: &Path, label: &str) -> Result<std::fs::File> {
     let file = std::fs::File::open(path).map_err(|e| format_error(label, format!("cannot open the file: {e}")))?;
     let opened = file.metadata().map_err(|e| format_error(label, format!("cannot access the file: {e}")))?;
     if !opened.is_file() {
         return Err(format_error(label, "the file was replaced by something that is not a regular file; try again"));
     }
-    let capacity = usize::try_from(len).map_err(|_| format_error(label, "the file is too large to read"))?;
-    let mut bytes = Vec::with_capacity(capacity);
-    file.take(len).read_to_end(&mut bytes).map_err(|e| format_error(label, format!("cannot read the file: {e}")))?;
-    Ok(bytes)
+    Ok(file)
 }

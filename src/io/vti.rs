@@ -17,20 +17,70 @@
 //!   axis-aligned, and ignoring it would misplace the data.
 
 use super::format_error;
-use super::vti_data::decode_array;
-use super::vti_xml::{parse_header, VtiHeader};
+use super::vti_data::{decode_array, Appended};
+use super::vti_xml::{parse_header, AppendedEncoding, VtiHeader};
 use crate::base::error::Result;
-use crate::base::limits::excerpt;
+use crate::base::limits::{check_memory, excerpt, human_bytes};
 use crate::data::grid::GridShape;
 use crate::data::volume::Volume;
 
 /// Reads the `.vti` file `bytes` (`label` names it in errors).
 pub fn read_vti_bytes(label: &str, bytes: &[u8]) -> Result<Volume> {
     let header = parse_header(bytes).map_err(|m| format_error(label, m))?;
-    volume_from(bytes, &header).map_err(|m| format_error(label, m))
+    volume_from(bytes, &header, Appended::InMemory).map_err(|m| format_error(label, m))
 }
 
-fn volume_from(bytes: &[u8], header: &VtiHeader) -> std::result::Result<Volume, String> {
+/// Reads the `.vti` file `file` of `len` bytes: only the XML header (up to
+/// the `_` of `AppendedData`, or the whole file when it has none or its
+/// appended data are base64 text) is read into memory; raw appended values
+/// go from the file straight into the volume's buffer.
+pub fn read_vti_file(label: &str, file: &mut std::fs::File, len: u64) -> Result<Volume> {
+    let fail = |m: String| format_error(label, m);
+    let mut head = read_header_bytes(file, len).map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    let header = parse_header(&head).map_err(fail)?;
+    if matches!(header.appended, Some((AppendedEncoding::Base64, _))) {
+        // Base64 text is decoded from memory: the rest of the file too.
+        check_memory(
+            u128::from(len),
+            &format!("reading '{label}' ({})", human_bytes(u128::from(len))),
+            "free memory or raise HYBRID_OCTREE_MAX_MEMORY",
+        )?;
+        let rest = len.saturating_sub(head.len() as u64);
+        std::io::Seek::seek(file, std::io::SeekFrom::Start(head.len() as u64))
+            .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+        std::io::Read::read_to_end(&mut std::io::Read::take(&mut *file, rest), &mut head)
+            .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    }
+    volume_from(&head, &header, Appended::File { file, len }).map_err(fail)
+}
+
+/// The file's first bytes, up to and including the `_` marker after the
+/// `<AppendedData ...>` tag, or all of them when there is none (inline
+/// arrays are in the XML). Read in growing chunks.
+fn read_header_bytes(file: &mut std::fs::File, len: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    const TAG: &[u8] = b"<AppendedData";
+    let mut head = Vec::new();
+    let mut chunk = 1usize << 16;
+    loop {
+        let before = head.len();
+        let want = (len - before as u64).min(chunk as u64);
+        file.by_ref().take(want).read_to_end(&mut head)?;
+        let from = before.saturating_sub(TAG.len());
+        if let Some(tag) = head[from..].windows(TAG.len()).position(|w| w == TAG).map(|p| p + from) {
+            if let Some(marker) = head[tag..].iter().position(|&b| b == b'_') {
+                head.truncate(tag + marker + 1);
+                return Ok(head);
+            }
+        }
+        if head.len() == before || head.len() as u64 >= len {
+            return Ok(head);
+        }
+        chunk = chunk.saturating_mul(2);
+    }
+}
+
+fn volume_from(bytes: &[u8], header: &VtiHeader, appended: Appended<'_>) -> std::result::Result<Volume, String> {
     match header.file_type.as_str() {
         "ImageData" => {}
         "PImageData" => {
@@ -101,6 +151,6 @@ fn volume_from(bytes: &[u8], header: &VtiHeader) -> std::result::Result<Volume, 
     let array = &arrays[active];
     let shape = GridShape { dims, spacing: header.spacing, origin };
     let count = shape.check(array.components).map_err(|e| e.to_string())?;
-    let samples = decode_array(bytes, header, array, count)?;
+    let samples = decode_array(bytes, header, array, count, appended)?;
     Ok(Volume { samples, shape, components: array.components, name: array.name.clone() })
 }

@@ -36,9 +36,34 @@ use crate::data::grid::ScalarType;
 use crate::data::volume::SampleBuf;
 use std::io::Read;
 
+/// Where the bytes of appended raw data are read from: the file's bytes in
+/// memory, or the open file itself (positioned anywhere; `len` is its length),
+/// so that a large array goes from the disk straight into its buffer.
+pub enum Appended<'a> {
+    /// The whole file is in `bytes` (what [`decode_array`] is given).
+    InMemory,
+    /// The appended raw data are read from this file of `len` bytes.
+    File {
+        /// The open file.
+        file: &'a mut std::fs::File,
+        /// Its length in bytes.
+        len: u64,
+    },
+}
+
 /// Decodes `array` of the file `bytes` (whose header is `header`), which must
-/// hold exactly `count` values (points times components).
-pub fn decode_array(bytes: &[u8], header: &VtiHeader, array: &ArrayHeader, count: usize) -> Result<SampleBuf, String> {
+/// hold exactly `count` values (points times components). The values are
+/// decoded straight into the returned buffer: no copy of the text or of the
+/// bytes is made. With [`Appended::File`], `bytes` need only hold the XML
+/// header (up to the `_` of `AppendedData`) and raw appended data are read
+/// from the file.
+pub fn decode_array(
+    bytes: &[u8],
+    header: &VtiHeader,
+    array: &ArrayHeader,
+    count: usize,
+    appended: Appended<'_>,
+) -> Result<SampleBuf, String> {
     let name = &excerpt(&array.name);
     let ty = value_type(&array.type_name, name)?;
     let need = count.checked_mul(ty.size()).ok_or("the array is too large")?;
@@ -48,9 +73,12 @@ pub fn decode_array(bytes: &[u8], header: &VtiHeader, array: &ArrayHeader, count
         "crop or subsample the volume, or free memory",
     )
     .map_err(|e| e.to_string())?;
+    let runs = |spans: &[std::ops::Range<usize>]| -> Vec<&[u8]> {
+        spans.iter().filter_map(|r| bytes.get(r.clone())).collect()
+    };
     let mut stream = match &array.data {
-        ArrayData::Ascii(text) => return parse_ascii(text, ty, count, name),
-        ArrayData::Binary(text) => Stream::Base64 { text: text.as_bytes(), pos: 0, pending: Vec::new() },
+        ArrayData::Ascii(spans) => return parse_ascii(&runs(spans), ty, count, name),
+        ArrayData::Binary(spans) => Stream::Base64(Base64::new(runs(spans))),
         ArrayData::Appended(offset) => {
             let (encoding, start) = header.appended.ok_or_else(|| {
                 format!(
@@ -58,31 +86,42 @@ pub fn decode_array(bytes: &[u8], header: &VtiHeader, array: &ArrayHeader, count
                     name
                 )
             })?;
-            let at = usize::try_from(*offset).ok().and_then(|o| o.checked_add(start)).filter(|&at| at <= bytes.len());
+            let file_len = match &appended {
+                Appended::File { len, .. } if encoding == AppendedEncoding::Raw => *len,
+                _ => bytes.len() as u64,
+            };
+            let at = u64::try_from(start).ok().and_then(|s| offset.checked_add(s)).filter(|&at| at <= file_len);
             let at = at.ok_or_else(|| {
                 format!(
                     "the array '{}' starts at appended offset {offset}, past the end of the file; it is truncated or corrupt",
                     name
                 )
             })?;
-            match encoding {
-                AppendedEncoding::Raw => Stream::Raw { bytes, pos: at },
-                AppendedEncoding::Base64 => Stream::Base64 { text: bytes, pos: at, pending: Vec::new() },
+            match (encoding, appended) {
+                (AppendedEncoding::Raw, Appended::File { file, len }) => {
+                    use std::io::Seek;
+                    file.seek(std::io::SeekFrom::Start(at)).map_err(|e| format!("cannot read the file: {e}"))?;
+                    Stream::File { file: std::io::BufReader::with_capacity(1 << 16, file), left: len - at }
+                }
+                (AppendedEncoding::Raw, Appended::InMemory) => Stream::Raw { bytes, pos: at as usize },
+                (AppendedEncoding::Base64, _) => Stream::Base64(Base64::new(vec![&bytes[at as usize..]])),
             }
         }
     };
     let words = Words { u64: header.header_u64, order: header.byte_order };
-    let data = match header.compressor {
+    let mut out = SampleBuf::zeroed(ty, count);
+    match header.compressor {
         None => {
             let nbytes = words.read(&mut stream, 1, name)?[0];
             if nbytes != need as u64 {
                 return Err(size_mismatch(name, nbytes, need, count));
             }
-            stream.take(need, name)?
+            stream.take_into(out.as_bytes_mut(), name)?;
         }
-        Some(compressor) => read_compressed(&mut stream, words, compressor, need, count, name)?,
-    };
-    Ok(SampleBuf::from_bytes(&data, ty, header.byte_order == ByteOrder::Big))
+        Some(compressor) => read_compressed(&mut stream, words, compressor, out.as_bytes_mut(), count, name)?,
+    }
+    out.fix_byte_order(header.byte_order == ByteOrder::Big);
+    Ok(out)
 }
 
 fn size_mismatch(name: &str, found: u64, need: usize, count: usize) -> String {
@@ -92,14 +131,16 @@ fn size_mismatch(name: &str, found: u64, need: usize, count: usize) -> String {
     )
 }
 
+/// Inflates the compressed blocks of `stream` into `out` (exactly its length).
 fn read_compressed(
     stream: &mut Stream,
     words: Words,
     compressor: Compressor,
-    need: usize,
+    out: &mut [u8],
     count: usize,
     name: &str,
-) -> Result<Vec<u8>, String> {
+) -> Result<(), String> {
+    let need = out.len();
     let head = words.read(stream, 3, name)?; // exactly three words
     let (nblocks, block_size, last_size) = (head[0], head[1], head[2]);
     let nblocks_usize = usize::try_from(nblocks).map_err(|_| format!("the array '{name}' claims {nblocks} blocks"))?;
@@ -117,45 +158,50 @@ fn read_compressed(
         ));
     }
     let sizes = words.read(stream, nblocks_usize, name)?;
-    let mut out = Vec::with_capacity(need);
+    let mut at = 0usize;
     for (i, &csize) in sizes.iter().enumerate() {
         let size = if i + 1 == sizes.len() && last_size != 0 { last_size } else { block_size } as usize;
         let csize = usize::try_from(csize).map_err(|_| format!("block {i} of the array '{name}' is too large"))?;
         let block = stream.take(csize, name)?;
-        let before = out.len();
         let corrupt = |e: &dyn std::fmt::Display| {
             format!("block {i} of the array '{name}' does not decompress ({compressor:?}: {e}); the file is corrupt")
         };
-        match compressor {
-            Compressor::ZLib => flate2::read::ZlibDecoder::new(&block[..])
-                .take(size as u64 + 1)
-                .read_to_end(&mut out)
-                .map(drop)
-                .map_err(|e| corrupt(&e))?,
-            Compressor::Lzma => xz2::read::XzDecoder::new(&block[..])
-                .take(size as u64 + 1)
-                .read_to_end(&mut out)
-                .map(drop)
-                .map_err(|e| corrupt(&e))?,
+        let target = &mut out[at..at + size];
+        let inflated = match compressor {
+            Compressor::ZLib => inflate_into(flate2::read::ZlibDecoder::new(&block[..]), target),
+            Compressor::Lzma => inflate_into(xz2::read::XzDecoder::new(&block[..]), target),
             Compressor::Lz4 => {
-                // LZ4 expands at most ~255:1; refuse absurd sizes before allocating.
+                // LZ4 expands at most ~255:1; refuse absurd sizes before inflating.
                 if size > csize.saturating_mul(255).saturating_add(64) {
                     return Err(corrupt(&format!("{csize} bytes cannot inflate to {size}")));
                 }
-                out.resize(before + size, 0);
-                let n = lz4_flex::block::decompress_into(&block, &mut out[before..]).map_err(|e| corrupt(&e))?;
-                out.truncate(before + n);
+                lz4_flex::block::decompress_into(&block, target).map_err(|e| std::io::Error::other(e.to_string()))
             }
         }
-        let inflated = out.len() - before;
+        .map_err(|e| corrupt(&e))?;
         if inflated > size {
             return Err(corrupt(&format!("it inflates to more than the {size} bytes its header declares")));
         }
         if inflated < size {
             return Err(corrupt(&format!("it inflates to {inflated} bytes, not the {size} its header declares")));
         }
+        at += size;
     }
-    Ok(out)
+    Ok(())
+}
+
+/// Inflates `decoder` into `target`: the bytes it gave, `target.len() + 1`
+/// when it has more than fit.
+fn inflate_into(mut decoder: impl Read, target: &mut [u8]) -> std::io::Result<usize> {
+    let mut got = 0;
+    while got < target.len() {
+        match decoder.read(&mut target[got..])? {
+            0 => return Ok(got),
+            n => got += n,
+        }
+    }
+    let mut extra = [0u8; 1];
+    Ok(got + decoder.read(&mut extra)?)
 }
 
 /// Header words: `UInt32` or `UInt64`, in the file's byte order.
@@ -181,102 +227,183 @@ impl Words {
     }
 }
 
-/// A cursor over binary data: raw bytes or base64 text.
+/// A cursor over binary data: raw bytes in memory or in the file, or base64 text.
 enum Stream<'a> {
     Raw {
         bytes: &'a [u8],
         pos: usize,
     },
-    /// `pending`: decoded bytes of the last group not yet taken.
-    Base64 {
-        text: &'a [u8],
-        pos: usize,
-        pending: Vec<u8>,
+    /// `left`: bytes of the file after the read position.
+    File {
+        file: std::io::BufReader<&'a mut std::fs::File>,
+        left: u64,
     },
+    Base64(Base64<'a>),
 }
 
 impl Stream<'_> {
-    /// The next `n` bytes, or an error if fewer are left.
+    /// Bytes left, at most (base64: the characters left decode to at most this).
+    fn most(&self) -> u64 {
+        match self {
+            Stream::Raw { bytes, pos } => bytes.len().saturating_sub(*pos) as u64,
+            Stream::File { left, .. } => *left,
+            Stream::Base64(b) => b.most() as u64,
+        }
+    }
+
+    /// The next `n` bytes (header words, a compressed block), or an error if fewer are left.
     fn take(&mut self, n: usize, name: &str) -> Result<Vec<u8>, String> {
-        let short = |have: usize| {
-            format!(
-                "the data of the array '{name}' end early: {n} bytes needed, at most {have} left; \
-                 the file is truncated or corrupt"
-            )
-        };
+        if n as u64 > self.most() {
+            return Err(short(name, n, self.most()));
+        }
+        let mut out = vec![0u8; n];
+        self.take_into(&mut out, name)?;
+        Ok(out)
+    }
+
+    /// Fills `out` with the next bytes, or an error if fewer are left.
+    fn take_into(&mut self, out: &mut [u8], name: &str) -> Result<(), String> {
+        let n = out.len();
+        let most = self.most();
+        if n as u64 > most {
+            return Err(short(name, n, most));
+        }
         match self {
             Stream::Raw { bytes, pos } => {
-                let left = bytes.len().saturating_sub(*pos);
-                let chunk = bytes.get(*pos..).and_then(|rest| rest.get(..n)).ok_or_else(|| short(left))?;
+                out.copy_from_slice(&bytes[*pos..*pos + n]);
                 *pos += n;
-                Ok(chunk.to_vec())
             }
-            Stream::Base64 { text, pos, pending } => {
-                let most = text.len().saturating_sub(*pos) / 4 * 3 + pending.len();
-                if n > most {
-                    return Err(short(most));
-                }
-                let mut out = Vec::with_capacity(n);
-                let k = n.min(pending.len());
-                out.extend(pending.drain(..k));
-                while out.len() < n {
-                    let group = next_group(text, pos).map_err(|e| format!("the array '{name}': {e}"))?;
-                    let group = group.ok_or_else(|| short(out.len()))?;
-                    let rest = n - out.len();
-                    out.extend_from_slice(&group[..rest.min(group.len())]);
-                    pending.extend_from_slice(&group[rest.min(group.len())..]);
-                }
-                Ok(out)
+            Stream::File { file, left } => {
+                file.read_exact(out).map_err(|e| format!("the data of the array '{name}' cannot be read: {e}"))?;
+                *left -= n as u64;
             }
+            Stream::Base64(b) => b.decode_into(out).map_err(|e| match e {
+                None => short(name, n, most),
+                Some(e) => format!("the array '{name}': {e}"),
+            })?,
         }
+        Ok(())
     }
 }
 
-/// Decodes the next 4-character base64 group at `pos` (skipping whitespace)
-/// into 1 to 3 bytes; `None` at the end of the base64 text.
-fn next_group(text: &[u8], pos: &mut usize) -> Result<Option<Vec<u8>>, String> {
-    let mut chars = [0u8; 4];
-    let mut got = 0;
-    while got < 4 {
-        match text.get(*pos) {
-            Some(c) if c.is_ascii_whitespace() => *pos += 1,
-            // The end of the text, or of the base64 run in AppendedData.
-            None | Some(b'<') => break,
-            Some(&c) => {
-                chars[got] = c;
-                got += 1;
-                *pos += 1;
+fn short(name: &str, n: usize, have: u64) -> String {
+    format!(
+        "the data of the array '{name}' end early: {n} bytes needed, at most {have} left; \
+         the file is truncated or corrupt"
+    )
+}
+
+/// Base64 text in runs (the text of a `DataArray` between nested elements,
+/// or the `AppendedData` section up to its end tag), decoded group by group.
+struct Base64<'a> {
+    runs: Vec<&'a [u8]>,
+    /// The run being read and the position in it.
+    run: usize,
+    pos: usize,
+    /// Decoded bytes of the last group not yet taken.
+    pending: Vec<u8>,
+}
+
+impl<'a> Base64<'a> {
+    fn new(runs: Vec<&'a [u8]>) -> Base64<'a> {
+        Base64 { runs, run: 0, pos: 0, pending: Vec::new() }
+    }
+
+    /// At most the bytes the text left decodes to.
+    fn most(&self) -> usize {
+        let chars: usize = self.runs.iter().skip(self.run).map(|r| r.len()).sum::<usize>()
+            - self.pos.min(self.runs.get(self.run).map_or(0, |r| r.len()));
+        chars / 4 * 3 + self.pending.len()
+    }
+
+    /// The next non-whitespace character; `None` at the end of the text or
+    /// at a `<` (the end of the base64 run in AppendedData).
+    fn next_char(&mut self) -> Option<u8> {
+        while let Some(run) = self.runs.get(self.run) {
+            match run.get(self.pos) {
+                Some(c) if c.is_ascii_whitespace() => self.pos += 1,
+                Some(b'<') => return None,
+                Some(&c) => {
+                    self.pos += 1;
+                    return Some(c);
+                }
+                None => {
+                    self.run += 1;
+                    self.pos = 0;
+                }
             }
         }
+        None
     }
-    if got == 0 {
-        return Ok(None);
+
+    /// The position for messages: the character count read so far.
+    fn position(&self) -> usize {
+        self.runs.iter().take(self.run).map(|r| r.len()).sum::<usize>() + self.pos
     }
-    if got < 4 {
-        return Err(format!("the base64 data end in an incomplete group near byte {}; the file is truncated", *pos));
+
+    /// Fills `out`; `Err(None)` when the text ends first, `Err(Some(message))` when it is not base64.
+    fn decode_into(&mut self, out: &mut [u8]) -> Result<(), Option<String>> {
+        let k = out.len().min(self.pending.len());
+        out[..k].copy_from_slice(&self.pending[..k]);
+        self.pending.drain(..k);
+        let mut at = k;
+        while at < out.len() {
+            let (group, len) = self.next_group()?.ok_or(None)?;
+            let take = len.min(out.len() - at);
+            out[at..at + take].copy_from_slice(&group[..take]);
+            self.pending.extend_from_slice(&group[take..len]);
+            at += take;
+        }
+        Ok(())
     }
-    let value = |c: u8| -> Result<u32, String> {
-        Ok(match c {
-            b'A'..=b'Z' => c - b'A',
-            b'a'..=b'z' => c - b'a' + 26,
-            b'0'..=b'9' => c - b'0' + 52,
-            b'+' => 62,
-            b'/' => 63,
-            _ => {
-                return Err(format!("bad base64 character {:?} near byte {}; the file is corrupt", char::from(c), *pos))
+
+    /// Decodes the next 4-character group into 1 to 3 bytes; `None` at the end of the text.
+    fn next_group(&mut self) -> Result<Option<([u8; 3], usize)>, String> {
+        let mut chars = [0u8; 4];
+        let mut got = 0;
+        while got < 4 {
+            match self.next_char() {
+                Some(c) => {
+                    chars[got] = c;
+                    got += 1;
+                }
+                None => break,
             }
-        } as u32)
-    };
-    let len = match chars {
-        [_, _, b'=', b'='] => 1,
-        [_, _, _, b'='] => 2,
-        _ => 3,
-    };
-    let mut bits = 0u32;
-    for (i, &c) in chars.iter().enumerate() {
-        bits = bits << 6 | if i > len { 0 } else { value(c)? };
+        }
+        if got == 0 {
+            return Ok(None);
+        }
+        let pos = self.position();
+        if got < 4 {
+            return Err(format!("the base64 data end in an incomplete group near byte {pos}; the file is truncated"));
+        }
+        let value = |c: u8| -> Result<u32, String> {
+            Ok(match c {
+                b'A'..=b'Z' => c - b'A',
+                b'a'..=b'z' => c - b'a' + 26,
+                b'0'..=b'9' => c - b'0' + 52,
+                b'+' => 62,
+                b'/' => 63,
+                _ => {
+                    return Err(format!(
+                        "bad base64 character {:?} near byte {pos}; the file is corrupt",
+                        char::from(c)
+                    ))
+                }
+            } as u32)
+        };
+        let len = match chars {
+            [_, _, b'=', b'='] => 1,
+            [_, _, _, b'='] => 2,
+            _ => 3,
+        };
+        let mut bits = 0u32;
+        for (i, &c) in chars.iter().enumerate() {
+            bits = bits << 6 | if i > len { 0 } else { value(c)? };
+        }
+        let b = bits.to_be_bytes();
+        Ok(Some(([b[1], b[2], b[3]], len)))
     }
-    Ok(Some(bits.to_be_bytes()[1..=len].to_vec()))
 }
 
 /// The value types of the Hybrid Octree, by their VTK XML names.
@@ -301,10 +428,15 @@ fn value_type(type_name: &str, name: &str) -> Result<ScalarType, String> {
     })
 }
 
-/// `count` whitespace-separated numbers of type `ty`.
-fn parse_ascii(text: &str, ty: ScalarType, count: usize, name: &str) -> Result<SampleBuf, String> {
-    fn parse<T: std::str::FromStr>(text: &str, count: usize, name: &str) -> Result<Vec<T>, String> {
-        let mut words = text.split_ascii_whitespace();
+/// `count` whitespace-separated numbers of type `ty`, in the text `runs`.
+fn parse_ascii(runs: &[&[u8]], ty: ScalarType, count: usize, name: &str) -> Result<SampleBuf, String> {
+    fn parse<T: std::str::FromStr>(runs: &[&[u8]], count: usize, name: &str) -> Result<Vec<T>, String> {
+        let text = runs
+            .iter()
+            .map(|r| std::str::from_utf8(r))
+            .collect::<Result<Vec<&str>, _>>()
+            .map_err(|_| format!("the ascii array '{name}' holds bytes that are not text; the file is corrupt"))?;
+        let mut words = text.iter().flat_map(|t| t.split_ascii_whitespace());
         let mut values = Vec::with_capacity(count);
         for s in words.by_ref().take(count) {
             let value = s.parse().map_err(|_| {
@@ -323,13 +455,13 @@ fn parse_ascii(text: &str, ty: ScalarType, count: usize, name: &str) -> Result<S
         Ok(values)
     }
     Ok(match ty {
-        ScalarType::I8 => SampleBuf::I8(parse(text, count, name)?),
-        ScalarType::U8 => SampleBuf::U8(parse(text, count, name)?),
-        ScalarType::I16 => SampleBuf::I16(parse(text, count, name)?),
-        ScalarType::U16 => SampleBuf::U16(parse(text, count, name)?),
-        ScalarType::I32 => SampleBuf::I32(parse(text, count, name)?),
-        ScalarType::U32 => SampleBuf::U32(parse(text, count, name)?),
-        ScalarType::F32 => SampleBuf::F32(parse(text, count, name)?),
-        ScalarType::F64 => SampleBuf::F64(parse(text, count, name)?),
+        ScalarType::I8 => SampleBuf::I8(parse(runs, count, name)?),
+        ScalarType::U8 => SampleBuf::U8(parse(runs, count, name)?),
+        ScalarType::I16 => SampleBuf::I16(parse(runs, count, name)?),
+        ScalarType::U16 => SampleBuf::U16(parse(runs, count, name)?),
+        ScalarType::I32 => SampleBuf::I32(parse(runs, count, name)?),
+        ScalarType::U32 => SampleBuf::U32(parse(runs, count, name)?),
+        ScalarType::F32 => SampleBuf::F32(parse(runs, count, name)?),
+        ScalarType::F64 => SampleBuf::F64(parse(runs, count, name)?),
     })
 }

@@ -27,7 +27,9 @@
 //!   (base64 in its text) or `"appended"` (at `offset` after the `_` marker of
 //!   `AppendedData`; bytes for `encoding="raw"`, characters for `"base64"`).
 //!   Its text is only the text directly inside it: VTK may nest
-//!   `<InformationKey>` elements in a `DataArray`.
+//!   `<InformationKey>` elements in a `DataArray`. The text is not copied:
+//!   the header keeps where its runs are in the file (numbers and base64
+//!   hold no markup to unescape).
 //! * `Direction` (VTK 9) is the row-major 3x3 orientation matrix.
 //!
 //! Parsing stops at the `AppendedData` start tag: what follows the `_` may be
@@ -70,10 +72,12 @@ pub enum AppendedEncoding {
 /// Where an array's values are.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ArrayData {
-    /// `format="ascii"`: the text holds whitespace-separated numbers.
-    Ascii(String),
-    /// `format="binary"`: the text is base64 of header and (compressed) bytes.
-    Binary(String),
+    /// `format="ascii"`: the text (these runs of the file's bytes) holds
+    /// whitespace-separated numbers.
+    Ascii(Vec<std::ops::Range<usize>>),
+    /// `format="binary"`: the text (these runs of the file's bytes) is base64
+    /// of header and (compressed) bytes.
+    Binary(Vec<std::ops::Range<usize>>),
     /// `format="appended"`: at this offset after the `_` of `AppendedData`.
     Appended(u64),
 }
@@ -151,17 +155,18 @@ pub fn parse_header(bytes: &[u8]) -> Result<VtiHeader, String> {
                     break;
                 }
             }
+            // The event's raw bytes end where the reader now is (a CDATA
+            // section's before its closing `]]>`).
             Event::Text(t) => {
+                let end = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX);
                 if let Some(text) = parser.array_text() {
-                    let t = t.unescape().map_err(|e| {
-                        format!("bad text in a DataArray ({}); the file is corrupt", excerpt(&e.to_string()))
-                    })?;
-                    text.push_str(&t);
+                    text.push(end - t.len()..end);
                 }
             }
             Event::CData(t) => {
+                let end = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX) - 3;
                 if let Some(text) = parser.array_text() {
-                    text.push_str(&String::from_utf8_lossy(&t));
+                    text.push(end - t.len()..end);
                 }
             }
             Event::End(e) => parser.end(e.local_name().as_ref())?,
@@ -179,8 +184,8 @@ struct HeaderParser {
     header: Option<VtiHeader>,
     /// Open elements, innermost last.
     stack: Vec<Vec<u8>>,
-    /// The point data array being read, with its text so far.
-    array: Option<(ArrayHeader, String)>,
+    /// The point data array being read, with its text runs so far.
+    array: Option<(ArrayHeader, Vec<std::ops::Range<usize>>)>,
 }
 
 impl HeaderParser {
@@ -226,9 +231,9 @@ impl HeaderParser {
             (b"DataArray", Some(b"PointData")) => {
                 let a = data_array(e)?;
                 if empty {
-                    push_array(&mut self.header, a, String::new())?;
+                    push_array(&mut self.header, a, Vec::new())?;
                 } else {
-                    self.array = Some((a, String::new()));
+                    self.array = Some((a, Vec::new()));
                 }
             }
             (b"AppendedData", Some(b"VTKFile")) => {
@@ -246,7 +251,7 @@ impl HeaderParser {
 
     /// The text of the point data array being read, when directly inside its
     /// `DataArray` (VTK may nest `<InformationKey>` elements in it).
-    fn array_text(&mut self) -> Option<&mut String> {
+    fn array_text(&mut self) -> Option<&mut Vec<std::ops::Range<usize>>> {
         let inside = self.stack.last().map(Vec::as_slice) == Some(b"DataArray");
         self.array.as_mut().filter(|_| inside).map(|(_, text)| text)
     }
@@ -366,8 +371,8 @@ fn data_array(e: &BytesStart) -> Result<ArrayHeader, String> {
             .ok_or_else(|| format!("the DataArray '{name}' has a bad NumberOfComponents '{}'", excerpt(&v)))?,
     };
     let data = match attr(e, "format")?.as_deref() {
-        Some("ascii") => ArrayData::Ascii(String::new()),
-        Some("binary") => ArrayData::Binary(String::new()),
+        Some("ascii") => ArrayData::Ascii(Vec::new()),
+        Some("binary") => ArrayData::Binary(Vec::new()),
         Some("appended") => {
             let offset = attr(e, "offset")?.ok_or_else(|| format!("the appended DataArray '{name}' has no offset"))?;
             ArrayData::Appended(
@@ -387,8 +392,12 @@ fn data_array(e: &BytesStart) -> Result<ArrayHeader, String> {
     Ok(ArrayHeader { name: full_name, type_name, components, data })
 }
 
-/// Stores a point array with its text (for `ascii` and `binary` arrays).
-fn push_array(header: &mut Option<VtiHeader>, mut array: ArrayHeader, text: String) -> Result<(), String> {
+/// Stores a point array with its text runs (for `ascii` and `binary` arrays).
+fn push_array(
+    header: &mut Option<VtiHeader>,
+    mut array: ArrayHeader,
+    text: Vec<std::ops::Range<usize>>,
+) -> Result<(), String> {
     match &mut array.data {
         ArrayData::Ascii(t) | ArrayData::Binary(t) => *t = text,
         ArrayData::Appended(_) => {}

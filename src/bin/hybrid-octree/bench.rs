@@ -1,12 +1,14 @@
 //! Benchmarks that print tables: `bench build` (the Volume Octree) and
 //! `bench surface` (the Surface Octree's extraction and face compression),
 //! `bench render` (what accuracy costs in time and memory when rendering),
-//! `bench effects` (what each rendering effect costs).
+//! `bench effects` (what each rendering effect costs), `bench scale` (each
+//! step's time and peak memory as the volume grows).
 
 mod build;
 mod effects;
 mod memory;
 pub mod render;
+mod scale;
 mod surface;
 
 use clap::Subcommand;
@@ -24,6 +26,8 @@ pub enum BenchCommand {
     Render(Box<render::BenchRenderArgs>),
     /// Each rendering effect (shading, blend modes, surfaces): frame time against the plain frame, RMSE, bytes, plan.
     Effects(Box<effects::BenchEffectsArgs>),
+    /// Generate, read, build, select and first frame over sizes: time, time per voxel and peak RSS of each step.
+    Scale(Box<scale::BenchScaleArgs>),
 }
 
 /// Runs a benchmark.
@@ -33,6 +37,7 @@ pub fn run(command: &BenchCommand) -> Result<()> {
         BenchCommand::Surface(args) => surface::run(args),
         BenchCommand::Render(args) => render::run(args),
         BenchCommand::Effects(args) => effects::run(args),
+        BenchCommand::Scale(args) => scale::run(args),
     }
 }
 

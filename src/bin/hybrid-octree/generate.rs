@@ -4,16 +4,17 @@ use crate::extension::require_extension;
 use crate::input::check_size;
 use crate::pool::with_threads;
 use clap::Args;
-use hybrid_octree::datasets::{generate, Dataset};
-use hybrid_octree::grid::ScalarType;
-use hybrid_octree::io::write_vti;
+use hybrid_octree::datasets::generate::generate_slabs;
+use hybrid_octree::datasets::Dataset;
+use hybrid_octree::grid::{GridShape, ScalarType};
+use hybrid_octree::io::vti_write::VtiWriter;
 use hybrid_octree::Result;
 use std::path::PathBuf;
 
 /// Arguments of `generate`.
 #[derive(Args, Debug)]
 pub struct GenerateArgs {
-    /// Built-in dataset: shepp-logan, marschner-lobb, sphere, ramp, constant, vessels.
+    /// Built-in dataset: shepp-logan, marschner-lobb, sphere, ramp, constant, vessels, wavelet.
     #[arg(long)]
     dataset: String,
     /// Samples per axis.
@@ -30,14 +31,32 @@ pub struct GenerateArgs {
     threads: Option<usize>,
 }
 
-/// Generates the dataset and writes it.
+/// Generates the dataset and writes it, slab by slab (the volume is never
+/// held whole).
 pub fn run(args: &GenerateArgs) -> Result<()> {
     require_extension(&args.output, "--output", &[".vti"], "VTK XML image data")?;
     let dataset = Dataset::parse(&args.dataset)?;
     let scalar_type = ScalarType::parse(&args.scalar_type)?;
     check_size(args.size, scalar_type)?;
-    let volume = with_threads(args.threads, || Ok(generate(dataset, args.size, scalar_type)))?;
-    write_vti(&args.output, &volume)?;
+    write_dataset(&args.output, dataset, [args.size; 3], scalar_type, args.threads)?;
     eprintln!("wrote {} {}^3 {} to {}", dataset.name(), args.size, scalar_type.name(), args.output.display());
     Ok(())
+}
+
+/// Writes `dims` samples of `dataset` as `scalar_type` to the `.vti` file
+/// `path`, generated slab by slab on `threads` workers.
+pub fn write_dataset(
+    path: &std::path::Path,
+    dataset: Dataset,
+    dims: [usize; 3],
+    scalar_type: ScalarType,
+    threads: Option<usize>,
+) -> Result<()> {
+    let shape = GridShape { dims, spacing: [1.0; 3], origin: [0.0; 3] };
+    // The file is created once the thread count is accepted: a refused run writes nothing.
+    with_threads(threads, || {
+        let mut writer = VtiWriter::create(path, &shape, 1, dataset.name(), scalar_type)?;
+        generate_slabs(dataset, dims, scalar_type, &mut |slab| writer.write(slab.as_samples()))?;
+        writer.finish()
+    })
 }

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 /// Where the volume comes from.
 #[derive(Args, Debug, Clone)]
 pub struct InputArgs {
-    /// Built-in dataset: shepp-logan, marschner-lobb, sphere, ramp, constant, vessels.
+    /// Built-in dataset: shepp-logan, marschner-lobb, sphere, ramp, constant, vessels, wavelet.
     #[arg(long, conflicts_with = "file", required_unless_present = "file")]
     pub dataset: Option<String>,
     /// Samples per axis of the built-in dataset.
