@@ -7,6 +7,7 @@ mod build;
 mod effects;
 mod memory;
 pub mod render;
+mod smart;
 mod surface;
 
 use clap::Subcommand;
