@@ -432,7 +432,7 @@ fn bench_render_compares_octree_and_uniform_at_equal_bytes() {
     assert!(out.status.success(), "{}", stderr(&out));
     let rows: Value = serde_json::from_str(&stdout(&out)).unwrap();
     let rows = rows.as_array().unwrap();
-    assert_eq!(rows.len(), 9, "2 uniform + 2 octree at their bytes + 2 x 2 VTK smart mapper rows + 1 tolerance row");
+    assert_eq!(rows.len(), 11, "2 uniform + 2 octree at their bytes + 2 x 3 VTK smart mapper rows + 1 tolerance row");
     for r in rows.iter().filter(|r| !r["method"].as_str().unwrap().starts_with("vtk-smart")) {
         for key in [
             "method",
@@ -461,7 +461,8 @@ fn bench_render_compares_octree_and_uniform_at_equal_bytes() {
 /// `bench render` on 8-bit data: every texture counts 1 byte a texel; the
 /// `vtk-smart` rows upload what VTK's GPU mapper asks for under the uniform
 /// row's bytes (`r = 1 - (1 - B / size) / 3` per axis, more than `B`), the
-/// `vtk-smart@bytes` rows at most `B`, each with a finite RMSE.
+/// `vtk-smart@bytes` rows at most `B`, each with a finite RMSE; the
+/// `octree@vtk-smart` rows get the bytes of the `vtk-smart` row as budget.
 #[test]
 fn bench_render_has_vtk_smart_mapper_rows_at_the_uniform_bytes() {
     let size = 33usize;
@@ -523,7 +524,16 @@ fn bench_render_has_vtk_smart_mapper_rows_at_the_uniform_bytes() {
             assert!(rmse.is_finite() && rmse > 0.0 && rmse < 0.5, "{r}");
         }
     }
-    // The text table prints the ratio at each budget.
+    // The octree under the bytes VTK uploads.
+    let octree_at_vtk = of("octree@vtk-smart");
+    assert_eq!(octree_at_vtk.len(), 2);
+    for (o, v) in octree_at_vtk.iter().zip(of("vtk-smart")) {
+        assert_eq!(o["budget_bytes"], v["texture_bytes"], "{o}");
+        assert!(o["texture_bytes"].as_u64() <= o["budget_bytes"].as_u64(), "{o}");
+        assert_eq!(o["texel_format"], "unorm8");
+        assert!(o["rmse"].as_f64().unwrap().is_finite());
+    }
+    // The text table prints the ratios at each budget.
     let out = run(&[
         "bench",
         "render",
@@ -545,7 +555,10 @@ fn bench_render_has_vtk_smart_mapper_rows_at_the_uniform_bytes() {
         "8",
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
-    assert!(stdout(&out).contains("octree RMSE / vtk-smart RMSE = "), "{}", stdout(&out));
+    let text = stdout(&out);
+    assert!(text.contains("octree RMSE / vtk-smart RMSE = "), "{text}");
+    assert!(text.contains("/ vtk-smart@bytes RMSE = "), "{text}");
+    assert!(text.contains("(what VTK uploads under a "), "{text}");
 }
 
 #[test]

@@ -72,8 +72,7 @@ fn cubic_weights(t: f64) -> [f64; 4] {
 /// or one that leaves fewer than 2 samples on an axis.
 pub fn resampled_shape(shape: &GridShape, factors: [f64; 3]) -> Result<GridShape> {
     let mut out = *shape;
-    for a in 0..3 {
-        let f = factors[a];
+    for (a, &f) in factors.iter().enumerate() {
         if !(f.is_finite() && f > 0.0) {
             return Err(Error::InvalidArgument(format!(
                 "magnification factor {f} on axis {a}: give a finite number > 0 (1 keeps the samples)"

@@ -12,7 +12,8 @@
 //! uploads, resampled with `vtkImageResample` (cubic) and drawn by the
 //! reference ray caster (see `super::smart`): `vtk-smart`, the factor VTK's
 //! GPU mapper asks for under a memory limit of `B` (more than `B` bytes),
-//! and `vtk-smart@bytes`, the factor whose uploaded bytes are at most `B`.
+//! and `vtk-smart@bytes`, the factor whose uploaded bytes are at most `B`;
+//! and `octree@vtk-smart`, the octree under the bytes `vtk-smart` uploads.
 //!
 //! With `--points`, the hybrid point/volume representation (paper 3) too:
 //! each uniform stride with the points of each `--point-thresholds`
@@ -82,7 +83,8 @@ pub struct BenchRenderArgs {
 struct Row {
     /// "octree", "uniform", "points" (uniform stride plus error points),
     /// "octree+points" (the selection may buy points instead of refining),
-    /// "vtk-smart" or "vtk-smart@bytes" (VTK's smart mapper's resampled volume).
+    /// "vtk-smart" or "vtk-smart@bytes" (VTK's smart mapper's resampled volume),
+    /// "octree@vtk-smart" (the octree under the bytes of the vtk-smart row before it).
     method: &'static str,
     /// Eu (octree rows); null for uniform rows.
     tolerance: Option<f64>,
@@ -320,7 +322,25 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
                 s,
                 select_ms,
             )?);
-            smart_rows.extend(smart_rows_at(&bench, stride, bytes)?);
+            for r in smart_rows_at(&bench, stride, bytes)? {
+                if r.method == "vtk-smart" {
+                    // The octree at the bytes VTK uploads.
+                    let options = texel_options(&scene, SelectOptions { budget_bytes: r.texture_bytes, ..options });
+                    let started = Instant::now();
+                    let s = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
+                    let select_ms = started.elapsed().as_secs_f64() * 1e3;
+                    let m = Method {
+                        method: "octree@vtk-smart",
+                        tolerance: Some(0.0),
+                        stride: Some(stride),
+                        ..Method::default()
+                    };
+                    smart_rows.push(r);
+                    smart_rows.push(measure(&bench, m, s, select_ms)?);
+                } else {
+                    smart_rows.push(r);
+                }
+            }
         }
         rows.append(&mut smart_rows);
         for &tolerance in &args.tolerances {
@@ -565,6 +585,18 @@ fn print_table(rows: &[Row]) {
                 );
             }
             println!();
+        }
+    }
+    for pair in rows.windows(2) {
+        if let [v, o] = pair {
+            if v.method == "vtk-smart" && o.method == "octree@vtk-smart" {
+                println!(
+                    "at {:.2} MB (what VTK uploads under a {:.2} MB limit): octree RMSE / vtk-smart RMSE = {:.3}",
+                    v.texture_bytes as f64 / 1e6,
+                    v.budget_bytes as f64 / 1e6,
+                    o.rmse / v.rmse.max(1e-12)
+                );
+            }
         }
     }
     // Octree + points rows: against the octree alone and uniform downsampling at the same budget.
