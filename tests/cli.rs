@@ -432,8 +432,8 @@ fn bench_render_compares_octree_and_uniform_at_equal_bytes() {
     assert!(out.status.success(), "{}", stderr(&out));
     let rows: Value = serde_json::from_str(&stdout(&out)).unwrap();
     let rows = rows.as_array().unwrap();
-    assert_eq!(rows.len(), 5, "2 uniform + 2 octree at their bytes + 1 tolerance row");
-    for r in rows {
+    assert_eq!(rows.len(), 11, "2 uniform + 2 octree at their bytes + 2 x 3 VTK smart mapper rows + 1 tolerance row");
+    for r in rows.iter().filter(|r| !r["method"].as_str().unwrap().starts_with("vtk-smart")) {
         for key in [
             "method",
             "tolerance",
@@ -456,6 +456,109 @@ fn bench_render_compares_octree_and_uniform_at_equal_bytes() {
     assert_eq!(rows[1]["budget_bytes"], rows[0]["texture_bytes"], "octree gets the uniform row's bytes");
     assert_eq!(&std::fs::read(&plot).unwrap()[..4], b"\x89PNG");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `bench render` on 8-bit data: every texture counts 1 byte a texel; the
+/// `vtk-smart` rows upload what VTK's GPU mapper asks for under the uniform
+/// row's bytes (`r = 1 - (1 - B / size) / 3` per axis, more than `B`), the
+/// `vtk-smart@bytes` rows at most `B`, each with a finite RMSE; the
+/// `octree@vtk-smart` rows get the bytes of the `vtk-smart` row as budget.
+#[test]
+fn bench_render_has_vtk_smart_mapper_rows_at_the_uniform_bytes() {
+    let size = 33usize;
+    let out = run(&[
+        "bench",
+        "render",
+        "--dataset",
+        "shepp-logan",
+        "--size",
+        "33",
+        "--type",
+        "u8",
+        "--width",
+        "40",
+        "--height",
+        "40",
+        "--strides",
+        "2,4",
+        "--tolerances",
+        "0.1",
+        "--leaf-size",
+        "8",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let rows = rows.as_array().unwrap();
+    let of = |m: &str| rows.iter().filter(|r| r["method"] == m).collect::<Vec<_>>();
+    let uniform = of("uniform");
+    assert_eq!(uniform.len(), 2);
+    for r in rows.iter().filter(|r| r["method"] != "vtk-smart" && r["method"] != "vtk-smart@bytes") {
+        assert_eq!(r["texel_format"], "unorm8", "{r}");
+    }
+    // Uniform stride s over the 32-cell root: (32 / s + 1)^3 texels of 1 byte.
+    assert_eq!(uniform[0]["texture_bytes"], 17 * 17 * 17);
+    assert_eq!(uniform[1]["texture_bytes"], 9 * 9 * 9);
+    let volume_bytes = (size * size * size) as f64;
+    for (method, rows) in [("vtk-smart", of("vtk-smart")), ("vtk-smart@bytes", of("vtk-smart@bytes"))] {
+        assert_eq!(rows.len(), 2, "{method}");
+        for (r, u) in rows.iter().zip(&uniform) {
+            let budget = u["texture_bytes"].as_u64().unwrap();
+            assert_eq!(r["budget_bytes"], budget, "{r}");
+            assert_eq!(r["stride"], u["stride"], "{r}");
+            assert_eq!(r["texel_format"], "unorm8");
+            let factor = r["magnification"].as_f64().unwrap();
+            let dims: Vec<u64> = r["resampled_dims"].as_array().unwrap().iter().map(|d| d.as_u64().unwrap()).collect();
+            let n = ((size - 1) as f64 * factor).floor() as u64 + 1;
+            assert_eq!(dims, vec![n; 3], "{r}: vtkImageResample keeps floor((n - 1) r) + 1 samples");
+            let bytes = r["texture_bytes"].as_u64().unwrap();
+            assert_eq!(bytes, n * n * n, "{r}: 1 byte a sample");
+            if method == "vtk-smart" {
+                let vtk = 1.0 - (1.0 - budget as f64 / volume_bytes) / 3.0;
+                assert!((factor - vtk).abs() < 1e-12, "{r}: VTK's GetReductionRatio is {vtk}");
+                assert!(bytes > budget, "{r}: VTK's per-axis ratio uploads more than the limit");
+            } else {
+                assert!(bytes <= budget && bytes as f64 > 0.5 * budget as f64, "{r}");
+            }
+            let rmse = r["rmse"].as_f64().unwrap();
+            assert!(rmse.is_finite() && rmse > 0.0 && rmse < 0.5, "{r}");
+        }
+    }
+    // The octree under the bytes VTK uploads.
+    let octree_at_vtk = of("octree@vtk-smart");
+    assert_eq!(octree_at_vtk.len(), 2);
+    for (o, v) in octree_at_vtk.iter().zip(of("vtk-smart")) {
+        assert_eq!(o["budget_bytes"], v["texture_bytes"], "{o}");
+        assert!(o["texture_bytes"].as_u64() <= o["budget_bytes"].as_u64(), "{o}");
+        assert_eq!(o["texel_format"], "unorm8");
+        assert!(o["rmse"].as_f64().unwrap().is_finite());
+    }
+    // The text table prints the ratios at each budget.
+    let out = run(&[
+        "bench",
+        "render",
+        "--dataset",
+        "shepp-logan",
+        "--size",
+        "33",
+        "--type",
+        "u8",
+        "--width",
+        "24",
+        "--height",
+        "24",
+        "--strides",
+        "4",
+        "--tolerances",
+        "0.1",
+        "--leaf-size",
+        "8",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("octree RMSE / vtk-smart RMSE = "), "{text}");
+    assert!(text.contains("/ vtk-smart@bytes RMSE = "), "{text}");
+    assert!(text.contains("(what VTK uploads under a "), "{text}");
 }
 
 #[test]

@@ -82,6 +82,10 @@ pub struct ReferenceOptions<'a> {
     /// Classify each sample by its value and gradient magnitude with this
     /// table instead of the 1D function (Composite only).
     pub transfer_2d: Option<&'a TransferFunction2D>,
+    /// The opacity unit distance `d0`, world units (> 0; VTK's
+    /// ScalarOpacityUnitDistance); `None`: the grid's reference spacing.
+    /// A resampled copy of a volume drawn with the original's `d0` keeps its opacity per length.
+    pub opacity_unit: Option<f64>,
 }
 
 /// Ray-casts `grid` classified by `tf`, seen by `camera`, into a
@@ -128,7 +132,12 @@ pub(crate) fn reference_fields(
 ) -> Result<Image> {
     check_size(width, height)?;
     let shape = *grid.shape();
-    let d0 = crate::data::spacing::reference_spacing(&shape);
+    let d0 = options.opacity_unit.unwrap_or_else(|| crate::data::spacing::reference_spacing(&shape));
+    if !(d0 > 0.0 && d0.is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "opacity unit distance {d0}: give a positive number of world units"
+        )));
+    }
     let step = options.step.unwrap_or(d0 / 4.0);
     if !(step > 0.0 && step.is_finite()) {
         return Err(Error::InvalidArgument(format!("reference step {step}: give a positive number of world units")));
@@ -349,6 +358,7 @@ mod tests {
                     gradient_opacity: None,
                     transfer_2d: None,
                     region: None,
+                    opacity_unit: None,
                 },
             )
             .unwrap();
@@ -364,6 +374,7 @@ mod tests {
             gradient_opacity: None,
             transfer_2d: None,
             region: None,
+            opacity_unit: None,
         };
         assert!(reference(&grid, &tf, &camera, 4, 4, &bad).unwrap_err().to_string().contains("positive"));
         assert!(reference(&grid, &tf, &camera, 0, 4, &ReferenceOptions::default()).is_err());
@@ -392,6 +403,7 @@ mod tests {
                 gradient_opacity: None,
                 transfer_2d: None,
                 region: None,
+                opacity_unit: None,
             };
             let img = reference(&grid, &tf, &camera, 3, 3, &options).unwrap();
             let p = img.rgba[4].map(|v| v as f64);

@@ -236,6 +236,7 @@ fn opaque_surface_matches_the_reference() {
         gradient_opacity: None,
         transfer_2d: None,
         region: None,
+        opacity_unit: None,
     };
     let truth = reference(&grid, &tf, &camera, 64, 64, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
@@ -293,6 +294,7 @@ fn translucent_batches_are_blended_inside_their_slab() {
         gradient_opacity: None,
         transfer_2d: None,
         region: None,
+        opacity_unit: None,
     };
     let truth = reference(&grid, &tf, &camera, 6, 6, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
@@ -400,6 +402,7 @@ fn the_pipeline_tracks_the_reference() {
             gradient_opacity: None,
             transfer_2d: None,
             region: None,
+            opacity_unit: None,
         };
         let truth = reference(&grid, &tf, &camera, 96, 96, &options).unwrap();
         let m = compare(&image, &truth).unwrap();

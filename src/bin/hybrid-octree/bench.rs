@@ -9,6 +9,7 @@ mod effects;
 mod memory;
 pub mod render;
 mod scale;
+mod smart;
 mod surface;
 
 use clap::Subcommand;

@@ -325,6 +325,18 @@ pub fn surface_colour(args: &SceneArgs) -> [f32; 4] {
 
 /// The full-resolution reference picture of the scene.
 pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Result<Image> {
+    reference_image_at(grid, scene, args, None)
+}
+
+/// [`reference_image`] of `grid` with the opacity unit distance `opacity_unit`
+/// (world units; `None`: `grid`'s reference spacing): another sampling of
+/// the scene's volume drawn with the scene's opacity per length.
+pub fn reference_image_at(
+    grid: &Grid<'_>,
+    scene: &Loaded,
+    args: &SceneArgs,
+    opacity_unit: Option<f64>,
+) -> Result<Image> {
     let surface = scene.surface.as_ref().map(|s| (s, surface_colour(args)));
     let lighting = args.shade.lighting();
     reference_blend(
@@ -339,6 +351,7 @@ pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Res
             gradient_opacity: args.gradient_opacity.as_ref(),
             transfer_2d: scene.transfer_2d.as_ref(),
             region: scene.region.as_ref(),
+            opacity_unit,
             ..ReferenceOptions::default()
         },
         &scene.blend,

@@ -6,12 +6,21 @@
 //! frame compared with the full-resolution reference ray caster.
 //! Prints a table (or JSON rows), the RMSE ratio octree / uniform at equal
 //! bytes, and with `--plot` a PNG of RMSE against time and against memory.
+//! Every texture counts the scene's texel format (`--texel-format`).
+//!
+//! At each uniform row's bytes `B`, two rows of what VTK's smart mapper
+//! uploads, resampled with `vtkImageResample` (cubic) and drawn by the
+//! reference ray caster (see `super::smart`): `vtk-smart`, the factor VTK's
+//! GPU mapper asks for under a memory limit of `B` (more than `B` bytes),
+//! and `vtk-smart@bytes`, the factor whose uploaded bytes are at most `B`;
+//! and `octree@vtk-smart`, the octree under the bytes `vtk-smart` uploads.
 //!
 //! With `--points`, the hybrid point/volume representation (paper 3) too:
 //! each uniform stride with the points of each `--point-thresholds`
 //! threshold, and, at the bytes of each finer stride, the next coarser
 //! stride plus as many points as those bytes buy (method "points").
 
+use super::smart;
 use crate::extension::require_extension;
 use crate::input::InputArgs;
 use crate::output::print_report;
@@ -72,19 +81,30 @@ pub struct BenchRenderArgs {
 /// One row.
 #[derive(Debug, Serialize)]
 struct Row {
-    /// "octree", "uniform", "points" (uniform stride plus error points) or
-    /// "octree+points" (the selection may buy points instead of refining).
+    /// "octree", "uniform", "points" (uniform stride plus error points),
+    /// "octree+points" (the selection may buy points instead of refining),
+    /// "vtk-smart" or "vtk-smart@bytes" (VTK's smart mapper's resampled volume),
+    /// "octree@vtk-smart" (the octree under the bytes of the vtk-smart row before it).
     method: &'static str,
     /// Eu (octree rows); null for uniform rows.
     tolerance: Option<f64>,
-    /// Uniform stride (uniform and points rows); null for octree rows.
+    /// Uniform stride (uniform and points rows; vtk-smart rows: the stride
+    /// whose bytes are their budget); null for octree rows.
     stride: Option<usize>,
     /// Point threshold (points rows chosen by threshold).
     point_threshold: Option<f64>,
     /// Point budget (points rows at the bytes of a finer stride).
     point_budget: Option<usize>,
+    /// The texture budget (vtk-smart rows: the GPU mapper's memory limit).
     budget_bytes: usize,
+    /// Bytes of the textures as uploaded (vtk-smart rows: the resampled volume).
     texture_bytes: usize,
+    /// The texel format of the textures (vtk-smart rows: VTK's, by the data type).
+    texel_format: &'static str,
+    /// vtk-smart rows: the magnification factor on each axis.
+    magnification: Option<f64>,
+    /// vtk-smart rows: the samples per axis of the resampled volume.
+    resampled_dims: Option<[usize; 3]>,
     /// Points drawn with the volume.
     points: usize,
     /// Bytes of the points as stored (6 or 9 a point).
@@ -99,14 +119,17 @@ struct Row {
     slab_polygons_ms: f64,
     /// The per-view DrawList, ms.
     drawlist_ms: f64,
+    /// Texture upload (vtk-smart rows: the resampling), ms.
     upload_ms: f64,
+    /// Compositing (vtk-smart rows: the reference ray caster's frame), ms.
     composite_ms: f64,
     /// Per frame: DrawList plus compositing, ms.
     ms: f64,
     rmse: f64,
     psnr: f64,
     ssim: f64,
-    /// The selection's estimated error (`select::estimated_error`), as `render` and the mapper report it.
+    /// The selection's estimated error (`select::estimated_error`), as
+    /// `render` and the mapper report it (vtk-smart rows: NaN, null in JSON).
     estimated_error: f64,
 }
 
@@ -178,6 +201,9 @@ fn measure_with(
         point_budget,
         budget_bytes: selection.budget_bytes,
         texture_bytes: selection.texture_bytes,
+        texel_format: scene.texel.format.name(),
+        magnification: None,
+        resampled_dims: None,
         points: point_count,
         point_bytes,
         total_bytes: selection.texture_bytes + point_bytes,
@@ -196,6 +222,59 @@ fn measure_with(
     })
 }
 
+/// `options` with the bytes and the quantization error of the scene's texel format.
+fn texel_options(scene: &Loaded, options: SelectOptions) -> SelectOptions {
+    SelectOptions {
+        bytes_per_texel: scene.texel.bytes(),
+        texel_error: scene.texel.normalized_error(scene.octree.value_range()),
+        ..options
+    }
+}
+
+/// The `vtk-smart` and `vtk-smart@bytes` rows at a memory limit of `bytes`
+/// (the bytes of uniform stride `stride`); a row whose factor leaves fewer
+/// than 2 samples on an axis is left out (noted on stderr).
+fn smart_rows_at(b: &Bench<'_, '_>, stride: usize, bytes: usize) -> Result<Vec<Row>> {
+    let dims = b.grid.dims();
+    let scalar = b.grid.samples().scalar_type();
+    let texel = smart::vtk_texel(scalar).bytes();
+    let vtk = smart::reduction_ratio(dims, scalar.size(), bytes);
+    let equal = [smart::equal_bytes_ratio(dims, texel, bytes); 3];
+    let mut rows = Vec::new();
+    for (method, ratio) in [("vtk-smart", vtk), ("vtk-smart@bytes", equal)] {
+        let Some(s) = smart::draw(b.grid, b.scene, b.args, ratio)? else { continue };
+        let metrics = compare(&s.image, b.truth)?;
+        rows.push(Row {
+            method,
+            tolerance: None,
+            stride: Some(stride),
+            point_threshold: None,
+            point_budget: None,
+            budget_bytes: bytes,
+            texture_bytes: s.bytes,
+            texel_format: s.texel.name(),
+            magnification: Some(s.ratio[0]),
+            resampled_dims: Some(s.dims),
+            points: 0,
+            point_bytes: 0,
+            total_bytes: s.bytes,
+            points_ms: 0.0,
+            bricks: 1,
+            select_ms: 0.0,
+            slab_polygons_ms: 0.0,
+            drawlist_ms: 0.0,
+            upload_ms: s.resample_ms,
+            composite_ms: s.render_ms,
+            ms: s.render_ms,
+            rmse: metrics.rmse,
+            psnr: metrics.psnr,
+            ssim: metrics.ssim,
+            estimated_error: f64::NAN,
+        });
+    }
+    Ok(rows)
+}
+
 /// Runs the benchmark.
 pub fn run(args: &BenchRenderArgs) -> Result<()> {
     if let Some(path) = &args.plot {
@@ -211,10 +290,11 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
         let truth = reference_image(&grid, &scene, &args.scene)?;
         let bench = Bench { grid: &grid, scene: &scene, args: &args.scene, truth: &truth };
         let mut rows = Vec::new();
+        let mut smart_rows = Vec::new();
         let mut largest = 0;
         for &stride in &args.strides {
             let started = Instant::now();
-            let u = uniform(&scene.octree, stride, 4)?;
+            let u = uniform(&scene.octree, stride, scene.texel.bytes())?;
             let select_ms = started.elapsed().as_secs_f64() * 1e3;
             let bytes = u.texture_bytes;
             largest = largest.max(bytes);
@@ -224,12 +304,15 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
                 u,
                 select_ms,
             )?);
-            let options = SelectOptions {
-                roi: args.scene.roi,
-                pooled: scene.blend.mode.is_extremum(),
-                region: scene.select_region,
-                ..SelectOptions::new(bytes, 0.0)
-            };
+            let options = texel_options(
+                &scene,
+                SelectOptions {
+                    roi: args.scene.roi,
+                    pooled: scene.blend.mode.is_extremum(),
+                    region: scene.select_region,
+                    ..SelectOptions::new(bytes, 0.0)
+                },
+            );
             let started = Instant::now();
             let s = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
             let select_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -239,14 +322,37 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
                 s,
                 select_ms,
             )?);
+            for r in smart_rows_at(&bench, stride, bytes)? {
+                if r.method == "vtk-smart" {
+                    // The octree at the bytes VTK uploads.
+                    let options = texel_options(&scene, SelectOptions { budget_bytes: r.texture_bytes, ..options });
+                    let started = Instant::now();
+                    let s = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
+                    let select_ms = started.elapsed().as_secs_f64() * 1e3;
+                    let m = Method {
+                        method: "octree@vtk-smart",
+                        tolerance: Some(0.0),
+                        stride: Some(stride),
+                        ..Method::default()
+                    };
+                    smart_rows.push(r);
+                    smart_rows.push(measure(&bench, m, s, select_ms)?);
+                } else {
+                    smart_rows.push(r);
+                }
+            }
         }
+        rows.append(&mut smart_rows);
         for &tolerance in &args.tolerances {
-            let options = SelectOptions {
-                roi: args.scene.roi,
-                pooled: scene.blend.mode.is_extremum(),
-                region: scene.select_region,
-                ..SelectOptions::new(largest, tolerance)
-            };
+            let options = texel_options(
+                &scene,
+                SelectOptions {
+                    roi: args.scene.roi,
+                    pooled: scene.blend.mode.is_extremum(),
+                    region: scene.select_region,
+                    ..SelectOptions::new(largest, tolerance)
+                },
+            );
             let started = Instant::now();
             let s = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
             let select_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -331,7 +437,7 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
     strides.dedup();
     let mut bytes = Vec::new();
     for &stride in &strides {
-        let u = uniform(&bench.scene.octree, stride, 4)?;
+        let u = uniform(&bench.scene.octree, stride, bench.scene.texel.bytes())?;
         bytes.push(u.texture_bytes);
         for &threshold in &args.point_thresholds {
             let (set, low, ms) = generate_timed(stride, PointSelect::Threshold(threshold))?;
@@ -358,12 +464,15 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
         let ms = started.elapsed().as_secs_f64() * 1e3;
         let mass = PointMass::voxel_means(bench.grid, &set, bench.scene.octree.layout().leaf_size());
         for &budget in &bytes {
-            let options = SelectOptions {
-                roi: bench.args.roi,
-                pooled: bench.scene.blend.mode.is_extremum(),
-                region: bench.scene.select_region,
-                ..SelectOptions::new(budget, 0.0)
-            };
+            let options = texel_options(
+                bench.scene,
+                SelectOptions {
+                    roi: bench.args.roi,
+                    pooled: bench.scene.blend.mode.is_extremum(),
+                    region: bench.scene.select_region,
+                    ..SelectOptions::new(budget, 0.0)
+                },
+            );
             let started = Instant::now();
             let s =
                 select_with_points(&bench.scene.octree, &options, visible(bench.scene, bench.args.isovalue), &mass)?;
@@ -382,7 +491,7 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
     // At the bytes of stride `fine`: the next coarser stride and the points the difference buys.
     for k in 1..strides.len() {
         let (fine, coarse) = (bytes[k - 1], strides[k]);
-        let u = uniform(&bench.scene.octree, coarse, 4)?;
+        let u = uniform(&bench.scene.octree, coarse, bench.scene.texel.bytes())?;
         let per_point = if bench.grid.dims().iter().all(|&n| n <= 256) { 6 } else { 9 };
         let budget = fine.saturating_sub(u.texture_bytes) / per_point;
         let (set, low, ms) = generate_timed(coarse, PointSelect::Budget(budget))?;
@@ -396,13 +505,14 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
 
 fn print_table(rows: &[Row]) {
     println!(
-        "{:>8} {:>9} {:>6} {:>9} {:>11} {:>11} {:>9} {:>10} {:>7} {:>9} {:>9} {:>9} {:>10} {:>8} {:>8} {:>7} {:>8}",
+        "{:>15} {:>9} {:>6} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>7} {:>9} {:>9} {:>9} {:>10} {:>8} {:>8} {:>7} {:>8}",
         "method",
         "tolerance",
         "stride",
         "points t",
         "budget B",
         "texture B",
+        "texel",
         "points",
         "total B",
         "bricks",
@@ -417,7 +527,7 @@ fn print_table(rows: &[Row]) {
     );
     for r in rows {
         println!(
-            "{:>8} {:>9} {:>6} {:>9} {:>11} {:>11} {:>9} {:>10} {:>7} {:>9.2} {:>9.2} {:>9.2} {:>10.1} {:>8.5} {:>8.2} {:>7.4} {:>8.4}",
+            "{:>15} {:>9} {:>6} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>7} {:>9.2} {:>9.2} {:>9.2} {:>10.1} {:>8.5} {:>8.2} {:>7.4} {:>8.4}",
             r.method,
             r.tolerance.map_or("-".into(), |t| format!("{t}")),
             r.stride.map_or("-".into(), |s| s.to_string()),
@@ -428,6 +538,7 @@ fn print_table(rows: &[Row]) {
             },
             r.budget_bytes,
             r.texture_bytes,
+            r.texel_format,
             r.points,
             r.total_bytes,
             r.bricks,
@@ -450,6 +561,40 @@ fn print_table(rows: &[Row]) {
                     u.texture_bytes as f64 / 1e6,
                     u.stride.unwrap_or(0),
                     o.rmse / u.rmse.max(1e-12)
+                );
+            }
+        }
+    }
+    // VTK's smart mapper at each uniform stride's bytes: the octree's RMSE over its RMSE.
+    for o in rows.iter().filter(|r| r.method == "octree" && r.tolerance == Some(0.0)) {
+        let vtk = |m: &str| rows.iter().find(|r| r.method == m && r.budget_bytes == o.budget_bytes);
+        if let Some(v) = vtk("vtk-smart") {
+            print!(
+                "at {:.2} MB: octree RMSE / vtk-smart RMSE = {:.3} (VTK uploads {:.2} MB, factor {:.4})",
+                o.budget_bytes as f64 / 1e6,
+                o.rmse / v.rmse.max(1e-12),
+                v.texture_bytes as f64 / 1e6,
+                v.magnification.unwrap_or(1.0)
+            );
+            if let Some(e) = vtk("vtk-smart@bytes") {
+                print!(
+                    "; / vtk-smart@bytes RMSE = {:.3} ({:.2} MB, factor {:.4})",
+                    o.rmse / e.rmse.max(1e-12),
+                    e.texture_bytes as f64 / 1e6,
+                    e.magnification.unwrap_or(1.0)
+                );
+            }
+            println!();
+        }
+    }
+    for pair in rows.windows(2) {
+        if let [v, o] = pair {
+            if v.method == "vtk-smart" && o.method == "octree@vtk-smart" {
+                println!(
+                    "at {:.2} MB (what VTK uploads under a {:.2} MB limit): octree RMSE / vtk-smart RMSE = {:.3}",
+                    v.texture_bytes as f64 / 1e6,
+                    v.budget_bytes as f64 / 1e6,
+                    o.rmse / v.rmse.max(1e-12)
                 );
             }
         }
