@@ -61,6 +61,8 @@ pub struct SelectionHandle {
     transfer_2d: Option<TransferFunction2D>,
     /// Selected from two dependent fields: its DrawLists plan them (`plan::dependent`).
     pub(crate) dependent: bool,
+    /// Whether its DrawLists jitter ([`SelectionHandle::set_jittering`]).
+    jittering: std::sync::atomic::AtomicBool,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -397,6 +399,7 @@ impl HybridOctreeHandle {
                 region: region(&desc.region)?,
                 transfer_2d,
                 dependent: self.dependent.is_some(),
+                jittering: Default::default(),
             }))
         })
     }
@@ -436,7 +439,8 @@ impl SelectionHandle {
         let list = replan_transfer_2d(list, self.transfer_2d.as_ref());
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
         let list = crate::plan::dependent::plan_dependent(list, self.dependent);
-        Ok(recrop(list, self.region.as_ref(), &octree.shape))
+        let list = recrop(list, self.region.as_ref(), &octree.shape);
+        Ok(crate::plan::jitter::plan_jitter(list, self.jittering.load(std::sync::atomic::Ordering::Relaxed)))
     }
 
     /// [`Self::list`] without the points.
@@ -528,6 +532,14 @@ impl SelectionHandle {
         guarded(|| {
             let made = lighting(desc)?;
             *self.lighting.lock().unwrap_or_else(|e| e.into_inner()) = made;
+            Ok(())
+        })
+    }
+
+    /// Jittering of the DrawLists made after this call ([`crate::plan::jitter`]).
+    pub(crate) fn set_jittering(&self, on: bool) -> Bridged<()> {
+        guarded(|| {
+            self.jittering.store(on, std::sync::atomic::Ordering::Relaxed);
             Ok(())
         })
     }
