@@ -239,8 +239,8 @@ fn jitter_turns_rings_into_noise() {
             let lattice = list(&octree, &shape, budget, BlendMode::Composite, &camera);
             assert!(lattice.bricks.iter().all(|b| b.brick.stride == stride), "stride {stride}");
             let jittered = plan_jitter(lattice.clone(), true);
-            let truth = reference_blend(&grid, &tf, &camera, w, h, &ReferenceOptions::default(), &Blend::default())
-                .unwrap();
+            let truth =
+                reference_blend(&grid, &tf, &camera, w, h, &ReferenceOptions::default(), &Blend::default()).unwrap();
             let a = composite(&grid, &lattice, &tf, w, h, None).unwrap();
             let b = composite(&grid, &jittered, &tf, w, h, None).unwrap();
             let fine = composite(&grid, &finely_sliced(&lattice), &tf, w, h, None).unwrap();

@@ -4,22 +4,25 @@
  * scene (HybridOctreeMapperScene.h). Metric: RMSE of the RGB channels in
  * [0, 1] over the 256x256 window.
  *
- *   jitter:     a budget under the full volume (mixed strides), Composite
- *               and MIP. Off (the default): the effects hold no
- *               "jittering". On: they end with it, and the GL picture is
- *               within RMSE 0.005 of the CPU compositor's jittered picture
+ *   jitter:     a thin opaque shell of the wavelet (opacity 0.7 at 66 % of
+ *               its range, 0 at 62 % and 70 %) under a budget of 0.3 MB (mixed
+ *               strides), Composite and MIP. Off (the default): the effects
+ *               hold no "jittering". On: they end with it, and the GL picture
+ *               is within RMSE 0.005 of the CPU compositor's jittered picture
  *               of the same DrawList (the same fixed per-pixel noise and
- *               lattice offsets in both), while the jittered and the
- *               lattice pictures differ by more than that (the jitter is
- *               drawn, not a no-op).
+ *               lattice offsets in both; measured 0.0014 in both modes),
+ *               while the jitter moves the picture by more than 0.008
+ *               (measured 0.0135 Composite, 0.0109 MIP): the GL jitter is
+ *               the CPU compositor's, not a no-op.
  *   gpu_jitter: the full volume in the budget, jittered, against
  *               vtkGPUVolumeRayCastMapper jittered too (its random noise
- *               texture): RMSE < 0.01, as unjittered.
+ *               texture): RMSE < 0.01 (measured 0.0015).
  */
 #include "HybridOctreeMapperScene.h"
 #include "HybridOctreeTestUtilities.h"
 
 #include "vtkAutoInit.h"
+#include "vtkPiecewiseFunction.h"
 
 #include <iostream>
 #include <string>
@@ -42,8 +45,17 @@ int Jitter()
   Checker check;
   vtkNew<vtkHybridOctreeVolumeMapper> mapper;
   Scene scene(mapper);
+  // A thin opaque shell of the wavelet: a coarse lattice shows it as rings.
+  const double lo = scene.Range[0], hi = scene.Range[1];
+  vtkPiecewiseFunction* opacity = scene.Property->GetScalarOpacity();
+  opacity->RemoveAllPoints();
+  opacity->AddPoint(lo, 0.0);
+  opacity->AddPoint(lo + 0.62 * (hi - lo), 0.0);
+  opacity->AddPoint(lo + 0.66 * (hi - lo), 0.7);
+  opacity->AddPoint(lo + 0.70 * (hi - lo), 0.0);
+  opacity->AddPoint(hi, 0.0);
   mapper->SetLeafSize(8);
-  mapper->SetBudgetMB(0.15);
+  mapper->SetBudgetMB(0.3);
   vtkSmartPointer<ErrorRecorder> errors =
     vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
@@ -63,8 +75,8 @@ int Jitter()
       std::string("on: jittering in the effects '") + mapper->GetLastEffects() + "'");
     check.Check(mapper->GetLastEstimatedError() > 0.0, "a budget under the full volume");
     const double moved = Rmse(Grab(scene.Window), lattice);
-    std::cout << "jittered vs lattice picture: RMSE " << moved << " (must exceed 0.005)\n";
-    check.Check(moved > 0.005, "the jitter is drawn");
+    std::cout << "jittered vs lattice picture: RMSE " << moved << " (must exceed 0.008)\n";
+    check.Check(moved > 0.008, "the jitter is drawn");
   }
   check.Check(errors->Errors.empty() && errors->Warnings.empty(),
     "no warning or error:\n" + errors->AllErrors() +
