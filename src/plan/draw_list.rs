@@ -191,6 +191,9 @@ pub struct DrawList {
     /// The 2D transfer function (`Some` exactly when [`Plan::transfer_2d`]);
     /// brick textures then carry the gradient border.
     pub transfer_2d: Option<TransferFunction2D>,
+    /// The brick textures' texel format (its bytes are the selection's
+    /// `bytes_per_texel`): Float32 unless the caller resolved another one.
+    pub texel: crate::plan::texel_format::TexelEncoding,
 }
 
 /// What the scene holds besides the volume.
@@ -488,6 +491,7 @@ pub fn draw_list(
         gradient_opacity,
         transfer_2d,
         region,
+        texel: Default::default(),
     })
 }
 

@@ -7,7 +7,7 @@
 //! cropping and clipping planes keep, [`dependent`] plans a two-field volume
 //! with dependent components, [`jitter`] moves each pixel's samples by a
 //! fixed fraction of the slice spacing, [`slice`](mod@slice) is the Slice blend mode's
-//! plane, and [`draw_geometry`] makes the OpenGL
+//! plane, [`texel_format`] says what a texel costs and holds, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
 pub mod blend;
@@ -21,6 +21,7 @@ pub mod point_slabs;
 pub mod select;
 pub mod slab;
 pub mod slice;
+pub mod texel_format;
 
 pub use blend::{Blend, BlendMode};
 pub use draw_list::{

@@ -72,6 +72,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         region: None,
         gradient_opacity: None,
         transfer_2d: None,
+        texel: Default::default(),
     }
 }
 
@@ -442,6 +443,9 @@ mod gradient_opacity_tests;
 
 #[path = "transfer2d_tests.rs"]
 mod transfer2d_tests;
+
+#[path = "texel_format_tests.rs"]
+mod texel_format_tests;
 
 /// A plan that names an effect none of whose inputs is set takes the
 /// general loop (every effect's branch) and draws exactly what the plain
