@@ -25,7 +25,7 @@ impl<S> Prepared<'_, S> {
     /// the depths where it enters and leaves the box.
     pub(super) fn jittered_run(&self, pr: &PixelRay, za: f64, zb: f64, o: f64) -> (i64, i64) {
         let d = self.draw.slice_spacing;
-        if !(d > 0.0) || self.draw.slices.is_empty() {
+        if d.is_nan() || d <= 0.0 || self.draw.slices.is_empty() {
             return (0, 0);
         }
         let depth = |k: i64| k as f64 * d + o;
