@@ -1260,3 +1260,50 @@ fn bench_scale_reports_every_step_of_every_size() {
     std::fs::remove_dir(&dir).unwrap();
     assert_clean_failure(&run(&["bench", "scale", "--sizes", "9", "--type", "u12"]), "u12");
 }
+
+/// `render --jitter`: the plan's effects end with `jittering` (absent
+/// without the flag, and under Slice), the picture differs from the
+/// lattice's, and against the reference it is no worse than the lattice's
+/// within 5 % on a coarse selection (the render tests' bound; the library
+/// test measures the rings, render::jitter_tests).
+#[test]
+fn render_jitter_is_reported_and_changes_only_the_sampling() {
+    let dir = std::env::temp_dir().join(format!("ho-jitter-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (png, reference) = (dir.join("frame.png"), dir.join("reference.png"));
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "--dataset",
+            "sphere",
+            "--size",
+            "33",
+            "--width",
+            "64",
+            "--height",
+            "64",
+            "--budget-mb",
+            "0.01",
+            "--output",
+            png.to_str().unwrap(),
+            "--reference",
+            reference.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(str::to_string).collect::<Vec<_>>()
+    };
+    let render = |extra: &[&'static str]| {
+        let a = args(extra);
+        let r = json_of("render", &a.iter().map(String::as_str).collect::<Vec<_>>());
+        (r.clone(), std::fs::read(&png).unwrap())
+    };
+    let (plain, plain_png) = render(&[]);
+    let (jittered, jittered_png) = render(&["--jitter"]);
+    assert_eq!(plain["effects"], serde_json::json!([]), "{plain}");
+    assert_eq!(jittered["effects"], serde_json::json!(["jittering"]), "{jittered}");
+    assert_ne!(plain_png, jittered_png);
+    let (a, b) = (plain["rmse"].as_f64().unwrap(), jittered["rmse"].as_f64().unwrap());
+    assert!(b <= 1.05 * a, "jittered RMSE {b} vs {a}");
+    let (sliced, _) = render(&["--jitter", "--blend", "slice", "--slice-normal", "0,0,1"]);
+    assert!(!sliced["effects"].as_array().unwrap().iter().any(|e| e == "jittering"), "{sliced}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

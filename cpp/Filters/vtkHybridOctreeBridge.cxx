@@ -628,6 +628,11 @@ bool Selection::SetGradientOpacity(const std::vector<double>& points, std::strin
   });
 }
 
+bool Selection::SetJittering(bool on, std::string& error) const
+{
+  return Guarded(error, [&] { HandleFor(this->Impl).set_jittering(on); });
+}
+
 bool Selection::Composite(const HybridOctree& octree, const CameraDescription& camera,
   const void* bytes, std::size_t byteCount, const GridDescription& grid,
   const CompositeScene& scene, std::size_t width, std::size_t height, float* rgba,

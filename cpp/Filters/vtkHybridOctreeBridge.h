@@ -651,6 +651,15 @@ public:
   bool SetGradientOpacity(const std::vector<double>& points, std::string& error) const;
 
   /**
+   * Jittering (VTK's UseJittering) of the DrawLists and pictures made after
+   * this call: each pixel's samples move along its ray by a fixed fraction of
+   * the slice spacing (src/plan/jitter.rs); the plan's effects then end with
+   * "jittering" when it applies (a volume not in Slice, no translucent
+   * surface or points between the slices). False and `error` on failure.
+   */
+  bool SetJittering(bool on, std::string& error) const;
+
+  /**
    * The CPU compositor's picture of the DrawList (GetDrawList(octree,
    * camera, scene.SurfaceRGBA[3])) into the caller's `rgba`: `width x
    * height` premultiplied RGBA floats (4 a pixel), rows from the top, with

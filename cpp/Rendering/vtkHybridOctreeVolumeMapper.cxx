@@ -869,6 +869,7 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   const bool surface = in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0;
   const bool ok = in.Frame->Selected->SetShading(in.Shading, error) &&
     in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) &&
+    in.Frame->Selected->SetJittering(this->UseJittering != 0, error) &&
     in.Frame->Selected->GetDrawList(
       *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
   if (!ok)
@@ -1252,6 +1253,7 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
   in.TableTexture->Activate();
   in.Target.GetDepth()->Activate();
   in.Drawer.SetSampleSpacing(sampleSpacing);
+  in.Drawer.SetJitter(list.Effects.find("jittering") != std::string::npos, list);
   if (surfacePerBrick)
   {
     in.SurfaceDrawer.OrderByBrick(
@@ -1432,6 +1434,7 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   std::string error;
   if (!in.Frame->Selected->SetShading(in.Shading, error) ||
     !in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) ||
+    !in.Frame->Selected->SetJittering(this->UseJittering != 0, error) ||
     !in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
       ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
       static_cast<std::size_t>(height), rgba->GetPointer(0), error))
@@ -1472,6 +1475,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveBudgetMB: " << this->InteractiveBudgetMB << "\n";
   os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "UseJittering: " << this->UseJittering << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "UseRoi: " << this->UseRoi << "\n";
   os << indent << "RoiCenter: (" << this->RoiCenter[0] << ", " << this->RoiCenter[1] << ", "

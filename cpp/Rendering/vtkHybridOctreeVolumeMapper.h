@@ -157,6 +157,20 @@ public:
   ///@}
 
   ///@{
+  /// Jittering (as vtkGPUVolumeRayCastMapper's UseJittering; off by
+  /// default): each pixel's samples move along its ray by a fixed fraction
+  /// of the slice spacing, the same lattice in every brick, so a coarse
+  /// brick shows fine noise instead of wood-grain rings. The offset is a
+  /// fixed hash of the pixel (src/plan/jitter.rs), not random: pictures are
+  /// reproducible and the CPU compositor's the same. Not applied in Slice,
+  /// nor with a translucent surface or points between the slices
+  /// (LastEffects then has no "jittering").
+  vtkSetMacro(UseJittering, vtkTypeBool);
+  vtkGetMacro(UseJittering, vtkTypeBool);
+  vtkBooleanMacro(UseJittering, vtkTypeBool);
+  ///@}
+
+  ///@{
   /// Error tolerance, a fraction of the data range (0..1); default 0.
   vtkSetClampMacro(ErrorTolerance, double, 0.0, 1.0);
   vtkGetMacro(ErrorTolerance, double);
@@ -335,6 +349,7 @@ protected:
   int TexelFormat = TEXELS_AUTO;
   double InteractiveUpdateRate = 1.0;
   bool AutoAdjustSampleDistances = true;
+  vtkTypeBool UseJittering = 0;
   double ErrorTolerance = 0.0;
   bool UseRoi = false;
   double RoiCenter[3] = { 0.0, 0.0, 0.0 };

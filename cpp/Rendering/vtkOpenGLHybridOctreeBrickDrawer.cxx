@@ -452,8 +452,7 @@ void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::Dr
   // view (both powers of two times d0: still a shared lattice), its opacity
   // corrected for that spacing.
   const double d = list.SliceSpacing[i];
-  const double along =
-    this->IsRayMarched(i) ? std::max(d, this->SampleSpacing * list.ReferenceSpacing) : d;
+  const double along = this->SampleSpacingOf(list, i);
   this->Program->SetUniformf(
     "opacityRatio", static_cast<float>(list.OpacityRatio[i] * (d > 0.0 ? along / d : 1.0)));
   const double* box = &this->Geometry.Boxes[6 * i];
@@ -464,8 +463,29 @@ void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::Dr
   this->Program->SetUniform3f("boxLo", boxLo);
   this->Program->SetUniform3f("boxHi", boxHi);
   this->Program->SetUniformf("sliceSpacing", static_cast<float>(along));
-  this->Program->SetUniformi("jitter", along > d ? 1 : 0);
+  // Jittered: the list asks, or an interactive frame widens the spacing.
+  this->Program->SetUniformi("jitter", this->Jitter || along > d ? 1 : 0);
+  this->Program->SetUniformf(
+    "jitterScale", static_cast<float>(along > 0.0 ? this->JitterPeriod / along : 1.0));
   glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
+}
+
+double vtkOpenGLHybridOctreeBrickDrawer::SampleSpacingOf(
+  const vtkHybridOctreeBridge::DrawList& list, std::size_t i) const
+{
+  const double d = list.SliceSpacing[i];
+  return this->IsRayMarched(i) ? std::max(d, this->SampleSpacing * list.ReferenceSpacing) : d;
+}
+
+void vtkOpenGLHybridOctreeBrickDrawer::SetJitter(
+  bool on, const vtkHybridOctreeBridge::DrawList& list)
+{
+  this->Jitter = on;
+  this->JitterPeriod = 0.0;
+  for (std::size_t i = 0; i < list.SliceSpacing.size(); ++i)
+  {
+    this->JitterPeriod = std::max(this->JitterPeriod, this->SampleSpacingOf(list, i));
+  }
 }
 
 void vtkOpenGLHybridOctreeBrickDrawer::Rebind(vtkOpenGLRenderWindow* window)

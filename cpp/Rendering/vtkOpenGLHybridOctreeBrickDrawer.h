@@ -223,6 +223,13 @@ public:
   /// their slice spacing; `factor` a power of two, 1 by default: the slice lattice).
   void SetSampleSpacing(int factor) { this->SampleSpacing = factor > 1 ? factor : 1; }
 
+  /// Jittering (the list's effect "jittering", src/plan/jitter.rs): each
+  /// ray-marched brick samples z = (k + frac(n P / s)) s, s its sample
+  /// spacing, n the pixel's noise, P the largest s of the list. Interactive
+  /// frames that widen the spacing jitter too. Call after
+  /// SetSampleSpacing() and the geometry, before drawing.
+  void SetJitter(bool on, const vtkHybridOctreeBridge::DrawList& list);
+
   /// Makes the program and vertices of the last Bind() current again
   /// (after another program drew).
   void Rebind(vtkOpenGLRenderWindow* window);
@@ -261,6 +268,12 @@ private:
   /// d0: a point's size.
   float PointSpacing = 1.0f;
   int SampleSpacing = 1;
+  bool Jitter = false;
+  /// P: the largest sample spacing of the list's bricks.
+  double JitterPeriod = 0.0;
+  /// Brick i's sample spacing along the view: max(d, SampleSpacing d0)
+  /// ray-marched, d as slices.
+  double SampleSpacingOf(const vtkHybridOctreeBridge::DrawList& list, std::size_t i) const;
   vtkHybridOctreeBridge::ShadingDescription Shading;
   vtkHybridOctreeBridge::RegionDescription Region;
   int ReduceMode = 0;

@@ -788,6 +788,12 @@ mod bridge {
         /// "opacity-scale" for a constant other than 1.
         fn set_gradient_opacity(self: &SelectionHandle, points: &[f64]) -> Result<()>;
 
+        /// Jittering (VTK's UseJittering) of the DrawLists and pictures made
+        /// after this call: the plan's effects then end with "jittering" when
+        /// it applies (a volume not in Slice, no translucent surface or points
+        /// between the slices; see `plan::jitter`).
+        fn set_jittering(self: &SelectionHandle, on: bool) -> Result<()>;
+
         /// Floats of the block ranges of a brick of `dims` texels (x, y, z):
         /// 2 per block of 4^3 cells (see `plan::draw_geometry::occupancy`).
         fn block_ranges_len(dims: &[usize]) -> Result<usize>;

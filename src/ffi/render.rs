@@ -67,6 +67,8 @@ pub struct SelectionHandle {
     texel: TexelEncoding,
     /// Selected from two dependent fields: its DrawLists plan them (`plan::dependent`).
     pub(crate) dependent: bool,
+    /// Whether its DrawLists jitter ([`SelectionHandle::set_jittering`]).
+    jittering: std::sync::atomic::AtomicBool,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -420,6 +422,7 @@ impl HybridOctreeHandle {
                 transfer_2d,
                 texel,
                 dependent: self.dependent.is_some(),
+                jittering: Default::default(),
             }))
         })
     }
@@ -460,7 +463,8 @@ impl SelectionHandle {
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
         let mut list = crate::plan::dependent::plan_dependent(list, self.dependent);
         list.texel = self.texel;
-        Ok(recrop(list, self.region.as_ref(), &octree.shape))
+        let list = recrop(list, self.region.as_ref(), &octree.shape);
+        Ok(crate::plan::jitter::plan_jitter(list, self.jittering.load(std::sync::atomic::Ordering::Relaxed)))
     }
 
     /// [`Self::list`] without the points.
@@ -552,6 +556,14 @@ impl SelectionHandle {
         guarded(|| {
             let made = lighting(desc)?;
             *self.lighting.lock().unwrap_or_else(|e| e.into_inner()) = made;
+            Ok(())
+        })
+    }
+
+    /// Jittering of the DrawLists made after this call ([`crate::plan::jitter`]).
+    pub(crate) fn set_jittering(&self, on: bool) -> Bridged<()> {
+        guarded(|| {
+            self.jittering.store(on, std::sync::atomic::Ordering::Relaxed);
             Ok(())
         })
     }

@@ -104,6 +104,9 @@ pub struct Plan {
     /// removes samples in every pass, `cropping`, `clipping` (the DrawList's
     /// [`DrawList::region`]); see the module documentation.
     pub effects: Vec<String>,
+    /// Each pixel's samples moved along its ray by a fixed fraction of the
+    /// slice spacing ([`crate::plan::jitter`], effect `jittering`, last of [`Plan::effects`]).
+    pub jitter: bool,
 }
 
 impl Plan {
@@ -246,6 +249,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         passes,
         dependent: false,
         effects: Vec::new(),
+        jitter: false,
     };
     if volume {
         plan.passes.push(scene.blend.mode.pass());
@@ -296,10 +300,13 @@ fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: 
 /// The effect of two dependent fields ([`crate::plan::dependent::EFFECT`]).
 pub(crate) const DEPENDENT_EFFECT: &str = "dependent-components";
 
+/// The effect of jittering ([`crate::plan::jitter::EFFECT`]).
+pub(crate) const JITTER_EFFECT: &str = "jittering";
+
 /// The plan's [`Plan::effects`]: what each sample does besides its
 /// classification, in the order applied (`dependent-components` or
 /// `transfer-2d`, then `gradient-opacity` or `opacity-scale`, then `shading`), then what `region` (the cropping and
-/// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`).
+/// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`), then `jittering`.
 pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     let mut effects = Vec::new();
     if plan.dependent {
@@ -317,6 +324,9 @@ pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
         effects.push("shading".to_string());
     }
     effects.extend(region.map(|r| r.effects()).unwrap_or_default());
+    if plan.jitter {
+        effects.push(JITTER_EFFECT.to_string());
+    }
     effects
 }
 

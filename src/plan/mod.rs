@@ -5,7 +5,8 @@
 //! representation into them, the draw list (`draw_list`) says which passes
 //! a scene needs and what each draws, [`crop`] says which samples VTK's
 //! cropping and clipping planes keep, [`dependent`] plans a two-field volume
-//! with dependent components, [`slice`](mod@slice) is the Slice blend mode's
+//! with dependent components, [`jitter`] moves each pixel's samples by a
+//! fixed fraction of the slice spacing, [`slice`](mod@slice) is the Slice blend mode's
 //! plane, [`texel_format`] says what a texel costs and holds, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
@@ -14,6 +15,7 @@ pub mod crop;
 pub mod dependent;
 pub mod draw_geometry;
 mod draw_list;
+pub mod jitter;
 pub mod order;
 pub mod point_slabs;
 pub mod select;

@@ -92,6 +92,11 @@
 //! Blend modes besides Composite (the list's [`crate::plan::Plan::blend`])
 //! reduce the same samples instead of blending them: `projection`; Slice
 //! samples the plane's point only: `slice`.
+//! Jittering ([`crate::plan::Plan::jitter`], effect `jittering`): each
+//! brick of spacing `d` samples the pixel's ray at the depths
+//! `z = k d + (o mod d)` inside its box instead of its slices, `o` the
+//! pixel's offset ([`crate::plan::jitter`]); the same box rule, the same
+//! per-sample work: `jitter`.
 //! Bands of rows run in parallel; every pixel is computed on its own, so the picture
 //! does not depend on the number of threads.
 
@@ -99,7 +104,6 @@ use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
-use super::sample::to_index;
 use super::shade::normal;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
@@ -117,6 +121,7 @@ use crate::transfer::lut::Lut;
 use crate::transfer::{GradientOpacity, TransferFunction, TransferFunction2D};
 use rayon::prelude::*;
 
+mod jitter;
 mod projection;
 mod slice;
 
@@ -234,7 +239,17 @@ pub fn composite_with_points(
     Ok(execute_counted(textures, None, list, tf, width, height, surface, points)?.0)
 }
 
-/// [`composite_with_points`] on checked inputs, and the number of gradients taken.
+/// The per-sample work a picture did: what the tests count to show that
+/// an effect the plan leaves out does none of its work.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct Counts {
+    /// Gradients taken (shading, gradient opacity, 2D transfer function).
+    pub gradients: usize,
+    /// Bricks a pixel's ray crossed with jittered samples (jittering).
+    pub jittered: usize,
+}
+
+/// [`composite_with_points`] on checked inputs, and the work it did.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn execute_counted(
     textures: &Textures,
@@ -245,7 +260,7 @@ pub(crate) fn execute_counted(
     height: usize,
     surface: Option<(&Surface, [f32; 4])>,
     points: Option<DrawnPoints<'_>>,
-) -> Result<(Image, usize)> {
+) -> Result<(Image, Counts)> {
     match (&textures.texels, opacity.map(|o| &o.texels)) {
         (Texels::F32(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
         (Texels::F64(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
@@ -273,6 +288,21 @@ pub(crate) fn composite_counting_gradients(
     width: usize,
     height: usize,
 ) -> Result<(Image, usize)> {
+    check_size(width, height)?;
+    check_list(list, &textures.shape, None)?;
+    textures.check(list)?;
+    execute_counted(textures, None, list, tf, width, height, None, None).map(|(i, c)| (i, c.gradients))
+}
+
+/// [`composite_textures`], and the work it did ([`Counts`]).
+#[cfg(test)]
+pub(crate) fn composite_counting(
+    textures: &Textures,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+) -> Result<(Image, Counts)> {
     check_size(width, height)?;
     check_list(list, &textures.shape, None)?;
     textures.check(list)?;
@@ -318,7 +348,7 @@ fn execute<S: Texel>(
     height: usize,
     surface: Option<(&Surface, [f32; 4])>,
     points: Option<DrawnPoints<'_>>,
-) -> Result<(Image, usize)> {
+) -> Result<(Image, Counts)> {
     let shape = *shape;
     let d0 = list.reference_spacing;
     let volume_lo = shape.world([0.0; 3]);
@@ -356,7 +386,8 @@ fn execute<S: Texel>(
     let gradient_opacity = list.gradient_opacity.as_ref().filter(|_| list.plan.gradient_opacity);
     let transfer_2d = list.transfer_2d.as_ref().filter(|_| list.plan.transfer_2d);
     let opacity_scale = list.plan.opacity_scale;
-    let plain = list.plan.effects.is_empty()
+    let jitter = list.plan.jitter.then(|| crate::plan::jitter::period(list));
+    let plain = !crate::plan::jitter::other_effects(&list.plan)
         && opacity.is_none()
         && transfer_2d.is_none()
         && lighting.is_none()
@@ -379,6 +410,7 @@ fn execute<S: Texel>(
         transfer_2d,
         plain,
         opacity_scale,
+        jitter,
         opaque: opaque.as_ref().map(|(s, g, c)| (*s, g, *c)),
         translucent: translucent.as_ref().map(|(s, g, c, b)| (*s, g, *c, b)),
     };
@@ -491,6 +523,9 @@ struct Executor<'a, S> {
     plain: bool,
     /// Every opacity's constant factor (1: none).
     opacity_scale: f64,
+    /// The jitter period `P` when the plan jitters (`None`: samples on the
+    /// slice lattice; see [`crate::plan::jitter`]).
+    jitter: Option<f64>,
     opaque: Option<(&'a Surface, &'a TriangleGrid, [f32; 4])>,
     translucent: Option<(&'a Surface, &'a TriangleGrid, [f32; 4], &'a Batches)>,
 }
@@ -505,17 +540,17 @@ struct Scratch {
     hits: Vec<Hit>,
     /// `(slab, depth, straight colour, opacity)` of one brick's batch hits.
     events: Vec<(usize, f64, [f64; 3], f64)>,
-    /// Gradients taken (shading, gradient opacity).
-    gradients: usize,
+    /// The work done ([`Counts`]).
+    counts: Counts,
 }
 
 impl<S: Texel> Executor<'_, S> {
     /// The picture, bands of [`BAND`] rows in parallel, each column of a
     /// band in turn (neighbouring rays read the same texels), and the
-    /// number of gradients taken.
-    fn run(self) -> (Image, usize) {
+    /// work done.
+    fn run(self) -> (Image, Counts) {
         let (w, h) = (self.width, self.height);
-        let bands: Vec<(Vec<[f32; 4]>, usize)> = (0..h.div_ceil(BAND))
+        let bands: Vec<(Vec<[f32; 4]>, Counts)> = (0..h.div_ceil(BAND))
             .into_par_iter()
             .map_init(Scratch::default, |scratch, band| {
                 let (y0, y1) = (band * BAND, ((band + 1) * BAND).min(h));
@@ -525,18 +560,21 @@ impl<S: Texel> Executor<'_, S> {
                     rect[2] < y1 && y0 < rect[3]
                 }));
                 let mut out = vec![[0.0; 4]; (y1 - y0) * w];
-                scratch.gradients = 0;
+                scratch.counts = Counts::default();
                 for x in 0..w {
                     for y in y0..y1 {
                         out[(y - y0) * w + x] = self.pixel(x, y, scratch);
                     }
                 }
-                (out, scratch.gradients)
+                (out, scratch.counts)
             })
             .collect();
-        let gradients = bands.iter().map(|b| b.1).sum();
+        let counts = Counts {
+            gradients: bands.iter().map(|b| b.1.gradients).sum(),
+            jittered: bands.iter().map(|b| b.1.jittered).sum(),
+        };
         let rgba = bands.into_iter().flat_map(|b| b.0).collect();
-        (Image { width: w, height: h, rgba }, gradients)
+        (Image { width: w, height: h, rgba }, counts)
     }
 }
 
@@ -593,10 +631,11 @@ impl<S: Texel> Executor<'_, S> {
             let b = scratch.row[i];
             let rect = self.bricks[b].rect;
             if (rect[0]..rect[1]).contains(&x) && (rect[2]..rect[3]).contains(&y) {
-                acc = if self.plain {
-                    self.brick::<true>(b, &pr, acc, scratch)
-                } else {
-                    self.brick::<false>(b, &pr, acc, scratch)
+                acc = match (self.jitter, self.plain) {
+                    (None, true) => self.brick::<true>(b, &pr, acc, scratch),
+                    (None, false) => self.brick::<false>(b, &pr, acc, scratch),
+                    (Some(p), true) => self.brick_jittered::<true>(b, &pr, x, y, p, acc, scratch),
+                    (Some(p), false) => self.brick_jittered::<false>(b, &pr, x, y, p, acc, scratch),
                 };
                 if acc[3] >= OPAQUE {
                     break;
@@ -629,11 +668,7 @@ impl<S: Texel> Executor<'_, S> {
         // All slices when batches interleave.
         let (j0, j1) = if scratch.events.is_empty() { (s0, s1) } else { (0, slices.len()) };
         // The texel line u(z) = ua + (z - za) ub (see the module documentation).
-        let spacing = self.shape.spacing;
-        let (ua, ub) = brick.texture.texel_line(
-            to_index(&self.shape, at_depth(&pr.ray, pr.z_origin, pr.cos, za)),
-            [0, 1, 2].map(|a| pr.ray.direction[a] / (spacing[a] * pr.cos)),
-        );
+        let (ua, ub) = self.texel_line(brick, pr, za);
         // Events are by slab, back to front: taken from the end, front to back.
         let mut e = scratch.events.len();
         for j in (j0..j1).rev() {
@@ -642,30 +677,8 @@ impl<S: Texel> Executor<'_, S> {
                 acc = under(acc, c, a);
                 e -= 1;
             }
-            if PLAIN && (s0..s1).contains(&j) {
-                let dz = slices[j] - za;
-                let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel(add(ua, scale(ub, dz))));
-                if a > 0.0 {
-                    acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
-                    if acc[3] >= OPAQUE {
-                        return acc;
-                    }
-                }
-            } else if !PLAIN && (s0..s1).contains(&j) && self.keeps(pr, slices[j]) {
-                let dz = slices[j] - za;
-                let u = add(ua, scale(ub, dz));
-                let v = brick.texture.at_texel(u);
-                match self.isosurfaces {
-                    None => acc = self.sample(brick, u, v, brick.ratio, pr, acc, scratch),
-                    Some(blend) => {
-                        // The values crossed since the sample one step nearer the eye, uncorrected.
-                        let d = brick.draw.slice_spacing;
-                        let before = brick.texture.at_texel(sub(u, scale(ub, d)));
-                        for c in blend.crossings(before, v) {
-                            acc = self.sample(brick, u, c, 1.0, pr, acc, scratch);
-                        }
-                    }
-                }
+            if (s0..s1).contains(&j) {
+                acc = self.sample_at_depth::<PLAIN>(brick, pr, slices[j], za, (ua, ub), acc, scratch);
                 if acc[3] >= OPAQUE {
                     return acc;
                 }
@@ -673,6 +686,48 @@ impl<S: Texel> Executor<'_, S> {
         }
         for &(_, _, c, a) in scratch.events[..e].iter().rev() {
             acc = under(acc, c, a);
+        }
+        acc
+    }
+
+    /// `acc` with the sample of `pr` at depth `z` in brick `brick` under
+    /// it, `(ua, ub)` the ray's texel line `u(z) = ua + (z - za) ub` (see
+    /// the module documentation); `PLAIN` as in [`Self::brick`].
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn sample_at_depth<const PLAIN: bool>(
+        &self,
+        brick: &Prepared<'_, S>,
+        pr: &PixelRay,
+        z: f64,
+        za: f64,
+        (ua, ub): ([f64; 3], [f64; 3]),
+        mut acc: Rgba,
+        scratch: &mut Scratch,
+    ) -> Rgba {
+        let dz = z - za;
+        if PLAIN {
+            let [r, gr, bl, a] = self.lut.eval(brick.texture.at_texel(add(ua, scale(ub, dz))));
+            if a > 0.0 {
+                acc = under(acc, [r, gr, bl], correct_opacity(a, brick.ratio));
+            }
+            return acc;
+        }
+        if !self.keeps(pr, z) {
+            return acc;
+        }
+        let u = add(ua, scale(ub, dz));
+        let v = brick.texture.at_texel(u);
+        match self.isosurfaces {
+            None => acc = self.sample(brick, u, v, brick.ratio, pr, acc, scratch),
+            Some(blend) => {
+                // The values crossed since the sample one step nearer the eye, uncorrected.
+                let d = brick.draw.slice_spacing;
+                let before = brick.texture.at_texel(sub(u, scale(ub, d)));
+                for c in blend.crossings(before, v) {
+                    acc = self.sample(brick, u, c, 1.0, pr, acc, scratch);
+                }
+            }
         }
         acc
     }
@@ -759,7 +814,7 @@ impl<S: Texel> Executor<'_, S> {
     /// rule, one texel away), counted.
     #[inline]
     fn gradient(&self, texture: &Texture<S>, u: [f64; 3], scratch: &mut Scratch) -> [f64; 3] {
-        scratch.gradients += 1;
+        scratch.counts.gradients += 1;
         let h = scale(self.shape.spacing, texture.stride());
         texture.gradient_at(u, h)
     }

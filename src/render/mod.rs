@@ -38,6 +38,8 @@ mod crop_tests;
 #[cfg(test)]
 mod dependent_tests;
 #[cfg(test)]
+mod jitter_tests;
+#[cfg(test)]
 mod slice_tests;
 #[cfg(test)]
 mod tests;

@@ -60,6 +60,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         passes: Vec::new(),
         dependent: false,
         effects: Vec::new(),
+        jitter: false,
     };
     DrawList {
         plan,

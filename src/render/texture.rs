@@ -703,6 +703,7 @@ mod tests {
                 passes: Vec::new(),
                 dependent: false,
                 effects: Vec::new(),
+                jitter: false,
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),
             bricks: vec![BrickDraw {

@@ -22,6 +22,7 @@ uniform vec3 boxLo;
 uniform vec3 boxHi;
 uniform float sliceSpacing;
 uniform int jitter;
+uniform float jitterScale; // P / s: the list's largest sample spacing over this brick's
 uniform mat4 DCMC;
 uniform vec2 viewportSize;
 uniform vec2 depthScale;
@@ -221,6 +222,26 @@ vec3 shade(vec3 g, vec3 c, vec3 v)
 }
 #endif
 
+// The pixel's noise n(x, y) in [0, 1) (src/plan/jitter.rs): the lowbias32
+// hash of x xor hash(y), (x, y) whole pixels from the top left, 24 bits
+// (exact in a float, the CPU compositor's bits).
+uint lowbias32(uint v)
+{
+  v ^= v >> 16u;
+  v *= 0x7feb352du;
+  v ^= v >> 15u;
+  v *= 0x846ca68bu;
+  v ^= v >> 16u;
+  return v;
+}
+
+float pixelNoise()
+{
+  uint x = uint(gl_FragCoord.x);
+  uint y = uint(int(viewportSize.y) - 1 - int(gl_FragCoord.y));
+  return float(lowbias32(x ^ lowbias32(y)) >> 8u) / 16777216.0;
+}
+
 // Whether the sample at model position p is removed (src/plan/crop.rs):
 // cropping keeps region (i, j, k) when bit i + 3 j + 9 k of the flags is
 // set, a coordinate being 0 below the min plane, 1 from min to max (both
@@ -419,12 +440,11 @@ void main()
     float cosA = dot(dir, forward);
     float zIn = max(tIn * cosA, nearDepth);
     float zOut = min(tOut * cosA, opaque < 1.0 ? viewDepth(opaque) : 1.0e30);
-    // Samples at z = (k + j) d: j = 0 (the slice lattice), or with jitter a
-    // fraction of d fixed per pixel (interleaved gradient noise), the same in
-    // every brick, so that a sparse lattice shows noise, not wood grain.
-    float j = jitter != 0
-      ? fract(52.9829189 * fract(dot(floor(gl_FragCoord.xy), vec2(0.06711056, 0.00583715))))
-      : 0.0;
+    // Samples at z = (k + j) d: j = 0 (the slice lattice), or jittered
+    // j = frac(n P / d), n the pixel's noise: the depth offset n P is the
+    // same in every brick, so every brick's lattice is one of the finest
+    // brick's and a sparse lattice shows noise, not wood grain.
+    float j = jitter != 0 ? fract(pixelNoise() * jitterScale) : 0.0;
     int k0 = int(ceil(zIn / sliceSpacing - j));
     int k1 = min(int(ceil(zOut / sliceSpacing - j)) - 1, k0 + 4096);
 #ifdef HO_REDUCE

@@ -60,7 +60,7 @@ struct RenderReport {
     passes: Vec<String>,
     /// What each volume sample does besides its classification, then what
     /// removes samples (the plan's effects: `transfer-2d`, `gradient-opacity` or
-    /// `opacity-scale`, `shading`, `cropping`, `clipping`; empty: nothing).
+    /// `opacity-scale`, `shading`, `cropping`, `clipping`), then `jittering`; empty: nothing.
     effects: Vec<String>,
     /// The cropping and clipping planes that act on the volume (world coordinates).
     region: Option<hybrid_octree::plan::crop::KeptRegion>,

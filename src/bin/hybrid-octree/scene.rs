@@ -84,6 +84,12 @@ pub struct SceneArgs {
     /// The Slice blend mode's plane.
     #[command(flatten)]
     pub slice: crate::slice::SliceArgs,
+    /// Jittering (VTK's UseJittering): each pixel's samples moved along its
+    /// ray by a fixed fraction of the slice spacing, so coarse bricks show
+    /// noise, not wood-grain rings (not in Slice, nor with a translucent
+    /// surface or points; the plan's effects then end with `jittering`).
+    #[arg(long)]
+    pub jitter: bool,
     /// Brick texel format: auto (the data's own width: 8-bit data as unorm8,
     /// 16-bit as unorm16, the rest float32), float32, float16, unorm16 or
     /// unorm8. A narrower format holds more bricks in the budget at the price
@@ -301,6 +307,7 @@ pub fn frame(
     if let Some((set, _)) = points {
         add_points(&mut list, grid.shape(), set)?;
     }
+    let list = hybrid_octree::plan::jitter::plan_jitter(list, args.jitter);
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let textures = upload(grid, &list)?;

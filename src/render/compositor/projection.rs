@@ -6,14 +6,14 @@
 //! [`Reduction`] per pixel with weight `w = d / d0`; bricks in any order,
 //! no early termination. The opaque surface goes under the result, as
 //! VTK blends its ray-cast image over the geometry. Samples the list's
-//! region removes are not fed. Translucent surface
+//! region removes are not fed. Jittered, a brick's samples are its
+//! jittered depths (`super::jitter`). Translucent surface
 //! batches and points are drawn in Composite only.
 
 use super::{Executor, PixelRay, Scratch};
 use crate::render::blend::{under, Rgba};
-use crate::render::geometry::{at_depth, ray_box};
+use crate::render::geometry::ray_box;
 use crate::render::intensity::Reduction;
-use crate::render::sample::to_index;
 use crate::render::texture::Texel;
 
 impl<S: Texel> Executor<'_, S> {
@@ -33,7 +33,8 @@ impl<S: Texel> Executor<'_, S> {
         for &b in &scratch.row {
             let rect = self.bricks[b].rect;
             if (rect[0]..rect[1]).contains(&x) && (rect[2]..rect[3]).contains(&y) {
-                self.reduce_brick(b, pr, &mut reduction, &lookup);
+                let jitter = self.jitter.map(|p| self.jitter_offset(b, x, y, p));
+                self.reduce_brick(b, pr, jitter, &mut reduction, &lookup);
             }
         }
         let volume_lo = self.shape.world([0.0; 3]);
@@ -46,27 +47,39 @@ impl<S: Texel> Executor<'_, S> {
         acc.map(|v| v as f32)
     }
 
-    /// Feeds brick `b`'s samples along `pr` to `reduction`.
-    fn reduce_brick(&self, b: usize, pr: &PixelRay, reduction: &mut Reduction, lookup: &impl Fn(f64) -> [f64; 4]) {
+    /// Feeds brick `b`'s samples along `pr` to `reduction`: the slices, or
+    /// with a jitter offset `o` the depths `k d + o` (`super::jitter`).
+    fn reduce_brick(
+        &self,
+        b: usize,
+        pr: &PixelRay,
+        jitter: Option<f64>,
+        reduction: &mut Reduction,
+        lookup: &impl Fn(f64) -> [f64; 4],
+    ) {
         let brick = &self.bricks[b];
         let Some((ta, tb)) = ray_box(&pr.ray, brick.draw.world_lo, brick.draw.world_hi) else { return };
         let (za, zb) = (pr.depth(ta), pr.depth(tb));
-        let slices = &brick.draw.slices;
-        // The slices Composite's brick() samples.
-        let (s0, s1) = brick.sampled_run(pr, za, zb);
-        if s0 == s1 {
-            return;
-        }
-        let spacing = self.shape.spacing;
-        let (ua, ub) = brick.texture.texel_line(
-            to_index(&self.shape, at_depth(&pr.ray, pr.z_origin, pr.cos, za)),
-            [0, 1, 2].map(|a| pr.ray.direction[a] / (spacing[a] * pr.cos)),
-        );
+        let (ua, ub) = self.texel_line(brick, pr, za);
         let blend = &self.list.plan.blend;
-        for &z in slices[s0..s1].iter().filter(|&&z| self.keeps(pr, z)) {
-            let dz = z - za;
-            let v = brick.texture.at_texel([0, 1, 2].map(|k| ua[k] + dz * ub[k]));
-            reduction.add(blend, v, brick.ratio, lookup);
+        let mut feed = |z: f64| {
+            if self.keeps(pr, z) {
+                let dz = z - za;
+                let v = brick.texture.at_texel([0, 1, 2].map(|k| ua[k] + dz * ub[k]));
+                reduction.add(blend, v, brick.ratio, lookup);
+            }
+        };
+        // The samples Composite's brick() (or brick_jittered()) takes.
+        match jitter {
+            None => {
+                let (s0, s1) = brick.sampled_run(pr, za, zb);
+                brick.draw.slices[s0..s1].iter().for_each(|&z| feed(z));
+            }
+            Some(o) => {
+                let (k0, k1) = brick.jittered_run(pr, za, zb, o);
+                let d = brick.draw.slice_spacing;
+                (k0..k1).for_each(|k| feed(k as f64 * d + o));
+            }
         }
     }
 }
