@@ -104,6 +104,9 @@ pub struct Plan {
     /// removes samples in every pass, `cropping`, `clipping` (the DrawList's
     /// [`DrawList::region`]); see the module documentation.
     pub effects: Vec<String>,
+    /// Volumetric scattering (the DrawList's [`DrawList::scattering`],
+    /// [`crate::plan::scattering`]): shadow rays towards the lights.
+    pub scattering: bool,
 }
 
 impl Plan {
@@ -111,7 +114,7 @@ impl Plan {
     /// opacity or the 2D transfer function): brick textures then carry one
     /// border texel per side.
     pub fn gradients(&self) -> bool {
-        self.shading || self.gradient_opacity || self.transfer_2d
+        self.shading || self.gradient_opacity || self.transfer_2d || self.scattering
     }
 
     /// Whether brick textures carry one border texel per side: gradients
@@ -188,6 +191,8 @@ pub struct DrawList {
     /// The 2D transfer function (`Some` exactly when [`Plan::transfer_2d`]);
     /// brick textures then carry the gradient border.
     pub transfer_2d: Option<TransferFunction2D>,
+    /// Volumetric scattering (`Some` exactly when [`Plan::scattering`]).
+    pub scattering: Option<super::scattering::PlannedScattering>,
 }
 
 /// What the scene holds besides the volume.
@@ -243,6 +248,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         passes,
         dependent: false,
         effects: Vec::new(),
+        scattering: false,
     };
     if volume {
         plan.passes.push(scene.blend.mode.pass());
@@ -290,6 +296,9 @@ fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: 
     }
 }
 
+/// The effect of volumetric scattering ([`crate::plan::scattering::EFFECT`]).
+pub(crate) const SCATTERING_EFFECT: &str = "volume-scattering";
+
 /// The effect of two dependent fields ([`crate::plan::dependent::EFFECT`]).
 pub(crate) const DEPENDENT_EFFECT: &str = "dependent-components";
 
@@ -312,6 +321,9 @@ pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     }
     if plan.shading {
         effects.push("shading".to_string());
+    }
+    if plan.scattering {
+        effects.push(SCATTERING_EFFECT.to_string());
     }
     effects.extend(region.map(|r| r.effects()).unwrap_or_default());
     effects
@@ -478,6 +490,7 @@ pub fn draw_list(
         gradient_opacity,
         transfer_2d,
         region,
+        scattering: None,
     })
 }
 

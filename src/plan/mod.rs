@@ -16,6 +16,7 @@ pub mod draw_geometry;
 mod draw_list;
 pub mod order;
 pub mod point_slabs;
+pub mod scattering;
 pub mod select;
 pub mod slab;
 pub mod slice;

@@ -60,6 +60,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         passes: Vec::new(),
         dependent: false,
         effects: Vec::new(),
+        scattering: false,
     };
     DrawList {
         plan,
@@ -71,6 +72,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         region: None,
         gradient_opacity: None,
         transfer_2d: None,
+    scattering: None,
     }
 }
 
@@ -235,6 +237,7 @@ fn opaque_surface_matches_the_reference() {
         gradient_opacity: None,
         transfer_2d: None,
         region: None,
+        scattering: None,
     };
     let truth = reference(&grid, &tf, &camera, 64, 64, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
@@ -292,6 +295,7 @@ fn translucent_batches_are_blended_inside_their_slab() {
         gradient_opacity: None,
         transfer_2d: None,
         region: None,
+        scattering: None,
     };
     let truth = reference(&grid, &tf, &camera, 6, 6, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
@@ -399,6 +403,7 @@ fn the_pipeline_tracks_the_reference() {
             gradient_opacity: None,
             transfer_2d: None,
             region: None,
+            scattering: None,
         };
         let truth = reference(&grid, &tf, &camera, 96, 96, &options).unwrap();
         let m = compare(&image, &truth).unwrap();
@@ -441,6 +446,9 @@ mod gradient_opacity_tests;
 
 #[path = "transfer2d_tests.rs"]
 mod transfer2d_tests;
+
+#[path = "scattering_tests.rs"]
+mod scattering_tests;
 
 /// A plan that names an effect none of whose inputs is set takes the
 /// general loop (every effect's branch) and draws exactly what the plain

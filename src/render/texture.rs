@@ -578,6 +578,7 @@ mod tests {
                 passes: Vec::new(),
                 dependent: false,
                 effects: Vec::new(),
+                scattering: false,
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),
             bricks: vec![BrickDraw {
@@ -594,6 +595,7 @@ mod tests {
             lighting: None,
             gradient_opacity: None,
             transfer_2d: None,
+            scattering: None,
             region: None,
         };
         let l = list(brick([0; 3], [4; 3], 1));
