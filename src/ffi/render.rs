@@ -42,7 +42,7 @@ pub struct SelectionHandle {
     octree_id: u64,
     pub(crate) shape: GridShape,
     /// The octree's value range (what 32-bit float texels must resolve).
-    value_range: (f64, f64),
+    pub(crate) value_range: (f64, f64),
     /// The SlabPolygons of the last translucent surface drawn, with its id.
     polygons: Mutex<Option<(u64, SlabPolygons)>>,
     /// The points the selection spent bytes on (the octree held points).
@@ -61,6 +61,8 @@ pub struct SelectionHandle {
     transfer_2d: Option<TransferFunction2D>,
     /// Selected from two dependent fields: its DrawLists plan them (`plan::dependent`).
     pub(crate) dependent: bool,
+    /// The volumetric scattering of its DrawLists (`super::scattering`).
+    pub(crate) scattering: Mutex<Option<crate::transfer::Scattering>>,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -397,6 +399,7 @@ impl HybridOctreeHandle {
                 region: region(&desc.region)?,
                 transfer_2d,
                 dependent: self.dependent.is_some(),
+                scattering: Mutex::new(None),
             }))
         })
     }
@@ -435,6 +438,8 @@ impl SelectionHandle {
         let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
         let list = replan_transfer_2d(list, self.transfer_2d.as_ref());
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
+        let scattering = *self.scattering.lock().unwrap_or_else(|e| e.into_inner());
+        let list = crate::plan::scattering::plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
         let list = crate::plan::dependent::plan_dependent(list, self.dependent);
         Ok(recrop(list, self.region.as_ref(), &octree.shape))
     }
@@ -513,8 +518,17 @@ impl SelectionHandle {
                 None => Vec::new(),
             };
             let points = self.points.as_deref().map(|set| (set, shades.as_slice(), footprint(gaussian_points)));
-            let image =
-                crate::render::compositor::composite_with_points(&textures, &list, &tf, width, height, drawn, points)?;
+            let shadow = crate::render::scattering::shadow_for(&grid, &list)?;
+            let image = crate::render::scattering::composite(
+                &textures,
+                shadow.as_ref(),
+                &list,
+                &tf,
+                width,
+                height,
+                drawn,
+                points,
+            )?;
             check_len("the picture", rgba, 4 * image.rgba.len())?;
             for (pixel, to) in image.rgba.iter().zip(rgba.chunks_exact_mut(4)) {
                 to.copy_from_slice(pixel);

@@ -67,7 +67,7 @@ impl ShadowVolume {
         if grid_dims.contains(&0) {
             return Err(Error::InvalidArgument("shadow volume: the grid has no points".into()));
         }
-        let dims = grid_dims.map(|n| n.min(SHADOW_VOLUME_MAX_DIM));
+        let dims = shadow_dims(grid_dims);
         let values = grid.visit(Resample(dims));
         Ok(ShadowVolume { dims, values, grid_dims })
     }
@@ -176,8 +176,7 @@ impl<'a> ScatterFrame<'a> {
         distance: f64,
     ) -> ScatterFrame<'a> {
         let space = TextureSpace::new(shape);
-        let largest = space.size.iter().copied().fold(0.0, f64::max);
-        let extent = scattering.shadow_extent(distance / largest);
+        let extent = reach_extent(scattering, shape, distance);
         ScatterFrame { scattering, lighting, eye, space, distance, extent }
     }
 
@@ -323,7 +322,7 @@ pub(crate) fn check_shadow(list: &DrawList, shadow: Option<&ShadowVolume>) -> Re
         (true, None) => Err(Error::InvalidArgument(
             "the DrawList scatters light: composite it with its shadow volume (render::scattering::composite)".into(),
         )),
-        (_, Some(s)) if s.dims != s.grid_dims.map(|n| n.min(SHADOW_VOLUME_MAX_DIM)) => {
+        (_, Some(s)) if s.dims != shadow_dims(s.grid_dims) => {
             Err(Error::InvalidArgument("the shadow volume is not one ShadowVolume::new made".into()))
         }
         _ => Ok(()),
@@ -370,4 +369,34 @@ pub fn composite(
     points: Option<super::compositor::DrawnPoints<'_>>,
 ) -> Result<super::image::Image> {
     super::compositor::composite_shadowed(textures, shadow, list, tf, width, height, surface, points)
+}
+
+/// VTK's texture space of `shape` as `(corner, size)`: world position of
+/// `t = 0` and the cube's world size per axis (module documentation).
+pub fn texture_space(shape: &GridShape) -> ([f64; 3], [f64; 3]) {
+    let s = TextureSpace::new(shape);
+    (s.corner, s.size)
+}
+
+/// The shadow volume's 3D texture coordinate of texture point `t` as
+/// `t * scale + shift` per axis, for a grid of `grid_dims` points and a
+/// shadow volume of `dims` (a texel centre per point, GL's linear filter):
+/// `((t N - 1/2) (n - 1) / (N - 1) + 1/2) / n`.
+pub fn shadow_texture_transform(grid_dims: [usize; 3], dims: [usize; 3]) -> ([f64; 3], [f64; 3]) {
+    let r = [0, 1, 2].map(|a| lattice_ratio(dims[a], grid_dims[a]));
+    let scale = [0, 1, 2].map(|a| grid_dims[a] as f64 * r[a] / dims[a] as f64);
+    let shift = [0, 1, 2].map(|a| (0.5 - 0.5 * r[a]) / dims[a] as f64);
+    (scale, shift)
+}
+
+/// The shadow volume's points per axis for a grid of `grid_dims` points.
+pub fn shadow_dims(grid_dims: [usize; 3]) -> [usize; 3] {
+    grid_dims.map(|n| n.min(SHADOW_VOLUME_MAX_DIM))
+}
+
+/// The reach extent `R` (texture units) of `scattering` on a grid of
+/// `shape` at sample distance `distance`.
+pub fn reach_extent(scattering: &Scattering, shape: &GridShape, distance: f64) -> f64 {
+    let largest = TextureSpace::new(shape).size.iter().copied().fold(0.0, f64::max);
+    scattering.shadow_extent(distance / largest)
 }
