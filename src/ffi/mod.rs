@@ -361,6 +361,8 @@ mod bridge {
         reach: f64,
         anisotropy: f64,
         headlight_ambient: [f64; 3],
+        /// VTK's sample distance, world units (0: the reference spacing).
+        sample_distance: f64,
     }
 
     /// What the brick shader's HO_SCATTERING variant reads (see `render::scattering`).
@@ -376,8 +378,10 @@ mod bridge {
         texture_size: [f64; 3],
         /// The shadow rays' reach extent, texture units.
         extent: f64,
-        /// The sample distance (the reference spacing), world units.
+        /// VTK's sample distance d, world units.
         distance: f64,
+        /// d / d0: a table opacity (per reference spacing d0) to VTK's (per d).
+        to_vtk: f64,
         /// The shadow volume's points per axis (`shadow_volume_texels`).
         shadow_dims: [usize; 3],
         /// Its texture coordinate of texture point t: t * shadow_scale + shadow_shift.

@@ -6,7 +6,7 @@ use super::grid::{grid_of, same_image};
 use super::guard::{check_len, guarded, Bridged};
 use super::{GridDesc, ScatteringDesc, ScatteringFrameDesc};
 use crate::render::scattering::{
-    reach_extent, shadow_dims, shadow_texture_transform, texture_space, ShadowVolume, MAX_SHADOW_STEPS,
+    reach_extent, sample_distance, shadow_dims, shadow_texture_transform, texture_space, ShadowVolume, MAX_SHADOW_STEPS,
 };
 use crate::transfer::Scattering;
 
@@ -21,6 +21,7 @@ impl super::SelectionHandle {
                 anisotropy: desc.anisotropy,
                 headlight_ambient: desc.headlight_ambient,
                 value_range: [self.value_range.0, self.value_range.1],
+                sample_distance: desc.sample_distance,
             };
             made.check()?;
             *self.scattering.lock().unwrap_or_else(|e| e.into_inner()) = Some(made).filter(Scattering::runs);
@@ -39,8 +40,10 @@ impl super::SelectionHandle {
                 anisotropy: 0.0,
                 headlight_ambient: [0.0; 3],
                 value_range: [self.value_range.0, self.value_range.1],
+                sample_distance: 0.0,
             });
-            let distance = crate::data::spacing::reference_spacing(&shape);
+            let d0 = crate::data::spacing::reference_spacing(&shape);
+            let distance = sample_distance(&s, d0);
             let (corner, size) = texture_space(&shape);
             let dims = shadow_dims(shape.dims);
             let (scale, shift) = shadow_texture_transform(shape.dims, dims);
@@ -54,6 +57,7 @@ impl super::SelectionHandle {
                 texture_size: size,
                 extent: reach_extent(&s, &shape, distance),
                 distance,
+                to_vtk: distance / d0,
                 shadow_dims: dims,
                 shadow_scale: scale,
                 shadow_shift: shift,

@@ -23,7 +23,7 @@ fn headlight() -> ShadingDesc {
 }
 
 fn desc(blending: f64) -> ScatteringDesc {
-    ScatteringDesc { blending, reach: 0.5, anisotropy: 0.2, headlight_ambient: [1.0; 3] }
+    ScatteringDesc { blending, reach: 0.5, anisotropy: 0.2, headlight_ambient: [1.0; 3], sample_distance: 0.0 }
 }
 
 #[test]

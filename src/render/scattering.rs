@@ -154,30 +154,35 @@ impl TextureSpace {
 }
 
 /// One frame's scattering: the parameters, the lights in world space, the
-/// eye, the texture space and the sample distance `d` (the reference spacing).
+/// eye, the texture space and VTK's sample distance `d`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ScatterFrame<'a> {
     scattering: &'a Scattering,
     lighting: &'a Lighting,
     eye: [f64; 3],
     space: TextureSpace,
+    /// VTK's sample distance `d` (world units).
     distance: f64,
+    /// `d / d0`: a transfer-function opacity (per `d0`) becomes VTK's (per `d`).
+    to_vtk: f64,
     /// The reach extent `R`, texture units.
     extent: f64,
 }
 
 impl<'a> ScatterFrame<'a> {
-    /// `lighting`'s lights must be in world space ([`Lighting::in_world`]).
+    /// `lighting`'s lights must be in world space ([`Lighting::in_world`]);
+    /// `d0` the reference spacing the transfer function's opacities are per.
     pub(crate) fn new(
         scattering: &'a Scattering,
         lighting: &'a Lighting,
         eye: [f64; 3],
         shape: &GridShape,
-        distance: f64,
+        d0: f64,
     ) -> ScatterFrame<'a> {
         let space = TextureSpace::new(shape);
+        let distance = sample_distance(scattering, d0);
         let extent = reach_extent(scattering, shape, distance);
-        ScatterFrame { scattering, lighting, eye, space, distance, extent }
+        ScatterFrame { scattering, lighting, eye, space, distance, to_vtk: distance / d0, extent }
     }
 
     /// The colour of the sample at world point `p` (module documentation of
@@ -197,7 +202,7 @@ impl<'a> ScatterFrame<'a> {
     ) -> [f64; 3] {
         let s = self.scattering;
         let shaded = self.lighting.shade_unclamped(c, super::shade::normal(grad), view);
-        let k = s.volume_coefficient(s.vtk_gradient_magnitude(grad), a);
+        let k = s.volume_coefficient(s.vtk_gradient_magnitude(grad), correct_opacity(a, self.to_vtk));
         let m = &self.lighting.material;
         let q = self.space.point(p);
         // The view ray's step in texture units (VTK's g_lengthStep).
@@ -257,7 +262,7 @@ impl<'a> ScatterFrame<'a> {
         while (k as f64) * s < reach && k < MAX_SHADOW_STEPS {
             let d = k as f64 * s;
             let a = opacity([0, 1, 2].map(|i| start[i] + d * n[i]));
-            shadow *= 1.0 - if ratio == 1.0 { a } else { correct_opacity(a, ratio) };
+            shadow *= 1.0 - correct_opacity(a, ratio * self.to_vtk);
             if shadow <= 0.0 {
                 return 0.0;
             }
@@ -394,8 +399,17 @@ pub fn shadow_dims(grid_dims: [usize; 3]) -> [usize; 3] {
     grid_dims.map(|n| n.min(SHADOW_VOLUME_MAX_DIM))
 }
 
+/// VTK's sample distance of `scattering` (its own, or `d0` when 0).
+pub fn sample_distance(scattering: &Scattering, d0: f64) -> f64 {
+    if scattering.sample_distance > 0.0 {
+        scattering.sample_distance
+    } else {
+        d0
+    }
+}
+
 /// The reach extent `R` (texture units) of `scattering` on a grid of
-/// `shape` at sample distance `distance`.
+/// `shape` at VTK's sample distance `distance`.
 pub fn reach_extent(scattering: &Scattering, shape: &GridShape, distance: f64) -> f64 {
     let largest = TextureSpace::new(shape).size.iter().copied().fold(0.0, f64::max);
     scattering.shadow_extent(distance / largest)

@@ -45,7 +45,9 @@
 //! R = (r_min - sqrt 3) (1 - reach)^0.33 + sqrt 3,   r_min = d / max_a(size_a)
 //! ```
 //!
-//! (`d` the sample distance, `size_a` the texture's world size). A reach of
+//! (`d` the sample distance, `size_a` the texture's world size; `a` and the
+//! opacity `a` of the blend weight are VTK's per `d`, its table's, see
+//! [`Scattering::sample_distance`]). A reach of
 //! 0 still casts one step (`R = r_min`): it is not a no-op.
 
 use crate::base::error::{Error, Result};
@@ -71,6 +73,10 @@ pub struct Scattering {
     pub headlight_ambient: [f64; 3],
     /// The data range VTK normalises the values by (`n = (v - lo) / (hi - lo)`).
     pub value_range: [f64; 2],
+    /// VTK's sample distance `d`, world units (0: the reference spacing
+    /// `d0`): its opacities are per `d` (`a_d = 1 - (1 - a)^(d / d0)` of the
+    /// transfer function's `a`, per `d0`), its shadow rays step by `d`.
+    pub sample_distance: f64,
 }
 
 impl Scattering {
@@ -95,6 +101,12 @@ impl Scattering {
             return Err(Error::InvalidArgument(format!(
                 "volumetric scattering: headlight ambient colour {:?}: give finite values >= 0",
                 self.headlight_ambient
+            )));
+        }
+        if !(self.sample_distance.is_finite() && self.sample_distance >= 0.0) {
+            return Err(Error::InvalidArgument(format!(
+                "volumetric scattering: sample distance {}: give a finite distance >= 0 (0: the reference spacing)",
+                self.sample_distance
             )));
         }
         if !(self.value_range.iter().all(|v| v.is_finite()) && self.value_range[0] <= self.value_range[1]) {
@@ -161,7 +173,14 @@ mod tests {
     use super::*;
 
     fn s(blending: f64, anisotropy: f64) -> Scattering {
-        Scattering { blending, reach: 0.5, anisotropy, headlight_ambient: [1.0; 3], value_range: [0.0, 1.0] }
+        Scattering {
+            blending,
+            reach: 0.5,
+            anisotropy,
+            headlight_ambient: [1.0; 3],
+            value_range: [0.0, 1.0],
+            sample_distance: 0.0,
+        }
     }
 
     /// VTK's formulas at known points.
