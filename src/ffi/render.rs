@@ -438,9 +438,9 @@ impl SelectionHandle {
         let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
         let list = replan_transfer_2d(list, self.transfer_2d.as_ref());
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
+        let list = crate::plan::dependent::plan_dependent(list, self.dependent);
         let scattering = *self.scattering.lock().unwrap_or_else(|e| e.into_inner());
         let list = crate::plan::scattering::plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
-        let list = crate::plan::dependent::plan_dependent(list, self.dependent);
         Ok(recrop(list, self.region.as_ref(), &octree.shape))
     }
 

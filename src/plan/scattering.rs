@@ -7,7 +7,9 @@
 //! as it was, so the planner does not run it. A reach of 0 is not a no-op in
 //! VTK (its shadow rays are then one sample long and the blend still
 //! applies), so it is run. The planner runs it in Composite (the blend
-//! mode of ParaView's Volume shading; under the others it is not drawn) and
+//! mode of ParaView's Volume shading; under the others it is not drawn, nor
+//! with two dependent fields or a 2D transfer function, whose opacity the
+//! shadow rays would have to classify differently; plan it after both) and
 //! names it [`EFFECT`] in [`Plan::effects`], after `shading`; the DrawList
 //! carries the parameters and the lights in world space
 //! ([`DrawList::scattering`]), and the gradient is taken for every sample
@@ -37,7 +39,12 @@ pub fn scatters(plan: &Plan, lighting: Option<&Lighting>, scattering: Option<&Sc
         Lights::Headlight { .. } => true,
         Lights::Directional(lights) => !lights.is_empty(),
     });
-    plan.volume && plan.blend.mode == BlendMode::Composite && lit && scattering.is_some_and(Scattering::runs)
+    plan.volume
+        && plan.blend.mode == BlendMode::Composite
+        && !plan.dependent
+        && !plan.transfer_2d
+        && lit
+        && scattering.is_some_and(Scattering::runs)
 }
 
 /// `list` planned for `scattering` under `lighting` (lights in world or view
