@@ -28,6 +28,7 @@ mod plot;
 mod points;
 mod pool;
 mod render;
+mod scattering;
 mod scene;
 mod shade;
 mod slice;

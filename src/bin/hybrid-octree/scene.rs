@@ -13,7 +13,8 @@ use hybrid_octree::plan::crop::KeptRegion;
 use hybrid_octree::plan::point_slabs::add_points;
 use hybrid_octree::plan::{draw_list, plan, Blend, BlendMode, DrawList, Scene, SurfacePass};
 use hybrid_octree::points::{shade, Footprint, PointSet};
-use hybrid_octree::render::compositor::composite_with_points;
+use hybrid_octree::plan::scattering::plan_scattering;
+use hybrid_octree::render::scattering::{self, shadow_for};
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference_blend, ReferenceOptions};
 use hybrid_octree::render::texture::upload;
@@ -58,6 +59,9 @@ pub struct SceneArgs {
     /// Volume shading.
     #[command(flatten)]
     pub shade: crate::shade::ShadeArgs,
+    /// Volumetric scattering (with --shade).
+    #[command(flatten)]
+    pub scattering: crate::scattering::ScatteringArgs,
     /// Blend mode (VTK's SetBlendMode): composite, mip (maximum intensity),
     /// minip (minimum intensity), average (average intensity), additive,
     /// isosurface (the surfaces of --isosurface-values, ray cast), or slice
@@ -282,9 +286,12 @@ pub fn frame(
     if let Some((set, _)) = points {
         add_points(&mut list, grid.shape(), set)?;
     }
+    let scattering = args.scattering.scattering(scene.octree.value_range());
+    let list = plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let textures = upload(grid, &list)?;
+    let shadow = shadow_for(grid, &list)?;
     let shades = match points {
         Some((set, _)) => shade(grid, set, &scene.tf)?,
         None => Vec::new(),
@@ -294,7 +301,8 @@ pub fn frame(
     let colour = surface_colour(args);
     let surface = scene.surface.as_ref().map(|s| (s, colour));
     let drawn = points.map(|(set, kind)| (set, shades.as_slice(), kind));
-    let image = composite_with_points(&textures, &list, &scene.tf, args.width, args.height, surface, drawn)?;
+    let image =
+        scattering::composite(&textures, shadow.as_ref(), &list, &scene.tf, args.width, args.height, surface, drawn)?;
     let composite_ms = started.elapsed().as_secs_f64() * 1e3;
     Ok(Frame { list, image, slab_polygons_ms, drawlist_ms, upload_ms, composite_ms })
 }
@@ -320,6 +328,7 @@ pub fn reference_image(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Res
             gradient_opacity: args.gradient_opacity.as_ref(),
             transfer_2d: scene.transfer_2d.as_ref(),
             region: scene.region.as_ref(),
+            scattering: args.scattering.scattering(scene.octree.value_range()).as_ref(),
             ..ReferenceOptions::default()
         },
         &scene.blend,
