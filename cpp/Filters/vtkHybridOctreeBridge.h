@@ -227,16 +227,16 @@ struct ScatteringFrame
   double Blending = 0.0;
   double Anisotropy = 0.0;
   double HeadlightAmbient[3] = { 0.0, 0.0, 0.0 };
-  double GradientScale = 0.0;       ///< 2 / (hi - lo): VTK's gradient length per world gradient
-  double TextureCorner[3] = {};     ///< octree frame position of VTK's texture point 0
-  double TextureSize[3] = {};       ///< the texture cube's size
-  double Extent = 0.0;              ///< the shadow rays' reach, texture units
-  double Distance = 0.0;            ///< VTK's sample distance d
-  double ToVtk = 1.0;               ///< d / d0
-  std::size_t ShadowDims[3] = {};   ///< the shadow volume's points per axis
-  double ShadowScale[3] = {};       ///< its texture coordinate: t * scale + shift
+  double GradientScale = 0.0;     ///< 2 / (hi - lo): VTK's gradient length per world gradient
+  double TextureCorner[3] = {};   ///< octree frame position of VTK's texture point 0
+  double TextureSize[3] = {};     ///< the texture cube's size
+  double Extent = 0.0;            ///< the shadow rays' reach, texture units
+  double Distance = 0.0;          ///< VTK's sample distance d
+  double ToVtk = 1.0;             ///< d / d0
+  std::size_t ShadowDims[3] = {}; ///< the shadow volume's points per axis
+  double ShadowScale[3] = {};     ///< its texture coordinate: t * scale + shift
   double ShadowShift[3] = {};
-  std::size_t MaxSteps = 0;         ///< the most samples a shadow ray takes
+  std::size_t MaxSteps = 0; ///< the most samples a shadow ray takes
 };
 
 /// Summary of a selection (see SelectionSummary in src/ffi/mod.rs).

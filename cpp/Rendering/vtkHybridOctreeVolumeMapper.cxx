@@ -5,8 +5,8 @@
 #include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
 #include "vtkHybridOctreeInteractiveReduction.h"
-#include "vtkHybridOctreeSlice.h"
 #include "vtkHybridOctreeScattering.h"
+#include "vtkHybridOctreeSlice.h"
 #include "vtkHybridOctreeTransfer2D.h"
 #include "vtkHybridOctreeUnsupportedEffects.h"
 #include "vtkOpenGLHybridOctreeBrickDrawer.h"
@@ -836,13 +836,13 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   this->Internals->Transfer2D.Update(property, this->Internals->Scalars,
     this->Internals->Grid.Component, this->Internals->Grid.Spacing, this->Internals->Grid.Dims,
     this->Transfer2DSampleDistance);
-  this->Internals->ScatteringParameters = vtkHybridOctreeScattering::Describe(
-    this->VolumetricScatteringBlending, this->GlobalIlluminationReach, property,
-    this->Internals->Shading,
-    this->ScatteringSampleDistance > 0.0
-      ? this->ScatteringSampleDistance
-      : vtkHybridOctreeTransfer2D::SmartSampleDistance(
-          this->Internals->Grid.Spacing, this->Internals->Grid.Dims));
+  this->Internals->ScatteringParameters =
+    vtkHybridOctreeScattering::Describe(this->VolumetricScatteringBlending,
+      this->GlobalIlluminationReach, property, this->Internals->Shading,
+      this->ScatteringSampleDistance > 0.0
+        ? this->ScatteringSampleDistance
+        : vtkHybridOctreeTransfer2D::SmartSampleDistance(
+            this->Internals->Grid.Spacing, this->Internals->Grid.Dims));
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }

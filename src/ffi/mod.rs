@@ -859,8 +859,8 @@ mod bridge {
 use bridge::BuildProgress;
 pub use bridge::{
     BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
-    OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, ScatteringDesc, ScatteringFrameDesc, SelectDesc, SelectionSummary, ShadingDesc,
-    SurfaceMode, SurfaceSummary,
+    OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, ScatteringDesc, ScatteringFrameDesc, SelectDesc,
+    SelectionSummary, ShadingDesc, SurfaceMode, SurfaceSummary,
 };
 use dependent::build_dependent_octree;
 use ftb::ftb_display;

@@ -519,7 +519,7 @@ impl SelectionHandle {
             };
             let points = self.points.as_deref().map(|set| (set, shades.as_slice(), footprint(gaussian_points)));
             let shadow = crate::render::scattering::shadow_for(&grid, &list)?;
-            let image = crate::render::scattering::composite(
+            let image = crate::render::compositor::composite_shadowed(
                 &textures,
                 shadow.as_ref(),
                 &list,

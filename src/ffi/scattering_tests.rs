@@ -62,8 +62,20 @@ fn scattering_is_planned_with_shading_and_a_blending() {
     let picture = |blending: f64| {
         s.set_scattering(&desc(blending)).unwrap();
         let mut rgba = vec![0.0f32; 4 * 24 * 24];
-        s.composite(&h, &ball_camera(), as_bytes(&d), &ball_desc(), &tf_colors, &tf_opacities, false, &[0.0; 4], 24, 24, &mut rgba)
-            .unwrap();
+        s.composite(
+            &h,
+            &ball_camera(),
+            as_bytes(&d),
+            &ball_desc(),
+            &tf_colors,
+            &tf_opacities,
+            false,
+            &[0.0; 4],
+            24,
+            24,
+            &mut rgba,
+        )
+        .unwrap();
         rgba
     };
     let (plain, scattered) = (picture(0.0), picture(2.0));

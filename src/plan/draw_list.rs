@@ -192,7 +192,7 @@ pub struct DrawList {
     /// brick textures then carry the gradient border.
     pub transfer_2d: Option<TransferFunction2D>,
     /// Volumetric scattering (`Some` exactly when [`Plan::scattering`]).
-    pub scattering: Option<super::scattering::PlannedScattering>,
+    pub scattering: Option<crate::transfer::scattering::LitScattering>,
 }
 
 /// What the scene holds besides the volume.

@@ -18,19 +18,11 @@
 use super::draw_list::{effects, DrawList, Plan};
 use super::BlendMode;
 use crate::transfer::lighting::{Lighting, Lights};
+use crate::transfer::scattering::LitScattering;
 use crate::transfer::Scattering;
 
 /// The effect's name in [`Plan::effects`].
 pub const EFFECT: &str = super::draw_list::SCATTERING_EFFECT;
-
-/// The scattering a DrawList draws: its parameters and its lights (world space).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct PlannedScattering {
-    /// VTK's parameters.
-    pub scattering: Scattering,
-    /// The material and the lights in world space.
-    pub lighting: Lighting,
-}
 
 /// Whether a plan scatters light for this shading (`lighting`: the scene's
 /// Shade, `None` when off) and these parameters (module documentation).
@@ -69,7 +61,7 @@ pub fn plan_scattering(
     list.plan.scattering = scatters(&list.plan, lighting, scattering);
     list.scattering = match (lighting, scattering) {
         (Some(l), Some(s)) if list.plan.scattering => {
-            Some(PlannedScattering { scattering: *s, lighting: l.in_world(&list.camera) })
+            Some(LitScattering { scattering: *s, lighting: l.in_world(&list.camera) })
         }
         _ => None,
     };

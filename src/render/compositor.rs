@@ -100,8 +100,8 @@ use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
 use super::sample::to_index;
-use super::shade::normal;
 use super::scattering::{ScatterFrame, ShadowVolume};
+use super::shade::normal;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::Result;
@@ -232,10 +232,15 @@ pub fn composite_with_points(
     composite_shadowed(textures, None, list, tf, width, height, surface, points)
 }
 
-/// [`composite_with_points`] with the volume the scattering's shadow rays
-/// read (required when the list scatters: [`super::scattering::composite`]).
+/// [`composite_with_points`] of a list that may scatter light, its shadow
+/// rays reading `shadow` ([`super::scattering::shadow_for`] of the grid).
+///
+/// # Errors
+///
+/// As [`composite_with_points`], and [`crate::Error::InvalidArgument`] when
+/// the list scatters without a shadow volume or with one of another grid.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn composite_shadowed(
+pub fn composite_shadowed(
     textures: &Textures,
     shadow: Option<&ShadowVolume>,
     list: &DrawList,

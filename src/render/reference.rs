@@ -155,7 +155,8 @@ pub(crate) fn reference_fields(
     }
     let scatters = blend.mode == BlendMode::Composite
         && options.scattering.is_some_and(|s| s.runs())
-        && lighting.is_some_and(|l| !matches!(&l.lights, crate::transfer::lighting::Lights::Directional(v) if v.is_empty()));
+        && lighting
+            .is_some_and(|l| !matches!(&l.lights, crate::transfer::lighting::Lights::Directional(v) if v.is_empty()));
     let scattering = match (options.scattering, lighting) {
         (Some(s), Some(l)) if scatters => Some(super::scattering::ScatterFrame::new(s, l, camera.position, &shape, d0)),
         _ => None,
@@ -332,7 +333,8 @@ impl Caster<'_> {
                 f64::from(self.tf.opacity(v))
             }
         });
-        let scale = self.gradient_opacity.map_or(1.0, |f| f64::from(f.eval(crate::geometry::vec3::dot(grad, grad).sqrt())));
+        let scale =
+            self.gradient_opacity.map_or(1.0, |f| f64::from(f.eval(crate::geometry::vec3::dot(grad, grad).sqrt())));
         (rgb, a * scale)
     }
 

@@ -29,8 +29,8 @@ use super::blend::correct_opacity;
 use super::sample::trilinear;
 use crate::base::error::{Error, Result};
 use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
-use crate::plan::DrawList;
 use crate::geometry::vec3::{dot, normalize, sub};
+use crate::plan::DrawList;
 use crate::transfer::lighting::{Lighting, Lights};
 use crate::transfer::Scattering;
 use rayon::prelude::*;
@@ -251,12 +251,15 @@ impl<'a> ScatterFrame<'a> {
         }
         let length = if positional { len(towards(start)) } else { exit };
         let reach = exit.min(length).min(self.extent);
-        if !(reach >= EPSILON) {
+        if reach.is_nan() || reach < EPSILON {
             return 1.0;
         }
         let needed = (reach / step).ceil();
-        let (s, ratio) =
-            if needed > MAX_SHADOW_STEPS as f64 { (reach / MAX_SHADOW_STEPS as f64, reach / MAX_SHADOW_STEPS as f64 / step) } else { (step, 1.0) };
+        let (s, ratio) = if needed > MAX_SHADOW_STEPS as f64 {
+            (reach / MAX_SHADOW_STEPS as f64, reach / MAX_SHADOW_STEPS as f64 / step)
+        } else {
+            (step, 1.0)
+        };
         let mut shadow = 1.0;
         let mut k = 0usize;
         while (k as f64) * s < reach && k < MAX_SHADOW_STEPS {
@@ -325,7 +328,8 @@ pub fn shadow_for(grid: &Grid<'_>, list: &DrawList) -> Result<Option<ShadowVolum
 pub(crate) fn check_shadow(list: &DrawList, shadow: Option<&ShadowVolume>) -> Result<()> {
     match (list.plan.scattering, shadow) {
         (true, None) => Err(Error::InvalidArgument(
-            "the DrawList scatters light: composite it with its shadow volume (render::scattering::composite)".into(),
+            "the DrawList scatters light: composite it with its shadow volume (render::compositor::composite_shadowed)"
+                .into(),
         )),
         (_, Some(s)) if s.dims != shadow_dims(s.grid_dims) => {
             Err(Error::InvalidArgument("the shadow volume is not one ShadowVolume::new made".into()))
@@ -352,28 +356,6 @@ pub(crate) fn frame<'a>(
     let d0 = list.reference_spacing;
     let frame = ScatterFrame::new(&planned.scattering, &planned.lighting, list.camera.position, shape, d0);
     Ok(Some((frame, shadow)))
-}
-
-/// [`super::compositor::composite_with_points`] of a list that may scatter
-/// light, its shadow rays reading `shadow` ([`shadow_for`] of the grid).
-///
-/// # Errors
-///
-/// As [`super::compositor::composite_with_points`], and
-/// [`Error::InvalidArgument`] when the list scatters without a shadow
-/// volume or with one of another grid.
-#[allow(clippy::too_many_arguments)]
-pub fn composite(
-    textures: &super::texture::Textures,
-    shadow: Option<&ShadowVolume>,
-    list: &DrawList,
-    tf: &crate::transfer::TransferFunction,
-    width: usize,
-    height: usize,
-    surface: Option<(&crate::surface::Surface, [f32; 4])>,
-    points: Option<super::compositor::DrawnPoints<'_>>,
-) -> Result<super::image::Image> {
-    super::compositor::composite_shadowed(textures, shadow, list, tf, width, height, surface, points)
 }
 
 /// VTK's texture space of `shape` as `(corner, size)`: world position of

@@ -3,13 +3,21 @@
 //! reference, and a plan without it does none of its work.
 
 use super::*;
-use crate::plan::scattering::{plan_scattering, PlannedScattering};
+use crate::plan::scattering::plan_scattering;
 use crate::render::scattering::{shadow_for, ScatterFrame, ShadowVolume, SHADOW_VOLUME_MAX_DIM};
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
+use crate::transfer::scattering::LitScattering;
 use crate::transfer::Scattering;
 
 fn scattering(blending: f64, reach: f64, anisotropy: f64) -> Scattering {
-    Scattering { blending, reach, anisotropy, headlight_ambient: [1.0; 3], value_range: [0.0, 1.0], sample_distance: 0.0 }
+    Scattering {
+        blending,
+        reach,
+        anisotropy,
+        headlight_ambient: [1.0; 3],
+        value_range: [0.0, 1.0],
+        sample_distance: 0.0,
+    }
 }
 
 /// One white light travelling along `direction` (world), black ambient.
@@ -133,15 +141,14 @@ fn the_planner_runs_scattering_only_when_it_changes_the_picture() {
     let l = scattered(base, &kit, &on);
     assert!(l.plan.scattering && l.plan.gradients());
     assert_eq!(l.plan.effects, vec!["shading", "volume-scattering"]);
-    assert_eq!(
-        l.scattering,
-        Some(PlannedScattering { scattering: on, lighting: kit.in_world(&camera) })
-    );
+    assert_eq!(l.scattering, Some(LitScattering { scattering: on, lighting: kit.in_world(&camera) }));
     let textures = crate::render::texture::upload(&grid, &l).unwrap();
     let e = crate::render::compositor::composite_textures(&textures, &l, &shell(), 8, 8, None).unwrap_err();
     assert!(e.to_string().contains("shadow volume"), "{e}");
     let shadow = shadow_for(&grid, &l).unwrap().unwrap();
-    assert!(crate::render::scattering::composite(&textures, Some(&shadow), &l, &shell(), 8, 8, None, None).is_ok());
+    assert!(
+        crate::render::compositor::composite_shadowed(&textures, Some(&shadow), &l, &shell(), 8, 8, None, None).is_ok()
+    );
     assert!(plan_scattering(l, Some(&kit), Some(&Scattering { reach: 1.5, ..on })).is_err());
 }
 
@@ -163,7 +170,8 @@ fn scattered_full_resolution_matches_the_reference() {
     for lighting in [Lighting::headlight(Material::default()), light([0.5, -0.6, -0.4])] {
         for parallel in [true, false] {
             let camera = Camera::around([0.0; 3], [32.0; 3], 30.0, 20.0, parallel).unwrap();
-            let list = scattered(draw_list(&shape, &camera, &leaf_bricks(shape.dims, 16), SurfacePass::None), &lighting, &s);
+            let list =
+                scattered(draw_list(&shape, &camera, &leaf_bricks(shape.dims, 16), SurfacePass::None), &lighting, &s);
             assert!(list.plan.scattering);
             let image = composite(&grid, &list, &tf, 64, 64, None).unwrap();
             let options =
@@ -173,7 +181,10 @@ fn scattered_full_resolution_matches_the_reference() {
             let plain = reference(&grid, &tf, &camera, 64, 64, &shaded).unwrap();
             let m = compare(&image, &truth).unwrap();
             let effect = compare(&truth, &plain).unwrap();
-            eprintln!("scattered, parallel {parallel}, {:?}: {m:?} (scattering moves {:.4})", lighting.lights, effect.rmse);
+            eprintln!(
+                "scattered, parallel {parallel}, {:?}: {m:?} (scattering moves {:.4})",
+                lighting.lights, effect.rmse
+            );
             assert!(m.rmse < 0.001, "parallel {parallel}: {m:?}");
             assert!(effect.rmse > 5.0 * m.rmse, "the scattering must show: {effect:?} vs {m:?}");
         }

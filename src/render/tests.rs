@@ -72,7 +72,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         region: None,
         gradient_opacity: None,
         transfer_2d: None,
-    scattering: None,
+        scattering: None,
     }
 }
 

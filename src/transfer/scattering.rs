@@ -168,6 +168,16 @@ impl Scattering {
     }
 }
 
+/// Scattering with the material and lights it scatters (what a DrawList
+/// carries, lights in world space).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct LitScattering {
+    /// VTK's parameters.
+    pub scattering: Scattering,
+    /// The material and the lights.
+    pub lighting: super::lighting::Lighting,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,12 +11,13 @@ use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::crop::KeptRegion;
 use hybrid_octree::plan::point_slabs::add_points;
+use hybrid_octree::plan::scattering::plan_scattering;
 use hybrid_octree::plan::{draw_list, plan, Blend, BlendMode, DrawList, Scene, SurfacePass};
 use hybrid_octree::points::{shade, Footprint, PointSet};
-use hybrid_octree::plan::scattering::plan_scattering;
-use hybrid_octree::render::scattering::{self, shadow_for};
+use hybrid_octree::render::compositor::composite_shadowed;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference_blend, ReferenceOptions};
+use hybrid_octree::render::scattering::shadow_for;
 use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, SelectOptions, Selection};
@@ -302,7 +303,7 @@ pub fn frame(
     let surface = scene.surface.as_ref().map(|s| (s, colour));
     let drawn = points.map(|(set, kind)| (set, shades.as_slice(), kind));
     let image =
-        scattering::composite(&textures, shadow.as_ref(), &list, &scene.tf, args.width, args.height, surface, drawn)?;
+        composite_shadowed(&textures, shadow.as_ref(), &list, &scene.tf, args.width, args.height, surface, drawn)?;
     let composite_ms = started.elapsed().as_secs_f64() * 1e3;
     Ok(Frame { list, image, slab_polygons_ms, drawlist_ms, upload_ms, composite_ms })
 }
