@@ -159,6 +159,10 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   list.Bordered = out.bordered;
   list.BlendMode = out.blend_mode;
   list.Shading = out.shading;
+  list.TexelFormat = out.texel_format;
+  list.TexelScale = out.texel_scale;
+  list.TexelBias = out.texel_bias;
+  list.TexelBytes = out.texel_bytes;
   list.OpacityScale = out.opacity_scale;
   CopyInto(out.gradient_opacity_table, list.GradientOpacityTable);
   list.GradientOpacityEnd = out.gradient_opacity_end;
@@ -213,6 +217,7 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   desc.blend_mode = options.BlendMode;
   desc.average_range[0] = options.AverageRange[0];
   desc.average_range[1] = options.AverageRange[1];
+  desc.texel_format = options.TexelFormat;
   for (double v : options.IsosurfaceValues)
   {
     desc.isosurface_values.push_back(v);
@@ -565,6 +570,17 @@ bool Selection::GetBrickTexelsBordered(const void* bytes, std::size_t byteCount,
   return Guarded(error, [&] {
     HandleFor(this->Impl)
       .brick_texels_bordered(ToSlice(bytes, byteCount), ToRust(grid), brick, Out(texels, count));
+  });
+}
+
+bool Selection::GetBrickTexelsEncoded(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, std::size_t brick, bool bordered, float* decoded, std::size_t count,
+  unsigned char* encoded, std::size_t encodedBytes, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .brick_texels_encoded(ToSlice(bytes, byteCount), ToRust(grid), brick, bordered,
+        Out(decoded, count), Out(reinterpret_cast<std::uint8_t*>(encoded), encodedBytes));
   });
 }
 

@@ -163,6 +163,10 @@ struct SelectDescription
   int BlendMode = 0;
   /// vtkVolumeMapper's AverageIPScalarRange: the values an average counts.
   double AverageRange[2] = { -1.0e300, 1.0e300 };
+  /// The brick texel format (src/plan/texel_format.rs): 0 auto (the data's
+  /// own width: 8-bit data as R8, 16-bit as R16, the rest R32F), 1 float32,
+  /// 2 float16, 3 unorm16, 4 unorm8. The budget counts its bytes.
+  int TexelFormat = 0;
   /// The isosurface values of blend mode 5 (1 to 16).
   std::vector<double> IsosurfaceValues;
   /// vtkVolumeProperty's GradientOpacity as VTK's GPU ray caster reads it
@@ -307,8 +311,15 @@ struct DrawList
   bool Bordered = false;
   /// The volume's blend mode as drawn (vtkVolumeMapper::BlendModes).
   int BlendMode = 0;
-  bool Shading = false;      ///< the samples are shaded
-  double OpacityScale = 1.0; ///< every opacity times this before the correction
+  bool Shading = false; ///< the samples are shaded
+  /// The brick textures' texel format as resolved (1 float32: R32F, 2
+  /// float16: R16F, 3 unorm16: R16, 4 unorm8: R8; GetBrickTexelsEncoded())
+  /// and its decoding: a texture read t is the value TexelBias + TexelScale t.
+  int TexelFormat = 1;
+  double TexelScale = 1.0;
+  double TexelBias = 0.0;
+  std::size_t TexelBytes = 4; ///< bytes of one texel on the GPU
+  double OpacityScale = 1.0;  ///< every opacity times this before the correction
   /// With "gradient-opacity": the function at magnitudes k End / (n - 1),
   /// k = 0 .. n (data units per model unit), held past the ends; else empty.
   std::vector<float> GradientOpacityTable;
@@ -632,6 +643,18 @@ public:
    */
   bool GetBrickTexelsBordered(const void* bytes, std::size_t byteCount, const GridDescription& grid,
     std::size_t brick, float* texels, std::size_t count, std::string& error) const;
+
+  /**
+   * Brick `brick`'s texels in the selection's texel format
+   * (DrawList::TexelFormat), with the gradient border when `bordered`:
+   * `decoded` gets the `count` values they decode to, `encoded` the
+   * `encodedBytes` the GPU uploads (`count` bytes for unorm8, unsigned
+   * shorts for unorm16, floats for float16, each a half float's exact value,
+   * and for float32). False and `error` on failure.
+   */
+  bool GetBrickTexelsEncoded(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    std::size_t brick, bool bordered, float* decoded, std::size_t count, unsigned char* encoded,
+    std::size_t encodedBytes, std::string& error) const;
 
   /**
    * Brick `brick`'s texels of both fields of a selection made from

@@ -672,6 +672,7 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   }
   select.AverageRange[0] = this->AverageIPScalarRange[0];
   select.AverageRange[1] = this->AverageIPScalarRange[1];
+  select.TexelFormat = this->TexelFormat;
   // Shaded: the bricks' gradient borders count in the budget (Composite and
   // Isosurface only; Isosurface always has them).
   select.GradientBorder = property->GetShade(0) != 0 &&
@@ -690,7 +691,7 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
     in.HasPoints ? static_cast<double>(in.PointsTime.GetMTime()) : -1.0,
     select.GradientBorder ? 1.0 : 0.0, static_cast<double>(select.BlendMode),
     select.AverageRange[0], select.AverageRange[1], select.Region.Cropping ? 1.0 : 0.0,
-    static_cast<double>(select.Region.CroppingFlags) };
+    static_cast<double>(select.Region.CroppingFlags), static_cast<double>(select.TexelFormat) };
   key.insert(key.end(), select.Region.CroppingPlanes, select.Region.CroppingPlanes + 6);
   key.push_back(static_cast<double>(select.Region.ClippingPlanes.size()));
   key.insert(key.end(), select.Region.ClippingPlanes.begin(), select.Region.ClippingPlanes.end());
@@ -1028,6 +1029,8 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   // Dependent: (colour, opacity) texel pairs.
   const bool dependent = list.Effects.find("dependent-components") != std::string::npos;
   in.Bricks.SetChannels(window, dependent ? 2 : 1);
+  in.Bricks.SetTexelFormat(window, list.TexelFormat);
+  in.Drawer.SetTexelDecode(list.TexelScale, list.TexelBias);
   in.Drawer.SetDependent(dependent, in.ColourRange);
   if (bordered != in.BorderedTextures || pooled != in.PooledTextures ||
     in.TexturesTime < in.OctreeTime)
@@ -1075,11 +1078,16 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
       list.Texels[3 * i + 1] + 2 * border, list.Texels[3 * i + 2] + 2 * border };
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, dims,
-      [&](float* texels, std::size_t count) {
+      [&](float* texels, unsigned char* encoded, std::size_t count) {
         if (dependent)
         {
           return selected.GetBrickTexelsDependent(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
             brick, bordered, texels, count, error);
+        }
+        if (encoded)
+        {
+          return selected.GetBrickTexelsEncoded(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+            brick, bordered, texels, count, encoded, count * in.Bricks.GetStagingBytes(), error);
         }
         return bordered ? selected.GetBrickTexelsBordered(Bytes(in.Scalars), ByteCount(in.Scalars),
                             in.Grid, brick, texels, count, error)
@@ -1484,6 +1492,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "BudgetMB: " << this->BudgetMB << "\n";
+  os << indent << "TexelFormat: " << this->TexelFormat << "\n";
   os << indent << "InteractiveBudgetMB: " << this->InteractiveBudgetMB << "\n";
   os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";

@@ -118,6 +118,24 @@ public:
   /// refines to BudgetMB.
   vtkSetClampMacro(InteractiveBudgetMB, double, 0.0, 1.0e6);
   vtkGetMacro(InteractiveBudgetMB, double);
+
+  /// The brick textures' texel format (VTK_HYBRID_OCTREE_TEXELS_*):
+  /// AUTO (the default) uploads 8-bit data as R8 and 16-bit data as R16,
+  /// as VTK's GPU ray caster does, and the rest as R32F; FLOAT16 (R16F),
+  /// UNORM16 (R16) and UNORM8 (R8) quantize wider data to hold more bricks
+  /// in BudgetMB, their quantization error added to every brick's
+  /// (GetLastEstimatedError() includes it). Budgets and LastTextureBytes
+  /// count the bytes as uploaded. Dependent components are always float32.
+  enum
+  {
+    TEXELS_AUTO = 0,
+    TEXELS_FLOAT32 = 1,
+    TEXELS_FLOAT16 = 2,
+    TEXELS_UNORM16 = 3,
+    TEXELS_UNORM8 = 4
+  };
+  vtkSetClampMacro(TexelFormat, int, TEXELS_AUTO, TEXELS_UNORM8);
+  vtkGetMacro(TexelFormat, int);
   ///@}
 
   ///@{
@@ -334,6 +352,7 @@ protected:
 
   double BudgetMB = 64.0;
   double InteractiveBudgetMB = 8.0;
+  int TexelFormat = TEXELS_AUTO;
   double InteractiveUpdateRate = 1.0;
   bool AutoAdjustSampleDistances = true;
   double ErrorTolerance = 0.0;

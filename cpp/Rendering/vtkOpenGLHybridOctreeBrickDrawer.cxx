@@ -125,6 +125,9 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   const float scaleShift[2] = { static_cast<float>(scale),
     static_cast<float>(0.5 / entries - lo * scale) };
   this->Program->SetUniform2f("tableScaleShift", scaleShift);
+  const float texelDecode[2] = { static_cast<float>(this->TexelDecode[0]),
+    static_cast<float>(this->TexelDecode[1]) };
+  this->Program->SetUniform2f("texelDecode", texelDecode);
   if (this->Dependent && this->ReduceMode == 0)
   {
     // The colour column over the colour field's range (the table's alpha is over [lo, hi]).

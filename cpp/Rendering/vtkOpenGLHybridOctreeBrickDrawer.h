@@ -177,6 +177,17 @@ public:
   void SetOpacityEffects(bool gradients, const std::vector<float>& table, double end, double scale);
 
   /**
+   * The brick textures' decoding (DrawList::TexelScale, TexelBias): every
+   * texture read t of the scalar is the value `bias + scale t` (R8 and R16
+   * read normalized codes; 1 and 0 for R32F). Call before Bind().
+   */
+  void SetTexelDecode(double scale, double bias)
+  {
+    this->TexelDecode[0] = scale;
+    this->TexelDecode[1] = bias;
+  }
+
+  /**
    * The 2D transfer function (the DrawList's effect "transfer-2d"): its
    * texture (an RGBA table, x the value, y the gradient magnitude; nullptr:
    * none, the program without it) and `axes`, the DrawList's Transfer2DAxes
@@ -266,6 +277,7 @@ private:
   bool Dependent = false;
   double ColourRange[2] = { 0.0, 1.0 };
   double OpacityScale = 1.0;
+  double TexelDecode[2] = { 1.0, 0.0 };
   std::vector<float> GradientOpacityTable;
   double GradientOpacityEnd = 1.0;
   bool GradientOpacityUploaded = false;

@@ -4,6 +4,7 @@
 
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtk_glew.h"
 
 #include <algorithm>
 
@@ -56,15 +57,19 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
     return &found->second;
   }
   const std::size_t channels = static_cast<std::size_t>(this->Channels);
-  const std::size_t bytes = 4 * channels * texels[0] * texels[1] * texels[2];
+  const std::size_t count = texels[0] * texels[1] * texels[2];
+  const std::size_t bytes = this->GetTexelBytes() * count;
   if (!this->MakeRoom(bytes))
   {
     error = "the bricks of this frame need more than the texture budget of " +
       std::to_string(this->LimitBytes) + " bytes";
     return nullptr;
   }
-  this->Scratch.resize(channels * texels[0] * texels[1] * texels[2]);
-  if (!fetch(this->Scratch.data(), this->Scratch.size()))
+  this->Scratch.resize(channels * count);
+  // Single-channel textures of a format other than float32 upload codes.
+  const bool coded = channels == 1 && this->TexelFormat != 1;
+  this->Encoded.resize(coded ? this->GetStagingBytes() * count : 0);
+  if (!fetch(this->Scratch.data(), coded ? this->Encoded.data() : nullptr, this->Scratch.size()))
   {
     return nullptr;
   }
@@ -75,12 +80,25 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   texture->SetWrapR(vtkTextureObject::ClampToEdge);
   texture->SetMinificationFilter(vtkTextureObject::Linear);
   texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  // The GL format of the texel format; R16F is filled from floats that are
+  // half floats' exact values, so the conversion rounds nothing.
+  static const unsigned int internalFormats[] = { GL_R32F, GL_R32F, GL_R16F, GL_R16, GL_R8 };
+  static const int stagedTypes[] = { VTK_FLOAT, VTK_FLOAT, VTK_FLOAT, VTK_UNSIGNED_SHORT,
+    VTK_UNSIGNED_CHAR };
+  const int format = coded ? this->TexelFormat : 1;
+  if (channels == 1)
+  {
+    texture->SetInternalFormat(internalFormats[format]);
+  }
+  void* staged = coded ? static_cast<void*>(this->Encoded.data()) : this->Scratch.data();
   if (!texture->Create3DFromRaw(static_cast<unsigned int>(texels[0]),
         static_cast<unsigned int>(texels[1]), static_cast<unsigned int>(texels[2]), this->Channels,
-        VTK_FLOAT, this->Scratch.data()))
+        stagedTypes[format], staged))
   {
+    static const char* names[] = { "float", "float", "half float", "16-bit", "8-bit" };
     error = "OpenGL could not create a " + std::to_string(texels[0]) + "x" +
-      std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " float 3D texture";
+      std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " " + names[format] +
+      " 3D texture";
     return nullptr;
   }
   std::vector<float> ranges;
@@ -146,6 +164,29 @@ void vtkOpenGLHybridOctreeBrickTextures::SetChannels(vtkWindow* window, int chan
     this->Clear(window);
     this->Channels = channels;
   }
+}
+
+void vtkOpenGLHybridOctreeBrickTextures::SetTexelFormat(vtkWindow* window, int format)
+{
+  format = format >= 1 && format <= 4 ? format : 1;
+  if (format != this->TexelFormat)
+  {
+    this->Clear(window);
+    this->TexelFormat = format;
+  }
+}
+
+std::size_t vtkOpenGLHybridOctreeBrickTextures::GetStagingBytes() const
+{
+  static const std::size_t staging[] = { 4, 4, 4, 2, 1 };
+  return staging[this->TexelFormat];
+}
+
+std::size_t vtkOpenGLHybridOctreeBrickTextures::GetTexelBytes() const
+{
+  static const std::size_t gpu[] = { 4, 4, 2, 2, 1 };
+  return this->Channels == 1 ? gpu[this->TexelFormat]
+                             : 4 * static_cast<std::size_t>(this->Channels);
 }
 
 void vtkOpenGLHybridOctreeBrickTextures::Clear(vtkWindow* window)

@@ -11,7 +11,8 @@
  * pass the limit. So resident bytes never exceed the limit, as long as one
  * frame's bricks fit it (which the selection guarantees: they fit its budget).
  *
- * Texels are single-channel 32-bit floats (4 bytes each), or two-channel
+ * Texels are single-channel in the frame's texel format (SetTexelFormat():
+ * R8, R16, R16F or R32F, 1 to 4 bytes each), or two-channel 32-bit floats
  * (8 bytes: colour and opacity fields of dependent components, see
  * SetChannels()), filtered linearly and clamped to the edge. With each texture the cache keeps the
  * brick's block value ranges, measured from its texels at upload by the Rust core
@@ -41,10 +42,13 @@ class vtkOpenGLHybridOctreeBrickTextures
 public:
   /// (octree node id, texel stride): what a brick's texture holds.
   using Key = std::pair<std::uint32_t, std::size_t>;
-  /// Writes a brick's texels (x fastest) into the staging buffer it is
-  /// given (`count` floats: the brick's texel count times the channels); false and a message in
-  /// the caller's error string on failure.
-  using Fetch = std::function<bool(float* texels, std::size_t count)>;
+  /// Writes a brick's texels (x fastest) into the staging buffers it is
+  /// given: `decoded`, `count` floats (the brick's texel count times the
+  /// channels), the values; `encoded`, when not null (a format other than
+  /// float32), the texel count times GetStagingBytes() of the format's codes,
+  /// which are uploaded instead. False and a message in the caller's error
+  /// string on failure.
+  using Fetch = std::function<bool(float* decoded, unsigned char* encoded, std::size_t count)>;
 
   /// A resident brick: its texture and block value ranges.
   struct Resident
@@ -89,6 +93,18 @@ public:
   void SetChannels(vtkWindow* window, int channels);
   int GetChannels() const { return this->Channels; }
 
+  /**
+   * The texel format of single-channel textures (DrawList::TexelFormat: 1
+   * float32 R32F, 2 float16 R16F, 3 unorm16 R16, 4 unorm8 R8). A change
+   * releases every texture.
+   */
+  void SetTexelFormat(vtkWindow* window, int format);
+  int GetTexelFormat() const { return this->TexelFormat; }
+  /// Bytes of one staged texel of the format (float16 stages floats).
+  std::size_t GetStagingBytes() const;
+  /// Bytes of one texel on the GPU (all channels).
+  std::size_t GetTexelBytes() const;
+
   /// Releases every texture (a new octree, or the context going away).
   void Clear(vtkWindow* window);
 
@@ -104,8 +120,10 @@ private:
   std::uint64_t Frame = 0;
   vtkWindow* Window = nullptr;
   std::vector<float> Scratch;
-  std::vector<float> Interior; ///< a bordered brick's own texels (of the last channel)
+  std::vector<unsigned char> Encoded; ///< the codes of a format other than float32
+  std::vector<float> Interior;        ///< a bordered brick's own texels (of the last channel)
   int Channels = 1;
+  int TexelFormat = 1;
 };
 
 #endif

@@ -70,6 +70,11 @@ void vtkPVHybridOctreeRepresentation::SetBudgetMB(double mb)
   this->Mapper()->SetBudgetMB(mb);
 }
 
+void vtkPVHybridOctreeRepresentation::SetTexelFormat(int format)
+{
+  this->Mapper()->SetTexelFormat(format);
+}
+
 void vtkPVHybridOctreeRepresentation::SetInteractiveBudgetMB(double mb)
 {
   this->Mapper()->SetInteractiveBudgetMB(mb);

@@ -37,6 +37,7 @@ public:
   /// Forwarded to vtkHybridOctreeVolumeMapper (see its documentation).
   void SetBudgetMB(double mb);
   void SetInteractiveBudgetMB(double mb);
+  void SetTexelFormat(int format);
   void SetErrorTolerance(double tolerance);
   void SetUseRoi(bool use);
   void SetRoiCenter(double x, double y, double z);

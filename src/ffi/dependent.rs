@@ -66,6 +66,7 @@ pub(crate) fn build_dependent_with(
             shape: *colour.shape(),
             input_bytes: colour.input_bytes(),
             nan_samples: colour.nan_count() + opacity.nan_count(),
+            scalar_type: colour.samples().scalar_type(),
             dependent: Some(built.combined),
             id: next_id(),
             surface_id: 0,

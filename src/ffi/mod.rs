@@ -257,6 +257,12 @@ mod bridge {
         blend_mode: i32,
         /// VTK's AverageIPScalarRange: the values an average intensity counts.
         average_range: [f64; 2],
+        /// The brick texel format asked for (`plan::texel_format`): 0 auto
+        /// (the data's own width), 1 float32, 2 float16, 3 unorm16, 4
+        /// unorm8. Its bytes are what the budget counts; a narrower format
+        /// adds its quantization error to every brick's. Dependent
+        /// components are always float32.
+        texel_format: i32,
         /// The isosurface values of blend mode 5 (vtkVolumeProperty's
         /// IsoSurfaceValues; 1 to 16 finite values), ignored by the others.
         isosurface_values: Vec<f64>,
@@ -455,6 +461,15 @@ mod bridge {
         blend_mode: i32,
         /// The samples are shaded (the plan's "shading" effect).
         shading: bool,
+        /// The brick textures' texel format as resolved for the data (1
+        /// float32: R32F, 2 float16: R16F, 3 unorm16: R16, 4 unorm8: R8;
+        /// `brick_texels_encoded`) and its decoding: a texture read `t`
+        /// (normalized for R16 and R8) is the value `texel_bias + texel_scale t`.
+        texel_format: i32,
+        texel_scale: f64,
+        texel_bias: f64,
+        /// Bytes of one texel on the GPU (all fields).
+        texel_bytes: usize,
         /// Every sample's opacity times this before the correction (1: none).
         opacity_scale: f64,
         /// With the effect "gradient-opacity": the function at magnitudes
@@ -780,6 +795,22 @@ mod bridge {
         /// `build_dependent_octree`'s octree: (colour, opacity) f32 pairs,
         /// texels x fastest, `2 x` the texel count (with the gradient border
         /// of `brick_texels_bordered` when `bordered`).
+        /// Brick `brick`'s texels in the selection's texel format
+        /// (`DrawListOutput::texel_format`), with the gradient border when
+        /// `bordered`: into `decoded` the values they decode to (f32, for
+        /// the block ranges) and into `encoded` what the GPU uploads, the
+        /// texel count of: bytes (unorm8), native-endian u16 (unorm16), or
+        /// f32 (float16: each the exact value of a half float, uploaded
+        /// into R16F; float32: the values).
+        fn brick_texels_encoded(
+            self: &SelectionHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            brick: usize,
+            bordered: bool,
+            decoded: &mut [f32],
+            encoded: &mut [u8],
+        ) -> Result<()>;
         fn brick_texels_dependent(
             self: &SelectionHandle,
             bytes: &[u8],

@@ -19,6 +19,8 @@ pub struct HybridOctreeHandle {
     pub(crate) shape: GridShape,
     pub(crate) input_bytes: usize,
     pub(crate) nan_samples: usize,
+    /// The image's scalar type (what the texel format resolves for).
+    pub(crate) scalar_type: crate::data::grid::ScalarType,
     /// Two dependent fields (see `dependent.rs`): the combined tree the
     /// selections refine; `hybrid.volume` is then the colour field's.
     pub(crate) dependent: Option<VolumeOctree>,
@@ -61,6 +63,7 @@ pub(crate) fn build_with(
             shape: *grid.shape(),
             input_bytes: grid.input_bytes(),
             nan_samples: grid.nan_count(),
+            scalar_type: grid.samples().scalar_type(),
             dependent: None,
             id: next_id(),
             surface_id: 0,

@@ -21,12 +21,15 @@ use crate::plan::crop::{ClippingPlane, Cropping, KeptRegion};
 use crate::plan::point_slabs::add_points;
 use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
+use crate::plan::texel_format::{TexelEncoding, TexelFormat};
 use crate::plan::{
     needs_gradients, plan, recrop, replan_effects, replan_transfer_2d, Blend, BlendMode, DrawList, Scene, SurfacePass,
 };
 use crate::points::Footprint;
 use crate::points::PointSet;
-use crate::render::texture::{brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into};
+use crate::render::texture::{
+    brick_texels_encoded_into, brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into,
+};
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
 use crate::transfer::{GradientOpacity, TransferFunction2D};
 use std::sync::{Arc, Mutex};
@@ -59,6 +62,9 @@ pub struct SelectionHandle {
     /// The 2D transfer function it was selected for (its DrawLists classify
     /// by it under Composite).
     transfer_2d: Option<TransferFunction2D>,
+    /// The brick textures' texel format, resolved for the data (its bytes
+    /// are what the selection counted).
+    texel: TexelEncoding,
     /// Selected from two dependent fields: its DrawLists plan them (`plan::dependent`).
     pub(crate) dependent: bool,
     /// The volumetric scattering of its DrawLists (`super::scattering`).
@@ -213,11 +219,12 @@ pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend>
 /// everywhere (under Composite with a 2D transfer function: unless the
 /// table is 0 over its range at every gradient), or when it holds the
 /// isovalue; with the octree's points, bytes go to textures or points
-/// ([`select_with_points`]). Also the 2D transfer function it read.
+/// ([`select_with_points`]). Also the 2D transfer function it read and
+/// the texel format it resolved (float32 for dependent components).
 pub(crate) fn select_with(
     octree: &HybridOctreeHandle,
     desc: &SelectDesc,
-) -> Result<(Selection, Option<TransferFunction2D>)> {
+) -> Result<(Selection, Option<TransferFunction2D>, TexelEncoding)> {
     let gradient_opacity =
         vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, octree.volume().value_range())?;
     // A 2D transfer function classifies one field: not two dependent ones (`plan::dependent`).
@@ -228,7 +235,18 @@ pub(crate) fn select_with(
     let mut options = select_options(&octree.shape, desc, gradient_opacity.as_ref(), transfer_2d.is_some())?;
     // Two dependent fields: two f32 texels a sample, the combined tree (see `dependent.rs`).
     let tree = octree.dependent.as_ref().unwrap_or(octree.volume());
-    options.bytes_per_texel *= if octree.dependent.is_some() { 2 } else { 1 };
+    let range = octree.volume().value_range();
+    let texel = match octree.dependent {
+        Some(_) => TexelEncoding::float32(octree.scalar_type, range),
+        None => TexelEncoding::resolve(
+            TexelFormat::from_vtk(desc.texel_format)?,
+            octree.scalar_type,
+            range,
+            octree.nan_samples,
+        )?,
+    };
+    options.bytes_per_texel = texel.bytes() * if octree.dependent.is_some() { 2 } else { 1 };
+    options.texel_error = texel.normalized_error(range);
     let hidden = gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     let tf = opacity_function(&desc.opacity_points)?;
     let iso = desc.has_isovalue.then_some(desc.isovalue);
@@ -248,7 +266,7 @@ pub(crate) fn select_with(
         Some(points) if octree.dependent.is_none() => select_with_points(tree, &options, visible, &points.mass),
         _ => select(tree, &options, visible),
     }?;
-    Ok((selection, transfer_2d))
+    Ok((selection, transfer_2d, texel))
 }
 
 /// The checked camera of `desc`.
@@ -284,6 +302,10 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         bordered: list.plan.bordered(),
         blend_mode: list.plan.blend.mode.to_vtk(),
         shading: list.plan.shading,
+        texel_format: TexelFormat::ALL.iter().position(|f| *f == list.texel.format).unwrap_or(1) as i32,
+        texel_scale: list.texel.scale,
+        texel_bias: list.texel.bias,
+        texel_bytes: list.texel.bytes() * if list.plan.dependent { 2 } else { 1 },
         opacity_scale: list.plan.opacity_scale,
         gradient_opacity_table: Vec::new(),
         gradient_opacity_end: 0.0,
@@ -384,7 +406,7 @@ fn surface_rgba(rgba: &[f64]) -> Result<[f64; 4]> {
 impl HybridOctreeHandle {
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
-            let (selection, transfer_2d) = select_with(self, desc)?;
+            let (selection, transfer_2d, texel) = select_with(self, desc)?;
             let blend = blend(desc, self.volume().value_range())?;
             Ok(Box::new(SelectionHandle {
                 blend,
@@ -398,6 +420,7 @@ impl HybridOctreeHandle {
                 gradient_opacity: Mutex::new(None),
                 region: region(&desc.region)?,
                 transfer_2d,
+                texel,
                 dependent: self.dependent.is_some(),
                 scattering: Mutex::new(None),
             }))
@@ -438,7 +461,8 @@ impl SelectionHandle {
         let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
         let list = replan_transfer_2d(list, self.transfer_2d.as_ref());
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
-        let list = crate::plan::dependent::plan_dependent(list, self.dependent);
+        let mut list = crate::plan::dependent::plan_dependent(list, self.dependent);
+        list.texel = self.texel;
         let scattering = *self.scattering.lock().unwrap_or_else(|e| e.into_inner());
         let list = crate::plan::scattering::plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
         Ok(recrop(list, self.region.as_ref(), &octree.shape))
@@ -568,6 +592,40 @@ impl SelectionHandle {
         texels: &mut [f32],
     ) -> Bridged<()> {
         self.texels(bytes, desc, brick, true, texels)
+    }
+
+    /// Brick `brick`'s texels in the selection's texel format (see the bridge's declaration).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn brick_texels_encoded(
+        &self,
+        bytes: &[u8],
+        desc: &GridDesc,
+        brick: usize,
+        bordered: bool,
+        decoded: &mut [f32],
+        encoded: &mut [u8],
+    ) -> Bridged<()> {
+        guarded(|| {
+            let grid = grid_unscanned(bytes, desc)?;
+            same_image(&self.shape, &grid)?;
+            let Some(b) = self.selection.bricks.get(brick) else {
+                return Err(Error::InvalidArgument(format!(
+                    "brick {brick} does not exist: the selection has {} bricks",
+                    self.selection.bricks.len()
+                )));
+            };
+            let how = (usize::from(bordered), self.blend.mode);
+            brick_texels_encoded_into(&grid, b, how, &self.texel, decoded, encoded)?;
+            // The shader decodes in f32: the values must be f32-resolvable, as f32 texels must.
+            check_f32_resolution(grid.samples().scalar_type(), self.value_range)?;
+            if let Some(i) = decoded.iter().position(|v| v.is_infinite()) {
+                return Err(Error::InvalidArgument(format!(
+                    "brick {brick} holds a value beyond the range of a 32-bit float (texel {i}): scale the data \
+                     into that range (e.g. with vtkImageShiftScale), or draw with CompositeOnCPU"
+                )));
+            }
+            Ok(())
+        })
     }
 
     /// Brick `brick`'s texels, with the gradient border when `bordered`.

@@ -29,6 +29,7 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         gradient_border: false,
         blend_mode: 0,
         average_range: [f64::MIN, f64::MAX],
+        texel_format: 0,
         isosurface_values: Vec::new(),
         gradient_opacity_points: Vec::new(),
         region: no_region(),

@@ -193,6 +193,9 @@ pub struct DrawList {
     pub transfer_2d: Option<TransferFunction2D>,
     /// Volumetric scattering (`Some` exactly when [`Plan::scattering`]).
     pub scattering: Option<crate::transfer::scattering::LitScattering>,
+    /// The brick textures' texel format (its bytes are the selection's
+    /// `bytes_per_texel`): Float32 unless the caller resolved another one.
+    pub texel: crate::plan::texel_format::TexelEncoding,
 }
 
 /// What the scene holds besides the volume.
@@ -491,6 +494,7 @@ pub fn draw_list(
         transfer_2d,
         region,
         scattering: None,
+        texel: Default::default(),
     })
 }
 

@@ -6,7 +6,7 @@
 //! a scene needs and what each draws, [`crop`] says which samples VTK's
 //! cropping and clipping planes keep, [`dependent`] plans a two-field volume
 //! with dependent components, [`slice`](mod@slice) is the Slice blend mode's
-//! plane, and [`draw_geometry`] makes the OpenGL
+//! plane, [`texel_format`] says what a texel costs and holds, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
 pub mod blend;
@@ -20,6 +20,7 @@ pub mod scattering;
 pub mod select;
 pub mod slab;
 pub mod slice;
+pub mod texel_format;
 
 pub use blend::{Blend, BlendMode};
 pub use draw_list::{

@@ -276,6 +276,9 @@ pub(crate) fn execute_counted(
     match (&textures.texels, opacity.map(|o| &o.texels)) {
         (Texels::F32(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
         (Texels::F64(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::U8(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::U16(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::F16(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
         (Texels::F32(t), Some(Texels::F32(o))) => {
             execute(t, Some(o), shadow, &textures.shape, list, tf, width, height, surface, points)
         }

@@ -78,6 +78,12 @@ fn check_dependent(list: &DrawList) -> Result<()> {
 /// [`Error::InvalidArgument`] for fields of different images, and as [`upload`].
 pub fn upload_dependent(colour: &Grid<'_>, opacity: &Grid<'_>, list: &DrawList) -> Result<DependentTextures> {
     check_fields(colour, opacity)?;
+    if list.texel.format != crate::plan::texel_format::TexelFormat::Float32 {
+        return Err(Error::InvalidArgument(format!(
+            "dependent components are drawn from float32 texels, not {}: resolve the list's texel format as float32",
+            list.texel.format.name()
+        )));
+    }
     // The gradient is the colour field's (module documentation).
     let (c, o) = (upload(colour, list)?, upload_field(opacity, list, false)?);
     let (colour, opacity) = match (&c.texels, &o.texels) {

@@ -73,6 +73,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         gradient_opacity: None,
         transfer_2d: None,
         scattering: None,
+        texel: Default::default(),
     }
 }
 
@@ -449,6 +450,9 @@ mod transfer2d_tests;
 
 #[path = "scattering_tests.rs"]
 mod scattering_tests;
+
+#[path = "texel_format_tests.rs"]
+mod texel_format_tests;
 
 /// A plan that names an effect none of whose inputs is set takes the
 /// general loop (every effect's branch) and draws exactly what the plain

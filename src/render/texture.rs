@@ -27,18 +27,64 @@ use crate::base::error::{Error, Result};
 use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, TypedGrid};
 use crate::octree::trilinear::lerp;
 use crate::plan::select::Brick;
+use crate::plan::texel_format::TexelFormat;
 use crate::plan::{BlendMode, DrawList};
 use rayon::prelude::*;
 
+mod encoded;
 mod gradient;
 mod pool;
 
-/// A stored texel: `f32` or `f64`, read back as `f64`.
+pub use encoded::{brick_texels_encoded_into, staging_bytes};
+
+/// A stored texel: `f32` or `f64` holding the value, or the `u8` or `u16`
+/// code of a normalized texel format ([`crate::plan::texel_format::TexelEncoding`]), read back as `f64`.
 pub(crate) trait Texel: Copy + Send + Sync + 'static {
+    /// A code, decoded after interpolation: `value = bias + step * code`
+    /// ([`Texture::at_texel`]); a float texel is the value itself.
+    const CODED: bool = false;
     /// The texel holding `v`, `None` when `v` is not exactly representable.
     fn exact(v: f64) -> Option<Self>;
-    /// The stored value.
+    /// The stored value (or code).
     fn get(self) -> f64;
+}
+
+impl Texel for u8 {
+    const CODED: bool = true;
+    #[inline]
+    fn exact(v: f64) -> Option<u8> {
+        (v.fract() == 0.0 && (0.0..=255.0).contains(&v)).then_some(v as u8)
+    }
+    #[inline(always)]
+    fn get(self) -> f64 {
+        f64::from(self)
+    }
+}
+
+/// The half float `t` of [`TexelFormat::Float16`], decoded `bias + scale t`.
+impl Texel for half::f16 {
+    const CODED: bool = true;
+    #[inline]
+    fn exact(v: f64) -> Option<half::f16> {
+        let t = half::f16::from_f64(v);
+        (t.to_f64() == v).then_some(t)
+    }
+    #[inline(always)]
+    fn get(self) -> f64 {
+        self.to_f64()
+    }
+}
+
+impl Texel for u16 {
+    const CODED: bool = true;
+    #[inline]
+    fn exact(v: f64) -> Option<u16> {
+        (v.fract() == 0.0 && (0.0..=65535.0).contains(&v)).then_some(v as u16)
+    }
+    #[inline(always)]
+    fn get(self) -> f64 {
+        f64::from(self)
+    }
 }
 
 impl Texel for f32 {
@@ -260,6 +306,10 @@ pub(crate) struct Texture<S> {
     /// `n - 1`, per axis.
     last: [f64; 3],
     data: Vec<S>,
+    /// The decoding of a coded texel (`value = bias + step * code`; 1 and 0
+    /// for float texels): `step = scale / L` of the [`crate::plan::texel_format::TexelEncoding`].
+    step: f64,
+    bias: f64,
     /// With gradients, the CPU compositor's lattice differences
     /// ([`Self::lattice_differences`]): not texture bytes a GPU holds,
     /// the executor's working memory (empty otherwise).
@@ -277,28 +327,42 @@ impl<S: Texel> Texture<S> {
     /// [`Self::copy`] for a picture of blend mode `mode`: a coarse brick of a
     /// MIP or MinIP holds its peak-keeping texels (`pool`); those modes are
     /// not shaded, so they have no gradient border.
+    #[cfg(test)]
     fn copy_for<T: Sample>(g: &TypedGrid<'_, T>, brick: &Brick, border: usize, mode: BlendMode) -> Option<Texture<S>> {
-        let data = match mode {
-            BlendMode::Mip | BlendMode::Minip if brick.stride > 1 && border == 0 => {
-                pool::pooled_values(g, brick, mode == BlendMode::Mip, S::exact)?
-            }
-            _ => texel_values(g, brick, border, S::exact)?,
-        };
-        let n = brick.texels.map(|n| n + 2 * border);
-        let (lo, hi, stride, last) = (brick.lo, brick.hi, brick.stride, n.map(|n| (n - 1) as f64));
-        Some(Texture { lo, hi, stride, n, border, last, data, lattice: Vec::new() })
+        Texture::coded(g, brick, border, mode, S::exact, (1.0, 0.0))
     }
 
-    /// [`Self::copy_for`], with the [`Self::lattice_differences`] when the
-    /// plan takes `gradients`.
-    fn prepared<T: Sample>(
+    /// [`Self::copy_for`] with each value stored by `f` (its code in a texel
+    /// format, decoded by `(step, bias)`).
+    fn coded<T: Sample>(
         g: &TypedGrid<'_, T>,
         brick: &Brick,
         border: usize,
         mode: BlendMode,
-        gradients: bool,
+        f: impl Fn(f64) -> Option<S>,
+        (step, bias): (f64, f64),
     ) -> Option<Texture<S>> {
-        let mut t = Texture::copy_for(g, brick, border, mode)?;
+        let data = match mode {
+            BlendMode::Mip | BlendMode::Minip if brick.stride > 1 && border == 0 => {
+                pool::pooled_values(g, brick, mode == BlendMode::Mip, f)?
+            }
+            _ => texel_values(g, brick, border, f)?,
+        };
+        let n = brick.texels.map(|n| n + 2 * border);
+        let (lo, hi, stride, last) = (brick.lo, brick.hi, brick.stride, n.map(|n| (n - 1) as f64));
+        Some(Texture { lo, hi, stride, n, border, last, data, step, bias, lattice: Vec::new() })
+    }
+
+    /// [`Self::coded`], with the [`Self::lattice_differences`] when the
+    /// plan takes `gradients`.
+    fn prepared<T: Sample>(
+        g: &TypedGrid<'_, T>,
+        brick: &Brick,
+        (border, mode, gradients): (usize, BlendMode, bool),
+        f: impl Fn(f64) -> Option<S>,
+        decode: (f64, f64),
+    ) -> Option<Texture<S>> {
+        let mut t = Texture::coded(g, brick, border, mode, f, decode)?;
         if gradients {
             t.lattice = t.lattice_differences();
         }
@@ -315,6 +379,8 @@ impl<S: Texel> Texture<S> {
             border: self.border,
             last: self.last,
             data,
+            step: self.step,
+            bias: self.bias,
             lattice: self.lattice.clone(),
         }
     }
@@ -366,7 +432,12 @@ impl<S: Texel> Texture<S> {
         let base = i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2];
         // The 8 texels lie in data[base ..= base + step0 + step1 + step2]: one bounds check.
         let d = &self.data[base..=base + step[0] + step[1] + step[2]];
-        lerp(bilinear(d, 0, step, t), bilinear(d, step[0], step, t), t[0])
+        let r = lerp(bilinear(d, 0, step, t), bilinear(d, step[0], step, t), t[0]);
+        if S::CODED {
+            self.bias + self.step * r
+        } else {
+            r
+        }
     }
 }
 
@@ -393,6 +464,12 @@ pub struct Textures {
 pub(crate) enum Texels {
     F32(Vec<Texture<f32>>),
     F64(Vec<Texture<f64>>),
+    /// Codes of [`TexelFormat::Unorm8`].
+    U8(Vec<Texture<u8>>),
+    /// Codes of [`TexelFormat::Unorm16`].
+    U16(Vec<Texture<u16>>),
+    /// Half floats of [`TexelFormat::Float16`].
+    F16(Vec<Texture<half::f16>>),
 }
 
 impl Textures {
@@ -401,15 +478,28 @@ impl Textures {
         match &self.texels {
             Texels::F32(t) => t.iter().map(|t| t.data.len() * 4).sum(),
             Texels::F64(t) => t.iter().map(|t| t.data.len() * 8).sum(),
+            Texels::U8(t) => t.iter().map(|t| t.data.len()).sum(),
+            Texels::U16(t) => t.iter().map(|t| t.data.len() * 2).sum(),
+            Texels::F16(t) => t.iter().map(|t| t.data.len() * 2).sum(),
         }
     }
 
-    /// The same textures stored as `f64` (exact: every `f32` is an `f64`).
+    /// The same textures stored as `f64` values (exact: every `f32` is an
+    /// `f64`, a code's decoded value is computed in `f64`).
     pub(crate) fn widened(self) -> Textures {
+        fn wide<S: Texel>(t: &[Texture<S>]) -> Vec<Texture<f64>> {
+            t.iter()
+                .map(|t| {
+                    let decode = |v: S| if S::CODED { t.bias + t.step * v.get() } else { v.get() };
+                    Texture { step: 1.0, bias: 0.0, ..t.with_data(t.data.iter().map(|&v| decode(v)).collect()) }
+                })
+                .collect()
+        }
         let texels = match self.texels {
-            Texels::F32(t) => {
-                Texels::F64(t.iter().map(|t| t.with_data(t.data.iter().map(|&v| f64::from(v)).collect())).collect())
-            }
+            Texels::F32(t) => Texels::F64(wide(&t)),
+            Texels::U8(t) => Texels::F64(wide(&t)),
+            Texels::U16(t) => Texels::F64(wide(&t)),
+            Texels::F16(t) => Texels::F64(wide(&t)),
             wide => wide,
         };
         Textures { shape: self.shape, texels }
@@ -425,6 +515,9 @@ impl Textures {
         let ok = match &self.texels {
             Texels::F32(t) => all(t, list),
             Texels::F64(t) => all(t, list),
+            Texels::U8(t) => all(t, list),
+            Texels::U16(t) => all(t, list),
+            Texels::F16(t) => all(t, list),
         };
         if ok {
             Ok(())
@@ -459,19 +552,53 @@ impl GridVisitor for Upload<'_> {
     type Output = Texels;
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Texels {
         let bricks = &self.0.bricks;
-        let border = usize::from(self.0.plan.bordered());
-        let mode = self.0.plan.blend.mode;
-        let gradients = self.1;
-        let f32s: Option<Vec<Texture<f32>>> =
-            bricks.par_iter().map(|d| Texture::prepared(&g, &d.brick, border, mode, gradients)).collect();
-        match f32s {
-            Some(t) => Texels::F32(t),
-            None => Texels::F64(
+        let how = (usize::from(self.0.plan.bordered()), self.0.plan.blend.mode, self.1);
+        let enc = self.0.texel;
+        let step = match enc.format.levels() {
+            0 => 1.0,
+            levels => enc.scale / f64::from(levels),
+        };
+        let code = |v: f64| enc.encode(v);
+        match enc.format {
+            TexelFormat::Unorm8 => Texels::U8(
                 bricks
                     .par_iter()
-                    .map(|d| Texture::prepared(&g, &d.brick, border, mode, gradients).expect("f64 holds f64"))
+                    .map(|d| Texture::prepared(&g, &d.brick, how, |v| Some(code(v) as u8), (step, enc.bias)))
+                    .map(|t| t.expect("every value has a code"))
                     .collect(),
             ),
+            TexelFormat::Unorm16 => Texels::U16(
+                bricks
+                    .par_iter()
+                    .map(|d| Texture::prepared(&g, &d.brick, how, |v| Some(code(v) as u16), (step, enc.bias)))
+                    .map(|t| t.expect("every value has a code"))
+                    .collect(),
+            ),
+            TexelFormat::Float16 => Texels::F16(
+                bricks
+                    .par_iter()
+                    .map(|d| {
+                        let half = |v| Some(half::f16::from_bits(code(v) as u16));
+                        Texture::prepared(&g, &d.brick, how, half, (enc.scale, enc.bias))
+                    })
+                    .map(|t| t.expect("every value has a code"))
+                    .collect(),
+            ),
+            TexelFormat::Auto | TexelFormat::Float32 => {
+                let f32s: Option<Vec<Texture<f32>>> =
+                    bricks.par_iter().map(|d| Texture::prepared(&g, &d.brick, how, f32::exact, (1.0, 0.0))).collect();
+                match f32s {
+                    Some(t) => Texels::F32(t),
+                    None => Texels::F64(
+                        bricks
+                            .par_iter()
+                            .map(|d| {
+                                Texture::prepared(&g, &d.brick, how, f64::exact, (1.0, 0.0)).expect("f64 holds f64")
+                            })
+                            .collect(),
+                    ),
+                }
+            }
         }
     }
 }
@@ -597,6 +724,7 @@ mod tests {
             transfer_2d: None,
             scattering: None,
             region: None,
+            texel: Default::default(),
         };
         let l = list(brick([0; 3], [4; 3], 1));
         let f64s: Vec<f64> = (0..125).map(|i| i as f64 / 10.0).collect();

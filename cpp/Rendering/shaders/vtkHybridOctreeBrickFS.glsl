@@ -100,6 +100,16 @@ uniform vec2 averageRange;
 #endif
 //VTK::Output::Dec
 
+// The brick texture's decoding: a read t (normalized for R8 and R16 codes)
+// is the value bias + scale t (src/plan/texel_format.rs; 1, 0 for R32F).
+uniform vec2 texelDecode; // scale, bias
+
+// The scalar at texel coordinates u (texel centres at whole numbers).
+float scalarAt(vec3 u)
+{
+  return texture(brickTexture, (u + vec3(0.5)) / texels).r * texelDecode.x + texelDecode.y;
+}
+
 // The primitive kinds (the vertex attribute kindMC, a whole number).
 const int SLICE = 0;
 const int SURFACE_TRIANGLE = 1;
@@ -110,7 +120,7 @@ const int GAUSSIAN_POINT = 4;
 #ifdef HO_GRADIENTS
 float texelAt(vec3 u)
 {
-  return texture(brickTexture, (u + vec3(0.5)) / texels).r;
+  return scalarAt(u);
 }
 
 // The gradient at texel coordinates u (border included): central differences
@@ -398,7 +408,7 @@ vec4 combined(vec4 a, vec4 b)
 float valueAt(vec3 p)
 {
   vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
-  return texture(brickTexture, (u + vec3(0.5)) / texels).r;
+  return scalarAt(u);
 }
 #endif
 
@@ -452,7 +462,7 @@ vec4 sampleAt(vec3 p, vec3 v)
 #else
   vec3 u = clamp((p - brickLo) * inverseStep, vec3(0.0), texels - vec3(1.0));
 #endif
-  float value = texture(brickTexture, (u + vec3(0.5)) / texels).r;
+  float value = scalarAt(u);
   if (isnan(value))
   {
     return vec4(0.0);
@@ -461,7 +471,7 @@ vec4 sampleAt(vec3 p, vec3 v)
   // The sample one step nearer the eye: p - v s / (v . forward), in the border when it leaves the brick.
   vec3 b = clamp((p - v * (sliceSpacing / dot(v, forward)) - brickLo) * inverseStep + vec3(1.0),
     vec3(0.0), texels - vec3(1.0));
-  vec4 crossed = crossings(texture(brickTexture, (b + vec3(0.5)) / texels).r, value);
+  vec4 crossed = crossings(scalarAt(b), value);
   if (crossed.a <= 0.0)
   {
     return vec4(0.0);

@@ -46,7 +46,11 @@ struct RenderReport {
     width: usize,
     height: usize,
     budget_bytes: usize,
+    /// Texture bytes as uploaded, at the texel format's width.
     texture_bytes: usize,
+    /// The texel format (`--texel-format` resolved for the data), its
+    /// decoding `bias + scale t` and quantization error (data units).
+    texel: hybrid_octree::plan::texel_format::TexelEncoding,
     bricks: usize,
     /// The selection's estimated error (`select::estimated_error`): the
     /// largest nodal error of the visible bricks, a fraction of the data
@@ -109,6 +113,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             height: args.scene.height,
             budget_bytes,
             texture_bytes: selection.texture_bytes,
+            texel: scene.texel,
             bricks: selection.bricks.len(),
             estimated_error: selection.estimated_error,
             passes: f.list.plan.passes.clone(),
@@ -142,9 +147,10 @@ fn print_text(r: &RenderReport) {
         println!("volume effects:  {}", r.effects.join(", "));
     }
     println!(
-        "bricks:          {} using {:.2} MB of a {:.2} MB budget, estimated error {:.4}",
+        "bricks:          {} using {:.2} MB of {} texels of a {:.2} MB budget, estimated error {:.4}",
         r.bricks,
         r.texture_bytes as f64 / 1e6,
+        r.texel.format.name(),
         r.budget_bytes as f64 / 1e6,
         r.estimated_error
     );

@@ -12,6 +12,7 @@ use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::crop::KeptRegion;
 use hybrid_octree::plan::point_slabs::add_points;
 use hybrid_octree::plan::scattering::plan_scattering;
+use hybrid_octree::plan::texel_format::{TexelEncoding, TexelFormat};
 use hybrid_octree::plan::{draw_list, plan, Blend, BlendMode, DrawList, Scene, SurfacePass};
 use hybrid_octree::points::{shade, Footprint, PointSet};
 use hybrid_octree::render::compositor::composite_shadowed;
@@ -88,6 +89,16 @@ pub struct SceneArgs {
     /// The Slice blend mode's plane.
     #[command(flatten)]
     pub slice: crate::slice::SliceArgs,
+    /// Brick texel format: auto (the data's own width: 8-bit data as unorm8,
+    /// 16-bit as unorm16, the rest float32), float32, float16, unorm16 or
+    /// unorm8. A narrower format holds more bricks in the budget at the price
+    /// of its quantization error, which the selection counts.
+    #[arg(long, default_value = "auto", value_parser = texel_format)]
+    pub texel_format: TexelFormat,
+}
+
+fn texel_format(s: &str) -> std::result::Result<TexelFormat, String> {
+    TexelFormat::parse(s).map_err(|e| e.to_string())
 }
 
 /// The `--gradient-opacity` points, checked ([`GradientOpacity::new`]).
@@ -144,6 +155,8 @@ pub struct Loaded {
     pub transfer_2d: Option<TransferFunction2D>,
     /// The Slice mode's plane in index space: the selection keeps the nodes it cuts.
     pub select_slice: Option<hybrid_octree::plan::SlicePlane>,
+    /// The brick textures' texel format, resolved for the data.
+    pub texel: TexelEncoding,
 }
 
 /// Builds the octree, the surface and the camera for `grid`.
@@ -188,6 +201,7 @@ pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<
         None => None,
     };
     let select_slice = plane.map(|p| p.to_index(shape));
+    let texel = TexelEncoding::resolve(args.texel_format, grid.samples().scalar_type(), (min, max), grid.nan_count())?;
     Ok(Loaded {
         octree,
         surface,
@@ -199,6 +213,7 @@ pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<
         select_region,
         transfer_2d,
         select_slice,
+        texel,
     })
 }
 
@@ -222,7 +237,8 @@ fn check_view(args: &SceneArgs) -> Result<()> {
 /// The selection's options for `scene` under `budget_bytes` and `tolerance`:
 /// the region of interest, the gradient border when the frame is shaded
 /// (Composite only), peak-keeping texels for MIP and MinIP, the nodes the
-/// cropping and clipping planes remove left out.
+/// cropping and clipping planes remove left out, the bytes and error of the
+/// scene's texel format.
 pub fn select_options(scene: &Loaded, args: &SceneArgs, budget_bytes: usize, tolerance: f64) -> SelectOptions {
     SelectOptions {
         roi: args.roi,
@@ -235,6 +251,8 @@ pub fn select_options(scene: &Loaded, args: &SceneArgs, budget_bytes: usize, tol
         pooled: scene.blend.mode.is_extremum(),
         region: scene.select_region,
         slice: scene.select_slice,
+        bytes_per_texel: scene.texel.bytes(),
+        texel_error: scene.texel.normalized_error(scene.octree.value_range()),
         ..SelectOptions::new(budget_bytes, tolerance)
     }
 }
@@ -284,6 +302,7 @@ pub fn frame(
     let slab_polygons_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let mut list = draw_list(&scene.octree, grid.shape(), selection, &scene.camera, &view, polygons.as_ref())?;
+    list.texel = scene.texel;
     if let Some((set, _)) = points {
         add_points(&mut list, grid.shape(), set)?;
     }

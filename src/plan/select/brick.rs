@@ -27,8 +27,12 @@ pub struct SelectOptions {
     pub tolerance: f64,
     /// Region of interest, refined first.
     pub roi: Option<Roi>,
-    /// Bytes per texel (4 for f32 textures).
+    /// Bytes per texel (4 for f32 textures; see [`crate::plan::texel_format`]).
     pub bytes_per_texel: usize,
+    /// The texel format's quantization error, normalised by the data range
+    /// ([`crate::plan::texel_format::TexelEncoding::normalized_error`]): added
+    /// to every brick's nodal error, `E_p + e_q` (0: exact texels).
+    pub texel_error: f64,
     /// Largest brick: `2^max_brick_log2` cells per axis.
     pub max_brick_log2: u32,
     /// Count one more texel on each side of every brick in its bytes: the
@@ -62,6 +66,7 @@ impl SelectOptions {
             tolerance,
             roi: None,
             bytes_per_texel: 4,
+            texel_error: 0.0,
             max_brick_log2: 7,
             gradient_border: false,
             pooled: false,

@@ -3,6 +3,7 @@
 
 use super::brick::Brick;
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
+use std::rc::Rc;
 
 /// The error mass of node `n` drawn at level `p`, `removed` of its squared
 /// error corrected by points:
@@ -63,8 +64,9 @@ pub(super) fn gain(removed: f64, added_bytes: f64) -> f64 {
 /// children cost nothing), whichever needs fewer bytes. A constant or smooth
 /// part of a node drops to a few texels and a transparent one to none, so
 /// the bytes go where the error is. Returns the bricks and how many
-/// transparent nodes were left out. Results are kept in `memo` by (node, p):
-/// they depend on nothing else within one selection.
+/// transparent nodes were left out ([`Form`]). Results are kept in `memo`
+/// by (node, p): they depend on nothing else within one selection, and are
+/// shared, not copied (a fine form of a large node holds many bricks).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn cheapest(
     octree: &VolumeOctree,
@@ -75,27 +77,65 @@ pub(super) fn cheapest(
     shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
-) -> (Vec<Brick>, usize) {
+) -> Rc<Form> {
     if let Some(known) = memo.borrow().get(&(n.id, p)) {
-        return known.clone();
+        return Rc::clone(known);
     }
     let q = (0..p).find(|&q| error_mass(n, q, 0.0, pooled) <= error_mass(n, p, 0.0, pooled)).unwrap_or(p);
     let own = brick_of(n.id, q);
-    let mut form = (vec![own], 0);
+    let own_mass = own.importance * error_mass(n, q, 0.0, pooled);
+    let mut form = Form { own: Some(own), children: Vec::new(), hidden: 0, bytes: own.bytes, mass: own_mass };
     if !(n.is_terminal() || p == 0) {
-        let (children, hidden, bytes) = children_forms(octree, n, p, own.bytes, brick_of, max_p, shows, memo, pooled);
+        let (children, hidden, bytes, mass) =
+            children_forms(octree, n, p, own.bytes, brick_of, max_p, shows, memo, pooled);
         if bytes < own.bytes {
-            form = (children, hidden);
+            form = Form { own: None, children, hidden, bytes, mass };
         }
     }
-    memo.borrow_mut().insert((n.id, p), form.clone());
+    let form = Rc::new(form);
+    memo.borrow_mut().insert((n.id, p), Rc::clone(&form));
     form
 }
 
+/// A node's [`cheapest`] form: the node's own brick, or its children's
+/// forms (shared, so a form costs its children count, not its bricks);
+/// the transparent nodes it leaves out, its bytes and its error mass
+/// `sum Imp(b) mass(b, p_b)` over its bricks ([`error_mass`]). Its bricks
+/// carry no points.
+#[derive(Debug)]
+pub(super) struct Form {
+    own: Option<Brick>,
+    children: Vec<Rc<Form>>,
+    pub hidden: usize,
+    pub bytes: usize,
+    pub mass: f64,
+}
+
+impl Form {
+    /// Calls `f` on each brick of the form, in order (children in octree order).
+    pub fn each(&self, f: &mut impl FnMut(&Brick)) {
+        if let Some(b) = &self.own {
+            f(b);
+        }
+        for c in &self.children {
+            c.each(f);
+        }
+    }
+
+    /// The bricks of `forms`, in order.
+    pub fn concat(forms: &[Rc<Form>]) -> Vec<Brick> {
+        let mut out = Vec::new();
+        for form in forms {
+            form.each(&mut |b| out.push(*b));
+        }
+        out
+    }
+}
+
 /// The children of `n` that show (not terminal, `p >= 1`), each in its
-/// [`cheapest`] form at `p - 1` (the stride of `n` at `p`): their bricks, the
-/// nodes left out (transparent or removed: `shows` is false), and their bytes. Stops early once the bytes
-/// reach `enough`.
+/// [`cheapest`] form at `p - 1` (the stride of `n` at `p`): their forms, the
+/// nodes left out (transparent or removed: `shows` is false), their bytes
+/// and their error mass. Stops early once the bytes reach `enough`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn children_forms(
     octree: &VolumeOctree,
@@ -107,25 +147,26 @@ pub(super) fn children_forms(
     shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
-) -> (Vec<Brick>, usize, usize) {
+) -> (Vec<Rc<Form>>, usize, usize, f64) {
     let mut children = Vec::new();
-    let (mut hidden, mut bytes) = (0, 0);
+    let (mut hidden, mut bytes, mut mass) = (0, 0, 0.0);
     for c in octree.children(n.id) {
         let cn = octree.node(c);
         if !shows(&cn) {
             hidden += 1;
             continue;
         }
-        let (bricks, h) = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, shows, memo, pooled);
-        bytes += bricks.iter().map(|b| b.bytes).sum::<usize>();
-        children.extend(bricks);
-        hidden += h;
+        let form = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, shows, memo, pooled);
+        bytes += form.bytes;
+        mass += form.mass;
+        hidden += form.hidden;
+        children.push(form);
         if bytes >= enough {
             break;
         }
     }
-    (children, hidden, bytes)
+    (children, hidden, bytes, mass)
 }
 
 /// [`cheapest`]'s results of one selection.
-pub(super) type Memo = std::cell::RefCell<std::collections::HashMap<(NodeId, usize), (Vec<Brick>, usize)>>;
+pub(super) type Memo = std::cell::RefCell<std::collections::HashMap<(NodeId, usize), Rc<Form>>>;

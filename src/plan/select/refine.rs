@@ -3,12 +3,13 @@
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
 use super::estimate::estimated_error;
-use super::mass::{cheapest, children_forms, error_mass, gain, Memo};
+use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
 use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+use std::rc::Rc;
 
 /// A refinement step in the queue.
 #[derive(Debug, Clone, Copy)]
@@ -142,6 +143,12 @@ fn check_options(options: &SelectOptions) -> Result<()> {
     if let Some(plane) = &options.slice {
         plane.check()?;
     }
+    if !(options.texel_error >= 0.0 && options.texel_error.is_finite()) {
+        return Err(Error::InvalidArgument(format!(
+            "texel quantization error {} must be a finite number >= 0 (a fraction of the data range)",
+            options.texel_error
+        )));
+    }
     if options.bytes_per_texel == 0 {
         return Err(Error::InvalidArgument("bytes per texel must be at least 1".into()));
     }
@@ -153,7 +160,31 @@ type Cut = std::collections::BTreeMap<NodeId, Brick>;
 
 /// A candidate step: its gain, the bricks that replace the brick, and the
 /// transparent nodes they leave out.
-type Candidate = (f64, Vec<Brick>, usize);
+type Candidate = (f64, Replacement, usize);
+
+/// The bricks of a step: made (a brick taking its points), or the shared
+/// [`cheapest`] forms they come from, copied only when the step is taken.
+enum Replacement {
+    Bricks(Vec<Brick>),
+    Forms(Vec<Rc<Form>>),
+}
+
+impl Replacement {
+    /// Bytes the bricks hold (textures and points).
+    fn cost(&self) -> usize {
+        match self {
+            Replacement::Bricks(b) => b.iter().map(Refiner::cost).sum(),
+            Replacement::Forms(f) => f.iter().map(|f| f.bytes).sum(),
+        }
+    }
+
+    fn into_bricks(self) -> Vec<Brick> {
+        match self {
+            Replacement::Bricks(b) => b,
+            Replacement::Forms(f) => Form::concat(&f),
+        }
+    }
+}
 
 /// One selection: its inputs and the memo of [`cheapest`] forms, shared by
 /// every step.
@@ -195,6 +226,8 @@ impl Refiner<'_> {
         if let Some(inv_range) = self.pooled().filter(|_| p < n.errors.len()) {
             b.error = b.error.max(((n.max - n.min) * inv_range) as f32);
         }
+        // The texels' quantization error, at every level alike (`E_p + e_q`).
+        b.error += self.options.texel_error as f32;
         b
     }
 
@@ -225,7 +258,7 @@ impl Refiner<'_> {
     }
 
     /// [`cheapest`] form of node `n` at level `p` in this selection.
-    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> (Vec<Brick>, usize) {
+    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> Rc<Form> {
         cheapest(
             self.octree,
             n,
@@ -241,7 +274,7 @@ impl Refiner<'_> {
     /// The best next step of a brick in the cut, if it still violates the
     /// tolerance: the best of [`Refiner::raise`], [`Refiner::split`] and
     /// [`Refiner::take_points`], if it removes any error.
-    fn next_step(&self, b: &Brick) -> Option<(Step, Vec<Brick>, usize)> {
+    fn next_step(&self, b: &Brick) -> Option<(Step, Replacement, usize)> {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
@@ -263,14 +296,15 @@ impl Refiner<'_> {
     /// (Looking past `p + 1` matters: across a sharp edge `e_p` stays near its
     /// maximum until full resolution, so one level alone may buy nothing.)
     fn raise(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+        let mass = self.mass(b);
         (b.p + 1..=self.max_p(n))
             .map(|q| {
-                let (up, hidden) = self.cheapest(n, q);
-                let (up_bytes, up_mass) =
-                    (up.iter().map(|u| u.bytes).sum::<usize>(), up.iter().map(|u| self.mass(u)).sum::<f64>());
-                (gain(self.mass(b) - up_mass, up_bytes as f64 - Self::cost(b) as f64), up, hidden)
+                let up = self.cheapest(n, q);
+                (gain(mass - up.mass, up.bytes as f64 - Self::cost(b) as f64), up)
             })
             .max_by(|x, y| x.0.total_cmp(&y.0))
+            .map(|(gain, up)| (gain, up.hidden, Replacement::Forms(vec![up])))
+            .map(|(gain, hidden, up)| (gain, up, hidden))
     }
 
     /// Split: the children at the same stride (`p - 1`), each in its
@@ -285,7 +319,7 @@ impl Refiner<'_> {
     /// `(removed by both) / (bytes of both)`.
     fn split(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
         (!n.is_terminal() && b.p > 0).then(|| {
-            let (children, hidden, added) = children_forms(
+            let (children, hidden, added, after) = children_forms(
                 self.octree,
                 n,
                 b.p,
@@ -296,27 +330,24 @@ impl Refiner<'_> {
                 &self.memo,
                 self.pooled(),
             );
-            let after: f64 = children.iter().map(|c| self.mass(c)).sum();
             let split_bytes = added as f64 - Self::cost(b) as f64;
-            let direct = gain(self.mass(b) - after, split_bytes);
-            let ahead = children
-                .iter()
-                .flat_map(|c| {
+            let mass = self.mass(b);
+            let direct = gain(mass - after, split_bytes);
+            let mut ahead: f64 = 0.0;
+            for form in &children {
+                form.each(&mut |c| {
                     let cn = self.octree.node(c.node);
-                    (c.p + 1..=self.max_p(&cn)).map(move |q| (c, cn, q))
-                })
-                .map(|(c, cn, q)| {
-                    let (up, _) = self.cheapest(&cn, q);
-                    let up_bytes = up.iter().map(|u| u.bytes).sum::<usize>() as f64 - Self::cost(c) as f64;
-                    let removed = self.mass(b) - after + self.mass(c) - up.iter().map(|u| self.mass(u)).sum::<f64>();
-                    if removed > 0.0 {
-                        removed / (split_bytes + up_bytes).max(1.0)
-                    } else {
-                        0.0
+                    for q in c.p + 1..=self.max_p(&cn) {
+                        let up = self.cheapest(&cn, q);
+                        let up_bytes = up.bytes as f64 - Self::cost(c) as f64;
+                        let removed = mass - after + self.mass(c) - up.mass;
+                        if removed > 0.0 {
+                            ahead = ahead.max(removed / (split_bytes + up_bytes).max(1.0));
+                        }
                     }
-                })
-                .fold(0.0, f64::max);
-            (direct.max(ahead), children, hidden)
+                });
+            }
+            (direct.max(ahead), Replacement::Forms(children), hidden)
         })
     }
 
@@ -328,7 +359,7 @@ impl Refiner<'_> {
             let bytes = count * pm.point_bytes;
             (count > 0 && removable > 0.0).then(|| {
                 let with = Brick { point_count: count, point_bytes: bytes, ..*b };
-                (gain(self.mass(b) - self.mass(&with), bytes as f64), vec![with], 0)
+                (gain(self.mass(b) - self.mass(&with), bytes as f64), Replacement::Bricks(vec![with]), 0)
             })
         })
     }
@@ -352,14 +383,14 @@ impl Refiner<'_> {
                 continue; // stale
             }
             let Some((_, replacement, hidden)) = self.next_step(&current) else { continue };
-            let added: usize = replacement.iter().map(Self::cost).sum();
+            let added = replacement.cost();
             if bytes - Self::cost(&current) + added > self.options.budget_bytes {
                 continue; // does not fit; cheaper steps of other nodes may
             }
             bytes = bytes - Self::cost(&current) + added;
             cut.remove(&step.node);
             skipped += hidden;
-            for r in replacement {
+            for r in replacement.into_bricks() {
                 cut.insert(r.node, r);
                 if let Some((s, _, _)) = self.next_step(&r) {
                     queue.push(s);
@@ -380,8 +411,8 @@ impl Refiner<'_> {
     fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Cut, usize) {
         let from_root = self.grow(vec![coarsest], 0);
         let fine = (1..=self.max_p(root)).rev().find_map(|p| {
-            let (bricks, hidden) = self.cheapest(root, p);
-            (bricks.iter().map(|b| b.bytes).sum::<usize>() <= self.options.budget_bytes).then_some((bricks, hidden))
+            let form = self.cheapest(root, p);
+            (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Rc::clone(&form)]), form.hidden))
         });
         let total_mass = |cut: &Cut| cut.values().map(|b| self.mass(b)).sum::<f64>();
         let meets = from_root.0.values().all(|b| Self::weighted(b) <= self.options.tolerance);
@@ -589,9 +620,14 @@ mod tests {
         for p in 1..=l {
             let own = brick_of(root.id, p);
             for shows in [&(|_: &NodeRef<'_>| true) as &dyn Fn(&NodeRef<'_>) -> bool, &|n| n.max > 0.5] {
-                let (bricks, _) = cheapest(&o, &root, p, &brick_of, &max_p, shows, &Memo::default(), None);
+                let form = cheapest(&o, &root, p, &brick_of, &max_p, shows, &Memo::default(), None);
+                let bricks = &Form::concat(&[Rc::clone(&form)]);
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
+                // The form's own sums are its bricks'.
+                let masses: f64 = bricks.iter().map(|b| error_mass(&o.node(b.node), b.p, 0.0, None)).sum();
+                assert_eq!(form.bytes, bytes);
+                assert!((form.mass - masses).abs() <= 1e-9 * masses.max(1e-30), "p {p}: {} vs {masses}", form.mass);
                 assert!(bytes <= own.bytes, "p {p}: {bytes} > {}", own.bytes);
                 assert!(mass <= root.squared_error(p) as f64 * (1.0 + 1e-5) + 1e-9, "p {p}");
             }

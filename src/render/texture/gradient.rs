@@ -66,7 +66,8 @@ impl<S: Texel> Texture<S> {
             (x(1, 0, 0), x(-1, 0, 0)),
             (x(0, 1, 0), x(0, -1, 0)),
         ];
-        [0, 1, 2].map(|a| (up_down[a].0 - up_down[a].1) / (2.0 * h[a]))
+        let step = if S::CODED { self.step } else { 1.0 };
+        [0, 1, 2].map(|a| step * (up_down[a].0 - up_down[a].1) / (2.0 * h[a]))
     }
 
     /// The lattice differences `D_a(i) = C(i + e_a) - C(i - e_a)` of
@@ -85,11 +86,13 @@ impl<S: Texel> Texture<S> {
         let n = self.n;
         let pitch = [1, n[0], n[0] * n[1]];
         let mut out = vec![[0.0f32; 3]; self.data.len()];
+        // A code's differences in values: times the decoding's step.
+        let step = if S::CODED { self.step } else { 1.0 };
         for k in 1..n[2].saturating_sub(1) {
             for j in 1..n[1].saturating_sub(1) {
                 for i in 1..n[0].saturating_sub(1) {
                     let o = i + pitch[1] * j + pitch[2] * k;
-                    out[o] = pitch.map(|p| (self.data[o + p].get() - self.data[o - p].get()) as f32);
+                    out[o] = pitch.map(|p| (step * (self.data[o + p].get() - self.data[o - p].get())) as f32);
                 }
             }
         }
@@ -138,7 +141,18 @@ mod tests {
             })
             .collect();
         let last = n.map(|n| (n - 1) as f64);
-        Texture { lo: [0; 3], hi: n.map(|n| n - 3), stride: 1, n, border: 1, last, data, lattice: Vec::new() }
+        Texture {
+            lo: [0; 3],
+            hi: n.map(|n| n - 3),
+            stride: 1,
+            n,
+            border: 1,
+            last,
+            data,
+            step: 1.0,
+            bias: 0.0,
+            lattice: Vec::new(),
+        }
     }
 
     /// The lattice differences give the general rule's gradient to the
