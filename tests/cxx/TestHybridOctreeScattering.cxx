@@ -14,7 +14,8 @@
  *               measured 0.0015, as the shaded picture's 0.0015),
  *               effects "shading,volume-scattering"; it differs from the
  *               shaded picture (RMSE > 0.01); blending 0 is no effect and the
- *               shaded picture exactly; Shade off: nothing of it.
+ *               shaded picture exactly; Shade off: nothing of it; under
+ *               Maximum Intensity: not drawn, one warning.
  *   gpu_scattering: the full volume in the budget against
  *               vtkGPUVolumeRayCastMapper with the same settings (sample
  *               distance 1, no jitter), headlight and light kit: RMSE < 0.005
@@ -93,6 +94,17 @@ int CpuMatch()
     check.Check(Rmse(Grab(scene.Window), shaded) < 1e-9, name + ": blending 0 again: shaded");
     check.Check(errors->Errors.empty() && errors->Warnings.empty(),
       name + ": no error or warning:\n" + errors->AllErrors());
+    // Under Maximum Intensity: not drawn, one warning naming it.
+    mapper->SetVolumetricScatteringBlending(1.0);
+    mapper->SetBlendModeToMaximumIntensity();
+    scene.Window->Render();
+    bool warned = false;
+    for (const std::string& w : errors->Warnings)
+    {
+      warned = warned || w.find("volumetric scattering") != std::string::npos;
+    }
+    check.Check(warned && std::string(mapper->GetLastEffects()).empty(),
+      name + ": MIP: no scattering, one warning:\n" + errors->AllErrors());
   }
   return check.Result();
 }
