@@ -735,6 +735,8 @@ fn bench_effects_measures_each_effect_against_the_plain_frame() {
         "shade+isosurface",
         "cropping",
         "clipping",
+        "scattering",
+        "scattering-full-reach",
     ];
     assert_eq!(rows.len(), names.len(), "{report}");
     assert_eq!(rows[0]["effect"], "plain");
@@ -777,6 +779,13 @@ fn bench_effects_measures_each_effect_against_the_plain_frame() {
         (passes("clipping"), effects("clipping")),
         (vec!["volume".to_string()], serde_json::json!(["clipping"]))
     );
+    for name in ["scattering", "scattering-full-reach"] {
+        assert_eq!(
+            (passes(name), effects(name)),
+            (vec!["volume-shaded".to_string()], serde_json::json!(["shading", "volume-scattering"])),
+            "{report}"
+        );
+    }
     let bytes = |name: &str| row(name)["texture_bytes"].as_u64().unwrap();
     for cut in ["cropping", "clipping"] {
         assert!(bytes(cut) < bytes("plain"), "{cut}: the removed bricks get no texture: {report}");

@@ -633,6 +633,54 @@ bool Selection::SetJittering(bool on, std::string& error) const
   return Guarded(error, [&] { HandleFor(this->Impl).set_jittering(on); });
 }
 
+bool Selection::SetScattering(const ScatteringDescription& scattering, std::string& error) const
+{
+  return Guarded(error, [&] {
+    hybrid_octree::ScatteringDesc desc;
+    desc.blending = scattering.Blending;
+    desc.reach = scattering.Reach;
+    desc.anisotropy = scattering.Anisotropy;
+    for (int k = 0; k < 3; ++k)
+    {
+      desc.headlight_ambient[k] = scattering.HeadlightAmbient[k];
+    }
+    desc.sample_distance = scattering.SampleDistance;
+    HandleFor(this->Impl).set_scattering(desc);
+  });
+}
+
+bool Selection::GetScatteringFrame(ScatteringFrame& frame, std::string& error) const
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::ScatteringFrameDesc f = HandleFor(this->Impl).scattering_frame();
+    frame.Blending = f.blending;
+    frame.Anisotropy = f.anisotropy;
+    frame.GradientScale = f.gradient_scale;
+    frame.Extent = f.extent;
+    frame.Distance = f.distance;
+    frame.ToVtk = f.to_vtk;
+    frame.MaxSteps = f.max_steps;
+    for (int k = 0; k < 3; ++k)
+    {
+      frame.HeadlightAmbient[k] = f.headlight_ambient[k];
+      frame.TextureCorner[k] = f.texture_corner[k];
+      frame.TextureSize[k] = f.texture_size[k];
+      frame.ShadowDims[k] = f.shadow_dims[k];
+      frame.ShadowScale[k] = f.shadow_scale[k];
+      frame.ShadowShift[k] = f.shadow_shift[k];
+    }
+  });
+}
+
+bool Selection::GetShadowVolume(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, float* texels, std::size_t count, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .shadow_volume_texels(ToSlice(bytes, byteCount), ToRust(grid), Out(texels, count));
+  });
+}
+
 bool Selection::Composite(const HybridOctree& octree, const CameraDescription& camera,
   const void* bytes, std::size_t byteCount, const GridDescription& grid,
   const CompositeScene& scene, std::size_t width, std::size_t height, float* rgba,

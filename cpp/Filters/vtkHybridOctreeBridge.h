@@ -211,6 +211,38 @@ struct ShadingDescription
   std::vector<double> LightSpecular;   ///< 3 per light: colour x intensity
 };
 
+/// Volumetric scattering (see ScatteringDesc in src/ffi/mod.rs): the mapper's
+/// VolumetricScatteringBlending [0, 2] and GlobalIlluminationReach [0, 1],
+/// vtkVolumeProperty's ScatteringAnisotropy [-1, 1], the headlight's ambient
+/// colour x intensity, VTK's sample distance (0: the reference spacing).
+struct ScatteringDescription
+{
+  double Blending = 0.0;
+  double Reach = 0.0;
+  double Anisotropy = 0.0;
+  double HeadlightAmbient[3] = { 1.0, 1.0, 1.0 };
+  double SampleDistance = 0.0;
+};
+
+/// What the brick shader's HO_SCATTERING variant reads (see
+/// ScatteringFrameDesc in src/ffi/mod.rs and src/render/scattering.rs).
+struct ScatteringFrame
+{
+  double Blending = 0.0;
+  double Anisotropy = 0.0;
+  double HeadlightAmbient[3] = { 0.0, 0.0, 0.0 };
+  double GradientScale = 0.0;     ///< 2 / (hi - lo): VTK's gradient length per world gradient
+  double TextureCorner[3] = {};   ///< octree frame position of VTK's texture point 0
+  double TextureSize[3] = {};     ///< the texture cube's size
+  double Extent = 0.0;            ///< the shadow rays' reach, texture units
+  double Distance = 0.0;          ///< VTK's sample distance d
+  double ToVtk = 1.0;             ///< d / d0
+  std::size_t ShadowDims[3] = {}; ///< the shadow volume's points per axis
+  double ShadowScale[3] = {};     ///< its texture coordinate: t * scale + shift
+  double ShadowShift[3] = {};
+  std::size_t MaxSteps = 0; ///< the most samples a shadow ray takes
+};
+
 /// Summary of a selection (see SelectionSummary in src/ffi/mod.rs).
 struct SelectionSummary
 {
@@ -658,6 +690,25 @@ public:
    * surface or points between the slices). False and `error` on failure.
    */
   bool SetJittering(bool on, std::string& error) const;
+
+  /**
+   * The volumetric scattering of the DrawLists and pictures made after this
+   * call (the plan's effects then say "volume-scattering" when it runs: Shade
+   * with a light, Composite, blending above 0). False and `error` on failure
+   * (a value out of its range).
+   */
+  bool SetScattering(const ScatteringDescription& scattering, std::string& error) const;
+
+  /// What the brick shader reads for the scattering last set. False and `error` on failure.
+  bool GetScatteringFrame(ScatteringFrame& frame, std::string& error) const;
+
+  /**
+   * The shadow volume of the image the octree was built from (`bytes`,
+   * `byteCount`, `grid`): the product of ScatteringFrame::ShadowDims floats,
+   * x fastest, into `texels` (`count` of them). False and `error` on failure.
+   */
+  bool GetShadowVolume(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    float* texels, std::size_t count, std::string& error) const;
 
   /**
    * The CPU compositor's picture of the DrawList (GetDrawList(octree,

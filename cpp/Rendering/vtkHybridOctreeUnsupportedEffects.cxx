@@ -2,6 +2,7 @@
 #include "vtkHybridOctreeTransfer2D.h"
 
 #include "vtkHybridOctreeSlice.h"
+#include "vtkHybridOctreeVolumeMapper.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
@@ -97,6 +98,20 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
       BlendModeName(mode) +
       " blend mode the component chosen with SetComponent() is drawn through the colour and "
       "scalar opacity functions; set the blend mode to Composite, or use " +
+      elsewhere);
+  }
+  // Volumetric scattering runs in Composite, one field through the 1D functions.
+  auto* hybrid = vtkHybridOctreeVolumeMapper::SafeDownCast(mapper);
+  const bool dependent = components == 2 && !property->GetIndependentComponents();
+  if (hybrid && hybrid->GetVolumetricScatteringBlending() > 0.0 && property->GetShade() &&
+    (mode != vtkVolumeMapper::COMPOSITE_BLEND ||
+      property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D || dependent))
+  {
+    on.push_back("volumetric scattering (VolumetricScatteringBlending; ParaView: Volumetric "
+                 "Scattering Blending) is drawn under the Composite blend mode with the 1D "
+                 "transfer functions of one field only: here the volume is drawn unscattered; "
+                 "set the blend mode to Composite without a 2D transfer function or separate "
+                 "opacity array, or use " +
       elsewhere);
   }
   if (components > 2 && !property->GetIndependentComponents())

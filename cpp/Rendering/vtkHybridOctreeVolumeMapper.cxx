@@ -5,6 +5,7 @@
 #include "vtkHybridOctreeCameraInput.h"
 #include "vtkHybridOctreeImageInput.h"
 #include "vtkHybridOctreeInteractiveReduction.h"
+#include "vtkHybridOctreeScattering.h"
 #include "vtkHybridOctreeSlice.h"
 #include "vtkHybridOctreeTransfer2D.h"
 #include "vtkHybridOctreeUnsupportedEffects.h"
@@ -302,6 +303,9 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   std::vector<double> GradientOpacity;
   /// The property's 2D transfer function in TF_2D mode (Prepare), and its texture.
   vtkHybridOctreeTransfer2D Transfer2D;
+  /// The frame's volumetric scattering (Prepare), and its shadow volume's texture.
+  ScatteringDescription ScatteringParameters;
+  vtkHybridOctreeScattering Scattering;
   /// Whether the resident brick textures carry gradient borders.
   bool BorderedTextures = false;
   /// The isosurface values of the Isosurface blend mode (the selection's).
@@ -833,6 +837,13 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
   this->Internals->Transfer2D.Update(property, this->Internals->Scalars,
     this->Internals->Grid.Component, this->Internals->Grid.Spacing, this->Internals->Grid.Dims,
     this->Transfer2DSampleDistance);
+  this->Internals->ScatteringParameters =
+    vtkHybridOctreeScattering::Describe(this->VolumetricScatteringBlending,
+      this->GlobalIlluminationReach, property, this->Internals->Shading,
+      this->ScatteringSampleDistance > 0.0
+        ? this->ScatteringSampleDistance
+        : vtkHybridOctreeTransfer2D::SmartSampleDistance(
+            this->Internals->Grid.Spacing, this->Internals->Grid.Dims));
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
@@ -870,6 +881,7 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   const bool ok = in.Frame->Selected->SetShading(in.Shading, error) &&
     in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) &&
     in.Frame->Selected->SetJittering(this->UseJittering != 0, error) &&
+    in.Frame->Selected->SetScattering(in.ScatteringParameters, error) &&
     in.Frame->Selected->GetDrawList(
       *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
   if (!ok)
@@ -1029,9 +1041,19 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     in.BorderedTextures = bordered;
     in.PooledTextures = pooled;
   }
+  // Scattering shades (VTK's model blends the gradient shading, identity or not).
+  const bool scatters = list.Effects.find("volume-scattering") != std::string::npos;
   ShadingDescription shading = in.Shading;
-  shading.Shade = list.Shading;
+  shading.Shade = list.Shading || scatters;
   in.Drawer.SetShading(shading);
+  if (scatters &&
+    !in.Scattering.Activate(window, selected, Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+      in.OctreeTime.GetMTime(), error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  in.Drawer.SetScattering(scatters ? &in.Scattering : nullptr);
   in.Drawer.SetIsosurfaces(isosurface ? in.Isosurfaces : std::vector<double>());
   in.Drawer.SetSlice(!list.SlicePlane.empty());
   in.Drawer.SetOpacityEffects(
@@ -1435,6 +1457,7 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   if (!in.Frame->Selected->SetShading(in.Shading, error) ||
     !in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) ||
     !in.Frame->Selected->SetJittering(this->UseJittering != 0, error) ||
+    !in.Frame->Selected->SetScattering(in.ScatteringParameters, error) ||
     !in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
       ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
       static_cast<std::size_t>(height), rgba->GetPointer(0), error))
@@ -1457,6 +1480,7 @@ void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   }
   in.Drawer.ReleaseGraphicsResources();
   in.Transfer2D.ReleaseGraphicsResources();
+  in.Scattering.ReleaseGraphicsResources();
   in.Target.ReleaseGraphicsResources(window);
   in.SurfaceDrawer.ReleaseGraphicsResources();
   this->Superclass::ReleaseGraphicsResources(window);

@@ -222,6 +222,26 @@ public:
 
   ///@{
   /**
+   * Volumetric scattering as vtkGPUVolumeRayCastMapper draws it (VTK 9.2;
+   * src/transfer/scattering.rs), with the property's Shade on, a light, and
+   * Composite blending: VolumetricScatteringBlending in [0, 2] (0 none, the
+   * default; 1 a blend of gradient shading and scattered light; 2 scattered
+   * light only), GlobalIlluminationReach in [0, 1] (the shadow rays'
+   * length), the property's ScatteringAnisotropy (Henyey-Greenstein).
+   * ScatteringSampleDistance is VTK's sample distance the model steps by
+   * (below 0, the default: vtkSmartVolumeMapper's still frames', ParaView's
+   * Volume; give vtkGPUVolumeRayCastMapper's to match that mapper).
+   */
+  vtkSetClampMacro(VolumetricScatteringBlending, double, 0.0, 2.0);
+  vtkGetMacro(VolumetricScatteringBlending, double);
+  vtkSetClampMacro(GlobalIlluminationReach, double, 0.0, 1.0);
+  vtkGetMacro(GlobalIlluminationReach, double);
+  vtkSetMacro(ScatteringSampleDistance, double);
+  vtkGetMacro(ScatteringSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * Points of the hybrid representation (paper 3): with UsePoints on, the
    * mapper also makes points where textures sampled every PointFactor (2, 4
    * or 8) samples underestimate the data by more than PointThreshold (a
@@ -359,6 +379,9 @@ protected:
   double SurfaceColor[3] = { 1.0, 1.0, 1.0 };
   double SurfaceOpacity = 1.0;
   double Transfer2DSampleDistance = -1.0;
+  double VolumetricScatteringBlending = 0.0;
+  double GlobalIlluminationReach = 0.0;
+  double ScatteringSampleDistance = -1.0;
   bool UsePoints = false;
   int PointFactor = 2;
   double PointThreshold = 0.1;

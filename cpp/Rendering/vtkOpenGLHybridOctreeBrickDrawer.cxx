@@ -1,4 +1,5 @@
 #include "vtkOpenGLHybridOctreeBrickDrawer.h"
+#include "vtkHybridOctreeScattering.h"
 
 #include "vtkHybridOctreeBrickFS.h"
 #include "vtkHybridOctreeBrickVS.h"
@@ -197,6 +198,10 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
   {
     return false;
   }
+  if (shade && this->Scattering)
+  {
+    this->Scattering->SetUniforms(this->Program);
+  }
   if (!this->GradientOpacityTable.empty() && !this->SetGradientOpacityUniforms(window, error))
   {
     return false;
@@ -243,6 +248,10 @@ std::string vtkOpenGLHybridOctreeBrickDrawer::VariantDefines() const
   if (this->Shading.Shade)
   {
     defines += "#define HO_SHADE\n#define HO_MAX_LIGHTS " + std::to_string(MaxLights) + "\n";
+  }
+  if (this->Shading.Shade && this->Scattering)
+  {
+    defines += "#define HO_SCATTERING\n";
   }
   if (!this->GradientOpacityTable.empty())
   {
@@ -510,6 +519,10 @@ void vtkOpenGLHybridOctreeBrickDrawer::Unbind()
   if (this->Transfer2DTable && this->Transfer2DTable->GetContext())
   {
     this->Transfer2DTable->Deactivate();
+  }
+  if (this->Scattering)
+  {
+    this->Scattering->Deactivate();
   }
 }
 

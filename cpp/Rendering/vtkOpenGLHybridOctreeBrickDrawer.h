@@ -82,6 +82,7 @@
 #include <string>
 #include <vector>
 
+class vtkHybridOctreeScattering;
 class vtkOpenGLHybridOctreeFloatTarget;
 class vtkMatrix4x4;
 class vtkOpenGLBufferObject;
@@ -195,6 +196,10 @@ public:
    */
   void SetTransfer2D(vtkTextureObject* table, const double axes[3]);
 
+  /// Volumetric scattering (the HO_SCATTERING variant, with shading), its
+  /// shadow volume activated; nullptr: none. Call before Bind().
+  void SetScattering(const vtkHybridOctreeScattering* scattering) { this->Scattering = scattering; }
+
   /**
    * Two dependent fields (the DrawList's "dependent-components"): the
    * brick textures hold (colour, opacity) pairs; each sample's colour is the
@@ -291,6 +296,7 @@ private:
   bool GradientOpacityUploaded = false;
   vtkSmartPointer<vtkTextureObject> GradientOpacityTexture;
   vtkTextureObject* Transfer2DTable = nullptr;
+  const vtkHybridOctreeScattering* Scattering = nullptr;
   double Transfer2DAxes[3] = { 0.0, 1.0, 1.0 };
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;

@@ -150,6 +150,18 @@ void vtkPVHybridOctreeRepresentation::SetPointFootprint(int footprint)
   this->Mapper()->SetPointFootprint(footprint);
 }
 
+void vtkPVHybridOctreeRepresentation::SetGlobalIlluminationReach(float reach)
+{
+  this->Mapper()->SetGlobalIlluminationReach(reach);
+  this->Modified();
+}
+
+void vtkPVHybridOctreeRepresentation::SetVolumetricScatteringBlending(float blending)
+{
+  this->Mapper()->SetVolumetricScatteringBlending(blending);
+  this->Modified();
+}
+
 // ---- Statistics -----------------------------------------------------------------
 
 int vtkPVHybridOctreeRepresentation::GetLastBricks()

@@ -55,6 +55,17 @@ public:
   ///@}
 
   ///@{
+  /// ParaView's Volume properties GlobalIlluminationReach and
+  /// VolumetricScatteringBlending: vtkImageVolumeRepresentation hands them to
+  /// a vtkSmartVolumeMapper only, so they are taken here and forwarded to
+  /// vtkHybridOctreeVolumeMapper (VolumeAnisotropy reaches it through the
+  /// vtkVolumeProperty). The base class's are hidden, not virtual: the
+  /// server manager calls these on this class.
+  void SetGlobalIlluminationReach(float reach);
+  void SetVolumetricScatteringBlending(float blending);
+  ///@}
+
+  ///@{
   /// Statistics of the last frame this process drew (0 or empty before one).
   int GetLastBricks();
   double GetLastTextureMB();

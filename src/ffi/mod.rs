@@ -31,6 +31,9 @@ mod points;
 mod render;
 #[cfg(test)]
 mod render_tests;
+mod scattering;
+#[cfg(test)]
+mod scattering_tests;
 #[cfg(test)]
 mod shade_tests;
 mod slice;
@@ -352,6 +355,46 @@ mod bridge {
         light_ambient: Vec<f64>,
         light_diffuse: Vec<f64>,
         light_specular: Vec<f64>,
+    }
+
+    /// Volumetric scattering (see `transfer::scattering`): the mapper's
+    /// VolumetricScatteringBlending [0, 2] and GlobalIlluminationReach [0, 1],
+    /// vtkVolumeProperty's ScatteringAnisotropy [-1, 1], and the headlight's
+    /// ambient colour times intensity (read under VTK's default lighting).
+    #[derive(Debug)]
+    struct ScatteringDesc {
+        blending: f64,
+        reach: f64,
+        anisotropy: f64,
+        headlight_ambient: [f64; 3],
+        /// VTK's sample distance, world units (0: the reference spacing).
+        sample_distance: f64,
+    }
+
+    /// What the brick shader's HO_SCATTERING variant reads (see `render::scattering`).
+    #[derive(Debug)]
+    struct ScatteringFrameDesc {
+        blending: f64,
+        anisotropy: f64,
+        headlight_ambient: [f64; 3],
+        /// VTK's shading-gradient length per unit of the world gradient, 2 / (hi - lo).
+        gradient_scale: f64,
+        /// World position of VTK's texture point 0 and the texture cube's world size.
+        texture_corner: [f64; 3],
+        texture_size: [f64; 3],
+        /// The shadow rays' reach extent, texture units.
+        extent: f64,
+        /// VTK's sample distance d, world units.
+        distance: f64,
+        /// d / d0: a table opacity (per reference spacing d0) to VTK's (per d).
+        to_vtk: f64,
+        /// The shadow volume's points per axis (`shadow_volume_texels`).
+        shadow_dims: [usize; 3],
+        /// Its texture coordinate of texture point t: t * shadow_scale + shadow_shift.
+        shadow_scale: [f64; 3],
+        shadow_shift: [f64; 3],
+        /// The most samples a shadow ray takes.
+        max_steps: usize,
     }
 
     /// A camera as vtkCamera gives it (world coordinates).
@@ -787,6 +830,20 @@ mod bridge {
         /// [0, 1]). The plan's effects then say "gradient-opacity", or
         /// "opacity-scale" for a constant other than 1.
         fn set_gradient_opacity(self: &SelectionHandle, points: &[f64]) -> Result<()>;
+        /// The volumetric scattering of the DrawLists and pictures made
+        /// after this call (errors: a value out of its range); the plan's
+        /// effects then say "volume-scattering" when it runs.
+        fn set_scattering(self: &SelectionHandle, scattering: &ScatteringDesc) -> Result<()>;
+        /// What the brick shader reads for the scattering last set.
+        fn scattering_frame(self: &SelectionHandle) -> Result<ScatteringFrameDesc>;
+        /// The shadow volume of the image the octree was built from into
+        /// `texels` (the product of `shadow_dims` floats, x fastest).
+        fn shadow_volume_texels(
+            self: &SelectionHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            texels: &mut [f32],
+        ) -> Result<()>;
 
         /// Jittering (VTK's UseJittering) of the DrawLists and pictures made
         /// after this call: the plan's effects then end with "jittering" when
@@ -839,8 +896,8 @@ mod bridge {
 use bridge::BuildProgress;
 pub use bridge::{
     BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
-    OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, SelectDesc, SelectionSummary, ShadingDesc,
-    SurfaceMode, SurfaceSummary,
+    OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, ScatteringDesc, ScatteringFrameDesc, SelectDesc,
+    SelectionSummary, ShadingDesc, SurfaceMode, SurfaceSummary,
 };
 use dependent::build_dependent_octree;
 use ftb::ftb_display;

@@ -45,7 +45,7 @@ pub struct SelectionHandle {
     octree_id: u64,
     pub(crate) shape: GridShape,
     /// The octree's value range (what 32-bit float texels must resolve).
-    value_range: (f64, f64),
+    pub(crate) value_range: (f64, f64),
     /// The SlabPolygons of the last translucent surface drawn, with its id.
     polygons: Mutex<Option<(u64, SlabPolygons)>>,
     /// The points the selection spent bytes on (the octree held points).
@@ -69,6 +69,8 @@ pub struct SelectionHandle {
     pub(crate) dependent: bool,
     /// Whether its DrawLists jitter ([`SelectionHandle::set_jittering`]).
     jittering: std::sync::atomic::AtomicBool,
+    /// The volumetric scattering of its DrawLists (`super::scattering`).
+    pub(crate) scattering: Mutex<Option<crate::transfer::Scattering>>,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -423,6 +425,7 @@ impl HybridOctreeHandle {
                 texel,
                 dependent: self.dependent.is_some(),
                 jittering: Default::default(),
+                scattering: Mutex::new(None),
             }))
         })
     }
@@ -463,6 +466,8 @@ impl SelectionHandle {
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
         let mut list = crate::plan::dependent::plan_dependent(list, self.dependent);
         list.texel = self.texel;
+        let scattering = *self.scattering.lock().unwrap_or_else(|e| e.into_inner());
+        let list = crate::plan::scattering::plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
         let list = recrop(list, self.region.as_ref(), &octree.shape);
         Ok(crate::plan::jitter::plan_jitter(list, self.jittering.load(std::sync::atomic::Ordering::Relaxed)))
     }
@@ -541,8 +546,17 @@ impl SelectionHandle {
                 None => Vec::new(),
             };
             let points = self.points.as_deref().map(|set| (set, shades.as_slice(), footprint(gaussian_points)));
-            let image =
-                crate::render::compositor::composite_with_points(&textures, &list, &tf, width, height, drawn, points)?;
+            let shadow = crate::render::scattering::shadow_for(&grid, &list)?;
+            let image = crate::render::compositor::composite_shadowed(
+                &textures,
+                shadow.as_ref(),
+                &list,
+                &tf,
+                width,
+                height,
+                drawn,
+                points,
+            )?;
             check_len("the picture", rgba, 4 * image.rgba.len())?;
             for (pixel, to) in image.rgba.iter().zip(rgba.chunks_exact_mut(4)) {
                 to.copy_from_slice(pixel);

@@ -107,6 +107,9 @@ pub struct Plan {
     /// Each pixel's samples moved along its ray by a fixed fraction of the
     /// slice spacing ([`crate::plan::jitter`], effect `jittering`, last of [`Plan::effects`]).
     pub jitter: bool,
+    /// Volumetric scattering (the DrawList's [`DrawList::scattering`],
+    /// [`crate::plan::scattering`]): shadow rays towards the lights.
+    pub scattering: bool,
 }
 
 impl Plan {
@@ -114,7 +117,7 @@ impl Plan {
     /// opacity or the 2D transfer function): brick textures then carry one
     /// border texel per side.
     pub fn gradients(&self) -> bool {
-        self.shading || self.gradient_opacity || self.transfer_2d
+        self.shading || self.gradient_opacity || self.transfer_2d || self.scattering
     }
 
     /// Whether brick textures carry one border texel per side: gradients
@@ -191,6 +194,8 @@ pub struct DrawList {
     /// The 2D transfer function (`Some` exactly when [`Plan::transfer_2d`]);
     /// brick textures then carry the gradient border.
     pub transfer_2d: Option<TransferFunction2D>,
+    /// Volumetric scattering (`Some` exactly when [`Plan::scattering`]).
+    pub scattering: Option<crate::transfer::scattering::LitScattering>,
     /// The brick textures' texel format (its bytes are the selection's
     /// `bytes_per_texel`): Float32 unless the caller resolved another one.
     pub texel: crate::plan::texel_format::TexelEncoding,
@@ -250,6 +255,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         dependent: false,
         effects: Vec::new(),
         jitter: false,
+        scattering: false,
     };
     if volume {
         plan.passes.push(scene.blend.mode.pass());
@@ -297,6 +303,9 @@ fn plan_effects(plan: &mut Plan, lighting: Option<&Lighting>, gradient_opacity: 
     }
 }
 
+/// The effect of volumetric scattering ([`crate::plan::scattering::EFFECT`]).
+pub(crate) const SCATTERING_EFFECT: &str = "volume-scattering";
+
 /// The effect of two dependent fields ([`crate::plan::dependent::EFFECT`]).
 pub(crate) const DEPENDENT_EFFECT: &str = "dependent-components";
 
@@ -305,7 +314,7 @@ pub(crate) const JITTER_EFFECT: &str = "jittering";
 
 /// The plan's [`Plan::effects`]: what each sample does besides its
 /// classification, in the order applied (`dependent-components` or
-/// `transfer-2d`, then `gradient-opacity` or `opacity-scale`, then `shading`), then what `region` (the cropping and
+/// `transfer-2d`, then `gradient-opacity` or `opacity-scale`, then `shading`, then `volume-scattering`), then what `region` (the cropping and
 /// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`), then `jittering`.
 pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     let mut effects = Vec::new();
@@ -322,6 +331,9 @@ pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     }
     if plan.shading {
         effects.push("shading".to_string());
+    }
+    if plan.scattering {
+        effects.push(SCATTERING_EFFECT.to_string());
     }
     effects.extend(region.map(|r| r.effects()).unwrap_or_default());
     if plan.jitter {
@@ -491,6 +503,7 @@ pub fn draw_list(
         gradient_opacity,
         transfer_2d,
         region,
+        scattering: None,
         texel: Default::default(),
     })
 }

@@ -18,6 +18,7 @@ mod draw_list;
 pub mod jitter;
 pub mod order;
 pub mod point_slabs;
+pub mod scattering;
 pub mod select;
 pub mod slab;
 pub mod slice;

@@ -104,6 +104,7 @@ use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_list, check_size};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
+use super::scattering::{ScatterFrame, ShadowVolume};
 use super::shade::normal;
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
@@ -200,7 +201,8 @@ pub fn composite(
 ) -> Result<Image> {
     check_size(width, height)?;
     check_list(list, grid.shape(), surface.map(|s| s.0))?;
-    composite_textures(&upload(grid, list)?, list, tf, width, height, surface)
+    let shadow = super::scattering::shadow_for(grid, list)?;
+    composite_shadowed(&upload(grid, list)?, shadow.as_ref(), list, tf, width, height, surface, None)
 }
 
 /// Composites `list` from its uploaded `textures` (see [`composite`]).
@@ -232,11 +234,33 @@ pub fn composite_with_points(
     surface: Option<(&Surface, [f32; 4])>,
     points: Option<DrawnPoints<'_>>,
 ) -> Result<Image> {
+    composite_shadowed(textures, None, list, tf, width, height, surface, points)
+}
+
+/// [`composite_with_points`] of a list that may scatter light, its shadow
+/// rays reading `shadow` ([`super::scattering::shadow_for`] of the grid).
+///
+/// # Errors
+///
+/// As [`composite_with_points`], and [`crate::Error::InvalidArgument`] when
+/// the list scatters without a shadow volume or with one of another grid.
+#[allow(clippy::too_many_arguments)]
+pub fn composite_shadowed(
+    textures: &Textures,
+    shadow: Option<&ShadowVolume>,
+    list: &DrawList,
+    tf: &TransferFunction,
+    width: usize,
+    height: usize,
+    surface: Option<(&Surface, [f32; 4])>,
+    points: Option<DrawnPoints<'_>>,
+) -> Result<Image> {
     check_size(width, height)?;
     check_list(list, &textures.shape, surface.map(|s| s.0))?;
     check_points(list, points.map(|p| (p.0, p.1)))?;
     textures.check(list)?;
-    Ok(execute_counted(textures, None, list, tf, width, height, surface, points)?.0)
+    super::scattering::check_shadow(list, shadow)?;
+    Ok(execute_counted(textures, None, shadow, list, tf, width, height, surface, points)?.0)
 }
 
 /// The per-sample work a picture did: what the tests count to show that
@@ -249,11 +273,13 @@ pub(crate) struct Counts {
     pub jittered: usize,
 }
 
-/// [`composite_with_points`] on checked inputs, and the work it did.
+/// [`composite_with_points`] on checked inputs (`shadow`: what the
+/// scattering's shadow rays read, [`super::scattering`]), and the work it did.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn execute_counted(
     textures: &Textures,
     opacity: Option<&Textures>,
+    shadow: Option<&ShadowVolume>,
     list: &DrawList,
     tf: &TransferFunction,
     width: usize,
@@ -262,16 +288,16 @@ pub(crate) fn execute_counted(
     points: Option<DrawnPoints<'_>>,
 ) -> Result<(Image, Counts)> {
     match (&textures.texels, opacity.map(|o| &o.texels)) {
-        (Texels::F32(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::F64(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::U8(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::U16(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::F16(t), None) => execute(t, None, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::F32(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::F64(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::U8(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::U16(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
+        (Texels::F16(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
         (Texels::F32(t), Some(Texels::F32(o))) => {
-            execute(t, Some(o), &textures.shape, list, tf, width, height, surface, points)
+            execute(t, Some(o), shadow, &textures.shape, list, tf, width, height, surface, points)
         }
         (Texels::F64(t), Some(Texels::F64(o))) => {
-            execute(t, Some(o), &textures.shape, list, tf, width, height, surface, points)
+            execute(t, Some(o), shadow, &textures.shape, list, tf, width, height, surface, points)
         }
         _ => Err(crate::Error::InvalidArgument(
             "the colour and opacity textures are stored in different types: upload both with render::dependent".into(),
@@ -291,7 +317,7 @@ pub(crate) fn composite_counting_gradients(
     check_size(width, height)?;
     check_list(list, &textures.shape, None)?;
     textures.check(list)?;
-    execute_counted(textures, None, list, tf, width, height, None, None).map(|(i, c)| (i, c.gradients))
+    execute_counted(textures, None, None, list, tf, width, height, None, None).map(|(i, c)| (i, c.gradients))
 }
 
 /// [`composite_textures`], and the work it did ([`Counts`]).
@@ -306,7 +332,7 @@ pub(crate) fn composite_counting(
     check_size(width, height)?;
     check_list(list, &textures.shape, None)?;
     textures.check(list)?;
-    execute_counted(textures, None, list, tf, width, height, None, None)
+    execute_counted(textures, None, None, list, tf, width, height, None, None)
 }
 
 /// The points a DrawList draws: the set, each point's shade (one per point
@@ -341,6 +367,7 @@ fn check_points(list: &DrawList, points: Option<(&PointSet, &[PointShade])>) -> 
 fn execute<S: Texel>(
     textures: &[Texture<S>],
     opacity: Option<&[Texture<S>]>,
+    shadow: Option<&ShadowVolume>,
     shape: &GridShape,
     list: &DrawList,
     tf: &TransferFunction,
@@ -387,7 +414,9 @@ fn execute<S: Texel>(
     let transfer_2d = list.transfer_2d.as_ref().filter(|_| list.plan.transfer_2d);
     let opacity_scale = list.plan.opacity_scale;
     let jitter = list.plan.jitter.then(|| crate::plan::jitter::period(list));
+    let scattering = super::scattering::frame(list, &shape, shadow)?;
     let plain = !crate::plan::jitter::other_effects(&list.plan)
+        && scattering.is_none()
         && opacity.is_none()
         && transfer_2d.is_none()
         && lighting.is_none()
@@ -408,6 +437,7 @@ fn execute<S: Texel>(
         isosurfaces,
         gradient_opacity,
         transfer_2d,
+        scattering,
         plain,
         opacity_scale,
         jitter,
@@ -518,6 +548,8 @@ struct Executor<'a, S> {
     gradient_opacity: Option<&'a GradientOpacity>,
     /// The 2D transfer function (`None`: the 1D function classifies).
     transfer_2d: Option<&'a TransferFunction2D>,
+    /// Volumetric scattering and the volume its shadow rays read (`None`: none).
+    scattering: Option<(ScatterFrame<'a>, &'a ShadowVolume)>,
     /// True when the plan runs no effect and composites: a sample is the
     /// transfer function's colour and opacity alone.
     plain: bool,
@@ -719,13 +751,13 @@ impl<S: Texel> Executor<'_, S> {
         let u = add(ua, scale(ub, dz));
         let v = brick.texture.at_texel(u);
         match self.isosurfaces {
-            None => acc = self.sample(brick, u, v, brick.ratio, pr, acc, scratch),
+            None => acc = self.sample(brick, u, v, brick.ratio, (pr, z), acc, scratch),
             Some(blend) => {
                 // The values crossed since the sample one step nearer the eye, uncorrected.
                 let d = brick.draw.slice_spacing;
                 let before = brick.texture.at_texel(sub(u, scale(ub, d)));
                 for c in blend.crossings(before, v) {
-                    acc = self.sample(brick, u, c, 1.0, pr, acc, scratch);
+                    acc = self.sample(brick, u, c, 1.0, (pr, z), acc, scratch);
                 }
             }
         }
@@ -741,7 +773,7 @@ impl<S: Texel> Executor<'_, S> {
     /// `acc` with the sample at texel coordinates `u` of value `value` (the
     /// texel's, or an isovalue crossed) under it: transfer function, the
     /// plan's effects ([`Self::effects`]), opacity corrected by
-    /// `ratio = d / d0` (1 for an isovalue).
+    /// `ratio = d / d0` (1 for an isovalue); the sample is the ray's point at depth `at.1`.
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn sample(
@@ -750,7 +782,7 @@ impl<S: Texel> Executor<'_, S> {
         u: [f64; 3],
         value: f64,
         ratio: f64,
-        pr: &PixelRay,
+        at: (&PixelRay, f64),
         acc: Rgba,
         scratch: &mut Scratch,
     ) -> Rgba {
@@ -768,7 +800,20 @@ impl<S: Texel> Executor<'_, S> {
         if a <= 0.0 {
             return acc;
         }
-        let (rgb, a) = self.effects(brick.texture, u, grad, [r, gr, bl], a, pr.ray.direction, scratch);
+        let pr = at.0;
+        let (rgb, a) = match &self.scattering {
+            None => self.effects(brick.texture, u, grad, [r, gr, bl], a, pr.ray.direction, scratch),
+            Some((frame, shadow)) => {
+                let g = grad.unwrap_or_else(|| self.gradient(brick.texture, u, scratch));
+                let p = at_depth(&pr.ray, pr.z_origin, pr.cos, at.1);
+                let rgb = frame.colour(p, [r, gr, bl], a, g, pr.ray.direction, |t| {
+                    super::scattering::opacity(&self.lut, shadow.value_at_index(frame.index(t)))
+                });
+                // The opacity after the colour: VTK blends with the transfer function's.
+                let scale = self.gradient_opacity.map_or(1.0, |f| f64::from(f.eval(dot(g, g).sqrt())));
+                (rgb, a * self.opacity_scale * scale)
+            }
+        };
         if a > 0.0 {
             under(acc, rgb, correct_opacity(a, ratio))
         } else {

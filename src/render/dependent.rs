@@ -115,7 +115,7 @@ pub fn composite_dependent(
     check_list(list, &textures.colour.shape, None)?;
     textures.colour.check(list)?;
     textures.opacity.check(list)?;
-    Ok(execute_counted(&textures.colour, Some(&textures.opacity), list, tf, width, height, None, None)?.0)
+    Ok(execute_counted(&textures.colour, Some(&textures.opacity), None, list, tf, width, height, None, None)?.0)
 }
 
 /// The full-resolution reference ([`super::reference::reference_blend`],

@@ -24,6 +24,7 @@ mod intensity;
 pub mod metrics;
 pub mod reference;
 mod sample;
+pub mod scattering;
 mod shade;
 pub mod texture;
 mod transfer2d;

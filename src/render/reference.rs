@@ -86,6 +86,10 @@ pub struct ReferenceOptions<'a> {
     /// ScalarOpacityUnitDistance); `None`: the grid's reference spacing.
     /// A resampled copy of a volume drawn with the original's `d0` keeps its opacity per length.
     pub opacity_unit: Option<f64>,
+    /// Volumetric scattering (Composite, with [`Self::lighting`]; not run
+    /// when [`crate::plan::scattering::scatters`] would not): shadow rays
+    /// through the full grid ([`super::scattering`]).
+    pub scattering: Option<&'a crate::transfer::Scattering>,
 }
 
 /// Ray-casts `grid` classified by `tf`, seen by `camera`, into a
@@ -155,7 +159,19 @@ pub(crate) fn reference_fields(
         None => None,
     };
     let lighting = lighting.as_ref();
+    if let Some(s) = options.scattering {
+        s.check()?;
+    }
+    let scatters = blend.mode == BlendMode::Composite
+        && options.scattering.is_some_and(|s| s.runs())
+        && lighting
+            .is_some_and(|l| !matches!(&l.lights, crate::transfer::lighting::Lights::Directional(v) if v.is_empty()));
+    let scattering = match (options.scattering, lighting) {
+        (Some(s), Some(l)) if scatters => Some(super::scattering::ScatterFrame::new(s, l, camera.position, &shape, d0)),
+        _ => None,
+    };
     Ok(grid.visit(Caster {
+        scattering,
         tf,
         camera,
         width,
@@ -190,6 +206,8 @@ struct Caster<'a> {
     region: Option<&'a KeptRegion>,
     /// The opacity field of two dependent fields (`None`: the opacity is the grid's).
     opacity: Option<&'a Grid<'a>>,
+    /// Volumetric scattering (`None`: none).
+    scattering: Option<super::scattering::ScatterFrame<'a>>,
 }
 
 impl GridVisitor for Caster<'_> {
@@ -270,7 +288,10 @@ impl Caster<'_> {
                             f64::from(self.tf.opacity(trilinear(self.shape.dims, u, |i, j, k| o.value(i, j, k))))
                         };
                     }
-                    let (rgb, a) = self.effects(g, u, grad, [r, gr, b], a, ray.direction);
+                    let (rgb, a) = match &self.scattering {
+                        Some(frame) if a > 0.0 => self.scattered(g, frame, p, u, grad, [r, gr, b], a, ray.direction),
+                        _ => self.effects(g, u, grad, [r, gr, b], a, ray.direction),
+                    };
                     if a > 0.0 {
                         under(acc, rgb, correct_opacity(a, ratio))
                     } else {
@@ -297,6 +318,35 @@ impl Caster<'_> {
 }
 
 impl Caster<'_> {
+    /// Colour and opacity of the sample at world point `p` (index point `u`)
+    /// under volumetric scattering: the colour of [`super::scattering`] with
+    /// shadow rays through the full grid, the opacity times the gradient opacity.
+    #[allow(clippy::too_many_arguments)]
+    fn scattered<T: Sample>(
+        &self,
+        g: &TypedGrid<'_, T>,
+        frame: &super::scattering::ScatterFrame<'_>,
+        p: [f64; 3],
+        u: [f64; 3],
+        grad: Option<[f64; 3]>,
+        c: [f64; 3],
+        a: f64,
+        view: [f64; 3],
+    ) -> ([f64; 3], f64) {
+        let grad = grad.unwrap_or_else(|| gradient(|v| grid_value(g, v), u, self.shape.spacing));
+        let rgb = frame.colour(p, c, a, grad, view, |t| {
+            let v = grid_value(g, frame.index(t));
+            if v.is_nan() {
+                0.0
+            } else {
+                f64::from(self.tf.opacity(v))
+            }
+        });
+        let scale =
+            self.gradient_opacity.map_or(1.0, |f| f64::from(f.eval(crate::geometry::vec3::dot(grad, grad).sqrt())));
+        (rgb, a * scale)
+    }
+
     /// Colour `c` and opacity `a` of the sample at index point `u` after the
     /// gradient opacity and the shading (module documentation); `grad` the
     /// gradient when already taken.
@@ -359,6 +409,7 @@ mod tests {
                     transfer_2d: None,
                     region: None,
                     opacity_unit: None,
+                    scattering: None,
                 },
             )
             .unwrap();
@@ -375,6 +426,7 @@ mod tests {
             transfer_2d: None,
             region: None,
             opacity_unit: None,
+            scattering: None,
         };
         assert!(reference(&grid, &tf, &camera, 4, 4, &bad).unwrap_err().to_string().contains("positive"));
         assert!(reference(&grid, &tf, &camera, 0, 4, &ReferenceOptions::default()).is_err());
@@ -404,6 +456,7 @@ mod tests {
                 transfer_2d: None,
                 region: None,
                 opacity_unit: None,
+                scattering: None,
             };
             let img = reference(&grid, &tf, &camera, 3, 3, &options).unwrap();
             let p = img.rgba[4].map(|v| v as f64);

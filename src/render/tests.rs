@@ -61,6 +61,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         dependent: false,
         effects: Vec::new(),
         jitter: false,
+        scattering: false,
     };
     DrawList {
         plan,
@@ -72,6 +73,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         region: None,
         gradient_opacity: None,
         transfer_2d: None,
+        scattering: None,
         texel: Default::default(),
     }
 }
@@ -238,6 +240,7 @@ fn opaque_surface_matches_the_reference() {
         transfer_2d: None,
         region: None,
         opacity_unit: None,
+        scattering: None,
     };
     let truth = reference(&grid, &tf, &camera, 64, 64, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
@@ -296,6 +299,7 @@ fn translucent_batches_are_blended_inside_their_slab() {
         transfer_2d: None,
         region: None,
         opacity_unit: None,
+        scattering: None,
     };
     let truth = reference(&grid, &tf, &camera, 6, 6, &options).unwrap();
     let m = compare(&image, &truth).unwrap();
@@ -404,6 +408,7 @@ fn the_pipeline_tracks_the_reference() {
             transfer_2d: None,
             region: None,
             opacity_unit: None,
+            scattering: None,
         };
         let truth = reference(&grid, &tf, &camera, 96, 96, &options).unwrap();
         let m = compare(&image, &truth).unwrap();
@@ -446,6 +451,9 @@ mod gradient_opacity_tests;
 
 #[path = "transfer2d_tests.rs"]
 mod transfer2d_tests;
+
+#[path = "scattering_tests.rs"]
+mod scattering_tests;
 
 #[path = "texel_format_tests.rs"]
 mod texel_format_tests;

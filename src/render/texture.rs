@@ -704,6 +704,7 @@ mod tests {
                 dependent: false,
                 effects: Vec::new(),
                 jitter: false,
+                scattering: false,
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),
             bricks: vec![BrickDraw {
@@ -720,6 +721,7 @@ mod tests {
             lighting: None,
             gradient_opacity: None,
             transfer_2d: None,
+            scattering: None,
             region: None,
             texel: Default::default(),
         };

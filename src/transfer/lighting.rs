@@ -196,6 +196,12 @@ impl Lighting {
     /// 0) seen along unit `view` (module documentation); light directions
     /// must be in world space and unit ([`Self::in_world`]).
     pub fn shade(&self, c: [f64; 3], n: [f64; 3], view: [f64; 3]) -> [f64; 3] {
+        self.shade_unclamped(c, n, view).map(|v| v.clamp(0.0, 1.0))
+    }
+
+    /// [`Self::shade`] before the clamp to `[0, 1]` (VTK's `finalColor`,
+    /// which volumetric scattering blends before clamping).
+    pub fn shade_unclamped(&self, c: [f64; 3], n: [f64; 3], view: [f64; 3]) -> [f64; 3] {
         let m = &self.material;
         let mut out = [0.0; 3];
         match &self.lights {
@@ -241,7 +247,7 @@ impl Lighting {
                 }
             }
         }
-        [out[0].clamp(0.0, 1.0), out[1].clamp(0.0, 1.0), out[2].clamp(0.0, 1.0)]
+        out
     }
 }
 

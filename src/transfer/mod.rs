@@ -10,8 +10,10 @@ pub mod function;
 pub mod gradient_opacity;
 pub mod lighting;
 pub(crate) mod lut;
+pub mod scattering;
 pub mod transfer2d;
 
 pub use function::TransferFunction;
 pub use gradient_opacity::GradientOpacity;
+pub use scattering::Scattering;
 pub use transfer2d::TransferFunction2D;

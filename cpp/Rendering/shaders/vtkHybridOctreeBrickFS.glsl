@@ -218,7 +218,135 @@ vec3 shade(vec3 g, vec3 c, vec3 v)
     }
     outColor = material.x * amb + material.y * dif * c + material.z * spe;
   }
+#ifdef HO_SCATTERING
+  return outColor; // clamped after the scattering's blend, as VTK's
+#else
   return clamp(outColor, 0.0, 1.0);
+#endif
+}
+#endif
+
+#ifdef HO_SCATTERING
+// Volumetric scattering (VTK 9.2's model; src/transfer/scattering.rs,
+// src/render/scattering.rs; always with HO_SHADE and HO_GRADIENTS). The
+// shadow rays read the shadow volume, the whole volume at up to 64 points
+// per axis (one 3D texture, linear filter), through the transfer table.
+// VTK's texture space: t = (p - scatterCorner) / scatterSize.
+uniform sampler3D shadowVolume;
+uniform vec3 scatterCorner;
+uniform vec3 scatterSize;
+uniform vec3 shadowScale; // shadow texture coordinate t * shadowScale + shadowShift
+uniform vec3 shadowShift;
+uniform float scatterBlending;   // B in [0, 2]
+uniform float scatterAnisotropy; // g in [-1, 1]
+uniform vec3 headlightAmbient;
+uniform float gradientScale;  // VTK's shading-gradient length per world gradient, 2 / (hi - lo)
+uniform float scatterExtent;  // R, texture units
+uniform float sampleDistance; // VTK's d, model units
+uniform float toVtk;          // d / d0
+uniform int maxShadowSteps;
+
+// 1 - (1 - a)^ratio.
+float correctedOpacity(float a, float ratio)
+{
+  return (a <= 0.0 || a >= 1.0 || ratio == 1.0) ? a : 1.0 - exp(ratio * log(1.0 - a));
+}
+
+// Henyey-Greenstein normalised to 4 pi; 1 when |g| < 0.01.
+float phaseFunction(float cosAngle)
+{
+  float g = scatterAnisotropy;
+  if (abs(g) < 0.01)
+  {
+    return 1.0;
+  }
+  float d = 1.0 + g * g - 2.0 * g * cosAngle;
+  return (1.0 - g * g) / (d * sqrt(d));
+}
+
+// The transfer table's opacity (per d0) of the shadow volume at texture point t.
+float shadowOpacity(vec3 t)
+{
+  float v = texture(shadowVolume, t * shadowScale + shadowShift).r;
+  if (isnan(v))
+  {
+    return 0.0;
+  }
+  return clamp(texture(transferTable, vec2(v * tableScaleShift.x + tableScaleShift.y, 0.5)).a, 0.0, 1.0);
+}
+
+// VTK's volumeShadow from texture point q towards `light` (a point when
+// positional, else a direction), view step s0: from q + s0 n in steps of s0
+// (at most maxShadowSteps equal steps, each opacity corrected for its length)
+// up to min(cube exit, scatterExtent), T = prod (1 - a).
+float transmittance(vec3 q, vec3 light, bool positional, float s0)
+{
+  vec3 n = normalize(positional ? light - q : light);
+  vec3 start = q + s0 * n;
+  // VTK's BBoxIntersect with the unit cube (components below 0.001 taken as +-0.001).
+  vec3 d = mix(n, sign(n) * 0.001, lessThan(abs(n), vec3(0.001)));
+  vec3 inv = 1.0 / d;
+  vec3 ta = (vec3(0.0) - start) * inv;
+  vec3 tb = (vec3(1.0) - start) * inv;
+  vec3 tn = min(ta, tb);
+  vec3 tf = max(ta, tb);
+  float t0 = max(max(tn.x, tn.y), tn.z);
+  float t1 = min(min(tf.x, tf.y), tf.z);
+  if (!(t1 > max(t0, 0.0)) || t1 < s0)
+  {
+    return 1.0;
+  }
+  float reach = min(min(t1, positional ? length(light - start) : t1), scatterExtent);
+  if (!(reach >= 0.001))
+  {
+    return 1.0;
+  }
+  float steps = float(maxShadowSteps);
+  float s = ceil(reach / s0) > steps ? reach / steps : s0;
+  float ratio = s / s0 * toVtk;
+  float shadow = 1.0;
+  for (int k = 0; k < maxShadowSteps && float(k) * s < reach; ++k)
+  {
+    shadow *= 1.0 - correctedOpacity(shadowOpacity(start + float(k) * s * n), ratio);
+    if (shadow <= 0.0)
+    {
+      return 0.0;
+    }
+  }
+  return shadow;
+}
+
+// The colour of the sample at model position p: straight colour c, its
+// shaded colour (not clamped), opacity a (the table's, per d0, before
+// gradient opacity), gradient g, unit ray direction v:
+//   clamp((1 - k) shaded + k sum_i [T_i P(cos_i) kd Ld_i c + ka La_i], 0, 1),
+//   k = B exp(-B |g|' a_d) (B < 1), (2 - B) exp(-B |g|' a_d) + B - 1 (B >= 1).
+vec3 scatter(vec3 p, vec3 g, vec3 c, vec3 shaded, float a, vec3 v)
+{
+  float gl = length(g);
+  float gv = (isnan(gl) || isinf(gl)) ? 0.0 : gl * gradientScale;
+  float e = exp(-scatterBlending * gv * correctedOpacity(a, toVtk));
+  float k = scatterBlending < 1.0 ? scatterBlending * e : (2.0 - scatterBlending) * e + scatterBlending - 1.0;
+  vec3 q = (p - scatterCorner) / scatterSize;
+  float s0 = length(v / scatterSize) * sampleDistance;
+  vec3 secondary = vec3(0.0);
+  if (headlight != 0)
+  {
+    float t = transmittance(q, (eye - scatterCorner) / scatterSize, true, s0);
+    secondary = t * phaseFunction(-1.0) * c * material.y * lightDiffuse[0] + material.x * headlightAmbient;
+  }
+  else
+  {
+    vec3 toEye = normalize((eye - p) / scatterSize);
+    for (int i = 0; i < lightCount; ++i)
+    {
+      vec3 towards = -lightDirection[i] / scatterSize;
+      float t = transmittance(q, towards, false, s0);
+      secondary += t * phaseFunction(-dot(normalize(towards), toEye)) * c * material.y * lightDiffuse[i] +
+        material.x * lightAmbient[i];
+    }
+  }
+  return clamp((1.0 - k) * shaded + k * secondary, 0.0, 1.0);
 }
 #endif
 
@@ -387,6 +515,9 @@ vec4 sampleAt(vec3 p, vec3 v)
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
 #endif
   float a = clamp(c.a, 0.0, 1.0) * opacityScale;
+#ifdef HO_SCATTERING
+  float tableOpacity = clamp(c.a, 0.0, 1.0); // VTK blends with it, before the gradient opacity
+#endif
 #if defined(HO_GRADIENTS) && !defined(HO_TRANSFER_2D)
   vec3 g = a > 0.0 ? gradientAt(u) : vec3(0.0);
 #endif
@@ -403,7 +534,11 @@ vec4 sampleAt(vec3 p, vec3 v)
 #ifdef HO_SHADE
   if (a > 0.0)
   {
+#ifdef HO_SCATTERING
+    rgb = scatter(p, g, rgb, shade(g, rgb, v), tableOpacity, v);
+#else
     rgb = shade(g, rgb, v);
+#endif
   }
 #endif
   return vec4(rgb, a);

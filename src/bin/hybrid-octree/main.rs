@@ -29,6 +29,7 @@ mod plot;
 mod points;
 mod pool;
 mod render;
+mod scattering;
 mod scene;
 mod shade;
 mod slice;

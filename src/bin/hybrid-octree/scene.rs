@@ -11,12 +11,14 @@ use hybrid_octree::grid::Grid;
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::crop::KeptRegion;
 use hybrid_octree::plan::point_slabs::add_points;
+use hybrid_octree::plan::scattering::plan_scattering;
 use hybrid_octree::plan::texel_format::{TexelEncoding, TexelFormat};
 use hybrid_octree::plan::{draw_list, plan, Blend, BlendMode, DrawList, Scene, SurfacePass};
 use hybrid_octree::points::{shade, Footprint, PointSet};
-use hybrid_octree::render::compositor::composite_with_points;
+use hybrid_octree::render::compositor::composite_shadowed;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference_blend, ReferenceOptions};
+use hybrid_octree::render::scattering::shadow_for;
 use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, SelectOptions, Selection};
@@ -59,6 +61,9 @@ pub struct SceneArgs {
     /// Volume shading.
     #[command(flatten)]
     pub shade: crate::shade::ShadeArgs,
+    /// Volumetric scattering (with --shade).
+    #[command(flatten)]
+    pub scattering: crate::scattering::ScatteringArgs,
     /// Blend mode (VTK's SetBlendMode): composite, mip (maximum intensity),
     /// minip (minimum intensity), average (average intensity), additive,
     /// isosurface (the surfaces of --isosurface-values, ray cast), or slice
@@ -307,10 +312,13 @@ pub fn frame(
     if let Some((set, _)) = points {
         add_points(&mut list, grid.shape(), set)?;
     }
+    let scattering = args.scattering.scattering(scene.octree.value_range());
+    let list = plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
     let list = hybrid_octree::plan::jitter::plan_jitter(list, args.jitter);
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
     let textures = upload(grid, &list)?;
+    let shadow = shadow_for(grid, &list)?;
     let shades = match points {
         Some((set, _)) => shade(grid, set, &scene.tf)?,
         None => Vec::new(),
@@ -320,7 +328,8 @@ pub fn frame(
     let colour = surface_colour(args);
     let surface = scene.surface.as_ref().map(|s| (s, colour));
     let drawn = points.map(|(set, kind)| (set, shades.as_slice(), kind));
-    let image = composite_with_points(&textures, &list, &scene.tf, args.width, args.height, surface, drawn)?;
+    let image =
+        composite_shadowed(&textures, shadow.as_ref(), &list, &scene.tf, args.width, args.height, surface, drawn)?;
     let composite_ms = started.elapsed().as_secs_f64() * 1e3;
     Ok(Frame { list, image, slab_polygons_ms, drawlist_ms, upload_ms, composite_ms })
 }
@@ -359,6 +368,7 @@ pub fn reference_image_at(
             transfer_2d: scene.transfer_2d.as_ref(),
             region: scene.region.as_ref(),
             opacity_unit,
+            scattering: args.scattering.scattering(scene.octree.value_range()).as_ref(),
             ..ReferenceOptions::default()
         },
         &scene.blend,

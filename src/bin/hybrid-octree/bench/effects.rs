@@ -130,11 +130,12 @@ fn full_budget(grid: &Grid<'_>, octree: &VolumeOctree) -> usize {
     4 * texels
 }
 
-/// The scene arguments of a plain composite frame: no shading, Composite,
-/// no surface, no cropping or clipping.
+/// The scene arguments of a plain composite frame: no shading, no
+/// scattering, Composite, no surface, no cropping or clipping.
 fn plain(args: &SceneArgs) -> SceneArgs {
     let mut plain = args.clone();
     plain.shade.shade = false;
+    plain.scattering = Default::default();
     plain.blend = BlendMode::Composite;
     plain.isovalue = None;
     plain.crop = Default::default();

@@ -68,7 +68,19 @@ pub const EFFECTS: &[Effect] = &[
     },
     Effect { name: "cropping", apply: |s, c| s.crop.crop = Some(central_box(c)) },
     Effect { name: "clipping", apply: |s, c| s.crop.clip = vec![oblique_plane(c)] },
+    Effect { name: "scattering", apply: |s, _| scattering(s, 0.5) },
+    Effect { name: "scattering-full-reach", apply: |s, _| scattering(s, 1.0) },
 ];
+
+/// Shading with volumetric scattering: blending 1 (VTK's blend of the two
+/// models), anisotropy 0.3, the shadow rays' reach `reach` (1: across the
+/// whole volume, at most the step cap).
+fn scattering(s: &mut SceneArgs, reach: f64) {
+    s.shade.shade = true;
+    s.scattering.scatter_blending = 1.0;
+    s.scattering.scatter_reach = reach;
+    s.scattering.scatter_anisotropy = 0.3;
+}
 
 /// Shading with a strong, tight highlight (specular 0.8, power 40) over the
 /// ambient and diffuse of `--ambient` and `--diffuse`.
