@@ -209,6 +209,7 @@ struct ShadingDescription
   std::vector<double> LightAmbient;    ///< 3 per light: colour x intensity
   std::vector<double> LightDiffuse;    ///< 3 per light: colour x intensity
   std::vector<double> LightSpecular;   ///< 3 per light: colour x intensity
+  int LightsOn = 1; ///< the renderer's switched-on lights (0: one black light is described)
 };
 
 /// Volumetric scattering (see ScatteringDesc in src/ffi/mod.rs): the mapper's

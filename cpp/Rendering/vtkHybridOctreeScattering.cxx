@@ -13,7 +13,9 @@ ScatteringDescription vtkHybridOctreeScattering::Describe(double blending, doubl
   vtkVolumeProperty* property, const ShadingDescription& shading, double sampleDistance)
 {
   ScatteringDescription d;
-  d.Blending = blending;
+  // VTK scatters only with a light on (VolumetricScatteringBlending > 0 and totalNumberOfLights >
+  // 0).
+  d.Blending = shading.LightsOn > 0 ? blending : 0.0;
   d.Reach = reach;
   d.Anisotropy = property ? property->GetScatteringAnisotropy() : 0.0;
   for (int k = 0; k < 3; ++k)

@@ -81,7 +81,11 @@ void TransformVector(vtkMatrix4x4* m, const double v[3], double out[3])
 /// and the renderer's switched-on lights: its default lighting when exactly
 /// one, a headlight of intensity 1, is on, else every light as a
 /// directional one (focal point - position, through `modelInverse` into the
-/// octree's frame; colours times intensity). No light on: unshaded.
+/// octree's frame; colours times intensity). No light on (a light kit
+/// switched off after the renderer made its automatic headlight): VTK
+/// shades every sample black (its computeLighting starts from vec4(0) and
+/// adds each light's ambient, diffuse and specular terms), so the
+/// description is one light of black colours.
 ShadingDescription DescribeShading(
   vtkRenderer* ren, vtkVolumeProperty* property, vtkMatrix4x4* modelInverse)
 {
@@ -124,7 +128,18 @@ ShadingDescription DescribeShading(
     }
   }
   shading.Headlight = on == 1 && headlight;
-  shading.Shade = on > 0;
+  shading.LightsOn = on;
+  if (on == 0)
+  {
+    const double down[3] = { 0.0, 0.0, -1.0 };
+    for (int a = 0; a < 3; ++a)
+    {
+      shading.LightDirections.push_back(down[a]);
+      shading.LightAmbient.push_back(0.0);
+      shading.LightDiffuse.push_back(0.0);
+      shading.LightSpecular.push_back(0.0);
+    }
+  }
   return shading;
 }
 

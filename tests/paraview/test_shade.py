@@ -9,8 +9,10 @@ vtkVolumeProperty the mapper reads). A 64^3 Shepp-Logan phantom, Shade on
 ParaView's "Volume" representation against "Hybrid Octree Volume" at the
 default budget: RMSE at most 0.03, the plan "volume-shaded"; the shaded
 picture differs from the unshaded one (RMSE above 0.01); with Ambient 1,
-Diffuse 0 and Specular 0 under the default headlight (light kit off) the plan is
-"volume" again.
+Diffuse 0 and Specular 0 under a headlight (the light kit off, one light of
+Coords "Headlight" added) the plan is "volume" again. (With the light kit
+switched off and no light added the renderer has no light, and VTK shades
+every sample black: tests/paraview/test_property_matrix.py.)
 """
 import os
 import sys
@@ -53,7 +55,9 @@ report("shaded: RMSE %.4f against ParaView's shaded Volume, %.4f against unshade
 t.check(plan(display) == "volume-shaded", "plan 'volume-shaded': %r" % plan(display))
 t.check(error <= 0.03, "RMSE %.4f against ParaView's shaded Volume (threshold 0.03)" % error)
 t.check(change > 0.01, "the shading shows: RMSE %.4f against unshaded" % change)
-view.UseLight = 0  # the light kit off: the default headlight
+view.UseLight = 0  # the light kit off
+headlight = AddLight(view=view)
+headlight.Coords = "Headlight"
 display.Ambient = 1.0
 display.Diffuse = 0.0
 display.Specular = 0.0
