@@ -214,7 +214,7 @@ impl Lighting {
                     d = -d;
                 }
                 let lit = d > 0.0;
-                let sf = if lit && m.specular > 0.0 { rv.powf(m.specular_power) } else { 0.0 };
+                let sf = if lit && m.specular > 0.0 { specular_factor(rv, m.specular_power) } else { 0.0 };
                 for a in 0..3 {
                     out[a] = m.ambient * c[a];
                     if lit {
@@ -234,7 +234,7 @@ impl Lighting {
                         // Not unit when two-sided lighting flipped d: normalised, as VTK does.
                         let r = normalize(sub(scale(n, 2.0 * d), l));
                         let rv = dot(r, view);
-                        let sf = if rv > 0.0 && m.specular > 0.0 { rv.powf(m.specular_power) } else { 0.0 };
+                        let sf = if rv > 0.0 && m.specular > 0.0 { specular_factor(rv, m.specular_power) } else { 0.0 };
                         for a in 0..3 {
                             dif[a] += d * light.diffuse[a];
                             spe[a] += sf * light.specular[a];
@@ -248,6 +248,19 @@ impl Lighting {
             }
         }
         out
+    }
+}
+
+/// The specular factor `(r . v)^s` of the Phong model, `rv = r . v >= 0`
+/// and `s` the specular power: by repeated multiplication when `s` is a
+/// whole number up to 128 (VTK's default 10, ParaView's 100: a fraction of
+/// the cost of `powf`, equal to it within a few ulps), else `powf`.
+#[inline]
+fn specular_factor(rv: f64, s: f64) -> f64 {
+    if s.fract() == 0.0 && (0.0..=128.0).contains(&s) {
+        rv.powi(s as i32)
+    } else {
+        rv.powf(s)
     }
 }
 
@@ -265,6 +278,19 @@ mod tests {
                 light([1.0, 0.0, 0.0], LightSpace::World),
             ]),
             two_sided: true,
+        }
+    }
+
+    /// The specular factor by multiplication is `powf`'s within 1e-12 for
+    /// whole powers, and `powf` itself for fractional ones.
+    #[test]
+    fn specular_factor_matches_powf() {
+        for s in [0.0, 1.0, 2.0, 10.0, 100.0, 128.0, 2.5, 129.0, 0.3] {
+            for k in 0..=100 {
+                let rv = f64::from(k) / 100.0;
+                let (a, b) = (specular_factor(rv, s), rv.powf(s));
+                assert!((a - b).abs() <= 1e-12 * b.max(1e-300) + 1e-300, "{rv}^{s}: {a} vs {b}");
+            }
         }
     }
 
