@@ -6,11 +6,12 @@ own "Volume" as the volume grows, each case in a pvbatch process of its own
         pvbatch bench/scale.py \
         --plugin build/lib/paraview-5.11/plugins/HybridOctree/HybridOctree.so \
         --cli build/cargo/release/hybrid-octree \
-        [--sizes 256,512,1024] [--types u8,u16] [--dataset vessels] \
+        [--sizes 256,512,1024,2048x2048x1024] [--types u8,u16] [--dataset vessels] \
         [--frames 5] [--width 512 --height 512] [--budget-mb 64] [--workdir DIR] [--json]
 
-Per size and scalar type the CLI writes the built-in dataset to a .vti
-file (`hybrid-octree generate`, slab by slab), then for each representation
+Per size (N: a cube; XxYxZ: a box) and scalar type the CLI writes the
+built-in dataset to a .vti file (`hybrid-octree generate`, slab by slab),
+then for each representation
 one pvbatch process (this script with --case):
 
 - read: XMLImageDataReader's UpdatePipeline, ms and the step's peak RSS;
@@ -161,18 +162,19 @@ def main():
     workdir = args.workdir or tempfile.mkdtemp(prefix="ho-scale-")
     os.makedirs(workdir, exist_ok=True)
     rows = []
-    for size in [int(s) for s in args.sizes.split(",")]:
+    for size in args.sizes.split(","):
+        dims = [int(d) for d in size.split("x")] if "x" in size else [int(size)] * 3
         for ty in args.types.split(","):
-            path = os.path.join(workdir, "%s-%d-%s.vti" % (args.dataset, size, ty))
+            path = os.path.join(workdir, "%s-%s-%s.vti" % (args.dataset, size, ty))
             t = time.perf_counter()
-            subprocess.run([args.cli, "generate", "--dataset", args.dataset, "--size", str(size),
+            subprocess.run([args.cli, "generate", "--dataset", args.dataset, "--dims", ",".join(map(str, dims)),
                             "--type", ty, "--output", path], check=True, capture_output=True)
             generate_ms = (time.perf_counter() - t) * 1e3
-            voxels = size ** 3
+            voxels = dims[0] * dims[1] * dims[2]
             volume_bytes = voxels * BYTES[ty]
             pictures = {}
             for representation in (VOLUME, HYBRID):
-                png = os.path.join(workdir, "%s-%d-%s-%s.png" % (args.dataset, size, ty,
+                png = os.path.join(workdir, "%s-%s-%s-%s.png" % (args.dataset, size, ty,
                                                                  representation.replace(" ", "-")))
                 row = spawn(args, path, representation, png)
                 row.update(size=size, scalar_type=ty, volume_bytes=volume_bytes, generate_ms=generate_ms)
@@ -198,9 +200,9 @@ def main():
     print("| ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for r in rows:
         if "failed" in r:
-            print("| %d | %s | %s | failed: %s |" % (r["size"], r["scalar_type"], r["representation"], r["failed"]))
+            print("| %s | %s | %s | failed: %s |" % (r["size"], r["scalar_type"], r["representation"], r["failed"]))
             continue
-        print("| %d | %s | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f (%.2fx) | %.2f | %s |" % (
+        print("| %s | %s | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f (%.2fx) | %.2f | %s |" % (
             r["size"], r["scalar_type"], r["representation"], r["read_ms"], r["first_frame_ms"],
             r["frame_median_ms"], r["frame_max_ms"], r["read_peak_bytes"] / 1e6,
             r["first_frame_peak_bytes"] / 1e6, r["orbit_peak_bytes"] / 1e6, r["process_peak_bytes"] / 1e6,

@@ -117,6 +117,29 @@ fn thread_count_does_not_change_the_result() {
     assert_eq!(one, two);
 }
 
+/// `generate --dims X,Y,Z` writes a box of those samples (`build` reads
+/// them back); a flat axis, or both --size and --dims, is refused.
+#[test]
+fn generate_dims_writes_a_box() {
+    let path = temp("box.vti");
+    let file = path.to_str().unwrap();
+    let out = run(&["generate", "--dataset", "vessels", "--dims", "12,10,6", "--type", "u8", "--output", file]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let built = build_json(&["--file", file, "--leaf-size", "4"]);
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!(built["dims"], serde_json::json!([12, 10, 6]), "{built}");
+    assert_eq!(built["scalar_type"], "u8");
+    assert_clean_failure(
+        &run(&["generate", "--dataset", "vessels", "--dims", "12,1,6", "--output", file]),
+        "at least 2 samples per axis",
+    );
+    assert_clean_failure(
+        &run(&["generate", "--dataset", "vessels", "--size", "8", "--dims", "8,8,8", "--output", file]),
+        "cannot be used with",
+    );
+    assert!(!path.exists(), "a refused run writes no file");
+}
+
 #[test]
 fn generated_vti_builds_like_the_dataset() {
     let path = temp("phantom.vti");

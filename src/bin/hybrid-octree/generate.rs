@@ -1,14 +1,14 @@
 //! `generate`: write a built-in dataset to a `.vti` file.
 
 use crate::extension::require_extension;
-use crate::input::check_size;
+use crate::input::{check_size, triple};
 use crate::pool::with_threads;
 use clap::Args;
 use hybrid_octree::datasets::generate::generate_slabs;
 use hybrid_octree::datasets::Dataset;
 use hybrid_octree::grid::{GridShape, ScalarType};
 use hybrid_octree::io::vti_write::VtiWriter;
-use hybrid_octree::Result;
+use hybrid_octree::{Error, Result};
 use std::path::PathBuf;
 
 /// Arguments of `generate`.
@@ -17,9 +17,12 @@ pub struct GenerateArgs {
     /// Built-in dataset: shepp-logan, marschner-lobb, sphere, ramp, constant, vessels, wavelet.
     #[arg(long)]
     dataset: String,
-    /// Samples per axis.
-    #[arg(long)]
-    size: usize,
+    /// Samples per axis (a cube; or --dims).
+    #[arg(long, required_unless_present = "dims", conflicts_with = "dims")]
+    size: Option<usize>,
+    /// Samples along X,Y,Z (a box, e.g. 2048,2048,1024; or --size).
+    #[arg(long, value_parser = triple::<usize>)]
+    dims: Option<[usize; 3]>,
     /// Scalar type (u8, i8, u16, i16, u32, i32, f32, f64).
     #[arg(long = "type", default_value = "f32")]
     scalar_type: String,
@@ -37,9 +40,27 @@ pub fn run(args: &GenerateArgs) -> Result<()> {
     require_extension(&args.output, "--output", &[".vti"], "VTK XML image data")?;
     let dataset = Dataset::parse(&args.dataset)?;
     let scalar_type = ScalarType::parse(&args.scalar_type)?;
-    check_size(args.size, scalar_type)?;
-    write_dataset(&args.output, dataset, [args.size; 3], scalar_type, args.threads)?;
-    eprintln!("wrote {} {}^3 {} to {}", dataset.name(), args.size, scalar_type.name(), args.output.display());
+    let dims = match (args.size, args.dims) {
+        (Some(size), None) => {
+            check_size(size, scalar_type)?;
+            [size; 3]
+        }
+        (None, Some(dims)) => {
+            hybrid_octree::datasets::generate::check_generate(dims, scalar_type)?;
+            dims
+        }
+        _ => return Err(Error::InvalidArgument("give the size as --size N (a cube) or --dims X,Y,Z, not both".into())),
+    };
+    write_dataset(&args.output, dataset, dims, scalar_type, args.threads)?;
+    eprintln!(
+        "wrote {} {}x{}x{} {} to {}",
+        dataset.name(),
+        dims[0],
+        dims[1],
+        dims[2],
+        scalar_type.name(),
+        args.output.display()
+    );
     Ok(())
 }
 

@@ -57,7 +57,7 @@ pub fn check_size(size: usize, scalar_type: ScalarType) -> Result<()> {
 }
 
 /// Parses `X,Y,Z` (clap value parser).
-fn triple<T: std::str::FromStr + Copy + Default>(s: &str) -> std::result::Result<[T; 3], String> {
+pub fn triple<T: std::str::FromStr + Copy + Default>(s: &str) -> std::result::Result<[T; 3], String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != 3 {
         return Err(format!("expected three comma-separated values X,Y,Z, got '{s}'"));
