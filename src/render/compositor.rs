@@ -314,10 +314,7 @@ pub(crate) fn composite_counting_gradients(
     width: usize,
     height: usize,
 ) -> Result<(Image, usize)> {
-    check_size(width, height)?;
-    check_list(list, &textures.shape, None)?;
-    textures.check(list)?;
-    execute_counted(textures, None, None, list, tf, width, height, None, None).map(|(i, c)| (i, c.gradients))
+    composite_counting(textures, list, tf, width, height).map(|(i, c)| (i, c.gradients))
 }
 
 /// [`composite_textures`], and the work it did ([`Counts`]).
