@@ -1339,3 +1339,24 @@ fn render_jitter_is_reported_and_changes_only_the_sampling() {
     assert!(!sliced["effects"].as_array().unwrap().iter().any(|e| e == "jittering"), "{sliced}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The scattering arguments are checked whether or not scattering runs:
+/// a reach or an anisotropy out of range is refused at blending 0 too,
+/// with the value and its range named; a good one at blending 0 renders.
+#[test]
+fn render_refuses_bad_scattering_arguments_even_unused() {
+    let png = temp("scatter-args.png");
+    let out = png.to_str().unwrap();
+    let base = ["--dataset", "sphere", "--size", "9", "--width", "8", "--height", "8", "--shade", "--output", out];
+    for (extra, reason) in [
+        (&["--scatter-reach", "-1"][..], "reach -1: give a number from 0 to 1"),
+        (&["--scatter-anisotropy", "2"][..], "anisotropy 2: give a number from -1 to 1"),
+        (&["--scatter-blending", "nan"][..], "blending NaN"),
+        (&["--scatter-reach", "inf", "--scatter-blending", "1"][..], "reach inf"),
+    ] {
+        assert_clean_failure(&run(&[&["render"][..], &base[..], extra].concat()), reason);
+    }
+    let ok = run(&[&["render"][..], &base[..], &["--scatter-reach", "0.5"]].concat());
+    assert!(ok.status.success(), "{}", stderr(&ok));
+    let _ = std::fs::remove_file(png);
+}

@@ -5,6 +5,7 @@
 
 use clap::Args;
 use hybrid_octree::transfer::Scattering;
+use hybrid_octree::Result;
 
 /// Volumetric scattering (with `--shade`; VTK's sample distance taken as the
 /// reference spacing).
@@ -23,15 +24,22 @@ pub struct ScatteringArgs {
 
 impl ScatteringArgs {
     /// The parameters over the data's `value_range` (`None` at blending 0:
-    /// none asked for); checked by the planner.
-    pub fn scattering(&self, value_range: (f64, f64)) -> Option<Scattering> {
-        (self.scatter_blending != 0.0).then_some(Scattering {
+    /// none asked for).
+    ///
+    /// # Errors
+    ///
+    /// A value out of its range ([`Scattering::check`]), also at blending 0:
+    /// a bad argument is refused whether or not it is used.
+    pub fn scattering(&self, value_range: (f64, f64)) -> Result<Option<Scattering>> {
+        let scattering = Scattering {
             blending: self.scatter_blending,
             reach: self.scatter_reach,
             anisotropy: self.scatter_anisotropy,
             headlight_ambient: [1.0; 3],
             value_range: [value_range.0, value_range.1],
             sample_distance: 0.0,
-        })
+        };
+        scattering.check()?;
+        Ok((self.scatter_blending != 0.0).then_some(scattering))
     }
 }

@@ -312,7 +312,7 @@ pub fn frame(
     if let Some((set, _)) = points {
         add_points(&mut list, grid.shape(), set)?;
     }
-    let scattering = args.scattering.scattering(scene.octree.value_range());
+    let scattering = args.scattering.scattering(scene.octree.value_range())?;
     let list = plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
     let list = hybrid_octree::plan::jitter::plan_jitter(list, args.jitter);
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -355,6 +355,7 @@ pub fn reference_image_at(
 ) -> Result<Image> {
     let surface = scene.surface.as_ref().map(|s| (s, surface_colour(args)));
     let lighting = args.shade.lighting();
+    let scattering = args.scattering.scattering(scene.octree.value_range())?;
     reference_blend(
         grid,
         &scene.tf,
@@ -368,7 +369,7 @@ pub fn reference_image_at(
             transfer_2d: scene.transfer_2d.as_ref(),
             region: scene.region.as_ref(),
             opacity_unit,
-            scattering: args.scattering.scattering(scene.octree.value_range()).as_ref(),
+            scattering: scattering.as_ref(),
             ..ReferenceOptions::default()
         },
         &scene.blend,
