@@ -14,8 +14,12 @@
  *               measured 0.0015, as the shaded picture's 0.0015),
  *               effects "shading,volume-scattering"; it differs from the
  *               shaded picture (RMSE > 0.01); blending 0 is no effect and the
- *               shaded picture exactly; Shade off: nothing of it; under
- *               Maximum Intensity: not drawn, one warning.
+ *               shaded picture exactly; jittered, GL within 0.003 of the
+ *               CPU compositor too; Shade off: nothing of it; under
+ *               Maximum Intensity: not drawn, one warning; no light on:
+ *               no scattering, every sample shaded black as VTK shades it
+ *               (no pixel brighter than the background), GL within 0.003
+ *               of the CPU compositor.
  *   gpu_scattering: the full volume in the budget against
  *               vtkGPUVolumeRayCastMapper with the same settings (sample
  *               distance 1, no jitter), headlight and light kit: RMSE < 0.005
@@ -89,6 +93,13 @@ int CpuMatch()
     const double change = Rmse(scattered, shaded);
     std::cout << name << ": RGB RMSE scattered vs shaded " << change << "\n";
     check.Check(change > 0.01, name + ": the scattering shows");
+    // Jittered: the scattered samples moved along each ray as the CPU compositor moves them.
+    mapper->UseJitteringOn();
+    CompareWithCpu(check, scene, mapper, 0.003, errors);
+    check.Check(std::string(mapper->GetLastEffects()) == "shading,volume-scattering,jittering",
+      name + ": jittered: effects 'shading,volume-scattering,jittering', not '" +
+        mapper->GetLastEffects() + "'");
+    mapper->UseJitteringOff();
     mapper->SetVolumetricScatteringBlending(0.0);
     scene.Window->Render();
     check.Check(Rmse(Grab(scene.Window), shaded) < 1e-9, name + ": blending 0 again: shaded");
@@ -106,6 +117,29 @@ int CpuMatch()
     check.Check(warned && std::string(mapper->GetLastEffects()).empty(),
       name + ": MIP: no scattering, one warning:\n" + errors->AllErrors());
   }
+  // No light on: VTK shades every sample black and does not scatter.
+  vtkNew<vtkHybridOctreeVolumeMapper> mapper;
+  Scene scene(mapper);
+  vtkSmartPointer<ErrorRecorder> errors =
+    vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
+  errors->Watch(mapper);
+  scene.Renderer->AutomaticLightCreationOff();
+  scene.Renderer->RemoveAllLights();
+  scene.Property->ShadeOn();
+  mapper->SetVolumetricScatteringBlending(1.0);
+  mapper->SetGlobalIlluminationReach(0.5);
+  CompareWithCpu(check, scene, mapper, 0.003, errors);
+  check.Check(std::string(mapper->GetLastEffects()) == "shading",
+    std::string("no light: effects 'shading' (no scattering), not '") + mapper->GetLastEffects() +
+      "'");
+  // Black samples darken the background: every channel at most the background's.
+  const std::vector<double> dark = Grab(scene.Window);
+  bool darker = true;
+  for (std::size_t i = 0; i < dark.size(); ++i)
+  {
+    darker = darker && dark[i] <= Background[i % 3] + 1.0 / 255.0; // 8-bit window
+  }
+  check.Check(darker, "no light: the volume is black over the background");
   return check.Result();
 }
 
