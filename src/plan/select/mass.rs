@@ -2,8 +2,9 @@
 //! at a stride (see the module documentation of [`super`]).
 
 use super::brick::Brick;
+use super::cache::Memo;
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
-use std::rc::Rc;
+use std::sync::Arc;
 
 /// The error mass of node `n` drawn at level `p`, `removed` of its squared
 /// error corrected by points:
@@ -77,9 +78,9 @@ pub(super) fn cheapest(
     shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
-) -> Rc<Form> {
+) -> Arc<Form> {
     if let Some(known) = memo.borrow().get(&(n.id, p)) {
-        return Rc::clone(known);
+        return Arc::clone(known);
     }
     let q = (0..p).find(|&q| error_mass(n, q, 0.0, pooled) <= error_mass(n, p, 0.0, pooled)).unwrap_or(p);
     let own = brick_of(n.id, q);
@@ -92,8 +93,8 @@ pub(super) fn cheapest(
             form = Form { own: None, children, hidden, bytes, mass };
         }
     }
-    let form = Rc::new(form);
-    memo.borrow_mut().insert((n.id, p), Rc::clone(&form));
+    let form = Arc::new(form);
+    memo.borrow_mut().insert((n.id, p), Arc::clone(&form));
     form
 }
 
@@ -105,7 +106,7 @@ pub(super) fn cheapest(
 #[derive(Debug)]
 pub(super) struct Form {
     own: Option<Brick>,
-    children: Vec<Rc<Form>>,
+    children: Vec<Arc<Form>>,
     pub hidden: usize,
     pub bytes: usize,
     pub mass: f64,
@@ -123,7 +124,7 @@ impl Form {
     }
 
     /// The bricks of `forms`, in order.
-    pub fn concat(forms: &[Rc<Form>]) -> Vec<Brick> {
+    pub fn concat(forms: &[Arc<Form>]) -> Vec<Brick> {
         let mut out = Vec::new();
         for form in forms {
             form.each(&mut |b| out.push(*b));
@@ -147,7 +148,7 @@ pub(super) fn children_forms(
     shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
-) -> (Vec<Rc<Form>>, usize, usize, f64) {
+) -> (Vec<Arc<Form>>, usize, usize, f64) {
     let mut children = Vec::new();
     let (mut hidden, mut bytes, mut mass) = (0, 0, 0.0);
     for c in octree.children(n.id) {
@@ -167,6 +168,3 @@ pub(super) fn children_forms(
     }
     (children, hidden, bytes, mass)
 }
-
-/// [`cheapest`]'s results of one selection.
-pub(super) type Memo = std::cell::RefCell<std::collections::HashMap<(NodeId, usize), Rc<Form>>>;

@@ -2,14 +2,15 @@
 //! [`super`]).
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
+use super::cache::{Memo, NodeMap};
 use super::estimate::estimated_error;
-use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
+use super::mass::{cheapest, children_forms, error_mass, gain, Form};
 use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
-use std::rc::Rc;
+use std::sync::Arc;
 
 /// A refinement step in the queue.
 #[derive(Debug, Clone, Copy)]
@@ -44,7 +45,7 @@ impl Ord for Step {
 /// `visible(min, max)` says whether a node with that value range shows under
 /// the transfer function; return `true` to keep every node.
 pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f64, f64) -> bool) -> Result<Selection> {
-    select_impl(octree, options, &visible, None)
+    select_impl(octree, options, &visible, None, &Caches::default())
 }
 
 /// [`select`] where bricks of stride `points.factor` may also take their
@@ -55,14 +56,36 @@ pub fn select_with_points(
     visible: impl Fn(f64, f64) -> bool,
     points: &PointMass,
 ) -> Result<Selection> {
-    select_impl(octree, options, &visible, Some(points))
+    select_impl(octree, options, &visible, Some(points), &Caches::default())
 }
 
-fn select_impl(
+/// What a selection computes once and reuses: the [`cheapest`] forms by
+/// (node, p) and the best next step of a brick by (node, p, points taken).
+/// Both are pure functions of the octree, the visibility test and the
+/// options other than the budget: one selection fills them, and a
+/// [`super::Selector`] keeps them for the next one with another budget.
+#[derive(Default)]
+pub(super) struct Caches {
+    memo: Memo,
+    steps: NodeMap<(NodeId, usize, usize), Option<(Step, Replacement, usize)>>,
+}
+
+impl Caches {
+    /// Drops the steps (they depend on the tolerance), keeps the forms.
+    pub(super) fn forget_steps(&mut self) {
+        self.steps.get_mut().clear();
+    }
+}
+
+/// [`select`] (without points) or [`select_with_points`], filling and
+/// reusing `caches` (see [`Caches`]: the caller keeps them only for the same
+/// octree, visibility test, points and options other than the budget).
+pub(super) fn select_impl(
     octree: &VolumeOctree,
     options: &SelectOptions,
     visible: &dyn Fn(f64, f64) -> bool,
     points: Option<&PointMass>,
+    caches: &Caches,
 ) -> Result<Selection> {
     check_options(options)?;
     let root = octree.node(octree.root());
@@ -94,7 +117,7 @@ fn select_impl(
         shows: &shows,
         points,
         root_log2: octree.layout().root_log2 as usize,
-        memo: Memo::default(),
+        caches,
     };
     let coarsest = refiner.brick_of(root.id, 0);
     let mut warning = None;
@@ -164,9 +187,10 @@ type Candidate = (f64, Replacement, usize);
 
 /// The bricks of a step: made (a brick taking its points), or the shared
 /// [`cheapest`] forms they come from, copied only when the step is taken.
+#[derive(Clone)]
 enum Replacement {
     Bricks(Vec<Brick>),
-    Forms(Vec<Rc<Form>>),
+    Forms(Vec<Arc<Form>>),
 }
 
 impl Replacement {
@@ -186,8 +210,7 @@ impl Replacement {
     }
 }
 
-/// One selection: its inputs and the memo of [`cheapest`] forms, shared by
-/// every step.
+/// One selection: its inputs and the [`Caches`] every step shares.
 struct Refiner<'a> {
     octree: &'a VolumeOctree,
     options: &'a SelectOptions,
@@ -197,7 +220,7 @@ struct Refiner<'a> {
     points: Option<&'a PointMass>,
     /// `L`: the root's level count, `log2` of the root's size.
     root_log2: usize,
-    memo: Memo,
+    caches: &'a Caches,
 }
 
 impl Refiner<'_> {
@@ -258,7 +281,7 @@ impl Refiner<'_> {
     }
 
     /// [`cheapest`] form of node `n` at level `p` in this selection.
-    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> Rc<Form> {
+    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> Arc<Form> {
         cheapest(
             self.octree,
             n,
@@ -266,7 +289,7 @@ impl Refiner<'_> {
             &|id, p| self.brick_of(id, p),
             &|n| self.max_p(n),
             self.shows,
-            &self.memo,
+            &self.caches.memo,
             self.pooled(),
         )
     }
@@ -274,7 +297,30 @@ impl Refiner<'_> {
     /// The best next step of a brick in the cut, if it still violates the
     /// tolerance: the best of [`Refiner::raise`], [`Refiner::split`] and
     /// [`Refiner::take_points`], if it removes any error.
+    /// Computed once per (node, p, points taken): a brick in the cut is
+    /// always [`Refiner::brick_of`] its node and level, with or without its
+    /// points, so the key says all the step depends on.
     fn next_step(&self, b: &Brick) -> Option<(Step, Replacement, usize)> {
+        let key = (b.node, b.p, b.point_count);
+        if let Some(known) = self.caches.steps.borrow().get(&key) {
+            return known.clone();
+        }
+        let step = self.best_step(b);
+        self.caches.steps.borrow_mut().insert(key, step.clone());
+        step
+    }
+
+    /// The [`Step`] of [`Refiner::next_step`] alone (what the queue holds).
+    fn next_gain(&self, b: &Brick) -> Option<Step> {
+        let key = (b.node, b.p, b.point_count);
+        if let Some(known) = self.caches.steps.borrow().get(&key) {
+            return known.as_ref().map(|k| k.0);
+        }
+        self.next_step(b).map(|k| k.0)
+    }
+
+    /// [`Refiner::next_step`], computed.
+    fn best_step(&self, b: &Brick) -> Option<(Step, Replacement, usize)> {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
@@ -327,7 +373,7 @@ impl Refiner<'_> {
                 &|id, p| self.brick_of(id, p),
                 &|n| self.max_p(n),
                 self.shows,
-                &self.memo,
+                &self.caches.memo,
                 self.pooled(),
             );
             let split_bytes = added as f64 - Self::cost(b) as f64;
@@ -373,7 +419,7 @@ impl Refiner<'_> {
         for b in start {
             bytes += Self::cost(&b);
             cut.insert(b.node, b);
-            if let Some((s, _, _)) = self.next_step(&b) {
+            if let Some(s) = self.next_gain(&b) {
                 queue.push(s);
             }
         }
@@ -392,7 +438,7 @@ impl Refiner<'_> {
             skipped += hidden;
             for r in replacement.into_bricks() {
                 cut.insert(r.node, r);
-                if let Some((s, _, _)) = self.next_step(&r) {
+                if let Some(s) = self.next_gain(&r) {
                     queue.push(s);
                 }
             }
@@ -412,7 +458,7 @@ impl Refiner<'_> {
         let from_root = self.grow(vec![coarsest], 0);
         let fine = (1..=self.max_p(root)).rev().find_map(|p| {
             let form = self.cheapest(root, p);
-            (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Rc::clone(&form)]), form.hidden))
+            (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Arc::clone(&form)]), form.hidden))
         });
         let total_mass = |cut: &Cut| cut.values().map(|b| self.mass(b)).sum::<f64>();
         let meets = from_root.0.values().all(|b| Self::weighted(b) <= self.options.tolerance);
@@ -621,7 +667,7 @@ mod tests {
             let own = brick_of(root.id, p);
             for shows in [&(|_: &NodeRef<'_>| true) as &dyn Fn(&NodeRef<'_>) -> bool, &|n| n.max > 0.5] {
                 let form = cheapest(&o, &root, p, &brick_of, &max_p, shows, &Memo::default(), None);
-                let bricks = &Form::concat(&[Rc::clone(&form)]);
+                let bricks = &Form::concat(&[Arc::clone(&form)]);
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
                 // The form's own sums are its bricks'.
