@@ -2,7 +2,7 @@
 //! [`super`]).
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
-use super::cache::{Memo, NodeMap};
+use super::cache::{Memo, NodeMap, WordHasher};
 use super::estimate::estimated_error;
 use super::mass::{cheapest, children_forms, error_mass, gain, Form};
 use crate::base::error::{Error, Result};
@@ -129,7 +129,7 @@ pub(super) fn select_impl(
         ));
     }
     let (cut, skipped) = refiner.best_cut(&root, coarsest);
-    Ok(refiner.selection(cut.into_values().collect(), skipped, warning))
+    Ok(refiner.selection(cut, skipped, warning))
 }
 
 /// The options' own errors: a budget of 0 bytes, a tolerance that is not a
@@ -178,8 +178,8 @@ fn check_options(options: &SelectOptions) -> Result<()> {
     Ok(())
 }
 
-/// A cut being refined: node id to its brick.
-type Cut = std::collections::BTreeMap<NodeId, Brick>;
+/// A cut being refined: node id to its brick (sorted by node id when done).
+type Cut = std::collections::HashMap<NodeId, Brick, std::hash::BuildHasherDefault<WordHasher>>;
 
 /// A candidate step: its gain, the bricks that replace the brick, and the
 /// transparent nodes they leave out.
@@ -412,8 +412,8 @@ impl Refiner<'_> {
 
     /// Greedy refinement of a starting cut (its bricks, its transparent
     /// nodes) until nothing fits: the cut, its bytes, its transparent nodes.
-    fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Cut, usize, usize) {
-        let mut cut = Cut::new();
+    fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Vec<Brick>, usize, usize) {
+        let mut cut = Cut::default();
         let mut bytes = 0usize;
         let mut queue = BinaryHeap::new();
         for b in start {
@@ -443,7 +443,9 @@ impl Refiner<'_> {
                 }
             }
         }
-        (cut, bytes, skipped)
+        let mut bricks: Vec<Brick> = cut.into_values().collect();
+        bricks.sort_unstable_by_key(|b| b.node);
+        (bricks, bytes, skipped)
     }
 
     /// Two starts, the better (smaller error mass) wins unless the first
@@ -453,16 +455,18 @@ impl Refiner<'_> {
     /// a fine uniform level that fits; on data with detail everywhere that
     /// level is the better cut). A start from the root that meets the
     /// tolerance needs no other (it spends the fewest bytes). Returns the cut
-    /// and its transparent nodes.
-    fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Cut, usize) {
+    /// (by node id) and its transparent nodes.
+    fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Vec<Brick>, usize) {
         let from_root = self.grow(vec![coarsest], 0);
-        let fine = (1..=self.max_p(root)).rev().find_map(|p| {
-            let form = self.cheapest(root, p);
-            (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Arc::clone(&form)]), form.hidden))
-        });
-        let total_mass = |cut: &Cut| cut.values().map(|b| self.mass(b)).sum::<f64>();
-        let meets = from_root.0.values().all(|b| Self::weighted(b) <= self.options.tolerance);
-        let other = if meets { None } else { fine.map(|(bricks, hidden)| self.grow(bricks, hidden)) };
+        let fine = || {
+            (1..=self.max_p(root)).rev().find_map(|p| {
+                let form = self.cheapest(root, p);
+                (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Arc::clone(&form)]), form.hidden))
+            })
+        };
+        let total_mass = |cut: &[Brick]| cut.iter().map(|b| self.mass(b)).sum::<f64>();
+        let meets = from_root.0.iter().all(|b| Self::weighted(b) <= self.options.tolerance);
+        let other = if meets { None } else { fine().map(|(bricks, hidden)| self.grow(bricks, hidden)) };
         let (cut, _, skipped) = match other {
             Some(other) if total_mass(&other.0) < total_mass(&from_root.0) => other,
             _ => from_root,
