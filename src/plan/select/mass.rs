@@ -4,7 +4,7 @@
 use super::brick::Brick;
 use super::cache::Memo;
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// The error mass of node `n` drawn at level `p`, `removed` of its squared
 /// error corrected by points:
@@ -85,12 +85,19 @@ pub(super) fn cheapest(
     let q = (0..p).find(|&q| error_mass(n, q, 0.0, pooled) <= error_mass(n, p, 0.0, pooled)).unwrap_or(p);
     let own = brick_of(n.id, q);
     let own_mass = own.importance * error_mass(n, q, 0.0, pooled);
-    let mut form = Form { own: Some(own), children: Vec::new(), hidden: 0, bytes: own.bytes, mass: own_mass };
+    let mut form = Form {
+        own: Some(own),
+        children: Vec::new(),
+        hidden: 0,
+        bytes: own.bytes,
+        mass: own_mass,
+        raises: OnceLock::new(),
+    };
     if !(n.is_terminal() || p == 0) {
         let (children, hidden, bytes, mass) =
             children_forms(octree, n, p, own.bytes, brick_of, max_p, shows, memo, pooled);
         if bytes < own.bytes {
-            form = Form { own: None, children, hidden, bytes, mass };
+            form = Form { own: None, children, hidden, bytes, mass, raises: OnceLock::new() };
         }
     }
     let form = Arc::new(form);
@@ -110,6 +117,11 @@ pub(super) struct Form {
     pub hidden: usize,
     pub bytes: usize,
     pub mass: f64,
+    /// Of a form that is its node's own brick `b`: per level `q` above
+    /// `b.p`, `(mass(b), mass(up_q), bytes(up_q) - bytes(b))` with `up_q`
+    /// the node's cheapest form at `q` (what a split's lookahead weighs;
+    /// computed once, see [`Form::each_own`]).
+    pub raises: OnceLock<Vec<(f64, f64, f64)>>,
 }
 
 impl Form {
@@ -120,6 +132,17 @@ impl Form {
         }
         for c in &self.children {
             c.each(f);
+        }
+    }
+
+    /// Calls `f` on each form of this one that is its node's own brick,
+    /// with that brick, in the order of [`Form::each`].
+    pub fn each_own(&self, f: &mut impl FnMut(&Form, &Brick)) {
+        if let Some(b) = &self.own {
+            f(self, b);
+        }
+        for c in &self.children {
+            c.each_own(f);
         }
     }
 

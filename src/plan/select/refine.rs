@@ -381,12 +381,18 @@ impl Refiner<'_> {
             let direct = gain(mass - after, split_bytes);
             let mut ahead: f64 = 0.0;
             for form in &children {
-                form.each(&mut |c| {
-                    let cn = self.octree.node(c.node);
-                    for q in c.p + 1..=self.max_p(&cn) {
-                        let up = self.cheapest(&cn, q);
-                        let up_bytes = up.bytes as f64 - Self::cost(c) as f64;
-                        let removed = mass - after + self.mass(c) - up.mass;
+                form.each_own(&mut |own, c| {
+                    let raises = own.raises.get_or_init(|| {
+                        let cn = self.octree.node(c.node);
+                        (c.p + 1..=self.max_p(&cn))
+                            .map(|q| {
+                                let up = self.cheapest(&cn, q);
+                                (self.mass(c), up.mass, up.bytes as f64 - Self::cost(c) as f64)
+                            })
+                            .collect()
+                    });
+                    for &(mass_c, up_mass, up_bytes) in raises {
+                        let removed = mass - after + mass_c - up_mass;
                         if removed > 0.0 {
                             ahead = ahead.max(removed / (split_bytes + up_bytes).max(1.0));
                         }
