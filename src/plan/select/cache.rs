@@ -1,15 +1,11 @@
-//! What one selection computes once per node and level and every step
-//! reuses: the [`cheapest`](super::mass::cheapest) forms and the best next
-//! step of a brick. Both depend on the selection's options but not on its
-//! budget, so a [`Selector`](super::Selector) keeps them from one budget to
-//! the next.
+//! The maps in which one selection keeps what it computes once per node
+//! and level (the [`cheapest`](super::mass::cheapest) forms, the best next
+//! step of a brick), which a [`Selector`](super::Selector) keeps from one
+//! budget to the next.
 
-use super::mass::Form;
-use crate::octree::NodeId;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
-use std::sync::Arc;
 
 /// A multiply-rotate hash for small integer keys (node ids and levels):
 /// `h = (rotl(h, 5) ^ word) * K` per word, `K` the 64-bit golden-ratio
@@ -44,6 +40,3 @@ impl Hasher for WordHasher {
 
 /// A map keyed by node and level(s), hashed by [`WordHasher`].
 pub(super) type NodeMap<K, V> = RefCell<HashMap<K, V, BuildHasherDefault<WordHasher>>>;
-
-/// [`cheapest`](super::mass::cheapest)'s results: by (node, p).
-pub(super) type Memo = NodeMap<(NodeId, usize), Arc<Form>>;

@@ -2,7 +2,7 @@
 //! at a stride (see the module documentation of [`super`]).
 
 use super::brick::Brick;
-use super::cache::Memo;
+use super::cache::NodeMap;
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use std::sync::{Arc, OnceLock};
 
@@ -191,3 +191,6 @@ pub(super) fn children_forms(
     }
     (children, hidden, bytes, mass)
 }
+
+/// [`cheapest`]'s results: by (node, p).
+pub(super) type Memo = NodeMap<(NodeId, usize), Arc<Form>>;

@@ -2,9 +2,9 @@
 //! [`super`]).
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
-use super::cache::{Memo, NodeMap, WordHasher};
+use super::cache::{NodeMap, WordHasher};
 use super::estimate::estimated_error;
-use super::mass::{cheapest, children_forms, error_mass, gain, Form};
+use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
 use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
@@ -67,7 +67,7 @@ pub fn select_with_points(
 #[derive(Default)]
 pub(super) struct Caches {
     memo: Memo,
-    steps: NodeMap<(NodeId, usize, usize), Option<(Step, Replacement, usize)>>,
+    steps: NodeMap<(NodeId, usize, usize), NextStep>,
 }
 
 impl Caches {
@@ -180,6 +180,11 @@ fn check_options(options: &SelectOptions) -> Result<()> {
 
 /// A cut being refined: node id to its brick (sorted by node id when done).
 type Cut = std::collections::HashMap<NodeId, Brick, std::hash::BuildHasherDefault<WordHasher>>;
+
+/// A brick's next step (none when it meets the tolerance or nothing
+/// removes error): the queued step, the bricks that replace the brick and
+/// the transparent nodes they leave out.
+type NextStep = Option<(Step, Replacement, usize)>;
 
 /// A candidate step: its gain, the bricks that replace the brick, and the
 /// transparent nodes they leave out.
@@ -300,7 +305,7 @@ impl Refiner<'_> {
     /// Computed once per (node, p, points taken): a brick in the cut is
     /// always [`Refiner::brick_of`] its node and level, with or without its
     /// points, so the key says all the step depends on.
-    fn next_step(&self, b: &Brick) -> Option<(Step, Replacement, usize)> {
+    fn next_step(&self, b: &Brick) -> NextStep {
         let key = (b.node, b.p, b.point_count);
         if let Some(known) = self.caches.steps.borrow().get(&key) {
             return known.clone();
@@ -320,7 +325,7 @@ impl Refiner<'_> {
     }
 
     /// [`Refiner::next_step`], computed.
-    fn best_step(&self, b: &Brick) -> Option<(Step, Replacement, usize)> {
+    fn best_step(&self, b: &Brick) -> NextStep {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
