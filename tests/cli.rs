@@ -1293,6 +1293,57 @@ fn bench_scale_reports_every_step_of_every_size() {
     assert_clean_failure(&run(&["bench", "scale", "--sizes", "9", "--type", "u12"]), "u12");
 }
 
+/// `bench select`: per budget, the fresh selection, a `Selector`'s first,
+/// its re-selections after budgets of +-10 % and after the region of
+/// interest moved, with their budgets and bricks; a bad budget is a clean
+/// error.
+#[test]
+fn bench_select_reports_fresh_and_kept_selections() {
+    let out = run(&[
+        "bench",
+        "select",
+        "--dataset",
+        "shepp-logan",
+        "--size",
+        "33",
+        "--budgets-mb",
+        "0.02,0.1",
+        "--repeats",
+        "1",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Value = serde_json::from_str(&stdout(&out)).expect("a JSON array");
+    let rows = rows.as_array().unwrap();
+    let operations = [
+        "select",
+        "selector first",
+        "reselect budget +10%",
+        "reselect budget -10%",
+        "select roi",
+        "reselect roi moved",
+    ];
+    assert_eq!(rows.len(), 2 * operations.len());
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r["operation"], operations[i % operations.len()], "{r}");
+        let budget = [20_000.0, 100_000.0][i / operations.len()];
+        let factor = match i % operations.len() {
+            2 => 1.1,
+            3 => 0.9,
+            _ => 1.0,
+        };
+        assert_eq!(r["budget_bytes"].as_u64(), Some((budget * factor) as u64), "{r}");
+        assert!(r["bricks"].as_u64().unwrap() >= 1 && r["ms"].as_f64().unwrap() >= 0.0, "{r}");
+        assert!(r["texture_bytes"].as_u64().unwrap() <= (budget * factor) as u64, "{r}");
+    }
+    // The fresh selection and the Selector's first are the same.
+    assert_eq!(rows[0]["bricks"], rows[1]["bricks"]);
+    assert_clean_failure(
+        &run(&["bench", "select", "--dataset", "sphere", "--size", "9", "--budgets-mb", "0"]),
+        "budget",
+    );
+}
+
 /// `render --jitter`: the plan's effects end with `jittering` (absent
 /// without the flag, and under Slice), the picture differs from the
 /// lattice's, and against the reference it is no worse than the lattice's

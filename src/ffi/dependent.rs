@@ -70,6 +70,7 @@ pub(crate) fn build_dependent_with(
             dependent: Some(built.combined),
             id: next_id(),
             surface_id: 0,
+            selector: Default::default(),
         }))
     })
 }

@@ -31,6 +31,7 @@ mod points;
 mod render;
 #[cfg(test)]
 mod render_tests;
+mod reselect;
 mod scattering;
 #[cfg(test)]
 mod scattering_tests;

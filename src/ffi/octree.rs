@@ -29,6 +29,8 @@ pub struct HybridOctreeHandle {
     /// Unique per integrated surface (0: none): a selection's kept
     /// SlabPolygons remember the surface they were made for.
     pub(crate) surface_id: u64,
+    /// The last selection's forms and steps, for the next one (`reselect`).
+    pub(crate) selector: std::sync::Mutex<super::reselect::KeptSelector>,
 }
 
 /// The next unique id of an octree or a surface.
@@ -67,6 +69,7 @@ pub(crate) fn build_with(
             dependent: None,
             id: next_id(),
             surface_id: 0,
+            selector: Default::default(),
         }))
     })
 }

@@ -110,6 +110,8 @@ impl HybridOctreeHandle {
     ) -> Bridged<PointsSummary> {
         guarded(|| {
             self.hybrid.points = None;
+            // The kept selection's steps were those of the octree without (or with other) points.
+            self.selector = Default::default();
             let grid = grid_of(bytes, desc)?;
             same_image(&self.shape, &grid)?;
             let point_options = point_options(options);
@@ -132,6 +134,8 @@ impl HybridOctreeHandle {
     pub(crate) fn remove_points(&mut self) -> Bridged<()> {
         guarded(|| {
             self.hybrid.points = None;
+            // The kept selection's steps were those of the octree without (or with other) points.
+            self.selector = Default::default();
             Ok(())
         })
     }

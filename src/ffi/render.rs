@@ -19,7 +19,7 @@ use crate::error::{Error, Result};
 use crate::grid::{GridShape, ScalarType};
 use crate::plan::crop::{ClippingPlane, Cropping, KeptRegion};
 use crate::plan::point_slabs::add_points;
-use crate::plan::select::{select, select_with_points, Roi, SelectOptions, Selection};
+use crate::plan::select::{Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
 use crate::plan::texel_format::{TexelEncoding, TexelFormat};
 use crate::plan::{
@@ -264,9 +264,19 @@ pub(crate) fn select_with(
         None => !hidden && tf.as_ref().is_none_or(|tf| !tf.is_transparent_over(min, max)),
     };
     let visible = |min: f64, max: f64| blend.visible(min, max, &shows) || iso.is_some_and(|v| min < v && v <= max);
+    // The handle's kept selector (a panic while it was held leaves it poisoned: start afresh).
+    let mut kept = octree.selector.lock().unwrap_or_else(|poisoned| {
+        let mut kept = poisoned.into_inner();
+        *kept = Default::default();
+        kept
+    });
+    octree.selector.clear_poison();
+    let selector = kept.for_desc(desc);
     let selection = match &octree.hybrid.points {
-        Some(points) if octree.dependent.is_none() => select_with_points(tree, &options, visible, &points.mass),
-        _ => select(tree, &options, visible),
+        Some(points) if octree.dependent.is_none() => {
+            selector.select_with_points(tree, &options, visible, &points.mass)
+        }
+        _ => selector.select(tree, &options, visible),
     }?;
     Ok((selection, transfer_2d, texel))
 }

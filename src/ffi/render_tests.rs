@@ -91,6 +91,38 @@ fn selects_within_the_budget_and_reports_it() {
     assert!(!tiny.warning.is_empty() && tiny.texture_bytes > 8, "{tiny:?}");
 }
 
+/// A handle keeps its selection's forms for the next request: budgets,
+/// tolerances, regions of interest and transfer functions in turn, each
+/// selection equal to that of a new handle (which keeps nothing).
+#[test]
+fn kept_selections_equal_new_ones() {
+    let d = data();
+    let h = build_volume_octree(bytes(&d), &desc(), 4).unwrap();
+    let roi = |budget: usize, c: f64| SelectDesc {
+        has_roi: true,
+        roi_center: [c, 14.0, 10.0],
+        roi_radius: 3.0,
+        ..options(budget)
+    };
+    let requests = [
+        options(12_000),
+        options(13_000),
+        options(9_000),
+        SelectDesc { tolerance: 0.05, ..options(9_000) },
+        roi(9_000, 4.0),
+        roi(9_000, 8.0),
+        roi(20_000, 8.0),
+        SelectDesc { opacity_points: vec![0.0, 0.0, 0.5, 0.0, 0.6, 1.0, 1.0, 1.0], ..options(20_000) },
+        SelectDesc { opacity_points: vec![0.0, 0.0, 0.5, 0.0, 0.6, 1.0, 1.0, 1.0], ..options(6_000) },
+        options(6_000),
+    ];
+    for (i, request) in requests.iter().enumerate() {
+        let kept = h.select_bricks(request).unwrap();
+        let new = build_volume_octree(bytes(&d), &desc(), 4).unwrap().select_bricks(request).unwrap();
+        assert_eq!(kept.selection, new.selection, "request {i}");
+    }
+}
+
 #[test]
 fn bad_options_are_clear_errors() {
     let d = data();

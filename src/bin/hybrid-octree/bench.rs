@@ -2,13 +2,15 @@
 //! `bench surface` (the Surface Octree's extraction and face compression),
 //! `bench render` (what accuracy costs in time and memory when rendering),
 //! `bench effects` (what each rendering effect costs), `bench scale` (each
-//! step's time and peak memory as the volume grows).
+//! step's time and peak memory as the volume grows), `bench select` (the
+//! selection, fresh and incremental).
 
 mod build;
 mod effects;
 mod memory;
 pub mod render;
 mod scale;
+mod select;
 mod smart;
 mod surface;
 
@@ -29,6 +31,8 @@ pub enum BenchCommand {
     Effects(Box<effects::BenchEffectsArgs>),
     /// Generate, read, build, select and first frame over sizes: time, time per voxel and peak RSS of each step.
     Scale(Box<scale::BenchScaleArgs>),
+    /// Texture-budget selection: fresh and incremental re-selection (budget +-10 %, region of interest moved): ms and bricks.
+    Select(Box<select::BenchSelectArgs>),
 }
 
 /// Runs a benchmark.
@@ -39,6 +43,7 @@ pub fn run(command: &BenchCommand) -> Result<()> {
         BenchCommand::Render(args) => render::run(args),
         BenchCommand::Effects(args) => effects::run(args),
         BenchCommand::Scale(args) => scale::run(args),
+        BenchCommand::Select(args) => select::run(args),
     }
 }
 

@@ -11,6 +11,7 @@
 //! hybrid-octree bench render (--dataset NAME --size N | --file PATH) [--strides 2,4,8] [--tolerances ...] [--plot P.png] [--json]
 //! hybrid-octree bench effects (--dataset NAME --size N | --file PATH) [--budget-mb M] [--frames 5] [--effects plain,shade,...] [--plot P.png] [--json]
 //! hybrid-octree bench scale [--sizes 256,512,1024] [--type u8,u16] [--dataset NAME] [--budget-mb M] [--json]
+//! hybrid-octree bench select (--dataset NAME --size N | --file PATH) [--budgets-mb 8,64] [--roi X,Y,Z,R] [--repeats 5] [--json]
 //! hybrid-octree bench surface [--cases shepp-logan:0.5,...] [--size 256] [--modes discmc,...] [--threads 1,2] [--json]
 //! ```
 //!

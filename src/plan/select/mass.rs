@@ -2,8 +2,9 @@
 //! at a stride (see the module documentation of [`super`]).
 
 use super::brick::Brick;
+use super::cache::NodeMap;
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
-use std::rc::Rc;
+use std::sync::{Arc, OnceLock};
 
 /// The error mass of node `n` drawn at level `p`, `removed` of its squared
 /// error corrected by points:
@@ -77,23 +78,30 @@ pub(super) fn cheapest(
     shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
-) -> Rc<Form> {
+) -> Arc<Form> {
     if let Some(known) = memo.borrow().get(&(n.id, p)) {
-        return Rc::clone(known);
+        return Arc::clone(known);
     }
     let q = (0..p).find(|&q| error_mass(n, q, 0.0, pooled) <= error_mass(n, p, 0.0, pooled)).unwrap_or(p);
     let own = brick_of(n.id, q);
     let own_mass = own.importance * error_mass(n, q, 0.0, pooled);
-    let mut form = Form { own: Some(own), children: Vec::new(), hidden: 0, bytes: own.bytes, mass: own_mass };
+    let mut form = Form {
+        own: Some(own),
+        children: Vec::new(),
+        hidden: 0,
+        bytes: own.bytes,
+        mass: own_mass,
+        raises: OnceLock::new(),
+    };
     if !(n.is_terminal() || p == 0) {
         let (children, hidden, bytes, mass) =
             children_forms(octree, n, p, own.bytes, brick_of, max_p, shows, memo, pooled);
         if bytes < own.bytes {
-            form = Form { own: None, children, hidden, bytes, mass };
+            form = Form { own: None, children, hidden, bytes, mass, raises: OnceLock::new() };
         }
     }
-    let form = Rc::new(form);
-    memo.borrow_mut().insert((n.id, p), Rc::clone(&form));
+    let form = Arc::new(form);
+    memo.borrow_mut().insert((n.id, p), Arc::clone(&form));
     form
 }
 
@@ -105,10 +113,15 @@ pub(super) fn cheapest(
 #[derive(Debug)]
 pub(super) struct Form {
     own: Option<Brick>,
-    children: Vec<Rc<Form>>,
+    children: Vec<Arc<Form>>,
     pub hidden: usize,
     pub bytes: usize,
     pub mass: f64,
+    /// Of a form that is its node's own brick `b`: per level `q` above
+    /// `b.p`, `(mass(b), mass(up_q), bytes(up_q) - bytes(b))` with `up_q`
+    /// the node's cheapest form at `q` (what a split's lookahead weighs;
+    /// computed once, see [`Form::each_own`]).
+    pub raises: OnceLock<Vec<(f64, f64, f64)>>,
 }
 
 impl Form {
@@ -122,8 +135,19 @@ impl Form {
         }
     }
 
+    /// Calls `f` on each form of this one that is its node's own brick,
+    /// with that brick, in the order of [`Form::each`].
+    pub fn each_own(&self, f: &mut impl FnMut(&Form, &Brick)) {
+        if let Some(b) = &self.own {
+            f(self, b);
+        }
+        for c in &self.children {
+            c.each_own(f);
+        }
+    }
+
     /// The bricks of `forms`, in order.
-    pub fn concat(forms: &[Rc<Form>]) -> Vec<Brick> {
+    pub fn concat(forms: &[Arc<Form>]) -> Vec<Brick> {
         let mut out = Vec::new();
         for form in forms {
             form.each(&mut |b| out.push(*b));
@@ -147,7 +171,7 @@ pub(super) fn children_forms(
     shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
-) -> (Vec<Rc<Form>>, usize, usize, f64) {
+) -> (Vec<Arc<Form>>, usize, usize, f64) {
     let mut children = Vec::new();
     let (mut hidden, mut bytes, mut mass) = (0, 0, 0.0);
     for c in octree.children(n.id) {
@@ -168,5 +192,5 @@ pub(super) fn children_forms(
     (children, hidden, bytes, mass)
 }
 
-/// [`cheapest`]'s results of one selection.
-pub(super) type Memo = std::cell::RefCell<std::collections::HashMap<(NodeId, usize), Rc<Form>>>;
+/// [`cheapest`]'s results: by (node, p).
+pub(super) type Memo = NodeMap<(NodeId, usize), Arc<Form>>;

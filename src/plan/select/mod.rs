@@ -42,9 +42,11 @@
 //! texture and point bytes together.
 
 mod brick;
+mod cache;
 mod estimate;
 mod mass;
 mod refine;
+mod selector;
 mod uniform;
 
 #[cfg(test)]
@@ -52,4 +54,5 @@ pub(crate) use brick::test_brick;
 pub use brick::{importance, Brick, Roi, SelectOptions, Selection};
 pub use estimate::estimated_error;
 pub use refine::{select, select_with_points, take_all_points};
+pub use selector::Selector;
 pub use uniform::uniform;

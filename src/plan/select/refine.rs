@@ -2,6 +2,7 @@
 //! [`super`]).
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
+use super::cache::{NodeMap, WordHasher};
 use super::estimate::estimated_error;
 use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
 use crate::base::error::{Error, Result};
@@ -9,7 +10,7 @@ use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
-use std::rc::Rc;
+use std::sync::Arc;
 
 /// A refinement step in the queue.
 #[derive(Debug, Clone, Copy)]
@@ -44,7 +45,7 @@ impl Ord for Step {
 /// `visible(min, max)` says whether a node with that value range shows under
 /// the transfer function; return `true` to keep every node.
 pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f64, f64) -> bool) -> Result<Selection> {
-    select_impl(octree, options, &visible, None)
+    select_impl(octree, options, &visible, None, &Caches::default())
 }
 
 /// [`select`] where bricks of stride `points.factor` may also take their
@@ -55,14 +56,36 @@ pub fn select_with_points(
     visible: impl Fn(f64, f64) -> bool,
     points: &PointMass,
 ) -> Result<Selection> {
-    select_impl(octree, options, &visible, Some(points))
+    select_impl(octree, options, &visible, Some(points), &Caches::default())
 }
 
-fn select_impl(
+/// What a selection computes once and reuses: the [`cheapest`] forms by
+/// (node, p) and the best next step of a brick by (node, p, points taken).
+/// Both are pure functions of the octree, the visibility test and the
+/// options other than the budget: one selection fills them, and a
+/// [`super::Selector`] keeps them for the next one with another budget.
+#[derive(Default)]
+pub(super) struct Caches {
+    memo: Memo,
+    steps: NodeMap<(NodeId, usize, usize), NextStep>,
+}
+
+impl Caches {
+    /// Drops the steps (they depend on the tolerance), keeps the forms.
+    pub(super) fn forget_steps(&mut self) {
+        self.steps.get_mut().clear();
+    }
+}
+
+/// [`select`] (without points) or [`select_with_points`], filling and
+/// reusing `caches` (see [`Caches`]: the caller keeps them only for the same
+/// octree, visibility test, points and options other than the budget).
+pub(super) fn select_impl(
     octree: &VolumeOctree,
     options: &SelectOptions,
     visible: &dyn Fn(f64, f64) -> bool,
     points: Option<&PointMass>,
+    caches: &Caches,
 ) -> Result<Selection> {
     check_options(options)?;
     let root = octree.node(octree.root());
@@ -94,7 +117,7 @@ fn select_impl(
         shows: &shows,
         points,
         root_log2: octree.layout().root_log2 as usize,
-        memo: Memo::default(),
+        caches,
     };
     let coarsest = refiner.brick_of(root.id, 0);
     let mut warning = None;
@@ -106,7 +129,7 @@ fn select_impl(
         ));
     }
     let (cut, skipped) = refiner.best_cut(&root, coarsest);
-    Ok(refiner.selection(cut.into_values().collect(), skipped, warning))
+    Ok(refiner.selection(cut, skipped, warning))
 }
 
 /// The options' own errors: a budget of 0 bytes, a tolerance that is not a
@@ -155,8 +178,13 @@ fn check_options(options: &SelectOptions) -> Result<()> {
     Ok(())
 }
 
-/// A cut being refined: node id to its brick.
-type Cut = std::collections::BTreeMap<NodeId, Brick>;
+/// A cut being refined: node id to its brick (sorted by node id when done).
+type Cut = std::collections::HashMap<NodeId, Brick, std::hash::BuildHasherDefault<WordHasher>>;
+
+/// A brick's next step (none when it meets the tolerance or nothing
+/// removes error): the queued step, the bricks that replace the brick and
+/// the transparent nodes they leave out.
+type NextStep = Option<(Step, Replacement, usize)>;
 
 /// A candidate step: its gain, the bricks that replace the brick, and the
 /// transparent nodes they leave out.
@@ -164,9 +192,10 @@ type Candidate = (f64, Replacement, usize);
 
 /// The bricks of a step: made (a brick taking its points), or the shared
 /// [`cheapest`] forms they come from, copied only when the step is taken.
+#[derive(Clone)]
 enum Replacement {
     Bricks(Vec<Brick>),
-    Forms(Vec<Rc<Form>>),
+    Forms(Vec<Arc<Form>>),
 }
 
 impl Replacement {
@@ -186,8 +215,7 @@ impl Replacement {
     }
 }
 
-/// One selection: its inputs and the memo of [`cheapest`] forms, shared by
-/// every step.
+/// One selection: its inputs and the [`Caches`] every step shares.
 struct Refiner<'a> {
     octree: &'a VolumeOctree,
     options: &'a SelectOptions,
@@ -197,7 +225,7 @@ struct Refiner<'a> {
     points: Option<&'a PointMass>,
     /// `L`: the root's level count, `log2` of the root's size.
     root_log2: usize,
-    memo: Memo,
+    caches: &'a Caches,
 }
 
 impl Refiner<'_> {
@@ -258,7 +286,7 @@ impl Refiner<'_> {
     }
 
     /// [`cheapest`] form of node `n` at level `p` in this selection.
-    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> Rc<Form> {
+    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> Arc<Form> {
         cheapest(
             self.octree,
             n,
@@ -266,7 +294,7 @@ impl Refiner<'_> {
             &|id, p| self.brick_of(id, p),
             &|n| self.max_p(n),
             self.shows,
-            &self.memo,
+            &self.caches.memo,
             self.pooled(),
         )
     }
@@ -274,7 +302,30 @@ impl Refiner<'_> {
     /// The best next step of a brick in the cut, if it still violates the
     /// tolerance: the best of [`Refiner::raise`], [`Refiner::split`] and
     /// [`Refiner::take_points`], if it removes any error.
-    fn next_step(&self, b: &Brick) -> Option<(Step, Replacement, usize)> {
+    /// Computed once per (node, p, points taken): a brick in the cut is
+    /// always [`Refiner::brick_of`] its node and level, with or without its
+    /// points, so the key says all the step depends on.
+    fn next_step(&self, b: &Brick) -> NextStep {
+        let key = (b.node, b.p, b.point_count);
+        if let Some(known) = self.caches.steps.borrow().get(&key) {
+            return known.clone();
+        }
+        let step = self.best_step(b);
+        self.caches.steps.borrow_mut().insert(key, step.clone());
+        step
+    }
+
+    /// The [`Step`] of [`Refiner::next_step`] alone (what the queue holds).
+    fn next_gain(&self, b: &Brick) -> Option<Step> {
+        let key = (b.node, b.p, b.point_count);
+        if let Some(known) = self.caches.steps.borrow().get(&key) {
+            return known.as_ref().map(|k| k.0);
+        }
+        self.next_step(b).map(|k| k.0)
+    }
+
+    /// [`Refiner::next_step`], computed.
+    fn best_step(&self, b: &Brick) -> NextStep {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
@@ -327,7 +378,7 @@ impl Refiner<'_> {
                 &|id, p| self.brick_of(id, p),
                 &|n| self.max_p(n),
                 self.shows,
-                &self.memo,
+                &self.caches.memo,
                 self.pooled(),
             );
             let split_bytes = added as f64 - Self::cost(b) as f64;
@@ -335,12 +386,18 @@ impl Refiner<'_> {
             let direct = gain(mass - after, split_bytes);
             let mut ahead: f64 = 0.0;
             for form in &children {
-                form.each(&mut |c| {
-                    let cn = self.octree.node(c.node);
-                    for q in c.p + 1..=self.max_p(&cn) {
-                        let up = self.cheapest(&cn, q);
-                        let up_bytes = up.bytes as f64 - Self::cost(c) as f64;
-                        let removed = mass - after + self.mass(c) - up.mass;
+                form.each_own(&mut |own, c| {
+                    let raises = own.raises.get_or_init(|| {
+                        let cn = self.octree.node(c.node);
+                        (c.p + 1..=self.max_p(&cn))
+                            .map(|q| {
+                                let up = self.cheapest(&cn, q);
+                                (self.mass(c), up.mass, up.bytes as f64 - Self::cost(c) as f64)
+                            })
+                            .collect()
+                    });
+                    for &(mass_c, up_mass, up_bytes) in raises {
+                        let removed = mass - after + mass_c - up_mass;
                         if removed > 0.0 {
                             ahead = ahead.max(removed / (split_bytes + up_bytes).max(1.0));
                         }
@@ -366,14 +423,14 @@ impl Refiner<'_> {
 
     /// Greedy refinement of a starting cut (its bricks, its transparent
     /// nodes) until nothing fits: the cut, its bytes, its transparent nodes.
-    fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Cut, usize, usize) {
-        let mut cut = Cut::new();
+    fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Vec<Brick>, usize, usize) {
+        let mut cut = Cut::default();
         let mut bytes = 0usize;
         let mut queue = BinaryHeap::new();
         for b in start {
             bytes += Self::cost(&b);
             cut.insert(b.node, b);
-            if let Some((s, _, _)) = self.next_step(&b) {
+            if let Some(s) = self.next_gain(&b) {
                 queue.push(s);
             }
         }
@@ -392,12 +449,14 @@ impl Refiner<'_> {
             skipped += hidden;
             for r in replacement.into_bricks() {
                 cut.insert(r.node, r);
-                if let Some((s, _, _)) = self.next_step(&r) {
+                if let Some(s) = self.next_gain(&r) {
                     queue.push(s);
                 }
             }
         }
-        (cut, bytes, skipped)
+        let mut bricks: Vec<Brick> = cut.into_values().collect();
+        bricks.sort_unstable_by_key(|b| b.node);
+        (bricks, bytes, skipped)
     }
 
     /// Two starts, the better (smaller error mass) wins unless the first
@@ -407,16 +466,18 @@ impl Refiner<'_> {
     /// a fine uniform level that fits; on data with detail everywhere that
     /// level is the better cut). A start from the root that meets the
     /// tolerance needs no other (it spends the fewest bytes). Returns the cut
-    /// and its transparent nodes.
-    fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Cut, usize) {
+    /// (by node id) and its transparent nodes.
+    fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Vec<Brick>, usize) {
         let from_root = self.grow(vec![coarsest], 0);
-        let fine = (1..=self.max_p(root)).rev().find_map(|p| {
-            let form = self.cheapest(root, p);
-            (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Rc::clone(&form)]), form.hidden))
-        });
-        let total_mass = |cut: &Cut| cut.values().map(|b| self.mass(b)).sum::<f64>();
-        let meets = from_root.0.values().all(|b| Self::weighted(b) <= self.options.tolerance);
-        let other = if meets { None } else { fine.map(|(bricks, hidden)| self.grow(bricks, hidden)) };
+        let fine = || {
+            (1..=self.max_p(root)).rev().find_map(|p| {
+                let form = self.cheapest(root, p);
+                (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Arc::clone(&form)]), form.hidden))
+            })
+        };
+        let total_mass = |cut: &[Brick]| cut.iter().map(|b| self.mass(b)).sum::<f64>();
+        let meets = from_root.0.iter().all(|b| Self::weighted(b) <= self.options.tolerance);
+        let other = if meets { None } else { fine().map(|(bricks, hidden)| self.grow(bricks, hidden)) };
         let (cut, _, skipped) = match other {
             Some(other) if total_mass(&other.0) < total_mass(&from_root.0) => other,
             _ => from_root,
@@ -621,7 +682,7 @@ mod tests {
             let own = brick_of(root.id, p);
             for shows in [&(|_: &NodeRef<'_>| true) as &dyn Fn(&NodeRef<'_>) -> bool, &|n| n.max > 0.5] {
                 let form = cheapest(&o, &root, p, &brick_of, &max_p, shows, &Memo::default(), None);
-                let bricks = &Form::concat(&[Rc::clone(&form)]);
+                let bricks = &Form::concat(&[Arc::clone(&form)]);
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
                 // The form's own sums are its bricks'.
