@@ -28,7 +28,8 @@ Frames are StillRender + glFinish. The last orbit picture of each
 representation is kept, and the RMSE (RGB in [0, 1]) of ours against
 *Volume*'s is printed where *Volume* drew. A case that fails (out of
 memory, a texture too large, a crash) is a row with its exit status and
-its last error line, not an omission. Time per voxel is each step's ms
+its last error line, not an omission; a picture of the background
+alone is marked "drew nothing" (no RMSE is taken against it). Time per voxel is each step's ms
 over the voxel count. The .vti files are removed at the end.
 """
 import argparse
@@ -185,8 +186,10 @@ def main():
                     row["peak_ratio"] = row["process_peak_bytes"] / volume_bytes
                 if "failed" not in row and os.path.exists(png):
                     pictures[representation] = read_png_rgb(png)
+                    # A picture of one colour drew nothing (the background): a failure too.
+                    row["blank"] = bool(pictures[representation].std(axis=0).max() < 1e-3)
                 rows.append(row)
-            if len(pictures) == 2:
+            if len(pictures) == 2 and not rows[-2]["blank"]:
                 rows[-1]["rmse_vs_volume"] = rmse(pictures[HYBRID], pictures[VOLUME])
             os.remove(path)
     if args.json:
@@ -207,7 +210,7 @@ def main():
             r["frame_median_ms"], r["frame_max_ms"], r["read_peak_bytes"] / 1e6,
             r["first_frame_peak_bytes"] / 1e6, r["orbit_peak_bytes"] / 1e6, r["process_peak_bytes"] / 1e6,
             r["peak_ratio"], r["first_frame_ns_per_voxel"],
-            "%.4f" % r["rmse_vs_volume"] if "rmse_vs_volume" in r else ""))
+            "%.4f" % r["rmse_vs_volume"] if "rmse_vs_volume" in r else ("drew nothing" if r["blank"] else "")))
 
 
 if __name__ == "__main__":
