@@ -471,13 +471,14 @@ mod bridge {
         texel_bias: f64,
         /// Bytes of one texel on the GPU (all fields): for an RGBA volume
         /// ("rgba-components") 4 (RGBA8, u8 data, texel_format 4 unorm8,
-        /// alpha decoded with texel_scale 255) or 16 (RGBA32F).
+        /// red, the gradient's channel, decoded with texel_scale 255) or 16 (RGBA32F).
         texel_bytes: usize,
-        /// With "rgba-components": VTK's scaling of the colour channels of a
-        /// texture read t (normalized for RGBA8), `s = scale t + bias`, the
-        /// three scales then the three biases (`transfer::direct_colour`);
-        /// empty otherwise.
-        rgba_colour: Vec<f64>,
+        /// With "rgba-components": VTK 9.2's reading of a texture read t
+        /// (normalized for RGBA8; `transfer::direct_colour`): the colour
+        /// channels' `s = scale t + bias`, the three scales then the three
+        /// biases, then channel a's value for the opacity function, `v' =
+        /// scale t + bias` (the table clamps it); empty otherwise.
+        rgba_reading: Vec<f64>,
         /// Every sample's opacity times this before the correction (1: none).
         opacity_scale: f64,
         /// With the effect "gradient-opacity": the function at magnitudes

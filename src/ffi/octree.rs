@@ -25,8 +25,8 @@ pub struct HybridOctreeHandle {
     /// selections refine; `hybrid.volume` is then the colour field's.
     pub(crate) dependent: Option<VolumeOctree>,
     /// An RGBA volume (see `rgba.rs`; `dependent` its combined tree,
-    /// `hybrid.volume` component 3's): VTK's scaling of components 0, 1, 2.
-    pub(crate) rgba: Option<crate::transfer::direct_colour::RgbScale>,
+    /// `hybrid.volume` component 0's): VTK's reading of its components.
+    pub(crate) rgba: Option<crate::transfer::direct_colour::RgbaScale>,
     /// Unique per build: a selection remembers the octree it was made from.
     pub(crate) id: u64,
     /// Unique per integrated surface (0: none): a selection's kept

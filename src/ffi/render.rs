@@ -31,7 +31,7 @@ use crate::points::PointSet;
 use crate::render::texture::{
     brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into, encoded::brick_texels_encoded_into,
 };
-use crate::transfer::direct_colour::RgbScale;
+use crate::transfer::direct_colour::RgbaScale;
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
 use crate::transfer::{GradientOpacity, TransferFunction2D};
 use std::sync::{Arc, Mutex};
@@ -71,7 +71,7 @@ pub struct SelectionHandle {
     pub(crate) dependent: bool,
     /// Selected from an RGBA volume: its DrawLists plan it (`plan::dependent`,
     /// `rgba-components`), its colour components scaled so.
-    pub(crate) rgba: Option<RgbScale>,
+    pub(crate) rgba: Option<RgbaScale>,
     /// The image's scalar type (an RGBA volume's textures: RGBA8 for u8).
     scalar_type: crate::data::grid::ScalarType,
     /// Whether its DrawLists jitter ([`SelectionHandle::set_jittering`]).
@@ -320,7 +320,7 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         texel_scale: list.texel.scale,
         texel_bias: list.texel.bias,
         texel_bytes: list.texel.bytes() * if list.plan.dependent { 2 } else { 1 },
-        rgba_colour: Vec::new(),
+        rgba_reading: Vec::new(),
         opacity_scale: list.plan.opacity_scale,
         gradient_opacity_table: Vec::new(),
         gradient_opacity_end: 0.0,
@@ -537,7 +537,7 @@ impl SelectionHandle {
                 let format = if u8s { TexelFormat::Unorm8 } else { TexelFormat::Float32 };
                 out.texel_format = TexelFormat::ALL.iter().position(|f| *f == format).unwrap_or(1) as i32;
                 (out.texel_scale, out.texel_bias) = (if u8s { 255.0 } else { 1.0 }, 0.0);
-                out.rgba_colour = super::rgba::texel_colour_scale(scale, self.scalar_type);
+                out.rgba_reading = super::rgba::texel_reading(scale, self.scalar_type);
             }
             Ok(out)
         })

@@ -17,7 +17,7 @@ use crate::hybrid::HybridOctree;
 use crate::octree::{BuildOptions, RgbaOctree};
 use crate::plan::DrawList;
 use crate::render::rgba::{brick_texels_rgba_f32_into, brick_texels_rgba_u8_into, composite_rgba, upload_rgba};
-use crate::transfer::direct_colour::{ComponentScale, RgbScale};
+use crate::transfer::direct_colour::RgbaScale;
 use crate::transfer::TransferFunction;
 
 /// The four components of a 4-component image; `desc.component` is not read.
@@ -41,8 +41,8 @@ pub(crate) fn fields<'a>(bytes: &'a [u8], desc: &GridDesc, scan: bool) -> Result
 }
 
 /// Builds the four components' octrees ([`RgbaOctree::build_with_progress`]):
-/// the handle's volume is component 3's tree (the opacity function's domain,
-/// the gradient), its `dependent` tree the combined one.
+/// the handle's volume is component 0's tree (the gradient's field), its
+/// `dependent` tree the combined one.
 pub(crate) fn build_rgba(
     bytes: &[u8],
     desc: &GridDesc,
@@ -54,29 +54,36 @@ pub(crate) fn build_rgba(
     let built = RgbaOctree::build_with_progress([&f[0], &f[1], &f[2], &f[3]], &options, progress)?;
     let scalar = f[3].samples().scalar_type();
     Ok(Box::new(HybridOctreeHandle {
-        hybrid: HybridOctree::volume_only(built.alpha),
+        hybrid: HybridOctree::volume_only(built.red),
         shape: *f[3].shape(),
         input_bytes: f[3].input_bytes(),
         nan_samples: f.iter().map(Grid::nan_count).sum(),
         scalar_type: scalar,
         dependent: Some(built.combined),
-        rgba: Some(built.colour_ranges.map(|r| ComponentScale::vtk(scalar, r))),
+        rgba: Some(built.scale),
         id: next_id(),
         surface_id: 0,
     }))
 }
 
-/// The scaling of the colour channels of a texture read `t` of an RGBA
-/// volume of `scalar` data (`s = scale t + bias`): RGBA8 reads `t = v / 255`
-/// of u8 data, RGBA32F the values; the three scales, then the three biases.
-pub(crate) fn texel_colour_scale(scale: &RgbScale, scalar: ScalarType) -> Vec<f64> {
+/// VTK's reading of a texture read `t` of an RGBA volume of `scalar` data:
+/// the colour channels' `s = scale t + bias` (the three scales, then the
+/// three biases), then channel a's `v' = scale t + bias` (before the
+/// table's clamp). RGBA8 reads `t = v / 255` of u8 data; RGBA32F reads the
+/// values in r, g, b and `v'` itself in a ([`SelectionHandle::brick_texels_rgba`]).
+pub(crate) fn texel_reading(scale: &RgbaScale, scalar: ScalarType) -> Vec<f64> {
     let per_texel = if scalar == ScalarType::U8 { 255.0 } else { 1.0 };
-    scale.iter().map(|s| s.scale * per_texel).chain(scale.iter().map(|s| s.bias)).collect()
+    let (a, b) = if scalar == ScalarType::U8 { scale.opacity_affine() } else { (1.0 / per_texel, 0.0) };
+    let rgb = scale.rgb;
+    rgb.iter().map(|s| s.scale * per_texel).chain(rgb.iter().map(|s| s.bias)).chain([a * per_texel, b]).collect()
 }
 
 impl SelectionHandle {
     /// Brick `brick`'s texels of the four components (see the bridge's
-    /// `brick_texels_rgba`), with the gradient border when `bordered`.
+    /// `brick_texels_rgba`), with the gradient border when `bordered`:
+    /// `decoded` holds the values of r, g, b and `v'` of a (what the block
+    /// ranges are measured on, and RGBA32F uploads), `encoded` the RGBA8
+    /// bytes of u8 data.
     pub(crate) fn brick_texels_rgba(
         &self,
         bytes: &[u8],
@@ -87,14 +94,14 @@ impl SelectionHandle {
         encoded: &mut [u8],
     ) -> Bridged<()> {
         guarded(|| {
-            if self.rgba.is_none() {
+            let Some(scale) = self.rgba else {
                 return Err(Error::InvalidArgument(if self.dependent {
                     "this selection was made from two dependent fields: read its texels with brick_texels_dependent"
                         .into()
                 } else {
                     "this selection was made from one field: read its texels with brick_texels".into()
                 }));
-            }
+            };
             let f = fields(bytes, desc, false)?;
             same_image(&self.shape, &f[3])?;
             let four = [&f[0], &f[1], &f[2], &f[3]];
@@ -107,6 +114,9 @@ impl SelectionHandle {
                     i / 4,
                     i % 4
                 )));
+            }
+            for quad in decoded.chunks_exact_mut(4) {
+                quad[3] = scale.opacity_value(f64::from(quad[3])) as f32;
             }
             match f[3].samples().scalar_type() {
                 ScalarType::U8 => brick_texels_rgba_u8_into(four, b, bordered, encoded),
@@ -125,7 +135,7 @@ impl SelectionHandle {
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn composite_into(
     list: &DrawList,
-    scale: RgbScale,
+    scale: RgbaScale,
     bytes: &[u8],
     desc: &GridDesc,
     tf: &TransferFunction,
@@ -199,9 +209,14 @@ mod tests {
         let list = s.draw_list(&h, &camera, 0.0).unwrap();
         assert_eq!(list.effects, "rgba-components");
         assert_eq!((list.texel_bytes, list.texel_format, list.texel_scale), (4, 4, 255.0));
-        let red = ComponentScale::vtk(ScalarType::U8, (0.0, 255.0));
-        assert_eq!(list.rgba_colour.len(), 6);
-        assert!((list.rgba_colour[0] - 255.0 * red.scale).abs() < 1e-12 && list.rgba_colour[3] == red.bias);
+        // RGBA8: t = v / 255 is the colour itself; alpha over [0, 255]: v' = 255 t.
+        assert_eq!(list.rgba_reading.len(), 8);
+        assert!(list.rgba_reading[..6].iter().zip([1.0, 1.0, 1.0, 0.0, 0.0, 0.0]).all(|(a, b)| (a - b).abs() < 1e-12));
+        assert!(
+            (list.rgba_reading[6] - 255.0).abs() < 1e-9 && list.rgba_reading[7].abs() < 1e-12,
+            "{:?}",
+            list.rgba_reading
+        );
         let b = &s.selection.bricks[0];
         let count: usize = b.texels.iter().product();
         let (mut decoded, mut encoded) = (vec![0.0f32; 4 * count], vec![0u8; 4 * count]);
@@ -230,11 +245,9 @@ mod tests {
         assert_eq!(px(2, 8)[3], 0.0);
         let p = px(13, 8);
         assert!(p[3] > 0.5, "{p:?}");
-        // Straight colour: green 60 / 255 scaled; red high, blue low on the right.
+        // Straight colour: green 60 / 255 (VTK reads u8 as GL does); red high, blue low on the right.
         let green = p[1] / p[3];
-        assert!(
-            (f64::from(green) - ComponentScale::vtk(ScalarType::U8, (60.0, 60.0)).apply(60.0).min(1.0)).abs() < 1e-3
-        );
+        assert!((f64::from(green) - 60.0 / 255.0).abs() < 1e-3, "{p:?}");
         assert!(p[0] > p[2], "{p:?}");
 
         // f32: 16 bytes a texel, no encoded bytes.

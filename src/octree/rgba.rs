@@ -1,15 +1,17 @@
 //! The Volume Octree of an RGBA volume with dependent components (VTK's
 //! `vtkVolumeProperty::IndependentComponentsOff` on a 4-component array;
 //! ParaView's *Map Scalars* off, *Multi Components Mapping* on): components
-//! 0, 1, 2 are the colour itself, component 3 goes through the scalar
-//! opacity function and gives the gradient.
+//! 0, 1, 2 are the colour itself (component 0 gives the gradient),
+//! component 3 goes through the scalar opacity function at `v'`, the value
+//! VTK 9.2 reads it as ([`crate::transfer::direct_colour`]).
 //!
 //! The four fields share one grid, hence one [`Layout`]; the tree the
 //! selection refines ([`RgbaOctree::combined`],
 //! [`combine_fields`](super::dependent::combine_fields)) carries per node
 //!
 //! ```text
-//! min(n), max(n) = component 3's           (visible(min, max): opacity function over them is not 0)
+//! min(n), max(n) = v' of component 3's   (visible(min, max): opacity TF over them is not 0;
+//!                                         v' is non-decreasing: they bound v' over the node)
 //! E_p(n)         = max over the 4 components of E^k_p(n)   (each normalised by its own range)
 //! Q_p(n)         = sum over the 4 components of Q^k_p(n)
 //! ```
@@ -17,9 +19,7 @@
 //! for the reasons of [`super::dependent`]: the max bounds the error of any
 //! component drawn at level `p`, keeps the tree well formed, and does not
 //! depend on the transfer functions (the selection is kept across their
-//! changes). Each component's error is normalised by its own range as VTK
-//! normalises each colour component by its range
-//! ([`crate::transfer::direct_colour`]), so it is the error in colour units.
+//! changes). Each component's error is normalised by its own range.
 //!
 //! [`Layout`]: super::Layout
 
@@ -28,18 +28,20 @@ use super::dependent::combine_fields;
 use super::volume_octree::VolumeOctree;
 use crate::base::error::{Error, Result};
 use crate::data::grid::Grid;
+use crate::transfer::direct_colour::RgbaScale;
 
 /// The octrees of an RGBA volume (see the module documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RgbaOctree {
-    /// What the selection refines: the shared structure, component 3's
-    /// min/max, the largest of the four components' normalised errors.
+    /// What the selection refines: the shared structure, `v'` of component
+    /// 3's min/max, the largest of the four components' normalised errors.
     pub combined: VolumeOctree,
-    /// Component 3's own tree (the opacity and gradient field): its value
-    /// range is the opacity function's domain.
-    pub alpha: VolumeOctree,
-    /// The finite (min, max) of components 0, 1, 2 (what VTK scales the colour by).
-    pub colour_ranges: [(f64, f64); 3],
+    /// Component 0's own tree (the gradient's field).
+    pub red: VolumeOctree,
+    /// The finite (min, max) of the four components.
+    pub ranges: [(f64, f64); 4],
+    /// VTK's reading of the components (their type and ranges).
+    pub scale: RgbaScale,
 }
 
 impl RgbaOctree {
@@ -62,15 +64,19 @@ impl RgbaOctree {
                 "the RGBA components have different dims, spacing or origin: give four components of one image".into(),
             ));
         }
-        let mut colour = Vec::with_capacity(3);
-        for (k, field) in fields[..3].iter().enumerate() {
+        let mut trees = Vec::with_capacity(4);
+        for (k, field) in fields.iter().enumerate() {
             let q = k as f64 / 4.0;
-            colour.push(VolumeOctree::build_with_progress(field, options, &mut |f| progress(q + 0.25 * f))?);
+            trees.push(VolumeOctree::build_with_progress(field, options, &mut |f| progress(q + 0.25 * f))?);
         }
-        let alpha = VolumeOctree::build_with_progress(fields[3], options, &mut |f| progress(0.75 + 0.25 * f))?;
-        let combined = combine_fields(&[&colour[0], &colour[1], &colour[2]], &alpha)?;
-        let colour_ranges = [0, 1, 2].map(|k| colour[k].value_range());
-        Ok(RgbaOctree { combined, alpha, colour_ranges })
+        let ranges = [0, 1, 2, 3].map(|k| trees[k].value_range());
+        let scale = RgbaScale::vtk(fields[3].samples().scalar_type(), ranges);
+        let mut combined = combine_fields(&[&trees[0], &trees[1], &trees[2]], &trees[3])?;
+        for v in combined.min.iter_mut().chain(combined.max.iter_mut()) {
+            *v = scale.opacity_value(*v);
+        }
+        let red = trees.swap_remove(0);
+        Ok(RgbaOctree { combined, red, ranges, scale })
     }
 
     /// [`Self::build_with_progress`] without progress.
@@ -80,7 +86,7 @@ impl RgbaOctree {
 
     /// Bytes owned by the kept trees.
     pub fn octree_bytes(&self) -> usize {
-        self.combined.octree_bytes() + self.alpha.octree_bytes()
+        self.combined.octree_bytes() + self.red.octree_bytes()
     }
 }
 
@@ -123,16 +129,19 @@ mod tests {
             let t = RgbaOctree::build([&grids[0], &grids[1], &grids[2], &grids[3]], &options).unwrap();
             t.combined.validate().unwrap();
             let alone: Vec<VolumeOctree> = grids.iter().map(|g| VolumeOctree::build(g, &options).unwrap()).collect();
-            assert_eq!((t.combined.min.clone(), t.combined.max.clone()), (alone[3].min.clone(), alone[3].max.clone()));
-            assert_eq!(t.alpha, alone[3]);
+            // The combined ranges are v' of alpha's (VTK's reading of the u8 values).
+            let v = |x: &f64| t.scale.opacity_value(*x);
+            assert_eq!(t.combined.min, alone[3].min.iter().map(v).collect::<Vec<_>>());
+            assert_eq!(t.combined.max, alone[3].max.iter().map(v).collect::<Vec<_>>());
+            assert_eq!(t.red, alone[0]);
             let root = t.combined.node(t.combined.root());
             assert!(!root.is_homogeneous(), "bump in component {bump}");
             for p in 0..root.errors.len() {
                 let max = alone.iter().map(|a| a.node(a.root()).error(p)).fold(0.0f32, f32::max);
                 assert_eq!(root.error(p), max);
             }
-            for c in 0..3 {
-                assert_eq!(t.colour_ranges[c], alone[c].value_range());
+            for c in 0..4 {
+                assert_eq!(t.ranges[c], alone[c].value_range());
             }
             let far = t.combined.layout().id(2, [3, 3, 3]);
             assert!(t.combined.node(far).is_homogeneous());

@@ -86,9 +86,9 @@
 //! opacity texture, both at the same texel coordinates; the gradient
 //! (shading, gradient opacity) is the colour texture's. An RGBA volume
 //! ([`crate::plan::Plan::rgba`], [`crate::render::rgba`]): the colour is
-//! the three colour textures scaled as VTK scales them, the opacity the
-//! function's at the fourth texture, which gives the gradient; the shaded
-//! colour is clamped to `[0, 1]`.
+//! the red texture (the gradient's) and the green and blue textures read
+//! as VTK reads them, the opacity the function's at the alpha texture's
+//! `v'`; the shaded colour is clamped to `[0, 1]`.
 //! Cropping and clipping planes ([`DrawList::region`], the plan's
 //! `effects`): a sample whose point `p(z)` the region does not keep
 //! ([`crate::plan::crop::KeptRegion::keeps`]) is empty, skipped like a
@@ -812,9 +812,9 @@ impl<S: Texel> Executor<'_, S> {
         };
         let [mut r, mut gr, mut bl] = [r, gr, bl];
         if let Some(other) = brick.other {
-            scratch.counts.direct_colours += usize::from(matches!(other, OtherFields::Rgb(..)));
+            scratch.counts.direct_colours += usize::from(matches!(other, OtherFields::Rgba(..)));
             // Dependent components (`super::fields`): the opacity field's opacity, or the RGB colour.
-            ([r, gr, bl], a) = classify_other(other, value, [r, gr, bl], a, |v| self.lut.eval(v)[3], |t| t.at_texel(u));
+            ([r, gr, bl], a) = classify_other(other, value, [r, gr, bl], |v| self.lut.eval(v)[3], |t| t.at_texel(u));
         }
         if a <= 0.0 {
             return acc;

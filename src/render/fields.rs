@@ -3,13 +3,13 @@
 //!
 //! ```text
 //! two fields:  texture = field 0 (colour function, gradient), Opacity = field 1 (opacity function)
-//! RGBA:        texture = field 3 (opacity function, gradient), Rgb = fields 0, 1, 2 (the colour,
-//!              each s(v) = scale v + bias as VTK scales it, crate::transfer::direct_colour)
+//! RGBA:        texture = field 0 (red, gradient), Rgba = fields 1, 2 (green, blue) and 3 (opacity
+//!              function at v'(field 3)); each read as VTK 9.2 reads it, crate::transfer::direct_colour
 //! ```
 //!
 //! A sample with a NaN in any field it reads is no data: transparent.
 
-use crate::transfer::direct_colour::RgbScale;
+use crate::transfer::direct_colour::RgbaScale;
 
 /// The other fields of a sample (module documentation), as grids,
 /// textures or one brick's texture `T`.
@@ -17,8 +17,9 @@ use crate::transfer::direct_colour::RgbScale;
 pub(crate) enum OtherFields<T> {
     /// The opacity field of two dependent fields.
     Opacity(T),
-    /// The red, green and blue fields of an RGBA volume, and their scaling.
-    Rgb([T; 3], RgbScale),
+    /// The green and blue fields and the alpha field of an RGBA volume
+    /// (the texture's is red), and VTK's reading of them.
+    Rgba([T; 2], T, RgbaScale),
 }
 
 impl<T: Copy> OtherFields<T> {
@@ -26,7 +27,7 @@ impl<T: Copy> OtherFields<T> {
     pub(crate) fn map<U>(self, mut f: impl FnMut(T) -> U) -> OtherFields<U> {
         match self {
             OtherFields::Opacity(o) => OtherFields::Opacity(f(o)),
-            OtherFields::Rgb(t, s) => OtherFields::Rgb(t.map(f), s),
+            OtherFields::Rgba([g, b], a, s) => OtherFields::Rgba([f(g), f(b)], f(a), s),
         }
     }
 
@@ -34,21 +35,21 @@ impl<T: Copy> OtherFields<T> {
     pub(crate) fn try_map<U, E>(self, mut f: impl FnMut(T) -> Result<U, E>) -> Result<OtherFields<U>, E> {
         Ok(match self {
             OtherFields::Opacity(o) => OtherFields::Opacity(f(o)?),
-            OtherFields::Rgb([r, g, b], s) => OtherFields::Rgb([f(r)?, f(g)?, f(b)?], s),
+            OtherFields::Rgba([g, b], a, s) => OtherFields::Rgba([f(g)?, f(b)?], f(a)?, s),
         })
     }
 }
 
-/// The sample's colour `c` and opacity `a` (the transfer function's at the
-/// value `value`) once the other fields are read through `at` (a field's
-/// value at the sample): the opacity function at the opacity field, or the
-/// scaled RGB components; transparent when a field read, or `value`, is NaN.
+/// The sample's colour and opacity, its colour `c` the transfer function's
+/// at the value `value`, once the other fields are read through `at` (a field's
+/// value at the sample): the opacity function at the opacity field, or an
+/// RGBA volume's colour (`value` its red) and the opacity function at
+/// `v'` of its alpha; transparent when a field read, or `value`, is NaN.
 #[inline]
 pub(crate) fn classify_other<T: Copy>(
     other: OtherFields<T>,
     value: f64,
     c: [f64; 3],
-    a: f64,
     opacity: impl Fn(f64) -> f64,
     at: impl Fn(T) -> f64,
 ) -> ([f64; 3], f64) {
@@ -57,12 +58,13 @@ pub(crate) fn classify_other<T: Copy>(
     }
     match other {
         OtherFields::Opacity(o) => (c, opacity(at(o))),
-        OtherFields::Rgb(t, s) => {
-            let rgb = [0, 1, 2].map(|k| s[k].apply(at(t[k])));
-            if rgb.iter().any(|v| v.is_nan()) {
+        OtherFields::Rgba([g, b], alpha, s) => {
+            let rgb = [s.rgb[0].apply(value), s.rgb[1].apply(at(g)), s.rgb[2].apply(at(b))];
+            let v = s.opacity_value(at(alpha));
+            if rgb.iter().any(|v| v.is_nan()) || v.is_nan() {
                 (c, 0.0)
             } else {
-                (rgb, a)
+                (rgb, opacity(v))
             }
         }
     }
@@ -73,7 +75,7 @@ pub(crate) fn classify_other<T: Copy>(
 #[inline]
 pub(crate) fn clamp_rgb<T>(other: Option<&OtherFields<T>>, c: [f64; 3]) -> [f64; 3] {
     match other {
-        Some(OtherFields::Rgb(..)) => c.map(|v| v.clamp(0.0, 1.0)),
+        Some(OtherFields::Rgba(..)) => c.map(|v| v.clamp(0.0, 1.0)),
         _ => c,
     }
 }

@@ -122,9 +122,9 @@ pub fn reference_blend(
 
 /// [`reference_blend`] with, when `other` is given, each sample's opacity
 /// from the opacity function at the opacity field instead of `grid`'s (two
-/// dependent fields, see [`crate::render::dependent`]) or its colour from
-/// the scaled RGB fields, clamped after shading (an RGBA volume, `grid` its
-/// field 3, [`crate::render::rgba`]); `other` must be fields of the same image.
+/// dependent fields, see [`crate::render::dependent`]) or its colour and
+/// opacity from the RGBA fields, clamped after shading (an RGBA volume,
+/// `grid` its red field, [`crate::render::rgba`]); `other` must be fields of the same image.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn reference_fields(
     grid: &Grid<'_>,
@@ -289,7 +289,6 @@ impl Caster<'_> {
                             other,
                             value,
                             [r, gr, b],
-                            a,
                             |v| f64::from(self.tf.opacity(v)),
                             |f| trilinear(self.shape.dims, u, |i, j, k| f.value(i, j, k)),
                         );

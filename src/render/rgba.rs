@@ -5,14 +5,14 @@
 //! ```text
 //! c(x) = clamp((s_0(f_0(x)), s_1(f_1(x)), s_2(f_2(x))), 0, 1)   (computeColor: scalar.xyz,
 //!                                                               clamped after the shading)
-//! a(x) = scalar opacity function (f_3(x))                       (computeOpacity: the opacity table at scalar.w)
-//! g(x) = grad f_3(x)                                            (computeLighting(.., 3, ..): shading, gradient opacity)
+//! a(x) = scalar opacity function (v'(f_3(x)))                   (computeOpacity: the opacity table at scalar.w)
+//! g(x) = grad f_0(x)                                            (computeLighting(.., 0, ..): shading, gradient opacity)
 //! ```
 //!
-//! `s_k` VTK's scaling of component `k` by its type and finite range
-//! ([`crate::transfer::direct_colour`]); the fields are interpolated, then
-//! scaled (the scaling is affine: the same as scaling the texels). The
-//! colour transfer function is not used.
+//! `s_k`, `v'` VTK 9.2's reading of the components by their type and
+//! ranges ([`crate::transfer::direct_colour`]); the fields are
+//! interpolated, then read (the reading is affine: the same as reading the
+//! texels). The colour transfer function is not used.
 //!
 //! Textures carry the four fields: one [`Textures`] per field, the same
 //! bricks and texel positions. A GPU executor uploads them as one
@@ -20,9 +20,9 @@
 //! [`brick_texels_rgba_u8_into`]: RGBA8, what VTK uploads, exact), whose
 //! bytes per texel [`crate::plan::dependent::rgba_texel_bytes`] gives; the
 //! selection counts those. The CPU compositor and the reference caster
-//! read the opacity and the gradient from field 3 (it is their texture or
-//! grid) and the colour from fields 0, 1, 2; everything else is theirs
-//! unchanged.
+//! read the red and the gradient from field 0 (it is their texture or
+//! grid), green, blue and the opacity from fields 1, 2, 3; everything else
+//! is theirs unchanged.
 
 use super::check::{check_list, check_size};
 use super::compositor::execute_counted;
@@ -35,25 +35,23 @@ use crate::data::grid::{Grid, Samples};
 use crate::geometry::camera::Camera;
 use crate::plan::select::Brick;
 use crate::plan::{Blend, DrawList};
-use crate::transfer::direct_colour::RgbScale;
+use crate::transfer::direct_colour::RgbaScale;
 use crate::transfer::TransferFunction;
 
 /// The four fields' textures of a DrawList's bricks, stored alike (`f64`
 /// for all when any needs it), and the colour components' scaling.
 #[derive(Debug, Clone)]
 pub struct RgbaTextures {
-    /// Fields 0, 1, 2 (red, green, blue).
-    pub rgb: [Textures; 3],
-    /// Field 3 (opacity and gradient).
-    pub alpha: Textures,
-    /// VTK's scaling of fields 0, 1, 2.
-    pub scale: RgbScale,
+    /// Fields 0, 1, 2, 3 (red with the gradient's lattice differences, green, blue, alpha).
+    pub fields: [Textures; 4],
+    /// VTK's reading of the fields.
+    pub scale: RgbaScale,
 }
 
 impl RgbaTextures {
     /// Bytes of texel data of the four fields (the CPU compositor's copy).
     pub fn bytes(&self) -> usize {
-        self.rgb.iter().map(Textures::bytes).sum::<usize>() + self.alpha.bytes()
+        self.fields.iter().map(Textures::bytes).sum()
     }
 }
 
@@ -81,13 +79,13 @@ fn check_rgba(list: &DrawList) -> Result<()> {
 }
 
 /// Uploads `list`'s bricks from the four fields (see [`super::texture::upload`]);
-/// field 3 carries the gradient's lattice differences.
+/// field 0 carries the gradient's lattice differences.
 ///
 /// # Errors
 ///
 /// [`Error::InvalidArgument`] for fields of different images, a texel
 /// format other than float32, and as [`upload`].
-pub fn upload_rgba(fields: [&Grid<'_>; 4], scale: RgbScale, list: &DrawList) -> Result<RgbaTextures> {
+pub fn upload_rgba(fields: [&Grid<'_>; 4], scale: RgbaScale, list: &DrawList) -> Result<RgbaTextures> {
     check_fields(fields)?;
     if list.texel.format != crate::plan::texel_format::TexelFormat::Float32 {
         return Err(Error::InvalidArgument(format!(
@@ -96,18 +94,16 @@ pub fn upload_rgba(fields: [&Grid<'_>; 4], scale: RgbScale, list: &DrawList) -> 
             list.texel.format.name()
         )));
     }
-    let alpha = upload(fields[3], list)?;
-    let rgb = [
-        upload_field(fields[0], list, false)?,
+    let fields = [
+        upload(fields[0], list)?,
         upload_field(fields[1], list, false)?,
         upload_field(fields[2], list, false)?,
+        upload_field(fields[3], list, false)?,
     ];
-    let wide = |t: &Textures| matches!(t.texels, Texels::F64(_));
-    if wide(&alpha) || rgb.iter().any(wide) {
-        let rgb = rgb.map(Textures::widened);
-        return Ok(RgbaTextures { rgb, alpha: alpha.widened(), scale });
+    if fields.iter().any(|t| matches!(t.texels, Texels::F64(_))) {
+        return Ok(RgbaTextures { fields: fields.map(Textures::widened), scale });
     }
-    Ok(RgbaTextures { rgb, alpha, scale })
+    Ok(RgbaTextures { fields, scale })
 }
 
 /// The CPU compositor ([`super::compositor`]) on an RGBA DrawList (module documentation).
@@ -137,26 +133,25 @@ pub(crate) fn composite_rgba_counted(
 ) -> Result<(Image, super::compositor::Counts)> {
     check_size(width, height)?;
     check_rgba(list)?;
-    check_list(list, &textures.alpha.shape, None)?;
-    textures.alpha.check(list)?;
-    for t in &textures.rgb {
+    let [r, g, b, a] = &textures.fields;
+    check_list(list, &r.shape, None)?;
+    for t in &textures.fields {
         t.check(list)?;
     }
-    let [r, g, b] = &textures.rgb;
-    let other = OtherFields::Rgb([r, g, b], textures.scale);
-    execute_counted(&textures.alpha, Some(other), None, list, tf, width, height, None, None)
+    let other = OtherFields::Rgba([g, b], a, textures.scale);
+    execute_counted(r, Some(other), None, list, tf, width, height, None, None)
 }
 
 /// The full-resolution reference ([`super::reference::reference_blend`],
-/// Composite) of an RGBA volume: colour from fields 0, 1, 2 scaled by
-/// `scale`, opacity and gradient from field 3.
+/// Composite) of an RGBA volume: colour from fields 0, 1, 2 and opacity
+/// from field 3 read by `scale`, the gradient field 0's.
 ///
 /// # Errors
 ///
 /// [`Error::InvalidArgument`] for fields of different images, and as [`super::reference::reference`].
 pub fn reference_rgba(
     fields: [&Grid<'_>; 4],
-    scale: RgbScale,
+    scale: RgbaScale,
     tf: &TransferFunction,
     camera: &Camera,
     width: usize,
@@ -164,8 +159,8 @@ pub fn reference_rgba(
     options: &ReferenceOptions<'_>,
 ) -> Result<Image> {
     check_fields(fields)?;
-    let other = OtherFields::Rgb([fields[0], fields[1], fields[2]], scale);
-    reference_fields(fields[3], Some(other), tf, camera, width, height, options, &Blend::default())
+    let other = OtherFields::Rgba([fields[1], fields[2]], fields[3], scale);
+    reference_fields(fields[0], Some(other), tf, camera, width, height, options, &Blend::default())
 }
 
 /// The texels of brick `brick`, `bordered` or not, as one field's `f32`s.

@@ -20,7 +20,7 @@ use crate::plan::dependent::{plan_fields, rgba_texel_bytes, Fields, RGBA_EFFECT}
 use crate::plan::select::{select, SelectOptions};
 use crate::plan::texel_format::TexelEncoding;
 use crate::plan::{draw_list, Blend, BlendMode, DrawList, Scene};
-use crate::transfer::direct_colour::{ComponentScale, RgbScale};
+use crate::transfer::direct_colour::RgbaScale;
 use crate::transfer::lighting::{Lighting, Material};
 use crate::transfer::TransferFunction;
 
@@ -50,8 +50,9 @@ fn rgba_u8() -> Vec<u8> {
     data
 }
 
-/// The components as f32 over other ranges (`c` to `100 c - 20` for the
-/// colour, `2 c` for alpha), interleaved: VTK scales each by its range.
+/// The components as f32, `0.9 c + 0.05` for the colour (VTK 9.2 reads
+/// floats as they are) and `2 c` for alpha (whose opacity VTK reads at
+/// `v' = 2 v` over its range [0, 2]), interleaved.
 fn rgba_f32() -> Vec<f32> {
     let mut data = Vec::with_capacity(4 * N * N * N);
     for k in 0..N {
@@ -79,9 +80,10 @@ fn four<'a, 'b>(g: &'b [Grid<'a>]) -> [&'b Grid<'a>; 4] {
     [&g[0], &g[1], &g[2], &g[3]]
 }
 
-/// VTK's scaling of the colour components of `octree`'s data.
-fn scale(octree: &RgbaOctree, scalar: ScalarType) -> RgbScale {
-    octree.colour_ranges.map(|r| ComponentScale::vtk(scalar, r))
+/// VTK's reading of `octree`'s data (its type the one given).
+fn scale(octree: &RgbaOctree, scalar: ScalarType) -> RgbaScale {
+    assert_eq!(octree.scale, RgbaScale::vtk(scalar, octree.ranges));
+    octree.scale
 }
 
 /// Opacity 0 at alpha 0 rising to 0.3 at alpha's maximum `top` (the
@@ -106,7 +108,7 @@ fn planned(
 ) -> DrawList {
     let options = SelectOptions { bytes_per_texel: rgba_texel_bytes(scalar), ..SelectOptions::new(budget, 0.0) };
     let selection = select(&octree.combined, &options, |a, b| !tf.is_transparent_over(a, b)).unwrap();
-    let range = octree.alpha.value_range();
+    let range = octree.red.value_range();
     let scene = Scene {
         surface: None,
         surface_opacity: 1.0,
@@ -121,14 +123,16 @@ fn planned(
     plan_fields(list, fields)
 }
 
-/// The compositor draws the RGB components as colour and the opacity of
-/// component 3, as the reference does: u8 and f32 data, unshaded and
-/// shaded (headlight; the gradient is component 3's), parallel and
-/// perspective, at the full budget (stride 1) and at budgets of mixed
-/// strides. Metric RMSE of RGBA in [0, 1]. Measured: full budget 0.00005
-/// to 0.00009 (bound 0.0005), mixed strides 0.0010 to 0.0044 (bound 0.008). The
-/// RGBA picture is far from the single-field picture of component 3
-/// through the colour function (RMSE above 0.03; measured 0.043 to 0.096): the colour is the data's.
+/// The compositor draws the RGBA volume as the reference does (colour from
+/// the components read as VTK 9.2 reads them, opacity at `v'` of component
+/// 3, gradient of component 0): u8 and f32 data, unshaded and shaded
+/// (headlight), parallel and perspective, at the full budget (stride 1) and
+/// at budgets of mixed strides. Metric RMSE of RGBA in [0, 1]. Measured: full
+/// budget u8 0.00003 to 0.00006, f32 0.0003 to 0.0014 (its alpha 2c is read
+/// at `v' = 2 min(2c, 1)`: the opacity has a kink where it saturates, which
+/// slices and rays sample differently), bound 0.003; mixed strides 0.0006
+/// to 0.0069, bound 0.008. The RGBA picture is far from component 3 drawn
+/// alone through the colour function (RMSE above 0.02; measured 0.029 to 0.1).
 #[test]
 fn compositor_matches_the_reference() {
     let bytes = rgba_u8();
@@ -147,9 +151,9 @@ fn compositor_matches_the_reference() {
             let truth = reference_rgba(four(&g), rgb, &tf, &camera, 64, 64, &options).unwrap();
             let alone = reference(&g[3], &tf, &camera, 64, 64, &options).unwrap();
             let apart = compare(&truth, &alone).unwrap();
-            assert!(apart.rmse > 0.03, "the colour fields must show: {apart:?}");
+            assert!(apart.rmse > 0.02, "the colour fields must show: {apart:?}");
             let mut mixed = 0;
-            for budget in [1usize << 30, 100_000, 60_000, 30_000] {
+            for budget in [1usize << 30, 100_000, 60_000] {
                 let budget = budget * rgba_texel_bytes(scalar) / 4;
                 let list = planned(&octree, scalar, &tf, &camera, budget, BlendMode::Composite, light, Fields::Rgba);
                 let expected: Vec<&str> = if shaded { vec![RGBA_EFFECT, "shading"] } else { vec![RGBA_EFFECT] };
@@ -162,7 +166,7 @@ fn compositor_matches_the_reference() {
                 eprintln!(
                     "rgba {scalar:?} parallel {parallel} shaded {shaded} budget {budget} strides {strides:?}: {m:?}"
                 );
-                let bound = if strides.len() == 1 && strides.contains(&1) { 0.0005 } else { 0.008 };
+                let bound = if strides.len() == 1 && strides.contains(&1) { 0.003 } else { 0.008 };
                 assert!(m.rmse < bound, "{scalar:?} parallel {parallel} shaded {shaded} budget {budget}: {m:?}");
             }
             assert!(mixed >= 1, "no budget gave mixed strides");
@@ -221,8 +225,7 @@ fn selection_counts_uploaded_bytes_and_alpha_visibility() {
 }
 
 /// A NaN in any component is no data (transparent) in the compositor as in
-/// the reference; a constant colour component is VTK's: a constant float
-/// component scales to 0, a constant u8 one above 0 to 1 (clamped).
+/// the reference; constant colour components are read as VTK 9.2 reads them.
 /// Measured RMSE of the NaN picture 0.0004, bound 0.004.
 #[test]
 fn nan_and_constant_components() {
@@ -255,32 +258,35 @@ fn nan_and_constant_components() {
     assert!(centre(&truth) < centre(&whole) - 0.05, "{} vs {}", centre(&truth), centre(&whole));
     assert!(centre(&image) < centre(&whole) - 0.05, "{} vs {}", centre(&image), centre(&whole));
 
-    // Constant colour components: red 7.5 (float: scales to 0), blue 100 (u8: to 1).
+    // Constant colour components, read as VTK 9.2 reads them: a float red
+    // of 0.25 is 0.25 (floats as they are); a double red of 7.5 is 0 (wide
+    // types scaled to their range, a constant one to 0 at its value); a u8
+    // blue of 100 is 100 / 255. Premultiplied: the channel is the factor
+    // times the opacity.
+    let premultiplied = |pic: &super::image::Image, channel: usize, factor: f32| {
+        pic.rgba.iter().any(|p| p[3] > 0.1) && pic.rgba.iter().all(|p| (p[channel] - factor * p[3]).abs() < 1e-5)
+    };
     let mut constant = clean.clone();
-    constant.chunks_exact_mut(4).for_each(|q| q[0] = 7.5);
+    constant.chunks_exact_mut(4).for_each(|q| q[0] = 0.25);
     let gk = grids(Samples::F32(&constant));
     let tk = RgbaOctree::build(four(&gk), &BuildOptions { leaf_size: 8 }).unwrap();
-    assert_eq!(tk.colour_ranges[0], (7.5, 7.5));
-    let pic =
-        reference_rgba(four(&gk), scale(&tk, ScalarType::F32), &tf, &camera, 48, 48, &ReferenceOptions::default())
-            .unwrap();
-    assert!(pic.rgba.iter().all(|p| p[0] == 0.0) && pic.rgba.iter().any(|p| p[3] > 0.1));
+    assert_eq!(tk.ranges[0], (0.25, 0.25));
+    let options = ReferenceOptions::default();
+    let pic = reference_rgba(four(&gk), scale(&tk, ScalarType::F32), &tf, &camera, 48, 48, &options).unwrap();
+    assert!(premultiplied(&pic, 0, 0.25), "float red 0.25");
+    let doubles: Vec<f64> =
+        clean.iter().enumerate().map(|(i, &v)| if i % 4 == 0 { 7.5 } else { f64::from(v) }).collect();
+    let gd = grids(Samples::F64(&doubles));
+    let td = RgbaOctree::build(four(&gd), &BuildOptions { leaf_size: 8 }).unwrap();
+    let pic = reference_rgba(four(&gd), scale(&td, ScalarType::F64), &tf, &camera, 48, 48, &options).unwrap();
+    assert!(premultiplied(&pic, 0, 0.0), "double red constant: 0");
     let mut bytes = rgba_u8();
     bytes.chunks_exact_mut(4).for_each(|q| q[2] = 100);
     let gb = grids(Samples::U8(&bytes));
     let tb = RgbaOctree::build(four(&gb), &BuildOptions { leaf_size: 8 }).unwrap();
-    let pic = reference_rgba(
-        four(&gb),
-        scale(&tb, ScalarType::U8),
-        &opacity_tf(255.0),
-        &camera,
-        48,
-        48,
-        &ReferenceOptions::default(),
-    )
-    .unwrap();
-    // Premultiplied: blue equals the opacity where the volume shows.
-    assert!(pic.rgba.iter().filter(|p| p[3] > 0.05).all(|p| (p[2] - p[3]).abs() < 1e-5));
+    let pic =
+        reference_rgba(four(&gb), scale(&tb, ScalarType::U8), &opacity_tf(255.0), &camera, 48, 48, &options).unwrap();
+    assert!(premultiplied(&pic, 2, 100.0 / 255.0), "u8 blue 100");
 }
 
 /// The planner runs none of it for one field (the plan, effects and picture
