@@ -325,7 +325,7 @@ struct DrawList
   /// the three scales, then the three biases; then channel a as the opacity
   /// function's value v' = scale t + bias. Empty otherwise.
   std::vector<double> RgbaReading;
-  double OpacityScale = 1.0;  ///< every opacity times this before the correction
+  double OpacityScale = 1.0; ///< every opacity times this before the correction
   /// With "gradient-opacity": the function at magnitudes k End / (n - 1),
   /// k = 0 .. n (data units per model unit), held past the ends; else empty.
   std::vector<float> GradientOpacityTable;
@@ -516,7 +516,7 @@ public:
    * with "dependent-components" (Composite). The summary's value range is
    * the colour field's. A 4-component image is an RGBA volume
    * (IndependentComponentsOff on 4 components): colour from components 0,
-   * 1, 2 as VTK scales them, opacity and gradient from component 3; its
+   * 1, 2 as VTK 9.2 reads them, opacity from component 3, gradient from component 0; its
    * selections count 4 bytes a texel for unsigned char data (RGBA8) and 16
    * otherwise (RGBA32F), are read with Selection::GetBrickTexelsRgba(),
    * and their DrawLists' Effects start with "rgba-components"; the

@@ -499,7 +499,8 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   // its component's range; an RGBA volume's colour is not the table's).
   const int last = in.Scalars->GetNumberOfComponents() - 1;
   double range[2];
-  in.Scalars->GetRange(range, in.Dependent ? last : (in.Grid.Component < 0 ? 0 : in.Grid.Component));
+  in.Scalars->GetRange(
+    range, in.Dependent ? last : (in.Grid.Component < 0 ? 0 : in.Grid.Component));
   if (!(range[1] > range[0]))
   {
     range[1] = range[0] + 1.0;
@@ -807,7 +808,8 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkImageData* image = nullptr;
   vtkVolumeProperty* property = vol ? vol->GetProperty() : nullptr;
-  // Dependent components (2 fields, or RGBA) are drawn in Composite (the other modes reduce one field).
+  // Dependent components (2 fields, or RGBA) are drawn in Composite (the other modes reduce one
+  // field).
   this->Internals->WantsDependent =
     property && !property->GetIndependentComponents() && this->BlendMode == COMPOSITE_BLEND;
   vtkDataArray* scalars = this->CheckInput(image);

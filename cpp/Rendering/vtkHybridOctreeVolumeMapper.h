@@ -49,8 +49,8 @@
  * components (IndependentComponentsOff on a 2-component array, Composite)
  * are drawn as VTK's GPU ray caster draws them: colour from component 0,
  * opacity from component 1 (SetComponent is then not read); so are four
- * (an RGBA volume): colour from components 0, 1, 2 scaled by their ranges,
- * opacity and gradient from component 3, RGBA8 textures for unsigned char
+ * (an RGBA volume): colour from components 0, 1, 2 as VTK 9.2 reads them,
+ * opacity from component 3, gradient from component 0, RGBA8 textures for unsigned char
  * data. Settings asking for more (another blend mode, a 2D transfer
  * function, dependent components of 3-component arrays or under a reducing
  * blend mode) are drawn as off and

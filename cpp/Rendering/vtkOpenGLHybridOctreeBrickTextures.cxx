@@ -197,7 +197,8 @@ std::size_t vtkOpenGLHybridOctreeBrickTextures::GetTexelBytes() const
 
 bool vtkOpenGLHybridOctreeBrickTextures::Coded() const
 {
-  return this->TexelFormat != 1 && (this->Channels == 1 || (this->Channels == 4 && this->TexelFormat == 4));
+  return this->TexelFormat != 1 &&
+    (this->Channels == 1 || (this->Channels == 4 && this->TexelFormat == 4));
 }
 
 void vtkOpenGLHybridOctreeBrickTextures::Clear(vtkWindow* window)

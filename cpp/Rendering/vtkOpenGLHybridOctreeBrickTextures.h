@@ -15,11 +15,10 @@
  * R8, R16, R16F or R32F, 1 to 4 bytes each), two-channel 32-bit floats
  * (8 bytes: colour and opacity fields of dependent components, see
  * SetChannels()), or four-channel (an RGBA volume: RGBA8, 4 bytes, with
- * the unorm8 format, else RGBA32F, 16 bytes), filtered linearly and clamped to the edge. With each texture the cache keeps the
- * brick's block value ranges, measured from its texels at upload by the Rust core
- * (vtkHybridOctreeBridge::MeasureBlockRanges()) and handed back to it every
- * frame (vtkHybridOctreeBridge::GetBrickGeometry()): which blocks the
- * transfer function leaves visible.
+ * the unorm8 format, else RGBA32F, 16 bytes), filtered linearly and clamped to the edge. With each
+ * texture the cache keeps the brick's block value ranges, measured from its texels at upload by the
+ * Rust core (vtkHybridOctreeBridge::MeasureBlockRanges()) and handed back to it every frame
+ * (vtkHybridOctreeBridge::GetBrickGeometry()): which blocks the transfer function leaves visible.
  */
 #ifndef vtkOpenGLHybridOctreeBrickTextures_h
 #define vtkOpenGLHybridOctreeBrickTextures_h

@@ -631,8 +631,8 @@ mod bridge {
         /// `dependent-components` (Composite); read their texels with
         /// `brick_texels_dependent`. A 4-component image is an RGBA volume
         /// (VTK's IndependentComponentsOff on 4 components): colour from
-        /// components 0, 1, 2 as VTK scales them, opacity and gradient from
-        /// component 3; its selections count 4 bytes a texel for u8 data
+        /// components 0, 1, 2 as VTK 9.2 reads them, opacity from component
+        /// 3, gradient from component 0; its selections count 4 bytes a texel for u8 data
         /// (RGBA8) and 16 otherwise, their DrawLists say `rgba-components`
         /// (Composite); read their texels with `brick_texels_rgba`. Errors:
         /// another component count (1 or 3: refused with the reason), and

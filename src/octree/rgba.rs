@@ -7,7 +7,7 @@
 //!
 //! The four fields share one grid, hence one [`Layout`]; the tree the
 //! selection refines ([`RgbaOctree::combined`],
-//! [`combine_fields`](super::dependent::combine_fields)) carries per node
+//! [`combine_fields`]) carries per node
 //!
 //! ```text
 //! min(n), max(n) = v' of component 3's   (visible(min, max): opacity TF over them is not 0;
@@ -140,9 +140,7 @@ mod tests {
                 let max = alone.iter().map(|a| a.node(a.root()).error(p)).fold(0.0f32, f32::max);
                 assert_eq!(root.error(p), max);
             }
-            for c in 0..4 {
-                assert_eq!(t.ranges[c], alone[c].value_range());
-            }
+            assert_eq!(t.ranges.to_vec(), alone.iter().map(VolumeOctree::value_range).collect::<Vec<_>>());
             let far = t.combined.layout().id(2, [3, 3, 3]);
             assert!(t.combined.node(far).is_homogeneous());
         }

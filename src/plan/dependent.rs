@@ -8,11 +8,11 @@
 //!   `scalar.y`; the gradient, for shading and gradient opacity, of
 //!   component 0); [`Plan::dependent`], effect `dependent-components`;
 //! - four fields (an RGBA array, ParaView's *Map Scalars* off with *Multi
-//!   Components Mapping* on): the colour is fields 0, 1, 2 themselves,
-//!   scaled as VTK scales them ([`crate::transfer::direct_colour`];
+//!   Components Mapping*): the colour is fields 0, 1, 2 themselves, read
+//!   as VTK 9.2 reads them ([`crate::transfer::direct_colour`];
 //!   `computeColor`: `scalar.xyz`), the opacity the scalar opacity function
-//!   at field 3 (`computeOpacity`: the opacity table at `scalar.w`), the
-//!   gradient field 3's (`computeLighting(.., 3, ..)`); [`Plan::rgba`],
+//!   at field 3's `v'` (`computeOpacity`: the opacity table at `scalar.w`),
+//!   the gradient field 0's (`computeLighting(.., 0, ..)`); [`Plan::rgba`],
 //!   effect `rgba-components`.
 //!
 //! The planner runs either only for a volume of that many fields drawn in

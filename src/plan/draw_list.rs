@@ -100,8 +100,8 @@ pub struct Plan {
     /// 0, its opacity from field 1 ([`crate::plan::dependent`]; Composite only).
     pub dependent: bool,
     /// Four fields with dependent components (an RGBA volume): each sample's
-    /// colour is fields 0, 1, 2 as VTK scales them, its opacity the opacity
-    /// function at field 3, its gradient field 3's ([`crate::plan::dependent`]; Composite only).
+    /// colour is fields 0, 1, 2 as VTK 9.2 reads them, its opacity the opacity
+    /// function at field 3's `v'`, its gradient field 0's ([`crate::plan::dependent`]; Composite only).
     pub rgba: bool,
     /// What each volume sample does besides its classification, in the
     /// order applied (e.g. `["gradient-opacity", "shading"]`), then what

@@ -1,6 +1,6 @@
 //! RGBA volumes (four dependent components): the CPU compositor against the
-//! reference (colour from fields 0, 1, 2 scaled as VTK scales them, opacity
-//! and gradient from field 3), unshaded and shaded, u8 and float data; the
+//! reference (colour from fields 0, 1, 2 read as VTK 9.2 reads them, opacity
+//! from field 3's `v'`, gradient from field 0), unshaded and shaded, u8 and float data; the
 //! selection's bytes (4 a texel for u8, 16 otherwise) and visibility by
 //! field 3; NaN and constant components; the planner's rule (one field
 //! plans nothing of it and does none of its work).

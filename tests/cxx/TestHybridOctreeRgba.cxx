@@ -78,7 +78,8 @@ struct RgbaScene : Stage
       w->GetPoint(i, p);
       const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
       const double red = (values->GetTuple1(i) - range[0]) / (range[1] - range[0]);
-      const double c[4] = { red, 1.0 - red, std::min(1.0, r / 32.0), std::max(0.0, 1.0 - r / 28.0) };
+      const double c[4] = { red, 1.0 - red, std::min(1.0, r / 32.0),
+        std::max(0.0, 1.0 - r / 28.0) };
       if (bytes)
       {
         rgba->SetTuple4(i, std::round(255.0 * c[0]), std::round(255.0 * c[1]),
@@ -86,7 +87,8 @@ struct RgbaScene : Stage
       }
       else
       {
-        rgba->SetTuple4(i, 100.0 * c[0] - 20.0, 100.0 * c[1] - 20.0, 100.0 * c[2] - 20.0, 2.0 * c[3]);
+        rgba->SetTuple4(
+          i, 100.0 * c[0] - 20.0, 100.0 * c[1] - 20.0, 100.0 * c[2] - 20.0, 2.0 * c[3]);
       }
     }
     this->Image->GetPointData()->SetScalars(rgba);
@@ -118,7 +120,8 @@ int Rgba()
   };
   // The full 65^3 volume is 1.1 MB as RGBA8, 4.4 MB as RGBA32F; shaded
   // bricks carry a gradient border (a larger budget).
-  for (const Case& c : { Case{ true, false, 0.1 }, Case{ true, true, 0.3 }, Case{ false, false, 0.4 } })
+  for (const Case& c :
+    { Case{ true, false, 0.1 }, Case{ true, true, 0.3 }, Case{ false, false, 0.4 } })
   {
     vtkNew<vtkHybridOctreeVolumeMapper> mapper;
     RgbaScene scene(mapper, c.Bytes);
@@ -187,14 +190,14 @@ int GpuRgba()
     check.Check(mapper->GetLastRenderOK(), what + ": the mapper drew:\n" + errors->AllErrors());
     check.Check(std::string(mapper->GetLastEffects()) == "rgba-components",
       what + ": effects 'rgba-components', not '" + mapper->GetLastEffects() + "'");
-    check.Check(mapper->GetLastEstimatedError() == 0.0, what + ": the full volume at full resolution");
+    check.Check(
+      mapper->GetLastEstimatedError() == 0.0, what + ": the full volume at full resolution");
     const std::vector<double> a = Grab(ours.Window);
     const std::vector<double> b = Grab(theirs.Window);
     const double rmse = Rmse(a, b);
     std::cout << what << ": bricks " << mapper->GetLastBricks() << ", texture bytes "
-              << mapper->GetLastTextureBytes()
-              << "; RGB RMSE against vtkGPUVolumeRayCastMapper " << rmse
-              << " (threshold 0.03), signal " << Signal(b) << "\n";
+              << mapper->GetLastTextureBytes() << "; RGB RMSE against vtkGPUVolumeRayCastMapper "
+              << rmse << " (threshold 0.03), signal " << Signal(b) << "\n";
     check.Check(Signal(b) > 0.02, what + ": the reference shows the volume");
     check.Check(rmse < 0.03, what + ": within 0.03 of vtkGPUVolumeRayCastMapper");
     check.Check(NoGLError(ours.Window), what + ": no OpenGL error left behind");
