@@ -163,6 +163,7 @@ void CopyDrawList(const hybrid_octree::DrawListOutput& out, DrawList& list)
   list.TexelScale = out.texel_scale;
   list.TexelBias = out.texel_bias;
   list.TexelBytes = out.texel_bytes;
+  CopyInto(out.rgba_reading, list.RgbaReading);
   list.OpacityScale = out.opacity_scale;
   CopyInto(out.gradient_opacity_table, list.GradientOpacityTable);
   list.GradientOpacityEnd = out.gradient_opacity_end;
@@ -592,6 +593,17 @@ bool Selection::GetBrickTexelsDependent(const void* bytes, std::size_t byteCount
     HandleFor(this->Impl)
       .brick_texels_dependent(
         ToSlice(bytes, byteCount), ToRust(grid), brick, bordered, Out(texels, count));
+  });
+}
+
+bool Selection::GetBrickTexelsRgba(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, std::size_t brick, bool bordered, float* decoded, std::size_t count,
+  unsigned char* encoded, std::size_t encodedBytes, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .brick_texels_rgba(ToSlice(bytes, byteCount), ToRust(grid), brick, bordered,
+        Out(decoded, count), Out(reinterpret_cast<std::uint8_t*>(encoded), encodedBytes));
   });
 }
 

@@ -319,8 +319,14 @@ struct DrawList
   int TexelFormat = 1;
   double TexelScale = 1.0;
   double TexelBias = 0.0;
-  std::size_t TexelBytes = 4; ///< bytes of one texel on the GPU
-  double OpacityScale = 1.0;  ///< every opacity times this before the correction
+  std::size_t TexelBytes = 4; ///< bytes of one texel on the GPU (all channels)
+  /// With "rgba-components" (an RGBA volume; TexelFormat 4 for RGBA8, 1 for
+  /// RGBA32F, TexelScale decoding channel r, the gradient's): VTK 9.2's
+  /// reading of a texture read t: channels r, g, b as s = scale t + bias,
+  /// the three scales, then the three biases; then channel a as the opacity
+  /// function's value v' = scale t + bias. Empty otherwise.
+  std::vector<double> RgbaReading;
+  double OpacityScale = 1.0; ///< every opacity times this before the correction
   /// With "gradient-opacity": the function at magnitudes k End / (n - 1),
   /// k = 0 .. n (data units per model unit), held past the ends; else empty.
   std::vector<float> GradientOpacityTable;
@@ -509,8 +515,14 @@ public:
    * selections count 8 bytes a texel and are read with
    * Selection::GetBrickTexelsDependent(); their DrawLists' Effects start
    * with "dependent-components" (Composite). The summary's value range is
-   * the colour field's. nullptr and `error` on failure (another component
-   * count, and Build()'s errors).
+   * the colour field's. A 4-component image is an RGBA volume
+   * (IndependentComponentsOff on 4 components): colour from components 0,
+   * 1, 2 as VTK 9.2 reads them, opacity from component 3, gradient from component 0; its
+   * selections count 4 bytes a texel for unsigned char data (RGBA8) and 16
+   * otherwise (RGBA32F), are read with Selection::GetBrickTexelsRgba(),
+   * and their DrawLists' Effects start with "rgba-components"; the
+   * summary's value range is component 3's. nullptr and `error` on failure
+   * (another component count, and Build()'s errors).
    */
   static std::unique_ptr<HybridOctree> BuildDependent(const void* bytes, std::size_t byteCount,
     const GridDescription& grid, unsigned int leafSize, std::string& error);
@@ -666,6 +678,20 @@ public:
   bool GetBrickTexelsDependent(const void* bytes, std::size_t byteCount,
     const GridDescription& grid, std::size_t brick, bool bordered, float* texels, std::size_t count,
     std::string& error) const;
+
+  /**
+   * Brick `brick`'s texels of the four components of a selection made from
+   * an RGBA volume's octree (HybridOctree::BuildDependent() of a
+   * 4-component image), texels x fastest, with the gradient border of
+   * GetBrickTexelsBordered() when `bordered`: `decoded` gets `count` = 4 x
+   * the texel count floats (the values), and for unsigned char data
+   * `encoded` the `encodedBytes` (= `count`) RGBA8 bytes the GPU uploads
+   * (nullptr and 0 for other types, uploaded as RGBA32F from `decoded`).
+   * False and `error` on failure.
+   */
+  bool GetBrickTexelsRgba(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    std::size_t brick, bool bordered, float* decoded, std::size_t count, unsigned char* encoded,
+    std::size_t encodedBytes, std::string& error) const;
 
   /**
    * The shading of the DrawLists and pictures made after this call; the

@@ -87,14 +87,24 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
                    "function at component 1 are drawn; turn the 2D transfer function or the "
                    "separate opacity array off");
     }
+    else if (components == 4 && !property->GetIndependentComponents())
+    {
+      on.push_back("the 2D transfer function (ParaView: Use 2D Transfer Function) classifies one "
+                   "field, and this volume has 4 dependent components (RGBA; ParaView: Map "
+                   "Scalars off with Multi Components Mapping): components 0 to 2 as the colour "
+                   "and the scalar opacity function at component 3 are drawn; turn the 2D "
+                   "transfer function off, or IndependentComponents on");
+    }
   }
-  // Two dependent components (colour, opacity) are drawn in Composite.
-  if (components == 2 && !property->GetIndependentComponents() &&
-    mode != vtkVolumeMapper::COMPOSITE_BLEND)
+  // Two dependent components (colour, opacity) and four (RGBA) are drawn in Composite.
+  const bool dependent =
+    (components == 2 || components == 4) && !property->GetIndependentComponents();
+  if (dependent && mode != vtkVolumeMapper::COMPOSITE_BLEND)
   {
-    on.push_back("2 dependent components (vtkVolumeProperty::IndependentComponentsOff; ParaView: "
-                 "Use Separate Opacity Array, or Map Scalars with Multi Components Mapping) are "
-                 "drawn in Composite only: under the " +
+    on.push_back(std::to_string(components) +
+      " dependent components (vtkVolumeProperty::IndependentComponentsOff; ParaView: "
+      "Use Separate Opacity Array, or Map Scalars off with Multi Components Mapping) are "
+      "drawn in Composite only: under the " +
       BlendModeName(mode) +
       " blend mode the component chosen with SetComponent() is drawn through the colour and "
       "scalar opacity functions; set the blend mode to Composite, or use " +
@@ -102,7 +112,6 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
   }
   // Volumetric scattering runs in Composite, one field through the 1D functions.
   auto* hybrid = vtkHybridOctreeVolumeMapper::SafeDownCast(mapper);
-  const bool dependent = components == 2 && !property->GetIndependentComponents();
   if (hybrid && hybrid->GetVolumetricScatteringBlending() > 0.0 && property->GetShade() &&
     (mode != vtkVolumeMapper::COMPOSITE_BLEND ||
       property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D || dependent))
@@ -114,13 +123,14 @@ std::vector<std::string> vtkHybridOctreeUnsupportedEffects::TurnedOn(
                  "opacity array, or use " +
       elsewhere);
   }
-  if (components > 2 && !property->GetIndependentComponents())
+  if ((components == 3 || components > 4) && !property->GetIndependentComponents())
   {
     on.push_back("dependent components of a " + std::to_string(components) +
-      "-component array (vtkVolumeProperty::IndependentComponentsOff; ParaView: Map Scalars "
-      "off, or Multi Components Mapping on RGBA) are not implemented: the component chosen with "
-      "SetComponent() is drawn through the colour and scalar opacity functions (2 dependent "
-      "components, colour and opacity, are drawn); turn IndependentComponents on, or use " +
+      "-component array (vtkVolumeProperty::IndependentComponentsOff) are not drawn: VTK draws "
+      "dependent components of 2 (colour, opacity) or 4 (RGBA) components; the component "
+      "chosen with SetComponent() is drawn through the colour and scalar opacity functions; "
+      "append an opacity component (vtkImageAppendComponents) for RGBA, or turn "
+      "IndependentComponents on, or use " +
       elsewhere);
   }
   return on;

@@ -9,11 +9,11 @@
  * is set (GradientOpacity), cropped and clipped by the mapper's cropping and
  * clipping planes, under every blend mode (Slice with a vtkPlane as its
  * slice function), classified by a 2D transfer function under Composite,
- * two dependent components in Composite. Settings that ask for more (a
- * Slice blend mode without a valid vtkPlane, a 2D transfer function under
- * another blend mode, without a usable image or with dependent components,
- * dependent components of more than 2 components or under a reducing blend
- * mode) are drawn as if off; each one the
+ * two dependent components and four (RGBA) in Composite. Settings that ask
+ * for more (a Slice blend mode without a valid vtkPlane, a 2D transfer
+ * function under another blend mode, without a usable image or with
+ * dependent components, dependent components of 3 or more than 4
+ * components or under a reducing blend mode) are drawn as if off; each one the
  * user has turned on is named in one warning that says what is drawn instead
  * and what to do.
  *

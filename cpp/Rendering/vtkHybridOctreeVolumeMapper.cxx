@@ -290,8 +290,11 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   // property and blend mode (Prepare), drawn for a 2-component array; the
   // octree built for them; the table's colour column over ColourRange
   // (component 0's), its opacity column over RangeLo, RangeHi (component 1's).
+  // An RGBA volume (4 components, Rgba): the same octree kind and request;
+  // the colour is the components' own, the opacity column over component 3's range.
   bool WantsDependent = false;
   bool Dependent = false;
+  bool Rgba = false;
   bool OctreeDependent = false;
   double ColourRange[2] = { 0.0, 1.0 };
   /// When the resident brick textures were made (older than the octree: released).
@@ -407,7 +410,7 @@ vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
     return nullptr;
   }
   const int components = scalars->GetNumberOfComponents();
-  const bool dependent = components == 2 && this->Internals->WantsDependent;
+  const bool dependent = (components == 2 || components == 4) && this->Internals->WantsDependent;
   if (components > 1 && this->Component < 0 && !dependent)
   {
     vtkErrorMacro(
@@ -435,8 +438,10 @@ vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
 bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray* scalars)
 {
   vtkInternals& in = *this->Internals;
-  in.Dependent = in.WantsDependent && scalars->GetNumberOfComponents() == 2;
-  // Dependent: both components are read; component 0 names the colour field.
+  const int components = scalars->GetNumberOfComponents();
+  in.Dependent = in.WantsDependent && (components == 2 || components == 4);
+  in.Rgba = in.Dependent && components == 4;
+  // Dependent: every component is read; component 0 names the first.
   const GridDescription grid = vtkHybridOctreeImageInput::DescribeGrid(image, scalars,
     in.Dependent ? 0 : (scalars->GetNumberOfComponents() > 1 ? this->Component : -1));
   in.Scalars = scalars;
@@ -504,10 +509,13 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
 {
   vtkInternals& in = *this->Internals;
   vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
-  // Dependent: the opacity column over component 1's range, the colour
-  // column over component 0's (VTK's tables: each over its component's range).
+  // Dependent: the opacity column over the last component's range (1, or 3
+  // of RGBA), the colour column over component 0's (VTK's tables: each over
+  // its component's range; an RGBA volume's colour is not the table's).
+  const int last = in.Scalars->GetNumberOfComponents() - 1;
   double range[2];
-  in.Scalars->GetRange(range, in.Dependent ? 1 : (in.Grid.Component < 0 ? 0 : in.Grid.Component));
+  in.Scalars->GetRange(
+    range, in.Dependent ? last : (in.Grid.Component < 0 ? 0 : in.Grid.Component));
   if (!(range[1] > range[0]))
   {
     range[1] = range[0] + 1.0;
@@ -529,7 +537,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   // table of component numComp - 1), not the first. The Slice blend mode
   // takes VTK's table opacity as it is (VTK corrects its table for
   // Composite only, vtkOpenGLVolumeOpacityTable).
-  const double unit = property->GetScalarOpacityUnitDistance(in.Dependent ? 1 : 0);
+  const double unit = property->GetScalarOpacityUnitDistance(in.Dependent ? last : 0);
   const double d0 = std::min({ in.Grid.Spacing[0], in.Grid.Spacing[1], in.Grid.Spacing[2] });
   double plane[6];
   std::string noSlice;
@@ -815,7 +823,8 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkImageData* image = nullptr;
   vtkVolumeProperty* property = vol ? vol->GetProperty() : nullptr;
-  // Two dependent fields are drawn in Composite (the other modes reduce one field).
+  // Dependent components (2 fields, or RGBA) are drawn in Composite (the other modes reduce one
+  // field).
   this->Internals->WantsDependent =
     property && !property->GetIndependentComponents() && this->BlendMode == COMPOSITE_BLEND;
   vtkDataArray* scalars = this->CheckInput(image);
@@ -1042,12 +1051,15 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   // resident textures of the other kind go too).
   const int reduceMode = ReduceMode(list.BlendMode);
   const bool pooled = reduceMode == 1 || reduceMode == 2;
-  // Dependent: (colour, opacity) texel pairs.
+  // Dependent: (colour, opacity) texel pairs; RGBA: four channels, RGBA8
+  // (TexelFormat unorm8, u8 data) or RGBA32F, alpha decoded by TexelScale.
   const bool dependent = list.Effects.find("dependent-components") != std::string::npos;
-  in.Bricks.SetChannels(window, dependent ? 2 : 1);
+  const bool rgba = list.Effects.find("rgba-components") != std::string::npos;
+  in.Bricks.SetChannels(window, rgba ? 4 : dependent ? 2 : 1);
   in.Bricks.SetTexelFormat(window, list.TexelFormat);
   in.Drawer.SetTexelDecode(list.TexelScale, list.TexelBias);
   in.Drawer.SetDependent(dependent, in.ColourRange);
+  in.Drawer.SetRgba(rgba, list.RgbaReading);
   if (bordered != in.BorderedTextures || pooled != in.PooledTextures ||
     in.TexturesTime < in.OctreeTime)
   {
@@ -1095,6 +1107,11 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, dims,
       [&](float* texels, unsigned char* encoded, std::size_t count) {
+        if (rgba)
+        {
+          return selected.GetBrickTexelsRgba(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
+            brick, bordered, texels, count, encoded, encoded ? count : 0, error);
+        }
         if (dependent)
         {
           return selected.GetBrickTexelsDependent(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,

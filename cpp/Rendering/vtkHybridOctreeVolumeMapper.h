@@ -48,9 +48,12 @@
  * isosurface and the points are not cropped or clipped. Two dependent
  * components (IndependentComponentsOff on a 2-component array, Composite)
  * are drawn as VTK's GPU ray caster draws them: colour from component 0,
- * opacity from component 1 (SetComponent is then not read). Settings asking
- * for more (another blend mode, a 2D transfer function, dependent components
- * of 4-component arrays or under a reducing blend mode) are drawn as off and
+ * opacity from component 1 (SetComponent is then not read); so are four
+ * (an RGBA volume): colour from components 0, 1, 2 as VTK 9.2 reads them,
+ * opacity from component 3, gradient from component 0, RGBA8 textures for unsigned char
+ * data. Settings asking for more (another blend mode, a 2D transfer
+ * function, dependent components of 3-component arrays or under a reducing
+ * blend mode) are drawn as off and
  * named in one warning each, given again when the setting changes.
  *
  * Interactive frames (the window's desired update rate above
@@ -125,7 +128,8 @@ public:
   /// UNORM16 (R16) and UNORM8 (R8) quantize wider data to hold more bricks
   /// in BudgetMB, their quantization error added to every brick's
   /// (GetLastEstimatedError() includes it). Budgets and LastTextureBytes
-  /// count the bytes as uploaded. Dependent components are always float32.
+  /// count the bytes as uploaded. Two dependent components are always
+  /// float32; an RGBA volume RGBA8 for unsigned char data, else RGBA32F.
   enum
   {
     TEXELS_AUTO = 0,

@@ -136,6 +136,18 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
       static_cast<float>(0.5 / entries - this->ColourRange[0] * c) };
     this->Program->SetUniform2f("colourScaleShift", colourScaleShift);
   }
+  if (this->Rgba && this->ReduceMode == 0)
+  {
+    const float rgbScale[3] = { static_cast<float>(this->RgbaReading[0]),
+      static_cast<float>(this->RgbaReading[1]), static_cast<float>(this->RgbaReading[2]) };
+    const float rgbBias[3] = { static_cast<float>(this->RgbaReading[3]),
+      static_cast<float>(this->RgbaReading[4]), static_cast<float>(this->RgbaReading[5]) };
+    this->Program->SetUniform3f("rgbScale", rgbScale);
+    this->Program->SetUniform3f("rgbBias", rgbBias);
+    const float alphaDecode[2] = { static_cast<float>(this->RgbaReading[6]),
+      static_cast<float>(this->RgbaReading[7]) };
+    this->Program->SetUniform2f("alphaDecode", alphaDecode);
+  }
   this->Program->SetUniformi("transferTable", table->GetTextureUnit());
   this->Program->SetUniformi("opaqueDepth", depth->GetTextureUnit());
   // Clip to model coordinates: the inverse of MCDC (VTK's matrices are transposed).
@@ -240,6 +252,10 @@ std::string vtkOpenGLHybridOctreeBrickDrawer::VariantDefines() const
   if (this->Dependent)
   {
     defines += "\n#define HO_DEPENDENT2\n";
+  }
+  if (this->Rgba)
+  {
+    defines += "\n#define HO_RGBA\n";
   }
   if (this->Gradients || this->Shading.Shade || !this->GradientOpacityTable.empty())
   {

@@ -214,6 +214,24 @@ public:
     this->ColourRange[1] = colourRange[1];
   }
 
+  /**
+   * An RGBA volume (the DrawList's "rgba-components"): the brick textures
+   * hold the four components; each sample's colour is channels r, g, b
+   * read by `reading` (DrawList::RgbaReading: three scales, three biases,
+   * then channel a's scale and bias, VTK 9.2's reading in texel units),
+   * clamped after the shading, its opacity the table's at channel a's
+   * value; channel r's value (TexelDecode) gives the gradient (the HO_RGBA
+   * program). Off: not RGBA. Call before Bind().
+   */
+  void SetRgba(bool on, const std::vector<double>& reading)
+  {
+    this->Rgba = on && reading.size() == 8;
+    for (std::size_t k = 0; k < 8; ++k)
+    {
+      this->RgbaReading[k] = k < reading.size() ? reading[k] : 0.0;
+    }
+  }
+
   /// The most lights the shaded program takes.
   static constexpr int MaxLights = 8;
 
@@ -289,6 +307,8 @@ private:
   bool Gradients = false;
   bool Dependent = false;
   double ColourRange[2] = { 0.0, 1.0 };
+  bool Rgba = false;
+  double RgbaReading[8] = { 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0 };
   double OpacityScale = 1.0;
   double TexelDecode[2] = { 1.0, 0.0 };
   std::vector<float> GradientOpacityTable;

@@ -66,9 +66,10 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
     return nullptr;
   }
   this->Scratch.resize(channels * count);
-  // Single-channel textures of a format other than float32 upload codes.
-  const bool coded = channels == 1 && this->TexelFormat != 1;
-  this->Encoded.resize(coded ? this->GetStagingBytes() * count : 0);
+  // Single-channel textures of a format other than float32 upload codes, and
+  // four-channel unorm8 ones (RGBA8: an RGBA volume of u8 data) their bytes.
+  const bool coded = this->Coded();
+  this->Encoded.resize(coded ? this->GetStagingBytes() * channels * count : 0);
   if (!fetch(this->Scratch.data(), coded ? this->Encoded.data() : nullptr, this->Scratch.size()))
   {
     return nullptr;
@@ -89,6 +90,10 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   if (channels == 1)
   {
     texture->SetInternalFormat(internalFormats[format]);
+  }
+  else if (channels == 4)
+  {
+    texture->SetInternalFormat(coded ? GL_RGBA8 : GL_RGBA32F);
   }
   void* staged = coded ? static_cast<void*>(this->Encoded.data()) : this->Scratch.data();
   if (!texture->Create3DFromRaw(static_cast<unsigned int>(texels[0]),
@@ -185,8 +190,15 @@ std::size_t vtkOpenGLHybridOctreeBrickTextures::GetStagingBytes() const
 std::size_t vtkOpenGLHybridOctreeBrickTextures::GetTexelBytes() const
 {
   static const std::size_t gpu[] = { 4, 4, 2, 2, 1 };
-  return this->Channels == 1 ? gpu[this->TexelFormat]
-                             : 4 * static_cast<std::size_t>(this->Channels);
+  return this->Channels == 1 || this->Coded()
+    ? gpu[this->TexelFormat] * static_cast<std::size_t>(this->Channels)
+    : 4 * static_cast<std::size_t>(this->Channels);
+}
+
+bool vtkOpenGLHybridOctreeBrickTextures::Coded() const
+{
+  return this->TexelFormat != 1 &&
+    (this->Channels == 1 || (this->Channels == 4 && this->TexelFormat == 4));
 }
 
 void vtkOpenGLHybridOctreeBrickTextures::Clear(vtkWindow* window)

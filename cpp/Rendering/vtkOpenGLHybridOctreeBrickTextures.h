@@ -12,13 +12,13 @@
  * frame's bricks fit it (which the selection guarantees: they fit its budget).
  *
  * Texels are single-channel in the frame's texel format (SetTexelFormat():
- * R8, R16, R16F or R32F, 1 to 4 bytes each), or two-channel 32-bit floats
+ * R8, R16, R16F or R32F, 1 to 4 bytes each), two-channel 32-bit floats
  * (8 bytes: colour and opacity fields of dependent components, see
- * SetChannels()), filtered linearly and clamped to the edge. With each texture the cache keeps the
- * brick's block value ranges, measured from its texels at upload by the Rust core
- * (vtkHybridOctreeBridge::MeasureBlockRanges()) and handed back to it every
- * frame (vtkHybridOctreeBridge::GetBrickGeometry()): which blocks the
- * transfer function leaves visible.
+ * SetChannels()), or four-channel (an RGBA volume: RGBA8, 4 bytes, with
+ * the unorm8 format, else RGBA32F, 16 bytes), filtered linearly and clamped to the edge. With each
+ * texture the cache keeps the brick's block value ranges, measured from its texels at upload by the
+ * Rust core (vtkHybridOctreeBridge::MeasureBlockRanges()) and handed back to it every frame
+ * (vtkHybridOctreeBridge::GetBrickGeometry()): which blocks the transfer function leaves visible.
  */
 #ifndef vtkOpenGLHybridOctreeBrickTextures_h
 #define vtkOpenGLHybridOctreeBrickTextures_h
@@ -86,9 +86,11 @@ public:
   std::size_t GetNumberOfTextures() const { return this->Entries.size(); }
 
   /**
-   * Texels of 1 channel (one field) or 2 (colour, opacity: dependent
+   * Texels of 1 channel (one field), 2 (colour, opacity: dependent
    * components; the fetch then writes 2 floats a texel, and the block
-   * ranges are the opacity channel's). A change releases every texture.
+   * ranges are the opacity channel's) or 4 (an RGBA volume: 4 floats a
+   * texel, and with the unorm8 format 4 bytes into `encoded`; the block
+   * ranges are channel a's). A change releases every texture.
    */
   void SetChannels(vtkWindow* window, int channels);
   int GetChannels() const { return this->Channels; }
@@ -104,6 +106,10 @@ public:
   std::size_t GetStagingBytes() const;
   /// Bytes of one texel on the GPU (all channels).
   std::size_t GetTexelBytes() const;
+
+  /// Whether the fetch writes codes that are uploaded (a single-channel
+  /// format other than float32, or RGBA8).
+  bool Coded() const;
 
   /// Releases every texture (a new octree, or the context going away).
   void Clear(vtkWindow* window);

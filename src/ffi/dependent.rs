@@ -24,10 +24,9 @@ use crate::transfer::TransferFunction;
 pub(crate) fn fields<'a>(bytes: &'a [u8], desc: &GridDesc, scan: bool) -> Result<(Grid<'a>, Grid<'a>)> {
     if desc.components != 2 {
         return Err(Error::InvalidArgument(format!(
-            "dependent components are drawn for 2-component arrays (colour, opacity); this one has {}: \
-             turn IndependentComponents on and choose a component{}",
-            desc.components,
-            if desc.components == 4 { " (4-component RGBA dependent volumes are not drawn yet)" } else { "" }
+            "two dependent fields are read from a 2-component array (colour, opacity); this one has {}: \
+             give 2 components, 4 for an RGBA volume, or turn IndependentComponents on and choose a component",
+            desc.components
         )));
     }
     let of = |component: i32| {
@@ -58,6 +57,19 @@ pub(crate) fn build_dependent_with(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Bridged<Box<HybridOctreeHandle>> {
     guarded(|| {
+        match desc.components {
+            2 => {}
+            4 => return super::rgba::build_rgba(bytes, desc, leaf_size, progress),
+            n => {
+                return Err(Error::InvalidArgument(format!(
+                    "dependent components (IndependentComponents off) are drawn for 2-component (colour, \
+                     opacity) and 4-component (RGBA) arrays, as VTK draws them; this one has {n}{}: turn \
+                     IndependentComponents on and choose a component, or append a component (e.g. an \
+                     opacity array with vtkImageAppendComponents)",
+                    if n == 3 { " (RGB without opacity: VTK reads the missing fourth component)" } else { "" }
+                )))
+            }
+        }
         let (colour, opacity) = fields(bytes, desc, true)?;
         let options = BuildOptions { leaf_size: leaf_size as usize };
         let built = DependentOctree::build_with_progress(&colour, &opacity, &options, progress)?;
@@ -68,6 +80,7 @@ pub(crate) fn build_dependent_with(
             nan_samples: colour.nan_count() + opacity.nan_count(),
             scalar_type: colour.samples().scalar_type(),
             dependent: Some(built.combined),
+            rgba: None,
             id: next_id(),
             surface_id: 0,
             selector: Default::default(),
@@ -88,9 +101,11 @@ impl SelectionHandle {
     ) -> Bridged<()> {
         guarded(|| {
             if !self.dependent {
-                return Err(Error::InvalidArgument(
-                    "this selection was made from one field: read its texels with brick_texels".into(),
-                ));
+                return Err(Error::InvalidArgument(if self.rgba.is_some() {
+                    "this selection was made from an RGBA volume: read its texels with brick_texels_rgba".into()
+                } else {
+                    "this selection was made from one field: read its texels with brick_texels".into()
+                }));
             }
             let (colour, opacity) = fields(bytes, desc, false)?;
             same_image(&self.shape, &colour)?;
@@ -216,8 +231,10 @@ mod tests {
         let one: Vec<f32> = data.iter().step_by(2).copied().collect();
         let e = build_dependent_with(as_bytes(&one), &desc(n, 1), 4, &mut |_| true).unwrap_err();
         assert!(e.contains("2-component") && e.contains("has 1"), "{e}");
-        let four: Vec<f32> = data.iter().flat_map(|&v| [v, v]).collect();
-        let e = build_dependent_with(as_bytes(&four), &desc(n, 4), 4, &mut |_| true).unwrap_err();
-        assert!(e.contains("RGBA") && e.contains("not drawn yet"), "{e}");
+        let three: Vec<f32> = one.iter().flat_map(|&v| [v, v, v]).collect();
+        let e = build_dependent_with(as_bytes(&three), &desc(n, 3), 4, &mut |_| true).unwrap_err();
+        assert!(e.contains("4-component (RGBA)") && e.contains("has 3") && e.contains("RGB without opacity"), "{e}");
+        let e = s.brick_texels_rgba(as_bytes(&data), &desc(n, 2), 0, false, &mut out, &mut []).unwrap_err();
+        assert!(e.contains("two dependent fields"), "{e}");
     }
 }

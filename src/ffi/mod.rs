@@ -32,6 +32,7 @@ mod render;
 #[cfg(test)]
 mod render_tests;
 mod reselect;
+mod rgba;
 mod scattering;
 #[cfg(test)]
 mod scattering_tests;
@@ -469,8 +470,16 @@ mod bridge {
         texel_format: i32,
         texel_scale: f64,
         texel_bias: f64,
-        /// Bytes of one texel on the GPU (all fields).
+        /// Bytes of one texel on the GPU (all fields): for an RGBA volume
+        /// ("rgba-components") 4 (RGBA8, u8 data, texel_format 4 unorm8,
+        /// red, the gradient's channel, decoded with texel_scale 255) or 16 (RGBA32F).
         texel_bytes: usize,
+        /// With "rgba-components": VTK 9.2's reading of a texture read t
+        /// (normalized for RGBA8; `transfer::direct_colour`): the colour
+        /// channels' `s = scale t + bias`, the three scales then the three
+        /// biases, then channel a's value for the opacity function, `v' =
+        /// scale t + bias` (the table clamps it); empty otherwise.
+        rgba_reading: Vec<f64>,
         /// Every sample's opacity times this before the correction (1: none).
         opacity_scale: f64,
         /// With the effect "gradient-opacity": the function at magnitudes
@@ -621,8 +630,14 @@ mod bridge {
         /// Its selections are made on the opacity field's ranges and both
         /// fields' errors, count 8 bytes a texel, and their DrawLists say
         /// `dependent-components` (Composite); read their texels with
-        /// `brick_texels_dependent`. Errors: another component count (4:
-        /// RGBA is not drawn yet), and those of `build_hybrid_octree`.
+        /// `brick_texels_dependent`. A 4-component image is an RGBA volume
+        /// (VTK's IndependentComponentsOff on 4 components): colour from
+        /// components 0, 1, 2 as VTK 9.2 reads them, opacity from component
+        /// 3, gradient from component 0; its selections count 4 bytes a texel for u8 data
+        /// (RGBA8) and 16 otherwise, their DrawLists say `rgba-components`
+        /// (Composite); read their texels with `brick_texels_rgba`. Errors:
+        /// another component count (1 or 3: refused with the reason), and
+        /// those of `build_hybrid_octree`.
         fn build_dependent_octree(
             bytes: &[u8],
             desc: &GridDesc,
@@ -819,6 +834,22 @@ mod bridge {
             brick: usize,
             bordered: bool,
             texels: &mut [f32],
+        ) -> Result<()>;
+        /// Brick `brick`'s texels of the four components of a selection made
+        /// from an RGBA volume's octree (`build_dependent_octree` of a
+        /// 4-component image), texels x fastest, with the gradient border
+        /// when `bordered`: into `decoded` the values as f32 quadruples
+        /// (`4 x` the texel count), and, for u8 data, into `encoded` the
+        /// RGBA8 bytes the GPU uploads (`4 x` the texel count; empty for
+        /// other types, whose `decoded` floats are uploaded as RGBA32F).
+        fn brick_texels_rgba(
+            self: &SelectionHandle,
+            bytes: &[u8],
+            desc: &GridDesc,
+            brick: usize,
+            bordered: bool,
+            decoded: &mut [f32],
+            encoded: &mut [u8],
         ) -> Result<()>;
         /// The shading of the DrawLists and pictures made after this call
         /// (errors: a bad number; a shade without lights or lights not in

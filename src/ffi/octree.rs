@@ -24,6 +24,9 @@ pub struct HybridOctreeHandle {
     /// Two dependent fields (see `dependent.rs`): the combined tree the
     /// selections refine; `hybrid.volume` is then the colour field's.
     pub(crate) dependent: Option<VolumeOctree>,
+    /// An RGBA volume (see `rgba.rs`; `dependent` its combined tree,
+    /// `hybrid.volume` component 0's): VTK's reading of its components.
+    pub(crate) rgba: Option<crate::transfer::direct_colour::RgbaScale>,
     /// Unique per build: a selection remembers the octree it was made from.
     pub(crate) id: u64,
     /// Unique per integrated surface (0: none): a selection's kept
@@ -67,6 +70,7 @@ pub(crate) fn build_with(
             nan_samples: grid.nan_count(),
             scalar_type: grid.samples().scalar_type(),
             dependent: None,
+            rgba: None,
             id: next_id(),
             surface_id: 0,
             selector: Default::default(),

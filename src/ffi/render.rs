@@ -18,6 +18,7 @@ use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
 use crate::grid::{GridShape, ScalarType};
 use crate::plan::crop::{ClippingPlane, Cropping, KeptRegion};
+use crate::plan::dependent::{rgba_texel_bytes, Fields};
 use crate::plan::point_slabs::add_points;
 use crate::plan::select::{Roi, SelectOptions, Selection};
 use crate::plan::slab::SlabPolygons;
@@ -30,6 +31,7 @@ use crate::points::PointSet;
 use crate::render::texture::{
     brick_texels_f32_bordered_into, brick_texels_for_blend_f32_into, encoded::brick_texels_encoded_into,
 };
+use crate::transfer::direct_colour::RgbaScale;
 use crate::transfer::lighting::{Light, LightSpace, Lighting, Lights, Material};
 use crate::transfer::{GradientOpacity, TransferFunction2D};
 use std::sync::{Arc, Mutex};
@@ -67,6 +69,11 @@ pub struct SelectionHandle {
     texel: TexelEncoding,
     /// Selected from two dependent fields: its DrawLists plan them (`plan::dependent`).
     pub(crate) dependent: bool,
+    /// Selected from an RGBA volume: its DrawLists plan it (`plan::dependent`,
+    /// `rgba-components`), its colour components scaled so.
+    pub(crate) rgba: Option<RgbaScale>,
+    /// The image's scalar type (an RGBA volume's textures: RGBA8 for u8).
+    scalar_type: crate::data::grid::ScalarType,
     /// Whether its DrawLists jitter ([`SelectionHandle::set_jittering`]).
     jittering: std::sync::atomic::AtomicBool,
     /// The volumetric scattering of its DrawLists (`super::scattering`).
@@ -247,7 +254,12 @@ pub(crate) fn select_with(
             octree.nan_samples,
         )?,
     };
-    options.bytes_per_texel = texel.bytes() * if octree.dependent.is_some() { 2 } else { 1 };
+    // Bytes as uploaded: two f32 fields, or an RGBA volume's RGBA8 (u8) or RGBA32F texel.
+    options.bytes_per_texel = match (&octree.dependent, octree.rgba) {
+        (Some(_), Some(_)) => rgba_texel_bytes(octree.scalar_type),
+        (Some(_), None) => 2 * texel.bytes(),
+        (None, _) => texel.bytes(),
+    };
     options.texel_error = texel.normalized_error(range);
     let hidden = gradient_opacity.as_ref().is_some_and(|g| g.constant() == Some(0.0));
     let tf = opacity_function(&desc.opacity_points)?;
@@ -318,6 +330,7 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
         texel_scale: list.texel.scale,
         texel_bias: list.texel.bias,
         texel_bytes: list.texel.bytes() * if list.plan.dependent { 2 } else { 1 },
+        rgba_reading: Vec::new(),
         opacity_scale: list.plan.opacity_scale,
         gradient_opacity_table: Vec::new(),
         gradient_opacity_end: 0.0,
@@ -433,7 +446,9 @@ impl HybridOctreeHandle {
                 region: region(&desc.region)?,
                 transfer_2d,
                 texel,
-                dependent: self.dependent.is_some(),
+                dependent: self.dependent.is_some() && self.rgba.is_none(),
+                rgba: self.rgba,
+                scalar_type: self.scalar_type,
                 jittering: Default::default(),
                 scattering: Mutex::new(None),
             }))
@@ -474,7 +489,12 @@ impl SelectionHandle {
         let gradient_opacity = self.gradient_opacity.lock().unwrap_or_else(|e| e.into_inner()).clone();
         let list = replan_transfer_2d(list, self.transfer_2d.as_ref());
         let list = replan_effects(list, lighting.as_ref(), gradient_opacity.as_ref())?;
-        let mut list = crate::plan::dependent::plan_dependent(list, self.dependent);
+        let fields = match (self.dependent, self.rgba.is_some()) {
+            (_, true) => Fields::Rgba,
+            (true, false) => Fields::Two,
+            (false, false) => Fields::One,
+        };
+        let mut list = crate::plan::dependent::plan_fields(list, fields);
         list.texel = self.texel;
         let scattering = *self.scattering.lock().unwrap_or_else(|e| e.into_inner());
         let list = crate::plan::scattering::plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
@@ -517,7 +537,20 @@ impl SelectionHandle {
         camera_desc: &CameraDesc,
         surface_opacity: f64,
     ) -> Bridged<DrawListOutput> {
-        guarded(|| Ok(flatten(&self.list(octree, camera_desc, surface_opacity)?, &self.selection)))
+        guarded(|| {
+            let list = self.list(octree, camera_desc, surface_opacity)?;
+            let mut out = flatten(&list, &self.selection);
+            if let (true, Some(scale)) = (list.plan.rgba, &self.rgba) {
+                // Uploaded as RGBA8 (u8: alpha decoded as 255 t) or RGBA32F.
+                let u8s = self.scalar_type == ScalarType::U8;
+                out.texel_bytes = rgba_texel_bytes(self.scalar_type);
+                let format = if u8s { TexelFormat::Unorm8 } else { TexelFormat::Float32 };
+                out.texel_format = TexelFormat::ALL.iter().position(|f| *f == format).unwrap_or(1) as i32;
+                (out.texel_scale, out.texel_bias) = (if u8s { 255.0 } else { 1.0 }, 0.0);
+                out.rgba_reading = super::rgba::texel_reading(scale, self.scalar_type);
+            }
+            Ok(out)
+        })
     }
 
     /// The CPU compositor on this selection's DrawList: the transfer function
@@ -549,6 +582,9 @@ impl SelectionHandle {
             let drawn = surface.map(|s| (s, colour.map(|v| v as f32)));
             if list.plan.dependent {
                 return super::dependent::composite_into(&list, bytes, desc, &tf, width, height, rgba);
+            }
+            if let (true, Some(scale)) = (list.plan.rgba, self.rgba) {
+                return super::rgba::composite_into(&list, scale, bytes, desc, &tf, width, height, rgba);
             }
             let textures = crate::render::texture::upload(&grid, &list)?;
             let shades = match self.points.as_deref() {

@@ -105,13 +105,34 @@ impl DependentOctree {
 ///
 /// [`Error::InvalidArgument`] when the two trees have different layouts.
 pub fn combine(colour: &VolumeOctree, opacity: &VolumeOctree) -> Result<VolumeOctree> {
-    if colour.layout != opacity.layout || colour.error_offset != opacity.error_offset {
+    combine_fields(&[colour], opacity)
+}
+
+/// The combined tree of several fields of one grid: `opacity`'s min/max
+/// (the selection's visibility test), per node and level the largest of
+/// all the fields' normalised errors (`opacity`'s included) and the sum of
+/// their squared errors,
+///
+/// ```text
+/// E_p(n) = max(E^o_p(n), max_f E^f_p(n)),   Q_p(n) = Q^o_p(n) + sum_f Q^f_p(n)
+/// ```
+///
+/// # Errors
+///
+/// [`Error::InvalidArgument`] when the trees have different layouts.
+pub fn combine_fields(others: &[&VolumeOctree], opacity: &VolumeOctree) -> Result<VolumeOctree> {
+    if others.iter().any(|t| t.layout != opacity.layout || t.error_offset != opacity.error_offset) {
         return Err(Error::InvalidArgument(
-            "the colour and opacity octrees have different layouts: build both from one grid with one leaf size".into(),
+            "the fields' octrees have different layouts: build them from one grid with one leaf size".into(),
         ));
     }
-    let errors = colour.errors.iter().zip(&opacity.errors).map(|(&c, &o)| c.max(o)).collect();
-    let squared = colour.squared_errors.iter().zip(&opacity.squared_errors).map(|(&c, &o)| c + o).collect();
+    let mut errors = opacity.errors.clone();
+    let mut squared = opacity.squared_errors.clone();
+    for t in others {
+        errors.iter_mut().zip(&t.errors).for_each(|(e, &c)| *e = e.max(c));
+        squared.iter_mut().zip(&t.squared_errors).for_each(|(q, &c)| *q += c);
+    }
+    let build_ms = opacity.build_ms + others.iter().map(|t| t.build_ms).sum::<f64>();
     Ok(VolumeOctree::from_parts(
         opacity.layout.clone(),
         opacity.min.clone(),
@@ -119,7 +140,7 @@ pub fn combine(colour: &VolumeOctree, opacity: &VolumeOctree) -> Result<VolumeOc
         errors,
         squared,
         opacity.error_offset.clone(),
-        colour.build_ms + opacity.build_ms,
+        build_ms,
     ))
 }
 

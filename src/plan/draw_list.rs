@@ -99,6 +99,10 @@ pub struct Plan {
     /// Two fields with dependent components: each sample's colour from field
     /// 0, its opacity from field 1 ([`crate::plan::dependent`]; Composite only).
     pub dependent: bool,
+    /// Four fields with dependent components (an RGBA volume): each sample's
+    /// colour is fields 0, 1, 2 as VTK 9.2 reads them, its opacity the opacity
+    /// function at field 3's `v'`, its gradient field 0's ([`crate::plan::dependent`]; Composite only).
+    pub rgba: bool,
     /// What each volume sample does besides its classification, in the
     /// order applied (e.g. `["gradient-opacity", "shading"]`), then what
     /// removes samples in every pass, `cropping`, `clipping` (the DrawList's
@@ -253,6 +257,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         blend: scene.blend,
         passes,
         dependent: false,
+        rgba: false,
         effects: Vec::new(),
         jitter: false,
         scattering: false,
@@ -309,17 +314,23 @@ pub(crate) const SCATTERING_EFFECT: &str = "volume-scattering";
 /// The effect of two dependent fields ([`crate::plan::dependent::EFFECT`]).
 pub(crate) const DEPENDENT_EFFECT: &str = "dependent-components";
 
+/// The effect of an RGBA volume's four dependent fields ([`crate::plan::dependent::RGBA_EFFECT`]).
+pub(crate) const RGBA_COMPONENTS_EFFECT: &str = "rgba-components";
+
 /// The effect of jittering ([`crate::plan::jitter::EFFECT`]).
 pub(crate) const JITTER_EFFECT: &str = "jittering";
 
 /// The plan's [`Plan::effects`]: what each sample does besides its
-/// classification, in the order applied (`dependent-components` or
-/// `transfer-2d`, then `gradient-opacity` or `opacity-scale`, then `shading`, then `volume-scattering`), then what `region` (the cropping and
+/// classification, in the order applied (`dependent-components`,
+/// `rgba-components` or `transfer-2d`, then `gradient-opacity` or `opacity-scale`, then `shading`, then `volume-scattering`), then what `region` (the cropping and
 /// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`), then `jittering`.
 pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     let mut effects = Vec::new();
     if plan.dependent {
         effects.push(DEPENDENT_EFFECT.to_string());
+    }
+    if plan.rgba {
+        effects.push(RGBA_COMPONENTS_EFFECT.to_string());
     }
     if plan.transfer_2d {
         effects.push("transfer-2d".to_string());

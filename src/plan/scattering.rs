@@ -8,7 +8,7 @@
 //! VTK (its shadow rays are then one sample long and the blend still
 //! applies), so it is run. The planner runs it in Composite (the blend
 //! mode of ParaView's Volume shading; under the others it is not drawn, nor
-//! with two dependent fields or a 2D transfer function, whose opacity the
+//! with two or four dependent fields or a 2D transfer function, whose opacity the
 //! shadow rays would have to classify differently; plan it after both) and
 //! names it [`EFFECT`] in [`Plan::effects`], after `shading`; the DrawList
 //! carries the parameters and the lights in world space
@@ -34,6 +34,7 @@ pub fn scatters(plan: &Plan, lighting: Option<&Lighting>, scattering: Option<&Sc
     plan.volume
         && plan.blend.mode == BlendMode::Composite
         && !plan.dependent
+        && !plan.rgba
         && !plan.transfer_2d
         && lit
         && scattering.is_some_and(Scattering::runs)

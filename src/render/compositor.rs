@@ -84,7 +84,11 @@
 //! [`crate::render::dependent`]): each sample's colour is the transfer
 //! function's at the colour texture, its opacity the function's at the
 //! opacity texture, both at the same texel coordinates; the gradient
-//! (shading, gradient opacity) is the colour texture's.
+//! (shading, gradient opacity) is the colour texture's. An RGBA volume
+//! ([`crate::plan::Plan::rgba`], [`crate::render::rgba`]): the colour is
+//! the red texture (the gradient's) and the green and blue textures read
+//! as VTK reads them, the opacity the function's at the alpha texture's
+//! `v'`; the shaded colour is clamped to `[0, 1]`.
 //! Cropping and clipping planes ([`DrawList::region`], the plan's
 //! `effects`): a sample whose point `p(z)` the region does not keep
 //! ([`crate::plan::crop::KeptRegion::keeps`]) is empty, skipped like a
@@ -102,6 +106,7 @@
 
 use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_list, check_size};
+use super::fields::{clamp_rgb, classify_other, OtherFields};
 use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
 use super::scattering::{ScatterFrame, ShadowVolume};
@@ -137,8 +142,8 @@ struct Prepared<'a, S> {
     index: usize,
     draw: &'a BrickDraw,
     texture: &'a Texture<S>,
-    /// The opacity field's texture of two dependent fields (`None`: one field).
-    opacity: Option<&'a Texture<S>>,
+    /// The other fields' textures of dependent components (`None`: one field).
+    other: Option<OtherFields<&'a Texture<S>>>,
     /// Per axis, whether the min and max faces are in the box.
     closed: [(bool, bool); 3],
     /// `d / d0`.
@@ -271,6 +276,8 @@ pub(crate) struct Counts {
     pub gradients: usize,
     /// Bricks a pixel's ray crossed with jittered samples (jittering).
     pub jittered: usize,
+    /// Samples whose colour was read from an RGBA volume's colour fields.
+    pub direct_colours: usize,
 }
 
 /// [`composite_with_points`] on checked inputs (`shadow`: what the
@@ -278,7 +285,7 @@ pub(crate) struct Counts {
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn execute_counted(
     textures: &Textures,
-    opacity: Option<&Textures>,
+    other: Option<OtherFields<&Textures>>,
     shadow: Option<&ShadowVolume>,
     list: &DrawList,
     tf: &TransferFunction,
@@ -287,21 +294,30 @@ pub(crate) fn execute_counted(
     surface: Option<(&Surface, [f32; 4])>,
     points: Option<DrawnPoints<'_>>,
 ) -> Result<(Image, Counts)> {
-    match (&textures.texels, opacity.map(|o| &o.texels)) {
-        (Texels::F32(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::F64(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::U8(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::U16(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::F16(t), None) => execute(t, None, shadow, &textures.shape, list, tf, width, height, surface, points),
-        (Texels::F32(t), Some(Texels::F32(o))) => {
-            execute(t, Some(o), shadow, &textures.shape, list, tf, width, height, surface, points)
-        }
-        (Texels::F64(t), Some(Texels::F64(o))) => {
-            execute(t, Some(o), shadow, &textures.shape, list, tf, width, height, surface, points)
-        }
-        _ => Err(crate::Error::InvalidArgument(
-            "the colour and opacity textures are stored in different types: upload both with render::dependent".into(),
-        )),
+    // The other fields' textures stored as the main one's.
+    macro_rules! run {
+        ($t:expr, $variant:path) => {{
+            let other = other
+                .map(|o| {
+                    o.try_map(|x| match &x.texels {
+                        $variant(v) => Ok(v.as_slice()),
+                        _ => Err(crate::Error::InvalidArgument(
+                            "the fields' textures are stored in different types: upload them together with \
+                             render::dependent or render::rgba"
+                                .into(),
+                        )),
+                    })
+                })
+                .transpose()?;
+            execute($t, other, shadow, &textures.shape, list, tf, width, height, surface, points)
+        }};
+    }
+    match &textures.texels {
+        Texels::F32(t) => run!(t, Texels::F32),
+        Texels::F64(t) => run!(t, Texels::F64),
+        Texels::U8(t) => run!(t, Texels::U8),
+        Texels::U16(t) => run!(t, Texels::U16),
+        Texels::F16(t) => run!(t, Texels::F16),
     }
 }
 
@@ -363,7 +379,7 @@ fn check_points(list: &DrawList, points: Option<(&PointSet, &[PointShade])>) -> 
 #[allow(clippy::too_many_arguments)]
 fn execute<S: Texel>(
     textures: &[Texture<S>],
-    opacity: Option<&[Texture<S>]>,
+    other: Option<OtherFields<&[Texture<S>]>>,
     shadow: Option<&ShadowVolume>,
     shape: &GridShape,
     list: &DrawList,
@@ -390,8 +406,8 @@ fn execute<S: Texel>(
                 (lo_near || draw.world_lo[a] <= volume_lo[a], hi_near || draw.world_hi[a] >= volume_hi[a])
             });
             let ratio = draw.slice_spacing / d0;
-            let opacity = opacity.map(|o| &o[index]);
-            Some(Prepared { index, draw, texture: &textures[index], opacity, closed, ratio, rect })
+            let other = other.map(|o| o.map(|t| &t[index]));
+            Some(Prepared { index, draw, texture: &textures[index], other, closed, ratio, rect })
         })
         .collect();
     let (mut opaque, mut translucent) = (None, None);
@@ -414,7 +430,7 @@ fn execute<S: Texel>(
     let scattering = super::scattering::frame(list, &shape, shadow)?;
     let plain = !crate::plan::jitter::other_effects(&list.plan)
         && scattering.is_none()
-        && opacity.is_none()
+        && other.is_none()
         && transfer_2d.is_none()
         && lighting.is_none()
         && region.is_none()
@@ -601,6 +617,7 @@ impl<S: Texel> Executor<'_, S> {
         let counts = Counts {
             gradients: bands.iter().map(|b| b.1.gradients).sum(),
             jittered: bands.iter().map(|b| b.1.jittered).sum(),
+            direct_colours: bands.iter().map(|b| b.1.direct_colours).sum(),
         };
         let rgba = bands.into_iter().flat_map(|b| b.0).collect();
         (Image { width: w, height: h, rgba }, counts)
@@ -790,9 +807,11 @@ impl<S: Texel> Executor<'_, S> {
                 (Some(g), super::transfer2d::classify(t, value, g))
             }
         };
-        if let Some(o) = brick.opacity {
-            // No colour value is no data (transparent), as a NaN opacity value.
-            a = if value.is_nan() { 0.0 } else { self.lut.eval(o.at_texel(u))[3] };
+        let [mut r, mut gr, mut bl] = [r, gr, bl];
+        if let Some(other) = brick.other {
+            scratch.counts.direct_colours += usize::from(matches!(other, OtherFields::Rgba(..)));
+            // Dependent components (`super::fields`): the opacity field's opacity, or the RGB colour.
+            ([r, gr, bl], a) = classify_other(other, value, [r, gr, bl], |v| self.lut.eval(v)[3], |t| t.at_texel(u));
         }
         if a <= 0.0 {
             return acc;
@@ -812,7 +831,7 @@ impl<S: Texel> Executor<'_, S> {
             }
         };
         if a > 0.0 {
-            under(acc, rgb, correct_opacity(a, ratio))
+            under(acc, clamp_rgb(brick.other.as_ref(), rgb), correct_opacity(a, ratio))
         } else {
             acc
         }

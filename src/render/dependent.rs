@@ -21,6 +21,7 @@
 
 use super::check::{check_list, check_size};
 use super::compositor::execute_counted;
+use super::fields::OtherFields;
 use super::image::Image;
 use super::reference::{reference_fields, ReferenceOptions};
 use super::texture::{brick_texels_f32_bordered_into, brick_texels_f32_into, upload, upload_field, Texels, Textures};
@@ -115,7 +116,18 @@ pub fn composite_dependent(
     check_list(list, &textures.colour.shape, None)?;
     textures.colour.check(list)?;
     textures.opacity.check(list)?;
-    Ok(execute_counted(&textures.colour, Some(&textures.opacity), None, list, tf, width, height, None, None)?.0)
+    Ok(execute_counted(
+        &textures.colour,
+        Some(OtherFields::Opacity(&textures.opacity)),
+        None,
+        list,
+        tf,
+        width,
+        height,
+        None,
+        None,
+    )?
+    .0)
 }
 
 /// The full-resolution reference ([`super::reference::reference_blend`],
@@ -135,7 +147,7 @@ pub fn reference_dependent(
     options: &ReferenceOptions<'_>,
 ) -> Result<Image> {
     check_fields(colour, opacity)?;
-    reference_fields(colour, Some(opacity), tf, camera, width, height, options, &Blend::default())
+    reference_fields(colour, Some(OtherFields::Opacity(opacity)), tf, camera, width, height, options, &Blend::default())
 }
 
 /// Brick `brick`'s texels of both fields as `f32` pairs, field 0 first

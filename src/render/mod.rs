@@ -6,7 +6,8 @@
 //! [`metrics`] compares them, [`reference`](mod@reference) ray-casts the
 //! full-resolution volume, [`compositor`] executes a
 //! [`DrawList`](crate::plan::DrawList) slice by slice, brick by brick,
-//! [`dependent`] draws two fields with dependent components. The
+//! [`dependent`] draws two fields with dependent components, [`rgba`] an
+//! RGBA volume (four dependent components). The
 //! transfer function and its table live in [`crate::transfer`], re-exported
 //! here as [`transfer`].
 //! Inside the crate: `check` (inputs), `sample` (trilinear reconstruction of the grid and of a
@@ -18,11 +19,13 @@ pub mod blend;
 mod check;
 pub mod compositor;
 pub mod dependent;
+mod fields;
 mod geometry;
 pub mod image;
 mod intensity;
 pub mod metrics;
 pub mod reference;
+pub mod rgba;
 mod sample;
 pub mod scattering;
 mod shade;
@@ -40,6 +43,8 @@ mod crop_tests;
 mod dependent_tests;
 #[cfg(test)]
 mod jitter_tests;
+#[cfg(test)]
+mod rgba_tests;
 #[cfg(test)]
 mod slice_tests;
 #[cfg(test)]

@@ -43,6 +43,7 @@
 
 use super::blend::{correct_opacity, under, Rgba};
 use super::check::{check_colour, check_size};
+use super::fields::{clamp_rgb, classify_other, OtherFields};
 use super::geometry::ray_box;
 use super::image::Image;
 use super::sample::{grid_value, to_index, trilinear};
@@ -119,14 +120,15 @@ pub fn reference_blend(
     reference_fields(grid, None, tf, camera, width, height, options, blend)
 }
 
-/// [`reference_blend`] with, when `opacity` is given, each sample's opacity
-/// from the opacity function at that field instead of `grid`'s (two
-/// dependent fields, see [`crate::render::dependent`]); `opacity` must be a
-/// field of the same image.
+/// [`reference_blend`] with, when `other` is given, each sample's opacity
+/// from the opacity function at the opacity field instead of `grid`'s (two
+/// dependent fields, see [`crate::render::dependent`]) or its colour and
+/// opacity from the RGBA fields, clamped after shading (an RGBA volume,
+/// `grid` its red field, [`crate::render::rgba`]); `other` must be fields of the same image.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn reference_fields(
     grid: &Grid<'_>,
-    opacity: Option<&Grid<'_>>,
+    other: Option<OtherFields<&Grid<'_>>>,
     tf: &TransferFunction,
     camera: &Camera,
     width: usize,
@@ -185,7 +187,7 @@ pub(crate) fn reference_fields(
         transfer_2d: options.transfer_2d.filter(|_| blend.mode == BlendMode::Composite),
         blend: *blend,
         region: options.region,
-        opacity,
+        other,
     }))
 }
 
@@ -204,8 +206,8 @@ struct Caster<'a> {
     transfer_2d: Option<&'a TransferFunction2D>,
     blend: Blend,
     region: Option<&'a KeptRegion>,
-    /// The opacity field of two dependent fields (`None`: the opacity is the grid's).
-    opacity: Option<&'a Grid<'a>>,
+    /// The other fields of dependent components (`None`: one field).
+    other: Option<OtherFields<&'a Grid<'a>>>,
     /// Volumetric scattering (`None`: none).
     scattering: Option<super::scattering::ScatterFrame<'a>>,
 }
@@ -280,20 +282,23 @@ impl Caster<'_> {
                             (Some(grad), super::transfer2d::classify(t, value, grad))
                         }
                     };
-                    if let Some(o) = self.opacity {
-                        // No colour value is no data (transparent), as a NaN opacity value.
-                        a = if value.is_nan() {
-                            0.0
-                        } else {
-                            f64::from(self.tf.opacity(trilinear(self.shape.dims, u, |i, j, k| o.value(i, j, k))))
-                        };
+                    let [mut r, mut gr, mut b] = [r, gr, b];
+                    if let Some(other) = self.other {
+                        // Dependent components (`super::fields`): the opacity field's opacity, or the RGB colour.
+                        ([r, gr, b], a) = classify_other(
+                            other,
+                            value,
+                            [r, gr, b],
+                            |v| f64::from(self.tf.opacity(v)),
+                            |f| trilinear(self.shape.dims, u, |i, j, k| f.value(i, j, k)),
+                        );
                     }
                     let (rgb, a) = match &self.scattering {
                         Some(frame) if a > 0.0 => self.scattered(g, frame, p, u, grad, [r, gr, b], a, ray.direction),
                         _ => self.effects(g, u, grad, [r, gr, b], a, ray.direction),
                     };
                     if a > 0.0 {
-                        under(acc, rgb, correct_opacity(a, ratio))
+                        under(acc, clamp_rgb(self.other.as_ref(), rgb), correct_opacity(a, ratio))
                     } else {
                         acc
                     }

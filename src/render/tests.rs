@@ -59,6 +59,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         blend: Default::default(),
         passes: Vec::new(),
         dependent: false,
+        rgba: false,
         effects: Vec::new(),
         jitter: false,
         scattering: false,

@@ -702,6 +702,7 @@ mod tests {
                 blend: Default::default(),
                 passes: Vec::new(),
                 dependent: false,
+                rgba: false,
                 effects: Vec::new(),
                 jitter: false,
                 scattering: false,

@@ -4,8 +4,10 @@
 //! of the compositor and the point shader, [`lighting`] shades a sample
 //! (material, lights, VTK's volume shading model), [`gradient_opacity`]
 //! scales a sample's opacity by its gradient magnitude, [`transfer2d`] gives
-//! colour and opacity from the value and the gradient magnitude together.
+//! colour and opacity from the value and the gradient magnitude together,
+//! [`direct_colour`] scales the colour components of an RGBA volume as VTK does.
 
+pub mod direct_colour;
 pub mod function;
 pub mod gradient_opacity;
 pub mod lighting;

@@ -254,19 +254,33 @@ int Warnings()
     "2 dependent components under MIP named:\n" + all);
   check.Check(mapper->GetLastRenderOK(), "2 dependent components under MIP: component 0 drawn");
   mapper->SetBlendModeToComposite();
-  // Four dependent components (RGBA) are not drawn yet: component 0 drawn, said so.
+  // Four dependent components (RGBA) are drawn in Composite: no warning.
   vtkNew<vtkDoubleArray> rgba;
   rgba->SetNumberOfComponents(4);
   rgba->SetNumberOfTuples(9 * 9 * 9);
   for (vtkIdType i = 0; i < rgba->GetNumberOfTuples(); ++i)
   {
-    rgba->SetTuple4(i, 0.01 * i, 0.5, 0.5, 1.0);
+    rgba->SetTuple4(i, 0.01 * i, 0.5, 0.5, scene.Range[1]);
   }
   image->GetPointData()->SetScalars(rgba);
   scene.Window->Render();
+  check.Check(TakeWarnings(errors, "", all) == 0, "4 dependent components: no warning\n" + all);
+  check.Check(mapper->GetLastRenderOK() &&
+      std::string(mapper->GetLastEffects()).find("rgba-components") != std::string::npos,
+    "4 dependent components drawn as RGBA: " + std::string(mapper->GetLastEffects()));
+  // Three dependent components (RGB, no opacity) are not drawn as such: component 0, said so.
+  vtkNew<vtkDoubleArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(9 * 9 * 9);
+  for (vtkIdType i = 0; i < rgb->GetNumberOfTuples(); ++i)
+  {
+    rgb->SetTuple3(i, 0.01 * i, 0.5, 0.5);
+  }
+  image->GetPointData()->SetScalars(rgb);
+  scene.Window->Render();
   check.Check(
-    TakeWarnings(errors, "4-component array", all) == 1, "4 dependent components named:\n" + all);
-  check.Check(mapper->GetLastRenderOK(), "4 dependent components: component 0 drawn");
+    TakeWarnings(errors, "3-component array", all) == 1, "3 dependent components named:\n" + all);
+  check.Check(mapper->GetLastRenderOK(), "3 dependent components: component 0 drawn");
   return check.Result();
 }
 

@@ -35,6 +35,18 @@ uniform float nearDepth;
 // gradient (shading, gradient opacity) is channel 0's, as VTK's.
 uniform vec2 colourScaleShift;
 #endif
+#ifdef HO_RGBA
+// An RGBA volume (VTK's IndependentComponentsOff on 4 components,
+// src/render/rgba.rs): the texture holds the four components (RGBA8 or
+// RGBA32F), read as VTK 9.2 reads them (src/transfer/direct_colour.rs):
+// the colour channels r, g, b as s = t * rgbScale + rgbBias, clamped to
+// [0, 1] after the shading (VTK's computeColor); the opacity the table's
+// at channel a's value v' = t * alphaDecode.x + alphaDecode.y; the value
+// (scalarAt: the gradient's) is channel r's.
+uniform vec3 rgbScale;
+uniform vec3 rgbBias;
+uniform vec2 alphaDecode;
+#endif
 #ifdef HO_GRADIENTS
 // Gradients (shading, gradient opacity; src/render/shade.rs): the brick
 // texture carries one border texel per side; the gradient is the central
@@ -511,6 +523,15 @@ vec4 sampleAt(vec3 p, vec3 v)
   }
   vec4 c = vec4(texture(transferTable, vec2(value * colourScaleShift.x + colourScaleShift.y, 0.5)).rgb,
     texture(transferTable, vec2(opacityValue * tableScaleShift.x + tableScaleShift.y, 0.5)).a);
+#elif defined(HO_RGBA)
+  vec4 q = texture(brickTexture, (u + vec3(0.5)) / texels);
+  vec3 s = q.rgb * rgbScale + rgbBias;
+  float opacityValue = q.a * alphaDecode.x + alphaDecode.y;
+  if (any(isnan(s)) || isnan(opacityValue))
+  {
+    return vec4(0.0);
+  }
+  vec4 c = vec4(s, texture(transferTable, vec2(opacityValue * tableScaleShift.x + tableScaleShift.y, 0.5)).a);
 #else
   vec4 c = texture(transferTable, vec2(value * tableScaleShift.x + tableScaleShift.y, 0.5));
 #endif
@@ -530,7 +551,11 @@ vec4 sampleAt(vec3 p, vec3 v)
     a = 1.0 - exp(opacityRatio * log(1.0 - a));
   }
 #endif
+#ifdef HO_RGBA
+  vec3 rgb = c.rgb; // clamped after the shading
+#else
   vec3 rgb = clamp(c.rgb, 0.0, 1.0);
+#endif
 #ifdef HO_SHADE
   if (a > 0.0)
   {
@@ -540,6 +565,9 @@ vec4 sampleAt(vec3 p, vec3 v)
     rgb = shade(g, rgb, v);
 #endif
   }
+#endif
+#ifdef HO_RGBA
+  rgb = clamp(rgb, 0.0, 1.0);
 #endif
   return vec4(rgb, a);
 }
