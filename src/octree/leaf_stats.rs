@@ -40,6 +40,9 @@
 //! operations, in the same order, as [`super::trilinear::eval`], so the
 //! result equals the brute-force definition bit for bit.
 
+use super::finite_brick::FiniteScratch;
+#[cfg(target_arch = "x86_64")]
+use super::finite_brick::{finite_brick_errors, Brick};
 use super::layout::Layout;
 use super::trilinear::{bracket, lerp_scaled};
 use crate::data::grid::{Sample, TypedGrid};
@@ -76,6 +79,8 @@ pub struct Scratch {
     ys: Vec<usize>,
     frac: Vec<f64>,
     cells: Vec<(usize, usize, usize, usize)>,
+    row: Vec<f64>,
+    finite: FiniteScratch,
 }
 
 impl Scratch {
@@ -85,7 +90,7 @@ impl Scratch {
     pub fn longest_buffer(&self) -> usize {
         [self.brick.len(), self.v.len(), self.w.len(), self.t.len(), self.xs.len(), self.ys.len(), self.frac.len()]
             .into_iter()
-            .chain([self.cells.len()])
+            .chain([self.cells.len(), self.finite.longest_buffer()])
             .max()
             .unwrap_or(0)
     }
@@ -94,7 +99,7 @@ impl Scratch {
 /// Coarse positions of stride `s` covering `[lo, hi]` on an axis of `n`
 /// samples: multiples of s from `floor(lo / s) * s` to the first one past
 /// `hi`, clamped to `n - 1` (the virtual padding), into `out`.
-fn coarse_positions(lo: usize, hi: usize, s: usize, n: usize, out: &mut Vec<usize>) {
+pub(super) fn coarse_positions(lo: usize, hi: usize, s: usize, n: usize, out: &mut Vec<usize>) {
     out.clear();
     let mut xa = lo / s * s;
     loop {
@@ -238,6 +243,17 @@ fn constant_brick<T: Sample>(
     Some((raw, squared))
 }
 
+/// Which code computes the errors of a brick that is not constant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KernelPath {
+    /// [`super::finite_brick`] when the brick and its coarse samples are
+    /// finite, else the general kernel: the build's choice.
+    Fast,
+    /// The general kernel (stride by stride, with the no-data rule) for
+    /// every brick: the reference the fast path is tested against.
+    General,
+}
+
 /// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`:
 /// min and max of the samples `f`, and the errors of `k f`, `k` =
 /// [`super::trilinear::kernel_scale`] of the grid's range (1 unless its
@@ -253,14 +269,15 @@ pub fn leaf_stats<T: Sample>(
     lo: [usize; 3],
     hi: [usize; 3],
     scale: f64,
+    path: KernelPath,
     scratch: &mut Scratch,
 ) -> LeafStats {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { leaf_stats_avx2(g, layout, lo, hi, scale, scratch) };
+        return unsafe { leaf_stats_avx2(g, layout, lo, hi, scale, path, scratch) };
     }
-    leaf_stats_inline(g, layout, lo, hi, scale, scratch)
+    leaf_stats_inline(g, layout, lo, hi, scale, path, scratch)
 }
 
 /// [`leaf_stats_inline`] compiled for AVX2.
@@ -275,9 +292,10 @@ unsafe fn leaf_stats_avx2<T: Sample>(
     lo: [usize; 3],
     hi: [usize; 3],
     scale: f64,
+    path: KernelPath,
     scratch: &mut Scratch,
 ) -> LeafStats {
-    leaf_stats_inline(g, layout, lo, hi, scale, scratch)
+    leaf_stats_inline(g, layout, lo, hi, scale, path, scratch)
 }
 
 /// The kernel's body, inlined into each instruction-set variant.
@@ -288,6 +306,7 @@ fn leaf_stats_inline<T: Sample>(
     lo: [usize; 3],
     hi: [usize; 3],
     scale: f64,
+    path: KernelPath,
     scratch: &mut Scratch,
 ) -> LeafStats {
     let strides = layout.root_log2 as usize;
@@ -295,13 +314,14 @@ fn leaf_stats_inline<T: Sample>(
     let wy = hi[1] - lo[1] + 1;
     let brick = &mut scratch.brick;
     brick.clear();
-    let mut row = Vec::new();
+    let mut row = std::mem::take(&mut scratch.row);
     for z in lo[2]..=hi[2] {
         for y in lo[1]..=hi[1] {
             g.row_into(lo[0], hi[0], y, z, &mut row);
             brick.extend_from_slice(&row);
         }
     }
+    scratch.row = row;
     // `v < min` and `v > max` are false for NaN: min and max skip it.
     let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut has_nan = false;
@@ -323,7 +343,15 @@ fn leaf_stats_inline<T: Sample>(
             return LeafStats { min, max, raw, squared, holes };
         }
     }
-    let Scratch { brick, v, w, t, xs, ys, frac, cells } = scratch;
+    #[cfg(target_arch = "x86_64")]
+    if path == KernelPath::Fast && !has_nan && std::arch::is_x86_feature_detected!("avx2") {
+        let b = Brick { lo, hi, samples: brick, summed };
+        // SAFETY: the CPU supports AVX2, checked just above.
+        if unsafe { finite_brick_errors(g, &b, scale, &mut raw, &mut squared, &mut scratch.finite) } {
+            return LeafStats { min, max, raw, squared, holes };
+        }
+    }
+    let Scratch { brick, v, w, t, xs, ys, frac, cells, .. } = scratch;
     t.resize(wx, 0.0);
     for (j, ((r, q), h)) in raw.iter_mut().zip(squared.iter_mut()).zip(holes.iter_mut()).enumerate() {
         let s = 1usize << (j + 1);
