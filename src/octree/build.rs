@@ -105,6 +105,16 @@ impl GridVisitor for LeafPass<'_> {
                 .map_init(Scratch::default, |scratch, i| {
                     let c = [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])];
                     let (lo, hi) = layout.node_box(leaf, c);
+                    if i + 1 < count {
+                        // The next leaf's rows load while this one computes (workers take runs of leaves).
+                        let n = [(i + 1) % d[0], ((i + 1) / d[0]) % d[1], (i + 1) / (d[0] * d[1])];
+                        let (nlo, nhi) = layout.node_box(leaf, n);
+                        for z in nlo[2]..=nhi[2] {
+                            for y in nlo[1]..=nhi[1] {
+                                g.prefetch_row(nlo[0], nhi[0], y, z);
+                            }
+                        }
+                    }
                     leaf_stats(&g, layout, lo, hi, self.scale, self.path, scratch)
                 })
                 .collect();

@@ -49,6 +49,7 @@ pub struct FiniteScratch {
     d: Vec<f64>,
     frac: Vec<f64>,
     cell: Vec<usize>,
+    rows: Vec<(usize, usize, f64)>,
 }
 
 impl FiniteScratch {
@@ -56,7 +57,7 @@ impl FiniteScratch {
     pub fn longest_buffer(&self) -> usize {
         [self.xs.len(), self.ys.len(), self.zs.len(), self.coarse.len(), self.v.len(), self.w.len()]
             .into_iter()
-            .chain([self.dw.len(), self.t.len(), self.d.len(), self.frac.len(), self.cell.len()])
+            .chain([self.dw.len(), self.t.len(), self.d.len(), self.frac.len(), self.cell.len(), self.rows.len()])
             .max()
             .unwrap_or(0)
     }
@@ -96,8 +97,17 @@ pub unsafe fn finite_brick_errors<T: Sample>(
         if !gather_coarse(g, brick, 1 << (j + 1), scale, scratch) {
             return false;
         }
+        let j = j as u32 + 1;
+        // Four samples [4c, 4c + 4) share a cell when the row starts on a multiple of 4 and s >= 4.
+        let lo = brick.lo[0];
         // SAFETY: AVX2 is enabled on this function.
-        let (m, sq) = unsafe { stride_errors(brick, j as u32 + 1, scratch) };
+        let (m, sq) = unsafe {
+            match j {
+                1 if lo % 2 == 0 => stride_errors::<PAIRS>(brick, j, scratch),
+                2.. if lo % 4 == 0 => stride_errors::<BROADCAST>(brick, j, scratch),
+                _ => stride_errors::<PER_SAMPLE>(brick, j, scratch),
+            }
+        };
         *r = m;
         *q = sq;
     }
@@ -168,11 +178,18 @@ unsafe fn lerp_slices(out: &mut [f64], a: &[f64], b: &[f64], t: f64) {
     }
 }
 
-/// `(r, q)` of stride `s = 2^j` over the brick, from the coarse lattice in `sc`.
+/// How `T` is formed along a row: stride 2 interleaves `w` and the cell midpoints.
+const PAIRS: u8 = 0;
+/// Four samples at a time in one coarse cell: `w` and `dw` broadcast.
+const BROADCAST: u8 = 1;
+/// Sample by sample from the cell table.
+const PER_SAMPLE: u8 = 2;
+
+/// `(r, q)` of stride `s = 2^j` over the brick, from the coarse lattice in
+/// `sc`, `T` formed along rows as `MODE` says ([`PAIRS`], [`BROADCAST`] or [`PER_SAMPLE`]).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn stride_errors(brick: &Brick<'_>, j: u32, sc: &mut FiniteScratch) -> (f64, f64) {
-    let s = 1usize << j;
+unsafe fn stride_errors<const MODE: u8>(brick: &Brick<'_>, j: u32, sc: &mut FiniteScratch) -> (f64, f64) {
     let (lo, hi) = (brick.lo, brick.hi);
     let wx = hi[0] - lo[0] + 1;
     let wy = hi[1] - lo[1] + 1;
@@ -183,14 +200,20 @@ unsafe fn stride_errors(brick: &Brick<'_>, j: u32, sc: &mut FiniteScratch) -> (f
     sc.frac.extend((lo[0]..=hi[0]).map(|x| bracket_pow2(x, j).1));
     sc.cell.clear();
     sc.cell.extend((lo[0]..=hi[0]).map(|x| (x - x_first) >> j));
-    // Four samples [4c, 4c + 4) share a cell when the row starts on a multiple of 4 and s >= 4.
-    let broadcast = s >= 4 && lo[0] % 4 == 0;
-    let pairs = s == 2 && lo[0] % 2 == 0;
+    let (pairs, broadcast) = (MODE == PAIRS, MODE == BROADCAST);
     sc.t.resize(wx, 0.0);
     sc.d.resize(wx, 0.0);
     sc.w.resize(nxs, 0.0);
     sc.dw.resize(nxs, 0.0);
     sc.v.resize(nxs * nys, 0.0);
+    // Per row y: the offsets of v(., y0) and v(., y1) and ty.
+    sc.rows.clear();
+    sc.rows.extend((lo[1]..=hi[1]).map(|y| {
+        let (y0, ty) = bracket_pow2(y, j);
+        let yi0 = (y0 - y_first) >> j;
+        (yi0 * nxs, (yi0 + 1).min(nys - 1) * nxs, ty)
+    }));
+    let FiniteScratch { coarse, v, w, dw, t, d, frac, cell, rows, .. } = sc;
     let chunks = wx / 4;
     let abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX));
     let half = _mm_set1_pd(0.5);
@@ -203,26 +226,26 @@ unsafe fn stride_errors(brick: &Brick<'_>, j: u32, sc: &mut FiniteScratch) -> (f
         let zi0 = (z0 - z_first) >> j;
         let zi1 = (zi0 + 1).min(nzs - 1);
         // SAFETY: AVX2 is enabled on this function.
-        unsafe {
-            lerp_slices(
-                &mut sc.v,
-                &sc.coarse[zi0 * plane..(zi0 + 1) * plane],
-                &sc.coarse[zi1 * plane..(zi1 + 1) * plane],
-                tz,
-            )
-        };
+        unsafe { lerp_slices(v, &coarse[zi0 * plane..(zi0 + 1) * plane], &coarse[zi1 * plane..(zi1 + 1) * plane], tz) };
         let z_summed = z - lo[2] < brick.summed[2];
-        for y in lo[1]..=hi[1] {
-            let (y0, ty) = bracket_pow2(y, j);
-            let yi0 = (y0 - y_first) >> j;
-            let yi1 = (yi0 + 1).min(nys - 1);
+        for (y, &(v0, v1, ty)) in (lo[1]..=hi[1]).zip(rows.iter()) {
             // SAFETY: AVX2 is enabled on this function.
-            unsafe { lerp_slices(&mut sc.w, &sc.v[yi0 * nxs..(yi0 + 1) * nxs], &sc.v[yi1 * nxs..(yi1 + 1) * nxs], ty) };
-            for xi in 0..nxs - 1 {
-                sc.dw[xi] = sc.w[xi + 1] - sc.w[xi];
+            unsafe { lerp_slices(w, &v[v0..v0 + nxs], &v[v1..v1 + nxs], ty) };
+            // dw(xi) = w(min(xi + 1, nxs - 1)) - w(xi).
+            let mut xi = 0;
+            while xi + 5 <= nxs {
+                // SAFETY: xi + 5 <= nxs, the length of w and dw.
+                unsafe {
+                    let (a, b) = (_mm256_loadu_pd(w.as_ptr().add(xi)), _mm256_loadu_pd(w.as_ptr().add(xi + 1)));
+                    _mm256_storeu_pd(dw.as_mut_ptr().add(xi), _mm256_sub_pd(b, a));
+                }
+                xi += 4;
             }
-            sc.dw[nxs - 1] = sc.w[nxs - 1] - sc.w[nxs - 1];
-            let FiniteScratch { w, dw, t, d, frac, cell, .. } = &mut *sc;
+            for xi in xi..nxs - 1 {
+                dw[xi] = w[xi + 1] - w[xi];
+            }
+            // w(nxs - 1) - w(nxs - 1), finite.
+            dw[nxs - 1] = 0.0;
             if !pairs && !broadcast {
                 for x in 0..wx {
                     t[x] = w[cell[x]] + dw[cell[x]] * frac[x];
