@@ -29,8 +29,7 @@
 //! exact in any order. The result is therefore bit-identical to the general
 //! kernel's.
 
-use super::leaf_stats::coarse_positions;
-use super::trilinear::lerp_scaled;
+use super::trilinear::{coarse_positions, lerp_scaled};
 use crate::data::grid::{Sample, TypedGrid};
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::*;

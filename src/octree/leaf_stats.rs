@@ -32,6 +32,10 @@
 //! use coarse cells inside the brick; larger strides use the one coarse cell
 //! that contains the whole brick.
 //!
+//! A brick whose samples and coarse samples are finite takes the fast path
+//! of [`super::finite_brick`] (same results, bit for bit); the general
+//! kernel below takes the rest.
+//!
 //! Work per sample: the brick is read once into a buffer of `f64`. For each
 //! z-slice and stride, the z-interpolated values `v(xa, yb)` at the coarse
 //! positions are computed once, each row's `w(xa) = lerp(v(xa, y0), v(xa, y1), ty)`
@@ -44,7 +48,7 @@ use super::finite_brick::FiniteScratch;
 #[cfg(target_arch = "x86_64")]
 use super::finite_brick::{finite_brick_errors, Brick};
 use super::layout::Layout;
-use super::trilinear::{bracket, lerp_scaled};
+use super::trilinear::{bracket, coarse_positions, lerp_scaled};
 use crate::data::grid::{Sample, TypedGrid};
 
 /// The raw error of a sample that is no data in exactly one of the fine and
@@ -93,22 +97,6 @@ impl Scratch {
             .chain([self.cells.len(), self.finite.longest_buffer()])
             .max()
             .unwrap_or(0)
-    }
-}
-
-/// Coarse positions of stride `s` covering `[lo, hi]` on an axis of `n`
-/// samples: multiples of s from `floor(lo / s) * s` to the first one past
-/// `hi`, clamped to `n - 1` (the virtual padding), into `out`.
-pub(super) fn coarse_positions(lo: usize, hi: usize, s: usize, n: usize, out: &mut Vec<usize>) {
-    out.clear();
-    let mut xa = lo / s * s;
-    loop {
-        let clamped = xa.min(n - 1);
-        out.push(clamped);
-        if xa > hi || clamped == n - 1 {
-            break;
-        }
-        xa += s;
     }
 }
 

@@ -2,7 +2,8 @@
 //! of every node, over a grid padded virtually to a power of two.
 //!
 //! One operation per file: [`layout`] fixes levels and node boxes,
-//! [`trilinear`] defines T_p, [`leaf_stats`] is the per-brick kernel,
+//! [`trilinear`] defines T_p, [`leaf_stats`] is the per-brick kernel
+//! ([`finite_brick`] its fast path for bricks with no NaN),
 //! [`build`] runs it in parallel and reduces up the tree, [`cut`] walks the
 //! tree, [`validate`] checks a built tree, [`brute_force`] is the slow reference
 //! the tests compare against.
