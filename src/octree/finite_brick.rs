@@ -29,6 +29,9 @@
 //! exact in any order. The result is therefore bit-identical to the general
 //! kernel's.
 
+// The path is compiled for x86-64 with AVX2; elsewhere the general kernel takes every brick.
+#![cfg_attr(not(target_arch = "x86_64"), allow(dead_code, unused_imports))]
+
 use super::trilinear::{coarse_positions, lerp_scaled};
 use crate::data::grid::{Sample, TypedGrid};
 #[cfg(target_arch = "x86_64")]

@@ -366,6 +366,8 @@ fn leaf_stats_inline<T: Sample>(
             return LeafStats { min, max, raw, squared, holes };
         }
     }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = path;
     #[cfg(target_arch = "x86_64")]
     if path == KernelPath::Fast && !has_nan && std::arch::is_x86_feature_detected!("avx2") {
         let b = Brick { lo, hi, samples: brick, summed };
