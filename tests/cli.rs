@@ -258,14 +258,19 @@ fn bench_prints_a_row_per_combination_and_the_ratio() {
         "1",
         "--leaf-sizes",
         "8",
+        "--kernels",
+        "fast,general",
         "--repeats",
         "1",
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = stdout(&out);
     let rows = text.lines().filter(|l| l.trim_start().starts_with("shepp-logan ") && !l.contains("ns/voxel")).count();
-    assert_eq!(rows, 2, "{text}");
-    assert!(text.contains("shepp-logan u8, 1 thread(s), leaf 8: ns/voxel size 33 / size 17 = "), "{text}");
+    assert_eq!(rows, 4, "{text}");
+    for kernel in ["fast", "general"] {
+        let ratio = format!("shepp-logan u8, 1 thread(s), leaf 8, {kernel} kernel: ns/voxel size 33 / size 17 = ");
+        assert!(text.contains(&ratio), "{text}");
+    }
 }
 
 #[test]
@@ -972,6 +977,7 @@ fn huge_sizes_are_refused_up_front_with_the_bytes_needed() {
     assert_clean_failure(&out, "needs 206.0 MiB");
     assert_clean_failure(&capped(&["generate", "--dataset", "ramp", "--size", "3000", "--output", "x.vti"]), "GiB");
     assert_clean_failure(&capped(&["bench", "build", "--sizes", "16,100000", "--repeats", "1"]), "PiB");
+    assert_clean_failure(&run(&["bench", "build", "--sizes", "9", "--kernels", "fastest"]), "use fast or general");
     assert_clean_failure(&capped(&["bench", "surface", "--size", "100000", "--repeats", "1"]), "PiB");
     assert!(!std::path::Path::new("never.vti").exists() && !std::path::Path::new("never.png").exists());
 }

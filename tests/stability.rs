@@ -9,7 +9,7 @@ use hybrid_octree::camera::{Camera, Projection};
 use hybrid_octree::grid::{Grid, GridShape, GridVisitor, Sample, ScalarType, TypedGrid};
 use hybrid_octree::hybrid::HybridOctree;
 use hybrid_octree::octree::leaf_stats::{leaf_stats, Scratch};
-use hybrid_octree::octree::{BuildOptions, Layout, VolumeOctree};
+use hybrid_octree::octree::{BuildOptions, KernelPath, Layout, VolumeOctree};
 use hybrid_octree::plan::{draw_list, DrawList, Scene};
 use hybrid_octree::render::compositor::composite;
 use hybrid_octree::render::image::Image;
@@ -218,7 +218,7 @@ impl GridVisitor for LongestBuffer<'_> {
         let mut longest = 0;
         for i in 0..d[0] * d[1] * d[2] {
             let (lo, hi) = self.0.node_box(leaf, [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])]);
-            leaf_stats(&g, self.0, lo, hi, 1.0, &mut scratch);
+            leaf_stats(&g, self.0, lo, hi, 1.0, KernelPath::Fast, &mut scratch);
             longest = longest.max(scratch.longest_buffer());
         }
         longest

@@ -520,6 +520,31 @@ impl<'a, T: Sample> TypedGrid<'a, T> {
         self.data[(i + self.dims[0] * (j + self.dims[1] * k)) * self.components + self.component].to_f64()
     }
 
+    /// Asks the CPU to bring the x-row `(i0..=i1, j, k)` into its caches (a
+    /// hint with no effect on results; nothing on CPUs without the instruction).
+    #[inline(always)]
+    pub fn prefetch_row(&self, i0: usize, i1: usize, j: usize, k: usize) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+            let base = self.dims[0] * (j + self.dims[1] * k);
+            let (first, last) = ((base + i0) * self.components, (base + i1) * self.components + self.component);
+            let row = &self.data[first..=last];
+            let bytes = std::mem::size_of_val(row);
+            let ptr = row.as_ptr() as *const i8;
+            let mut at = 0;
+            while at < bytes {
+                // SAFETY: `at < bytes`, inside `row`; a prefetch reads nothing.
+                unsafe { _mm_prefetch::<_MM_HINT_T0>(ptr.add(at)) };
+                at += 64;
+            }
+            // SAFETY: the row's last byte; a prefetch reads nothing.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(ptr.add(bytes - 1)) };
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = (i0, i1, j, k);
+    }
+
     /// The x-row `(i0..=i1, j, k)` as values, written into `out` (cleared first).
     #[inline]
     pub fn row_into(&self, i0: usize, i1: usize, j: usize, k: usize, out: &mut Vec<f64>) {

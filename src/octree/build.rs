@@ -54,7 +54,7 @@
 //! result is bit-identical on any number of threads.
 
 use super::layout::Layout;
-use super::leaf_stats::{leaf_stats, LeafStats, Scratch, HOLE};
+use super::leaf_stats::{leaf_stats, KernelPath, LeafStats, Scratch, HOLE};
 use super::trilinear::kernel_scale;
 use super::volume_octree::VolumeOctree;
 use crate::base::error::{Error, Result};
@@ -85,6 +85,7 @@ const CHUNK_LEAVES: usize = 256;
 struct LeafPass<'p> {
     layout: &'p Layout,
     scale: f64,
+    path: KernelPath,
     progress: &'p mut dyn FnMut(f64) -> bool,
 }
 
@@ -104,7 +105,17 @@ impl GridVisitor for LeafPass<'_> {
                 .map_init(Scratch::default, |scratch, i| {
                     let c = [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])];
                     let (lo, hi) = layout.node_box(leaf, c);
-                    leaf_stats(&g, layout, lo, hi, self.scale, scratch)
+                    if i + 1 < count {
+                        // The next leaf's rows load while this one computes (workers take runs of leaves).
+                        let n = [(i + 1) % d[0], ((i + 1) / d[0]) % d[1], (i + 1) / (d[0] * d[1])];
+                        let (nlo, nhi) = layout.node_box(leaf, n);
+                        for z in nlo[2]..=nhi[2] {
+                            for y in nlo[1]..=nhi[1] {
+                                g.prefetch_row(nlo[0], nhi[0], y, z);
+                            }
+                        }
+                    }
+                    leaf_stats(&g, layout, lo, hi, self.scale, self.path, scratch)
                 })
                 .collect();
             out.extend(chunk);
@@ -131,15 +142,27 @@ impl VolumeOctree {
         options: &BuildOptions,
         progress: &mut dyn FnMut(f64) -> bool,
     ) -> Result<VolumeOctree> {
+        Self::build_with_kernel(grid, options, KernelPath::Fast, progress)
+    }
+
+    /// [`VolumeOctree::build_with_progress`] with the leaf kernel's path
+    /// chosen: [`KernelPath::General`] is the reference the fast path is
+    /// tested and benchmarked against (the same octree, bit for bit).
+    pub fn build_with_kernel(
+        grid: &Grid<'_>,
+        options: &BuildOptions,
+        path: KernelPath,
+        progress: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<VolumeOctree> {
         let started = Instant::now();
         let layout = Layout::new(grid.dims(), options.leaf_size)?;
-        let mut leaves = grid.visit(LeafPass { layout: &layout, scale: 1.0, progress: &mut *progress })?;
+        let mut leaves = grid.visit(LeafPass { layout: &layout, scale: 1.0, path, progress: &mut *progress })?;
         // Extreme values (beyond 2^400 or below 2^-400 in magnitude): their
         // differences or squares over- or underflowed; again on k f.
         let (lo, hi) = leaves.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s.min), b.max(s.max)));
         let scale = kernel_scale(lo, hi);
         if scale != 1.0 {
-            leaves = grid.visit(LeafPass { layout: &layout, scale, progress })?;
+            leaves = grid.visit(LeafPass { layout: &layout, scale, path, progress })?;
         }
         let octree = reduce(layout, leaves, scale, started);
         debug_assert_eq!(octree.validate(), Ok(()));

@@ -32,6 +32,10 @@
 //! use coarse cells inside the brick; larger strides use the one coarse cell
 //! that contains the whole brick.
 //!
+//! A brick whose samples and coarse samples are finite takes the fast path
+//! of [`super::finite_brick`] (same results, bit for bit); the general
+//! kernel below takes the rest.
+//!
 //! Work per sample: the brick is read once into a buffer of `f64`. For each
 //! z-slice and stride, the z-interpolated values `v(xa, yb)` at the coarse
 //! positions are computed once, each row's `w(xa) = lerp(v(xa, y0), v(xa, y1), ty)`
@@ -40,8 +44,11 @@
 //! operations, in the same order, as [`super::trilinear::eval`], so the
 //! result equals the brute-force definition bit for bit.
 
+use super::finite_brick::FiniteScratch;
+#[cfg(target_arch = "x86_64")]
+use super::finite_brick::{finite_brick_errors, Brick};
 use super::layout::Layout;
-use super::trilinear::{bracket, lerp_scaled};
+use super::trilinear::{bracket, coarse_positions, lerp_scaled};
 use crate::data::grid::{Sample, TypedGrid};
 
 /// The raw error of a sample that is no data in exactly one of the fine and
@@ -76,6 +83,8 @@ pub struct Scratch {
     ys: Vec<usize>,
     frac: Vec<f64>,
     cells: Vec<(usize, usize, usize, usize)>,
+    row: Vec<f64>,
+    finite: FiniteScratch,
 }
 
 impl Scratch {
@@ -85,25 +94,9 @@ impl Scratch {
     pub fn longest_buffer(&self) -> usize {
         [self.brick.len(), self.v.len(), self.w.len(), self.t.len(), self.xs.len(), self.ys.len(), self.frac.len()]
             .into_iter()
-            .chain([self.cells.len()])
+            .chain([self.cells.len(), self.finite.longest_buffer()])
             .max()
             .unwrap_or(0)
-    }
-}
-
-/// Coarse positions of stride `s` covering `[lo, hi]` on an axis of `n`
-/// samples: multiples of s from `floor(lo / s) * s` to the first one past
-/// `hi`, clamped to `n - 1` (the virtual padding), into `out`.
-fn coarse_positions(lo: usize, hi: usize, s: usize, n: usize, out: &mut Vec<usize>) {
-    out.clear();
-    let mut xa = lo / s * s;
-    loop {
-        let clamped = xa.min(n - 1);
-        out.push(clamped);
-        if xa > hi || clamped == n - 1 {
-            break;
-        }
-        xa += s;
     }
 }
 
@@ -160,6 +153,48 @@ fn hole_stats(a: &[f64], b: &[f64], summed: usize, init: f64) -> (f64, f64, f64)
         }
     }
     (m, total, holes)
+}
+
+/// `(min, max, some NaN)` of `values`, as the scan
+///
+/// ```text
+/// min = if v < min { v } else { min },  max = if v > max { v } else { max }
+/// ```
+///
+/// in order from `(+inf, -inf)` (false for NaN: min and max skip it) would
+/// give. Four lanes at a time; exact, since the minimum and maximum are
+/// values of the data, except for the sign of a zero (the scan keeps the
+/// first of `-0` and `+0`), so a zero result is taken from the scan itself.
+#[inline(always)]
+fn value_range(values: &[f64]) -> (f64, f64, bool) {
+    let scan = |values: &[f64]| {
+        let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut nan = false;
+        for &v in values {
+            min = if v < min { v } else { min };
+            max = if v > max { v } else { max };
+            nan |= v.is_nan();
+        }
+        (min, max, nan)
+    };
+    let (mut lo, mut hi) = ([f64::INFINITY; 4], [f64::NEG_INFINITY; 4]);
+    let chunks = values.chunks_exact(4);
+    let rest = scan(chunks.remainder());
+    for c in chunks {
+        for k in 0..4 {
+            lo[k] = if c[k] < lo[k] { c[k] } else { lo[k] };
+            hi[k] = if c[k] > hi[k] { c[k] } else { hi[k] };
+        }
+    }
+    let nan = [values.iter().fold(false, |n, v| n | v.is_nan())];
+    let pick = |a: f64, b: f64, less: bool| if (b < a) == less && b != a { b } else { a };
+    let min = [lo[1], lo[2], lo[3], rest.0].into_iter().fold(lo[0], |a, b| pick(a, b, true));
+    let max = [hi[1], hi[2], hi[3], rest.1].into_iter().fold(hi[0], |a, b| pick(a, b, false));
+    let has_nan = nan.iter().any(|&n| n) || rest.2;
+    if min == 0.0 || max == 0.0 {
+        return scan(values);
+    }
+    (min, max, has_nan)
 }
 
 /// Half-open extent along an axis: the samples `lo .. hi` of the closed box,
@@ -238,6 +273,17 @@ fn constant_brick<T: Sample>(
     Some((raw, squared))
 }
 
+/// Which code computes the errors of a brick that is not constant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KernelPath {
+    /// [`super::finite_brick`] when the brick and its coarse samples are
+    /// finite, else the general kernel: the build's choice.
+    Fast,
+    /// The general kernel (stride by stride, with the no-data rule) for
+    /// every brick: the reference the fast path is tested against.
+    General,
+}
+
 /// Computes the [`LeafStats`] of the brick with closed index box `[lo, hi]`:
 /// min and max of the samples `f`, and the errors of `k f`, `k` =
 /// [`super::trilinear::kernel_scale`] of the grid's range (1 unless its
@@ -253,14 +299,15 @@ pub fn leaf_stats<T: Sample>(
     lo: [usize; 3],
     hi: [usize; 3],
     scale: f64,
+    path: KernelPath,
     scratch: &mut Scratch,
 ) -> LeafStats {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { leaf_stats_avx2(g, layout, lo, hi, scale, scratch) };
+        return unsafe { leaf_stats_avx2(g, layout, lo, hi, scale, path, scratch) };
     }
-    leaf_stats_inline(g, layout, lo, hi, scale, scratch)
+    leaf_stats_inline(g, layout, lo, hi, scale, path, scratch)
 }
 
 /// [`leaf_stats_inline`] compiled for AVX2.
@@ -275,9 +322,10 @@ unsafe fn leaf_stats_avx2<T: Sample>(
     lo: [usize; 3],
     hi: [usize; 3],
     scale: f64,
+    path: KernelPath,
     scratch: &mut Scratch,
 ) -> LeafStats {
-    leaf_stats_inline(g, layout, lo, hi, scale, scratch)
+    leaf_stats_inline(g, layout, lo, hi, scale, path, scratch)
 }
 
 /// The kernel's body, inlined into each instruction-set variant.
@@ -288,6 +336,7 @@ fn leaf_stats_inline<T: Sample>(
     lo: [usize; 3],
     hi: [usize; 3],
     scale: f64,
+    path: KernelPath,
     scratch: &mut Scratch,
 ) -> LeafStats {
     let strides = layout.root_log2 as usize;
@@ -295,21 +344,15 @@ fn leaf_stats_inline<T: Sample>(
     let wy = hi[1] - lo[1] + 1;
     let brick = &mut scratch.brick;
     brick.clear();
-    let mut row = Vec::new();
+    let mut row = std::mem::take(&mut scratch.row);
     for z in lo[2]..=hi[2] {
         for y in lo[1]..=hi[1] {
             g.row_into(lo[0], hi[0], y, z, &mut row);
             brick.extend_from_slice(&row);
         }
     }
-    // `v < min` and `v > max` are false for NaN: min and max skip it.
-    let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut has_nan = false;
-    for &v in brick.iter() {
-        min = if v < min { v } else { min };
-        max = if v > max { v } else { max };
-        has_nan |= v.is_nan();
-    }
+    scratch.row = row;
+    let (min, max, has_nan) = value_range(brick);
     if scale != 1.0 {
         brick.iter_mut().for_each(|v| *v *= scale);
     }
@@ -323,7 +366,17 @@ fn leaf_stats_inline<T: Sample>(
             return LeafStats { min, max, raw, squared, holes };
         }
     }
-    let Scratch { brick, v, w, t, xs, ys, frac, cells } = scratch;
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = path;
+    #[cfg(target_arch = "x86_64")]
+    if path == KernelPath::Fast && !has_nan && std::arch::is_x86_feature_detected!("avx2") {
+        let b = Brick { lo, hi, samples: brick, summed };
+        // SAFETY: the CPU supports AVX2, checked just above.
+        if unsafe { finite_brick_errors(g, &b, scale, &mut raw, &mut squared, &mut scratch.finite) } {
+            return LeafStats { min, max, raw, squared, holes };
+        }
+    }
+    let Scratch { brick, v, w, t, xs, ys, frac, cells, .. } = scratch;
     t.resize(wx, 0.0);
     for (j, ((r, q), h)) in raw.iter_mut().zip(squared.iter_mut()).zip(holes.iter_mut()).enumerate() {
         let s = 1usize << (j + 1);
@@ -391,4 +444,35 @@ fn leaf_stats_inline<T: Sample>(
         *h = hole_count;
     }
     LeafStats { min, max, raw, squared, holes }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::value_range;
+
+    /// The in-order scan `value_range` must equal, bit for bit.
+    fn scan(values: &[f64]) -> (u64, u64, bool) {
+        let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut nan = false;
+        for &v in values {
+            min = if v < min { v } else { min };
+            max = if v > max { v } else { max };
+            nan |= v.is_nan();
+        }
+        (min.to_bits(), max.to_bits(), nan)
+    }
+
+    #[test]
+    fn value_range_equals_the_in_order_scan() {
+        let pool = [0.0, -0.0, 1.5, -2.0, f64::NAN, 3.0, -0.0, 0.0, 7.25, -7.25, f64::MIN_POSITIVE];
+        // Every length up to 13 and many orders, with zeros of both signs first or later.
+        for len in 1..=13 {
+            for seed in 0..200usize {
+                let v: Vec<f64> =
+                    (0..len).map(|i| pool[(i * 7 + seed * 13 + (seed >> 3) * i * i) % pool.len()]).collect();
+                let (min, max, nan) = value_range(&v);
+                assert_eq!((min.to_bits(), max.to_bits(), nan), scan(&v), "{v:?}");
+            }
+        }
+    }
 }

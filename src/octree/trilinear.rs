@@ -105,6 +105,22 @@ impl RowBracket {
     }
 }
 
+/// Coarse positions of stride `s` covering `[lo, hi]` on an axis of `n`
+/// samples: multiples of s from `floor(lo / s) * s` to the first one past
+/// `hi`, clamped to `n - 1` (the virtual padding), into `out`.
+pub fn coarse_positions(lo: usize, hi: usize, s: usize, n: usize, out: &mut Vec<usize>) {
+    out.clear();
+    let mut xa = lo / s * s;
+    loop {
+        let clamped = xa.min(n - 1);
+        out.push(clamped);
+        if xa > hi || clamped == n - 1 {
+            break;
+        }
+        xa += s;
+    }
+}
+
 /// T_s at sample `(x, y, z)`, straight from the definition (the reference path).
 pub fn eval<T: Sample>(g: &TypedGrid<'_, T>, s: usize, x: usize, y: usize, z: usize) -> f64 {
     let (x0, x1, tx) = bracket(x, s, g.dims[0]);

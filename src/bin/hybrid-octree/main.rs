@@ -7,7 +7,7 @@
 //! hybrid-octree surface  (--dataset NAME --size N | --file PATH) --isovalue V [--mode discretized|interpolated] [--distance] [--output F.vtk] [--json]
 //! hybrid-octree render   (--dataset NAME --size N | --file PATH) --output F.png [--budget-mb M] [--tolerance T] [--isovalue V] [--reference R.png] [--json]
 //! hybrid-octree generate --dataset NAME --size N [--type T] --output FILE.vti
-//! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--repeats 3] [--json]
+//! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--kernels fast,general] [--repeats 3] [--json]
 //! hybrid-octree bench render (--dataset NAME --size N | --file PATH) [--strides 2,4,8] [--tolerances ...] [--plot P.png] [--json]
 //! hybrid-octree bench effects (--dataset NAME --size N | --file PATH) [--budget-mb M] [--frames 5] [--effects plain,shade,...] [--plot P.png] [--json]
 //! hybrid-octree bench scale [--sizes 256,512,1024] [--type u8,u16] [--dataset NAME] [--budget-mb M] [--json]

@@ -9,14 +9,14 @@
 //! (smooth everywhere, no constant brick) shows the kernel's own scaling.
 
 use super::median_ms;
-use crate::build::build_octree;
 use crate::input::check_size;
 use crate::output::print_report;
 use crate::pool::{check_thread_list, with_threads};
 use clap::Args;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::ScalarType;
-use hybrid_octree::octree::{BuildOptions, DEFAULT_LEAF_SIZE};
+use hybrid_octree::octree::{BuildOptions, KernelPath, VolumeOctree, DEFAULT_LEAF_SIZE};
+use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
 use serde::Serialize;
 
@@ -38,6 +38,10 @@ pub struct BenchBuildArgs {
     /// Leaf brick sizes.
     #[arg(long, value_delimiter = ',', default_values_t = [DEFAULT_LEAF_SIZE])]
     leaf_sizes: Vec<usize>,
+    /// Leaf kernel paths: `fast` (the build's) and `general` (the stride-by-stride
+    /// reference kernel, for a before/after in one run).
+    #[arg(long, value_delimiter = ',', default_value = "fast")]
+    kernels: Vec<String>,
     /// Timed builds per row (after one untimed warm-up); the median is reported.
     #[arg(long, default_value_t = 3)]
     repeats: usize,
@@ -54,8 +58,11 @@ struct Row {
     scalar_type: &'static str,
     threads: usize,
     leaf_size: usize,
+    kernel: &'static str,
     node_count: usize,
     build_ms: f64,
+    copy_ms: f64,
+    build_per_copy: f64,
     mvoxels_per_s: f64,
     ns_per_voxel: f64,
     octree_bytes: usize,
@@ -69,9 +76,13 @@ pub fn run(args: &BenchBuildArgs) -> Result<()> {
     }
     let types = args.types.iter().map(|t| ScalarType::parse(t)).collect::<Result<Vec<_>>>()?;
     let datasets = args.datasets.iter().map(|d| Dataset::parse(d)).collect::<Result<Vec<_>>>()?;
+    let kernels = args.kernels.iter().map(|k| parse_kernel(k)).collect::<Result<Vec<_>>>()?;
     let threads = args.threads.clone().unwrap_or_else(|| vec![rayon::current_num_threads()]);
     check_thread_list(&threads)?;
     for &size in &args.sizes {
+        if size < 2 {
+            return Err(Error::InvalidArgument(format!("benchmark size {size} is too small: use at least 2")));
+        }
         for &scalar_type in &types {
             check_size(size, scalar_type)?;
         }
@@ -79,14 +90,17 @@ pub fn run(args: &BenchBuildArgs) -> Result<()> {
     let mut rows = Vec::new();
     if !args.json {
         println!(
-            "{:>15} {:>6} {:>5} {:>7} {:>5} {:>9} {:>10} {:>9} {:>8} {:>12} {:>8}",
+            "{:>15} {:>6} {:>5} {:>7} {:>5} {:>7} {:>9} {:>10} {:>8} {:>10} {:>9} {:>8} {:>12} {:>8}",
             "dataset",
             "size",
             "type",
             "threads",
             "leaf",
+            "kernel",
             "nodes",
             "build ms",
+            "copy ms",
+            "build/copy",
             "Mvox/s",
             "ns/vox",
             "octree B",
@@ -98,12 +112,16 @@ pub fn run(args: &BenchBuildArgs) -> Result<()> {
             for &t in &threads {
                 for &leaf_size in &args.leaf_sizes {
                     for &size in &args.sizes {
-                        let row =
-                            with_threads(Some(t), || measure(dataset, size, scalar_type, t, leaf_size, args.repeats))?;
-                        if !args.json {
-                            print_row(&row);
+                        let volume = generate(dataset, size, scalar_type);
+                        for &kernel in &kernels {
+                            let row = with_threads(Some(t), || {
+                                measure(dataset, &volume, size, t, leaf_size, kernel, args.repeats)
+                            })?;
+                            if !args.json {
+                                print_row(&row);
+                            }
+                            rows.push(row);
                         }
-                        rows.push(row);
                     }
                 }
             }
@@ -112,32 +130,56 @@ pub fn run(args: &BenchBuildArgs) -> Result<()> {
     print_report(&rows, args.json, |rows| print_ratios(rows))
 }
 
+fn parse_kernel(name: &str) -> Result<KernelPath> {
+    match name {
+        "fast" => Ok(KernelPath::Fast),
+        "general" => Ok(KernelPath::General),
+        _ => Err(Error::InvalidArgument(format!("unknown kernel {name:?}: use fast or general"))),
+    }
+}
+
+fn kernel_name(kernel: KernelPath) -> &'static str {
+    match kernel {
+        KernelPath::Fast => "fast",
+        KernelPath::General => "general",
+    }
+}
+
 fn measure(
     dataset: Dataset,
+    volume: &Volume,
     size: usize,
-    scalar_type: ScalarType,
     threads: usize,
     leaf_size: usize,
+    kernel: KernelPath,
     repeats: usize,
 ) -> Result<Row> {
-    if size < 2 {
-        return Err(Error::InvalidArgument(format!("benchmark size {size} is too small: use at least 2")));
-    }
-    let volume = generate(dataset, size, scalar_type);
     let grid = volume.grid(None)?;
     let options = BuildOptions { leaf_size };
-    let octree = build_octree(&grid, &options)?; // for the counts
-    let build_ms = median_ms(repeats, || build_octree(&grid, &options).map(drop))?;
+    let build = || VolumeOctree::build_with_kernel(&grid, &options, kernel, &mut |_| true);
+    let octree = build()?; // for the counts
+    let build_ms = median_ms(repeats, || build().map(drop))?;
+    // A plain copy of the samples into an allocated buffer: one read and one write of the volume.
+    let bytes = grid.samples().as_bytes();
+    let mut copy = vec![0u8; bytes.len()];
+    let copy_ms = median_ms(repeats, || {
+        copy.copy_from_slice(std::hint::black_box(bytes));
+        std::hint::black_box(&copy);
+        Ok(())
+    })?;
     let voxels = grid.shape().point_count() as f64;
     let stats = octree.stats();
     Ok(Row {
         dataset: dataset.name(),
         size,
-        scalar_type: scalar_type.name(),
+        scalar_type: grid.samples().scalar_type().name(),
         threads,
         leaf_size,
+        kernel: kernel_name(kernel),
         node_count: stats.node_count,
         build_ms,
+        copy_ms,
+        build_per_copy: build_ms / copy_ms,
         mvoxels_per_s: voxels / (build_ms * 1e3),
         ns_per_voxel: build_ms * 1e6 / voxels,
         octree_bytes: stats.octree_bytes,
@@ -147,14 +189,17 @@ fn measure(
 
 fn print_row(r: &Row) {
     println!(
-        "{:>15} {:>6} {:>5} {:>7} {:>5} {:>9} {:>10.1} {:>9.1} {:>8.2} {:>12} {:>8.2}",
+        "{:>15} {:>6} {:>5} {:>7} {:>5} {:>7} {:>9} {:>10.1} {:>8.2} {:>10.1} {:>9.1} {:>8.2} {:>12} {:>8.2}",
         r.dataset,
         r.size,
         r.scalar_type,
         r.threads,
         r.leaf_size,
+        r.kernel,
         r.node_count,
         r.build_ms,
+        r.copy_ms,
+        r.build_per_copy,
         r.mvoxels_per_s,
         r.ns_per_voxel,
         r.octree_bytes,
@@ -165,17 +210,23 @@ fn print_row(r: &Row) {
 /// Per (dataset, type, threads, leaf size): ns/voxel of the largest size over
 /// the smallest, and the spread (max / min ns/voxel over all sizes).
 fn print_ratios(rows: &[Row]) {
-    let mut groups: Vec<(&str, &str, usize, usize)> = Vec::new();
+    let mut groups: Vec<(&str, &str, usize, usize, &str)> = Vec::new();
     for r in rows {
-        let key = (r.dataset, r.scalar_type, r.threads, r.leaf_size);
+        let key = (r.dataset, r.scalar_type, r.threads, r.leaf_size, r.kernel);
         if !groups.contains(&key) {
             groups.push(key);
         }
     }
-    for (dataset, ty, threads, leaf) in groups {
+    for (dataset, ty, threads, leaf, kernel) in groups {
         let group: Vec<&Row> = rows
             .iter()
-            .filter(|r| r.dataset == dataset && r.scalar_type == ty && r.threads == threads && r.leaf_size == leaf)
+            .filter(|r| {
+                r.dataset == dataset
+                    && r.scalar_type == ty
+                    && r.threads == threads
+                    && r.leaf_size == leaf
+                    && r.kernel == kernel
+            })
             .collect();
         let (Some(small), Some(large)) = (group.iter().min_by_key(|r| r.size), group.iter().max_by_key(|r| r.size))
         else {
@@ -185,7 +236,7 @@ fn print_ratios(rows: &[Row]) {
             let ns = group.iter().map(|r| r.ns_per_voxel);
             let spread = ns.clone().fold(0.0, f64::max) / ns.fold(f64::INFINITY, f64::min);
             println!(
-                "{dataset} {ty}, {threads} thread(s), leaf {leaf}: ns/voxel size {} / size {} = {:.2}, max/min over sizes = {:.2}",
+                "{dataset} {ty}, {threads} thread(s), leaf {leaf}, {kernel} kernel: ns/voxel size {} / size {} = {:.2}, max/min over sizes = {:.2}",
                 large.size,
                 small.size,
                 large.ns_per_voxel / small.ns_per_voxel,
