@@ -61,6 +61,7 @@ pub(crate) fn build_rgba(
         scalar_type: scalar,
         dependent: Some(built.combined),
         rgba: Some(built.scale),
+        selector: Default::default(),
         id: next_id(),
         surface_id: 0,
     }))
