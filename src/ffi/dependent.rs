@@ -7,7 +7,7 @@
 //! components), nothing is copied or changed.
 
 use super::grid::{grid_of, grid_unscanned, same_image};
-use super::guard::{check_len, guarded, Bridged};
+use super::guard::{guarded, write_pixels, Bridged};
 use super::octree::{next_id, HybridOctreeHandle};
 use super::render::SelectionHandle;
 use super::{BuildProgress, GridDesc};
@@ -136,11 +136,7 @@ pub(crate) fn composite_into(
     let (colour, opacity) = fields(bytes, desc, true)?;
     let textures = upload_dependent(&colour, &opacity, list)?;
     let image = composite_dependent(&textures, list, tf, width, height)?;
-    check_len("the picture", rgba, 4 * image.rgba.len())?;
-    for (pixel, to) in image.rgba.iter().zip(rgba.chunks_exact_mut(4)) {
-        to.copy_from_slice(pixel);
-    }
-    Ok(())
+    write_pixels(&image.rgba, rgba)
 }
 
 #[cfg(test)]

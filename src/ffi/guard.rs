@@ -31,6 +31,16 @@ pub(crate) fn check_len<T>(name: &str, buffer: &[T], expected: usize) -> crate::
     }
 }
 
+/// Copies a picture's premultiplied RGBA `pixels` into the caller's
+/// `rgba` (4 floats a pixel), after checking that it holds them all.
+pub(crate) fn write_pixels(pixels: &[[f32; 4]], rgba: &mut [f32]) -> crate::error::Result<()> {
+    check_len("the picture", rgba, 4 * pixels.len())?;
+    for (pixel, to) in pixels.iter().zip(rgba.chunks_exact_mut(4)) {
+        to.copy_from_slice(pixel);
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

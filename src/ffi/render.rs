@@ -10,7 +10,7 @@
 //! [`crate::render::texture`]).
 
 use super::grid::{grid_of, grid_unscanned, same_image};
-use super::guard::{check_len, guarded, Bridged};
+use super::guard::{guarded, write_pixels, Bridged};
 use super::octree::HybridOctreeHandle;
 use super::transfer::{opacity_function, transfer_function, vtk_gradient_opacity};
 use super::{CameraDesc, DrawListOutput, GridDesc, RegionDesc, SelectDesc, SelectionSummary, ShadingDesc};
@@ -603,11 +603,7 @@ impl SelectionHandle {
                 drawn,
                 points,
             )?;
-            check_len("the picture", rgba, 4 * image.rgba.len())?;
-            for (pixel, to) in image.rgba.iter().zip(rgba.chunks_exact_mut(4)) {
-                to.copy_from_slice(pixel);
-            }
-            Ok(())
+            write_pixels(&image.rgba, rgba)
         })
     }
 

@@ -6,7 +6,7 @@
 //! host's array is borrowed whole, nothing is copied or changed.
 
 use super::grid::{grid_of, grid_unscanned, same_image};
-use super::guard::{check_len, guarded, Bridged};
+use super::guard::{guarded, write_pixels, Bridged};
 use super::octree::{next_id, HybridOctreeHandle};
 use super::render::SelectionHandle;
 use super::GridDesc;
@@ -147,11 +147,7 @@ pub(crate) fn composite_into(
     let f = fields(bytes, desc, true)?;
     let textures = upload_rgba([&f[0], &f[1], &f[2], &f[3]], scale, list)?;
     let image = composite_rgba(&textures, list, tf, width, height)?;
-    check_len("the picture", rgba, 4 * image.rgba.len())?;
-    for (pixel, to) in image.rgba.iter().zip(rgba.chunks_exact_mut(4)) {
-        to.copy_from_slice(pixel);
-    }
-    Ok(())
+    write_pixels(&image.rgba, rgba)
 }
 
 #[cfg(test)]
