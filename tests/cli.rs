@@ -118,7 +118,8 @@ fn thread_count_does_not_change_the_result() {
 }
 
 /// `generate --dims X,Y,Z` writes a box of those samples (`build` reads
-/// them back); a flat axis, or both --size and --dims, is refused.
+/// them back); a flat axis, both --size and --dims, or a box larger than
+/// the memory is refused before a file is written.
 #[test]
 fn generate_dims_writes_a_box() {
     let path = temp("box.vti");
@@ -136,6 +137,10 @@ fn generate_dims_writes_a_box() {
     assert_clean_failure(
         &run(&["generate", "--dataset", "vessels", "--size", "8", "--dims", "8,8,8", "--output", file]),
         "cannot be used with",
+    );
+    assert_clean_failure(
+        &run(&["generate", "--dataset", "vessels", "--dims", "100000,100000,100000", "--type", "u8", "--output", file]),
+        "use a smaller --size (or --dims)",
     );
     assert!(!path.exists(), "a refused run writes no file");
 }

@@ -40,7 +40,7 @@ pub fn check_generate(dims: [usize; 3], scalar_type: ScalarType) -> Result<u128>
     let bytes =
         dims.iter().try_fold(scalar_type.size() as u128, |acc, &d| acc.checked_mul(d as u128)).ok_or_else(|| {
             Error::InvalidArgument(format!(
-                "a {} x {} x {} {} dataset needs more than 2^128 bytes of memory: use a smaller --size",
+                "a {} x {} x {} {} dataset needs more than 2^128 bytes of memory: use a smaller --size (or --dims)",
                 dims[0],
                 dims[1],
                 dims[2],
@@ -48,7 +48,7 @@ pub fn check_generate(dims: [usize; 3], scalar_type: ScalarType) -> Result<u128>
             ))
         })?;
     let what = format!("a {} x {} x {} {} dataset", dims[0], dims[1], dims[2], scalar_type.name());
-    check_memory(bytes, &what, "use a smaller --size or a smaller --type")?;
+    check_memory(bytes, &what, "use a smaller --size (or --dims) or a smaller --type")?;
     Ok(bytes)
 }
 
