@@ -46,13 +46,19 @@ mod cache;
 mod estimate;
 mod mass;
 mod refine;
+mod screen;
 mod selector;
 mod uniform;
+mod view;
+mod visibility;
 
 #[cfg(test)]
 pub(crate) use brick::test_brick;
 pub use brick::{importance, Brick, Roi, SelectOptions, Selection};
 pub use estimate::estimated_error;
-pub use refine::{select, select_with_points, take_all_points};
+pub use refine::{select, select_in_view, select_with_points, take_all_points};
+pub use screen::ScreenSpace;
 pub use selector::Selector;
 pub use uniform::uniform;
+pub use view::ViewImportance;
+pub use visibility::{Occluder, Transmittance};

@@ -5,6 +5,7 @@ use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
 use super::cache::{NodeMap, WordHasher};
 use super::estimate::estimated_error;
 use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
+use super::view::ViewImportance;
 use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
@@ -45,7 +46,20 @@ impl Ord for Step {
 /// `visible(min, max)` says whether a node with that value range shows under
 /// the transfer function; return `true` to keep every node.
 pub fn select(octree: &VolumeOctree, options: &SelectOptions, visible: impl Fn(f64, f64) -> bool) -> Result<Selection> {
-    select_impl(octree, options, &visible, None, &Caches::default())
+    select_impl(octree, options, &visible, None, None, &Caches::default())
+}
+
+/// [`select`] weighted by what the viewer sees ([`ViewImportance`]: the
+/// screen-space and visibility importance of a camera), with the points of
+/// `points` if given.
+pub fn select_in_view(
+    octree: &VolumeOctree,
+    options: &SelectOptions,
+    visible: impl Fn(f64, f64) -> bool,
+    points: Option<&PointMass>,
+    view: &ViewImportance,
+) -> Result<Selection> {
+    select_impl(octree, options, &visible, points, Some(view), &Caches::default())
 }
 
 /// [`select`] where bricks of stride `points.factor` may also take their
@@ -56,7 +70,7 @@ pub fn select_with_points(
     visible: impl Fn(f64, f64) -> bool,
     points: &PointMass,
 ) -> Result<Selection> {
-    select_impl(octree, options, &visible, Some(points), &Caches::default())
+    select_impl(octree, options, &visible, Some(points), None, &Caches::default())
 }
 
 /// What a selection computes once and reuses: the [`cheapest`] forms by
@@ -78,13 +92,15 @@ impl Caches {
 }
 
 /// [`select`] (without points) or [`select_with_points`], filling and
-/// reusing `caches` (see [`Caches`]: the caller keeps them only for the same
-/// octree, visibility test, points and options other than the budget).
+/// weighted by `view` if given ([`select_in_view`]), reusing `caches` (see
+/// [`Caches`]: the caller keeps them only for the same octree, visibility
+/// test, points, view and options other than the budget).
 pub(super) fn select_impl(
     octree: &VolumeOctree,
     options: &SelectOptions,
     visible: &dyn Fn(f64, f64) -> bool,
     points: Option<&PointMass>,
+    view: Option<&ViewImportance>,
     caches: &Caches,
 ) -> Result<Selection> {
     check_options(options)?;
@@ -116,6 +132,7 @@ pub(super) fn select_impl(
         visible,
         shows: &shows,
         points,
+        view: view.filter(|v| !v.is_empty()),
         root_log2: octree.layout().root_log2 as usize,
         caches,
     };
@@ -223,15 +240,20 @@ struct Refiner<'a> {
     /// `visible` on the node's values, and its box not removed by [`SelectOptions::region`].
     shows: &'a dyn Fn(&NodeRef<'_>) -> bool,
     points: Option<&'a PointMass>,
+    /// What the viewer sees of each node ([`ViewImportance`]), or none.
+    view: Option<&'a ViewImportance>,
     /// `L`: the root's level count, `log2` of the root's size.
     root_log2: usize,
     caches: &'a Caches,
 }
 
 impl Refiner<'_> {
-    /// The finest level of node `n`: full resolution, or the largest brick.
+    /// The finest level of node `n`: full resolution, the largest brick, or
+    /// the finest whose texels the viewer can tell apart ([`ViewImportance::coarsest_levels`]).
     fn max_p(&self, n: &NodeRef<'_>) -> usize {
-        (self.root_log2 - n.level).min(self.options.max_brick_log2 as usize)
+        let full = self.root_log2 - n.level;
+        let seen = full.saturating_sub(self.view.map_or(0, |v| v.coarsest_levels(n)));
+        seen.min(self.options.max_brick_log2 as usize)
     }
 
     /// The weighted error `Imp(n) e_p(n)` the tolerance is compared with.
@@ -242,11 +264,12 @@ impl Refiner<'_> {
     /// Node `id` drawn at level `p`, with its importance.
     fn brick_of(&self, id: NodeId, p: usize) -> Brick {
         let n = self.octree.node(id);
+        let seen = self.view.map_or(1.0, |v| v.weight(&n));
         let mut b = make_brick(
             self.octree,
             &n,
             p,
-            importance(self.options.roi.as_ref(), n.lo, n.hi),
+            importance(self.options.roi.as_ref(), n.lo, n.hi) * seen,
             self.options.bytes_per_texel,
             self.options.gradient_border,
         );

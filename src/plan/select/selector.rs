@@ -42,7 +42,7 @@ impl Selector {
         visible: impl Fn(f64, f64) -> bool,
     ) -> Result<Selection> {
         self.prepare(options);
-        select_impl(octree, options, &visible, None, &self.caches)
+        select_impl(octree, options, &visible, None, None, &self.caches)
     }
 
     /// [`super::select_with_points`], reusing as [`Selector::select`] does.
@@ -54,7 +54,7 @@ impl Selector {
         points: &PointMass,
     ) -> Result<Selection> {
         self.prepare(options);
-        select_impl(octree, options, &visible, Some(points), &self.caches)
+        select_impl(octree, options, &visible, Some(points), None, &self.caches)
     }
 
     /// Keeps the caches that `options` leaves valid.
