@@ -5,6 +5,7 @@
 
 use super::brick::{SelectOptions, Selection};
 use super::refine::{select_impl, Caches};
+use super::view::ViewImportance;
 use crate::base::error::Result;
 use crate::octree::VolumeOctree;
 use crate::points::PointMass;
@@ -16,9 +17,9 @@ use crate::points::PointMass;
 /// What is kept depends on the options (see `Caches`):
 ///
 /// ```text
-/// budget changed                      -> forms and steps kept
-/// tolerance changed                   -> forms kept, steps recomputed
-/// anything else (ROI, texels, region) -> both recomputed
+/// budget changed                            -> forms and steps kept
+/// tolerance changed                         -> forms kept, steps recomputed
+/// anything else (ROI, texels, region, view) -> both recomputed
 /// ```
 ///
 /// The caller keeps one `Selector` per octree, visibility test and points:
@@ -29,6 +30,8 @@ pub struct Selector {
     caches: Caches,
     /// The options the caches were filled for, with a budget of 0.
     key: Option<SelectOptions>,
+    /// The view importance they were filled for (none: data space).
+    view: Option<ViewImportance>,
 }
 
 impl Selector {
@@ -41,8 +44,7 @@ impl Selector {
         options: &SelectOptions,
         visible: impl Fn(f64, f64) -> bool,
     ) -> Result<Selection> {
-        self.prepare(options);
-        select_impl(octree, options, &visible, None, None, &self.caches)
+        self.select_in_view(octree, options, visible, None, None)
     }
 
     /// [`super::select_with_points`], reusing as [`Selector::select`] does.
@@ -53,8 +55,28 @@ impl Selector {
         visible: impl Fn(f64, f64) -> bool,
         points: &PointMass,
     ) -> Result<Selection> {
+        self.select_in_view(octree, options, visible, Some(points), None)
+    }
+
+    /// [`super::select_in_view`] (`view`: none is the data-space selection),
+    /// with `points` if given, reusing as [`Selector::select`] does while
+    /// the view importance stays the same.
+    pub fn select_in_view(
+        &mut self,
+        octree: &VolumeOctree,
+        options: &SelectOptions,
+        visible: impl Fn(f64, f64) -> bool,
+        points: Option<&PointMass>,
+        view: Option<&ViewImportance>,
+    ) -> Result<Selection> {
+        let view = view.filter(|v| !v.is_empty());
+        if self.view.as_ref() != view {
+            self.caches = Caches::default();
+            self.key = None;
+            self.view = view.cloned();
+        }
         self.prepare(options);
-        select_impl(octree, options, &visible, Some(points), None, &self.caches)
+        select_impl(octree, options, &visible, points, view, &self.caches)
     }
 
     /// Keeps the caches that `options` leaves valid.
