@@ -60,5 +60,5 @@ pub use refine::{select, select_in_view, select_with_points, take_all_points};
 pub use screen::ScreenSpace;
 pub use selector::Selector;
 pub use uniform::uniform;
-pub use view::ViewImportance;
+pub use view::{view_change_degrees, ViewImportance, ViewInputs, ViewSelection};
 pub use visibility::{Occluder, Transmittance};

@@ -13,8 +13,11 @@
 //! its pixel area `W_s` already is a square.
 
 use super::screen::ScreenSpace;
-use super::visibility::Transmittance;
-use crate::octree::NodeRef;
+use super::visibility::{Occluder, Transmittance};
+use crate::base::error::{Error, Result};
+use crate::data::grid::GridShape;
+use crate::geometry::camera::{Camera, Projection};
+use crate::octree::{NodeRef, VolumeOctree};
 
 /// The view importance of one frame (module documentation).
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -42,4 +45,123 @@ impl ViewImportance {
     pub fn is_empty(&self) -> bool {
         self.screen.is_none() && self.visibility.is_none()
     }
+}
+
+/// Which importance a selection weighs nodes by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub enum ViewSelection {
+    /// The data alone: nodal errors and the region of interest.
+    #[default]
+    Data,
+    /// And the screen-space importance ([`ScreenSpace`]).
+    Screen,
+    /// And the visibility importance ([`Transmittance`]).
+    Visibility,
+    /// And both.
+    Both,
+}
+
+impl ViewSelection {
+    /// Every mode, in the order of [`ViewSelection::from_index`].
+    pub const ALL: [ViewSelection; 4] =
+        [ViewSelection::Data, ViewSelection::Screen, ViewSelection::Visibility, ViewSelection::Both];
+
+    /// 0 data, 1 screen, 2 visibility, 3 both (the mapper's setting).
+    pub fn from_index(i: i32) -> Result<ViewSelection> {
+        usize::try_from(i).ok().and_then(|i| Self::ALL.get(i).copied()).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "view selection {i}: give 0 (data), 1 (screen space), 2 (visibility) or 3 (both)"
+            ))
+        })
+    }
+
+    /// The name the CLI and the benchmarks use.
+    pub fn name(self) -> &'static str {
+        match self {
+            ViewSelection::Data => "data",
+            ViewSelection::Screen => "screen",
+            ViewSelection::Visibility => "visibility",
+            ViewSelection::Both => "both",
+        }
+    }
+}
+
+impl std::str::FromStr for ViewSelection {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<ViewSelection> {
+        Self::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
+            Error::InvalidArgument(format!("view selection '{s}': give data, screen, visibility or both"))
+        })
+    }
+}
+
+/// What a view importance is made from: the camera and image, the grid,
+/// the opacity and the isosurface drawn with the volume.
+pub struct ViewInputs<'a> {
+    /// The camera.
+    pub camera: &'a Camera,
+    /// Image width, pixels.
+    pub width: usize,
+    /// Image height, pixels.
+    pub height: usize,
+    /// The grid the octree was built on.
+    pub shape: &'a GridShape,
+    /// Refinement stops below texels of this many pixels (1 by default).
+    pub min_texel_pixels: f64,
+    /// The smallest opacity of a layer `d0` thick over values `[min, max]`.
+    pub min_opacity: &'a (dyn Fn(f64, f64) -> f64 + Sync),
+    /// The opacity unit distance `d0`, world units.
+    pub d0: f64,
+    /// An isosurface drawn with the volume, if any.
+    pub occluder: Option<Occluder>,
+    /// The grid has NaN holes (then nothing is taken as hidden).
+    pub has_nan: bool,
+}
+
+impl ViewImportance {
+    /// The view importance `mode` asks for (none for [`ViewSelection::Data`]).
+    pub fn new(mode: ViewSelection, octree: &VolumeOctree, inputs: &ViewInputs<'_>) -> Result<ViewImportance> {
+        let screen = matches!(mode, ViewSelection::Screen | ViewSelection::Both)
+            .then(|| {
+                ScreenSpace::new(inputs.camera, inputs.width, inputs.height, inputs.shape, inputs.min_texel_pixels)
+            })
+            .transpose()?;
+        let visibility = matches!(mode, ViewSelection::Visibility | ViewSelection::Both)
+            .then(|| {
+                Transmittance::estimate(
+                    octree,
+                    inputs.shape,
+                    inputs.camera,
+                    inputs.min_opacity,
+                    inputs.d0,
+                    inputs.occluder,
+                    inputs.has_nan,
+                )
+            })
+            .transpose()?;
+        Ok(ViewImportance { screen, visibility })
+    }
+}
+
+/// How far the view moved from camera `a` to camera `b` around `centre`
+/// (world), in degrees: the angle between the directions from `centre` to
+/// the two eyes, or a zoom counted as `|ln(d_b / d_a)|` radians (the
+/// distance to `centre`, or the parallel scale), whichever is larger. A
+/// selection made for `a` is redone for `b` when this passes a threshold.
+pub fn view_change_degrees(a: &Camera, b: &Camera, centre: [f64; 3]) -> f64 {
+    use crate::geometry::vec3::{dot, norm, sub};
+    let (da, db) = (sub(a.position, centre), sub(b.position, centre));
+    let (la, lb) = (norm(da), norm(db));
+    let turn = if la > 0.0 && lb > 0.0 { (dot(da, db) / (la * lb)).clamp(-1.0, 1.0).acos() } else { 0.0 };
+    let zoom = |x: f64, y: f64| if x > 0.0 && y > 0.0 { (y / x).ln().abs() } else { 0.0 };
+    let scale = match (a.projection, b.projection) {
+        (Projection::Parallel { scale: x }, Projection::Parallel { scale: y }) => zoom(x, y),
+        (Projection::Perspective { view_angle_deg: x }, Projection::Perspective { view_angle_deg: y }) => {
+            zoom(x, y).max(zoom(la, lb))
+        }
+        _ => std::f64::consts::PI,
+    };
+    let look = |c: &Camera| c.forward();
+    let aim = dot(look(a), look(b)).clamp(-1.0, 1.0).acos();
+    turn.max(scale).max(aim).to_degrees()
 }
