@@ -49,3 +49,5 @@ mod rgba_tests;
 mod slice_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod view_selection_tests;

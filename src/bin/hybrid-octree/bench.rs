@@ -3,11 +3,13 @@
 //! `bench render` (what accuracy costs in time and memory when rendering),
 //! `bench effects` (what each rendering effect costs), `bench scale` (each
 //! step's time and peak memory as the volume grows), `bench select` (the
-//! selection, fresh and incremental).
+//! selection, fresh and incremental), `bench orbit` (the view-dependent
+//! selection while the camera moves).
 
 mod build;
 mod effects;
 mod memory;
+mod orbit;
 pub mod render;
 mod scale;
 mod select;
@@ -31,6 +33,8 @@ pub enum BenchCommand {
     Effects(Box<effects::BenchEffectsArgs>),
     /// Generate, read, build, select and first frame over sizes: time, time per voxel and peak RSS of each step.
     Scale(Box<scale::BenchScaleArgs>),
+    /// A camera orbit under each view selection: re-selections, selection ms, uploaded bytes per frame, RMSE.
+    Orbit(Box<orbit::BenchOrbitArgs>),
     /// Texture-budget selection: fresh and incremental re-selection (budget +-10 %, region of interest moved): ms and bricks.
     Select(Box<select::BenchSelectArgs>),
 }
@@ -44,6 +48,7 @@ pub fn run(command: &BenchCommand) -> Result<()> {
         BenchCommand::Effects(args) => effects::run(args),
         BenchCommand::Scale(args) => scale::run(args),
         BenchCommand::Select(args) => select::run(args),
+        BenchCommand::Orbit(args) => orbit::run(args),
     }
 }
 

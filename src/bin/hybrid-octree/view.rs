@@ -18,7 +18,7 @@ pub struct ViewArgs {
     /// nothing outside the view), visibility (and the transmittance in
     /// front of each node: little for what the volume or an opaque
     /// isosurface hides), or both.
-    #[arg(long, default_value = "data", value_parser = view_selection)]
+    #[arg(long, default_value = "both", value_parser = view_selection)]
     pub view_selection: ViewSelection,
     /// Screen-space selection: refinement stops where a texel would cover
     /// fewer pixels than this (0: never).
