@@ -465,7 +465,15 @@ fn bench_render_compares_octree_and_uniform_at_equal_bytes() {
     assert!(out.status.success(), "{}", stderr(&out));
     let rows: Value = serde_json::from_str(&stdout(&out)).unwrap();
     let rows = rows.as_array().unwrap();
-    assert_eq!(rows.len(), 11, "2 uniform + 2 octree at their bytes + 2 x 3 VTK smart mapper rows + 1 tolerance row");
+    assert_eq!(
+        rows.len(),
+        17,
+        "2 uniform + 2 x 4 octree (data, screen, visibility, both) at their bytes + 2 x 3 VTK smart mapper rows + 1 \
+         tolerance row"
+    );
+    let views: Vec<&str> = rows[1..5].iter().map(|r| r["view"].as_str().unwrap()).collect();
+    assert_eq!(views, ["data", "screen", "visibility", "both"]);
+    assert!(rows[1..5].iter().all(|r| r["budget_bytes"] == rows[0]["texture_bytes"]));
     for r in rows.iter().filter(|r| !r["method"].as_str().unwrap().starts_with("vtk-smart")) {
         for key in [
             "method",
@@ -489,6 +497,58 @@ fn bench_render_compares_octree_and_uniform_at_equal_bytes() {
     assert_eq!(rows[1]["budget_bytes"], rows[0]["texture_bytes"], "octree gets the uniform row's bytes");
     assert_eq!(&std::fs::read(&plot).unwrap()[..4], b"\x89PNG");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `bench orbit`: one row per view selection, re-selecting only past the
+/// view change (every frame at 0 degrees), uploading a share of the budget
+/// per frame; bad arguments are clear errors.
+#[test]
+fn bench_orbit_reselects_past_the_view_change_and_counts_uploads() {
+    let orbit = |change: &str| {
+        run(&[
+            "bench",
+            "orbit",
+            "--dataset",
+            "shepp-logan",
+            "--size",
+            "33",
+            "--width",
+            "32",
+            "--height",
+            "32",
+            "--frames",
+            "6",
+            "--step",
+            "3",
+            "--view-change",
+            change,
+            "--leaf-size",
+            "4",
+            "--json",
+        ])
+    };
+    let out = orbit("5");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let rows = rows.as_array().unwrap();
+    let views: Vec<&str> = rows.iter().map(|r| r["view"].as_str().unwrap()).collect();
+    assert_eq!(views, ["data", "screen", "visibility", "both"]);
+    for r in rows {
+        // 3 degrees a frame past 5 degrees: frames 0, 2 and 4.
+        assert_eq!(r["reselections"], 3, "{r}");
+        assert!(r["texture_bytes"].as_u64() <= r["budget_bytes"].as_u64(), "{r}");
+        let share = r["uploaded_share"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&share), "{r}");
+        assert!(r["rmse"].as_f64().unwrap() < 0.2, "{r}");
+    }
+    // The data-space selection does not depend on the view: nothing to upload.
+    assert_eq!(rows[0]["uploaded_bytes_per_frame"], 0.0);
+    let out = orbit("0");
+    let rows: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert!(rows.as_array().unwrap().iter().all(|r| r["reselections"] == 6));
+    assert_clean_failure(&orbit("-1"), "view-change");
+    let out = run(&["render", "--dataset", "sphere", "--size", "9", "--view-selection", "pixels", "--output", "x.png"]);
+    assert_clean_failure(&out, "data, screen, visibility or both");
 }
 
 /// `bench render` on 8-bit data: every texture counts 1 byte a texel; the

@@ -42,7 +42,7 @@ pub struct BenchOrbitArgs {
     step: f64,
     /// A frame re-selects when the camera moved more than this many
     /// degrees from the camera of the last selection (0: every frame).
-    #[arg(long, default_value_t = 5.0)]
+    #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
     view_change: f64,
     /// The view selections measured.
     #[arg(long, value_delimiter = ',', default_value = "data,screen,visibility,both", value_parser = view_selection)]
@@ -84,7 +84,7 @@ struct Row {
 pub fn run(args: &BenchOrbitArgs) -> Result<()> {
     if args.frames == 0 || !args.step.is_finite() || !(args.view_change >= 0.0 && args.view_change.is_finite()) {
         return Err(Error::InvalidArgument(
-            "bench orbit needs --frames >= 1, a finite --step and a --view-change >= 0 degrees".into(),
+            "bench orbit needs --frames >= 1, a finite --step and a --view-change of at least 0 degrees".into(),
         ));
     }
     let rows = with_threads(args.input.threads, || {

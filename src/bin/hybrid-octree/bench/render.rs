@@ -407,9 +407,13 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
         };
         let title = format!("{}: image RMSE against the full-resolution reference", args.input.describe());
         let mut lines: Vec<(String, Vec<Point>)> = vec![
-            ("octree (budget / tolerance sweep)".into(), series(&|r| r.method == "octree")),
+            ("octree (budget / tolerance sweep)".into(), series(&|r| r.method == "octree" && r.view == "data")),
             ("uniform downsampling".into(), series(&|r| r.method == "uniform")),
         ];
+        for view in args.view_selections.iter().filter(|&&v| v != ViewSelection::Data) {
+            let keep = |r: &Row| r.method == "octree" && r.view == view.name();
+            lines.push((format!("octree, {} selection", view.name()), series(&keep)));
+        }
         let mut point_strides: Vec<usize> = rows
             .iter()
             .filter(|r| r.method == "points" && r.point_threshold.is_some())
@@ -580,21 +584,21 @@ fn print_table(rows: &[Row]) {
             r.estimated_error
         );
     }
-    // At equal bytes: each uniform row is followed by the octree row with its bytes as the budget.
-    for pair in rows.windows(2) {
-        if let [u, o] = pair {
-            if u.method == "uniform" && o.method == "octree" && o.tolerance == Some(0.0) {
-                println!(
-                    "at {:.2} MB: octree RMSE / uniform (stride {}) RMSE = {:.3}",
-                    u.texture_bytes as f64 / 1e6,
-                    u.stride.unwrap_or(0),
-                    o.rmse / u.rmse.max(1e-12)
-                );
-            }
+    // At equal bytes: each uniform row is followed by the octree rows (one per view selection) with its bytes as the budget.
+    for (i, u) in rows.iter().enumerate().filter(|(_, r)| r.method == "uniform") {
+        let octree = rows[i + 1..].iter().take_while(|o| o.method == "octree" && o.tolerance == Some(0.0));
+        let ratios: Vec<String> = octree.map(|o| format!("{} {:.3}", o.view, o.rmse / u.rmse.max(1e-12))).collect();
+        if !ratios.is_empty() {
+            println!(
+                "at {:.2} MB: octree RMSE / uniform (stride {}) RMSE = {}",
+                u.texture_bytes as f64 / 1e6,
+                u.stride.unwrap_or(0),
+                ratios.join(", ")
+            );
         }
     }
-    // VTK's smart mapper at each uniform stride's bytes: the octree's RMSE over its RMSE.
-    for o in rows.iter().filter(|r| r.method == "octree" && r.tolerance == Some(0.0)) {
+    // VTK's smart mapper at each uniform stride's bytes: the (data-space) octree's RMSE over its RMSE.
+    for o in rows.iter().filter(|r| r.method == "octree" && r.view == "data" && r.tolerance == Some(0.0)) {
         let vtk = |m: &str| rows.iter().find(|r| r.method == m && r.budget_bytes == o.budget_bytes);
         if let Some(v) = vtk("vtk-smart") {
             print!(
