@@ -61,8 +61,7 @@ fn selection(grid: &Grid<'_>, octree: &VolumeOctree, camera: &Camera, mode: View
     let opacity = |v: f64| t.opacity(v) as f64;
     let medium = Medium::new(octree, grid, &opacity, 1.0, None).unwrap();
     let shape = grid.shape();
-    let inputs =
-        ViewInputs { camera, width: size, height: size, shape: &shape, min_texel_pixels: 1.0, medium: Some(&medium) };
+    let inputs = ViewInputs { camera, width: size, height: size, shape, min_texel_pixels: 1.0, medium: Some(&medium) };
     let view = ViewImportance::new(mode, &inputs).unwrap();
     let budget = uniform(octree, 2, 4).unwrap().texture_bytes;
     select_in_view(octree, &SelectOptions::new(budget, 0.0), |a, b| !t.is_transparent_over(a, b), None, &view).unwrap()
@@ -132,14 +131,8 @@ fn screen_space_stops_below_a_pixel() {
     let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 4 }).unwrap();
     let t = tf();
     let shape = grid.shape();
-    let inputs = |size| ViewInputs {
-        camera: &s.camera,
-        width: size,
-        height: size,
-        shape: &shape,
-        min_texel_pixels: 1.0,
-        medium: None,
-    };
+    let inputs =
+        |size| ViewInputs { camera: &s.camera, width: size, height: size, shape, min_texel_pixels: 1.0, medium: None };
     let visible = |a: f64, b: f64| !t.is_transparent_over(a, b);
     let all = SelectOptions::new(1 << 30, 0.0);
     let data = select_in_view(&octree, &all, visible, None, &ViewImportance::default()).unwrap();

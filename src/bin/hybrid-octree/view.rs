@@ -21,8 +21,9 @@ pub struct ViewArgs {
     #[arg(long, default_value = "both", value_parser = view_selection)]
     pub view_selection: ViewSelection,
     /// Screen-space selection: refinement stops where a texel would cover
-    /// fewer pixels than this (0: never).
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    /// fewer pixels than this (0: never). The default, half a pixel, keeps
+    /// the thin vessels of an angiogram that texels of one pixel blur.
+    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
     pub min_texel_pixels: f64,
 }
 
@@ -47,7 +48,7 @@ pub fn medium(grid: &Grid<'_>, scene: &Loaded, args: &SceneArgs) -> Result<Optio
     if !composite && occluder.is_none() {
         return Ok(None);
     }
-    let d0 = hybrid_octree::spacing::reference_spacing(&grid.shape());
+    let d0 = hybrid_octree::spacing::reference_spacing(grid.shape());
     Medium::new(&scene.octree, grid, &opacity, d0, occluder).map(Some)
 }
 
@@ -70,7 +71,7 @@ pub fn importance(
         camera,
         width: args.width,
         height: args.height,
-        shape: &shape,
+        shape,
         min_texel_pixels: args.view.min_texel_pixels,
         medium,
     };

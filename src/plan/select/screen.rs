@@ -169,7 +169,8 @@ impl ScreenSpace {
     pub fn finest_stride(&self, lo: [usize; 3], hi: [usize; 3]) -> usize {
         let (z_near, _) = self.nearest(lo, hi);
         let ppc = self.box_ppc(z_near);
-        if !(ppc < self.min_texel_pixels) {
+        // Also a NaN or infinite ppc (a box reaching the camera): full resolution.
+        if ppc.partial_cmp(&self.min_texel_pixels) != Some(std::cmp::Ordering::Less) {
             return 1;
         }
         let ratio = self.min_texel_pixels / ppc;

@@ -251,7 +251,7 @@ fn march(m: &Medium, shape: &GridShape, camera: &Camera, c: [usize; 3]) -> f64 {
         Projection::Parallel { .. } => camera.basis().2.map(|v| -v),
     };
     let length = norm(to_eye);
-    if !(length > 0.0) {
+    if length.is_nan() || length <= 0.0 {
         return 1.0;
     }
     let dir = to_eye.map(|v| v / length);
