@@ -250,6 +250,14 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   {
     desc.slice_plane[k] = options.SlicePlane[k];
   }
+  const ViewDescription& view = options.View;
+  desc.view.view_selection = view.ViewSelection;
+  desc.view.camera = ToRust(view.Camera);
+  desc.view.viewport[0] = view.Viewport[0];
+  desc.view.viewport[1] = view.Viewport[1];
+  desc.view.min_texel_pixels = view.MinTexelPixels;
+  desc.view.surface_opacity = view.SurfaceOpacity;
+  desc.view.opacity_unit_distance = view.OpacityUnitDistance;
   return desc;
 }
 
@@ -541,6 +549,7 @@ bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
     summary.Warning = std::string(s.warning);
     summary.Points = s.points;
     summary.PointBytes = s.point_bytes;
+    summary.ViewSelection = std::string(s.view_selection);
   });
 }
 
@@ -842,6 +851,15 @@ bool MeasureBlockRanges(const float* texels, std::size_t count, const std::size_
     ranges.resize(hybrid_octree::block_ranges_len(d));
     hybrid_octree::brick_block_ranges(
       rust::Slice<const float>(texels, texels ? count : 0), d, Out(ranges.data(), ranges.size()));
+  });
+}
+
+bool ViewChangeDegrees(const CameraDescription& a, const CameraDescription& b,
+  const double centre[3], double& degrees, std::string& error)
+{
+  return Guarded(error, [&] {
+    degrees = hybrid_octree::view_change_degrees(
+      ToRust(a), ToRust(b), rust::Slice<const double>(centre, centre ? 3 : 0));
   });
 }
 
