@@ -972,6 +972,6 @@ use geometry::{block_ranges_len, brick_block_ranges, frame_brick_geometry as bri
 use octree::build_hybrid_octree;
 pub use octree::HybridOctreeHandle;
 use points::generate_points;
-use view::view_change_degrees;
 pub use points::GeneratedPoints;
 pub use render::SelectionHandle;
+use view::view_change_degrees;

@@ -5,28 +5,30 @@ use super::test_support::{as_bytes, build_volume_octree, data_view, f32_desc, se
 use super::{view_change_degrees, CameraDesc, SelectDesc, ViewDesc};
 
 /// Samples per axis of [`walled`].
-const N: usize = 33;
+const N: usize = 64;
 
-/// An opaque wall (value 1) over z < 6, then detail behind it: a fine
-/// ripple of values in [0.1, 0.4] (x fastest).
+/// An opaque wall (value 1) over x < 48, z >= 32, in front of a camera at
+/// +z; elsewhere a ripple of values in [0.1, 0.5] (x fastest).
 fn walled() -> Vec<f32> {
     (0..N * N * N)
         .map(|i| {
             let (x, y, z) = (i % N, (i / N) % N, i / (N * N));
-            if z < 6 {
+            let (xf, yf, zf) = (x as f64, y as f64, z as f64);
+            let ripple = 0.3 + 0.2 * (0.9 * xf).sin() * (0.7 * yf).cos() * (0.8 * zf + 0.3 * xf).sin();
+            if x < 48 && z >= 32 {
                 1.0
             } else {
-                0.25 + 0.15 * ((x as f32 * 1.3).sin() * (y as f32 * 1.7).cos() * (z as f32 * 0.9).sin())
+                ripple as f32
             }
         })
         .collect()
 }
 
-/// Looking along +z from in front of the wall, the whole grid in view.
+/// Looking along -z from in front of the wall, the whole grid in view.
 fn front_camera() -> CameraDesc {
     CameraDesc {
-        position: [16.0, 16.0, -60.0],
-        focal_point: [16.0, 16.0, 16.0],
+        position: [31.5, 31.5, 221.5],
+        focal_point: [31.5, 31.5, 31.5],
         view_up: [0.0, 1.0, 0.0],
         parallel: false,
         parallel_scale: 1.0,
@@ -39,14 +41,18 @@ fn view(mode: i32) -> ViewDesc {
     ViewDesc { view_selection: mode, camera: front_camera(), viewport: [256, 256], ..data_view() }
 }
 
-/// The wall opaque (opacity 1 at 1), the detail faint but visible.
+/// The wall opaque (opacity 1 from 0.9), the ripple faint but visible.
 fn desc(budget: usize, mode: i32) -> SelectDesc {
-    SelectDesc { opacity_points: vec![0.0, 0.0, 0.5, 0.05, 0.9, 1.0, 1.0, 1.0], view: view(mode), ..select_desc(budget) }
+    SelectDesc {
+        opacity_points: vec![0.0, 0.0, 0.1, 0.0, 0.5, 0.08, 0.9, 1.0, 1.0, 1.0],
+        view: view(mode),
+        ..select_desc(budget)
+    }
 }
 
-/// Texture bytes of bricks entirely behind the wall (z >= 6).
+/// Texture bytes of bricks entirely behind the wall (x <= 32, z <= 32).
 fn bytes_behind(s: &super::SelectionHandle) -> usize {
-    s.selection.bricks.iter().filter(|b| b.lo[2] >= 6).map(|b| b.bytes).sum()
+    s.selection.bricks.iter().filter(|b| b.hi[0] <= 32 && b.hi[2] <= 32).map(|b| b.bytes).sum()
 }
 
 /// Visibility spends fewer bytes behind the opaque wall than Data at the
@@ -55,14 +61,15 @@ fn bytes_behind(s: &super::SelectionHandle) -> usize {
 fn visibility_spends_less_behind_an_opaque_wall() {
     let d = walled();
     let h = build_volume_octree(as_bytes(&d), &f32_desc([N; 3]), 4).unwrap();
-    let budget = 60_000;
+    let budget = 250_000;
     let data = h.select_bricks(&desc(budget, 0)).unwrap();
     let hidden = h.select_bricks(&desc(budget, 2)).unwrap();
     let (sd, sv) = (data.summary().unwrap(), hidden.summary().unwrap());
     assert_eq!((sd.view_selection.as_str(), sv.view_selection.as_str()), ("data", "visibility"));
     assert!(sd.texture_bytes <= budget && sv.texture_bytes <= budget);
     let (behind_data, behind_hidden) = (bytes_behind(&data), bytes_behind(&hidden));
-    assert!(behind_hidden * 2 < behind_data, "behind the wall: visibility {behind_hidden} B, data {behind_data} B");
+    println!("behind the wall: visibility {behind_hidden} B, data {behind_data} B");
+    assert!(behind_hidden * 4 < behind_data, "behind the wall: visibility {behind_hidden} B, data {behind_data} B");
 }
 
 /// Seen from far away the grid covers few pixels: screen space stops
@@ -71,13 +78,22 @@ fn visibility_spends_less_behind_an_opaque_wall() {
 fn screen_space_stops_below_a_pixel() {
     let d = walled();
     let h = build_volume_octree(as_bytes(&d), &f32_desc([N; 3]), 4).unwrap();
-    let far = CameraDesc { position: [16.0, 16.0, -2000.0], ..front_camera() };
+    let far = || CameraDesc { position: [31.5, 31.5, 4000.0], ..front_camera() };
     let budget = 200_000;
-    let with = |mode: i32| SelectDesc { view: ViewDesc { camera: far, viewport: [64, 64], ..view(mode) }, ..desc(budget, 0) };
+    let with = |mode: i32| SelectDesc {
+        view: ViewDesc { camera: far(), viewport: [64, 64], ..view(mode) },
+        ..desc(budget, 0)
+    };
     let data = h.select_bricks(&with(0)).unwrap().summary().unwrap();
     let screen = h.select_bricks(&with(1)).unwrap().summary().unwrap();
     assert_eq!(screen.view_selection, "screen");
-    assert!(screen.texture_bytes * 4 < data.texture_bytes, "screen {} B, data {} B", screen.texture_bytes, data.texture_bytes);
+    println!("seen from far away: screen {} B, data {} B", screen.texture_bytes, data.texture_bytes);
+    assert!(
+        screen.texture_bytes * 4 < data.texture_bytes,
+        "screen {} B, data {} B",
+        screen.texture_bytes,
+        data.texture_bytes
+    );
 }
 
 /// Visibility does not apply to maximum intensity, nor where a cropping
@@ -91,7 +107,7 @@ fn visibility_is_left_out_where_it_does_not_apply() {
     assert_eq!(h.select_bricks(&mip(2)).unwrap().summary().unwrap().view_selection, "data");
     let mut cropped = desc(60_000, 3);
     cropped.region.cropping = true;
-    cropped.region.cropping_planes = [0.0, 32.0, 0.0, 32.0, 8.0, 32.0];
+    cropped.region.cropping_planes = [0.0, 63.0, 0.0, 63.0, 0.0, 40.0];
     cropped.region.cropping_flags = 1 << 13;
     assert_eq!(h.select_bricks(&cropped).unwrap().summary().unwrap().view_selection, "screen");
     assert_eq!(h.select_bricks(&desc(60_000, 3)).unwrap().summary().unwrap().view_selection, "both");
@@ -122,8 +138,8 @@ fn bad_view_values_are_refused() {
 fn view_change_is_the_turn_in_degrees() {
     let a = front_camera();
     let t = 10f64.to_radians();
-    let b = CameraDesc { position: [16.0 + 76.0 * t.sin(), 16.0, 16.0 - 76.0 * t.cos()], ..a };
-    let centre = [16.0, 16.0, 16.0];
+    let b = CameraDesc { position: [31.5 + 190.0 * t.sin(), 31.5, 31.5 + 190.0 * t.cos()], ..front_camera() };
+    let centre = [31.5, 31.5, 31.5];
     assert!((view_change_degrees(&a, &b, &centre).unwrap() - 10.0).abs() < 1e-9);
     assert!(view_change_degrees(&a, &a, &centre).unwrap().abs() < 1e-9);
     assert!(view_change_degrees(&a, &b, &[0.0, f64::NAN, 0.0]).unwrap_err().contains("finite centre"));
