@@ -289,7 +289,8 @@ pub(crate) fn select_with(
     let scene = ViewScene {
         composite: blend.mode == BlendMode::Composite,
         single_field: octree.dependent.is_none(),
-        removes_samples: options.region.is_some() || options.slice.is_some(),
+        removes_samples: options.slice.is_some()
+            || options.region.is_some_and(|r| !r.keeps_box([0.0; 3], octree.shape.dims.map(|d| (d - 1) as f64))),
         gradient_opacity: gradient_opacity.as_ref(),
         transfer_2d: classifies.is_some(),
     };

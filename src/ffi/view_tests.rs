@@ -110,6 +110,9 @@ fn visibility_is_left_out_where_it_does_not_apply() {
     cropped.region.cropping_planes = [0.0, 63.0, 0.0, 63.0, 0.0, 40.0];
     cropped.region.cropping_flags = 1 << 13;
     assert_eq!(h.select_bricks(&cropped).unwrap().summary().unwrap().view_selection, "screen");
+    // A region that keeps the whole grid removes nothing: visibility applies.
+    cropped.region.cropping_planes = [-1.0, 64.0, -1.0, 64.0, -1.0, 64.0];
+    assert_eq!(h.select_bricks(&cropped).unwrap().summary().unwrap().view_selection, "both");
     assert_eq!(h.select_bricks(&desc(60_000, 3)).unwrap().summary().unwrap().view_selection, "both");
 }
 
