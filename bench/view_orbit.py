@@ -10,7 +10,8 @@ View Selection of the "Hybrid Octree Volume" representation.
 
 Datasets: the CLI's 256^3 Shepp-Logan phantom (f32, `hybrid-octree
 generate --dataset shepp-logan --size 256`) and, when --mri names one, an
-8-bit MRI read with ParaView's NIfTI reader. The budget of each is the
+8-bit MRI read with VTK's NIfTI reader (vtkNIFTIImageReader, written to a
+.vti for ParaView's reader). The budget of each is the
 bytes of the uniform stride-4 texture of its grid (`ceil((n - 1) / 4) + 1`
 texels per axis, the texels of the data's own width: 4 bytes for f32, 1
 for u8). Per dataset and View Selection (Data, Screen Space, Visibility,
@@ -40,15 +41,14 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "paraview"))
 
-from paraview.simple import (Delete, Hide, LoadPlugin, OpenDataFile, Render,  # noqa: E402
-                             XMLImageDataReader)
+from paraview.simple import Delete, Hide, LoadPlugin, XMLImageDataReader  # noqa: E402
 from pvtest import read_png_rgb, rmse, window_rgb  # noqa: E402
 from representation_scene import look_at, make_view, show_volume  # noqa: E402
 
 HYBRID = "Hybrid Octree Volume"
 MODES = ["Data", "Screen Space", "Visibility", "Both"]
-TEXEL_BYTES = {"float": 4, "double": 4, "unsigned_char": 1, "char": 1, "signed_char": 1,
-               "unsigned_short": 2, "short": 2}
+# Texel Format Auto's bytes by VTK type code: 8-bit 1, 16-bit 2, the rest 4 (R32F).
+TEXEL_BYTES = {2: 1, 3: 1, 15: 1, 4: 2, 5: 2}
 
 
 def parse():
@@ -79,8 +79,7 @@ def stride4_bytes(reader, array):
     for a in range(3):
         cells = extent[2 * a + 1] - extent[2 * a]
         texels *= -(-cells // 4) + 1
-    type_name = reader.PointData[array].GetDataType().lower().replace("vtk_", "")
-    return texels * TEXEL_BYTES.get(type_name, 4)
+    return texels * TEXEL_BYTES.get(reader.PointData[array].GetDataType(), 4)
 
 
 def frame(view):
@@ -140,6 +139,20 @@ def orbit_rows(name, reader, args, workdir):
     return rows
 
 
+def nifti_to_vti(nifti, vti):
+    """VTK's NIfTI reader (.nii, .nii.gz) into a .vti file (ParaView 5.11
+    has no reader registered for .nii.gz)."""
+    from vtkmodules.vtkIOImage import vtkNIFTIImageReader
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+
+    reader = vtkNIFTIImageReader()
+    reader.SetFileName(nifti)
+    writer = vtkXMLImageDataWriter()
+    writer.SetInputConnection(reader.GetOutputPort())
+    writer.SetFileName(vti)
+    writer.Write()
+
+
 def main():
     args = parse()
     LoadPlugin(args.plugin, remote=False)
@@ -151,7 +164,10 @@ def main():
                     "--output", phantom], check=True, capture_output=True)
     rows = orbit_rows("phantom %d^3 f32" % args.size, XMLImageDataReader(FileName=[phantom]), args, workdir)
     if args.mri:
-        rows += orbit_rows("MRI u8", OpenDataFile(args.mri), args, workdir)
+        mri = os.path.join(workdir, "mri.vti")
+        nifti_to_vti(args.mri, mri)
+        rows += orbit_rows("MRI u8", XMLImageDataReader(FileName=[mri]), args, workdir)
+        os.remove(mri)
     os.remove(phantom)
     if args.json:
         print(json.dumps(rows, indent=1))
