@@ -92,6 +92,12 @@ impl GradientOpacity {
         super::function::piecewise(&self.points, g, |&(x, a)| (x, [a]))[0]
     }
 
+    /// The smallest factor over every magnitude `|g| >= 0`: `a_grad(0)` or
+    /// a point right of 0 (piecewise linear, constant past the last point).
+    pub fn min_opacity(&self) -> f32 {
+        self.points.iter().filter(|p| p.0 > 0.0).map(|p| p.1).fold(self.eval(0.0), f32::min)
+    }
+
     /// `Some(c)` when the function is `c` at every magnitude `|g| >= 0`
     /// (`c = a_grad(0)` and every point right of 0 has opacity `c`): it then
     /// needs no gradient.
@@ -143,6 +149,16 @@ mod tests {
         // Only magnitudes >= 0 count: a step at 0 to 1 is 1 everywhere.
         assert_eq!(GradientOpacity::new(vec![(-1.0, 0.0), (0.0, 0.0), (0.0, 1.0)]).unwrap().constant(), Some(1.0));
         assert_eq!(GradientOpacity::new(vec![(0.0, 1.0)]).unwrap().table_end(), 1.0);
+    }
+
+    /// The smallest factor over the magnitudes: at 0, at a point, or past
+    /// the last one; points left of 0 are never reached.
+    #[test]
+    fn min_opacity_over_every_magnitude() {
+        let g = |p: Vec<(f64, f32)>| GradientOpacity::new(p).unwrap().min_opacity();
+        assert_eq!(g(vec![(0.0, 0.2), (10.0, 1.0)]), 0.2);
+        assert_eq!(g(vec![(0.0, 1.0), (5.0, 0.3), (10.0, 0.9)]), 0.3);
+        assert_eq!(g(vec![(-5.0, 0.0), (0.0, 0.6), (10.0, 0.7)]), 0.6);
     }
 
     #[test]

@@ -36,6 +36,7 @@ mod shade;
 mod slice;
 mod surface;
 mod transfer2d;
+mod view;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

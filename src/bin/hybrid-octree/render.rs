@@ -9,7 +9,7 @@ use crate::pool::with_threads;
 use crate::scene::{frame, load, reference_image, select_options, visible, SceneArgs};
 use clap::Args;
 use hybrid_octree::render::metrics::compare;
-use hybrid_octree::select::select;
+use hybrid_octree::select::{select_in_view, ViewSelection};
 use hybrid_octree::Result;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -48,6 +48,8 @@ struct RenderReport {
     budget_bytes: usize,
     /// Texture bytes as uploaded, at the texel format's width.
     texture_bytes: usize,
+    /// What the selection weighed nodes by (`--view-selection`).
+    view_selection: hybrid_octree::select::ViewSelection,
     /// The texel format (`--texel-format` resolved for the data), its
     /// decoding `bias + scale t` and quantization error (data units).
     texel: hybrid_octree::plan::texel_format::TexelEncoding,
@@ -70,6 +72,7 @@ struct RenderReport {
     blend: hybrid_octree::plan::Blend,
     skipped_bricks: usize,
     warning: Option<String>,
+    /// The selection, its view importance included, ms.
     select_ms: f64,
     slab_polygons_ms: f64,
     drawlist_ms: f64,
@@ -94,7 +97,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let scene = load(&grid, &args.scene)?;
         let options = select_options(&scene, &args.scene, budget_bytes, args.tolerance);
         let started = Instant::now();
-        let selection = select(&scene.octree, &options, visible(&scene, args.scene.isovalue))?;
+        let mode = args.scene.view.view_selection;
+        let medium = match mode {
+            ViewSelection::Visibility | ViewSelection::Both => crate::view::medium(&grid, &scene, &args.scene)?,
+            _ => None,
+        };
+        let view = crate::view::importance(&grid, &args.scene, &scene.camera, mode, medium.as_ref())?;
+        let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
         let select_ms = started.elapsed().as_secs_f64() * 1e3;
         let f = frame(&grid, &scene, &selection, &args.scene, None)?;
         f.image.to_png(&args.output)?;
@@ -113,6 +122,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             height: args.scene.height,
             budget_bytes,
             texture_bytes: selection.texture_bytes,
+            view_selection: args.scene.view.view_selection,
             texel: scene.texel,
             bricks: selection.bricks.len(),
             estimated_error: selection.estimated_error,
@@ -154,6 +164,7 @@ fn print_text(r: &RenderReport) {
         r.budget_bytes as f64 / 1e6,
         r.estimated_error
     );
+    println!("view selection:  {}", r.view_selection.name());
     println!(
         "times:           select {:.1} ms, SlabPolygons {:.1} ms, DrawList {:.1} ms, upload {:.1} ms, composite {:.1} ms",
         r.select_ms, r.slab_polygons_ms, r.drawlist_ms, r.upload_ms, r.composite_ms

@@ -101,6 +101,9 @@ pub struct SceneArgs {
     /// of its quantization error, which the selection counts.
     #[arg(long, default_value = "auto", value_parser = texel_format)]
     pub texel_format: TexelFormat,
+    /// The view-dependent selection.
+    #[command(flatten)]
+    pub view: crate::view::ViewArgs,
 }
 
 fn texel_format(s: &str) -> std::result::Result<TexelFormat, String> {

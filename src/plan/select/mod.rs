@@ -61,4 +61,4 @@ pub use screen::ScreenSpace;
 pub use selector::Selector;
 pub use uniform::uniform;
 pub use view::{view_change_degrees, ViewImportance, ViewInputs, ViewSelection};
-pub use visibility::{Occluder, Transmittance};
+pub use visibility::{Medium, Occluder, Transmittance};

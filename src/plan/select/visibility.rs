@@ -1,34 +1,41 @@
-//! Visibility importance: an upper bound of the transmittance in front of
-//! each node, estimated front to back before the selection.
+//! Visibility importance: an estimate of the transmittance in front of
+//! each node, made front to back before the selection.
 //!
 //! The estimate works on the nodes of one coarse level `c` of the Volume
-//! Octree (at most 32 per axis, never finer than the leaf bricks), from
-//! their value ranges alone:
+//! Octree (at most 32 per axis, never finer than the leaf bricks). Once per
+//! transfer function, the [`Medium`]: each coarse node's mean opacity over
+//! its samples (every `q`-th per axis, `q = max(1, size / 4)`; NaN is no
+//! data, transparent) and which side of an isosurface it lies on:
 //!
 //! ```text
-//! alpha_min(n) = min over [min(n), max(n)] of the opacity transfer function   (a layer d0 thick)
-//! tau(n)       = -ln(1 - alpha_min(n)) / d0                                   (optical depth per world unit)
-//! tau'(n)      = min of tau over n and its 26 neighbours                      (erosion)
-//! T(n)         = exp(-sum_i tau'(n_i) h) * (1 - a_s)^[the ray crosses the isosurface]
+//! alpha(n) = mean over the node's samples of alpha(v)       (a layer d0 thick)
+//! tau(n)   = -ln(1 - alpha(n)) / d0                         (optical depth per world unit)
+//! side(n)  = above (min > iso) or below (max < iso), without NaN; eroded over the 26 neighbours
 //! ```
 //!
-//! The sum runs over samples `h` apart on the ray from the centre of `n`
-//! to the eye (along `-forward` under a parallel projection), from where
-//! the ray leaves `n` to where it leaves the grid. Every sample of a node is
-//! at least `alpha_min` opaque, so `tau` never overstates the absorption;
-//! the erosion makes the centre's ray stand for every ray from the node,
-//! which passes within one node of it. The ray crosses an isosurface of
-//! opacity `a_s` when it meets one eroded node entirely above the isovalue
-//! and one entirely below it: the field between them takes the isovalue.
+//! Once per view, the [`Transmittance`]: from the centre of each coarse
+//! node a ray to the eye (along `-forward` under a parallel projection),
+//! sampled `h` apart from where it leaves the node to where it leaves the
+//! grid:
 //!
-//! Volumes with NaN holes get `T = 1` everywhere: a hole is transparent and
-//! breaks a surface, and the octree does not say where its holes are.
+//! ```text
+//! T(n) = exp(-sum_i tau(n_i) h) * (1 - a_s)^[the ray crosses the isosurface]
+//! ```
+//!
+//! `tau` of the mean opacity never exceeds the mean of `tau` (`-ln(1 - x)`
+//! is convex), so a node seen through a mixed region is never taken as
+//! more hidden than the region's average ray says; the estimate follows the
+//! camera from one view to the next. The ray crosses an isosurface of
+//! opacity `a_s` when it meets one eroded node entirely above the isovalue
+//! and one entirely below it: the field between them takes the isovalue,
+//! on every ray from the node (the erosion covers the rays' offsets from
+//! the centre's).
 //!
 //! A node of level `k <= c` takes the largest `T` of the coarse nodes it
 //! holds (a max pyramid); a finer node takes its coarse node's.
 
 use crate::base::error::{Error, Result};
-use crate::data::grid::GridShape;
+use crate::data::grid::{Grid, GridShape};
 use crate::geometry::camera::{Camera, Projection};
 use crate::geometry::vec3::{norm, sub};
 use crate::octree::VolumeOctree;
@@ -49,7 +56,24 @@ pub struct Occluder {
     pub opacity: f64,
 }
 
-/// The per-node transmittance bound of one view (module documentation).
+/// The coarse nodes the rays march through, for one transfer function
+/// (module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Medium {
+    /// The coarse level `c` and its nodes per axis.
+    coarse: usize,
+    dims: [usize; 3],
+    /// `tau` per node, per world unit.
+    tau: Vec<f64>,
+    /// Entirely above (bit 0) or below (bit 1) the isovalue, eroded.
+    side: Vec<u8>,
+    /// Index units per coarse node.
+    node_size: f64,
+    /// The isosurface's opacity (0 without one).
+    surface_opacity: f64,
+}
+
+/// The per-node transmittance of one view (module documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Transmittance {
     /// The coarse level `c`.
@@ -60,37 +84,17 @@ pub struct Transmittance {
     dims: Vec<[usize; 3]>,
 }
 
-/// The eroded coarse nodes the rays march through.
-struct Medium {
-    dims: [usize; 3],
-    /// `tau'` per node, per world unit.
-    tau: Vec<f64>,
-    /// Entirely above (bit 0) or below (bit 1) the isovalue, eroded.
-    side: Vec<u8>,
-    /// Index units per coarse node.
-    node_size: f64,
-}
-
 impl Medium {
-    fn at(&self, c: [usize; 3]) -> usize {
-        c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
-    }
-}
-
-impl Transmittance {
-    /// The bound for `camera` over `octree` (of a grid of `shape`).
-    /// `min_opacity(min, max)` is the smallest opacity of a layer `d0`
-    /// world units thick over the values `[min, max]`; `occluder` an
-    /// isosurface drawn with the volume; `has_nan` that the grid has holes.
-    pub fn estimate(
+    /// The medium of `grid` (the octree's) under `opacity(v)`, the opacity
+    /// of a layer `d0` world units thick at value `v`, with `occluder` an
+    /// isosurface drawn with the volume.
+    pub fn new(
         octree: &VolumeOctree,
-        shape: &GridShape,
-        camera: &Camera,
-        min_opacity: &(dyn Fn(f64, f64) -> f64 + Sync),
+        grid: &Grid<'_>,
+        opacity: &(dyn Fn(f64) -> f64 + Sync),
         d0: f64,
         occluder: Option<Occluder>,
-        has_nan: bool,
-    ) -> Result<Transmittance> {
+    ) -> Result<Medium> {
         if !(d0 > 0.0 && d0.is_finite()) {
             return Err(Error::InvalidArgument(format!(
                 "visibility estimate: opacity unit distance {d0}: give a positive number of world units"
@@ -105,25 +109,88 @@ impl Transmittance {
             }
         }
         let layout = octree.layout();
+        if grid.dims() != layout.dims {
+            return Err(Error::InvalidArgument(format!(
+                "visibility estimate: grid of {:?} samples for an octree of {:?}: give the grid the octree was built on",
+                grid.dims(),
+                layout.dims
+            )));
+        }
         let coarse = layout.leaf_level().min(MAX_COARSE_LOG2);
         let dims = layout.level_dims(coarse);
-        let medium = medium(octree, coarse, min_opacity, d0, if has_nan { None } else { occluder });
         let count = dims[0] * dims[1] * dims[2];
-        let opaque_surface = occluder.map_or(0.0, |o| o.opacity);
-        let mut t = vec![1.0f32; count];
-        if !has_nan {
-            t.par_chunks_mut(dims[0]).enumerate().for_each(|(row, out)| {
-                let (y, z) = (row % dims[1], row / dims[1]);
-                for (x, v) in out.iter_mut().enumerate() {
-                    *v = march(&medium, shape, camera, [x, y, z], opaque_surface) as f32;
-                }
-            });
+        let per_node: Vec<(f64, u8)> = (0..count)
+            .into_par_iter()
+            .map(|i| {
+                let c = [i % dims[0], (i / dims[0]) % dims[1], i / (dims[0] * dims[1])];
+                let n = octree.node(layout.id(coarse, c));
+                let (alpha, nan) = mean_opacity(grid, n.lo, n.hi, opacity);
+                let side = match occluder {
+                    Some(o) if !nan && n.min > o.isovalue => 1,
+                    Some(o) if !nan && n.max < o.isovalue => 2,
+                    _ => 0,
+                };
+                (-(1.0 - alpha.clamp(0.0, 1.0 - 1e-12)).ln() / d0, side)
+            })
+            .collect();
+        let mut m = Medium {
+            coarse,
+            dims,
+            tau: per_node.iter().map(|p| p.0).collect(),
+            side: per_node.iter().map(|p| p.1).collect(),
+            node_size: layout.node_size(coarse) as f64,
+            surface_opacity: occluder.map_or(0.0, |o| o.opacity),
+        };
+        for axis in 0..3 {
+            erode_sides(&mut m, axis);
         }
+        Ok(m)
+    }
+
+    fn at(&self, c: [usize; 3]) -> usize {
+        c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
+    }
+}
+
+/// The mean opacity of the samples of the box `[lo, hi]`, every `q`-th per
+/// axis (`q = max(1, size / 4)`), NaN counted as transparent; and whether
+/// a NaN was met.
+fn mean_opacity(grid: &Grid<'_>, lo: [usize; 3], hi: [usize; 3], opacity: &dyn Fn(f64) -> f64) -> (f64, bool) {
+    let q = ((hi[0] - lo[0]).max(hi[1] - lo[1]).max(hi[2] - lo[2]) / 4).max(1);
+    let (mut sum, mut count, mut nan) = (0.0f64, 0usize, false);
+    for k in (lo[2]..=hi[2]).step_by(q) {
+        for j in (lo[1]..=hi[1]).step_by(q) {
+            for i in (lo[0]..=hi[0]).step_by(q) {
+                let v = grid.value(i, j, k);
+                if v.is_nan() {
+                    nan = true;
+                } else {
+                    sum += opacity(v);
+                }
+                count += 1;
+            }
+        }
+    }
+    (if count > 0 { sum / count as f64 } else { 0.0 }, nan)
+}
+
+impl Transmittance {
+    /// The transmittance of every node seen by `camera` through `medium`
+    /// (of the octree of a grid of `shape`).
+    pub fn estimate(medium: &Medium, shape: &GridShape, camera: &Camera) -> Transmittance {
+        let dims = medium.dims;
+        let mut t = vec![1.0f32; dims[0] * dims[1] * dims[2]];
+        t.par_chunks_mut(dims[0]).enumerate().for_each(|(row, out)| {
+            let (y, z) = (row % dims[1], row / dims[1]);
+            for (x, v) in out.iter_mut().enumerate() {
+                *v = march(medium, shape, camera, [x, y, z]) as f32;
+            }
+        });
         let mut pyramid = vec![t];
         let mut level_dims = vec![dims];
-        for k in (0..coarse).rev() {
+        for _ in 0..medium.coarse {
             let (fine, fd) = (&pyramid[0], level_dims[0]);
-            let d = layout.level_dims(k);
+            let d = fd.map(|n| n.div_ceil(2));
             let mut up = vec![0.0f32; d[0] * d[1] * d[2]];
             for (i, v) in up.iter_mut().enumerate() {
                 let c = [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])];
@@ -137,7 +204,7 @@ impl Transmittance {
             pyramid.insert(0, up);
             level_dims.insert(0, d);
         }
-        Ok(Transmittance { coarse, pyramid, dims: level_dims })
+        Transmittance { coarse: medium.coarse, pyramid, dims: level_dims }
     }
 
     /// `T` of the node at `level` with `coords` (module documentation).
@@ -154,45 +221,12 @@ impl Transmittance {
     }
 }
 
-/// `tau'` and the eroded sides of the coarse nodes.
-fn medium(
-    octree: &VolumeOctree,
-    coarse: usize,
-    min_opacity: &dyn Fn(f64, f64) -> f64,
-    d0: f64,
-    occluder: Option<Occluder>,
-) -> Medium {
-    let layout = octree.layout();
-    let dims = layout.level_dims(coarse);
-    let count = dims[0] * dims[1] * dims[2];
-    let mut tau = Vec::with_capacity(count);
-    let mut side = Vec::with_capacity(count);
-    for i in 0..count {
-        let c = [i % dims[0], (i / dims[0]) % dims[1], i / (dims[0] * dims[1])];
-        let n = octree.node(layout.id(coarse, c));
-        // A node of NaN only has the empty range (+inf, -inf): no data, transparent.
-        let empty = !(n.min <= n.max);
-        let alpha = if empty { 0.0 } else { min_opacity(n.min, n.max).clamp(0.0, 1.0) };
-        tau.push(-(1.0 - alpha.min(1.0 - 1e-12)).ln() / d0);
-        side.push(match occluder {
-            Some(o) if !empty && n.min > o.isovalue => 1,
-            Some(o) if !empty && n.max < o.isovalue => 2,
-            _ => 0,
-        });
-    }
-    let mut m = Medium { dims, tau, side, node_size: layout.node_size(coarse) as f64 };
-    for axis in 0..3 {
-        erode(&mut m, axis);
-    }
-    m
-}
-
-/// One axis of the 3x3x3 erosion: the min of `tau` and the AND of the
-/// sides over each node and its two neighbours along `axis`.
-fn erode(m: &mut Medium, axis: usize) {
-    let (tau, side) = (m.tau.clone(), m.side.clone());
+/// One axis of the 3x3x3 erosion of the sides: the AND over each node and
+/// its two neighbours along `axis`.
+fn erode_sides(m: &mut Medium, axis: usize) {
+    let side = m.side.clone();
     let d = m.dims;
-    for i in 0..tau.len() {
+    for i in 0..side.len() {
         let c = [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])];
         for step in [-1isize, 1] {
             let v = c[axis] as isize + step;
@@ -201,15 +235,13 @@ fn erode(m: &mut Medium, axis: usize) {
             }
             let mut n = c;
             n[axis] = v as usize;
-            let j = m.at(n);
-            m.tau[i] = m.tau[i].min(tau[j]);
-            m.side[i] &= side[j];
+            m.side[i] &= side[m.at(n)];
         }
     }
 }
 
 /// `T` of the coarse node `c`: the march from its centre to the eye.
-fn march(m: &Medium, shape: &GridShape, camera: &Camera, c: [usize; 3], surface_opacity: f64) -> f64 {
+fn march(m: &Medium, shape: &GridShape, camera: &Camera, c: [usize; 3]) -> f64 {
     let s = m.node_size;
     // Index-space centre, clamped to the grid (the last nodes are clipped).
     let centre = [0, 1, 2].map(|a| ((c[a] as f64 + 0.5) * s).min((shape.dims[a] - 1) as f64));
@@ -247,106 +279,118 @@ fn march(m: &Medium, shape: &GridShape, camera: &Camera, c: [usize; 3], surface_
         }
         t += h;
     }
-    let crossed = if sides == 3 { 1.0 - surface_opacity } else { 1.0 };
+    let crossed = if sides == 3 { 1.0 - m.surface_opacity } else { 1.0 };
     (-depth).exp() * crossed
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::data::grid::{Grid, Samples};
+    use crate::data::grid::Samples;
     use crate::octree::BuildOptions;
 
     /// A 65^3 grid: value 1 in the slab `y < 16` (a wall in front of a
-    /// camera at -y), 0 elsewhere.
-    fn wall() -> (Vec<f32>, GridShape) {
+    /// camera at -y), 0 elsewhere; NaN in the column `x, z < 4` if asked.
+    fn wall(holes: bool) -> (Vec<f32>, GridShape) {
         let n = 65;
         let mut v = vec![0.0f32; n * n * n];
         for z in 0..n {
-            for y in 0..16 {
+            for y in 0..n {
                 for x in 0..n {
-                    v[x + n * (y + n * z)] = 1.0;
+                    v[x + n * (y + n * z)] = if holes && x < 4 && z < 4 {
+                        f32::NAN
+                    } else if y < 16 {
+                        1.0
+                    } else {
+                        0.0
+                    };
                 }
             }
         }
         (v, GridShape { dims: [n; 3], spacing: [1.0; 3], origin: [0.0; 3] })
     }
 
-    fn octree(v: &[f32], shape: &GridShape) -> VolumeOctree {
-        let grid = Grid::new(Samples::F32(v), *shape, 1, None).unwrap();
-        VolumeOctree::build(&grid, &BuildOptions { leaf_size: 4 }).unwrap()
-    }
-
     fn front_camera(parallel: bool) -> Camera {
         Camera::around([0.0; 3], [64.0; 3], 0.0, 0.0, parallel).unwrap()
     }
 
-    /// An opaque wall in front hides what is behind it and nothing in
-    /// front; the estimate never goes below the exact transmittance
-    /// through the wall, and without the wall everything is visible.
+    /// The transmittance of coarse node `c` seen by `camera` through the
+    /// wall under `opacity`, with `occluder`; and the coarse level.
+    fn estimate(
+        holes: bool,
+        camera: &Camera,
+        opacity: &(dyn Fn(f64) -> f64 + Sync),
+        occluder: Option<Occluder>,
+    ) -> (Transmittance, usize) {
+        let (v, shape) = wall(holes);
+        let grid = Grid::new(Samples::F32(&v), shape, 1, None).unwrap();
+        let o = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 4 }).unwrap();
+        let m = Medium::new(&o, &grid, opacity, 1.0, occluder).unwrap();
+        (Transmittance::estimate(&m, &shape, camera), m.coarse)
+    }
+
+    /// A wall in front hides what is behind it and nothing in front of
+    /// it, in parallel and perspective; the estimate is within a factor of
+    /// the exact transmittance through the wall (its nodes' mean opacity
+    /// over the 16 units), and without the wall everything is visible.
     #[test]
     fn a_wall_hides_what_is_behind_it() {
-        let (v, shape) = wall();
-        let o = octree(&v, &shape);
-        let coarse = o.layout().leaf_level().min(MAX_COARSE_LOG2);
         for parallel in [true, false] {
             let camera = front_camera(parallel);
             // Opacity 0.5 per unit for value 1, 0 for value 0.
-            let floor = |min: f64, _max: f64| 0.5 * min;
-            let t = Transmittance::estimate(&o, &shape, &camera, &floor, 1.0, None, false).unwrap();
+            let (t, coarse) = estimate(false, &camera, &|v| 0.5 * v, None);
             let at_y = |y: usize| t.at(coarse, [8, y / 4, 8]);
-            // In front of the wall, and in its first nodes, nothing hides.
             assert_eq!(at_y(0), 1.0);
-            // Far behind: the whole wall (16 units at tau = ln 2) in front, at most.
             let exact = 0.5f64.powi(16);
-            // The erosion keeps the wall's inner 8 units: 2^-8 at most.
-            assert!(at_y(60) >= exact && at_y(60) <= 0.5f64.powi(8) * 1.01, "{} vs {exact}", at_y(60));
-            // Without the wall's opacity, everything shows.
-            let none = Transmittance::estimate(&o, &shape, &camera, &|_, _| 0.0, 1.0, None, false).unwrap();
-            assert!((0..16).all(|y| none.at(coarse, [8, y, 8]) == 1.0));
-            // Holes: no estimate.
-            let holes = Transmittance::estimate(&o, &shape, &camera, &floor, 1.0, None, true).unwrap();
-            assert_eq!(holes.at(coarse, [8, 15, 8]), 1.0);
+            assert!(at_y(60) > exact / 4.0 && at_y(60) < exact * 4.0, "{} vs {exact}", at_y(60));
             // The root holds the largest.
             assert_eq!(t.at(0, [0; 3]), 1.0);
+            let (none, _) = estimate(false, &camera, &|_| 0.0, None);
+            assert!((0..16).all(|y| none.at(coarse, [8, y, 8]) == 1.0));
         }
     }
 
-    /// An opaque isosurface between the wall and the rest hides the rest
+    /// An opaque isosurface between the camera and the rest hides the rest
     /// even when the volume itself is transparent; a translucent one lets
-    /// its share through, and the side of the camera stays visible.
+    /// its share through; the side of the camera stays visible; and a
+    /// column of NaN breaks the surface where it runs.
     #[test]
     fn an_isosurface_hides_what_is_behind_it() {
-        let (v, shape) = wall();
-        let o = octree(&v, &shape);
-        let coarse = o.layout().leaf_level().min(MAX_COARSE_LOG2);
         let camera = front_camera(false);
-        let clear = |_: f64, _: f64| 0.0;
+        let clear = |_: f64| 0.0;
         for opacity in [1.0, 0.4] {
             let iso = Some(Occluder { isovalue: 0.5, opacity });
-            let t = Transmittance::estimate(&o, &shape, &camera, &clear, 1.0, iso, false).unwrap();
+            let (t, coarse) = estimate(false, &camera, &clear, iso);
             assert_eq!(t.at(coarse, [8, 0, 8]), 1.0);
             assert!((t.at(coarse, [8, 14, 8]) - (1.0 - opacity)).abs() < 1e-6, "{}", t.at(coarse, [8, 14, 8]));
         }
         // Seen from behind (+y), the wall's far side is hidden and the rest not.
         let back = Camera::around([0.0; 3], [64.0; 3], 180.0, 0.0, false).unwrap();
         let iso = Some(Occluder { isovalue: 0.5, opacity: 1.0 });
-        let t = Transmittance::estimate(&o, &shape, &back, &clear, 1.0, iso, false).unwrap();
+        let (t, coarse) = estimate(false, &back, &clear, iso);
         assert_eq!(t.at(coarse, [8, 14, 8]), 1.0);
         assert_eq!(t.at(coarse, [8, 0, 8]), 0.0);
+        // Holes at x, z < 4: the nodes there and their neighbours take no side.
+        let parallel = front_camera(true);
+        let (t, coarse) = estimate(true, &parallel, &clear, iso);
+        assert_eq!(t.at(coarse, [0, 14, 0]), 1.0);
+        assert_eq!(t.at(coarse, [8, 14, 8]), 0.0);
     }
 
     #[test]
     fn bad_arguments_are_errors() {
-        let (v, shape) = wall();
-        let o = octree(&v, &shape);
-        let camera = front_camera(true);
-        let f = |_: f64, _: f64| 0.0;
-        assert!(Transmittance::estimate(&o, &shape, &camera, &f, 0.0, None, false).is_err());
-        assert!(Transmittance::estimate(&o, &shape, &camera, &f, f64::NAN, None, false).is_err());
+        let (v, shape) = wall(false);
+        let grid = Grid::new(Samples::F32(&v), shape, 1, None).unwrap();
+        let o = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 4 }).unwrap();
+        let f = |_: f64| 0.0;
+        assert!(Medium::new(&o, &grid, &f, 0.0, None).is_err());
+        assert!(Medium::new(&o, &grid, &f, f64::NAN, None).is_err());
         let bad = Some(Occluder { isovalue: f64::NAN, opacity: 1.0 });
-        assert!(Transmittance::estimate(&o, &shape, &camera, &f, 1.0, bad, false).is_err());
+        assert!(Medium::new(&o, &grid, &f, 1.0, bad).is_err());
         let bad = Some(Occluder { isovalue: 0.5, opacity: 2.0 });
-        assert!(Transmittance::estimate(&o, &shape, &camera, &f, 1.0, bad, false).is_err());
+        assert!(Medium::new(&o, &grid, &f, 1.0, bad).is_err());
+        let small = vec![0.0f32; 27];
+        let other = Grid::new(Samples::F32(&small), GridShape { dims: [3; 3], ..shape }, 1, None).unwrap();
+        assert!(Medium::new(&o, &other, &f, 1.0, None).unwrap_err().to_string().contains("octree"));
     }
 }

@@ -32,7 +32,9 @@ use hybrid_octree::grid::Grid;
 use hybrid_octree::points::{generate_hybrid, Footprint, PointMass, PointOptions, PointSelect, PointSet};
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::metrics::compare;
-use hybrid_octree::select::{select, select_with_points, take_all_points, uniform, SelectOptions, Selection};
+use hybrid_octree::select::{
+    select, select_in_view, select_with_points, take_all_points, uniform, SelectOptions, Selection, ViewSelection,
+};
 use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
 use serde::Serialize;
@@ -55,6 +57,10 @@ pub struct BenchRenderArgs {
     /// Write the plot of RMSE against time and memory here (PNG).
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// View-dependent selections measured beside the data-space one at each
+    /// stride's bytes (rows "octree" with their `view`): screen, visibility, both.
+    #[arg(long, value_delimiter = ',', default_value = "screen,visibility,both", value_parser = view_selection)]
+    view_selections: Vec<ViewSelection>,
     /// Print the rows as a JSON array instead of a table.
     #[arg(long)]
     json: bool,
@@ -86,6 +92,9 @@ struct Row {
     /// "vtk-smart" or "vtk-smart@bytes" (VTK's smart mapper's resampled volume),
     /// "octree@vtk-smart" (the octree under the bytes of the vtk-smart row before it).
     method: &'static str,
+    /// What an octree row's selection weighed nodes by besides their errors
+    /// (`--view-selection`): data, screen, visibility or both.
+    view: &'static str,
     /// Eu (octree rows); null for uniform rows.
     tolerance: Option<f64>,
     /// Uniform stride (uniform and points rows; vtk-smart rows: the stride
@@ -155,6 +164,7 @@ struct Bench<'a, 'g> {
 #[derive(Default)]
 struct Method {
     method: &'static str,
+    view: ViewSelection,
     tolerance: Option<f64>,
     stride: Option<usize>,
     point_threshold: Option<f64>,
@@ -170,6 +180,10 @@ struct Points<'a> {
     ms: f64,
 }
 
+fn view_selection(s: &str) -> std::result::Result<ViewSelection, String> {
+    s.parse::<ViewSelection>().map_err(|e| e.to_string())
+}
+
 fn measure(b: &Bench<'_, '_>, m: Method, selection: Selection, select_ms: f64) -> Result<Row> {
     measure_with(b, m, selection, select_ms, None)
 }
@@ -181,7 +195,7 @@ fn measure_with(
     select_ms: f64,
     points: Option<Points<'_>>,
 ) -> Result<Row> {
-    let Method { method, tolerance, stride, point_threshold, point_budget } = m;
+    let Method { method, view, tolerance, stride, point_threshold, point_budget } = m;
     let (grid, scene, args, truth) = (b.grid, b.scene, b.args, b.truth);
     let mut selection = selection;
     if let (Some(p), "points") = (points.as_ref(), method) {
@@ -195,6 +209,7 @@ fn measure_with(
     let point_bytes = selection.point_bytes;
     Ok(Row {
         method,
+        view: view.name(),
         tolerance,
         stride,
         point_threshold,
@@ -246,6 +261,7 @@ fn smart_rows_at(b: &Bench<'_, '_>, stride: usize, bytes: usize) -> Result<Vec<R
         let metrics = compare(&s.image, b.truth)?;
         rows.push(Row {
             method,
+            view: ViewSelection::Data.name(),
             tolerance: None,
             stride: Some(stride),
             point_threshold: None,
@@ -291,6 +307,8 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
         let bench = Bench { grid: &grid, scene: &scene, args: &args.scene, truth: &truth };
         let mut rows = Vec::new();
         let mut smart_rows = Vec::new();
+        // Once per scene (transfer function), not per view: not in the rows' select times.
+        let medium = crate::view::medium(&grid, &scene, &args.scene)?;
         let mut largest = 0;
         for &stride in &args.strides {
             let started = Instant::now();
@@ -322,6 +340,14 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
                 s,
                 select_ms,
             )?);
+            for &view in args.view_selections.iter().filter(|&&v| v != ViewSelection::Data) {
+                let started = Instant::now();
+                let weights = crate::view::importance(&grid, &args.scene, &scene.camera, view, medium.as_ref())?;
+                let s = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &weights)?;
+                let select_ms = started.elapsed().as_secs_f64() * 1e3;
+                let m = Method { method: "octree", view, tolerance: Some(0.0), ..Method::default() };
+                rows.push(measure(&bench, m, s, select_ms)?);
+            }
             for r in smart_rows_at(&bench, stride, bytes)? {
                 if r.method == "vtk-smart" {
                     // The octree at the bytes VTK uploads.
@@ -505,8 +531,9 @@ fn point_rows(bench: &Bench<'_, '_>, args: &BenchRenderArgs) -> Result<Vec<Row>>
 
 fn print_table(rows: &[Row]) {
     println!(
-        "{:>15} {:>9} {:>6} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>7} {:>9} {:>9} {:>9} {:>10} {:>8} {:>8} {:>7} {:>8}",
+        "{:>15} {:>10} {:>9} {:>6} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>7} {:>9} {:>9} {:>9} {:>10} {:>8} {:>8} {:>7} {:>8}",
         "method",
+        "view",
         "tolerance",
         "stride",
         "points t",
@@ -527,8 +554,9 @@ fn print_table(rows: &[Row]) {
     );
     for r in rows {
         println!(
-            "{:>15} {:>9} {:>6} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>7} {:>9.2} {:>9.2} {:>9.2} {:>10.1} {:>8.5} {:>8.2} {:>7.4} {:>8.4}",
+            "{:>15} {:>10} {:>9} {:>6} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>7} {:>9.2} {:>9.2} {:>9.2} {:>10.1} {:>8.5} {:>8.2} {:>7.4} {:>8.4}",
             r.method,
+            r.view,
             r.tolerance.map_or("-".into(), |t| format!("{t}")),
             r.stride.map_or("-".into(), |s| s.to_string()),
             match (r.point_threshold, r.point_budget) {
