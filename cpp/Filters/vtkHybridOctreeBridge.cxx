@@ -500,6 +500,14 @@ std::unique_ptr<Selection> HybridOctree::Select(
   return result;
 }
 
+bool HybridOctree::PrepareView(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, const SelectDescription& options, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl).prepare_view(ToSlice(bytes, byteCount), ToRust(grid), ToRust(options));
+  });
+}
+
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function)
 {
   std::vector<double> points;

@@ -634,6 +634,17 @@ public:
    */
   std::unique_ptr<Selection> Select(const SelectDescription& options, std::string& error) const;
 
+  /**
+   * What a Select() of `options` with the visibility importance
+   * (options.View: VISIBILITY or BOTH, where it applies) needs from the
+   * image the octree was built from (`bytes`, `grid` as in Build()): the
+   * medium the estimate marches through, made once per transfer function
+   * and kept (src/ffi/view.rs). Nothing for the other selections. False
+   * and `error` on failure (a bad view, another image).
+   */
+  bool PrepareView(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    const SelectDescription& options, std::string& error) const;
+
 private:
   friend class Selection;
   std::unique_ptr<RustHandle<HybridOctree>> Impl;

@@ -825,6 +825,12 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
   }
   std::string error;
   const auto start = std::chrono::steady_clock::now();
+  if (!in.Octree->PrepareView(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, select, error))
+  {
+    slot.Selected.reset();
+    vtkErrorMacro(<< error);
+    return false;
+  }
   slot.Selected = in.Octree->Select(select, error);
   if (!slot.Selected || !slot.Selected->GetSummary(slot.Summary, error))
   {

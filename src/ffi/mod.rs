@@ -803,6 +803,12 @@ mod bridge {
         /// per byte than refining it, and the DrawLists bucket the points
         /// bought into the slabs.
         fn select_bricks(self: &HybridOctreeHandle, options: &SelectDesc) -> Result<Box<SelectionHandle>>;
+        /// What a selection of `options` with the visibility importance
+        /// needs from the image (`bytes`, `desc`: the one the octree was
+        /// built from): the medium the estimate marches through, made once
+        /// per transfer function and kept in the handle (`ffi::view`).
+        /// Nothing when `options` does not use the visibility.
+        fn prepare_view(self: &HybridOctreeHandle, bytes: &[u8], desc: &GridDesc, options: &SelectDesc) -> Result<()>;
         /// Bricks, bytes, error, skipped nodes, warning.
         fn summary(self: &SelectionHandle) -> Result<SelectionSummary>;
         /// How far the view moved from camera `a` to camera `b` around

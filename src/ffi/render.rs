@@ -13,7 +13,7 @@ use super::grid::{grid_of, grid_unscanned, same_image};
 use super::guard::{guarded, write_pixels, Bridged};
 use super::octree::HybridOctreeHandle;
 use super::transfer::{opacity_function, transfer_function, vtk_gradient_opacity};
-use super::view::{view_importance, ViewScene};
+use super::view::{view_importance, view_scene};
 use super::{CameraDesc, DrawListOutput, GridDesc, RegionDesc, SelectDesc, SelectionSummary, ShadingDesc};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
@@ -286,15 +286,8 @@ pub(crate) fn select_with(
         kept
     });
     octree.selector.clear_poison();
-    let scene = ViewScene {
-        composite: blend.mode == BlendMode::Composite,
-        single_field: octree.dependent.is_none(),
-        removes_samples: options.slice.is_some()
-            || options.region.is_some_and(|r| !r.keeps_box([0.0; 3], octree.shape.dims.map(|d| (d - 1) as f64))),
-        gradient_opacity: gradient_opacity.as_ref(),
-        transfer_2d: classifies.is_some(),
-    };
-    let (mode, view) = view_importance(octree, tree, desc, &scene)?;
+    let scene = view_scene(octree, desc)?;
+    let (mode, view) = view_importance(octree, desc, &scene)?;
     let selector = kept.for_desc(desc);
     let points = octree.hybrid.points.as_ref().filter(|_| octree.dependent.is_none()).map(|p| &p.mass);
     let selection = selector.select_in_view(tree, &options, visible, points, view.as_ref())?;
@@ -437,6 +430,10 @@ fn surface_rgba(rgba: &[f64]) -> Result<[f64; 4]> {
 }
 
 impl HybridOctreeHandle {
+    pub(crate) fn prepare_view(&self, bytes: &[u8], desc: &GridDesc, options: &SelectDesc) -> Bridged<()> {
+        super::view::prepare_view(self, bytes, desc, options)
+    }
+
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
             let (selection, transfer_2d, texel, view_selection) = select_with(self, desc)?;

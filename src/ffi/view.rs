@@ -7,41 +7,137 @@
 //! (Visibility selects as Data, Both as Screen, and the summary names what
 //! ran) for the other blend modes, for two dependent fields or an RGBA
 //! volume, and where cropping, clipping planes or a slice remove samples
-//! (an occluder removed would otherwise hide what the viewer sees). The
-//! smallest opacity of a node is that of the scalar opacity points over
-//! its range,
+//! (an occluder removed would otherwise hide what the viewer sees). It
+//! marches through a [`Medium`] made from the image ([`prepare_view`], once
+//! per transfer function, kept in the handle) under the opacity
 //!
 //! ```text
-//! alpha_min(n) = g * min over [min(n), max(n)] of opacity(v)     (a layer d0 thick)
+//! alpha(v) = g_min * opacity(v)     (a layer d0 thick)
 //! ```
 //!
-//! with `d0` VTK's ScalarOpacityUnitDistance and `g` a constant gradient
-//! opacity (1 without one); a gradient opacity that varies, or a 2D transfer
-//! function that classifies, may make any sample transparent: `alpha_min = 0`
-//! (only an opaque isosurface then hides anything).
+//! with `opacity` the scalar opacity points (0 without any), `d0` VTK's
+//! ScalarOpacityUnitDistance and `g_min` the smallest factor of the
+//! gradient opacity (1 without one); under a 2D transfer function `g_min =
+//! 0` (any sample may be transparent; only an opaque isosurface then hides
+//! anything).
 
+use super::grid::{grid_unscanned, same_image};
 use super::guard::{guarded, Bridged};
 use super::octree::HybridOctreeHandle;
-use super::render::camera;
-use super::transfer::opacity_function;
-use super::{CameraDesc, SelectDesc, ViewDesc};
+use super::render::{blend, camera, select_options};
+use super::transfer::{opacity_function, vtk_gradient_opacity};
+use super::{CameraDesc, GridDesc, SelectDesc, ViewDesc};
 use crate::error::{Error, Result};
-use crate::octree::VolumeOctree;
-use crate::plan::select::{Occluder, ViewImportance, ViewInputs, ViewSelection};
-use crate::transfer::GradientOpacity;
+use crate::plan::select::{Medium, Occluder, ViewImportance, ViewInputs, ViewSelection};
+use crate::plan::BlendMode;
 
-/// What besides `desc.view` decides whether the visibility importance applies.
-pub(crate) struct ViewScene<'a> {
-    /// The blend mode is Composite.
-    pub composite: bool,
-    /// One scalar field (not two dependent ones, not an RGBA volume).
-    pub single_field: bool,
-    /// Cropping, clipping planes or a slice remove samples.
-    pub removes_samples: bool,
-    /// The gradient opacity of the frame, if any.
-    pub gradient_opacity: Option<&'a GradientOpacity>,
-    /// A 2D transfer function classifies.
-    pub transfer_2d: bool,
+/// What besides `desc.view` decides whether and how the visibility applies.
+pub(crate) struct ViewScene {
+    /// Composite blending of one field with no sample removed: the visibility applies.
+    pub visibility: bool,
+    /// `g_min` (module documentation).
+    pub gradient_min: f64,
+}
+
+/// The [`ViewScene`] of a selection of `desc` from `octree`.
+pub(crate) fn view_scene(octree: &HybridOctreeHandle, desc: &SelectDesc) -> Result<ViewScene> {
+    let range = octree.volume().value_range();
+    let gradient_opacity = vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, range)?;
+    let transfer_2d = match octree.dependent {
+        Some(_) => false,
+        None => super::transfer2d::vtk_transfer_2d(desc, &octree.shape)?.is_some(),
+    };
+    let options = select_options(&octree.shape, desc, gradient_opacity.as_ref(), transfer_2d)?;
+    let whole = octree.shape.dims.map(|d| (d - 1) as f64);
+    let removes = options.slice.is_some() || options.region.is_some_and(|r| !r.keeps_box([0.0; 3], whole));
+    let composite = blend(desc, range)?.mode == BlendMode::Composite;
+    let gradient_min = match (transfer_2d, &gradient_opacity) {
+        (true, _) => 0.0,
+        (false, None) => 1.0,
+        (false, Some(g)) => f64::from(g.min_opacity()),
+    };
+    Ok(ViewScene { visibility: composite && octree.dependent.is_none() && !removes, gradient_min })
+}
+
+/// The medium a handle keeps for its next selections, with what it was made from.
+#[derive(Default)]
+pub(crate) struct KeptMedium {
+    made: Option<(MediumKey, Medium)>,
+}
+
+impl std::fmt::Debug for KeptMedium {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("KeptMedium").field("kept", &self.made.is_some()).finish_non_exhaustive()
+    }
+}
+
+/// What a [`Medium`] depends on besides the image (compared exactly).
+#[derive(PartialEq)]
+struct MediumKey {
+    opacity_points: Vec<f64>,
+    gradient_min: f64,
+    d0: f64,
+    occluder: Option<(f64, f64)>,
+}
+
+/// The occluder of `desc`: its isosurface when drawn (surface opacity above 0).
+fn occluder(desc: &SelectDesc) -> Option<Occluder> {
+    (desc.has_isovalue && desc.view.surface_opacity > 0.0)
+        .then_some(Occluder { isovalue: desc.isovalue, opacity: desc.view.surface_opacity })
+}
+
+fn medium_key(desc: &SelectDesc, scene: &ViewScene) -> MediumKey {
+    MediumKey {
+        opacity_points: desc.opacity_points.clone(),
+        gradient_min: scene.gradient_min,
+        d0: desc.view.opacity_unit_distance,
+        occluder: occluder(desc).map(|o| (o.isovalue, o.opacity)),
+    }
+}
+
+/// Whether a selection of `desc` in `scene` marches through a medium.
+fn uses_medium(desc: &SelectDesc, scene: &ViewScene) -> Result<bool> {
+    Ok(applied(check(&desc.view)?, scene).uses_visibility())
+}
+
+trait UsesVisibility {
+    fn uses_visibility(self) -> bool;
+}
+
+impl UsesVisibility for ViewSelection {
+    fn uses_visibility(self) -> bool {
+        matches!(self, ViewSelection::Visibility | ViewSelection::Both)
+    }
+}
+
+/// The medium of `desc` made from the image and kept in `octree`
+/// (module documentation); nothing when `desc` does not need one.
+pub(crate) fn prepare_view(
+    octree: &HybridOctreeHandle,
+    bytes: &[u8],
+    grid: &GridDesc,
+    desc: &SelectDesc,
+) -> Bridged<()> {
+    guarded(|| {
+        let scene = view_scene(octree, desc)?;
+        if !uses_medium(desc, &scene)? {
+            return Ok(());
+        }
+        let key = medium_key(desc, &scene);
+        let mut kept = octree.medium.lock().unwrap_or_else(|e| e.into_inner());
+        if kept.made.as_ref().is_some_and(|(k, _)| *k == key) {
+            return Ok(());
+        }
+        kept.made = None;
+        let image = grid_unscanned(bytes, grid)?;
+        same_image(&octree.shape, &image)?;
+        let tf = opacity_function(&desc.opacity_points)?;
+        let g = scene.gradient_min;
+        let opacity = |v: f64| tf.as_ref().map_or(0.0, |tf| g * f64::from(tf.opacity(v)));
+        let medium = Medium::new(octree.volume(), &image, &opacity, key.d0, occluder(desc))?;
+        kept.made = Some((key, medium));
+        Ok(())
+    })
 }
 
 /// The checked view of `desc`: its ViewSelection, camera, viewport, smallest
@@ -78,50 +174,49 @@ pub(crate) fn check(view: &ViewDesc) -> Result<ViewSelection> {
 
 /// The ViewSelection that runs for `asked` in `scene`: without visibility
 /// where it does not apply (module documentation).
-pub(crate) fn applied(asked: ViewSelection, scene: &ViewScene<'_>) -> ViewSelection {
-    let visibility = scene.composite && scene.single_field && !scene.removes_samples;
+pub(crate) fn applied(asked: ViewSelection, scene: &ViewScene) -> ViewSelection {
     match asked {
-        ViewSelection::Visibility if !visibility => ViewSelection::Data,
-        ViewSelection::Both if !visibility => ViewSelection::Screen,
+        ViewSelection::Visibility if !scene.visibility => ViewSelection::Data,
+        ViewSelection::Both if !scene.visibility => ViewSelection::Screen,
         mode => mode,
     }
 }
 
-/// The view importance of `desc` over `tree` (the octree's, of the
-/// handle's grid), with the ViewSelection that ran; none for Data.
+/// The view importance of `desc` (of the handle's grid), with the
+/// ViewSelection that ran; none for Data. The visibility marches through
+/// the medium [`prepare_view`] kept for `desc`.
 pub(crate) fn view_importance(
     octree: &HybridOctreeHandle,
-    tree: &VolumeOctree,
     desc: &SelectDesc,
-    scene: &ViewScene<'_>,
+    scene: &ViewScene,
 ) -> Result<(ViewSelection, Option<ViewImportance>)> {
     let view = &desc.view;
     let mode = applied(check(view)?, scene);
     if mode == ViewSelection::Data {
         return Ok((mode, None));
     }
-    let tf = opacity_function(&desc.opacity_points)?;
-    let scale = match (scene.transfer_2d, scene.gradient_opacity) {
-        (true, _) => 0.0,
-        (false, None) => 1.0,
-        (false, Some(g)) => g.constant().map_or(0.0, f64::from),
-    };
-    let min_opacity = |lo: f64, hi: f64| tf.as_ref().map_or(0.0, |tf| scale * f64::from(tf.min_opacity_over(lo, hi)));
-    let occluder = (desc.has_isovalue && view.surface_opacity > 0.0)
-        .then_some(Occluder { isovalue: desc.isovalue, opacity: view.surface_opacity });
     let camera = camera(&view.camera)?;
+    let kept = octree.medium.lock().unwrap_or_else(|e| e.into_inner());
+    let medium = match &kept.made {
+        Some((key, medium)) if *key == medium_key(desc, scene) => Some(medium),
+        _ if mode.uses_visibility() => {
+            return Err(Error::InvalidArgument(
+                "view selection: the visibility estimate needs the image under this transfer function: call \
+                 prepare_view (HybridOctree::PrepareView) with it before selecting"
+                    .into(),
+            ))
+        }
+        _ => None,
+    };
     let inputs = ViewInputs {
         camera: &camera,
         width: view.viewport[0],
         height: view.viewport[1],
         shape: &octree.shape,
         min_texel_pixels: view.min_texel_pixels,
-        min_opacity: &min_opacity,
-        d0: view.opacity_unit_distance,
-        occluder,
-        has_nan: octree.nan_samples > 0,
+        medium,
     };
-    Ok((mode, Some(ViewImportance::new(mode, tree, &inputs)?)))
+    Ok((mode, Some(ViewImportance::new(mode, &inputs)?)))
 }
 
 /// [`crate::plan::select::view_change_degrees`] of two bridge cameras, checked.

@@ -2,7 +2,7 @@
 //! ViewSelection selects through the handle, what it leaves out, bad values.
 
 use super::test_support::{as_bytes, build_volume_octree, data_view, f32_desc, select_desc};
-use super::{view_change_degrees, CameraDesc, SelectDesc, ViewDesc};
+use super::{view_change_degrees, CameraDesc, HybridOctreeHandle, SelectDesc, SelectionHandle, ViewDesc};
 
 /// Samples per axis of [`walled`].
 const N: usize = 64;
@@ -50,8 +50,14 @@ fn desc(budget: usize, mode: i32) -> SelectDesc {
     }
 }
 
+/// `desc` selected from `h` (built on `d`), its medium prepared first.
+fn select(h: &HybridOctreeHandle, d: &[f32], desc: &SelectDesc) -> Result<Box<SelectionHandle>, String> {
+    h.prepare_view(as_bytes(d), &f32_desc([N; 3]), desc)?;
+    h.select_bricks(desc)
+}
+
 /// Texture bytes of bricks entirely behind the wall (x <= 32, z <= 32).
-fn bytes_behind(s: &super::SelectionHandle) -> usize {
+fn bytes_behind(s: &SelectionHandle) -> usize {
     s.selection.bricks.iter().filter(|b| b.hi[0] <= 32 && b.hi[2] <= 32).map(|b| b.bytes).sum()
 }
 
@@ -62,14 +68,18 @@ fn visibility_spends_less_behind_an_opaque_wall() {
     let d = walled();
     let h = build_volume_octree(as_bytes(&d), &f32_desc([N; 3]), 4).unwrap();
     let budget = 250_000;
-    let data = h.select_bricks(&desc(budget, 0)).unwrap();
-    let hidden = h.select_bricks(&desc(budget, 2)).unwrap();
+    let data = select(&h, &d, &desc(budget, 0)).unwrap();
+    let hidden = select(&h, &d, &desc(budget, 2)).unwrap();
     let (sd, sv) = (data.summary().unwrap(), hidden.summary().unwrap());
     assert_eq!((sd.view_selection.as_str(), sv.view_selection.as_str()), ("data", "visibility"));
     assert!(sd.texture_bytes <= budget && sv.texture_bytes <= budget);
     let (behind_data, behind_hidden) = (bytes_behind(&data), bytes_behind(&hidden));
     println!("behind the wall: visibility {behind_hidden} B, data {behind_data} B");
     assert!(behind_hidden * 4 < behind_data, "behind the wall: visibility {behind_hidden} B, data {behind_data} B");
+    // Without the image's medium, a visibility selection says what to call.
+    let fresh = build_volume_octree(as_bytes(&d), &f32_desc([N; 3]), 4).unwrap();
+    let e = fresh.select_bricks(&desc(budget, 2)).map(|_| ()).unwrap_err();
+    assert!(e.contains("prepare_view"), "{e}");
 }
 
 /// Seen from far away the grid covers few pixels: screen space stops
@@ -103,17 +113,17 @@ fn visibility_is_left_out_where_it_does_not_apply() {
     let d = walled();
     let h = build_volume_octree(as_bytes(&d), &f32_desc([N; 3]), 4).unwrap();
     let mip = |mode: i32| SelectDesc { blend_mode: 1, ..desc(60_000, mode) };
-    assert_eq!(h.select_bricks(&mip(3)).unwrap().summary().unwrap().view_selection, "screen");
-    assert_eq!(h.select_bricks(&mip(2)).unwrap().summary().unwrap().view_selection, "data");
+    assert_eq!(select(&h, &d, &mip(3)).unwrap().summary().unwrap().view_selection, "screen");
+    assert_eq!(select(&h, &d, &mip(2)).unwrap().summary().unwrap().view_selection, "data");
     let mut cropped = desc(60_000, 3);
     cropped.region.cropping = true;
     cropped.region.cropping_planes = [0.0, 63.0, 0.0, 63.0, 0.0, 40.0];
     cropped.region.cropping_flags = 1 << 13;
-    assert_eq!(h.select_bricks(&cropped).unwrap().summary().unwrap().view_selection, "screen");
+    assert_eq!(select(&h, &d, &cropped).unwrap().summary().unwrap().view_selection, "screen");
     // A region that keeps the whole grid removes nothing: visibility applies.
     cropped.region.cropping_planes = [-1.0, 64.0, -1.0, 64.0, -1.0, 64.0];
-    assert_eq!(h.select_bricks(&cropped).unwrap().summary().unwrap().view_selection, "both");
-    assert_eq!(h.select_bricks(&desc(60_000, 3)).unwrap().summary().unwrap().view_selection, "both");
+    assert_eq!(select(&h, &d, &cropped).unwrap().summary().unwrap().view_selection, "both");
+    assert_eq!(select(&h, &d, &desc(60_000, 3)).unwrap().summary().unwrap().view_selection, "both");
 }
 
 /// Bad view values are errors naming the value and what to give.
@@ -121,7 +131,7 @@ fn visibility_is_left_out_where_it_does_not_apply() {
 fn bad_view_values_are_refused() {
     let d = walled();
     let h = build_volume_octree(as_bytes(&d), &f32_desc([N; 3]), 4).unwrap();
-    let err = |v: ViewDesc| h.select_bricks(&SelectDesc { view: v, ..desc(60_000, 0) }).map(|_| ()).unwrap_err();
+    let err = |v: ViewDesc| select(&h, &d, &SelectDesc { view: v, ..desc(60_000, 0) }).map(|_| ()).unwrap_err();
     assert!(err(view(4)).contains("view selection 4"));
     assert!(err(view(-1)).contains("view selection -1"));
     assert!(err(ViewDesc { viewport: [0, 10], ..view(3) }).contains("viewport 0x10"));
