@@ -162,11 +162,11 @@ struct ViewDescription
   /// 0 data (the camera and viewport are checked, not read), 1 screen
   /// space, 2 visibility, 3 both (vtkHybridOctreeVolumeMapper's VIEW_SELECTION_*).
   int ViewSelection = 0;
-  CameraDescription Camera;                ///< in the octree's frame (the DrawList's)
-  std::size_t Viewport[2] = { 1, 1 };      ///< pixels, at least 1 x 1
-  double MinTexelPixels = 1.0;             ///< refinement stops below texels this small (>= 0)
-  double SurfaceOpacity = 0.0;             ///< the isosurface drawn (HasIsovalue): what it hides
-  double OpacityUnitDistance = 1.0;        ///< OpacityPoints' distance (ScalarOpacityUnitDistance), > 0
+  CameraDescription Camera;           ///< in the octree's frame (the DrawList's)
+  std::size_t Viewport[2] = { 1, 1 }; ///< pixels, at least 1 x 1
+  double MinTexelPixels = 1.0;        ///< refinement stops below texels this small (>= 0)
+  double SurfaceOpacity = 0.0;        ///< the isosurface drawn (HasIsovalue): what it hides
+  double OpacityUnitDistance = 1.0;   ///< OpacityPoints' distance (ScalarOpacityUnitDistance), > 0
 };
 
 /// What to select for drawing (see SelectDesc in src/ffi/mod.rs).

@@ -767,7 +767,8 @@ bool vtkHybridOctreeVolumeMapper::DescribeView(vtkRenderer* ren, vtkVolumeProper
   view.OpacityUnitDistance = unit > 0.0 ? unit : std::min({ spacing[0], spacing[1], spacing[2] });
   for (int k = 0; k < 3; ++k)
   {
-    in.Centre[k] = in.Grid.Origin[k] + 0.5 * spacing[k] * (static_cast<double>(in.Grid.Dims[k]) - 1.0);
+    in.Centre[k] =
+      in.Grid.Origin[k] + 0.5 * spacing[k] * (static_cast<double>(in.Grid.Dims[k]) - 1.0);
   }
   return true;
 }

@@ -118,8 +118,8 @@ int Wall()
     const vtkTypeInt64 hidden = mapper->GetLastTextureBytesWithin(behind);
     std::cout << "view: " << mapper->GetLastViewSelection() << ": texture bytes "
               << mapper->GetLastTextureBytes() << ", behind the wall " << hidden
-              << ", selection ms " << selectMs
-              << ", RGB RMSE against vtkGPUVolumeRayCastMapper " << rmse << "\n";
+              << ", selection ms " << selectMs << ", RGB RMSE against vtkGPUVolumeRayCastMapper "
+              << rmse << "\n";
     check.Check(mapper->GetLastTextureBytes() <= 250000, "within the budget");
     if (mode == vtkHybridOctreeVolumeMapper::VIEW_SELECTION_DATA)
     {
@@ -158,8 +158,8 @@ int Orbit()
   bool atTheRightFrames = true;
   double uploaded = 0.0;
   const int frames = 20;
-  for (int mode :
-    { vtkHybridOctreeVolumeMapper::VIEW_SELECTION_BOTH, vtkHybridOctreeVolumeMapper::VIEW_SELECTION_DATA })
+  for (int mode : { vtkHybridOctreeVolumeMapper::VIEW_SELECTION_BOTH,
+         vtkHybridOctreeVolumeMapper::VIEW_SELECTION_DATA })
   {
     const int m = mode == vtkHybridOctreeVolumeMapper::VIEW_SELECTION_BOTH ? 0 : 1;
     mapper->SetViewSelection(mode);
