@@ -250,6 +250,14 @@ hybrid_octree::SelectDesc ToRust(const SelectDescription& options)
   {
     desc.slice_plane[k] = options.SlicePlane[k];
   }
+  const ViewDescription& view = options.View;
+  desc.view.view_selection = view.ViewSelection;
+  desc.view.camera = ToRust(view.Camera);
+  desc.view.viewport[0] = view.Viewport[0];
+  desc.view.viewport[1] = view.Viewport[1];
+  desc.view.min_texel_pixels = view.MinTexelPixels;
+  desc.view.surface_opacity = view.SurfaceOpacity;
+  desc.view.opacity_unit_distance = view.OpacityUnitDistance;
   return desc;
 }
 
@@ -492,6 +500,14 @@ std::unique_ptr<Selection> HybridOctree::Select(
   return result;
 }
 
+bool HybridOctree::PrepareView(const void* bytes, std::size_t byteCount,
+  const GridDescription& grid, const SelectDescription& options, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl).prepare_view(ToSlice(bytes, byteCount), ToRust(grid), ToRust(options));
+  });
+}
+
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function)
 {
   std::vector<double> points;
@@ -541,6 +557,7 @@ bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
     summary.Warning = std::string(s.warning);
     summary.Points = s.points;
     summary.PointBytes = s.point_bytes;
+    summary.ViewSelection = std::string(s.view_selection);
   });
 }
 
@@ -842,6 +859,15 @@ bool MeasureBlockRanges(const float* texels, std::size_t count, const std::size_
     ranges.resize(hybrid_octree::block_ranges_len(d));
     hybrid_octree::brick_block_ranges(
       rust::Slice<const float>(texels, texels ? count : 0), d, Out(ranges.data(), ranges.size()));
+  });
+}
+
+bool ViewChangeDegrees(const CameraDescription& a, const CameraDescription& b,
+  const double centre[3], double& degrees, std::string& error)
+{
+  return Guarded(error, [&] {
+    degrees = hybrid_octree::view_change_degrees(
+      ToRust(a), ToRust(b), rust::Slice<const double>(centre, centre ? 3 : 0));
   });
 }
 

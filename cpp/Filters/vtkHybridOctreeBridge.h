@@ -142,6 +142,33 @@ struct RegionDescription
   std::vector<double> ClippingPlanes;
 };
 
+/// A camera as vtkCamera describes it.
+struct CameraDescription
+{
+  double Position[3] = { 0.0, 0.0, 1.0 };
+  double FocalPoint[3] = { 0.0, 0.0, 0.0 };
+  double ViewUp[3] = { 0.0, 1.0, 0.0 };
+  bool Parallel = false;
+  double ParallelScale = 1.0; ///< half the view height, world units
+  double ViewAngle = 30.0;    ///< full vertical angle, degrees
+};
+
+/**
+ * The view a selection weighs nodes by (see ViewDesc in src/ffi/mod.rs and
+ * src/ffi/view.rs): what the camera sees of each node on the viewport.
+ */
+struct ViewDescription
+{
+  /// 0 data (the camera and viewport are checked, not read), 1 screen
+  /// space, 2 visibility, 3 both (vtkHybridOctreeVolumeMapper's VIEW_SELECTION_*).
+  int ViewSelection = 0;
+  CameraDescription Camera;           ///< in the octree's frame (the DrawList's)
+  std::size_t Viewport[2] = { 1, 1 }; ///< pixels, at least 1 x 1
+  double MinTexelPixels = 1.0;        ///< refinement stops below texels this small (>= 0)
+  double SurfaceOpacity = 0.0;        ///< the isosurface drawn (HasIsovalue): what it hides
+  double OpacityUnitDistance = 1.0;   ///< OpacityPoints' distance (ScalarOpacityUnitDistance), > 0
+};
+
 /// What to select for drawing (see SelectDesc in src/ffi/mod.rs).
 struct SelectDescription
 {
@@ -190,6 +217,8 @@ struct SelectDescription
   /// vtkPlane) in the octree's frame: origin x, y, z, normal x, y, z. Only
   /// nodes whose box it cuts get a texture (src/plan/slice.rs).
   double SlicePlane[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 1.0 };
+  /// The view the selection is made for (default: Data, no view).
+  ViewDescription View;
 };
 
 /// The volume's shading (see ShadingDesc in src/ffi/mod.rs): vtkVolumeProperty's
@@ -255,17 +284,9 @@ struct SelectionSummary
   std::string Warning;          ///< empty when none
   std::uint64_t Points = 0;     ///< points of the hybrid representation bought (0 without)
   std::uint64_t PointBytes = 0; ///< their bytes, counted in the budget with the textures
-};
-
-/// A camera as vtkCamera describes it.
-struct CameraDescription
-{
-  double Position[3] = { 0.0, 0.0, 1.0 };
-  double FocalPoint[3] = { 0.0, 0.0, 0.0 };
-  double ViewUp[3] = { 0.0, 1.0, 0.0 };
-  bool Parallel = false;
-  double ParallelScale = 1.0; ///< half the view height, world units
-  double ViewAngle = 30.0;    ///< full vertical angle, degrees
+  /// The view importance that ran: "data", "screen", "visibility" or "both"
+  /// (the one asked for, without visibility where it does not apply).
+  std::string ViewSelection;
 };
 
 /**
@@ -473,6 +494,15 @@ bool MeasureBlockRanges(const float* texels, std::size_t count, const std::size_
  */
 std::vector<double> OpacityPoints(vtkPiecewiseFunction* function);
 
+/**
+ * How far the view moved from camera `a` to camera `b` around `centre`, in
+ * degrees (src/plan/select/view.rs): the turn about `centre`, the change of
+ * aim or the zoom (|ln| of the distance or parallel scale ratio, in
+ * radians), whichever is larger. False and `error` for a camera that is not one.
+ */
+bool ViewChangeDegrees(const CameraDescription& a, const CameraDescription& b,
+  const double centre[3], double& degrees, std::string& error);
+
 class Selection;
 struct PointsOptions;
 
@@ -603,6 +633,17 @@ public:
    * tolerance, ROI or opacity points).
    */
   std::unique_ptr<Selection> Select(const SelectDescription& options, std::string& error) const;
+
+  /**
+   * What a Select() of `options` with the visibility importance
+   * (options.View: VISIBILITY or BOTH, where it applies) needs from the
+   * image the octree was built from (`bytes`, `grid` as in Build()): the
+   * medium the estimate marches through, made once per transfer function
+   * and kept (src/ffi/view.rs). Nothing for the other selections. False
+   * and `error` on failure (a bad view, another image).
+   */
+  bool PrepareView(const void* bytes, std::size_t byteCount, const GridDescription& grid,
+    const SelectDescription& options, std::string& error) const;
 
 private:
   friend class Selection;

@@ -268,10 +268,18 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
     vtkTimeStamp Time;
     std::vector<double> Key;
     std::vector<double> Opacity;
+    ViewDescription View; ///< the view it was made for
   };
   SelectionSlot Still;
   SelectionSlot Moving;
   SelectionSlot* Frame = &Still;
+  // This frame's view (DescribeView) and the volume's centre in the
+  // octree's frame, what the view change is measured around.
+  ViewDescription View;
+  double Centre[3] = { 0.0, 0.0, 0.0 };
+  // The last frame's bricks: their boxes (6 each, the octree's frame) and texture bytes.
+  std::vector<double> FrameBounds;
+  std::vector<vtkTypeInt64> FrameBytes;
 
   // The isosurface integrated into the octree, extracted again when the
   // octree or the isovalue change.
@@ -726,7 +734,63 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
   const std::vector<double> transfer2D = in.Transfer2D.Key();
   key.push_back(select.Transfer2DSize[0] > 0 ? 1.0 : 0.0);
   key.insert(key.end(), transfer2D.begin(), transfer2D.end());
+  // The view's settings; its camera and viewport through IsViewCurrent() only.
+  select.View = in.View;
+  key.insert(key.end(),
+    { static_cast<double>(select.View.ViewSelection), select.View.MinTexelPixels,
+      select.View.SurfaceOpacity, select.View.OpacityUnitDistance });
   return select;
+}
+
+bool vtkHybridOctreeVolumeMapper::DescribeView(vtkRenderer* ren, vtkVolumeProperty* property)
+{
+  vtkInternals& in = *this->Internals;
+  if (!(this->ViewChangeDegrees >= 0.0))
+  {
+    vtkErrorMacro("ViewChangeDegrees " << this->ViewChangeDegrees
+                                       << ": give the degrees the view may move before a still "
+                                          "frame selects again, a number >= 0 (default 5)");
+    return false;
+  }
+  ViewDescription& view = in.View;
+  view.ViewSelection = this->ViewSelection;
+  view.Camera = this->ModelCamera(ren);
+  const int* size = ren->GetSize();
+  view.Viewport[0] = static_cast<std::size_t>(std::max(size[0], 0));
+  view.Viewport[1] = static_cast<std::size_t>(std::max(size[1], 0));
+  view.MinTexelPixels = this->MinTexelPixels;
+  view.SurfaceOpacity = this->ShowSurface ? this->SurfaceOpacity : 0.0;
+  // The table's opacities are VTK's per ScalarOpacityUnitDistance, or per
+  // the smallest spacing without one (UpdateTransferFunction()).
+  const double unit = property->GetScalarOpacityUnitDistance(0);
+  const double* spacing = in.Grid.Spacing;
+  view.OpacityUnitDistance = unit > 0.0 ? unit : std::min({ spacing[0], spacing[1], spacing[2] });
+  for (int k = 0; k < 3; ++k)
+  {
+    in.Centre[k] =
+      in.Grid.Origin[k] + 0.5 * spacing[k] * (static_cast<double>(in.Grid.Dims[k]) - 1.0);
+  }
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::IsViewCurrent(
+  const ViewDescription& made, const std::string& applied) const
+{
+  const vtkInternals& in = *this->Internals;
+  if (applied == "data")
+  {
+    return true;
+  }
+  if (made.Viewport[0] != in.View.Viewport[0] || made.Viewport[1] != in.View.Viewport[1])
+  {
+    return false;
+  }
+  double degrees = 0.0;
+  std::string error;
+  // A camera the bridge refuses selects again, which reports it.
+  return vtkHybridOctreeBridge::ViewChangeDegrees(
+           made.Camera, in.View.Camera, in.Centre, degrees, error) &&
+    degrees <= this->ViewChangeDegrees;
 }
 
 bool vtkHybridOctreeVolumeMapper::IsStillSelectionCurrent(
@@ -751,12 +815,23 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
   in.Frame = &slot;
   std::vector<double> key;
   SelectDescription select = this->DescribeSelection(property, budgetMB, key);
+  // Interactive frames keep their selection while the view moves (it is
+  // made once per change of its other inputs); still ones select again
+  // when the view moved past ViewChangeDegrees.
   if (slot.Selected && slot.Time > in.OctreeTime && slot.Key == key &&
-    slot.Opacity == select.OpacityPoints)
+    slot.Opacity == select.OpacityPoints &&
+    (interactive || this->IsViewCurrent(slot.View, slot.Summary.ViewSelection)))
   {
     return true;
   }
   std::string error;
+  const auto start = std::chrono::steady_clock::now();
+  if (!in.Octree->PrepareView(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, select, error))
+  {
+    slot.Selected.reset();
+    vtkErrorMacro(<< error);
+    return false;
+  }
   slot.Selected = in.Octree->Select(select, error);
   if (!slot.Selected || !slot.Selected->GetSummary(slot.Summary, error))
   {
@@ -764,9 +839,13 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
     vtkErrorMacro(<< error);
     return false;
   }
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  this->LastSelectMilliseconds = 1.0e3 * elapsed.count();
+  this->LastReselected = true;
   slot.Time.Modified();
   slot.Key = key;
   slot.Opacity = select.OpacityPoints;
+  slot.View = select.View;
   return true;
 }
 
@@ -854,6 +933,10 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
     return false;
   }
   this->UpdateModelMatrix(image, vol);
+  if (!this->DescribeView(ren, property))
+  {
+    return false;
+  }
   this->Internals->Shading = DescribeShading(ren, property, this->Internals->ModelInverse);
   this->Internals->Region =
     DescribeRegion(this, this->Internals->Model, this->Internals->ModelInverse);
@@ -929,6 +1012,11 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastEffects.clear();
   this->LastImageSampleDistance = 1.0;
   this->LastSampleSpacing = 1;
+  this->LastReselected = false;
+  this->LastSelectMilliseconds = 0.0;
+  this->LastViewSelection.clear();
+  this->Internals->FrameBounds.clear();
+  this->Internals->FrameBytes.clear();
   const bool interactive = this->IsInteractive(ren);
   this->LastInteractive = interactive;
   vtkInternals& in = *this->Internals;
@@ -967,6 +1055,19 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   this->LastPlan = interactive ? InteractivePlan(list.Passes) : list.Passes;
   this->LastEffects = list.Effects;
+  this->LastViewSelection = in.Frame->Summary.ViewSelection;
+  in.FrameBounds = list.Bounds;
+  in.FrameBytes.clear();
+  const std::size_t border = list.Bordered ? 2 : 0;
+  for (std::size_t i = 0; 3 * i + 2 < list.Texels.size(); ++i)
+  {
+    std::size_t texels = 1;
+    for (int k = 0; k < 3; ++k)
+    {
+      texels *= list.Texels[3 * i + k] + border;
+    }
+    in.FrameBytes.push_back(static_cast<vtkTypeInt64>(texels * in.Bricks.GetTexelBytes()));
+  }
   this->LastEstimatedError = in.Frame->Summary.EstimatedError;
   this->LastPointBytes = static_cast<vtkTypeInt64>(in.Frame->Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
@@ -980,6 +1081,23 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     in.Reduction.Record(level, elapsed.count(), interactive);
   }
+}
+
+vtkTypeInt64 vtkHybridOctreeVolumeMapper::GetLastTextureBytesWithin(const double bounds[6]) const
+{
+  const vtkInternals& in = *this->Internals;
+  vtkTypeInt64 bytes = 0;
+  for (std::size_t i = 0; i < in.FrameBytes.size() && 6 * i + 5 < in.FrameBounds.size(); ++i)
+  {
+    const double* b = &in.FrameBounds[6 * i];
+    bool inside = true;
+    for (int k = 0; k < 3; ++k)
+    {
+      inside = inside && b[2 * k] >= bounds[2 * k] && b[2 * k + 1] <= bounds[2 * k + 1];
+    }
+    bytes += inside ? in.FrameBytes[i] : 0;
+  }
+  return bytes;
 }
 
 bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
@@ -1542,6 +1660,9 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceColor: (" << this->SurfaceColor[0] << ", " << this->SurfaceColor[1]
      << ", " << this->SurfaceColor[2] << ")\n";
   os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
+  os << indent << "ViewSelection: " << this->ViewSelection << "\n";
+  os << indent << "MinTexelPixels: " << this->MinTexelPixels << "\n";
+  os << indent << "ViewChangeDegrees: " << this->ViewChangeDegrees << "\n";
   os << indent << "Transfer2DSampleDistance: " << this->Transfer2DSampleDistance << "\n";
   os << indent << "UsePoints: " << this->UsePoints << "\n";
   os << indent << "PointFactor: " << this->PointFactor << "\n";
@@ -1567,4 +1688,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastRenderOK: " << this->LastRenderOK << "\n";
   os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
   os << indent << "LastSampleSpacing: " << this->LastSampleSpacing << "\n";
+  os << indent << "LastReselected: " << this->LastReselected << "\n";
+  os << indent << "LastSelectMilliseconds: " << this->LastSelectMilliseconds << "\n";
+  os << indent << "LastViewSelection: view: " << this->LastViewSelection << "\n";
 }

@@ -95,6 +95,7 @@ struct BrickGeometryInput;
 struct CameraDescription;
 struct DrawList;
 struct SelectDescription;
+struct ViewDescription;
 }
 #endif
 
@@ -172,6 +173,56 @@ public:
   vtkSetMacro(UseJittering, vtkTypeBool);
   vtkGetMacro(UseJittering, vtkTypeBool);
   vtkBooleanMacro(UseJittering, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * What the selection weighs nodes by besides their error (src/plan/select/view.rs):
+   * VIEW_SELECTION_DATA the data alone; SCREEN also the pixel area a sample
+   * covers for the active camera (nodes outside the view count for nothing,
+   * near ones more, and refinement stops where a texel is smaller than
+   * MinTexelPixels pixels); VISIBILITY also an upper bound of the
+   * transmittance in front of each node (nodes behind opaque material or an
+   * opaque isosurface count for little); BOTH (the default) both.
+   * Visibility applies to Composite blending of one field with no cropping,
+   * clipping planes or slice; elsewhere BOTH selects as SCREEN and
+   * VISIBILITY as DATA (GetLastViewSelection() names what ran). A value
+   * outside 0..3 is an error at Render().
+   */
+  enum
+  {
+    VIEW_SELECTION_DATA = 0,
+    VIEW_SELECTION_SCREEN = 1,
+    VIEW_SELECTION_VISIBILITY = 2,
+    VIEW_SELECTION_BOTH = 3
+  };
+  vtkSetMacro(ViewSelection, int);
+  vtkGetMacro(ViewSelection, int);
+  void SetViewSelectionToData() { this->SetViewSelection(VIEW_SELECTION_DATA); }
+  void SetViewSelectionToScreen() { this->SetViewSelection(VIEW_SELECTION_SCREEN); }
+  void SetViewSelectionToVisibility() { this->SetViewSelection(VIEW_SELECTION_VISIBILITY); }
+  void SetViewSelectionToBoth() { this->SetViewSelection(VIEW_SELECTION_BOTH); }
+  ///@}
+
+  ///@{
+  /// Screen space: refinement stops where a texel would cover fewer than
+  /// this many pixels along a side (>= 0; 0 never stops); default 1.
+  vtkSetMacro(MinTexelPixels, double);
+  vtkGetMacro(MinTexelPixels, double);
+  ///@}
+
+  ///@{
+  /**
+   * A view-dependent selection (ViewSelection other than DATA) is made for
+   * the camera of the frame that made it, and a still frame selects again
+   * only when the view moved more than ViewChangeDegrees from that camera
+   * (the turn about the volume's centre, the change of aim or the zoom, in
+   * degrees: vtkHybridOctreeBridge::ViewChangeDegrees) or the viewport
+   * changed size; otherwise it draws the kept selection. Default 5; 0
+   * selects again at every move; negative or NaN is an error at Render().
+   */
+  vtkSetMacro(ViewChangeDegrees, double);
+  vtkGetMacro(ViewChangeDegrees, double);
   ///@}
 
   ///@{
@@ -332,6 +383,18 @@ public:
   /// sampled every max(d, m d0); 1: every slice of the lattice).
   vtkGetMacro(LastImageSampleDistance, double);
   vtkGetMacro(LastSampleSpacing, int);
+  /// Whether the last frame made its selection (false: it drew a kept one),
+  /// the milliseconds that selection took (0 when kept), and the view
+  /// importance of the selection it drew ("data", "screen", "visibility",
+  /// "both"; see SetViewSelection()). LastUploadedBytes counts the bytes
+  /// uploaded in the last frame only.
+  vtkGetMacro(LastReselected, bool);
+  vtkGetMacro(LastSelectMilliseconds, double);
+  const char* GetLastViewSelection() const { return this->LastViewSelection.c_str(); }
+  /// Texture bytes of the last frame's bricks whose box lies inside
+  /// `bounds` (xmin, xmax, ymin, ymax, zmin, zmax in the image's data
+  /// coordinates): where the selection spent its budget.
+  vtkTypeInt64 GetLastTextureBytesWithin(const double bounds[6]) const;
   ///@}
 
   /// Textures resident after the last frame (bricks kept for later frames included).
@@ -375,6 +438,9 @@ protected:
   bool AutoAdjustSampleDistances = true;
   vtkTypeBool UseJittering = 0;
   double ErrorTolerance = 0.0;
+  int ViewSelection = VIEW_SELECTION_BOTH;
+  double MinTexelPixels = 1.0;
+  double ViewChangeDegrees = 5.0;
   bool UseRoi = false;
   double RoiCenter[3] = { 0.0, 0.0, 0.0 };
   double RoiRadius = 1.0;
@@ -410,6 +476,9 @@ protected:
   bool LastRenderOK = false;
   double LastImageSampleDistance = 1.0;
   int LastSampleSpacing = 1;
+  bool LastReselected = false;
+  double LastSelectMilliseconds = 0.0;
+  std::string LastViewSelection;
 
 private:
   vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;
@@ -428,9 +497,19 @@ private:
   /// This frame's selection: the still one when it is current and `ren`
   /// is interactive, else UpdateSelection()'s.
   bool ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property);
-  /// What the selection of `budgetMB` is made from, with its cache key.
+  /// What the selection of `budgetMB` is made from, with its cache key (the
+  /// camera is not in it: see IsViewCurrent()).
   vtkHybridOctreeBridge::SelectDescription DescribeSelection(
     vtkVolumeProperty* property, double budgetMB, std::vector<double>& key) const;
+  /// The view of `ren` a selection is made for (DescribeSelection() leaves
+  /// it at Data); false after a vtkErrorMacro (a bad ViewChangeDegrees).
+  bool DescribeView(vtkRenderer* ren, vtkVolumeProperty* property);
+  /// Whether a selection made for the view `made`, whose view importance
+  /// `applied` ran, still serves this frame's view: always when "data" ran,
+  /// else when the view moved at most ViewChangeDegrees and the viewport
+  /// kept its size.
+  bool IsViewCurrent(
+    const vtkHybridOctreeBridge::ViewDescription& made, const std::string& applied) const;
   bool UpdateSurface();
   /// The active camera in the octree's frame (through the inverse model matrix).
   vtkHybridOctreeBridge::CameraDescription ModelCamera(vtkRenderer* ren) const;

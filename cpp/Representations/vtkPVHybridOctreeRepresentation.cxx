@@ -85,6 +85,21 @@ void vtkPVHybridOctreeRepresentation::SetErrorTolerance(double tolerance)
   this->Mapper()->SetErrorTolerance(tolerance);
 }
 
+void vtkPVHybridOctreeRepresentation::SetViewSelection(int mode)
+{
+  this->Mapper()->SetViewSelection(mode);
+}
+
+void vtkPVHybridOctreeRepresentation::SetMinTexelPixels(double pixels)
+{
+  this->Mapper()->SetMinTexelPixels(pixels);
+}
+
+void vtkPVHybridOctreeRepresentation::SetViewChangeDegrees(double degrees)
+{
+  this->Mapper()->SetViewChangeDegrees(degrees);
+}
+
 void vtkPVHybridOctreeRepresentation::SetUseRoi(bool use)
 {
   this->Mapper()->SetUseRoi(use);
@@ -194,6 +209,27 @@ double vtkPVHybridOctreeRepresentation::GetLastFrameMilliseconds()
 int vtkPVHybridOctreeRepresentation::GetLastPoints()
 {
   return static_cast<int>(std::min<vtkTypeInt64>(this->Mapper()->GetLastPoints(), VTK_INT_MAX));
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastUploadedMB()
+{
+  return static_cast<double>(this->Mapper()->GetLastUploadedBytes()) / 1.0e6;
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastSelectMilliseconds()
+{
+  return this->Mapper()->GetLastSelectMilliseconds();
+}
+
+int vtkPVHybridOctreeRepresentation::GetLastReselected()
+{
+  return this->Mapper()->GetLastReselected() ? 1 : 0;
+}
+
+const char* vtkPVHybridOctreeRepresentation::GetLastViewSelection()
+{
+  this->LastViewSelection = this->Mapper()->GetLastViewSelection();
+  return this->LastViewSelection.c_str();
 }
 
 double* vtkPVHybridOctreeRepresentation::GetTextureBudgetRangeMB()

@@ -39,6 +39,9 @@ public:
   void SetInteractiveBudgetMB(double mb);
   void SetTexelFormat(int format);
   void SetErrorTolerance(double tolerance);
+  void SetViewSelection(int mode);
+  void SetMinTexelPixels(double pixels);
+  void SetViewChangeDegrees(double degrees);
   void SetUseRoi(bool use);
   void SetRoiCenter(double x, double y, double z);
   void SetRoiRadius(double radius);
@@ -75,6 +78,13 @@ public:
   double GetLastFrameMilliseconds();
   double GetLastEstimatedError();
   int GetLastPoints();
+  /// Texture MB uploaded in the last frame, its selection's milliseconds
+  /// (0 when it drew a kept one), 1 when it selected, and the view
+  /// importance of its selection ("data", "screen", "visibility", "both").
+  double GetLastUploadedMB();
+  double GetLastSelectMilliseconds();
+  int GetLastReselected();
+  const char* GetLastViewSelection();
   ///@}
 
   /// The budget slider's range, {0.1, full} in MB: `full` is the texture
@@ -106,6 +116,7 @@ private:
   vtkHybridOctreeVolumeMapper* Mapper() const;
   std::string LastPlan;
   std::string LastEffects;
+  std::string LastViewSelection;
   double TextureBudgetRangeMB[2] = { 0.1, 64.0 };
   /// Whether the 2D transfer function's second-array y axis was warned about (while it stays on).
   bool WarnedTransfer2DArray = false;

@@ -84,6 +84,7 @@ pub(crate) fn build_dependent_with(
             id: next_id(),
             surface_id: 0,
             selector: Default::default(),
+            medium: Default::default(),
         }))
     })
 }

@@ -46,6 +46,9 @@ mod transfer;
 mod transfer2d;
 #[cfg(test)]
 mod transfer2d_tests;
+mod view;
+#[cfg(test)]
+mod view_tests;
 
 #[cxx::bridge(namespace = "hybrid_octree")]
 mod bridge {
@@ -294,6 +297,29 @@ mod bridge {
         /// ignored by the other modes. Only nodes whose box it cuts get a
         /// texture (`plan::slice`).
         slice_plane: [f64; 6],
+        /// The view the selection is made for (`ffi::view`).
+        view: ViewDesc,
+    }
+
+    /// The view a selection weighs nodes by (`plan::select::ViewImportance`):
+    /// what the camera sees of each node on the viewport.
+    #[derive(Debug)]
+    struct ViewDesc {
+        /// `plan::select::ViewSelection`: 0 data (no view: the camera and
+        /// viewport are checked, not read), 1 screen space, 2 visibility, 3 both.
+        view_selection: i32,
+        /// The camera in the octree's frame (the DrawList's).
+        camera: CameraDesc,
+        /// The viewport, pixels (width, height; at least 1 each).
+        viewport: [usize; 2],
+        /// Refinement stops below texels of this many pixels (>= 0; 1 by default).
+        min_texel_pixels: f64,
+        /// The opacity of the isosurface drawn with the volume (`has_isovalue`,
+        /// `isovalue`), in [0, 1]: it hides what is behind it (0: not drawn).
+        surface_opacity: f64,
+        /// The distance, in the octree's frame, over which `opacity_points`
+        /// give their opacity (VTK's ScalarOpacityUnitDistance; > 0).
+        opacity_unit_distance: f64,
     }
 
     /// VTK's cropping (`vtkVolumeMapper`) and clipping planes
@@ -332,6 +358,11 @@ mod bridge {
         points: usize,
         /// Their bytes (counted in the budget with the textures).
         point_bytes: usize,
+        /// The view importance the selection was weighed by
+        /// (`ViewSelection::name`: "data", "screen", "visibility", "both"):
+        /// the one asked for, without visibility where it does not apply
+        /// (`ffi::view`).
+        view_selection: String,
     }
 
     /// The volume's shading (see `transfer::lighting`): vtkVolumeProperty's
@@ -772,8 +803,18 @@ mod bridge {
         /// per byte than refining it, and the DrawLists bucket the points
         /// bought into the slabs.
         fn select_bricks(self: &HybridOctreeHandle, options: &SelectDesc) -> Result<Box<SelectionHandle>>;
+        /// What a selection of `options` with the visibility importance
+        /// needs from the image (`bytes`, `desc`: the one the octree was
+        /// built from): the medium the estimate marches through, made once
+        /// per transfer function and kept in the handle (`ffi::view`).
+        /// Nothing when `options` does not use the visibility.
+        fn prepare_view(self: &HybridOctreeHandle, bytes: &[u8], desc: &GridDesc, options: &SelectDesc) -> Result<()>;
         /// Bricks, bytes, error, skipped nodes, warning.
         fn summary(self: &SelectionHandle) -> Result<SelectionSummary>;
+        /// How far the view moved from camera `a` to camera `b` around
+        /// `centre` (x, y, z; degrees, `plan::select::view_change_degrees`);
+        /// an error for a camera that is not one.
+        fn view_change_degrees(a: &CameraDesc, b: &CameraDesc, centre: &[f64]) -> Result<f64>;
         /// The DrawList of the selection for `camera` (`octree`: the one the
         /// selection was made from), with the octree's surface, when it holds
         /// one, at `surface_opacity` (1: opaque pass first; (0, 1): batches
@@ -929,7 +970,7 @@ use bridge::BuildProgress;
 pub use bridge::{
     BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
     OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, ScatteringDesc, ScatteringFrameDesc, SelectDesc,
-    SelectionSummary, ShadingDesc, SurfaceMode, SurfaceSummary,
+    SelectionSummary, ShadingDesc, SurfaceMode, SurfaceSummary, ViewDesc,
 };
 use dependent::build_dependent_octree;
 use ftb::ftb_display;
@@ -939,3 +980,4 @@ pub use octree::HybridOctreeHandle;
 use points::generate_points;
 pub use points::GeneratedPoints;
 pub use render::SelectionHandle;
+use view::view_change_degrees;

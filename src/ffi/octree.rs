@@ -34,6 +34,8 @@ pub struct HybridOctreeHandle {
     pub(crate) surface_id: u64,
     /// The last selection's forms and steps, for the next one (`reselect`).
     pub(crate) selector: std::sync::Mutex<super::reselect::KeptSelector>,
+    /// The visibility estimate's medium of the last `prepare_view` (`view`).
+    pub(crate) medium: std::sync::Mutex<super::view::KeptMedium>,
 }
 
 /// The next unique id of an octree or a surface.
@@ -74,6 +76,7 @@ pub(crate) fn build_with(
             id: next_id(),
             surface_id: 0,
             selector: Default::default(),
+            medium: Default::default(),
         }))
     })
 }

@@ -13,6 +13,7 @@ use super::grid::{grid_of, grid_unscanned, same_image};
 use super::guard::{guarded, write_pixels, Bridged};
 use super::octree::HybridOctreeHandle;
 use super::transfer::{opacity_function, transfer_function, vtk_gradient_opacity};
+use super::view::{view_importance, view_scene};
 use super::{CameraDesc, DrawListOutput, GridDesc, RegionDesc, SelectDesc, SelectionSummary, ShadingDesc};
 use crate::camera::{Camera, Projection};
 use crate::error::{Error, Result};
@@ -20,7 +21,7 @@ use crate::grid::{GridShape, ScalarType};
 use crate::plan::crop::{ClippingPlane, Cropping, KeptRegion};
 use crate::plan::dependent::{rgba_texel_bytes, Fields};
 use crate::plan::point_slabs::add_points;
-use crate::plan::select::{Roi, SelectOptions, Selection};
+use crate::plan::select::{Roi, SelectOptions, Selection, ViewSelection};
 use crate::plan::slab::SlabPolygons;
 use crate::plan::texel_format::{TexelEncoding, TexelFormat};
 use crate::plan::{
@@ -78,6 +79,8 @@ pub struct SelectionHandle {
     jittering: std::sync::atomic::AtomicBool,
     /// The volumetric scattering of its DrawLists (`super::scattering`).
     pub(crate) scattering: Mutex<Option<crate::transfer::Scattering>>,
+    /// The view importance it was weighed by (`super::view`).
+    view_selection: ViewSelection,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -233,7 +236,7 @@ pub(crate) fn blend(desc: &SelectDesc, value_range: (f64, f64)) -> Result<Blend>
 pub(crate) fn select_with(
     octree: &HybridOctreeHandle,
     desc: &SelectDesc,
-) -> Result<(Selection, Option<TransferFunction2D>, TexelEncoding)> {
+) -> Result<(Selection, Option<TransferFunction2D>, TexelEncoding, ViewSelection)> {
     let gradient_opacity =
         vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, octree.volume().value_range())?;
     // A 2D transfer function classifies one field: not two dependent ones (`plan::dependent`).
@@ -283,14 +286,12 @@ pub(crate) fn select_with(
         kept
     });
     octree.selector.clear_poison();
+    let scene = view_scene(octree, desc)?;
+    let (mode, view) = view_importance(octree, desc, &scene)?;
     let selector = kept.for_desc(desc);
-    let selection = match &octree.hybrid.points {
-        Some(points) if octree.dependent.is_none() => {
-            selector.select_with_points(tree, &options, visible, &points.mass)
-        }
-        _ => selector.select(tree, &options, visible),
-    }?;
-    Ok((selection, transfer_2d, texel))
+    let points = octree.hybrid.points.as_ref().filter(|_| octree.dependent.is_none()).map(|p| &p.mass);
+    let selection = selector.select_in_view(tree, &options, visible, points, view.as_ref())?;
+    Ok((selection, transfer_2d, texel, mode))
 }
 
 /// The checked camera of `desc`.
@@ -429,9 +430,13 @@ fn surface_rgba(rgba: &[f64]) -> Result<[f64; 4]> {
 }
 
 impl HybridOctreeHandle {
+    pub(crate) fn prepare_view(&self, bytes: &[u8], desc: &GridDesc, options: &SelectDesc) -> Bridged<()> {
+        super::view::prepare_view(self, bytes, desc, options)
+    }
+
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
-            let (selection, transfer_2d, texel) = select_with(self, desc)?;
+            let (selection, transfer_2d, texel, view_selection) = select_with(self, desc)?;
             let blend = blend(desc, self.volume().value_range())?;
             Ok(Box::new(SelectionHandle {
                 blend,
@@ -451,6 +456,7 @@ impl HybridOctreeHandle {
                 scalar_type: self.scalar_type,
                 jittering: Default::default(),
                 scattering: Mutex::new(None),
+                view_selection,
             }))
         })
     }
@@ -469,6 +475,7 @@ impl SelectionHandle {
                 warning: s.warning.clone().unwrap_or_default(),
                 points: s.bricks.iter().map(|b| b.point_count).sum(),
                 point_bytes: s.point_bytes,
+                view_selection: self.view_selection.name().to_string(),
             })
         })
     }

@@ -62,6 +62,7 @@ pub(crate) fn build_rgba(
         dependent: Some(built.combined),
         rgba: Some(built.scale),
         selector: Default::default(),
+        medium: Default::default(),
         id: next_id(),
         surface_id: 0,
     }))

@@ -2,7 +2,7 @@
 //! and a build without progress.
 
 use super::octree::{build_with, HybridOctreeHandle};
-use super::{CameraDesc, GridDesc, RegionDesc, ScalarType, SelectDesc};
+use super::{CameraDesc, GridDesc, RegionDesc, ScalarType, SelectDesc, ViewDesc};
 
 /// The bytes of an f32 slice, as the C++ side hands them over.
 pub(crate) fn as_bytes(data: &[f32]) -> &[u8] {
@@ -37,6 +37,19 @@ pub(crate) fn select_desc(budget_bytes: usize) -> SelectDesc {
         transfer_2d_rgba: Vec::new(),
         transfer_2d_range: [0.0, 0.0],
         slice_plane: [0.0; 6],
+        view: data_view(),
+    }
+}
+
+/// The data-space selection (no view importance), with a valid camera and viewport.
+pub(crate) fn data_view() -> ViewDesc {
+    ViewDesc {
+        view_selection: 0,
+        camera: ball_camera(),
+        viewport: [64, 64],
+        min_texel_pixels: 1.0,
+        surface_opacity: 0.0,
+        opacity_unit_distance: 1.0,
     }
 }
 
