@@ -8,11 +8,21 @@
 
 #include <algorithm>
 
-void vtkOpenGLHybridOctreeBrickTextures::BeginFrame(std::size_t limitBytes)
+void vtkOpenGLHybridOctreeBrickTextures::BeginFrame(std::size_t limitBytes,
+  const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides)
 {
   ++this->Frame;
   this->LimitBytes = limitBytes;
   this->UploadedBytes = 0;
+  // The frame's resident bricks count as used by it: MakeRoom() passes them by.
+  for (std::size_t i = 0; i < std::min(nodes.size(), strides.size()); ++i)
+  {
+    auto found = this->Entries.find({ nodes[i], strides[i] });
+    if (found != this->Entries.end())
+    {
+      found->second.LastFrame = this->Frame;
+    }
+  }
   // A lower limit (a smaller budget) takes effect at once.
   this->MakeRoom(0);
 }

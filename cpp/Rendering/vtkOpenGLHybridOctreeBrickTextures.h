@@ -59,8 +59,15 @@ public:
     std::uint64_t LastFrame = 0;
   };
 
-  /// Starts a frame whose textures may occupy at most `limitBytes`.
-  void BeginFrame(std::size_t limitBytes);
+  /**
+   * Starts a frame whose textures may occupy at most `limitBytes` and that
+   * draws the bricks (`nodes[i]`, `strides[i]`). Those already resident are
+   * kept: room for the frame's new textures is made from the others only,
+   * least recently used first, so a brick of the last selection that the
+   * new one keeps is never evicted and uploaded again within the frame.
+   */
+  void BeginFrame(std::size_t limitBytes, const std::vector<std::uint32_t>& nodes,
+    const std::vector<std::size_t>& strides);
 
   /**
    * The texture of brick `key` (`texels` per axis) for this frame: the

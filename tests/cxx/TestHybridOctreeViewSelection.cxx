@@ -12,8 +12,8 @@
  *          5: a selection at the first frame, then only when the view has
  *          turned past 5 degrees from the last selection's (every 3rd
  *          frame: 7 in all), 0 ms and no upload for a kept one; the uploaded
- *          bytes per frame are reported and their mean printed. DATA selects
- *          once. A resized window selects again.
+ *          bytes per frame after the first average at most 10 % of the
+ *          budget. DATA selects once. A resized window selects again.
  *   bad_settings: ViewSelection 4, MinTexelPixels -1 and NaN,
  *          ViewChangeDegrees -1: a vtkErrorMacro naming the setting, nothing
  *          drawn, no crash; a good setting draws again.
@@ -174,9 +174,12 @@ int Orbit()
       scene.Window->Render();
       drew = drew && mapper->GetLastRenderOK();
       std::cout << " " << mapper->GetLastUploadedBytes();
-      if (m == 0)
+      if (m == 0 && frame > 0)
       {
         uploaded += static_cast<double>(mapper->GetLastUploadedBytes());
+      }
+      if (m == 0)
+      {
         // Turned 2 degrees a frame: past 5 degrees at every 3rd frame.
         atTheRightFrames = atTheRightFrames && mapper->GetLastReselected() == (frame % 3 == 0);
       }
@@ -193,14 +196,20 @@ int Orbit()
     std::cout << "\n";
   }
   std::cout << "selections over " << frames << " frames: both " << selections[0] << ", data "
-            << selections[1] << "; mean uploaded bytes per frame (both) " << uploaded / frames
-            << "\n";
+            << selections[1] << "; mean uploaded bytes per frame after the first (both) "
+            << uploaded / (frames - 1) << "\n";
   check.Check(drew, "every frame drew:\n" + errors->AllErrors());
   check.Check(selections[0] == 7 && atTheRightFrames,
     "both: a selection every 3rd frame of 2 degrees (7), got " + std::to_string(selections[0]));
   // DATA's key differs from BOTH's: one selection, then kept while the view turns.
   check.Check(selections[1] == 1, "data: one selection, got " + std::to_string(selections[1]));
   check.Check(keptIsFree, "a kept selection takes 0 ms and uploads nothing");
+  // A new selection uploads only the bricks the last one did not hold
+  // (measured 4.8 kB a frame at a 0.3 MB budget; evicting bricks the frame
+  // still draws made it about 36 kB).
+  check.Check(uploaded / (frames - 1) <= 0.1 * 0.3e6,
+    "uploads after the first frame average at most 10 % of the budget, got " +
+      std::to_string(uploaded / (frames - 1)) + " bytes a frame");
   mapper->SetViewSelection(vtkHybridOctreeVolumeMapper::VIEW_SELECTION_BOTH);
   scene.Window->Render();
   scene.Window->Render();
