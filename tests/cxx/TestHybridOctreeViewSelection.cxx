@@ -205,8 +205,7 @@ int Orbit()
   check.Check(selections[1] == 1, "data: one selection, got " + std::to_string(selections[1]));
   check.Check(keptIsFree, "a kept selection takes 0 ms and uploads nothing");
   // A new selection uploads only the bricks the last one did not hold
-  // (measured 4.8 kB a frame at a 0.3 MB budget; evicting bricks the frame
-  // still draws made it about 36 kB).
+  // (measured 4.8 kB a frame at a 0.3 MB budget).
   check.Check(uploaded / (frames - 1) <= 0.1 * 0.3e6,
     "uploads after the first frame average at most 10 % of the budget, got " +
       std::to_string(uploaded / (frames - 1)) + " bytes a frame");
