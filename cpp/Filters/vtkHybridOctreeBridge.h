@@ -164,7 +164,7 @@ struct ViewDescription
   int ViewSelection = 0;
   CameraDescription Camera;           ///< in the octree's frame (the DrawList's)
   std::size_t Viewport[2] = { 1, 1 }; ///< pixels, at least 1 x 1
-  double MinTexelPixels = 0.5;        ///< refinement stops below texels this small (>= 0)
+  double MinTexelPixels = 0.0;        ///< refinement stops below texels this small (>= 0; 0 never)
   double SurfaceOpacity = 0.0;        ///< the isosurface drawn (HasIsovalue): what it hides
   double OpacityUnitDistance = 1.0;   ///< OpacityPoints' distance (ScalarOpacityUnitDistance), > 0
 };

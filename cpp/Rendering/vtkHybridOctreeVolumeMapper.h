@@ -181,7 +181,7 @@ public:
    * VIEW_SELECTION_DATA the data alone; SCREEN also the pixel area a sample
    * covers for the active camera (nodes outside the view count for nothing,
    * near ones more, and refinement stops where a texel is smaller than
-   * MinTexelPixels pixels, default 0.5); VISIBILITY also an estimate of the
+   * MinTexelPixels pixels, default 0: never); VISIBILITY also an estimate of the
    * transmittance in front of each node (nodes behind opaque material or an
    * opaque isosurface count for little); BOTH (the default) both.
    * Visibility applies to Composite blending of one field with no cropping,
@@ -439,7 +439,7 @@ protected:
   vtkTypeBool UseJittering = 0;
   double ErrorTolerance = 0.0;
   int ViewSelection = VIEW_SELECTION_BOTH;
-  double MinTexelPixels = 0.5;
+  double MinTexelPixels = 0.0;
   double ViewChangeDegrees = 5.0;
   bool UseRoi = false;
   double RoiCenter[3] = { 0.0, 0.0, 0.0 };

@@ -14,16 +14,18 @@ use hybrid_octree::Result;
 pub struct ViewArgs {
     /// What the selection weighs nodes by besides their errors: data (the
     /// nodal errors and the region of interest alone), screen (and the
-    /// pixels a texel covers: no refinement below --min-texel-pixels,
+    /// pixels a sample covers, no refinement below --min-texel-pixels,
     /// nothing outside the view), visibility (and the transmittance in
     /// front of each node: little for what the volume or an opaque
     /// isosurface hides), or both.
     #[arg(long, default_value = "both", value_parser = view_selection)]
     pub view_selection: ViewSelection,
     /// Screen-space selection: refinement stops where a texel would cover
-    /// fewer pixels than this (0: never). The default, half a pixel, keeps
-    /// the thin vessels of an angiogram that texels of one pixel blur.
-    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
+    /// fewer pixels than this. The default, 0, never stops: coarse texels
+    /// are samples of the data, not averages, and a one-voxel vessel that a
+    /// stride of 2 skips is missing from the picture however small its
+    /// pixels (docs/BENCHMARKS.md).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub min_texel_pixels: f64,
 }
 

@@ -82,6 +82,10 @@ pub fn select_with_points(
 pub(super) struct Caches {
     memo: Memo,
     steps: NodeMap<(NodeId, usize, usize), NextStep>,
+    /// Per node id: its view weight `Imp_view` and the levels below full
+    /// resolution where its refinement stops ([`ViewImportance`]), NaN
+    /// until computed; empty without a view.
+    seen: std::cell::RefCell<Vec<(f32, u8)>>,
 }
 
 impl Caches {
@@ -252,8 +256,24 @@ impl Refiner<'_> {
     /// the finest whose texels the viewer can tell apart ([`ViewImportance::coarsest_levels`]).
     fn max_p(&self, n: &NodeRef<'_>) -> usize {
         let full = self.root_log2 - n.level;
-        let seen = full.saturating_sub(self.view.map_or(0, |v| v.coarsest_levels(n)));
+        let seen = full.saturating_sub(self.seen(n).1);
         seen.min(self.options.max_brick_log2 as usize)
+    }
+
+    /// `(Imp_view(n), coarsest levels)` of node `n`, computed once per node
+    /// and view (`(1, 0)` without a view).
+    fn seen(&self, n: &NodeRef<'_>) -> (f64, usize) {
+        let Some(view) = self.view else { return (1.0, 0) };
+        let mut seen = self.caches.seen.borrow_mut();
+        if seen.is_empty() {
+            seen.resize(self.octree.layout().node_slots(), (f32::NAN, 0));
+        }
+        let slot = &mut seen[n.id.0 as usize];
+        if slot.0.is_nan() {
+            // Levels below full resolution never exceed the octree's depth (< 64).
+            *slot = (view.weight(n) as f32, view.coarsest_levels(n).min(63) as u8);
+        }
+        (f64::from(slot.0), usize::from(slot.1))
     }
 
     /// The weighted error `Imp(n) e_p(n)` the tolerance is compared with.
@@ -264,7 +284,7 @@ impl Refiner<'_> {
     /// Node `id` drawn at level `p`, with its importance.
     fn brick_of(&self, id: NodeId, p: usize) -> Brick {
         let n = self.octree.node(id);
-        let seen = self.view.map_or(1.0, |v| v.weight(&n));
+        let seen = self.seen(&n).0;
         let mut b = make_brick(
             self.octree,
             &n,

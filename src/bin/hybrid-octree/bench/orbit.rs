@@ -103,6 +103,9 @@ pub fn run(args: &BenchOrbitArgs) -> Result<()> {
             })
             .collect::<Result<_>>()?;
         let options = select_options(&scene, &args.scene, budget, 0.0);
+        // Every row's last frame is drawn from the last camera: one reference.
+        scene.camera = *cameras.last().unwrap_or(&scene.camera);
+        let truth = reference_image(&grid, &scene, &args.scene)?;
         let mut rows = Vec::new();
         for &view in &args.view_selections {
             let mut selector = Selector::default();
@@ -132,9 +135,7 @@ pub fn run(args: &BenchOrbitArgs) -> Result<()> {
                 selected_at = Some(*camera);
             }
             let Some(last) = last else { continue };
-            scene.camera = *cameras.last().unwrap_or(&scene.camera);
             let f = frame(&grid, &scene, &last, &args.scene, None)?;
-            let truth = reference_image(&grid, &scene, &args.scene)?;
             let moves = (args.frames - 1).max(1) as f64;
             rows.push(Row {
                 view: view.name(),
