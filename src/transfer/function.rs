@@ -146,21 +146,6 @@ impl TransferFunction {
             && self.opacity(hi) == 0.0
             && self.opacities.iter().filter(|p| lo < p.0 && p.0 < hi).all(|p| p.1 == 0.0)
     }
-    /// The smallest opacity over `[min, max]` (the bounds in either order):
-    /// exact for a piecewise-linear function, its minimum over an interval
-    /// being at an end or at a point inside. 0 for the empty range of a box
-    /// of NaN only and for a NaN bound (no data is transparent).
-    pub fn min_opacity_over(&self, min: f64, max: f64) -> f32 {
-        if (min == f64::INFINITY && max == f64::NEG_INFINITY) || min.is_nan() || max.is_nan() {
-            return 0.0;
-        }
-        let (lo, hi) = if min <= max { (min, max) } else { (max, min) };
-        self.opacities
-            .iter()
-            .filter(|p| lo < p.0 && p.0 < hi)
-            .map(|p| p.1)
-            .fold(self.opacity(lo).min(self.opacity(hi)), f32::min)
-    }
 }
 
 #[cfg(test)]
@@ -173,22 +158,6 @@ mod tests {
             vec![(0.2, 0.0), (0.4, 0.0), (0.6, 1.0), (0.6, 0.5), (0.8, 0.0)],
         )
         .unwrap()
-    }
-
-    /// The smallest opacity over a range: at an end, at a point inside
-    /// (the step at 0.6 down to 0.5 and the 0 at 0.4), 0 for no data.
-    #[test]
-    fn min_opacity_over_a_range() {
-        let t = tf();
-        assert_eq!(t.min_opacity_over(0.5, 0.55), 0.5);
-        assert_eq!(t.min_opacity_over(0.55, 0.5), 0.5);
-        assert!((t.min_opacity_over(0.5, 0.7) - 0.25).abs() < 1e-6);
-        // 0.75 and 0.375 at the ends, the step at 0.6 (1 then 0.5) inside.
-        assert!((t.min_opacity_over(0.55, 0.65) - 0.375).abs() < 1e-6);
-        assert_eq!(t.min_opacity_over(0.6, 0.6), 0.5);
-        assert_eq!(t.min_opacity_over(0.3, 0.7), 0.0);
-        assert_eq!(t.min_opacity_over(f64::INFINITY, f64::NEG_INFINITY), 0.0);
-        assert_eq!(t.min_opacity_over(f64::NAN, 0.6), 0.0);
     }
 
     #[test]
