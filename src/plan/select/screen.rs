@@ -60,7 +60,7 @@ pub struct ScreenSpace {
 impl ScreenSpace {
     /// The screen space of `camera` on a `width x height` image over a grid
     /// of `shape`; refinement stops below texels of `min_texel_pixels`
-    /// pixels (1 by default in the CLI and the mapper; 0 never stops).
+    /// pixels (0 never stops, the default of the CLI and the mapper).
     pub fn new(
         camera: &Camera,
         width: usize,

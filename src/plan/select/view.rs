@@ -109,7 +109,7 @@ pub struct ViewInputs<'a> {
     pub height: usize,
     /// The grid the octree was built on.
     pub shape: &'a GridShape,
-    /// Refinement stops below texels of this many pixels (1 by default).
+    /// Refinement stops below texels of this many pixels (0: never, the CLI's and the mapper's default).
     pub min_texel_pixels: f64,
     /// The coarse opacities the visibility marches through (made once per
     /// transfer function); none: nothing hides anything (every blend mode
