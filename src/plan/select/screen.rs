@@ -17,8 +17,10 @@
 //! W_s(n)    = min(W_max, (ppc(z_near) / ppc(z_f))^2)                   (z_f: the focal point's depth)
 //! ```
 //!
-//! `S_min` stops refinement where a texel would be smaller than `m` pixels:
-//! finer texels change no pixel the viewer sees. `W_s` weighs the error
+//! `S_min` stops refinement where a texel would be smaller than `m` pixels.
+//! Coarse texels are samples of the data, not averages, so a finer texel
+//! can still change a pixel (a one-voxel vessel a stride of 2 skips): the
+//! CLI and the mapper default to `m = 0`, no stop. `W_s` weighs the error
 //! mass of a node (a sum of squared errors over its samples) by the pixel
 //! area a sample covers, relative to a sample at the focal point: 1
 //! everywhere under a parallel projection. A node entirely outside the view
