@@ -180,6 +180,51 @@ mod tests {
         assert!(took, "no selection took points");
     }
 
+    /// Over a walk of budgets and cameras, each view-dependent selection of
+    /// a `Selector` equals a fresh [`select_in_view`], and a data-space one
+    /// after it equals a fresh [`select`] (the kept view weights go with
+    /// the view).
+    #[test]
+    fn reselection_in_view_equals_a_fresh_selection() {
+        use crate::geometry::camera::Camera;
+        use crate::plan::select::{select_in_view, Medium, ViewImportance, ViewInputs, ViewSelection};
+        let v = generate(Dataset::SheppLogan, 33, ScalarType::F32);
+        let grid = v.grid(None).unwrap();
+        let o = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 4 }).unwrap();
+        let medium = Medium::new(&o, &grid, &|v: f64| 0.3 * v.clamp(0.0, 1.0), 1.0, None).unwrap();
+        let shape = *grid.shape();
+        let mut rng = Lcg(11);
+        let mut selector = Selector::default();
+        let mut options = SelectOptions::new(20_000, 0.0);
+        let mut camera = Camera::around([0.0; 3], [32.0; 3], 0.0, 20.0, false).unwrap();
+        for i in 0..30 {
+            if rng.next() < 0.5 {
+                camera = Camera::around([0.0; 3], [32.0; 3], rng.next() * 360.0, 20.0, rng.next() < 0.3).unwrap();
+            } else {
+                options = change(&mut rng, &options);
+            }
+            let mode = ViewSelection::ALL[(rng.next() * 4.0) as usize];
+            let inputs = ViewInputs {
+                camera: &camera,
+                width: 64,
+                height: 64,
+                shape: &shape,
+                min_texel_pixels: 0.0,
+                medium: Some(&medium),
+            };
+            let view = ViewImportance::new(mode, &inputs).unwrap();
+            let fresh = select_in_view(&o, &options, |_, _| true, None, &view).unwrap();
+            let again = selector.select_in_view(&o, &options, |_, _| true, None, Some(&view)).unwrap();
+            assert_eq!(again, fresh, "step {i}: {mode:?} {options:?}");
+            if i % 5 == 4 {
+                assert_eq!(
+                    selector.select(&o, &options, |_, _| true).unwrap(),
+                    select(&o, &options, |_, _| true).unwrap()
+                );
+            }
+        }
+    }
+
     /// Bad options are the fresh selection's errors, and the `Selector`
     /// selects as before after one.
     #[test]
