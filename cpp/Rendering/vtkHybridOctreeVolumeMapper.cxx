@@ -1213,11 +1213,8 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   }
   in.Drawer.SetTransfer2D(transfer2D, list.Transfer2DAxes);
   const std::size_t border = bordered ? 1 : 0;
-  {
-    const std::vector<std::uint32_t> nodes(list.NodeId.begin(), list.NodeId.begin() + bricks);
-    const std::vector<std::size_t> strides(list.Stride.begin(), list.Stride.begin() + bricks);
-    in.Bricks.BeginFrame(static_cast<std::size_t>(std::max(textureBudget, 0.0)), nodes, strides);
-  }
+  in.Bricks.BeginFrame(
+    static_cast<std::size_t>(std::max(textureBudget, 0.0)), list.NodeId, list.Stride);
   textures.assign(bricks, nullptr);
   // The frame's geometry is made from each brick's block ranges (kept with its texture).
   geometryInput.BlockRanges.assign(bricks, nullptr);

@@ -29,7 +29,8 @@ pub struct ViewArgs {
     pub min_texel_pixels: f64,
 }
 
-fn view_selection(s: &str) -> std::result::Result<ViewSelection, String> {
+/// `--view-selection` and `--view-selections`: data, screen, visibility or both.
+pub fn view_selection(s: &str) -> std::result::Result<ViewSelection, String> {
     s.parse::<ViewSelection>().map_err(|e| e.to_string())
 }
 

@@ -122,7 +122,7 @@ impl Medium {
         let per_node: Vec<(f64, u8)> = (0..count)
             .into_par_iter()
             .map(|i| {
-                let c = [i % dims[0], (i / dims[0]) % dims[1], i / (dims[0] * dims[1])];
+                let c = coords(i, dims);
                 let n = octree.node(layout.id(coarse, c));
                 let (alpha, nan) = mean_opacity(grid, n.lo, n.hi, opacity);
                 let side = match occluder {
@@ -150,6 +150,11 @@ impl Medium {
     fn at(&self, c: [usize; 3]) -> usize {
         c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
     }
+}
+
+/// The coordinates of node `i` of a level with `d` nodes per axis, x fastest.
+fn coords(i: usize, d: [usize; 3]) -> [usize; 3] {
+    [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])]
 }
 
 /// The mean opacity of the samples of the box `[lo, hi]`, every `q`-th per
@@ -193,7 +198,7 @@ impl Transmittance {
             let d = fd.map(|n| n.div_ceil(2));
             let mut up = vec![0.0f32; d[0] * d[1] * d[2]];
             for (i, v) in up.iter_mut().enumerate() {
-                let c = [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])];
+                let c = coords(i, d);
                 for child in 0..8 {
                     let f = [0, 1, 2].map(|a| 2 * c[a] + (child >> a & 1));
                     if f.iter().zip(&fd).all(|(x, n)| x < n) {
@@ -227,7 +232,7 @@ fn erode_sides(m: &mut Medium, axis: usize) {
     let side = m.side.clone();
     let d = m.dims;
     for i in 0..side.len() {
-        let c = [i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1])];
+        let c = coords(i, d);
         for step in [-1isize, 1] {
             let v = c[axis] as isize + step;
             if v < 0 || v >= d[axis] as isize {

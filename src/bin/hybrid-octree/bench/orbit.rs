@@ -45,15 +45,11 @@ pub struct BenchOrbitArgs {
     #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
     view_change: f64,
     /// The view selections measured.
-    #[arg(long, value_delimiter = ',', default_value = "data,screen,visibility,both", value_parser = view_selection)]
+    #[arg(long, value_delimiter = ',', default_value = "data,screen,visibility,both", value_parser = crate::view::view_selection)]
     view_selections: Vec<ViewSelection>,
     /// Print the rows as a JSON array instead of a table.
     #[arg(long)]
     json: bool,
-}
-
-fn view_selection(s: &str) -> std::result::Result<ViewSelection, String> {
-    s.parse::<ViewSelection>().map_err(|e| e.to_string())
 }
 
 /// One view selection's orbit.

@@ -59,7 +59,7 @@ pub struct BenchRenderArgs {
     plot: Option<PathBuf>,
     /// View-dependent selections measured beside the data-space one at each
     /// stride's bytes (rows "octree" with their `view`): screen, visibility, both.
-    #[arg(long, value_delimiter = ',', default_value = "screen,visibility,both", value_parser = view_selection)]
+    #[arg(long, value_delimiter = ',', default_value = "screen,visibility,both", value_parser = crate::view::view_selection)]
     view_selections: Vec<ViewSelection>,
     /// Print the rows as a JSON array instead of a table.
     #[arg(long)]
@@ -178,10 +178,6 @@ struct Points<'a> {
     low: Option<&'a Grid<'a>>,
     footprint: Footprint,
     ms: f64,
-}
-
-fn view_selection(s: &str) -> std::result::Result<ViewSelection, String> {
-    s.parse::<ViewSelection>().map_err(|e| e.to_string())
 }
 
 fn measure(b: &Bench<'_, '_>, m: Method, selection: Selection, select_ms: f64) -> Result<Row> {
