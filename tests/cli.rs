@@ -242,6 +242,21 @@ fn nan_samples_are_counted_and_infinity_is_refused() {
     let report: serde_json::Value = serde_json::from_slice(&surface.stdout).unwrap();
     assert!(report["nan_boundary_edges"].as_u64().unwrap() > 0, "{report}");
     assert_eq!(report["nonmanifold_edges"], 0);
+    // Every view selection renders the holes, with and without an isosurface to hide behind.
+    let png = temp("nan-view.png");
+    for view in ["data", "screen", "visibility", "both"] {
+        for iso in [&["--isovalue", "-3.5"][..], &[][..]] {
+            let args = [&["render", "--view-selection", view, "--width", "16", "--height", "16", "--json"][..], iso];
+            let out = run(&[&args.concat(), &base[..], &["--output", png.to_str().unwrap()][..]].concat());
+            assert!(out.status.success(), "{view}: {}", stderr(&out));
+            let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+            assert_eq!(report["view_selection"], view.to_string()[..1].to_uppercase() + &view[1..], "{report}");
+        }
+    }
+    let bad =
+        run(&[&["render", "--min-texel-pixels", "-1", "--output", png.to_str().unwrap()][..], &base[..]].concat());
+    assert_clean_failure(&bad, "smallest texel -1");
+    std::fs::remove_file(&png).ok();
     values[13] = f32::INFINITY;
     write(&values);
     let out = run(&[&["build"], &base[..]].concat());
