@@ -662,6 +662,11 @@ bool Selection::SetJittering(bool on, std::string& error) const
   return Guarded(error, [&] { HandleFor(this->Impl).set_jittering(on); });
 }
 
+bool Selection::SetSampleDistance(double distance, std::string& error) const
+{
+  return Guarded(error, [&] { HandleFor(this->Impl).set_sample_distance(distance); });
+}
+
 bool Selection::SetScattering(const ScatteringDescription& scattering, std::string& error) const
 {
   return Guarded(error, [&] {

@@ -760,6 +760,15 @@ public:
   bool SetJittering(bool on, std::string& error) const;
 
   /**
+   * The ray sample distance (model units; VTK's SampleDistance) of the
+   * DrawLists and pictures made after this call: the Isosurface blend mode
+   * and the 2D transfer function slice every distance / d0 of a lattice step
+   * when it is below d0 (effect "sample-distance", src/plan/sampling.rs); 0:
+   * one slice a lattice step. False and `error` for a negative distance.
+   */
+  bool SetSampleDistance(double distance, std::string& error) const;
+
+  /**
    * The volumetric scattering of the DrawLists and pictures made after this
    * call (the plan's effects then say "volume-scattering" when it runs: Shade
    * with a light, Composite, blending above 0). False and `error` on failure

@@ -955,6 +955,13 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
     this->ChooseSelection(ren, property) && this->UpdateSurface();
 }
 
+double vtkHybridOctreeVolumeMapper::ActualSampleDistance() const
+{
+  return this->SampleDistance >= 0.0 ? this->SampleDistance
+                                     : vtkHybridOctreeTransfer2D::SmartSampleDistance(
+                                         this->Internals->Grid.Spacing, this->Internals->Grid.Dims);
+}
+
 CameraDescription vtkHybridOctreeVolumeMapper::ModelCamera(vtkRenderer* ren) const
 {
   // The camera in the octree's frame: position and focal point through the
@@ -988,6 +995,7 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   const bool ok = in.Frame->Selected->SetShading(in.Shading, error) &&
     in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) &&
     in.Frame->Selected->SetJittering(this->UseJittering != 0, error) &&
+    in.Frame->Selected->SetSampleDistance(this->ActualSampleDistance(), error) &&
     in.Frame->Selected->SetScattering(in.ScatteringParameters, error) &&
     in.Frame->Selected->GetDrawList(
       *in.Octree, cam, surface ? this->SurfaceOpacity : 0.0, list, error);
@@ -1608,6 +1616,7 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   if (!in.Frame->Selected->SetShading(in.Shading, error) ||
     !in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) ||
     !in.Frame->Selected->SetJittering(this->UseJittering != 0, error) ||
+    !in.Frame->Selected->SetSampleDistance(this->ActualSampleDistance(), error) ||
     !in.Frame->Selected->SetScattering(in.ScatteringParameters, error) ||
     !in.Frame->Selected->Composite(*in.Octree, this->ModelCamera(ren), Bytes(in.Scalars),
       ByteCount(in.Scalars), in.Grid, scene, static_cast<std::size_t>(width),
@@ -1665,6 +1674,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinTexelPixels: " << this->MinTexelPixels << "\n";
   os << indent << "ViewChangeDegrees: " << this->ViewChangeDegrees << "\n";
   os << indent << "Transfer2DSampleDistance: " << this->Transfer2DSampleDistance << "\n";
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "UsePoints: " << this->UsePoints << "\n";
   os << indent << "PointFactor: " << this->PointFactor << "\n";
   os << indent << "PointThreshold: " << this->PointThreshold << "\n";

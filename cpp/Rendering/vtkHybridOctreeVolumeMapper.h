@@ -277,6 +277,23 @@ public:
 
   ///@{
   /**
+   * The ray sample distance (model units) of the effects whose
+   * classification aliases at one sample a lattice step: the Isosurface
+   * blend mode (crossings between consecutive samples) and the 2D transfer
+   * function (the table's gradient rows). When it is below the reference
+   * spacing d0, their slices are refined to it (LastEffects then has
+   * "sample-distance"; src/plan/sampling.rs); other frames keep one slice a
+   * lattice step. Below 0 (the default): vtkSmartVolumeMapper's still
+   * frames, ParaView's *Volume* (half the mean spacing, less below 100
+   * samples a side); 0: never refined; give vtkGPUVolumeRayCastMapper's
+   * sample distance to match that mapper.
+   */
+  vtkSetMacro(SampleDistance, double);
+  vtkGetMacro(SampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * Volumetric scattering as vtkGPUVolumeRayCastMapper draws it (VTK 9.2;
    * src/transfer/scattering.rs), with the property's Shade on, a light, and
    * Composite blending: VolumetricScatteringBlending in [0, 2] (0 none, the
@@ -449,6 +466,9 @@ protected:
   double SurfaceColor[3] = { 1.0, 1.0, 1.0 };
   double SurfaceOpacity = 1.0;
   double Transfer2DSampleDistance = -1.0;
+  double SampleDistance = -1.0;
+  /// SampleDistance, its default resolved for the current input.
+  double ActualSampleDistance() const;
   double VolumetricScatteringBlending = 0.0;
   double GlobalIlluminationReach = 0.0;
   double ScatteringSampleDistance = -1.0;

@@ -473,9 +473,10 @@ void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::Dr
   this->Program->SetUniform3f("brickLo", lo);
   this->Program->SetUniform3f("inverseStep", inverseStep);
   this->Program->SetUniform3f("texels", n);
-  // A ray-marched brick samples every max(d, SampleSpacing d0) along the
-  // view (both powers of two times d0: still a shared lattice), its opacity
-  // corrected for that spacing.
+  // A ray-marched brick of a frame that widens its spacing (SampleSpacing
+  // m > 1) samples every max(d, m d0) along the view (both powers of two
+  // times d0, or of the list's refined spacing: still a shared lattice), its
+  // opacity corrected for that spacing; d otherwise.
   const double d = list.SliceSpacing[i];
   const double along = this->SampleSpacingOf(list, i);
   this->Program->SetUniformf(
@@ -499,7 +500,9 @@ double vtkOpenGLHybridOctreeBrickDrawer::SampleSpacingOf(
   const vtkHybridOctreeBridge::DrawList& list, std::size_t i) const
 {
   const double d = list.SliceSpacing[i];
-  return this->IsRayMarched(i) ? std::max(d, this->SampleSpacing * list.ReferenceSpacing) : d;
+  return this->IsRayMarched(i) && this->SampleSpacing > 1
+    ? std::max(d, this->SampleSpacing * list.ReferenceSpacing)
+    : d;
 }
 
 void vtkOpenGLHybridOctreeBrickDrawer::SetJitter(

@@ -295,7 +295,7 @@ private:
   /// P: the largest sample spacing of the list's bricks.
   double JitterPeriod = 0.0;
   /// Brick i's sample spacing along the view: max(d, SampleSpacing d0)
-  /// ray-marched, d as slices.
+  /// ray-marched in a frame that widens it (SampleSpacing > 1), else d.
   double SampleSpacingOf(const vtkHybridOctreeBridge::DrawList& list, std::size_t i) const;
   vtkHybridOctreeBridge::ShadingDescription Shading;
   vtkHybridOctreeBridge::RegionDescription Region;

@@ -924,6 +924,14 @@ mod bridge {
         /// between the slices; see `plan::jitter`).
         fn set_jittering(self: &SelectionHandle, on: bool) -> Result<()>;
 
+        /// The ray sample distance (world units; VTK's SampleDistance) of the
+        /// DrawLists and pictures made after this call: the Isosurface blend
+        /// mode and the 2D transfer function slice every `distance / d0` of
+        /// a lattice step when it is below `d0` (effect "sample-distance";
+        /// see `plan::sampling`); 0 (the default): one slice a lattice step.
+        /// A negative or non-finite distance is an error.
+        fn set_sample_distance(self: &SelectionHandle, distance: f64) -> Result<()>;
+
         /// Floats of the block ranges of a brick of `dims` texels (x, y, z):
         /// 2 per block of 4^3 cells (see `plan::draw_geometry::occupancy`).
         fn block_ranges_len(dims: &[usize]) -> Result<usize>;

@@ -77,6 +77,9 @@ pub struct SelectionHandle {
     scalar_type: crate::data::grid::ScalarType,
     /// Whether its DrawLists jitter ([`SelectionHandle::set_jittering`]).
     jittering: std::sync::atomic::AtomicBool,
+    /// The ray sample distance of the aliasing effects, as `f64` bits (0: none;
+    /// [`SelectionHandle::set_sample_distance`]).
+    sample_distance: std::sync::atomic::AtomicU64,
     /// The volumetric scattering of its DrawLists (`super::scattering`).
     pub(crate) scattering: Mutex<Option<crate::transfer::Scattering>>,
     /// The view importance it was weighed by (`super::view`).
@@ -455,6 +458,7 @@ impl HybridOctreeHandle {
                 rgba: self.rgba,
                 scalar_type: self.scalar_type,
                 jittering: Default::default(),
+                sample_distance: Default::default(),
                 scattering: Mutex::new(None),
                 view_selection,
             }))
@@ -506,6 +510,8 @@ impl SelectionHandle {
         let scattering = *self.scattering.lock().unwrap_or_else(|e| e.into_inner());
         let list = crate::plan::scattering::plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
         let list = recrop(list, self.region.as_ref(), &octree.shape);
+        let s = f64::from_bits(self.sample_distance.load(std::sync::atomic::Ordering::Relaxed));
+        let list = crate::plan::sampling::plan_sample_distance(list, Some(s).filter(|&s| s > 0.0));
         Ok(crate::plan::jitter::plan_jitter(list, self.jittering.load(std::sync::atomic::Ordering::Relaxed)))
     }
 
@@ -627,6 +633,20 @@ impl SelectionHandle {
     pub(crate) fn set_jittering(&self, on: bool) -> Bridged<()> {
         guarded(|| {
             self.jittering.store(on, std::sync::atomic::Ordering::Relaxed);
+            Ok(())
+        })
+    }
+
+    /// The ray sample distance of the DrawLists made after this call
+    /// ([`crate::plan::sampling`]; 0: the stride's slices).
+    pub(crate) fn set_sample_distance(&self, distance: f64) -> Bridged<()> {
+        guarded(|| {
+            if !(distance >= 0.0 && distance.is_finite()) {
+                return Err(crate::Error::InvalidArgument(format!(
+                    "sample distance {distance}: give a positive number of world units, or 0 for one slice a lattice step"
+                )));
+            }
+            self.sample_distance.store(distance.to_bits(), std::sync::atomic::Ordering::Relaxed);
             Ok(())
         })
     }

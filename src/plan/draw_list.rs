@@ -114,6 +114,10 @@ pub struct Plan {
     /// Volumetric scattering (the DrawList's [`DrawList::scattering`],
     /// [`crate::plan::scattering`]): shadow rays towards the lights.
     pub scattering: bool,
+    /// The ray sample distance `s` the slices were refined to
+    /// ([`crate::plan::sampling`], effect `sample-distance`): every brick's
+    /// slice spacing is `(s / d0)` of its stride's. `None`: the stride's.
+    pub sample_distance: Option<f64>,
 }
 
 impl Plan {
@@ -261,6 +265,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         effects: Vec::new(),
         jitter: false,
         scattering: false,
+        sample_distance: None,
     };
     if volume {
         plan.passes.push(scene.blend.mode.pass());
@@ -317,13 +322,16 @@ pub(crate) const DEPENDENT_EFFECT: &str = "dependent-components";
 /// The effect of an RGBA volume's four dependent fields ([`crate::plan::dependent::RGBA_EFFECT`]).
 pub(crate) const RGBA_COMPONENTS_EFFECT: &str = "rgba-components";
 
+/// The effect of refined slices ([`crate::plan::sampling::EFFECT`]).
+pub(crate) const SAMPLE_DISTANCE_EFFECT: &str = "sample-distance";
+
 /// The effect of jittering ([`crate::plan::jitter::EFFECT`]).
 pub(crate) const JITTER_EFFECT: &str = "jittering";
 
 /// The plan's [`Plan::effects`]: what each sample does besides its
 /// classification, in the order applied (`dependent-components`,
 /// `rgba-components` or `transfer-2d`, then `gradient-opacity` or `opacity-scale`, then `shading`, then `volume-scattering`), then what `region` (the cropping and
-/// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`), then `jittering`.
+/// planes acting on the volume, see [`crops`]) removes (`cropping`, `clipping`), then `sample-distance`, then `jittering`.
 pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
     let mut effects = Vec::new();
     if plan.dependent {
@@ -347,6 +355,9 @@ pub(crate) fn effects(plan: &Plan, region: Option<&KeptRegion>) -> Vec<String> {
         effects.push(SCATTERING_EFFECT.to_string());
     }
     effects.extend(region.map(|r| r.effects()).unwrap_or_default());
+    if plan.sample_distance.is_some() {
+        effects.push(SAMPLE_DISTANCE_EFFECT.to_string());
+    }
     if plan.jitter {
         effects.push(JITTER_EFFECT.to_string());
     }

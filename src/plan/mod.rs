@@ -6,7 +6,8 @@
 //! a scene needs and what each draws, [`crop`] says which samples VTK's
 //! cropping and clipping planes keep, [`dependent`] plans a two-field volume
 //! with dependent components, [`jitter`] moves each pixel's samples by a
-//! fixed fraction of the slice spacing, [`slice`](mod@slice) is the Slice blend mode's
+//! fixed fraction of the slice spacing, [`sampling`] refines the slices of
+//! the effects that alias at one sample a lattice step, [`slice`](mod@slice) is the Slice blend mode's
 //! plane, [`texel_format`] says what a texel costs and holds, and [`draw_geometry`] makes the OpenGL
 //! mapper's vertices of a draw list.
 
@@ -18,6 +19,7 @@ mod draw_list;
 pub mod jitter;
 pub mod order;
 pub mod point_slabs;
+pub mod sampling;
 pub mod scattering;
 pub mod select;
 pub mod slab;

@@ -46,6 +46,8 @@ mod jitter_tests;
 #[cfg(test)]
 mod rgba_tests;
 #[cfg(test)]
+mod sampling_tests;
+#[cfg(test)]
 mod slice_tests;
 #[cfg(test)]
 mod tests;

@@ -63,6 +63,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         effects: Vec::new(),
         jitter: false,
         scattering: false,
+        sample_distance: None,
     };
     DrawList {
         plan,

@@ -706,6 +706,7 @@ mod tests {
                 effects: Vec::new(),
                 jitter: false,
                 scattering: false,
+                sample_distance: None,
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),
             bricks: vec![BrickDraw {

@@ -153,6 +153,7 @@ int Gpu()
   mapper->SetBudgetMB(4.0);
   // VTK's alpha is per its sample distance, here 1 (vtkSmartVolumeMapper's otherwise).
   mapper->SetTransfer2DSampleDistance(1.0);
+  mapper->SetSampleDistance(1.0);
   Scene ours(mapper);
   vtkNew<vtkGPUVolumeRayCastMapper> gpu;
   gpu->AutoAdjustSampleDistancesOff();

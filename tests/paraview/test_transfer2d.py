@@ -10,18 +10,20 @@ TF_2D mode on). A 64^3 Shepp-Logan phantom in one view, a TransferFunction2D
 of two boxes built from Python (GetTransferFunction2D, Range, Boxes,
 OutputDimensions): the soft tissue at low gradient and the bright structures
 at high gradient. ParaView's "Volume" representation against "Hybrid Octree
-Volume" at the default budget: RMSE at most 0.05 (measured 0.044), the
-effects "transfer-2d"; the picture differs from the 1D transfer function's (RMSE
-above 0.01); UseTransfer2D off again: no effect, the 1D picture (RMSE
-below 0.002).
+Volume" at the default budget: RMSE at most 0.03 (measured 0.0155), the
+effects "transfer-2d,sample-distance"; the picture differs from the 1D
+transfer function's (RMSE above 0.01); UseTransfer2D off again: no effect,
+the 1D picture (RMSE below 0.002).
 
-Why 0.05 and not 0.03: VTK takes the 2D table's alpha uncorrected at its
-sample distance (vtkSmartVolumeMapper's still frames: 0.32 voxel here), the
-mapper converts it to its reference spacing and samples each brick on its
-slice lattice; on the phantom's one-voxel steps each sample's gradient
-magnitude (the table's y) jumps between rows, so the two sample lattices
-classify the steps differently (the fine moire of either picture). Without
-the conversion the RMSE is 0.139: the conversion is what is tested.
+VTK takes the 2D table's alpha uncorrected at its sample distance s
+(vtkSmartVolumeMapper's still frames: 0.32 voxel here) and reads the row of
+each sample's gradient magnitude (central differences one voxel apart,
+|g| s_mean / (range / 4)): the mapper converts the alpha to its reference
+spacing d0 and, as the table's rows alias on the phantom's one-voxel steps
+at one sample a voxel, slices at VTK's s (src/plan/sampling.rs). Measured at
+one slice a voxel: 0.044; VTK's own picture at s = 1 voxel is 0.13 from its
+picture at 0.32, and 0.018 between 0.316 and 0.317 (the lattice's phase
+alone). Without the alpha conversion the RMSE is 0.139.
 """
 import os
 import sys
@@ -80,8 +82,9 @@ two_d = screenshot(view, "hybrid-transfer2d")
 error = rmse(two_d, baseline)
 change = rmse(two_d, one_d)
 report("2D transfer function: RMSE %.4f against ParaView's Volume, %.4f against the 1D picture" % (error, change))
-t.check(effects(display) == "transfer-2d", "effects 'transfer-2d': %r" % effects(display))
-t.check(error <= 0.05, "RMSE %.4f against ParaView's Volume with the 2D transfer function (threshold 0.05)" % error)
+t.check(effects(display) == "transfer-2d,sample-distance",
+        "effects 'transfer-2d,sample-distance': %r" % effects(display))
+t.check(error <= 0.03, "RMSE %.4f against ParaView's Volume with the 2D transfer function (threshold 0.03)" % error)
 t.check(change > 0.01, "the 2D transfer function shows: RMSE %.4f against the 1D picture" % change)
 use_2d(display, False)
 again = screenshot(view, "hybrid-1d-again")
