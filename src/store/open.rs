@@ -251,61 +251,71 @@ impl Store {
     }
 
     /// Level `p`'s box of a store without that level: the full-resolution
-    /// box read plane by plane at the level's positions.
+    /// box read, then its samples at the level's positions.
     fn read_subsampled(&self, p: usize, lo: [usize; 3], hi: [usize; 3]) -> Result<SampleBuf> {
         let dims = self.shape.dims;
-        let pos = |a: usize, i: usize| level_position(dims[a], p, i);
-        let mut out = Vec::new();
-        for k in lo[2]..=hi[2] {
-            let z = pos(2, k);
-            let plane =
-                self.read_box(&self.levels[0], [pos(0, lo[0]), pos(1, lo[1]), z], [pos(0, hi[0]), pos(1, hi[1]), z])?;
-            let w = pos(0, hi[0]) - pos(0, lo[0]) + 1;
-            out.push(pick(
-                &plane,
-                w,
-                (lo[1]..=hi[1]).map(|j| pos(1, j) - pos(1, lo[1])),
-                (lo[0]..=hi[0]).map(|i| pos(0, i) - pos(0, lo[0])),
-            ));
+        let first = [0, 1, 2].map(|a| level_position(dims[a], p, lo[a]));
+        let last = [0, 1, 2].map(|a| level_position(dims[a], p, hi[a]));
+        let n = [0, 1, 2].map(|a| last[a] - first[a] + 1);
+        check_memory(
+            (n[0] * n[1] * n[2] * self.scalar_type.size()) as u128,
+            &format!("a full-resolution {n:?} box of '{}' (it has no stride-{} level)", self.label, 1u64 << p),
+            "write the store with `hybrid-octree convert`, which keeps every stride as a level",
+        )?;
+        let full = self.read_box(&self.levels[0], first, last)?;
+        let index = |a: usize| (lo[a]..=hi[a]).map(|i| level_position(dims[a], p, i) - first[a]).collect::<Vec<_>>();
+        Ok(gather(&full, n, [index(0), index(1), index(2)]))
+    }
+
+    /// The `n` samples per axis of level `p` starting at index `first`
+    /// (which may lie outside the level), each index clamped to the level:
+    /// a brick texture with its gradient border repeats the volume's last
+    /// sample beyond its faces.
+    ///
+    /// # Errors
+    ///
+    /// As [`Self::read_level_box`].
+    pub fn read_clamped(&self, p: usize, first: [i64; 3], n: [usize; 3]) -> Result<Volume> {
+        let m = level_dims(self.shape.dims, p);
+        let clamp = |a: usize, i: i64| i.clamp(0, m[a] as i64 - 1) as usize;
+        let lo = [0, 1, 2].map(|a| clamp(a, first[a]));
+        let hi = [0, 1, 2].map(|a| clamp(a, first[a] + n[a] as i64 - 1));
+        let inner = self.read_level_box(p, lo, hi)?;
+        if (0..3).all(|a| first[a] == lo[a] as i64 && hi[a] - lo[a] + 1 == n[a]) {
+            return Ok(inner);
         }
-        Ok(concat(self.scalar_type, out))
+        let index = |a: usize| (0..n[a]).map(|i| clamp(a, first[a] + i as i64) - lo[a]).collect::<Vec<_>>();
+        let got = [0, 1, 2].map(|a| hi[a] - lo[a] + 1);
+        let samples = gather(&inner.samples, got, [index(0), index(1), index(2)]);
+        let mut v = Volume::new(samples, n, inner.name);
+        v.shape.spacing = inner.shape.spacing;
+        v.shape.origin = inner.shape.origin;
+        Ok(v)
     }
 }
 
-/// The values of `plane` (rows of `w`) at rows `js` and columns `is`.
-fn pick(
-    plane: &SampleBuf,
-    w: usize,
-    js: impl Iterator<Item = usize> + Clone,
-    is: impl Iterator<Item = usize> + Clone,
-) -> SampleBuf {
-    fn take<T: Copy>(
-        v: &[T],
-        w: usize,
-        js: impl Iterator<Item = usize>,
-        is: impl Iterator<Item = usize> + Clone,
-    ) -> Vec<T> {
-        js.flat_map(|j| is.clone().map(move |i| v[i + w * j])).collect()
+/// The samples of `buf` (dims `n`, x fastest) at the index lists per axis.
+fn gather(buf: &SampleBuf, n: [usize; 3], index: [Vec<usize>; 3]) -> SampleBuf {
+    fn take<T: Copy>(v: &[T], n: [usize; 3], index: &[Vec<usize>; 3]) -> Vec<T> {
+        let mut out = Vec::with_capacity(index[0].len() * index[1].len() * index[2].len());
+        for &k in &index[2] {
+            for &j in &index[1] {
+                let row = n[0] * (j + n[1] * k);
+                out.extend(index[0].iter().map(|&i| v[row + i]));
+            }
+        }
+        out
     }
-    match plane {
-        SampleBuf::U8(v) => SampleBuf::U8(take(v, w, js, is)),
-        SampleBuf::I8(v) => SampleBuf::I8(take(v, w, js, is)),
-        SampleBuf::U16(v) => SampleBuf::U16(take(v, w, js, is)),
-        SampleBuf::I16(v) => SampleBuf::I16(take(v, w, js, is)),
-        SampleBuf::U32(v) => SampleBuf::U32(take(v, w, js, is)),
-        SampleBuf::I32(v) => SampleBuf::I32(take(v, w, js, is)),
-        SampleBuf::F32(v) => SampleBuf::F32(take(v, w, js, is)),
-        SampleBuf::F64(v) => SampleBuf::F64(take(v, w, js, is)),
+    match buf {
+        SampleBuf::U8(v) => SampleBuf::U8(take(v, n, &index)),
+        SampleBuf::I8(v) => SampleBuf::I8(take(v, n, &index)),
+        SampleBuf::U16(v) => SampleBuf::U16(take(v, n, &index)),
+        SampleBuf::I16(v) => SampleBuf::I16(take(v, n, &index)),
+        SampleBuf::U32(v) => SampleBuf::U32(take(v, n, &index)),
+        SampleBuf::I32(v) => SampleBuf::I32(take(v, n, &index)),
+        SampleBuf::F32(v) => SampleBuf::F32(take(v, n, &index)),
+        SampleBuf::F64(v) => SampleBuf::F64(take(v, n, &index)),
     }
-}
-
-/// The buffers one after the other.
-fn concat(t: ScalarType, parts: Vec<SampleBuf>) -> SampleBuf {
-    let mut bytes = Vec::with_capacity(parts.iter().map(|p| p.as_bytes().len()).sum());
-    for p in &parts {
-        bytes.extend_from_slice(p.as_bytes());
-    }
-    SampleBuf::from_bytes(&bytes, t, cfg!(target_endian = "big"))
 }
 
 #[cfg(test)]
