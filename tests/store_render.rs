@@ -23,7 +23,9 @@ use hybrid_octree::transfer::lighting::{Lighting, Material};
 
 #[test]
 fn a_store_draws_the_in_core_picture() {
-    for (dataset, size, ty) in [(Dataset::SheppLogan, 45, ScalarType::U8), (Dataset::MarschnerLobb, 37, ScalarType::F32)] {
+    for (dataset, size, ty) in
+        [(Dataset::SheppLogan, 45, ScalarType::U8), (Dataset::MarschnerLobb, 37, ScalarType::F32)]
+    {
         let volume = generate(dataset, size, ty);
         let grid = volume.grid(None).unwrap();
         let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 8 }).unwrap();

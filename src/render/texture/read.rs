@@ -32,7 +32,7 @@ pub fn upload_read(
     if list.plan.blend.mode.is_extremum() && list.bricks.iter().any(|d| d.brick.stride > 1) {
         return Err(Error::InvalidArgument(
             "maximum and minimum intensity need each coarse texel's peak over its stride, which a store's \
-             subsampled levels do not hold: read the volume into memory (a smaller file), or raise the budget \
+             subsampled levels do not hold: read the volume into memory (the CLI's --in-memory), or raise the budget \
              so that every brick is at full resolution"
                 .into(),
         ));
@@ -58,23 +58,21 @@ pub fn upload_read(
     };
     let fail = |e: Option<Error>| e.unwrap_or_else(|| Error::InvalidArgument("a texel value has no code".into()));
     let texels = match enc.format {
-        TexelFormat::Unorm8 => Texels::U8(make(list, &one, how, |v| Some(code(v) as u8), (step, enc.bias)).map_err(fail)?),
-        TexelFormat::Unorm16 => Texels::U16(make(list, &one, how, |v| Some(code(v) as u16), (step, enc.bias)).map_err(fail)?),
-        TexelFormat::Float16 => Texels::F16(make(
-            list,
-            &one,
-            how,
-            |v| Some(half::f16::from_bits(code(v) as u16)),
-            (enc.scale, enc.bias),
-        )
-        .map_err(fail)?),
-        TexelFormat::Auto | TexelFormat::Float32 => {
-            match make(list, &one, how, f32::exact, (1.0, 0.0)) {
-                Ok(t) => Texels::F32(t),
-                Err(None) => Texels::F64(make(list, &one, how, f64::exact, (1.0, 0.0)).map_err(fail)?),
-                Err(Some(e)) => return Err(e),
-            }
+        TexelFormat::Unorm8 => {
+            Texels::U8(make(list, &one, how, |v| Some(code(v) as u8), (step, enc.bias)).map_err(fail)?)
         }
+        TexelFormat::Unorm16 => {
+            Texels::U16(make(list, &one, how, |v| Some(code(v) as u16), (step, enc.bias)).map_err(fail)?)
+        }
+        TexelFormat::Float16 => Texels::F16(
+            make(list, &one, how, |v| Some(half::f16::from_bits(code(v) as u16)), (enc.scale, enc.bias))
+                .map_err(fail)?,
+        ),
+        TexelFormat::Auto | TexelFormat::Float32 => match make(list, &one, how, f32::exact, (1.0, 0.0)) {
+            Ok(t) => Texels::F32(t),
+            Err(None) => Texels::F64(make(list, &one, how, f64::exact, (1.0, 0.0)).map_err(fail)?),
+            Err(Some(e)) => return Err(e),
+        },
     };
     Ok(Textures { shape: *shape, texels })
 }
