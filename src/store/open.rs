@@ -21,7 +21,8 @@ use crate::octree::layout::Layout;
 use crate::octree::VolumeOctree;
 use std::path::Path;
 use std::sync::Arc;
-use zarrs::array::{Array, ArraySubset};
+use zarrs::array::{Array, ArrayShardedReadableExt, ArrayShardedReadableExtCache, ArraySubset};
+use zarrs::array::CodecOptions;
 use zarrs::group::Group;
 
 /// An open OME-Zarr image.
@@ -39,6 +40,8 @@ pub struct Store {
     /// What the reader left out or assumed, for the user.
     pub warnings: Vec<String>,
     levels: Vec<Array<Storage>>,
+    /// Per level, the shard indexes read so far (a few bytes per subchunk of a shard touched).
+    shard_indexes: Vec<ArrayShardedReadableExtCache>,
     leading: usize,
     own: Option<Metadata>,
 }
@@ -137,9 +140,11 @@ impl Store {
             None => vec![first],
         };
         let name = own.as_ref().map_or_else(|| "image".to_string(), |m| m.name.clone());
+        let shard_indexes = levels.iter().map(ArrayShardedReadableExtCache::new).collect();
         Ok(Store {
             label,
             storage,
+            shard_indexes,
             shape: GridShape { dims, spacing: multiscale.spacing, origin: multiscale.origin },
             scalar_type,
             name,
@@ -208,7 +213,7 @@ impl Store {
             "read a smaller region (a lower --budget-mb) or a coarser level",
         )?;
         let samples = match self.levels.get(p) {
-            Some(array) => self.read_box(array, lo, hi)?,
+            Some(_) => self.read_box(p, lo, hi)?,
             None => self.read_subsampled(p, lo, hi)?,
         };
         let spacing = self.shape.spacing.map(|s| s * (1u64 << p) as f64);
@@ -232,21 +237,29 @@ impl Store {
         Ok(v)
     }
 
-    /// The box `lo ..= hi` of `array` (x, y, z order), the leading axes at index 0.
-    fn read_box(&self, array: &Array<Storage>, lo: [usize; 3], hi: [usize; 3]) -> Result<SampleBuf> {
+    /// The box `lo ..= hi` (x, y, z order) of the array of level `p`, the
+    /// leading axes at index 0, each shard's index read once.
+    fn read_box(&self, p: usize, lo: [usize; 3], hi: [usize; 3]) -> Result<SampleBuf> {
+        let (array, cache) = (&self.levels[p], &self.shard_indexes[p]);
         let mut ranges: Vec<std::ops::Range<u64>> = vec![0..1; self.leading];
         ranges.extend((0..3).rev().map(|a| lo[a] as u64..hi[a] as u64 + 1));
         let subset = ArraySubset::new_with_ranges(&ranges);
+        let options = CodecOptions::default();
         let err = |e: zarrs::array::ArrayError| zarr_error(&self.label, "reading samples", &e);
+        macro_rules! read {
+            ($variant:ident) => {
+                SampleBuf::$variant(array.retrieve_array_subset_sharded_opt(cache, &subset, &options).map_err(err)?)
+            };
+        }
         Ok(match self.scalar_type {
-            ScalarType::U8 => SampleBuf::U8(array.retrieve_array_subset(&subset).map_err(err)?),
-            ScalarType::I8 => SampleBuf::I8(array.retrieve_array_subset(&subset).map_err(err)?),
-            ScalarType::U16 => SampleBuf::U16(array.retrieve_array_subset(&subset).map_err(err)?),
-            ScalarType::I16 => SampleBuf::I16(array.retrieve_array_subset(&subset).map_err(err)?),
-            ScalarType::U32 => SampleBuf::U32(array.retrieve_array_subset(&subset).map_err(err)?),
-            ScalarType::I32 => SampleBuf::I32(array.retrieve_array_subset(&subset).map_err(err)?),
-            ScalarType::F32 => SampleBuf::F32(array.retrieve_array_subset(&subset).map_err(err)?),
-            ScalarType::F64 => SampleBuf::F64(array.retrieve_array_subset(&subset).map_err(err)?),
+            ScalarType::U8 => read!(U8),
+            ScalarType::I8 => read!(I8),
+            ScalarType::U16 => read!(U16),
+            ScalarType::I16 => read!(I16),
+            ScalarType::U32 => read!(U32),
+            ScalarType::I32 => read!(I32),
+            ScalarType::F32 => read!(F32),
+            ScalarType::F64 => read!(F64),
         })
     }
 
@@ -262,7 +275,7 @@ impl Store {
             &format!("a full-resolution {n:?} box of '{}' (it has no stride-{} level)", self.label, 1u64 << p),
             "write the store with `hybrid-octree convert`, which keeps every stride as a level",
         )?;
-        let full = self.read_box(&self.levels[0], first, last)?;
+        let full = self.read_box(0, first, last)?;
         let index = |a: usize| (lo[a]..=hi[a]).map(|i| level_position(dims[a], p, i) - first[a]).collect::<Vec<_>>();
         Ok(gather(&full, n, [index(0), index(1), index(2)]))
     }
