@@ -16,6 +16,7 @@ pub mod ngff;
 pub mod octree_arrays;
 pub mod open;
 pub mod pyramid;
+pub mod subchunks;
 pub mod write;
 mod zarr;
 

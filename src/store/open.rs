@@ -11,6 +11,7 @@
 
 use super::octree_arrays::read_octree;
 use super::pyramid::{level_count, level_dims, level_position};
+use super::subchunks::{self, SubchunkCache};
 use super::zarr::{open_array, scalar_type_of, zarr_error, Storage};
 use super::{Metadata, ATTRIBUTE};
 use crate::base::error::{Error, Result};
@@ -21,9 +22,12 @@ use crate::octree::layout::Layout;
 use crate::octree::VolumeOctree;
 use std::path::Path;
 use std::sync::Arc;
-use zarrs::array::{Array, ArrayShardedReadableExt, ArrayShardedReadableExtCache, ArraySubset};
 use zarrs::array::CodecOptions;
+use zarrs::array::{Array, ArrayShardedExt, ArrayShardedReadableExt, ArrayShardedReadableExtCache, ArraySubset};
 use zarrs::group::Group;
+
+/// Bytes of decoded subchunks a store keeps for the next read.
+pub const DEFAULT_CACHE_BYTES: usize = 256 << 20;
 
 /// An open OME-Zarr image.
 pub struct Store {
@@ -42,6 +46,8 @@ pub struct Store {
     levels: Vec<Array<Storage>>,
     /// Per level, the shard indexes read so far (a few bytes per subchunk of a shard touched).
     shard_indexes: Vec<ArrayShardedReadableExtCache>,
+    /// Decoded subchunks of a store written here (16^3-sample subchunks), for the next read.
+    subchunks: Option<SubchunkCache>,
     leading: usize,
     own: Option<Metadata>,
 }
@@ -141,10 +147,15 @@ impl Store {
         };
         let name = own.as_ref().map_or_else(|| "image".to_string(), |m| m.name.clone());
         let shard_indexes = levels.iter().map(ArrayShardedReadableExtCache::new).collect();
+        let edge =
+            |a: &Array<Storage>| a.effective_subchunk_shape().map(|s| s.iter().map(|n| n.get()).collect::<Vec<_>>());
+        let subchunks = (own.is_some() && levels.iter().all(|a| edge(a) == Some(vec![subchunks::EDGE as u64; 3])))
+            .then(|| SubchunkCache::new(DEFAULT_CACHE_BYTES, scalar_type));
         Ok(Store {
             label,
             storage,
             shard_indexes,
+            subchunks,
             shape: GridShape { dims, spacing: multiscale.spacing, origin: multiscale.origin },
             scalar_type,
             name,
@@ -241,6 +252,23 @@ impl Store {
     /// leading axes at index 0, each shard's index read once.
     fn read_box(&self, p: usize, lo: [usize; 3], hi: [usize; 3]) -> Result<SampleBuf> {
         let (array, cache) = (&self.levels[p], &self.shard_indexes[p]);
+        if let Some(subchunks) = &self.subchunks {
+            let n = [0, 1, 2].map(|a| hi[a] - lo[a] + 1);
+            let mut out = SampleBuf::zeroed(self.scalar_type, n[0] * n[1] * n[2]);
+            let e = subchunks::EDGE;
+            for z in lo[2] / e..=hi[2] / e {
+                for y in lo[1] / e..=hi[1] / e {
+                    for x in lo[0] / e..=hi[0] / e {
+                        let index = [z as u64, y as u64, x as u64];
+                        let sub = subchunks.get(&self.label, (p, array, cache), self.scalar_type, index)?;
+                        if !subchunks::copy_into(&sub, index, lo, hi, &mut out) {
+                            return Err(zarr_error(&self.label, "reading samples", &"a subchunk of another type"));
+                        }
+                    }
+                }
+            }
+            return Ok(out);
+        }
         let mut ranges: Vec<std::ops::Range<u64>> = vec![0..1; self.leading];
         ranges.extend((0..3).rev().map(|a| lo[a] as u64..hi[a] as u64 + 1));
         let subset = ArraySubset::new_with_ranges(&ranges);
