@@ -27,17 +27,17 @@ if ((${#missing[@]})); then
   apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-# Rust: the crate needs rustc >= 1.86 (Debian 12's own rustc is 1.63, too old).
+# Rust: the crate needs rustc >= 1.91 (Debian 12's own rustc is 1.63, too old).
 if ! command -v cargo >/dev/null 2>&1 && [[ -x "$HOME/.cargo/bin/cargo" ]]; then
   export PATH="$HOME/.cargo/bin:$PATH"
 fi
 if ! command -v cargo >/dev/null 2>&1; then
-  echo "install-deps: cargo not found; install a Rust toolchain >= 1.86 (rustup) and re-run" >&2
+  echo "install-deps: cargo not found; install a Rust toolchain >= 1.91 (rustup) and re-run" >&2
   exit 1
 fi
 rustc_minor=$(rustc --version | sed -E 's/^rustc 1\.([0-9]+).*/\1/')
-if ((rustc_minor < 86)); then
-  echo "install-deps: $(rustc --version) is too old; HybridOctree needs rustc >= 1.86 (rustup update)" >&2
+if ((rustc_minor < 91)); then
+  echo "install-deps: $(rustc --version) is too old; HybridOctree needs rustc >= 1.91 (rustup update)" >&2
   exit 1
 fi
 # rustfmt and clippy: the test command's first stage.

@@ -29,6 +29,7 @@ LAYERS = [
     ["geometry", "data"],  # three-vectors and the camera; grids, volumes, spacings
     ["datasets", "io"],  # inputs: generated datasets, volume files
     ["octree"],  # the Volume Octree
+    ["store"],  # the Volume Octree and its volume on disk (OME-Zarr)
     ["surface"],  # the Surface Octree
     ["transfer"],  # transfer functions
     ["points"],  # the hybrid point/volume representation

@@ -28,7 +28,8 @@
 // - base: the error type and the limits checked before allocating;
 // - data, geometry: grids, volumes and spacings; vectors and the camera;
 // - datasets, io: the volumes read or generated;
-// - octree: the Volume Octree; surface: the Surface Octree;
+// - octree: the Volume Octree; store: it and its volume on disk (OME-Zarr);
+// - surface: the Surface Octree;
 // - transfer: transfer functions; points: the hybrid point representation;
 // - plan: budget selection, back-to-front order, slabs, the draw list;
 // - render, ftb: the compositor and reference ray caster; front-to-back display;
@@ -46,6 +47,7 @@ pub mod octree;
 pub mod plan;
 pub mod points;
 pub mod render;
+pub mod store;
 pub mod surface;
 pub mod transfer;
 

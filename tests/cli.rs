@@ -1497,3 +1497,102 @@ fn render_refuses_bad_scattering_arguments_even_unused() {
     assert!(ok.status.success(), "{}", stderr(&ok));
     let _ = std::fs::remove_file(png);
 }
+
+/// `convert` writes an OME-Zarr store that every `--file` command reads;
+/// `render` draws it from disk the picture it draws in memory, and refuses
+/// what needs every sample with what to do.
+#[test]
+fn convert_writes_a_store_that_renders_from_disk_as_in_memory() {
+    let store = temp("phantom.ome.zarr");
+    let s = store.to_str().unwrap();
+    let c = json_of(
+        "convert",
+        &["--dataset", "shepp-logan", "--size", "40", "--type", "u16", "--leaf-size", "8", "--output", s],
+    );
+    assert_eq!(c["dims"], serde_json::json!([40, 40, 40]));
+    assert_eq!(c["levels"], 7, "strides 1 .. 64 for a 64-cell root");
+    assert!(c["store_bytes"].as_u64().unwrap() > 0);
+    // The stored volume is the generated one.
+    let from_store = build_json(&["--file", s, "--leaf-size", "8"]);
+    let generated = build_json(&["--dataset", "shepp-logan", "--size", "40", "--type", "u16", "--leaf-size", "8"]);
+    for key in ["node_count", "value_min", "value_max", "cut_count"] {
+        assert_eq!(from_store[key], generated[key], "{key}");
+    }
+    let (disk, memory) = (temp("disk.png"), temp("memory.png"));
+    let common = [
+        "--file",
+        s,
+        "--budget-mb",
+        "0.05",
+        "--view-selection",
+        "screen",
+        "--width",
+        "96",
+        "--height",
+        "96",
+        "--shade",
+    ];
+    let r = json_of("render", &[&common[..], &["--output", disk.to_str().unwrap()]].concat());
+    json_of("render", &[&common[..], &["--in-memory", "--output", memory.to_str().unwrap()]].concat());
+    assert!(std::fs::read(&disk).unwrap() == std::fs::read(&memory).unwrap(), "disk and memory pictures differ");
+    assert!(r["bricks"].as_u64().unwrap() > 1 && r["estimated_error"].as_f64().unwrap() > 0.0, "{r}");
+    assert_eq!(r["passes"], serde_json::json!(["volume-shaded"]));
+    // The default view selection falls back to screen space, and says so.
+    let both = json_of("render", &["--file", s, "--budget-mb", "0.05", "--output", disk.to_str().unwrap()]);
+    assert_eq!(both["view_selection"], "Screen");
+    assert!(both["warning"].as_str().unwrap().contains("weighed by screen space alone"), "{both}");
+    // What needs every sample is refused, with what to do.
+    let iso = run(&["render", "--file", s, "--isovalue", "100", "--output", disk.to_str().unwrap()]);
+    assert_clean_failure(&iso, "--in-memory");
+    let mip =
+        run(&["render", "--file", s, "--blend", "mip", "--budget-mb", "0.02", "--output", disk.to_str().unwrap()]);
+    assert_clean_failure(&mip, "peak");
+    // Nothing is overwritten; the output must be a .zarr folder.
+    let again = run(&["convert", "--dataset", "sphere", "--size", "8", "--output", s]);
+    assert_clean_failure(&again, "already exists");
+    let not_zarr = run(&["convert", "--dataset", "sphere", "--size", "8", "--output", disk.to_str().unwrap()]);
+    assert_clean_failure(&not_zarr, ".ome.zarr");
+    for p in [&disk, &memory] {
+        let _ = std::fs::remove_file(p);
+    }
+    let _ = std::fs::remove_dir_all(&store);
+}
+
+/// A store written elsewhere (NGFF 0.4, Zarr v2, time and channel axes,
+/// uncompressed chunks) opens: its first time point and channel, its
+/// spacing and origin from the coordinate transformations.
+#[test]
+fn a_foreign_ngff_0_4_store_opens() {
+    let store = temp("foreign.zarr");
+    let dims = [6usize, 5, 4]; // x, y, z
+    std::fs::create_dir_all(store.join("0")).unwrap();
+    std::fs::write(store.join(".zgroup"), r#"{"zarr_format": 2}"#).unwrap();
+    let attrs = serde_json::json!({"multiscales": [{
+        "version": "0.4",
+        "axes": [{"name": "t", "type": "time"}, {"name": "c", "type": "channel"},
+                 {"name": "z", "type": "space"}, {"name": "y", "type": "space"}, {"name": "x", "type": "space"}],
+        "datasets": [{"path": "0", "coordinateTransformations": [
+            {"type": "scale", "scale": [1.0, 1.0, 3.0, 2.0, 0.5]},
+            {"type": "translation", "translation": [0.0, 0.0, 7.0, 8.0, 9.0]}]}]
+    }]});
+    std::fs::write(store.join(".zattrs"), attrs.to_string()).unwrap();
+    let zarray = serde_json::json!({"zarr_format": 2, "shape": [2, 2, dims[2], dims[1], dims[0]],
+        "chunks": [1, 1, dims[2], dims[1], dims[0]], "dtype": "<u2", "compressor": null, "fill_value": 0,
+        "order": "C", "filters": null, "dimension_separator": "/"});
+    std::fs::write(store.join("0/.zarray"), zarray.to_string()).unwrap();
+    let n = dims[0] * dims[1] * dims[2];
+    for (t, c, offset) in [(0, 0, 0u16), (0, 1, 1000), (1, 0, 2000), (1, 1, 3000)] {
+        let bytes: Vec<u8> = (0..n as u16).flat_map(|v| (v + offset).to_le_bytes()).collect();
+        let dir = store.join(format!("0/{t}/{c}/0/0"));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("0"), bytes).unwrap();
+    }
+    let out = run(&["info", "--file", store.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("6 x 5 x 4"), "{text}");
+    assert!(text.contains("[0.5, 2.0, 3.0]") && text.contains("[9.0, 8.0, 7.0]"), "{text}");
+    assert!(text.contains("value range: 0 .. 119"), "index 0 of t and c: {text}");
+    assert!(stderr(&out).contains("index 0 of each is read"), "{}", stderr(&out));
+    let _ = std::fs::remove_dir_all(&store);
+}

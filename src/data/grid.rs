@@ -520,6 +520,12 @@ impl<'a, T: Sample> TypedGrid<'a, T> {
         self.data[(i + self.dims[0] * (j + self.dims[1] * k)) * self.components + self.component].to_f64()
     }
 
+    /// Value of point `(i, j, k)` as stored (no conversion); indices must be in range.
+    #[inline(always)]
+    pub fn get(&self, i: usize, j: usize, k: usize) -> T {
+        self.data[(i + self.dims[0] * (j + self.dims[1] * k)) * self.components + self.component]
+    }
+
     /// Asks the CPU to bring the x-row `(i0..=i1, j, k)` into its caches (a
     /// hint with no effect on results; nothing on CPUs without the instruction).
     #[inline(always)]

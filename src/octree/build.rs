@@ -227,14 +227,8 @@ fn reduce(layout: Layout, leaves: Vec<LeafStats>, scale: f64, started: Instant) 
     }
     // The range of k f, in the units of the raw and squared errors.
     let range = max[0] * scale - min[0] * scale;
-    let mut error_offset = Vec::with_capacity(layout.levels() + 1);
-    let mut total = 0usize;
-    for level in 0..layout.levels() {
-        error_offset.push(total);
-        let d = layout.level_dims(level);
-        total += d[0] * d[1] * d[2] * layout.error_count(level);
-    }
-    error_offset.push(total);
+    let error_offset = layout.error_offsets();
+    let total = error_offset[layout.levels()];
     let mut errors = vec![0.0f32; total];
     let mut squared_errors = vec![0.0f32; total];
     let range2 = if range > 0.0 { range * range } else { 1.0 };

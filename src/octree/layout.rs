@@ -132,6 +132,21 @@ impl Layout {
         (lo, hi)
     }
 
+    /// Where each level's nodal errors start in the octree's error arrays
+    /// (each node of level `k` holds [`Self::error_count`]`(k)` of them, in
+    /// node order), and their total last: `levels() + 1` entries.
+    pub fn error_offsets(&self) -> Vec<usize> {
+        let mut offsets = Vec::with_capacity(self.levels() + 1);
+        let mut total = 0usize;
+        for level in 0..self.levels() {
+            offsets.push(total);
+            let d = self.level_dims(level);
+            total += d[0] * d[1] * d[2] * self.error_count(level);
+        }
+        offsets.push(total);
+        offsets
+    }
+
     /// Children of node `c` at `level` (none at the leaf level), in z, y, x order.
     pub fn children(&self, level: usize, c: [usize; 3]) -> impl Iterator<Item = (usize, [usize; 3])> + '_ {
         let next = level + 1;

@@ -327,14 +327,14 @@ mod tests {
     fn crossings() {
         let iso = Blend::isosurfaces(&[0.7, 0.3, 0.5, 0.3], [0.0, 1.0]).unwrap();
         assert_eq!(iso.isovalues(), &[0.3, 0.5, 0.7]);
-        let all = |v0, v1| iso.crossings(v0, v1).collect::<Vec<_>>();
+        let all = |v0, v1| iso.crossings(v0, v1).collect::<Vec<f64>>();
         assert_eq!(all(0.2, 0.6), vec![0.3, 0.5]);
         assert_eq!(all(0.6, 0.2), vec![0.5, 0.3]);
-        assert_eq!(all(0.3, 0.4), vec![], "leaving a value is no crossing");
+        assert_eq!(all(0.3, 0.4), Vec::<f64>::new(), "leaving a value is no crossing");
         assert_eq!(all(0.2, 0.3), vec![0.3], "reaching it is");
-        assert_eq!(all(0.5, 0.5), vec![]);
-        assert_eq!(all(f64::NAN, 0.5), vec![]);
-        assert_eq!(all(0.5, f64::NAN), vec![]);
+        assert_eq!(all(0.5, 0.5), Vec::<f64>::new());
+        assert_eq!(all(f64::NAN, 0.5), Vec::<f64>::new());
+        assert_eq!(all(0.5, f64::NAN), Vec::<f64>::new());
         assert!(Blend::isosurfaces(&[], [0.0, 1.0]).is_err());
         assert!(Blend::isosurfaces(&[f64::NAN], [0.0, 1.0]).unwrap_err().to_string().contains("finite"));
         let many: Vec<f64> = (0..20).map(f64::from).collect();

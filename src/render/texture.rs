@@ -34,6 +34,7 @@ use rayon::prelude::*;
 pub mod encoded;
 mod gradient;
 mod pool;
+pub mod read;
 
 /// A stored texel: `f32` or `f64` holding the value, or the `u8` or `u16`
 /// code of a normalized texel format ([`crate::plan::texel_format::TexelEncoding`]), read back as `f64`.

@@ -55,7 +55,7 @@ pub struct BuildReport {
 }
 
 /// Volumes with at least this many points get a progress bar (on a terminal).
-const PROGRESS_POINTS: usize = 1 << 24;
+pub const PROGRESS_POINTS: usize = 1 << 24;
 
 /// Builds with a progress bar on stderr when it is a terminal and the volume is large.
 pub fn build_octree(grid: &Grid<'_>, options: &BuildOptions) -> Result<VolumeOctree> {

@@ -5,9 +5,10 @@ use hybrid_octree::datasets::generate::check_generate;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::io::{read_volume, RawOptions, ReadOptions};
+use hybrid_octree::store::Store;
 use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Where the volume comes from.
 #[derive(Args, Debug, Clone)]
@@ -21,7 +22,8 @@ pub struct InputArgs {
     /// Scalar type: of the generated dataset, or of a raw file (u8, i8, u16, i16, u32, i32, f32, f64).
     #[arg(long = "type")]
     pub scalar_type: Option<String>,
-    /// Volume file: .vti, .vtk, .nii, .nii.gz, or raw (.raw/.bin, with --dims and --type).
+    /// Volume file: .vti, .vtk, .nii, .nii.gz, raw (.raw/.bin, with --dims and --type), or an OME-Zarr
+    /// image folder (.ome.zarr, .zarr).
     #[arg(long)]
     pub file: Option<PathBuf>,
     /// Raw file dimensions X,Y,Z (makes the file be read as raw).
@@ -75,8 +77,26 @@ impl InputArgs {
         self.scalar_type.as_deref().map_or(Ok(default), ScalarType::parse)
     }
 
-    /// Generates or reads the volume.
+    /// The OME-Zarr store `--file` names (a folder, or a name ending in
+    /// `.zarr`), opened; `None` for any other input.
+    pub fn store(&self) -> Result<Option<Store>> {
+        match &self.file {
+            Some(path) if is_store(path) && self.dims.is_none() => {
+                let store = Store::open(path)?;
+                for w in &store.warnings {
+                    eprintln!("warning: {w}");
+                }
+                Ok(Some(store))
+            }
+            _ => Ok(None),
+        }
+    }
+
+    /// Generates or reads the volume (a store's full resolution read whole).
     pub fn load(&self) -> Result<Volume> {
+        if let Some(store) = self.store()? {
+            return store.read_volume();
+        }
         if let Some(path) = &self.file {
             let raw = match &self.dims {
                 Some(dims) => {
@@ -122,4 +142,9 @@ impl InputArgs {
     pub fn grid<'v>(&self, volume: &'v Volume) -> Result<Grid<'v>> {
         volume.grid(self.component)
     }
+}
+
+/// True for an OME-Zarr image: a folder, or a path ending in `.zarr` (any case).
+pub fn is_store(path: &Path) -> bool {
+    path.is_dir() || path.to_string_lossy().to_ascii_lowercase().trim_end_matches('/').ends_with(".zarr")
 }

@@ -7,6 +7,7 @@
 //! hybrid-octree surface  (--dataset NAME --size N | --file PATH) --isovalue V [--mode discretized|interpolated] [--distance] [--output F.vtk] [--json]
 //! hybrid-octree render   (--dataset NAME --size N | --file PATH) --output F.png [--budget-mb M] [--tolerance T] [--isovalue V] [--reference R.png] [--json]
 //! hybrid-octree generate --dataset NAME --size N [--type T] --output FILE.vti
+//! hybrid-octree convert  (--dataset NAME --size N | --file PATH) --output F.ome.zarr [--leaf-size B] [--memory-mb M] [--json]
 //! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--kernels fast,general] [--repeats 3] [--json]
 //! hybrid-octree bench render (--dataset NAME --size N | --file PATH) [--strides 2,4,8] [--tolerances ...] [--plot P.png] [--json]
 //! hybrid-octree bench effects (--dataset NAME --size N | --file PATH) [--budget-mb M] [--frames 5] [--effects plain,shade,...] [--plot P.png] [--json]
@@ -19,8 +20,10 @@
 
 mod bench;
 mod build;
+mod convert;
 mod crop;
 mod extension;
+mod field;
 mod ftb;
 mod generate;
 mod info;
@@ -60,6 +63,8 @@ enum Command {
     Render(Box<render::RenderArgs>),
     /// Write a built-in dataset to a VTK XML image file (.vti).
     Generate(generate::GenerateArgs),
+    /// Write any input as an OME-Zarr image holding the Hybrid Octree (every stride's level and the octree).
+    Convert(Box<convert::ConvertArgs>),
     /// Display the binary octree of an isovalue front to back with blocking quadtrees, against back to front.
     Ftb(ftb::FtbArgs),
     /// The hybrid point/volume representation: points where the low resolution is wrong, written to a file and drawn.
@@ -79,6 +84,7 @@ fn main() -> ExitCode {
         Command::Surface(args) => surface::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
+        Command::Convert(args) => convert::run(&args),
         Command::Ftb(args) => ftb::run(&args),
         Command::Points(args) => points::run(&args),
         Command::Bench { bench } => bench::run(&bench),

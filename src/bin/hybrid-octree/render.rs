@@ -3,16 +3,22 @@
 //! with `--reference`, how far it is from the full-resolution ray caster.
 
 use crate::extension::require_extension;
+use crate::field::Field;
 use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::pool::with_threads;
-use crate::scene::{frame, load, reference_image, select_options, visible, SceneArgs};
+use crate::scene::{
+    dress, dress_field, frame, frame_of, load, reference_image, select_options, visible, Frame, Loaded, SceneArgs,
+};
 use clap::Args;
+use hybrid_octree::grid::Grid;
+use hybrid_octree::octree::VolumeOctree;
 use hybrid_octree::render::metrics::compare;
-use hybrid_octree::select::{select_in_view, ViewSelection};
-use hybrid_octree::Result;
+use hybrid_octree::select::{select_in_view, Selection, ViewSelection};
+use hybrid_octree::store::Store;
+use hybrid_octree::{Error, Result};
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Arguments of `render`.
@@ -37,6 +43,9 @@ pub struct RenderArgs {
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]
     json: bool,
+    /// Read an OME-Zarr store's volume whole into memory instead of drawing it from disk brick by brick.
+    #[arg(long)]
+    in_memory: bool,
 }
 
 /// What `render` reports.
@@ -91,63 +100,142 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         require_extension(path, "--reference", &[".png"], "PNG pictures")?;
     }
     let budget_bytes = crate::bench::render::budget_bytes(args.budget_mb)?;
-    let report = with_threads(args.input.threads, || {
-        let volume = args.input.load()?;
-        let grid = args.input.grid(&volume)?;
-        let scene = load(&grid, &args.scene)?;
-        let options = select_options(&scene, &args.scene, budget_bytes, args.tolerance);
-        let started = Instant::now();
-        let mode = args.scene.view.view_selection;
-        let medium = match mode {
-            ViewSelection::Visibility | ViewSelection::Both => crate::view::medium(&grid, &scene, &args.scene)?,
-            _ => None,
-        };
-        let view = crate::view::importance(&grid, &args.scene, &scene.camera, mode, medium.as_ref())?;
-        let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
-        let select_ms = started.elapsed().as_secs_f64() * 1e3;
-        let f = frame(&grid, &scene, &selection, &args.scene, None)?;
-        f.image.to_png(&args.output)?;
-        let (mut rmse, mut psnr, mut ssim, mut reference_ms) = (None, None, None, None);
-        if let Some(path) = &args.reference {
-            let started = Instant::now();
-            let r = reference_image(&grid, &scene, &args.scene)?;
-            reference_ms = Some(started.elapsed().as_secs_f64() * 1e3);
-            r.to_png(path)?;
-            let m = compare(&f.image, &r)?;
-            (rmse, psnr, ssim) = (Some(m.rmse), Some(m.psnr), Some(m.ssim));
-        }
-        Ok(RenderReport {
-            output: args.output.display().to_string(),
-            width: args.scene.width,
-            height: args.scene.height,
-            budget_bytes,
-            texture_bytes: selection.texture_bytes,
-            view_selection: args.scene.view.view_selection,
-            texel: scene.texel,
-            bricks: selection.bricks.len(),
-            estimated_error: selection.estimated_error,
-            passes: f.list.plan.passes.clone(),
-            effects: f.list.plan.effects.clone(),
-            region: f.list.region,
-            lighting: f.list.lighting.clone(),
-            blend: f.list.plan.blend,
-            skipped_bricks: f.list.plan.skipped_bricks,
-            warning: selection.warning.clone(),
-            select_ms,
-            slab_polygons_ms: f.slab_polygons_ms,
-            drawlist_ms: f.drawlist_ms,
-            upload_ms: f.upload_ms,
-            composite_ms: f.composite_ms,
-            rmse,
-            psnr,
-            ssim,
-            reference_ms,
-        })
+    let report = with_threads(args.input.threads, || match args.input.store()? {
+        Some(store) if store.has_octree() && !args.in_memory => from_store(args, &store, budget_bytes),
+        Some(store) => in_memory(args, budget_bytes, store.octree()?),
+        None => in_memory(args, budget_bytes, None),
     })?;
     if let (false, Some(w)) = (args.json, &report.warning) {
         eprintln!("warning: {w}");
     }
     print_report(&report, args.json, print_text)
+}
+
+/// The frame of a volume read into memory, with its `stored` octree if it has one.
+fn in_memory(args: &RenderArgs, budget_bytes: usize, stored: Option<VolumeOctree>) -> Result<RenderReport> {
+    let volume = args.input.load()?;
+    let grid = args.input.grid(&volume)?;
+    let scene = match stored {
+        Some(octree) => dress(&grid, octree, &args.scene)?,
+        None => load(&grid, &args.scene)?,
+    };
+    let options = select_options(&scene, &args.scene, budget_bytes, args.tolerance);
+    let started = Instant::now();
+    let mode = args.scene.view.view_selection;
+    let medium = match mode {
+        ViewSelection::Visibility | ViewSelection::Both => crate::view::medium(&grid, &scene, &args.scene)?,
+        _ => None,
+    };
+    let view = crate::view::importance(&grid, &args.scene, &scene.camera, mode, medium.as_ref())?;
+    let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
+    let select_ms = started.elapsed().as_secs_f64() * 1e3;
+    let f = frame(&grid, &scene, &selection, &args.scene, None)?;
+    f.image.to_png(&args.output)?;
+    let reference = match &args.reference {
+        Some(path) => Some(reference(&grid, &scene, args, &f, path)?),
+        None => None,
+    };
+    Ok(report(args, budget_bytes, &scene, &selection, &f, (select_ms, mode), reference, selection.warning.clone()))
+}
+
+/// The frame of an OME-Zarr store holding the Hybrid Octree, drawn from
+/// disk: the stored octree selects, each brick is read from the level of
+/// its stride. The visibility estimate needs every sample, so a store
+/// weighs by screen space alone (said in the warning); the reference, if
+/// asked for, reads the whole volume.
+fn from_store(args: &RenderArgs, store: &Store, budget_bytes: usize) -> Result<RenderReport> {
+    let octree = store.octree()?.ok_or_else(|| Error::Internal("a store with an octree has none".into()))?;
+    let field = Field::Store(store);
+    let scene = dress_field(field, octree, &args.scene)?;
+    let options = select_options(&scene, &args.scene, budget_bytes, args.tolerance);
+    let started = Instant::now();
+    let (mode, note) = match args.scene.view.view_selection {
+        ViewSelection::Visibility | ViewSelection::Both => (
+            ViewSelection::Screen,
+            Some(format!(
+                "view selection '{}' weighs nodes by the opacity in front of them, estimated from every sample: \
+                 a volume drawn from disk is weighed by screen space alone",
+                args.scene.view.view_selection.name()
+            )),
+        ),
+        m => (m, None),
+    };
+    let view = crate::view::importance_in(&store.shape, &args.scene, &scene.camera, mode, None)?;
+    let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
+    let select_ms = started.elapsed().as_secs_f64() * 1e3;
+    let f = frame_of(field, &scene, &selection, &args.scene, None)?;
+    f.image.to_png(&args.output)?;
+    let reference = match &args.reference {
+        Some(path) => {
+            let volume = store.read_volume()?;
+            let grid = volume.grid(None)?;
+            Some(reference(&grid, &scene, args, &f, path)?)
+        }
+        None => None,
+    };
+    let warning = match (selection.warning.clone(), note) {
+        (Some(a), Some(b)) => Some(format!("{a}; {b}")),
+        (a, b) => a.or(b),
+    };
+    Ok(report(args, budget_bytes, &scene, &selection, &f, (select_ms, mode), reference, warning))
+}
+
+/// The reference picture written to `path` and the frame's distance to it:
+/// (RMSE, PSNR, SSIM, reference ms).
+fn reference(
+    grid: &Grid<'_>,
+    scene: &Loaded,
+    args: &RenderArgs,
+    f: &Frame,
+    path: &Path,
+) -> Result<(f64, f64, f64, f64)> {
+    let started = Instant::now();
+    let r = reference_image(grid, scene, &args.scene)?;
+    let ms = started.elapsed().as_secs_f64() * 1e3;
+    r.to_png(path)?;
+    let m = compare(&f.image, &r)?;
+    Ok((m.rmse, m.psnr, m.ssim, ms))
+}
+
+/// The report of one frame.
+#[allow(clippy::too_many_arguments)]
+fn report(
+    args: &RenderArgs,
+    budget_bytes: usize,
+    scene: &Loaded,
+    selection: &Selection,
+    f: &Frame,
+    (select_ms, view_selection): (f64, ViewSelection),
+    reference: Option<(f64, f64, f64, f64)>,
+    warning: Option<String>,
+) -> RenderReport {
+    RenderReport {
+        output: args.output.display().to_string(),
+        width: args.scene.width,
+        height: args.scene.height,
+        budget_bytes,
+        texture_bytes: selection.texture_bytes,
+        view_selection,
+        texel: scene.texel,
+        bricks: selection.bricks.len(),
+        estimated_error: selection.estimated_error,
+        passes: f.list.plan.passes.clone(),
+        effects: f.list.plan.effects.clone(),
+        region: f.list.region,
+        lighting: f.list.lighting.clone(),
+        blend: f.list.plan.blend,
+        skipped_bricks: f.list.plan.skipped_bricks,
+        warning,
+        select_ms,
+        slab_polygons_ms: f.slab_polygons_ms,
+        drawlist_ms: f.drawlist_ms,
+        upload_ms: f.upload_ms,
+        composite_ms: f.composite_ms,
+        rmse: reference.map(|r| r.0),
+        psnr: reference.map(|r| r.1),
+        ssim: reference.map(|r| r.2),
+        reference_ms: reference.map(|r| r.3),
+    }
 }
 
 fn print_text(r: &RenderReport) {

@@ -5,6 +5,7 @@
 //! by step.
 
 use crate::build::build_octree;
+use crate::field::Field;
 use clap::Args;
 use hybrid_octree::camera::Camera;
 use hybrid_octree::grid::Grid;
@@ -18,8 +19,6 @@ use hybrid_octree::points::{shade, Footprint, PointSet};
 use hybrid_octree::render::compositor::composite_shadowed;
 use hybrid_octree::render::image::Image;
 use hybrid_octree::render::reference::{reference_blend, ReferenceOptions};
-use hybrid_octree::render::scattering::shadow_for;
-use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{Roi, SelectOptions, Selection};
 use hybrid_octree::slab::SlabPolygons;
@@ -179,15 +178,24 @@ pub fn load(grid: &Grid<'_>, args: &SceneArgs) -> Result<Loaded> {
 /// `args.leaf_size`): the surface, the transfer function, the camera and
 /// the blend mode.
 pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<Loaded> {
+    dress_field(Field::Grid(grid), octree, args)
+}
+
+/// [`dress`] for a volume in memory or on disk: an isosurface needs it in memory.
+pub fn dress_field(field: Field<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<Loaded> {
     check_view(args)?;
     let region = args.crop.region()?;
     let surface = match args.isovalue {
-        Some(iso) => Some(Surface::extract(grid, &octree, &SurfaceOptions::discretized(iso))?),
+        Some(iso) => Some(Surface::extract(
+            field.grid("an isosurface (--isovalue)")?,
+            &octree,
+            &SurfaceOptions::discretized(iso),
+        )?),
         None => None,
     };
     let (min, max) = octree.value_range();
     let tf = TransferFunction::ramp(min, max);
-    let shape = grid.shape();
+    let shape = field.shape();
     let lo = shape.world([0.0; 3]);
     let hi = shape.world(shape.dims.map(|d| (d - 1) as f64));
     let camera = Camera::around(lo, hi, args.azimuth, args.elevation, args.parallel)?;
@@ -210,7 +218,7 @@ pub fn dress(grid: &Grid<'_>, octree: VolumeOctree, args: &SceneArgs) -> Result<
         None => None,
     };
     let select_slice = plane.map(|p| p.to_index(shape));
-    let texel = TexelEncoding::resolve(args.texel_format, grid.samples().scalar_type(), (min, max), grid.nan_count())?;
+    let texel = TexelEncoding::resolve(args.texel_format, field.scalar_type(), (min, max), field.nan_count())?;
     Ok(Loaded {
         octree,
         surface,
@@ -293,6 +301,18 @@ pub fn frame(
     args: &SceneArgs,
     points: Option<(&PointSet, Footprint)>,
 ) -> Result<Frame> {
+    frame_of(Field::Grid(grid), scene, selection, args, points)
+}
+
+/// [`frame`] of a volume in memory or on disk (points need it in memory).
+pub fn frame_of(
+    field: Field<'_>,
+    scene: &Loaded,
+    selection: &Selection,
+    args: &SceneArgs,
+    points: Option<(&PointSet, Footprint)>,
+) -> Result<Frame> {
+    let shape = field.shape();
     let lighting = args.shade.lighting();
     let view = Scene {
         surface: scene.surface.as_ref(),
@@ -305,25 +325,25 @@ pub fn frame(
     };
     let started = Instant::now();
     let polygons = match (plan(selection, &view).surface, &scene.surface) {
-        (SurfacePass::Translucent, Some(s)) => Some(SlabPolygons::new(&scene.octree, s, grid.shape(), selection)),
+        (SurfacePass::Translucent, Some(s)) => Some(SlabPolygons::new(&scene.octree, s, shape, selection)),
         _ => None,
     };
     let slab_polygons_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
-    let mut list = draw_list(&scene.octree, grid.shape(), selection, &scene.camera, &view, polygons.as_ref())?;
+    let mut list = draw_list(&scene.octree, shape, selection, &scene.camera, &view, polygons.as_ref())?;
     list.texel = scene.texel;
     if let Some((set, _)) = points {
-        add_points(&mut list, grid.shape(), set)?;
+        add_points(&mut list, shape, set)?;
     }
     let scattering = args.scattering.scattering(scene.octree.value_range())?;
     let list = plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
     let list = hybrid_octree::plan::jitter::plan_jitter(list, args.jitter);
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
-    let textures = upload(grid, &list)?;
-    let shadow = shadow_for(grid, &list)?;
+    let textures = field.upload(&list)?;
+    let shadow = field.shadow(&list)?;
     let shades = match points {
-        Some((set, _)) => shade(grid, set, &scene.tf)?,
+        Some((set, _)) => shade(field.grid("points")?, set, &scene.tf)?,
         None => Vec::new(),
     };
     let upload_ms = started.elapsed().as_secs_f64() * 1e3;

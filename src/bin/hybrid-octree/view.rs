@@ -69,7 +69,17 @@ pub fn importance(
     mode: ViewSelection,
     medium: Option<&Medium>,
 ) -> Result<ViewImportance> {
-    let shape = grid.shape();
+    importance_in(grid.shape(), args, camera, mode, medium)
+}
+
+/// [`importance`] of a volume of `shape` (in memory or on disk).
+pub fn importance_in(
+    shape: &hybrid_octree::grid::GridShape,
+    args: &SceneArgs,
+    camera: &Camera,
+    mode: ViewSelection,
+    medium: Option<&Medium>,
+) -> Result<ViewImportance> {
     let inputs = ViewInputs {
         camera,
         width: args.width,

@@ -1,0 +1,150 @@
+//! `convert`: any input the CLI reads becomes an OME-Zarr image (NGFF 0.5)
+//! holding the Hybrid Octree: every stride's level and the Volume Octree,
+//! which `render --file` then draws from disk, brick by brick.
+
+use crate::build::{build_octree, PROGRESS_POINTS};
+use crate::input::InputArgs;
+use crate::output::print_report;
+use crate::pool::with_threads;
+use clap::Args;
+use hybrid_octree::octree::{BuildOptions, DEFAULT_LEAF_SIZE};
+use hybrid_octree::store::{write_store, WriteOptions};
+use hybrid_octree::{Error, Result};
+use serde::Serialize;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Arguments of `convert`.
+#[derive(Args, Debug)]
+pub struct ConvertArgs {
+    #[command(flatten)]
+    input: InputArgs,
+    /// The OME-Zarr image folder to create (.ome.zarr); it must not exist.
+    #[arg(long)]
+    output: PathBuf,
+    /// Leaf brick size in cells (a power of two, 2..=256).
+    #[arg(long, default_value_t = DEFAULT_LEAF_SIZE)]
+    leaf_size: usize,
+    /// Megabytes (10^6 bytes) the writer may hold beside the volume: a slab of planes and its encoding.
+    #[arg(long, default_value_t = 1024.0)]
+    memory_mb: f64,
+    /// Print one JSON object on stdout instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// What `convert` reports.
+#[derive(Debug, Serialize)]
+struct ConvertReport {
+    output: String,
+    dims: [usize; 3],
+    scalar_type: String,
+    levels: usize,
+    /// Samples written over all levels.
+    samples: u64,
+    /// Planes per slab (shard depth).
+    slab_planes: u64,
+    /// Bytes of the store on disk.
+    store_bytes: u64,
+    /// Bytes of the full-resolution samples.
+    volume_bytes: u64,
+    read_ms: f64,
+    build_ms: f64,
+    write_ms: f64,
+}
+
+/// Converts and reports.
+pub fn run(args: &ConvertArgs) -> Result<()> {
+    let lower = args.output.to_string_lossy().to_ascii_lowercase();
+    if !lower.trim_end_matches('/').ends_with(".zarr") {
+        return Err(Error::InvalidArgument(format!(
+            "--output '{}' must name an OME-Zarr folder ending in .ome.zarr (or .zarr)",
+            hybrid_octree::limits::escape_controls(&args.output.display().to_string())
+        )));
+    }
+    if !(args.memory_mb.is_finite() && args.memory_mb > 0.0 && args.memory_mb <= 1e9) {
+        return Err(Error::InvalidArgument(format!(
+            "--memory-mb {} must be a positive number of megabytes",
+            args.memory_mb
+        )));
+    }
+    if args.output.exists() {
+        return Err(Error::InvalidArgument(format!(
+            "'{}' already exists: choose a new --output path, or remove it first (nothing is overwritten)",
+            hybrid_octree::limits::escape_controls(&args.output.display().to_string())
+        )));
+    }
+    let report = with_threads(args.input.threads, || {
+        let started = Instant::now();
+        let volume = args.input.load()?;
+        let grid = args.input.grid(&volume)?;
+        let read_ms = started.elapsed().as_secs_f64() * 1e3;
+        let started = Instant::now();
+        let octree = build_octree(&grid, &BuildOptions { leaf_size: args.leaf_size })?;
+        let build_ms = started.elapsed().as_secs_f64() * 1e3;
+        let options = WriteOptions { memory_limit: (args.memory_mb * 1e6) as usize, name: volume.name.clone() };
+        let started = Instant::now();
+        let bar = (std::io::stderr().is_terminal() && grid.shape().point_count() >= PROGRESS_POINTS).then(|| {
+            let bar = indicatif::ProgressBar::new(1000);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template("writing levels {bar:40} {percent:>3}% {elapsed}")
+                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            bar
+        });
+        let summary = write_store(&args.output, &grid, &octree, &options, &mut |done, total| {
+            if let Some(bar) = &bar {
+                bar.set_position(done * 1000 / total.max(1));
+            }
+        });
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
+        let summary = summary?;
+        let write_ms = started.elapsed().as_secs_f64() * 1e3;
+        Ok(ConvertReport {
+            output: args.output.display().to_string(),
+            dims: grid.dims(),
+            scalar_type: grid.samples().scalar_type().name().to_string(),
+            levels: summary.levels,
+            samples: summary.samples,
+            slab_planes: summary.slab_planes,
+            store_bytes: folder_bytes(&args.output),
+            volume_bytes: (grid.shape().point_count() * grid.samples().scalar_type().size()) as u64,
+            read_ms,
+            build_ms,
+            write_ms,
+        })
+    })?;
+    print_report(&report, args.json, |r| {
+        println!(
+            "wrote {}: {}x{}x{} {}, {} levels ({} samples), {:.2} MB on disk for {:.2} MB of samples",
+            r.output,
+            r.dims[0],
+            r.dims[1],
+            r.dims[2],
+            r.scalar_type,
+            r.levels,
+            r.samples,
+            r.store_bytes as f64 / 1e6,
+            r.volume_bytes as f64 / 1e6
+        );
+        println!("times: read {:.0} ms, octree {:.0} ms, write {:.0} ms", r.read_ms, r.build_ms, r.write_ms);
+    })
+}
+
+/// Bytes of the files under `dir`.
+fn folder_bytes(dir: &Path) -> u64 {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return 0;
+    };
+    entries
+        .flatten()
+        .map(|e| match e.file_type() {
+            Ok(t) if t.is_dir() => folder_bytes(&e.path()),
+            Ok(_) => e.metadata().map_or(0, |m| m.len()),
+            Err(_) => 0,
+        })
+        .sum()
+}
