@@ -9,11 +9,11 @@
 //! (their downsampling is unknown), and a level `p` box is the stride-`2^p`
 //! subsampling of the full-resolution box.
 
+use super::metadata::{Metadata, ATTRIBUTE};
 use super::octree_arrays::read_octree;
 use super::pyramid::{level_count, level_dims, level_position};
 use super::subchunks::{self, SubchunkCache};
 use super::zarr::{open_array, scalar_type_of, zarr_error, Storage};
-use super::{Metadata, ATTRIBUTE};
 use crate::base::error::{Error, Result};
 use crate::base::limits::{check_memory, escape_controls};
 use crate::data::grid::{GridShape, ScalarType};

@@ -13,7 +13,7 @@ use std::sync::{Arc, Mutex};
 use zarrs::array::{Array, ArrayShardedReadableExt, ArrayShardedReadableExtCache, CodecOptions};
 
 /// Samples per axis of a subchunk (the writer's).
-pub const EDGE: usize = super::write::SUBCHUNK as usize;
+pub const EDGE: usize = 16;
 
 /// A level's subchunk: (level, z, y, x index).
 type Key = (usize, [u64; 3]);

@@ -10,11 +10,11 @@
 //! shared far face is the first sample plane of the neighbouring subchunk,
 //! which the sharded read decodes with it. Subchunks are zstd-compressed.
 
+use super::metadata::Metadata;
 use super::ngff::ome_attribute;
 use super::octree_arrays::write_octree;
 use super::pyramid::{level_count, level_dims, level_position};
 use super::zarr::{bytes_of, data_type_of, zarr_error, zstd, Storage};
-use super::Metadata;
 use crate::base::error::{Error, Result};
 use crate::base::limits::check_memory;
 use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
@@ -26,7 +26,7 @@ use zarrs::array::{Array, ArrayBuilder, ArrayBytes, ArraySubset};
 use zarrs::group::GroupBuilder;
 
 /// Samples per axis of a subchunk.
-pub const SUBCHUNK: u64 = 16;
+pub const SUBCHUNK: u64 = super::subchunks::EDGE as u64;
 /// Samples along x and y of a shard.
 const SHARD_XY: u64 = 256;
 /// The deepest slab (shard depth along z).
@@ -129,7 +129,7 @@ pub fn write_store(
     let attributes = root.attributes_mut();
     attributes.insert("ome".into(), ome_attribute(grid.shape(), levels, &options.name));
     attributes.insert(
-        super::ATTRIBUTE.into(),
+        super::metadata::ATTRIBUTE.into(),
         serde_json::to_value(&metadata).map_err(|e| zarr_error(&label, "writing the metadata", &e))?,
     );
     let total: u64 = (0..levels).map(|p| level_dims(dims, p).iter().map(|&m| m as u64).product::<u64>()).sum();
