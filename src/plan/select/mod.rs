@@ -43,6 +43,7 @@
 
 mod brick;
 mod cache;
+mod cut;
 mod estimate;
 mod mass;
 mod refine;

@@ -2,7 +2,8 @@
 //! [`super`]).
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
-use super::cache::{NodeMap, WordHasher};
+use super::cache::NodeMap;
+use super::cut::Cut;
 use super::estimate::estimated_error;
 use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
 use super::view::ViewImportance;
@@ -37,8 +38,37 @@ impl PartialOrd for Step {
     }
 }
 impl Ord for Step {
+    /// By gain, ties to the smaller node id (then level, then points: one
+    /// order for any two steps, whatever the queue's history).
     fn cmp(&self, o: &Self) -> Ordering {
-        self.gain.total_cmp(&o.gain).then_with(|| o.node.cmp(&self.node))
+        self.gain
+            .total_cmp(&o.gain)
+            .then_with(|| o.node.cmp(&self.node))
+            .then_with(|| o.p.cmp(&self.p))
+            .then_with(|| o.points.cmp(&self.points))
+    }
+}
+
+/// A queued step and what it does.
+struct Queued {
+    step: Step,
+    entry: Arc<StepEntry>,
+}
+
+impl PartialEq for Queued {
+    fn eq(&self, o: &Self) -> bool {
+        self.step == o.step
+    }
+}
+impl Eq for Queued {}
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Queued {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.step.cmp(&o.step)
     }
 }
 
@@ -75,12 +105,19 @@ pub fn select_with_points(
 
 /// What a selection computes once and reuses: the [`cheapest`] forms by
 /// (node, p) and the best next step of a brick by (node, p, points taken).
-/// Both are pure functions of the octree, the visibility test and the
-/// options other than the budget: one selection fills them, and a
-/// [`super::Selector`] keeps them for the next one with another budget.
+/// The forms are pure functions of the octree, the visibility test, the
+/// options other than the budget, the tolerance and the region of
+/// interest, and of the levels where the view stops refinement
+/// ([`ViewImportance::coarsest_levels`]); the steps also of the tolerance
+/// and the importance (the region of interest and the view weights). One
+/// selection fills them, and a [`super::Selector`] keeps what the next
+/// one's inputs leave valid.
 #[derive(Default)]
 pub(super) struct Caches {
     memo: Memo,
+    /// Counts the importance functions the forms' weighted masses were
+    /// kept for ([`Form::weighted_mass`]).
+    epoch: u64,
     steps: NodeMap<(NodeId, usize, usize), NextStep>,
     /// Per node id: its view weight `Imp_view` and the levels below full
     /// resolution where its refinement stops ([`ViewImportance`]), NaN
@@ -92,6 +129,17 @@ impl Caches {
     /// Drops the steps (they depend on the tolerance), keeps the forms.
     pub(super) fn forget_steps(&mut self) {
         self.steps.get_mut().clear();
+    }
+
+    /// Drops what depends on the importance (the steps, the forms'
+    /// weighted masses, and with `view_changed` the view weights), keeps
+    /// the forms.
+    pub(super) fn reweigh(&mut self, view_changed: bool) {
+        self.forget_steps();
+        self.epoch += 1;
+        if view_changed {
+            self.seen.get_mut().clear();
+        }
     }
 }
 
@@ -199,13 +247,20 @@ fn check_options(options: &SelectOptions) -> Result<()> {
     Ok(())
 }
 
-/// A cut being refined: node id to its brick (sorted by node id when done).
-type Cut = std::collections::HashMap<NodeId, Brick, std::hash::BuildHasherDefault<WordHasher>>;
+/// A brick's next step: the queued step, the bricks that replace the
+/// brick, the transparent nodes they leave out, the brick's bytes and
+/// theirs (textures and points).
+struct StepEntry {
+    step: Step,
+    replacement: Replacement,
+    hidden: usize,
+    cost: usize,
+    added: usize,
+}
 
-/// A brick's next step (none when it meets the tolerance or nothing
-/// removes error): the queued step, the bricks that replace the brick and
-/// the transparent nodes they leave out.
-type NextStep = Option<(Step, Replacement, usize)>;
+/// A brick's next step, shared by the queue and the kept steps (none when
+/// it meets the tolerance or nothing removes error).
+type NextStep = Option<Arc<StepEntry>>;
 
 /// A candidate step: its gain, the bricks that replace the brick, and the
 /// transparent nodes they leave out.
@@ -225,13 +280,6 @@ impl Replacement {
         match self {
             Replacement::Bricks(b) => b.iter().map(Refiner::cost).sum(),
             Replacement::Forms(f) => f.iter().map(|f| f.bytes).sum(),
-        }
-    }
-
-    fn into_bricks(self) -> Vec<Brick> {
-        match self {
-            Replacement::Bricks(b) => b,
-            Replacement::Forms(f) => Form::concat(&f),
         }
     }
 }
@@ -260,6 +308,36 @@ impl Refiner<'_> {
         seen.min(self.options.max_brick_log2 as usize)
     }
 
+    /// `Imp(n) = Imp_roi(n) Imp_view(n)` of node `id`.
+    fn importance_of(&self, id: NodeId) -> f64 {
+        let n = self.octree.node(id);
+        importance(self.options.roi.as_ref(), n.lo, n.hi) * self.seen(&n).0
+    }
+
+    /// Brick `b` (of a [`Form`], importance 1) with its node's importance.
+    fn weigh(&self, b: &Brick) -> Brick {
+        Brick { importance: self.importance_of(b.node), ..*b }
+    }
+
+    /// The weighted error mass of a [`Form`] under this selection's importance.
+    fn form_mass(&self, form: &Form) -> f64 {
+        form.weighted_mass(self.caches.epoch, &|id| self.importance_of(id))
+    }
+
+    /// The bricks of a step, with their importance.
+    fn bricks(&self, replacement: Replacement) -> Vec<Brick> {
+        match replacement {
+            Replacement::Bricks(b) => b,
+            Replacement::Forms(forms) => {
+                let mut out = Vec::new();
+                for form in &forms {
+                    form.each(&mut |b| out.push(self.weigh(b)));
+                }
+                out
+            }
+        }
+    }
+
     /// `(Imp_view(n), coarsest levels)` of node `n`, computed once per node
     /// and view (`(1, 0)` without a view).
     fn seen(&self, n: &NodeRef<'_>) -> (f64, usize) {
@@ -283,16 +361,13 @@ impl Refiner<'_> {
 
     /// Node `id` drawn at level `p`, with its importance.
     fn brick_of(&self, id: NodeId, p: usize) -> Brick {
+        self.weigh(&self.form_brick(id, p))
+    }
+
+    /// Node `id` drawn at level `p`, with an importance of 1 (a [`Form`]'s brick).
+    fn form_brick(&self, id: NodeId, p: usize) -> Brick {
         let n = self.octree.node(id);
-        let seen = self.seen(&n).0;
-        let mut b = make_brick(
-            self.octree,
-            &n,
-            p,
-            importance(self.options.roi.as_ref(), n.lo, n.hi) * seen,
-            self.options.bytes_per_texel,
-            self.options.gradient_border,
-        );
+        let mut b = make_brick(self.octree, &n, p, 1.0, self.options.bytes_per_texel, self.options.gradient_border);
         // Peak-keeping texels: a coarse brick's error is at least E_pool (see [`error_mass`]).
         if let Some(inv_range) = self.pooled().filter(|_| p < n.errors.len()) {
             b.error = b.error.max(((n.max - n.min) * inv_range) as f32);
@@ -334,7 +409,7 @@ impl Refiner<'_> {
             self.octree,
             n,
             p,
-            &|id, p| self.brick_of(id, p),
+            &|id, p| self.form_brick(id, p),
             &|n| self.max_p(n),
             self.shows,
             &self.caches.memo,
@@ -358,13 +433,18 @@ impl Refiner<'_> {
         step
     }
 
-    /// The [`Step`] of [`Refiner::next_step`] alone (what the queue holds).
-    fn next_gain(&self, b: &Brick) -> Option<Step> {
+    /// Queues the next step of brick `b` of a [`Form`] (importance 1) or,
+    /// with `weighted`, of a brick with its importance, if it has one.
+    fn queue(&self, b: &Brick, weighted: bool, queue: &mut BinaryHeap<Queued>) {
         let key = (b.node, b.p, b.point_count);
-        if let Some(known) = self.caches.steps.borrow().get(&key) {
-            return known.as_ref().map(|k| k.0);
+        let known = self.caches.steps.borrow().get(&key).cloned();
+        let entry = match known {
+            Some(known) => known,
+            None => self.next_step(&if weighted { *b } else { self.weigh(b) }),
+        };
+        if let Some(entry) = entry {
+            queue.push(Queued { step: entry.step, entry });
         }
-        self.next_step(b).map(|k| k.0)
     }
 
     /// [`Refiner::next_step`], computed.
@@ -381,8 +461,15 @@ impl Refiner<'_> {
             (r, s) => r.or(s),
         };
         let best = better(better(raise, split), take_points);
-        best.filter(|s| s.0 > 0.0)
-            .map(|(gain, bricks, hidden)| (Step { gain, node: b.node, p: b.p, points: b.point_count }, bricks, hidden))
+        best.filter(|s| s.0 > 0.0).map(|(gain, replacement, hidden)| {
+            Arc::new(StepEntry {
+                step: Step { gain, node: b.node, p: b.p, points: b.point_count },
+                added: replacement.cost(),
+                replacement,
+                hidden,
+                cost: Self::cost(b),
+            })
+        })
     }
 
     /// Raise `p` to the level `q` in `(p, max]` that removes the most error
@@ -394,7 +481,7 @@ impl Refiner<'_> {
         (b.p + 1..=self.max_p(n))
             .map(|q| {
                 let up = self.cheapest(n, q);
-                (gain(mass - up.mass, up.bytes as f64 - Self::cost(b) as f64), up)
+                (gain(mass - self.form_mass(&up), up.bytes as f64 - Self::cost(b) as f64), up)
             })
             .max_by(|x, y| x.0.total_cmp(&y.0))
             .map(|(gain, up)| (gain, up.hidden, Replacement::Forms(vec![up])))
@@ -413,12 +500,12 @@ impl Refiner<'_> {
     /// `(removed by both) / (bytes of both)`.
     fn split(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
         (!n.is_terminal() && b.p > 0).then(|| {
-            let (children, hidden, added, after) = children_forms(
+            let (children, hidden, added) = children_forms(
                 self.octree,
                 n,
                 b.p,
                 usize::MAX,
-                &|id, p| self.brick_of(id, p),
+                &|id, p| self.form_brick(id, p),
                 &|n| self.max_p(n),
                 self.shows,
                 &self.caches.memo,
@@ -426,20 +513,22 @@ impl Refiner<'_> {
             );
             let split_bytes = added as f64 - Self::cost(b) as f64;
             let mass = self.mass(b);
+            let mut after = 0.0;
+            for form in &children {
+                after += self.form_mass(form);
+            }
             let direct = gain(mass - after, split_bytes);
             let mut ahead: f64 = 0.0;
             for form in &children {
                 form.each_own(&mut |own, c| {
                     let raises = own.raises.get_or_init(|| {
                         let cn = self.octree.node(c.node);
-                        (c.p + 1..=self.max_p(&cn))
-                            .map(|q| {
-                                let up = self.cheapest(&cn, q);
-                                (self.mass(c), up.mass, up.bytes as f64 - Self::cost(c) as f64)
-                            })
-                            .collect()
+                        (c.p + 1..=self.max_p(&cn)).map(|q| self.cheapest(&cn, q)).collect()
                     });
-                    for &(mass_c, up_mass, up_bytes) in raises {
+                    // The own brick's weighted mass, `Imp(c) mass(c, p_c)` (no points).
+                    let mass_c = self.importance_of(c.node) * own.own_mass;
+                    for up in raises {
+                        let (up_mass, up_bytes) = (self.form_mass(up), up.bytes as f64 - Self::cost(c) as f64);
                         let removed = mass - after + mass_c - up_mass;
                         if removed > 0.0 {
                             ahead = ahead.max(removed / (split_bytes + up_bytes).max(1.0));
@@ -467,39 +556,55 @@ impl Refiner<'_> {
     /// Greedy refinement of a starting cut (its bricks, its transparent
     /// nodes) until nothing fits: the cut, its bytes, its transparent nodes.
     fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Vec<Brick>, usize, usize) {
-        let mut cut = Cut::default();
+        let mut cut = Cut::new(self.octree.layout().node_slots());
         let mut bytes = 0usize;
         let mut queue = BinaryHeap::new();
-        for b in start {
-            bytes += Self::cost(&b);
-            cut.insert(b.node, b);
-            if let Some(s) = self.next_gain(&b) {
-                queue.push(s);
-            }
+        for b in &start {
+            bytes += Self::cost(b);
+            cut.put(b.node, b.p, b.point_count);
+            self.queue(b, true, &mut queue);
         }
-        while let Some(step) = queue.pop() {
-            let Some(current) = cut.get(&step.node).copied() else { continue };
-            if current.p != step.p || step.points != current.point_count {
+        while let Some(Queued { step, entry }) = queue.pop() {
+            if !cut.holds(step.node, step.p, step.points) {
                 continue; // stale
             }
-            let Some((_, replacement, hidden)) = self.next_step(&current) else { continue };
-            let added = replacement.cost();
-            if bytes - Self::cost(&current) + added > self.options.budget_bytes {
+            let after = bytes - entry.cost + entry.added;
+            if after > self.options.budget_bytes {
                 continue; // does not fit; cheaper steps of other nodes may
             }
-            bytes = bytes - Self::cost(&current) + added;
-            cut.remove(&step.node);
-            skipped += hidden;
-            for r in replacement.into_bricks() {
-                cut.insert(r.node, r);
-                if let Some(s) = self.next_gain(&r) {
-                    queue.push(s);
+            bytes = after;
+            cut.take(step.node);
+            skipped += entry.hidden;
+            match &entry.replacement {
+                Replacement::Bricks(bricks) => {
+                    for b in bricks {
+                        cut.put(b.node, b.p, b.point_count);
+                        self.queue(b, true, &mut queue);
+                    }
+                }
+                Replacement::Forms(forms) => {
+                    for form in forms {
+                        form.each(&mut |b| {
+                            cut.put(b.node, b.p, 0);
+                            self.queue(b, false, &mut queue);
+                        });
+                    }
                 }
             }
         }
-        let mut bricks: Vec<Brick> = cut.into_values().collect();
-        bricks.sort_unstable_by_key(|b| b.node);
+        let mut bricks = Vec::new();
+        cut.each(&mut |id, p, points| bricks.push(self.brick_with_points(id, p, points)));
         (bricks, bytes, skipped)
+    }
+
+    /// [`Refiner::brick_of`] node `id` at level `p`, holding `count` points
+    /// (what [`Refiner::take_points`] makes).
+    fn brick_with_points(&self, id: NodeId, p: usize, count: usize) -> Brick {
+        let b = self.brick_of(id, p);
+        match self.points {
+            Some(pm) if count > 0 => Brick { point_count: count, point_bytes: count * pm.point_bytes, ..b },
+            _ => b,
+        }
     }
 
     /// Two starts, the better (smaller error mass) wins unless the first
@@ -515,7 +620,8 @@ impl Refiner<'_> {
         let fine = || {
             (1..=self.max_p(root)).rev().find_map(|p| {
                 let form = self.cheapest(root, p);
-                (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Arc::clone(&form)]), form.hidden))
+                (form.bytes <= self.options.budget_bytes)
+                    .then(|| (self.bricks(Replacement::Forms(vec![Arc::clone(&form)])), form.hidden))
             })
         };
         let total_mass = |cut: &[Brick]| cut.iter().map(|b| self.mass(b)).sum::<f64>();
@@ -725,13 +831,15 @@ mod tests {
             let own = brick_of(root.id, p);
             for shows in [&(|_: &NodeRef<'_>| true) as &dyn Fn(&NodeRef<'_>) -> bool, &|n| n.max > 0.5] {
                 let form = cheapest(&o, &root, p, &brick_of, &max_p, shows, &Memo::default(), None);
-                let bricks = &Form::concat(&[Arc::clone(&form)]);
+                let mut bricks = Vec::new();
+                form.each(&mut |b| bricks.push(*b));
+                let mass_of_form = form.weighted_mass(0, &|_| 1.0);
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
                 // The form's own sums are its bricks'.
                 let masses: f64 = bricks.iter().map(|b| error_mass(&o.node(b.node), b.p, 0.0, None)).sum();
                 assert_eq!(form.bytes, bytes);
-                assert!((form.mass - masses).abs() <= 1e-9 * masses.max(1e-30), "p {p}: {} vs {masses}", form.mass);
+                assert!((mass_of_form - masses).abs() <= 1e-9 * masses.max(1e-30), "p {p}: {mass_of_form} vs {masses}");
                 assert!(bytes <= own.bytes, "p {p}: {bytes} > {}", own.bytes);
                 assert!(mass <= root.squared_error(p) as f64 * (1.0 + 1e-5) + 1e-9, "p {p}");
             }
