@@ -119,6 +119,11 @@ pub(super) struct Caches {
     /// kept for ([`Form::weighted_mass`]).
     epoch: u64,
     steps: NodeMap<(NodeId, usize, usize), NextStep>,
+    /// What a brick can become, by (node, p): kept with the forms.
+    shapes: NodeMap<(NodeId, usize), Arc<Shape>>,
+    /// Per node id: its importance `Imp(n)`, NaN until computed; empty
+    /// until the first is.
+    imp: std::cell::RefCell<Vec<f64>>,
     /// Per node id: its view weight `Imp_view` and the levels below full
     /// resolution where its refinement stops ([`ViewImportance`]), NaN
     /// until computed; empty without a view.
@@ -137,6 +142,7 @@ impl Caches {
     pub(super) fn reweigh(&mut self, view_changed: bool) {
         self.forget_steps();
         self.epoch += 1;
+        self.imp.get_mut().clear();
         if view_changed {
             self.seen.get_mut().clear();
         }
@@ -266,22 +272,41 @@ type NextStep = Option<Arc<StepEntry>>;
 /// transparent nodes they leave out.
 type Candidate = (f64, Replacement, usize);
 
-/// The bricks of a step: made (a brick taking its points), or the shared
-/// [`cheapest`] forms they come from, copied only when the step is taken.
-#[derive(Clone)]
+/// The bricks of a step: a brick taking its points, or the shared
+/// [`cheapest`] forms they come from (a raise's one form, a split's
+/// children), read only when the step is taken.
 enum Replacement {
-    Bricks(Vec<Brick>),
-    Forms(Vec<Arc<Form>>),
+    Points(Brick),
+    Raise(Arc<Form>),
+    Split(Arc<Shape>),
 }
 
 impl Replacement {
     /// Bytes the bricks hold (textures and points).
     fn cost(&self) -> usize {
         match self {
-            Replacement::Bricks(b) => b.iter().map(Refiner::cost).sum(),
-            Replacement::Forms(f) => f.iter().map(|f| f.bytes).sum(),
+            Replacement::Points(b) => Refiner::cost(b),
+            Replacement::Raise(_) | Replacement::Split(_) => self.forms().iter().map(|f| f.bytes).sum(),
         }
     }
+
+    /// The forms the bricks come from (none for [`Replacement::Points`]).
+    fn forms(&self) -> &[Arc<Form>] {
+        match self {
+            Replacement::Points(_) => &[],
+            Replacement::Raise(form) => std::slice::from_ref(form),
+            Replacement::Split(shape) => shape.split.as_ref().map_or(&[], |s| &s.0),
+        }
+    }
+}
+
+/// What a brick of node `n` at level `p` can become, whatever the
+/// importance (kept with the forms): the node's [`cheapest`] forms at each
+/// level `q` in `(p, max_p(n)]`, and its children's at `p - 1` (with the
+/// transparent nodes they leave out and their bytes) when it can split.
+struct Shape {
+    ups: Vec<Arc<Form>>,
+    split: Option<(Vec<Arc<Form>>, usize, usize)>,
 }
 
 /// One selection: its inputs and the [`Caches`] every step shares.
@@ -309,9 +334,18 @@ impl Refiner<'_> {
     }
 
     /// `Imp(n) = Imp_roi(n) Imp_view(n)` of node `id`.
+    /// Computed once per node and importance.
     fn importance_of(&self, id: NodeId) -> f64 {
-        let n = self.octree.node(id);
-        importance(self.options.roi.as_ref(), n.lo, n.hi) * self.seen(&n).0
+        let mut imp = self.caches.imp.borrow_mut();
+        if imp.is_empty() {
+            imp.resize(self.octree.layout().node_slots(), f64::NAN);
+        }
+        let slot = &mut imp[id.0 as usize];
+        if slot.is_nan() {
+            let n = self.octree.node(id);
+            *slot = importance(self.options.roi.as_ref(), n.lo, n.hi) * self.seen(&n).0;
+        }
+        *slot
     }
 
     /// Brick `b` (of a [`Form`], importance 1) with its node's importance.
@@ -324,18 +358,28 @@ impl Refiner<'_> {
         form.weighted_mass(self.caches.epoch, &|id| self.importance_of(id))
     }
 
-    /// The bricks of a step, with their importance.
-    fn bricks(&self, replacement: Replacement) -> Vec<Brick> {
-        match replacement {
-            Replacement::Bricks(b) => b,
-            Replacement::Forms(forms) => {
-                let mut out = Vec::new();
-                for form in &forms {
-                    form.each(&mut |b| out.push(self.weigh(b)));
-                }
-                out
-            }
+    /// The [`Shape`] of node `n` at level `p`, made once per (node, p).
+    fn shape(&self, n: &NodeRef<'_>, p: usize) -> Arc<Shape> {
+        if let Some(known) = self.caches.shapes.borrow().get(&(n.id, p)) {
+            return Arc::clone(known);
         }
+        let ups = (p + 1..=self.max_p(n)).map(|q| self.cheapest(n, q)).collect();
+        let split = (!n.is_terminal() && p > 0).then(|| {
+            children_forms(
+                self.octree,
+                n,
+                p,
+                usize::MAX,
+                &|id, p| self.form_brick(id, p),
+                &|n| self.max_p(n),
+                self.shows,
+                &self.caches.memo,
+                self.pooled(),
+            )
+        });
+        let shape = Arc::new(Shape { ups, split });
+        self.caches.shapes.borrow_mut().insert((n.id, p), Arc::clone(&shape));
+        shape
     }
 
     /// `(Imp_view(n), coarsest levels)` of node `n`, computed once per node
@@ -452,9 +496,9 @@ impl Refiner<'_> {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
-        let n = self.octree.node(b.node);
-        let raise = self.raise(b, &n);
-        let split = self.split(b, &n);
+        let shape = self.shape(&self.octree.node(b.node), b.p);
+        let raise = self.raise(b, &shape);
+        let split = self.split(b, &shape);
         let take_points = self.take_points(b);
         let better = |x: Option<Candidate>, y: Option<Candidate>| match (x, y) {
             (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
@@ -476,16 +520,14 @@ impl Refiner<'_> {
     /// mass per byte: the same box, `2^(q-p)` times the texels per axis.
     /// (Looking past `p + 1` matters: across a sharp edge `e_p` stays near its
     /// maximum until full resolution, so one level alone may buy nothing.)
-    fn raise(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+    fn raise(&self, b: &Brick, shape: &Shape) -> Option<Candidate> {
         let mass = self.mass(b);
-        (b.p + 1..=self.max_p(n))
-            .map(|q| {
-                let up = self.cheapest(n, q);
-                (gain(mass - self.form_mass(&up), up.bytes as f64 - Self::cost(b) as f64), up)
-            })
+        shape
+            .ups
+            .iter()
+            .map(|up| (gain(mass - self.form_mass(up), up.bytes as f64 - Self::cost(b) as f64), up))
             .max_by(|x, y| x.0.total_cmp(&y.0))
-            .map(|(gain, up)| (gain, up.hidden, Replacement::Forms(vec![up])))
-            .map(|(gain, hidden, up)| (gain, up, hidden))
+            .map(|(gain, up)| (gain, Replacement::Raise(Arc::clone(up)), up.hidden))
     }
 
     /// Split: the children at the same stride (`p - 1`), each in its
@@ -498,28 +540,18 @@ impl Refiner<'_> {
     /// is ranked by the better of its own gain and its best one-step
     /// lookahead: the split followed by the best raise of one child,
     /// `(removed by both) / (bytes of both)`.
-    fn split(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
-        (!n.is_terminal() && b.p > 0).then(|| {
-            let (children, hidden, added) = children_forms(
-                self.octree,
-                n,
-                b.p,
-                usize::MAX,
-                &|id, p| self.form_brick(id, p),
-                &|n| self.max_p(n),
-                self.shows,
-                &self.caches.memo,
-                self.pooled(),
-            );
+    fn split(&self, b: &Brick, shape: &Arc<Shape>) -> Option<Candidate> {
+        shape.split.as_ref().map(|(children, hidden, added)| {
+            let (hidden, added) = (*hidden, *added);
             let split_bytes = added as f64 - Self::cost(b) as f64;
             let mass = self.mass(b);
             let mut after = 0.0;
-            for form in &children {
+            for form in children {
                 after += self.form_mass(form);
             }
             let direct = gain(mass - after, split_bytes);
             let mut ahead: f64 = 0.0;
-            for form in &children {
+            for form in children {
                 form.each_own(&mut |own, c| {
                     let raises = own.raises.get_or_init(|| {
                         let cn = self.octree.node(c.node);
@@ -536,7 +568,7 @@ impl Refiner<'_> {
                     }
                 });
             }
-            (direct.max(ahead), Replacement::Forms(children), hidden)
+            (direct.max(ahead), Replacement::Split(Arc::clone(shape)), hidden)
         })
     }
 
@@ -548,7 +580,7 @@ impl Refiner<'_> {
             let bytes = count * pm.point_bytes;
             (count > 0 && removable > 0.0).then(|| {
                 let with = Brick { point_count: count, point_bytes: bytes, ..*b };
-                (gain(self.mass(b) - self.mass(&with), bytes as f64), Replacement::Bricks(vec![with]), 0)
+                (gain(self.mass(b) - self.mass(&with), bytes as f64), Replacement::Points(with), 0)
             })
         })
     }
@@ -575,21 +607,15 @@ impl Refiner<'_> {
             bytes = after;
             cut.take(step.node);
             skipped += entry.hidden;
-            match &entry.replacement {
-                Replacement::Bricks(bricks) => {
-                    for b in bricks {
-                        cut.put(b.node, b.p, b.point_count);
-                        self.queue(b, true, &mut queue);
-                    }
-                }
-                Replacement::Forms(forms) => {
-                    for form in forms {
-                        form.each(&mut |b| {
-                            cut.put(b.node, b.p, 0);
-                            self.queue(b, false, &mut queue);
-                        });
-                    }
-                }
+            if let Replacement::Points(b) = &entry.replacement {
+                cut.put(b.node, b.p, b.point_count);
+                self.queue(b, true, &mut queue);
+            }
+            for form in entry.replacement.forms() {
+                form.each(&mut |b| {
+                    cut.put(b.node, b.p, 0);
+                    self.queue(b, false, &mut queue);
+                });
             }
         }
         let mut bricks = Vec::new();
@@ -621,7 +647,11 @@ impl Refiner<'_> {
             (1..=self.max_p(root)).rev().find_map(|p| {
                 let form = self.cheapest(root, p);
                 (form.bytes <= self.options.budget_bytes)
-                    .then(|| (self.bricks(Replacement::Forms(vec![Arc::clone(&form)])), form.hidden))
+                    .then(|| {
+                        let mut bricks = Vec::new();
+                        form.each(&mut |b| bricks.push(self.weigh(b)));
+                        (bricks, form.hidden)
+                    })
             })
         };
         let total_mass = |cut: &[Brick]| cut.iter().map(|b| self.mass(b)).sum::<f64>();
