@@ -43,7 +43,6 @@
 
 mod brick;
 mod cache;
-mod cut;
 mod estimate;
 mod mass;
 mod refine;

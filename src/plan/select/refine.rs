@@ -3,16 +3,17 @@
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
 use super::cache::NodeMap;
-use super::cut::Cut;
 use super::estimate::estimated_error;
 use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
 use super::view::ViewImportance;
 use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
+use greedy::Log;
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 use std::sync::Arc;
+
+mod greedy;
 
 /// A refinement step in the queue.
 #[derive(Debug, Clone, Copy)]
@@ -49,10 +50,12 @@ impl Ord for Step {
     }
 }
 
-/// A queued step and what it does.
+/// A queued step: its kept entry (`Caches::entries`) and its push in the
+/// run's record ([`greedy`]).
 struct Queued {
     step: Step,
-    entry: Arc<StepEntry>,
+    index: usize,
+    push: usize,
 }
 
 impl PartialEq for Queued {
@@ -118,7 +121,13 @@ pub(super) struct Caches {
     /// Counts the importance functions the forms' weighted masses were
     /// kept for ([`Form::weighted_mass`]).
     epoch: u64,
-    steps: NodeMap<(NodeId, usize, usize), NextStep>,
+    /// By (node, p, points): the brick's next step in `entries`, none
+    /// when it has none.
+    steps: NodeMap<(NodeId, usize, usize), Option<usize>>,
+    entries: std::cell::RefCell<Vec<StepEntry>>,
+    /// The record of each start's last run (none: the root at `p = 0`;
+    /// the level of the root's form otherwise), made with these steps.
+    logs: std::cell::RefCell<Vec<(Option<usize>, Log)>>,
     /// What a brick can become, by (node, p): kept with the forms.
     shapes: NodeMap<(NodeId, usize), Arc<Shape>>,
     /// Per node id: its importance `Imp(n)`, NaN until computed; empty
@@ -131,9 +140,12 @@ pub(super) struct Caches {
 }
 
 impl Caches {
-    /// Drops the steps (they depend on the tolerance), keeps the forms.
+    /// Drops the steps (they depend on the tolerance) and the runs made
+    /// with them, keeps the forms.
     pub(super) fn forget_steps(&mut self) {
         self.steps.get_mut().clear();
+        self.entries.get_mut().clear();
+        self.logs.get_mut().clear();
     }
 
     /// Drops what depends on the importance (the steps, the forms'
@@ -264,9 +276,6 @@ struct StepEntry {
     added: usize,
 }
 
-/// A brick's next step, shared by the queue and the kept steps (none when
-/// it meets the tolerance or nothing removes error).
-type NextStep = Option<Arc<StepEntry>>;
 
 /// A candidate step: its gain, the bricks that replace the brick, and the
 /// transparent nodes they leave out.
@@ -275,6 +284,7 @@ type Candidate = (f64, Replacement, usize);
 /// The bricks of a step: a brick taking its points, or the shared
 /// [`cheapest`] forms they come from (a raise's one form, a split's
 /// children), read only when the step is taken.
+#[derive(Clone)]
 enum Replacement {
     Points(Brick),
     Raise(Arc<Form>),
@@ -467,32 +477,25 @@ impl Refiner<'_> {
     /// Computed once per (node, p, points taken): a brick in the cut is
     /// always [`Refiner::brick_of`] its node and level, with or without its
     /// points, so the key says all the step depends on.
-    fn next_step(&self, b: &Brick) -> NextStep {
+    ///
+    /// Returns its index in `Caches::entries`; `b` is a brick of a
+    /// [`Form`] (importance 1) or, with `weighted`, a brick with its importance.
+    fn step_index(&self, b: &Brick, weighted: bool) -> Option<usize> {
         let key = (b.node, b.p, b.point_count);
-        if let Some(known) = self.caches.steps.borrow().get(&key) {
-            return known.clone();
+        if let Some(&known) = self.caches.steps.borrow().get(&key) {
+            return known;
         }
-        let step = self.best_step(b);
-        self.caches.steps.borrow_mut().insert(key, step.clone());
-        step
+        let index = self.best_step(&if weighted { *b } else { self.weigh(b) }).map(|entry| {
+            let mut entries = self.caches.entries.borrow_mut();
+            entries.push(entry);
+            entries.len() - 1
+        });
+        self.caches.steps.borrow_mut().insert(key, index);
+        index
     }
 
-    /// Queues the next step of brick `b` of a [`Form`] (importance 1) or,
-    /// with `weighted`, of a brick with its importance, if it has one.
-    fn queue(&self, b: &Brick, weighted: bool, queue: &mut BinaryHeap<Queued>) {
-        let key = (b.node, b.p, b.point_count);
-        let known = self.caches.steps.borrow().get(&key).cloned();
-        let entry = match known {
-            Some(known) => known,
-            None => self.next_step(&if weighted { *b } else { self.weigh(b) }),
-        };
-        if let Some(entry) = entry {
-            queue.push(Queued { step: entry.step, entry });
-        }
-    }
-
-    /// [`Refiner::next_step`], computed.
-    fn best_step(&self, b: &Brick) -> NextStep {
+    /// [`Refiner::step_index`]'s step, computed.
+    fn best_step(&self, b: &Brick) -> Option<StepEntry> {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
@@ -506,13 +509,13 @@ impl Refiner<'_> {
         };
         let best = better(better(raise, split), take_points);
         best.filter(|s| s.0 > 0.0).map(|(gain, replacement, hidden)| {
-            Arc::new(StepEntry {
+            StepEntry {
                 step: Step { gain, node: b.node, p: b.p, points: b.point_count },
                 added: replacement.cost(),
                 replacement,
                 hidden,
                 cost: Self::cost(b),
-            })
+            }
         })
     }
 
@@ -585,44 +588,6 @@ impl Refiner<'_> {
         })
     }
 
-    /// Greedy refinement of a starting cut (its bricks, its transparent
-    /// nodes) until nothing fits: the cut, its bytes, its transparent nodes.
-    fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Vec<Brick>, usize, usize) {
-        let mut cut = Cut::new(self.octree.layout().node_slots());
-        let mut bytes = 0usize;
-        let mut queue = BinaryHeap::new();
-        for b in &start {
-            bytes += Self::cost(b);
-            cut.put(b.node, b.p, b.point_count);
-            self.queue(b, true, &mut queue);
-        }
-        while let Some(Queued { step, entry }) = queue.pop() {
-            if !cut.holds(step.node, step.p, step.points) {
-                continue; // stale
-            }
-            let after = bytes - entry.cost + entry.added;
-            if after > self.options.budget_bytes {
-                continue; // does not fit; cheaper steps of other nodes may
-            }
-            bytes = after;
-            cut.take(step.node);
-            skipped += entry.hidden;
-            if let Replacement::Points(b) = &entry.replacement {
-                cut.put(b.node, b.p, b.point_count);
-                self.queue(b, true, &mut queue);
-            }
-            for form in entry.replacement.forms() {
-                form.each(&mut |b| {
-                    cut.put(b.node, b.p, 0);
-                    self.queue(b, false, &mut queue);
-                });
-            }
-        }
-        let mut bricks = Vec::new();
-        cut.each(&mut |id, p, points| bricks.push(self.brick_with_points(id, p, points)));
-        (bricks, bytes, skipped)
-    }
-
     /// [`Refiner::brick_of`] node `id` at level `p`, holding `count` points
     /// (what [`Refiner::take_points`] makes).
     fn brick_with_points(&self, id: NodeId, p: usize, count: usize) -> Brick {
@@ -642,21 +607,17 @@ impl Refiner<'_> {
     /// tolerance needs no other (it spends the fewest bytes). Returns the cut
     /// (by node id) and its transparent nodes.
     fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Vec<Brick>, usize) {
-        let from_root = self.grow(vec![coarsest], 0);
-        let fine = || {
-            (1..=self.max_p(root)).rev().find_map(|p| {
-                let form = self.cheapest(root, p);
-                (form.bytes <= self.options.budget_bytes)
-                    .then(|| {
-                        let mut bricks = Vec::new();
-                        form.each(&mut |b| bricks.push(self.weigh(b)));
-                        (bricks, form.hidden)
-                    })
-            })
+        let from_root = self.grow(None, || (vec![coarsest], 0));
+        let fine = || (1..=self.max_p(root)).rev().find(|&p| self.cheapest(root, p).bytes <= self.options.budget_bytes);
+        let form_bricks = |p: usize| {
+            let form = self.cheapest(root, p);
+            let mut bricks = Vec::new();
+            form.each(&mut |b| bricks.push(self.weigh(b)));
+            (bricks, form.hidden)
         };
         let total_mass = |cut: &[Brick]| cut.iter().map(|b| self.mass(b)).sum::<f64>();
         let meets = from_root.0.iter().all(|b| Self::weighted(b) <= self.options.tolerance);
-        let other = if meets { None } else { fine().map(|(bricks, hidden)| self.grow(bricks, hidden)) };
+        let other = if meets { None } else { fine().map(|p| self.grow(Some(p), || form_bricks(p))) };
         let (cut, _, skipped) = match other {
             Some(other) if total_mass(&other.0) < total_mass(&from_root.0) => other,
             _ => from_root,
