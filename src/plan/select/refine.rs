@@ -276,17 +276,17 @@ struct StepEntry {
     added: usize,
 }
 
-
 /// A candidate step: its gain, the bricks that replace the brick, and the
 /// transparent nodes they leave out.
 type Candidate = (f64, Replacement, usize);
 
-/// The bricks of a step: a brick taking its points, or the shared
+/// The bricks of a step: the brick taking its points, or the shared
 /// [`cheapest`] forms they come from (a raise's one form, a split's
 /// children), read only when the step is taken.
 #[derive(Clone)]
 enum Replacement {
-    Points(Brick),
+    /// The brick with its points: their count and bytes.
+    Points(usize, usize),
     Raise(Arc<Form>),
     Split(Arc<Shape>),
 }
@@ -295,7 +295,7 @@ impl Replacement {
     /// Bytes the bricks hold (textures and points).
     fn cost(&self) -> usize {
         match self {
-            Replacement::Points(b) => Refiner::cost(b),
+            Replacement::Points(_, bytes) => *bytes,
             Replacement::Raise(_) | Replacement::Split(_) => self.forms().iter().map(|f| f.bytes).sum(),
         }
     }
@@ -303,7 +303,7 @@ impl Replacement {
     /// The forms the bricks come from (none for [`Replacement::Points`]).
     fn forms(&self) -> &[Arc<Form>] {
         match self {
-            Replacement::Points(_) => &[],
+            Replacement::Points(..) => &[],
             Replacement::Raise(form) => std::slice::from_ref(form),
             Replacement::Split(shape) => shape.split.as_ref().map_or(&[], |s| &s.0),
         }
@@ -508,14 +508,12 @@ impl Refiner<'_> {
             (r, s) => r.or(s),
         };
         let best = better(better(raise, split), take_points);
-        best.filter(|s| s.0 > 0.0).map(|(gain, replacement, hidden)| {
-            StepEntry {
-                step: Step { gain, node: b.node, p: b.p, points: b.point_count },
-                added: replacement.cost(),
-                replacement,
-                hidden,
-                cost: Self::cost(b),
-            }
+        best.filter(|s| s.0 > 0.0).map(|(gain, replacement, hidden)| StepEntry {
+            step: Step { gain, node: b.node, p: b.p, points: b.point_count },
+            added: replacement.cost(),
+            replacement,
+            hidden,
+            cost: Self::cost(b),
         })
     }
 
@@ -583,7 +581,7 @@ impl Refiner<'_> {
             let bytes = count * pm.point_bytes;
             (count > 0 && removable > 0.0).then(|| {
                 let with = Brick { point_count: count, point_bytes: bytes, ..*b };
-                (gain(self.mass(b) - self.mass(&with), bytes as f64), Replacement::Points(with), 0)
+                (gain(self.mass(b) - self.mass(&with), bytes as f64), Replacement::Points(count, Self::cost(&with)), 0)
             })
         })
     }

@@ -141,7 +141,11 @@ impl Refiner<'_> {
     /// nodes `bricks` makes, until nothing fits: the cut (by node id), its
     /// bytes, its transparent nodes. Replays the start's record when the
     /// steps are kept (see the module documentation).
-    pub(super) fn grow(&self, start: Option<usize>, bricks: impl FnOnce() -> (Vec<Brick>, usize)) -> (Vec<Brick>, usize, usize) {
+    pub(super) fn grow(
+        &self,
+        start: Option<usize>,
+        bricks: impl FnOnce() -> (Vec<Brick>, usize),
+    ) -> (Vec<Brick>, usize, usize) {
         let slots = self.octree.layout().node_slots();
         let kept = {
             let mut logs = self.caches.logs.borrow_mut();
@@ -151,7 +155,8 @@ impl Refiner<'_> {
             Some(log) => Run::resume(log, self.options.budget_bytes, slots),
             None => {
                 let (bricks, skipped) = bricks();
-                let mut run = Run { log: Log::default(), cut: vec![NEVER; slots], queue: BinaryHeap::new(), bytes: 0, skipped };
+                let mut run =
+                    Run { log: Log::default(), cut: vec![NEVER; slots], queue: BinaryHeap::new(), bytes: 0, skipped };
                 for b in &bricks {
                     run.bytes += Self::cost(b);
                     run.put(b.node, b.p, b.point_count);
@@ -179,9 +184,10 @@ impl Refiner<'_> {
                     run.log.puts[run.cut[step.node.0 as usize]].taken = t;
                     run.cut[step.node.0 as usize] = NEVER;
                     run.skipped += hidden;
-                    if let Replacement::Points(b) = &replacement {
+                    if let Replacement::Points(count, _) = replacement {
+                        let b = self.brick_with_points(step.node, step.p, count);
                         run.put(b.node, b.p, b.point_count);
-                        run.push(self, self.step_index(b, true));
+                        run.push(self, self.step_index(&b, true));
                     }
                     for form in replacement.forms() {
                         form.each(&mut |b| {
