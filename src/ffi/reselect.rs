@@ -1,7 +1,9 @@
 //! The selection a [`HybridOctreeHandle`](super::HybridOctreeHandle) keeps
 //! for its next one ([`crate::plan::select::Selector`]): an interactive
-//! budget change (the mapper's interactive and still budgets) re-runs only
-//! the greedy refinement's queue, with every node's forms and steps kept.
+//! budget change (the mapper's interactive and still budgets) replays the
+//! greedy refinement's record up to where the new budget changes it, with
+//! every node's forms and steps kept; a new region of interest or camera
+//! keeps the forms.
 //!
 //! The forms are valid for one visibility test: [`VisibilityKey`] holds
 //! every field of the [`SelectDesc`] but the budget, the tolerance and the

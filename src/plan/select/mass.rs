@@ -4,6 +4,7 @@
 use super::brick::Brick;
 use super::cache::NodeMap;
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::{Arc, OnceLock};
 
 /// The error mass of node `n` drawn at level `p`, `removed` of its squared
@@ -68,6 +69,13 @@ pub(super) fn gain(removed: f64, added_bytes: f64) -> f64 {
 /// transparent nodes were left out ([`Form`]). Results are kept in `memo`
 /// by (node, p): they depend on nothing else within one selection, and are
 /// shared, not copied (a fine form of a large node holds many bricks).
+///
+/// A form does not depend on the importance `Imp(n)` (the region of
+/// interest, the view weight): which bricks it holds is decided by their
+/// unweighted error mass and their bytes, and its bricks carry an
+/// importance of 1. Its weighted mass is summed when asked for
+/// ([`Form::weighted_mass`]), so one form serves every region of interest
+/// and every view that leaves `max_p` alone.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn cheapest(
     octree: &VolumeOctree,
@@ -84,20 +92,11 @@ pub(super) fn cheapest(
     }
     let q = (0..p).find(|&q| error_mass(n, q, 0.0, pooled) <= error_mass(n, p, 0.0, pooled)).unwrap_or(p);
     let own = brick_of(n.id, q);
-    let own_mass = own.importance * error_mass(n, q, 0.0, pooled);
-    let mut form = Form {
-        own: Some(own),
-        children: Vec::new(),
-        hidden: 0,
-        bytes: own.bytes,
-        mass: own_mass,
-        raises: OnceLock::new(),
-    };
+    let mut form = Form::new(n.id, Some(own), Vec::new(), 0, own.bytes, error_mass(n, q, 0.0, pooled));
     if !(n.is_terminal() || p == 0) {
-        let (children, hidden, bytes, mass) =
-            children_forms(octree, n, p, own.bytes, brick_of, max_p, shows, memo, pooled);
+        let (children, hidden, bytes) = children_forms(octree, n, p, own.bytes, brick_of, max_p, shows, memo, pooled);
         if bytes < own.bytes {
-            form = Form { own: None, children, hidden, bytes, mass, raises: OnceLock::new() };
+            form = Form::new(n.id, None, children, hidden, bytes, 0.0);
         }
     }
     let form = Arc::new(form);
@@ -107,24 +106,75 @@ pub(super) fn cheapest(
 
 /// A node's [`cheapest`] form: the node's own brick, or its children's
 /// forms (shared, so a form costs its children count, not its bricks);
-/// the transparent nodes it leaves out, its bytes and its error mass
-/// `sum Imp(b) mass(b, p_b)` over its bricks ([`error_mass`]). Its bricks
-/// carry no points.
+/// the transparent nodes it leaves out and its bytes. Its bricks carry no
+/// points and an importance of 1.
 #[derive(Debug)]
 pub(super) struct Form {
+    node: NodeId,
     own: Option<Brick>,
     children: Vec<Arc<Form>>,
     pub hidden: usize,
     pub bytes: usize,
-    pub mass: f64,
-    /// Of a form that is its node's own brick `b`: per level `q` above
-    /// `b.p`, `(mass(b), mass(up_q), bytes(up_q) - bytes(b))` with `up_q`
-    /// the node's cheapest form at `q` (what a split's lookahead weighs;
-    /// computed once, see [`Form::each_own`]).
-    pub raises: OnceLock<Vec<(f64, f64, f64)>>,
+    /// Of a form that is its node's own brick `b`: `mass(n, p_b)`
+    /// ([`error_mass`], unweighted); 0 otherwise.
+    pub own_mass: f64,
+    /// The weighted mass of the last [`Form::weighted_mass`]: `(epoch, bits)`.
+    weighted: (AtomicU64, AtomicU64),
+    /// Of a form that is its node's own brick `b`: the node's cheapest
+    /// forms at each level `q` above `b.p` up to its finest (what a split's
+    /// lookahead weighs; made once, see [`Form::each_own`]).
+    pub raises: OnceLock<Vec<Arc<Form>>>,
 }
 
 impl Form {
+    fn new(
+        node: NodeId,
+        own: Option<Brick>,
+        children: Vec<Arc<Form>>,
+        hidden: usize,
+        bytes: usize,
+        own_mass: f64,
+    ) -> Form {
+        Form {
+            node,
+            own,
+            children,
+            hidden,
+            bytes,
+            own_mass,
+            weighted: (AtomicU64::new(u64::MAX), AtomicU64::new(0)),
+            raises: OnceLock::new(),
+        }
+    }
+
+    /// The form's error mass under the importance `imp` (by node id):
+    ///
+    /// ```text
+    /// M(form) = Imp(n) mass(n, p_n)        its node's own brick
+    ///         = sum over children c of M(c)   (in octree order)
+    /// ```
+    ///
+    /// Kept with `epoch`, the caller's count of importance changes: asked
+    /// again under the same epoch, the form answers without a walk (the
+    /// importance must be the same function of the node for one epoch).
+    pub fn weighted_mass(&self, epoch: u64, imp: &dyn Fn(NodeId) -> f64) -> f64 {
+        if self.weighted.0.load(Relaxed) == epoch {
+            return f64::from_bits(self.weighted.1.load(Relaxed));
+        }
+        let mass = if self.own.is_some() {
+            imp(self.node) * self.own_mass
+        } else {
+            let mut sum = 0.0;
+            for c in &self.children {
+                sum += c.weighted_mass(epoch, imp);
+            }
+            sum
+        };
+        self.weighted.1.store(mass.to_bits(), Relaxed);
+        self.weighted.0.store(epoch, Relaxed);
+        mass
+    }
+
     /// Calls `f` on each brick of the form, in order (children in octree order).
     pub fn each(&self, f: &mut impl FnMut(&Brick)) {
         if let Some(b) = &self.own {
@@ -145,21 +195,12 @@ impl Form {
             c.each_own(f);
         }
     }
-
-    /// The bricks of `forms`, in order.
-    pub fn concat(forms: &[Arc<Form>]) -> Vec<Brick> {
-        let mut out = Vec::new();
-        for form in forms {
-            form.each(&mut |b| out.push(*b));
-        }
-        out
-    }
 }
 
 /// The children of `n` that show (not terminal, `p >= 1`), each in its
 /// [`cheapest`] form at `p - 1` (the stride of `n` at `p`): their forms, the
-/// nodes left out (transparent or removed: `shows` is false), their bytes
-/// and their error mass. Stops early once the bytes reach `enough`.
+/// nodes left out (transparent or removed: `shows` is false) and their
+/// bytes. Stops early once the bytes reach `enough`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn children_forms(
     octree: &VolumeOctree,
@@ -171,9 +212,9 @@ pub(super) fn children_forms(
     shows: &dyn Fn(&NodeRef<'_>) -> bool,
     memo: &Memo,
     pooled: Option<f64>,
-) -> (Vec<Arc<Form>>, usize, usize, f64) {
+) -> (Vec<Arc<Form>>, usize, usize) {
     let mut children = Vec::new();
-    let (mut hidden, mut bytes, mut mass) = (0, 0, 0.0);
+    let (mut hidden, mut bytes) = (0, 0);
     for c in octree.children(n.id) {
         let cn = octree.node(c);
         if !shows(&cn) {
@@ -182,14 +223,13 @@ pub(super) fn children_forms(
         }
         let form = cheapest(octree, &cn, (p - 1).min(max_p(&cn)), brick_of, max_p, shows, memo, pooled);
         bytes += form.bytes;
-        mass += form.mass;
         hidden += form.hidden;
         children.push(form);
         if bytes >= enough {
             break;
         }
     }
-    (children, hidden, bytes, mass)
+    (children, hidden, bytes)
 }
 
 /// [`cheapest`]'s results: by (node, p).

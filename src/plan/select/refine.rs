@@ -2,16 +2,18 @@
 //! [`super`]).
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
-use super::cache::{NodeMap, WordHasher};
+use super::cache::NodeMap;
 use super::estimate::estimated_error;
 use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
 use super::view::ViewImportance;
 use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
+use greedy::Log;
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 use std::sync::Arc;
+
+mod greedy;
 
 /// A refinement step in the queue.
 #[derive(Debug, Clone, Copy)]
@@ -37,8 +39,39 @@ impl PartialOrd for Step {
     }
 }
 impl Ord for Step {
+    /// By gain, ties to the smaller node id (then level, then points: one
+    /// order for any two steps, whatever the queue's history).
     fn cmp(&self, o: &Self) -> Ordering {
-        self.gain.total_cmp(&o.gain).then_with(|| o.node.cmp(&self.node))
+        self.gain
+            .total_cmp(&o.gain)
+            .then_with(|| o.node.cmp(&self.node))
+            .then_with(|| o.p.cmp(&self.p))
+            .then_with(|| o.points.cmp(&self.points))
+    }
+}
+
+/// A queued step: its kept entry (`Caches::entries`) and its push in the
+/// run's record ([`greedy`]).
+struct Queued {
+    step: Step,
+    index: usize,
+    push: usize,
+}
+
+impl PartialEq for Queued {
+    fn eq(&self, o: &Self) -> bool {
+        self.step == o.step
+    }
+}
+impl Eq for Queued {}
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Queued {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.step.cmp(&o.step)
     }
 }
 
@@ -75,13 +108,31 @@ pub fn select_with_points(
 
 /// What a selection computes once and reuses: the [`cheapest`] forms by
 /// (node, p) and the best next step of a brick by (node, p, points taken).
-/// Both are pure functions of the octree, the visibility test and the
-/// options other than the budget: one selection fills them, and a
-/// [`super::Selector`] keeps them for the next one with another budget.
+/// The forms are pure functions of the octree, the visibility test, the
+/// options other than the budget, the tolerance and the region of
+/// interest, and of the levels where the view stops refinement
+/// ([`ViewImportance::coarsest_levels`]); the steps also of the tolerance
+/// and the importance (the region of interest and the view weights). One
+/// selection fills them, and a [`super::Selector`] keeps what the next
+/// one's inputs leave valid.
 #[derive(Default)]
 pub(super) struct Caches {
     memo: Memo,
-    steps: NodeMap<(NodeId, usize, usize), NextStep>,
+    /// Counts the importance functions the forms' weighted masses were
+    /// kept for ([`Form::weighted_mass`]).
+    epoch: u64,
+    /// By (node, p, points): the brick's next step in `entries`, none
+    /// when it has none.
+    steps: NodeMap<(NodeId, usize, usize), Option<usize>>,
+    entries: std::cell::RefCell<Vec<StepEntry>>,
+    /// The record of each start's last run (none: the root at `p = 0`;
+    /// the level of the root's form otherwise), made with these steps.
+    logs: std::cell::RefCell<Vec<(Option<usize>, Log)>>,
+    /// What a brick can become, by (node, p): kept with the forms.
+    shapes: NodeMap<(NodeId, usize), Arc<Shape>>,
+    /// Per node id: its importance `Imp(n)`, NaN until computed; empty
+    /// until the first is.
+    imp: std::cell::RefCell<Vec<f64>>,
     /// Per node id: its view weight `Imp_view` and the levels below full
     /// resolution where its refinement stops ([`ViewImportance`]), NaN
     /// until computed; empty without a view.
@@ -89,9 +140,24 @@ pub(super) struct Caches {
 }
 
 impl Caches {
-    /// Drops the steps (they depend on the tolerance), keeps the forms.
+    /// Drops the steps (they depend on the tolerance) and the runs made
+    /// with them, keeps the forms.
     pub(super) fn forget_steps(&mut self) {
         self.steps.get_mut().clear();
+        self.entries.get_mut().clear();
+        self.logs.get_mut().clear();
+    }
+
+    /// Drops what depends on the importance (the steps, the forms'
+    /// weighted masses, and with `view_changed` the view weights), keeps
+    /// the forms.
+    pub(super) fn reweigh(&mut self, view_changed: bool) {
+        self.forget_steps();
+        self.epoch += 1;
+        self.imp.get_mut().clear();
+        if view_changed {
+            self.seen.get_mut().clear();
+        }
     }
 }
 
@@ -199,41 +265,58 @@ fn check_options(options: &SelectOptions) -> Result<()> {
     Ok(())
 }
 
-/// A cut being refined: node id to its brick (sorted by node id when done).
-type Cut = std::collections::HashMap<NodeId, Brick, std::hash::BuildHasherDefault<WordHasher>>;
-
-/// A brick's next step (none when it meets the tolerance or nothing
-/// removes error): the queued step, the bricks that replace the brick and
-/// the transparent nodes they leave out.
-type NextStep = Option<(Step, Replacement, usize)>;
+/// A brick's next step: the queued step, the bricks that replace the
+/// brick, the transparent nodes they leave out, the brick's bytes and
+/// theirs (textures and points).
+struct StepEntry {
+    step: Step,
+    replacement: Replacement,
+    hidden: usize,
+    cost: usize,
+    added: usize,
+}
 
 /// A candidate step: its gain, the bricks that replace the brick, and the
 /// transparent nodes they leave out.
 type Candidate = (f64, Replacement, usize);
 
-/// The bricks of a step: made (a brick taking its points), or the shared
-/// [`cheapest`] forms they come from, copied only when the step is taken.
+/// The bricks of a step: the brick taking its points, or the shared
+/// [`cheapest`] forms they come from (a raise's one form, a split's
+/// children), read only when the step is taken.
 #[derive(Clone)]
 enum Replacement {
-    Bricks(Vec<Brick>),
-    Forms(Vec<Arc<Form>>),
+    /// The brick with its points: their count and bytes.
+    Points(usize, usize),
+    Raise(Arc<Form>),
+    Split(Arc<Shape>),
 }
 
 impl Replacement {
     /// Bytes the bricks hold (textures and points).
     fn cost(&self) -> usize {
         match self {
-            Replacement::Bricks(b) => b.iter().map(Refiner::cost).sum(),
-            Replacement::Forms(f) => f.iter().map(|f| f.bytes).sum(),
+            Replacement::Points(_, bytes) => *bytes,
+            Replacement::Raise(_) | Replacement::Split(_) => self.forms().iter().map(|f| f.bytes).sum(),
         }
     }
 
-    fn into_bricks(self) -> Vec<Brick> {
+    /// The forms the bricks come from (none for [`Replacement::Points`]).
+    fn forms(&self) -> &[Arc<Form>] {
         match self {
-            Replacement::Bricks(b) => b,
-            Replacement::Forms(f) => Form::concat(&f),
+            Replacement::Points(..) => &[],
+            Replacement::Raise(form) => std::slice::from_ref(form),
+            Replacement::Split(shape) => shape.split.as_ref().map_or(&[], |s| &s.0),
         }
     }
+}
+
+/// What a brick of node `n` at level `p` can become, whatever the
+/// importance (kept with the forms): the node's [`cheapest`] forms at each
+/// level `q` in `(p, max_p(n)]`, and its children's at `p - 1` (with the
+/// transparent nodes they leave out and their bytes) when it can split.
+struct Shape {
+    ups: Vec<Arc<Form>>,
+    split: Option<(Vec<Arc<Form>>, usize, usize)>,
 }
 
 /// One selection: its inputs and the [`Caches`] every step shares.
@@ -260,6 +343,55 @@ impl Refiner<'_> {
         seen.min(self.options.max_brick_log2 as usize)
     }
 
+    /// `Imp(n) = Imp_roi(n) Imp_view(n)` of node `id`.
+    /// Computed once per node and importance.
+    fn importance_of(&self, id: NodeId) -> f64 {
+        let mut imp = self.caches.imp.borrow_mut();
+        if imp.is_empty() {
+            imp.resize(self.octree.layout().node_slots(), f64::NAN);
+        }
+        let slot = &mut imp[id.0 as usize];
+        if slot.is_nan() {
+            let n = self.octree.node(id);
+            *slot = importance(self.options.roi.as_ref(), n.lo, n.hi) * self.seen(&n).0;
+        }
+        *slot
+    }
+
+    /// Brick `b` (of a [`Form`], importance 1) with its node's importance.
+    fn weigh(&self, b: &Brick) -> Brick {
+        Brick { importance: self.importance_of(b.node), ..*b }
+    }
+
+    /// The weighted error mass of a [`Form`] under this selection's importance.
+    fn form_mass(&self, form: &Form) -> f64 {
+        form.weighted_mass(self.caches.epoch, &|id| self.importance_of(id))
+    }
+
+    /// The [`Shape`] of node `n` at level `p`, made once per (node, p).
+    fn shape(&self, n: &NodeRef<'_>, p: usize) -> Arc<Shape> {
+        if let Some(known) = self.caches.shapes.borrow().get(&(n.id, p)) {
+            return Arc::clone(known);
+        }
+        let ups = (p + 1..=self.max_p(n)).map(|q| self.cheapest(n, q)).collect();
+        let split = (!n.is_terminal() && p > 0).then(|| {
+            children_forms(
+                self.octree,
+                n,
+                p,
+                usize::MAX,
+                &|id, p| self.form_brick(id, p),
+                &|n| self.max_p(n),
+                self.shows,
+                &self.caches.memo,
+                self.pooled(),
+            )
+        });
+        let shape = Arc::new(Shape { ups, split });
+        self.caches.shapes.borrow_mut().insert((n.id, p), Arc::clone(&shape));
+        shape
+    }
+
     /// `(Imp_view(n), coarsest levels)` of node `n`, computed once per node
     /// and view (`(1, 0)` without a view).
     fn seen(&self, n: &NodeRef<'_>) -> (f64, usize) {
@@ -283,16 +415,13 @@ impl Refiner<'_> {
 
     /// Node `id` drawn at level `p`, with its importance.
     fn brick_of(&self, id: NodeId, p: usize) -> Brick {
+        self.weigh(&self.form_brick(id, p))
+    }
+
+    /// Node `id` drawn at level `p`, with an importance of 1 (a [`Form`]'s brick).
+    fn form_brick(&self, id: NodeId, p: usize) -> Brick {
         let n = self.octree.node(id);
-        let seen = self.seen(&n).0;
-        let mut b = make_brick(
-            self.octree,
-            &n,
-            p,
-            importance(self.options.roi.as_ref(), n.lo, n.hi) * seen,
-            self.options.bytes_per_texel,
-            self.options.gradient_border,
-        );
+        let mut b = make_brick(self.octree, &n, p, 1.0, self.options.bytes_per_texel, self.options.gradient_border);
         // Peak-keeping texels: a coarse brick's error is at least E_pool (see [`error_mass`]).
         if let Some(inv_range) = self.pooled().filter(|_| p < n.errors.len()) {
             b.error = b.error.max(((n.max - n.min) * inv_range) as f32);
@@ -334,7 +463,7 @@ impl Refiner<'_> {
             self.octree,
             n,
             p,
-            &|id, p| self.brick_of(id, p),
+            &|id, p| self.form_brick(id, p),
             &|n| self.max_p(n),
             self.shows,
             &self.caches.memo,
@@ -348,57 +477,58 @@ impl Refiner<'_> {
     /// Computed once per (node, p, points taken): a brick in the cut is
     /// always [`Refiner::brick_of`] its node and level, with or without its
     /// points, so the key says all the step depends on.
-    fn next_step(&self, b: &Brick) -> NextStep {
+    ///
+    /// Returns its index in `Caches::entries`; `b` is a brick of a
+    /// [`Form`] (importance 1) or, with `weighted`, a brick with its importance.
+    fn step_index(&self, b: &Brick, weighted: bool) -> Option<usize> {
         let key = (b.node, b.p, b.point_count);
-        if let Some(known) = self.caches.steps.borrow().get(&key) {
-            return known.clone();
+        if let Some(&known) = self.caches.steps.borrow().get(&key) {
+            return known;
         }
-        let step = self.best_step(b);
-        self.caches.steps.borrow_mut().insert(key, step.clone());
-        step
+        let index = self.best_step(&if weighted { *b } else { self.weigh(b) }).map(|entry| {
+            let mut entries = self.caches.entries.borrow_mut();
+            entries.push(entry);
+            entries.len() - 1
+        });
+        self.caches.steps.borrow_mut().insert(key, index);
+        index
     }
 
-    /// The [`Step`] of [`Refiner::next_step`] alone (what the queue holds).
-    fn next_gain(&self, b: &Brick) -> Option<Step> {
-        let key = (b.node, b.p, b.point_count);
-        if let Some(known) = self.caches.steps.borrow().get(&key) {
-            return known.as_ref().map(|k| k.0);
-        }
-        self.next_step(b).map(|k| k.0)
-    }
-
-    /// [`Refiner::next_step`], computed.
-    fn best_step(&self, b: &Brick) -> NextStep {
+    /// [`Refiner::step_index`]'s step, computed.
+    fn best_step(&self, b: &Brick) -> Option<StepEntry> {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
-        let n = self.octree.node(b.node);
-        let raise = self.raise(b, &n);
-        let split = self.split(b, &n);
+        let shape = self.shape(&self.octree.node(b.node), b.p);
+        let raise = self.raise(b, &shape);
+        let split = self.split(b, &shape);
         let take_points = self.take_points(b);
         let better = |x: Option<Candidate>, y: Option<Candidate>| match (x, y) {
             (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
             (r, s) => r.or(s),
         };
         let best = better(better(raise, split), take_points);
-        best.filter(|s| s.0 > 0.0)
-            .map(|(gain, bricks, hidden)| (Step { gain, node: b.node, p: b.p, points: b.point_count }, bricks, hidden))
+        best.filter(|s| s.0 > 0.0).map(|(gain, replacement, hidden)| StepEntry {
+            step: Step { gain, node: b.node, p: b.p, points: b.point_count },
+            added: replacement.cost(),
+            replacement,
+            hidden,
+            cost: Self::cost(b),
+        })
     }
 
     /// Raise `p` to the level `q` in `(p, max]` that removes the most error
     /// mass per byte: the same box, `2^(q-p)` times the texels per axis.
     /// (Looking past `p + 1` matters: across a sharp edge `e_p` stays near its
     /// maximum until full resolution, so one level alone may buy nothing.)
-    fn raise(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+    fn raise(&self, b: &Brick, shape: &Shape) -> Option<Candidate> {
         let mass = self.mass(b);
-        (b.p + 1..=self.max_p(n))
-            .map(|q| {
-                let up = self.cheapest(n, q);
-                (gain(mass - up.mass, up.bytes as f64 - Self::cost(b) as f64), up)
-            })
+        shape
+            .ups
+            .iter()
+            .map(|up| (gain(mass - self.form_mass(up), up.bytes as f64 - Self::cost(b) as f64), up))
             .max_by(|x, y| x.0.total_cmp(&y.0))
-            .map(|(gain, up)| (gain, up.hidden, Replacement::Forms(vec![up])))
-            .map(|(gain, hidden, up)| (gain, up, hidden))
+            .map(|(gain, up)| (gain, Replacement::Raise(Arc::clone(up)), up.hidden))
     }
 
     /// Split: the children at the same stride (`p - 1`), each in its
@@ -411,35 +541,27 @@ impl Refiner<'_> {
     /// is ranked by the better of its own gain and its best one-step
     /// lookahead: the split followed by the best raise of one child,
     /// `(removed by both) / (bytes of both)`.
-    fn split(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
-        (!n.is_terminal() && b.p > 0).then(|| {
-            let (children, hidden, added, after) = children_forms(
-                self.octree,
-                n,
-                b.p,
-                usize::MAX,
-                &|id, p| self.brick_of(id, p),
-                &|n| self.max_p(n),
-                self.shows,
-                &self.caches.memo,
-                self.pooled(),
-            );
+    fn split(&self, b: &Brick, shape: &Arc<Shape>) -> Option<Candidate> {
+        shape.split.as_ref().map(|(children, hidden, added)| {
+            let (hidden, added) = (*hidden, *added);
             let split_bytes = added as f64 - Self::cost(b) as f64;
             let mass = self.mass(b);
+            let mut after = 0.0;
+            for form in children {
+                after += self.form_mass(form);
+            }
             let direct = gain(mass - after, split_bytes);
             let mut ahead: f64 = 0.0;
-            for form in &children {
+            for form in children {
                 form.each_own(&mut |own, c| {
                     let raises = own.raises.get_or_init(|| {
                         let cn = self.octree.node(c.node);
-                        (c.p + 1..=self.max_p(&cn))
-                            .map(|q| {
-                                let up = self.cheapest(&cn, q);
-                                (self.mass(c), up.mass, up.bytes as f64 - Self::cost(c) as f64)
-                            })
-                            .collect()
+                        (c.p + 1..=self.max_p(&cn)).map(|q| self.cheapest(&cn, q)).collect()
                     });
-                    for &(mass_c, up_mass, up_bytes) in raises {
+                    // The own brick's weighted mass, `Imp(c) mass(c, p_c)` (no points).
+                    let mass_c = self.importance_of(c.node) * own.own_mass;
+                    for up in raises {
+                        let (up_mass, up_bytes) = (self.form_mass(up), up.bytes as f64 - Self::cost(c) as f64);
                         let removed = mass - after + mass_c - up_mass;
                         if removed > 0.0 {
                             ahead = ahead.max(removed / (split_bytes + up_bytes).max(1.0));
@@ -447,7 +569,7 @@ impl Refiner<'_> {
                     }
                 });
             }
-            (direct.max(ahead), Replacement::Forms(children), hidden)
+            (direct.max(ahead), Replacement::Split(Arc::clone(shape)), hidden)
         })
     }
 
@@ -459,47 +581,19 @@ impl Refiner<'_> {
             let bytes = count * pm.point_bytes;
             (count > 0 && removable > 0.0).then(|| {
                 let with = Brick { point_count: count, point_bytes: bytes, ..*b };
-                (gain(self.mass(b) - self.mass(&with), bytes as f64), Replacement::Bricks(vec![with]), 0)
+                (gain(self.mass(b) - self.mass(&with), bytes as f64), Replacement::Points(count, Self::cost(&with)), 0)
             })
         })
     }
 
-    /// Greedy refinement of a starting cut (its bricks, its transparent
-    /// nodes) until nothing fits: the cut, its bytes, its transparent nodes.
-    fn grow(&self, start: Vec<Brick>, mut skipped: usize) -> (Vec<Brick>, usize, usize) {
-        let mut cut = Cut::default();
-        let mut bytes = 0usize;
-        let mut queue = BinaryHeap::new();
-        for b in start {
-            bytes += Self::cost(&b);
-            cut.insert(b.node, b);
-            if let Some(s) = self.next_gain(&b) {
-                queue.push(s);
-            }
+    /// [`Refiner::brick_of`] node `id` at level `p`, holding `count` points
+    /// (what [`Refiner::take_points`] makes).
+    fn brick_with_points(&self, id: NodeId, p: usize, count: usize) -> Brick {
+        let b = self.brick_of(id, p);
+        match self.points {
+            Some(pm) if count > 0 => Brick { point_count: count, point_bytes: count * pm.point_bytes, ..b },
+            _ => b,
         }
-        while let Some(step) = queue.pop() {
-            let Some(current) = cut.get(&step.node).copied() else { continue };
-            if current.p != step.p || step.points != current.point_count {
-                continue; // stale
-            }
-            let Some((_, replacement, hidden)) = self.next_step(&current) else { continue };
-            let added = replacement.cost();
-            if bytes - Self::cost(&current) + added > self.options.budget_bytes {
-                continue; // does not fit; cheaper steps of other nodes may
-            }
-            bytes = bytes - Self::cost(&current) + added;
-            cut.remove(&step.node);
-            skipped += hidden;
-            for r in replacement.into_bricks() {
-                cut.insert(r.node, r);
-                if let Some(s) = self.next_gain(&r) {
-                    queue.push(s);
-                }
-            }
-        }
-        let mut bricks: Vec<Brick> = cut.into_values().collect();
-        bricks.sort_unstable_by_key(|b| b.node);
-        (bricks, bytes, skipped)
     }
 
     /// Two starts, the better (smaller error mass) wins unless the first
@@ -511,16 +605,17 @@ impl Refiner<'_> {
     /// tolerance needs no other (it spends the fewest bytes). Returns the cut
     /// (by node id) and its transparent nodes.
     fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Vec<Brick>, usize) {
-        let from_root = self.grow(vec![coarsest], 0);
-        let fine = || {
-            (1..=self.max_p(root)).rev().find_map(|p| {
-                let form = self.cheapest(root, p);
-                (form.bytes <= self.options.budget_bytes).then(|| (Form::concat(&[Arc::clone(&form)]), form.hidden))
-            })
+        let from_root = self.grow(None, || (vec![coarsest], 0));
+        let fine = || (1..=self.max_p(root)).rev().find(|&p| self.cheapest(root, p).bytes <= self.options.budget_bytes);
+        let form_bricks = |p: usize| {
+            let form = self.cheapest(root, p);
+            let mut bricks = Vec::new();
+            form.each(&mut |b| bricks.push(self.weigh(b)));
+            (bricks, form.hidden)
         };
         let total_mass = |cut: &[Brick]| cut.iter().map(|b| self.mass(b)).sum::<f64>();
         let meets = from_root.0.iter().all(|b| Self::weighted(b) <= self.options.tolerance);
-        let other = if meets { None } else { fine().map(|(bricks, hidden)| self.grow(bricks, hidden)) };
+        let other = if meets { None } else { fine().map(|p| self.grow(Some(p), || form_bricks(p))) };
         let (cut, _, skipped) = match other {
             Some(other) if total_mass(&other.0) < total_mass(&from_root.0) => other,
             _ => from_root,
@@ -725,13 +820,15 @@ mod tests {
             let own = brick_of(root.id, p);
             for shows in [&(|_: &NodeRef<'_>| true) as &dyn Fn(&NodeRef<'_>) -> bool, &|n| n.max > 0.5] {
                 let form = cheapest(&o, &root, p, &brick_of, &max_p, shows, &Memo::default(), None);
-                let bricks = &Form::concat(&[Arc::clone(&form)]);
+                let mut bricks = Vec::new();
+                form.each(&mut |b| bricks.push(*b));
+                let mass_of_form = form.weighted_mass(0, &|_| 1.0);
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
                 // The form's own sums are its bricks'.
                 let masses: f64 = bricks.iter().map(|b| error_mass(&o.node(b.node), b.p, 0.0, None)).sum();
                 assert_eq!(form.bytes, bytes);
-                assert!((form.mass - masses).abs() <= 1e-9 * masses.max(1e-30), "p {p}: {} vs {masses}", form.mass);
+                assert!((mass_of_form - masses).abs() <= 1e-9 * masses.max(1e-30), "p {p}: {mass_of_form} vs {masses}");
                 assert!(bytes <= own.bytes, "p {p}: {bytes} > {}", own.bytes);
                 assert!(mass <= root.squared_error(p) as f64 * (1.0 + 1e-5) + 1e-9, "p {p}");
             }

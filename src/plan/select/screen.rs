@@ -166,6 +166,12 @@ impl ScreenSpace {
         (r * r).min(MAX_WEIGHT)
     }
 
+    /// Whether refinement stops anywhere ([`ScreenSpace::finest_stride`]
+    /// above 1 for some box): only with a smallest texel above 0 pixels.
+    pub fn caps(&self) -> bool {
+        self.min_texel_pixels > 0.0
+    }
+
     /// `S_min(n)` of the index box `[lo, hi]`: the finest stride whose
     /// texels still cover `m` pixels (module documentation).
     pub fn finest_stride(&self, lo: [usize; 3], hi: [usize; 3]) -> usize {

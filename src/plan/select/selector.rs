@@ -11,16 +11,25 @@ use crate::octree::VolumeOctree;
 use crate::points::PointMass;
 
 /// Selections of one octree under one visibility test (and points), each
-/// equal to a fresh [`super::select`] (or [`super::select_with_points`])
-/// with the same options.
+/// equal to a fresh [`super::select`] (or [`super::select_with_points`],
+/// [`super::select_in_view`]) with the same options.
 ///
-/// What is kept depends on the options (see `Caches`):
+/// What is kept depends on what changed (see `Caches`):
 ///
 /// ```text
-/// budget changed                            -> forms and steps kept
-/// tolerance changed                         -> forms kept, steps recomputed
-/// anything else (ROI, texels, region, view) -> both recomputed
+/// budget changed                                  -> forms and steps kept
+/// tolerance changed                               -> forms kept, steps recomputed
+/// region of interest or view weights changed      -> forms kept, their weighted
+///                                                    masses and the steps recomputed
+/// anything else (texels, region, slice, pooling,
+///   a view's pixel cap)                           -> both recomputed
 /// ```
+///
+/// The forms hold no importance (a form's weighted mass is summed under
+/// the current one when asked for), so a moved region of interest or a
+/// new camera re-runs the steps and the queue, not the forms; a view with
+/// a pixel cap ([`ViewImportance::caps`]) decides where refinement stops,
+/// so its forms are its own.
 ///
 /// The caller keeps one `Selector` per octree, visibility test and points:
 /// another transfer function (another `visible`) or another octree needs a
@@ -28,16 +37,20 @@ use crate::points::PointMass;
 #[derive(Default)]
 pub struct Selector {
     caches: Caches,
-    /// The options the caches were filled for, with a budget of 0.
-    key: Option<SelectOptions>,
-    /// The view importance they were filled for (none: data space).
+    /// The options the forms were made for, with a budget of 0, a
+    /// tolerance of 0 and no region of interest.
+    forms_for: Option<SelectOptions>,
+    /// The view the forms were made for when it caps refinement (none otherwise).
+    cap: Option<ViewImportance>,
+    /// The options the steps were made for.
+    options: Option<SelectOptions>,
+    /// The view importance they were made for (none: data space).
     view: Option<ViewImportance>,
 }
 
 impl Selector {
     /// [`super::select`] of `octree` under `options` and `visible`, reusing
-    /// what the last selection computed when only the budget (or the
-    /// tolerance) changed.
+    /// what the last selection computed that `options` leaves valid.
     pub fn select(
         &mut self,
         octree: &VolumeOctree,
@@ -59,8 +72,8 @@ impl Selector {
     }
 
     /// [`super::select_in_view`] (`view`: none is the data-space selection),
-    /// with `points` if given, reusing as [`Selector::select`] does while
-    /// the view importance stays the same.
+    /// with `points` if given, reusing as [`Selector::select`] does, and
+    /// keeping the forms from one view to the next.
     pub fn select_in_view(
         &mut self,
         octree: &VolumeOctree,
@@ -70,24 +83,27 @@ impl Selector {
         view: Option<&ViewImportance>,
     ) -> Result<Selection> {
         let view = view.filter(|v| !v.is_empty());
-        if self.view.as_ref() != view {
-            self.caches = Caches::default();
-            self.key = None;
-            self.view = view.cloned();
-        }
-        self.prepare(options);
+        self.prepare(options, view);
         select_impl(octree, options, &visible, points, view, &self.caches)
     }
 
-    /// Keeps the caches that `options` leaves valid.
-    fn prepare(&mut self, options: &SelectOptions) {
-        let key = SelectOptions { budget_bytes: 0, ..*options };
-        match self.key {
-            Some(k) if k == key => {}
-            Some(k) if (SelectOptions { tolerance: key.tolerance, ..k }) == key => self.caches.forget_steps(),
-            _ => self.caches = Caches::default(),
+    /// Keeps the caches that `options` and `view` leave valid.
+    fn prepare(&mut self, options: &SelectOptions, view: Option<&ViewImportance>) {
+        let forms_for = SelectOptions { budget_bytes: 0, tolerance: 0.0, roi: None, ..*options };
+        let cap = view.filter(|v| v.caps());
+        let view_changed = self.view.as_ref() != view;
+        match self.options {
+            Some(_) if self.forms_for != Some(forms_for) || self.cap.as_ref() != cap => self.caches = Caches::default(),
+            Some(last) if view_changed || last.roi != options.roi => self.caches.reweigh(view_changed),
+            Some(last) if last.tolerance != options.tolerance => self.caches.forget_steps(),
+            _ => {}
         }
-        self.key = Some(key);
+        self.forms_for = Some(forms_for);
+        self.cap = cap.cloned();
+        self.options = Some(*options);
+        if view_changed {
+            self.view = view.cloned();
+        }
     }
 }
 
@@ -111,12 +127,15 @@ mod tests {
     }
 
     /// Random options around `base`: a budget from 2 kB to 2 MB (log-uniform),
-    /// often a small change of the last one; sometimes another tolerance, a
-    /// region of interest moved, removed or added, peak-keeping texels.
+    /// often a small change of the last one, sometimes the same options
+    /// again; sometimes another tolerance, a region of interest moved,
+    /// removed or added, peak-keeping texels.
     fn change(rng: &mut Lcg, last: &SelectOptions) -> SelectOptions {
         let mut o = *last;
         let r = rng.next();
-        if r < 0.5 {
+        if r < 0.05 {
+            return o;
+        } else if r < 0.5 {
             let factor = 0.8 + 0.4 * rng.next();
             o.budget_bytes = ((o.budget_bytes as f64 * factor) as usize).max(1);
         } else if r < 0.7 {
@@ -209,7 +228,8 @@ mod tests {
                 width: 64,
                 height: 64,
                 shape: &shape,
-                min_texel_pixels: 0.0,
+                // Now and then a pixel cap, which makes the forms the view's own.
+                min_texel_pixels: if i % 7 == 3 { 2.0 } else { 0.0 },
                 medium: Some(&medium),
             };
             let view = ViewImportance::new(mode, &inputs).unwrap();

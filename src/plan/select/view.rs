@@ -44,6 +44,12 @@ impl ViewImportance {
         self.screen.as_ref().map_or(0, |s| s.finest_stride(n.lo, n.hi).trailing_zeros() as usize)
     }
 
+    /// Whether [`ViewImportance::coarsest_levels`] is above 0 for some node
+    /// (a screen space with a pixel cap).
+    pub fn caps(&self) -> bool {
+        self.screen.as_ref().is_some_and(ScreenSpace::caps)
+    }
+
     /// Neither screen space nor visibility: the data-space selection.
     pub fn is_empty(&self) -> bool {
         self.screen.is_none() && self.visibility.is_none()
