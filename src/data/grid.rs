@@ -237,7 +237,7 @@ impl<'a> Samples<'a> {
     pub fn from_bytes(bytes: &'a [u8], scalar_type: ScalarType) -> Result<Samples<'a>> {
         fn cast<T: Sample>(bytes: &[u8]) -> Result<&[T]> {
             let size = std::mem::size_of::<T>();
-            if bytes.len() % size != 0 {
+            if !bytes.len().is_multiple_of(size) {
                 return Err(Error::InvalidArgument(format!(
                     "the scalar buffer has {} bytes, not a multiple of the {}-byte {} type",
                     bytes.len(),
@@ -248,7 +248,7 @@ impl<'a> Samples<'a> {
             if bytes.is_empty() {
                 return Ok(&[]);
             }
-            if (bytes.as_ptr() as usize) % std::mem::align_of::<T>() != 0 {
+            if !(bytes.as_ptr() as usize).is_multiple_of(std::mem::align_of::<T>()) {
                 return Err(Error::Misaligned { type_name: T::NAME });
             }
             // SAFETY: the pointer is non-null (from a slice), aligned for T (checked

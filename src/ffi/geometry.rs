@@ -65,7 +65,7 @@ pub(crate) fn frame_brick_geometry(desc: &BrickGeometryDesc<'_>) -> Bridged<Bric
         check_len("brick bounds", desc.bounds, 6 * bricks)?;
         check_len("brick texel counts", desc.texels, 3 * bricks)?;
         check_len("brick block ranges", desc.block_ranges, bricks)?;
-        if desc.table.len() % 4 != 0 {
+        if !desc.table.len().is_multiple_of(4) {
             return Err(Error::InvalidArgument(format!(
                 "{} transfer function table values: 4 (r, g, b, opacity) a cell",
                 desc.table.len()

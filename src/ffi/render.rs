@@ -89,7 +89,7 @@ pub struct SelectionHandle {
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
 pub(crate) fn region(desc: &RegionDesc) -> Result<Option<KeptRegion>> {
     let planes = &desc.clipping_planes;
-    if planes.len() % 6 != 0 {
+    if !planes.len().is_multiple_of(6) {
         return Err(Error::InvalidArgument(format!(
             "{} clipping plane values: give 6 per plane (origin x, y, z, normal x, y, z)",
             planes.len()

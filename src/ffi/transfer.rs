@@ -6,7 +6,7 @@ use crate::transfer::{GradientOpacity, TransferFunction};
 
 /// The transfer function of `(value, r, g, b)` and `(value, opacity)` tuples, flattened.
 pub(crate) fn transfer_function(colors: &[f64], opacities: &[f64]) -> Result<TransferFunction> {
-    if colors.len() % 4 != 0 || opacities.len() % 2 != 0 {
+    if !colors.len().is_multiple_of(4) || !opacities.len().is_multiple_of(2) {
         return Err(Error::InvalidArgument(format!(
             "{} colour and {} opacity values: give (value, r, g, b) and (value, opacity) tuples, flattened",
             colors.len(),
@@ -24,7 +24,7 @@ pub(crate) fn opacity_function(points: &[f64]) -> Result<Option<TransferFunction
     if points.is_empty() {
         return Ok(None);
     }
-    if points.len() % 2 != 0 {
+    if !points.len().is_multiple_of(2) {
         return Err(Error::InvalidArgument(format!(
             "{} opacity values: give (value, opacity) pairs, flattened",
             points.len()
@@ -45,7 +45,7 @@ pub(crate) fn vtk_gradient_opacity(
     if points.is_empty() {
         return Ok(None);
     }
-    if points.len() % 2 != 0 {
+    if !points.len().is_multiple_of(2) {
         return Err(Error::InvalidArgument(format!(
             "{} gradient opacity values: give (gradient magnitude, opacity) pairs, flattened",
             points.len()

@@ -105,8 +105,8 @@ pub unsafe fn finite_brick_errors<T: Sample>(
         // SAFETY: AVX2 is enabled on this function.
         let (m, sq) = unsafe {
             match j {
-                1 if lo % 2 == 0 => stride_errors::<PAIRS>(brick, j, scratch),
-                2.. if lo % 4 == 0 => stride_errors::<BROADCAST>(brick, j, scratch),
+                1 if lo.is_multiple_of(2) => stride_errors::<PAIRS>(brick, j, scratch),
+                2.. if lo.is_multiple_of(4) => stride_errors::<BROADCAST>(brick, j, scratch),
                 _ => stride_errors::<PER_SAMPLE>(brick, j, scratch),
             }
         };

@@ -71,7 +71,7 @@ impl GridVisitor for Lower {
     fn visit<T: Sample>(self, g: TypedGrid<'_, T>) -> Vec<f32> {
         let [nx, ny, nz] = g.dims;
         let s = self.factor;
-        let lattice = |c: usize, n: usize| c % s == 0 || c == n - 1;
+        let lattice = |c: usize, n: usize| c.is_multiple_of(s) || c == n - 1;
         let window = |c: usize, n: usize| c.saturating_sub(s - 1)..=(c + s - 1).min(n - 1);
         (0..nz)
             .into_par_iter()

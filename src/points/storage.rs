@@ -105,7 +105,7 @@ pub fn decode(bytes: &[u8], path: &str) -> Result<PointSet> {
     }
     let record = 3 * coord + 3;
     let body = bytes.len() - HEADER;
-    if u64::try_from(body / record).ok() != Some(count) || body % record != 0 {
+    if u64::try_from(body / record).ok() != Some(count) || !body.is_multiple_of(record) {
         return Err(bad(format!(
             "the header says {count} points of {record} bytes, but {body} bytes follow: the file is truncated or corrupt"
         )));

@@ -148,8 +148,13 @@ fn axis_names(ms: &Value) -> Option<Vec<String>> {
     )
 }
 
+/// A transformation's `scale`, per axis (`None`: not given).
+type Scale = Option<Vec<f64>>;
+/// A transformation's `translation`, per axis (`None`: not given).
+type Translation = Option<Vec<f64>>;
+
 /// The `scale` and `translation` of a list of coordinate transformations.
-fn transformations(list: Option<&Value>, label: &str) -> Result<(Option<Vec<f64>>, Option<Vec<f64>>)> {
+fn transformations(list: Option<&Value>, label: &str) -> Result<(Scale, Translation)> {
     let Some(list) = list.and_then(Value::as_array) else {
         return Ok((None, None));
     };

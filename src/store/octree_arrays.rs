@@ -36,7 +36,10 @@ pub fn write_octree(store: &Arc<Storage>, label: &str, octree: &VolumeOctree) ->
         .map_err(|e| err(&e))?;
         array.store_metadata().map_err(|e| err(&e))?;
         array
-            .store_array_subset(&ArraySubset::new_with_ranges(&[0..values.len() as u64]), values.as_slice())
+            .store_array_subset(
+                &ArraySubset::new_with_ranges(std::slice::from_ref(&(0..values.len() as u64))),
+                values.as_slice(),
+            )
             .map_err(|e| err(&e))?;
     }
     let f32s = [("errors", &octree.errors), ("squared_errors", &octree.squared_errors)];
@@ -52,7 +55,10 @@ pub fn write_octree(store: &Arc<Storage>, label: &str, octree: &VolumeOctree) ->
         .map_err(|e| err(&e))?;
         array.store_metadata().map_err(|e| err(&e))?;
         array
-            .store_array_subset(&ArraySubset::new_with_ranges(&[0..values.len() as u64]), values.as_slice())
+            .store_array_subset(
+                &ArraySubset::new_with_ranges(std::slice::from_ref(&(0..values.len() as u64))),
+                values.as_slice(),
+            )
             .map_err(|e| err(&e))?;
     }
     Ok(())

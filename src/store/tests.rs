@@ -127,7 +127,12 @@ fn damaged_stores_are_refused_with_the_reason() {
     let store = Store::open(&tmp.0).unwrap();
     let array = super::zarr::open_array(&store.storage_for_tests(), "t", "/hybrid_octree/errors").unwrap();
     let n = array.shape()[0];
-    array.store_array_subset(&zarrs::array::ArraySubset::new_with_ranges(&[0..n]), vec![7.0f32; n as usize]).unwrap();
+    array
+        .store_array_subset(
+            &zarrs::array::ArraySubset::new_with_ranges(std::slice::from_ref(&(0..n))),
+            vec![7.0f32; n as usize],
+        )
+        .unwrap();
     let e = store.octree().unwrap_err().to_string();
     assert!(e.contains("stored Volume Octree is damaged") && e.contains("convert"), "{e}");
     // Not a folder, not an image.

@@ -45,7 +45,7 @@ pub fn read_all<T: ElementOwned>(array: &Array<Storage>, label: &str, expected: 
         });
     }
     array
-        .retrieve_array_subset::<Vec<T>>(&ArraySubset::new_with_ranges(&[0..expected as u64]))
+        .retrieve_array_subset::<Vec<T>>(&ArraySubset::new_with_ranges(std::slice::from_ref(&(0..expected as u64))))
         .map_err(|e| zarr_error(label, &format!("reading '{}'", array.path().as_str()), &e))
 }
 

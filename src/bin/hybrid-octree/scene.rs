@@ -116,7 +116,7 @@ fn gradient_opacity(s: &str) -> std::result::Result<GradientOpacity, String> {
         .map(|p| p.trim().parse::<f64>().map_err(|_| format!("'{}' is not a number", p.trim())))
         .collect::<std::result::Result<_, _>>()
         .map_err(|e| format!("'{s}' is not G0,A0,G1,A1,...: {e}"))?;
-    if v.len() % 2 != 0 {
+    if !v.len().is_multiple_of(2) {
         return Err(format!(
             "'{s}' has {} numbers: give pairs G,A (gradient magnitude, opacity), an even count",
             v.len()

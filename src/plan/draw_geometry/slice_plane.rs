@@ -65,7 +65,7 @@ mod tests {
         assert_eq!(g.brick_first.len(), 4);
         assert_eq!(g.ray_marched, vec![false; 3]);
         let count = g.brick_first[1] - g.brick_first[0];
-        assert!(count >= 3 && count % 3 == 0);
+        assert!(count >= 3 && count.is_multiple_of(3));
         assert_eq!(g.brick_first[2], g.brick_first[1], "the plane misses the second brick");
         assert_eq!(g.brick_first[3], g.brick_first[2], "the third is not drawn");
         let v: Vec<[f64; 3]> =

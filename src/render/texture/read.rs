@@ -78,16 +78,13 @@ pub fn upload_read(
 }
 
 /// Every brick's texture of `S` (`Err(None)`: a value `f` refuses).
-fn make<S: Texel, F: Fn(f64) -> Option<S> + Sync>(
+fn make<S: Texel, F: Fn(f64) -> Option<S> + Sync + Send>(
     list: &DrawList,
     read: &(dyn Fn(&BrickDraw) -> Result<Volume> + Sync),
     how: (usize, BlendMode, bool),
     f: F,
     decode: (f64, f64),
-) -> std::result::Result<Vec<Texture<S>>, Option<Error>>
-where
-    F: Send,
-{
+) -> std::result::Result<Vec<Texture<S>>, Option<Error>> {
     list.bricks
         .par_iter()
         .map(|d| {
@@ -95,7 +92,7 @@ where
             let grid = v.grid(None).map_err(Some)?;
             let b = how.0;
             let n = d.brick.texels;
-            let local = Brick { lo: [b; 3], hi: n.map(|n| b + n - 1), stride: 1, ..d.brick.clone() };
+            let local = Brick { lo: [b; 3], hi: n.map(|n| b + n - 1), stride: 1, ..d.brick };
             let t = grid.visit(OneBrick { brick: &local, how, f: &f, decode }).ok_or(None)?;
             Ok(Texture { lo: d.brick.lo, hi: d.brick.hi, stride: d.brick.stride, ..t })
         })
