@@ -72,7 +72,8 @@ EFFECTS = [
                                "CroppingOrigin": [0.5 * b[2 * a] + 0.2 * (b[2 * a + 1] - b[2 * a])
                                                   for a in range(3)]}),
     # Isosurface at a quarter and 70 % of the range; the unit distance the
-    # sample spacing (tests/paraview/test_isosurface.py says why).
+    # sample spacing, as in the rows of docs/BENCHMARKS.md (VTK and the mapper
+    # take the opacity table as it is in this mode, whatever the unit distance).
     ("isosurface", lambda b, r, a: {"BlendMode": "Isosurface", "ScalarOpacityUnitDistance": 1.0,
                                  "IsosurfaceValues": [r[0] + 0.25 * (r[1] - r[0]), r[0] + 0.7 * (r[1] - r[0])]}),
     ("shade-isosurface", lambda b, r, a: {"Shade": 1, "BlendMode": "Isosurface", "ScalarOpacityUnitDistance": 1.0,

@@ -537,21 +537,21 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
       colour[1] = colour[0] + 1.0;
     }
   }
-  // VTK's opacities are per ScalarOpacityUnitDistance U; the DrawList corrects
-  // per d0 = min spacing: a table opacity 1 - (1 - a)^(d0 / U) gives
-  // 1 - (1 - a)^(d / U) after the DrawList's correction.
+  // VTK's opacities are per ScalarOpacityUnitDistance U, the DrawList's per
+  // d0 = the smallest spacing; VTK's rule per blend mode
+  // (vtkOpenGLVolumeOpacityTable, plan::blend's BlendMode::reference_opacity):
+  //   Composite  a_d0 = 1 - (1 - a)^(d0 / U)  (the DrawList's correction then
+  //              gives 1 - (1 - a)^(d / U), VTK's at its sample distance d)
+  //   Additive   a_d0 = a d0 / U              (each sample weighs d / d0: a d / U)
+  //   the others a_d0 = a                     (VTK takes the table as it is)
   // VTK's GPU ray caster corrects dependent components' opacity with the
   // unit distance of the last component (vtkVolumeInputHelper: the opacity
-  // table of component numComp - 1), not the first. The Slice blend mode
-  // takes VTK's table opacity as it is (VTK corrects its table for
-  // Composite only, vtkOpenGLVolumeOpacityTable).
+  // table of component numComp - 1), not the first.
   const double unit = property->GetScalarOpacityUnitDistance(in.Dependent ? last : 0);
   const double d0 = std::min({ in.Grid.Spacing[0], in.Grid.Spacing[1], in.Grid.Spacing[2] });
-  double plane[6];
-  std::string noSlice;
-  const bool slice = this->BlendMode == SLICE_BLEND &&
-    vtkHybridOctreeSlice::Describe(property, nullptr, plane, noSlice);
-  const double exponent = unit > 0.0 && !slice ? d0 / unit : 1.0;
+  const double ratio = unit > 0.0 ? d0 / unit : 1.0;
+  const bool composite = this->BlendMode == COMPOSITE_BLEND;
+  const bool additive = this->BlendMode == ADDITIVE_BLEND;
   const int n = this->TableSize;
   std::vector<double> rgb(3 * static_cast<std::size_t>(n));
   std::vector<double> alpha(static_cast<std::size_t>(n));
@@ -579,7 +579,14 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
     const double v = range[0] + (range[1] - range[0]) * k / (n - 1);
     const double vc = colour[0] + (colour[1] - colour[0]) * k / (n - 1);
     double a = std::min(1.0, std::max(0.0, alpha[k]));
-    a = a < 1.0 ? 1.0 - std::pow(1.0 - a, exponent) : 1.0;
+    if (composite)
+    {
+      a = a < 1.0 ? 1.0 - std::pow(1.0 - a, ratio) : 1.0;
+    }
+    else if (additive)
+    {
+      a = std::min(1.0, a * ratio);
+    }
     for (int c = 0; c < 3; ++c)
     {
       table[4 * k + c] = static_cast<float>(rgb[3 * k + c]);

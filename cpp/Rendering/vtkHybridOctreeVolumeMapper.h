@@ -22,7 +22,10 @@
  * surface triangles this frame is drawn as its slices clipped to the box of
  * its visible blocks with the triangles of each slab between them, any
  * other brick is ray-marched front to back through its visible box on the
- * same slice lattice z = k d. Opacity is corrected a' = 1 - (1 - a)^(d / d0)
+ * same slice lattice z = k d. The table's opacity is the scalar opacity per
+ * ScalarOpacityUnitDistance U taken to d0 by VTK's rule for the blend mode
+ * (vtkOpenGLVolumeOpacityTable): Composite 1 - (1 - a)^(d0 / U), Additive
+ * a d0 / U, the other modes a as it is. Opacity is corrected a' = 1 - (1 - a)^(d / d0)
  * and blended premultiplied (GL_ONE, GL_ONE_MINUS_SRC_ALPHA); the target is
  * blended once over the window. Every GL state change goes through
  * vtkOpenGLState and is restored. docs/ARCHITECTURE.md ("The volume

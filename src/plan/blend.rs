@@ -42,6 +42,21 @@
 //! *Slice Function*) draws one sample a ray, where it meets a plane
 //! ([`super::slice`]): `(a(v) c(v), a(v))`, the opacity not corrected,
 //! shaded with Shade.
+//!
+//! VTK's opacities are per ScalarOpacityUnitDistance `U`; the renderers'
+//! (the DrawList's, the reference caster's) per `d0`. VTK 9.2 corrects its
+//! opacity table for the sample distance `s` by the blend mode
+//! (`vtkOpenGLVolumeOpacityTable::InternalUpdate`): Composite `1 - (1 -
+//! a)^(s / U)`, Additive `a s / U`, the other modes not at all. A table
+//! per `U` becomes one per `d0` by the same rule with `s = d0`
+//! ([`BlendMode::opacity_per_reference`]); the renderers' own rules above
+//! then give VTK's picture at any spacing:
+//!
+//! ```text
+//! Composite:  a_d0 = 1 - (1 - a)^(d0 / U)   corrected per sample to 1 - (1 - a)^(d / U)
+//! Additive:   a_d0 = a d0 / U               weighed d / d0 per sample: a d / U
+//! the others: a_d0 = a                      (Isosurface, Slice, and the reductions: a(m), a(v_i))
+//! ```
 
 /// A blend mode, named as the plan's passes and the CLI's `--blend` name it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
@@ -123,6 +138,24 @@ impl BlendMode {
     /// True for the modes VTK shades with Shade (Composite, Isosurface, Slice).
     pub fn shades(self) -> bool {
         self.composites() || self == BlendMode::Slice
+    }
+
+    /// The opacity per reference spacing `d0` of VTK's table opacity `a`
+    /// per ScalarOpacityUnitDistance `U` under this mode, `ratio = d0 / U`
+    /// (see the module documentation): Composite `1 - (1 - a)^ratio`,
+    /// Additive `min(1, a ratio)` (a transfer function's opacity is at
+    /// most 1), the others `a`. `a` is clamped to `[0, 1]`; a `ratio` that
+    /// is not positive and finite leaves `a` as it is.
+    pub fn opacity_per_reference(self, a: f64, ratio: f64) -> f64 {
+        let a = a.clamp(0.0, 1.0);
+        if !(ratio > 0.0 && ratio.is_finite()) {
+            return a;
+        }
+        match self {
+            BlendMode::Composite if a < 1.0 => 1.0 - (1.0 - a).powf(ratio),
+            BlendMode::Additive => (a * ratio).min(1.0),
+            _ => a,
+        }
     }
 }
 
@@ -320,6 +353,24 @@ mod tests {
         let iso = Blend::isosurfaces(&[0.4, 0.9], [0.0, 1.0]).unwrap();
         assert!(iso.visible(0.0, 0.1, &band), "a crossing may show in a brick without the value");
         assert!(!Blend::isosurfaces(&[0.9], [0.0, 1.0]).unwrap().visible(0.0, 1.0, &band));
+    }
+
+    /// VTK's table rule: Composite by the power, Additive linearly, the others as given.
+    #[test]
+    fn opacity_per_reference_follows_vtk_per_mode() {
+        let (a, ratio) = (0.3, 0.2);
+        let composite = BlendMode::Composite.opacity_per_reference(a, ratio);
+        assert!((composite - (1.0 - 0.7f64.powf(0.2))).abs() < 1e-15);
+        // Five layers of d0 = U / 5 are one layer of U.
+        assert!((1.0 - (1.0 - composite).powi(5) - a).abs() < 1e-12);
+        assert!((BlendMode::Additive.opacity_per_reference(a, ratio) - 0.06).abs() < 1e-15);
+        assert_eq!(BlendMode::Additive.opacity_per_reference(0.5, 4.0), 1.0);
+        for mode in [BlendMode::Mip, BlendMode::Minip, BlendMode::Average, BlendMode::Isosurface, BlendMode::Slice] {
+            assert_eq!(mode.opacity_per_reference(a, ratio), a, "{mode:?}");
+        }
+        assert_eq!(BlendMode::Composite.opacity_per_reference(1.0, 0.2), 1.0);
+        assert_eq!(BlendMode::Composite.opacity_per_reference(a, 0.0), a);
+        assert_eq!(BlendMode::Composite.opacity_per_reference(1.5, f64::NAN), 1.0);
     }
 
     /// Every value crossed in a step, nearest where the ray comes from first.

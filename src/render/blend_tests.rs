@@ -149,6 +149,64 @@ fn full_budget_matches_the_reference_in_every_mode() {
     }
 }
 
+/// VTK's opacity per ScalarOpacityUnitDistance `U` in every mode
+/// ([`BlendMode::opacity_per_reference`]): the reference caster with a
+/// table per `U = 5 d0` (its `opacity_unit`) draws within 1e-3 (max over
+/// the channels; the table is converted at its 65 points, exact between
+/// them only for the linear rules) of the caster with the table taken to
+/// `d0` by the mode's rule, and the compositor at full budget with that
+/// table within the bounds of [`full_budget_matches_the_reference_in_every_mode`].
+/// Another mode's rule (Composite's power for the others, none for
+/// Composite) moves pixels by more than 5e-3, five times that bound (MinIP
+/// the least, 0.009): the rule is what is tested.
+#[test]
+fn opacity_unit_distance_per_mode() {
+    let volume = generate(Dataset::SheppLogan, 33, ScalarType::F32);
+    let grid = volume.grid(None).unwrap();
+    let shape = *grid.shape();
+    let octree = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 8 }).unwrap();
+    let (lo, hi) = octree.value_range();
+    let d0 = crate::data::spacing::reference_spacing(&shape);
+    let unit = 5.0 * d0;
+    let colors = vec![(lo, [0.2, 0.3, 1.0]), (hi, [1.0, 0.9, 0.6])];
+    // A smooth opacity, 0.02 to 0.3 over the range, at 65 points.
+    let at = |i: usize| lo + (hi - lo) * i as f64 / 64.0;
+    let raw: Vec<(f64, f32)> = (0..=64).map(|i| (at(i), (0.02 + 0.28 * (i as f64 / 64.0).powi(2)) as f32)).collect();
+    let per_unit = TransferFunction::new(colors.clone(), raw.clone()).unwrap();
+    let taken = |rule: BlendMode| {
+        let points = raw.iter().map(|&(v, a)| (v, rule.opacity_per_reference(f64::from(a), d0 / unit) as f32));
+        TransferFunction::new(colors.clone(), points.collect()).unwrap()
+    };
+    let camera = Camera::around(shape.world([0.0; 3]), shape.world([32.0; 3]), 30.0, 20.0, false).unwrap();
+    // The same samples, d0 / 4 apart (without a step the caster's follows its unit).
+    let at_unit = ReferenceOptions { opacity_unit: Some(unit), step: Some(d0 / 4.0), ..ReferenceOptions::default() };
+    for (mode, bound, wrong) in [
+        (BlendMode::Composite, 0.01, BlendMode::Mip),
+        (BlendMode::Mip, 0.02, BlendMode::Composite),
+        (BlendMode::Minip, 0.01, BlendMode::Composite),
+        (BlendMode::Average, 0.05, BlendMode::Composite),
+        (BlendMode::Additive, 0.02, BlendMode::Composite),
+        (BlendMode::Isosurface, 0.03, BlendMode::Composite),
+    ] {
+        let tf = taken(mode);
+        let l = list(&octree, &shape, &tf, 1 << 30, mode, &camera);
+        let blend = l.plan.blend;
+        let vtk = reference_blend(&grid, &per_unit, &camera, 64, 64, &at_unit, &blend).unwrap();
+        let ours = reference_blend(&grid, &tf, &camera, 64, 64, &ReferenceOptions::default(), &blend).unwrap();
+        let same = compare(&ours, &vtk).unwrap();
+        let image = composite(&grid, &l, &tf, 64, 64, None).unwrap();
+        let drawn = compare(&image, &vtk).unwrap();
+        let other =
+            reference_blend(&grid, &taken(wrong), &camera, 64, 64, &ReferenceOptions::default(), &blend).unwrap();
+        let moved = compare(&other, &vtk).unwrap();
+        eprintln!("{mode:?} at U = 5 d0: reference {same:?}, compositor {drawn:?}, {wrong:?}'s rule {moved:?}");
+        assert!(same.max_abs < 1e-3, "{mode:?}: the reference per d0 against per U: {same:?}");
+        assert!(drawn.rmse < bound, "{mode:?}: the compositor against the reference per U: {drawn:?}");
+        assert!(moved.max_abs > 5e-3, "{mode:?}: {wrong:?}'s rule changes the picture: {moved:?}");
+        assert!(vtk.rgba.iter().filter(|p| p[3] > 0.005).count() > 500, "{mode:?}: the test picture is empty");
+    }
+}
+
 /// The connected regions (4-neighbours) of the pixels whose opacity is above `threshold`.
 fn regions(image: &Image, threshold: f32) -> Vec<Vec<usize>> {
     let (w, h) = (image.width, image.height);

@@ -94,9 +94,16 @@
  *   isosurface:  cpu_match under the Isosurface blend mode (two values;
  *                a sample shows the value crossed since the one before it),
  *                same bound.
- *   gpu_mip, gpu_minip, gpu_average, gpu_additive, gpu_isosurface: the blend mode with the
- *                full volume in the budget, against vtkGPUVolumeRayCastMapper
- *                under the same mode: RMSE < 0.03.
+ *   gpu_composite, gpu_mip, gpu_minip, gpu_average, gpu_additive, gpu_isosurface: the
+ *                blend mode with the full volume in the budget, against
+ *                vtkGPUVolumeRayCastMapper under the same mode, with
+ *                ScalarOpacityUnitDistance 1 (the spacing) and 5: RMSE < 0.03
+ *                each, Additive at 5 < 0.01 (VTK corrects its opacity table
+ *                by 1 - (1 - a)^(s / U) for Composite, by a s / U for
+ *                Additive, not for the others). Measured at U = 5: composite
+ *                0.0049, MIP 0.0047, MinIP 0.0054, average 0.022, additive
+ *                0.0052, isosurface 0.0075; with the power rule in every mode
+ *                but Composite's: 0.063, 0.036, 0.062, 0.022, 0.093.
  *   matrix:      the volume rotated and moved with its vtkVolume matrix, and
  *                the camera and the region of interest moved alike: the same
  *                bricks and picture, RMSE < 0.01.
@@ -138,17 +145,17 @@ void SetGradientOpacity(Stage& scene)
   scene.Property->SetGradientOpacity(gradient);
 }
 
-/// The blend mode of a scenario ("mip", "gpu_minip", ...), -1 for the others.
+/// The blend mode of a scenario ("mip", "gpu_minip", "gpu_composite", ...), -1 for the others.
 int BlendOf(std::string scenario)
 {
   if (scenario.rfind("gpu_", 0) == 0)
   {
     scenario = scenario.substr(4);
   }
-  const char* names[] = { "mip", "minip", "average", "additive", "isosurface" };
-  for (int mode = 1; mode <= 5; ++mode)
+  const char* names[] = { "composite", "mip", "minip", "average", "additive", "isosurface" };
+  for (int mode = 0; mode <= 5; ++mode)
   {
-    if (scenario == names[mode - 1])
+    if (scenario == names[mode])
     {
       return mode;
     }
@@ -407,8 +414,12 @@ int CpuMatch(const std::string& scenario)
       mapper->SetBlendMode(BlendOf(mode));
       std::cout << mode << ", cropped and clipped: ";
       CompareWithCpu(check, scene, mapper, threshold, errors);
+      // Isosurface slices at VTK's sample distance (plan::sampling).
+      const std::string effects = std::string(mode) == "isosurface"
+        ? "cropping,clipping,sample-distance"
+        : "cropping,clipping";
       check.Check(mapper->GetLastPlan() == "volume-" + std::string(mode) &&
-          std::string(mapper->GetLastEffects()) == "cropping,clipping",
+          std::string(mapper->GetLastEffects()) == effects,
         std::string(mode) + ": plan '" + mapper->GetLastPlan() + "', effects '" +
           mapper->GetLastEffects() + "'");
     }
@@ -669,7 +680,9 @@ int GpuGradientOpacity()
   return check.Result();
 }
 
-/// A blend mode with the full volume in the budget, against vtkGPUVolumeRayCastMapper.
+/// A blend mode with the full volume in the budget, against
+/// vtkGPUVolumeRayCastMapper, at ScalarOpacityUnitDistance 1 (the spacing)
+/// and 5.
 int GpuBlend(const std::string& scenario)
 {
   Checker check;
@@ -689,20 +702,39 @@ int GpuBlend(const std::string& scenario)
   vtkSmartPointer<ErrorRecorder> errors =
     vtkSmartPointer<ErrorRecorder>::Take(ErrorRecorder::New());
   errors->Watch(mapper);
-  ours.Window->Render();
-  theirs.Window->Render();
-  check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
-  const std::string plan = "volume-" + scenario.substr(4);
-  check.Check(std::string(mapper->GetLastPlan()) == plan,
-    "plan '" + plan + "', not '" + mapper->GetLastPlan() + "'");
-  const std::vector<double> a = Grab(ours.Window);
-  const std::vector<double> b = Grab(theirs.Window);
-  const double rmse = Rmse(a, b);
-  std::cout << scenario << ": bricks " << mapper->GetLastBricks() << ", texture bytes "
-            << mapper->GetLastTextureBytes() << "; RGB RMSE against vtkGPUVolumeRayCastMapper "
-            << rmse << " (threshold 0.03), signal " << Signal(b) << "\n";
-  check.Check(Signal(b) > 0.02, "the reference shows the volume");
-  check.Check(rmse < 0.03, "within 0.03 of vtkGPUVolumeRayCastMapper");
+  const std::string plan = blend == 0 ? "volume" : "volume-" + scenario.substr(4);
+  std::vector<double> atSpacing;
+  for (const double unit : { 1.0, 5.0 })
+  {
+    ours.Property->SetScalarOpacityUnitDistance(unit);
+    theirs.Property->SetScalarOpacityUnitDistance(unit);
+    ours.Window->Render();
+    theirs.Window->Render();
+    check.Check(mapper->GetLastRenderOK(), "the mapper drew:\n" + errors->AllErrors());
+    check.Check(std::string(mapper->GetLastPlan()) == plan,
+      "plan '" + plan + "', not '" + mapper->GetLastPlan() + "'");
+    const std::vector<double> a = Grab(ours.Window);
+    const std::vector<double> b = Grab(theirs.Window);
+    const double rmse = Rmse(a, b);
+    // Additive's linear factor against a power: 0.0052 against 0.022 at U = 5.
+    const double threshold = blend == vtkVolumeMapper::ADDITIVE_BLEND && unit != 1.0 ? 0.01 : 0.03;
+    std::cout << scenario << ", unit distance " << unit << ": bricks " << mapper->GetLastBricks()
+              << ", texture bytes " << mapper->GetLastTextureBytes()
+              << "; RGB RMSE against vtkGPUVolumeRayCastMapper " << rmse << " (threshold "
+              << threshold << "), signal " << Signal(b);
+    if (atSpacing.empty())
+    {
+      atSpacing = b;
+    }
+    else
+    {
+      // VTK corrects its table for Composite and Additive only.
+      std::cout << "; the unit distance moves VTK's picture by " << Rmse(b, atSpacing);
+    }
+    std::cout << "\n";
+    check.Check(Signal(b) > 0.02, "the reference shows the volume");
+    check.Check(rmse < threshold, "within the threshold of vtkGPUVolumeRayCastMapper");
+  }
   check.Check(NoGLError(ours.Window), "no OpenGL error left behind");
   return check.Result();
 }
@@ -831,7 +863,7 @@ int TestHybridOctreeVolumeMapper(int argc, char* argv[])
   {
     return CpuMatch(scenario);
   }
-  if (BlendOf(scenario) > 0)
+  if (BlendOf(scenario) >= 0 && scenario.rfind("gpu_", 0) == 0)
   {
     return GpuBlend(scenario);
   }

@@ -20,8 +20,9 @@ over crossings VTK's catch, so the mapper slices the Isosurface at VTK's s
 (src/plan/sampling.rs). Measured: 0.0108 and 0.0110 (at one slice a voxel
 0.043 and 0.037; VTK's own picture at s = 1 voxel is 0.066 from its picture
 at 0.32, and 0.012 between 0.316 and 0.317). ScalarOpacityUnitDistance is
-set to the spacing (1) because the mapper still converts the table's
-opacity from U to d0 in this mode, where VTK takes it as it is.
+5 voxels: VTK takes the table's opacity as it is in this mode, whatever the
+unit distance, and so does the mapper (a conversion to one voxel, 1 - (1 -
+a)^(1/5), would fail the bound).
 """
 import os
 import sys
@@ -53,7 +54,7 @@ def isosurfaces(display, shade):
     display.BlendMode = "Isosurface"
     display.IsosurfaceValues = values
     display.Shade = shade
-    display.ScalarOpacityUnitDistance = 1.0  # the phantom's spacing, d0
+    display.ScalarOpacityUnitDistance = 5.0  # five voxels: no correction in this mode
 
 
 view = make_view()

@@ -19,7 +19,9 @@ draw the base and the changed setting. Per row, with RMSE over RGB in
   row tests something), except for Ambient under ParaView's light kit,
   which moves neither picture (VTK's volume shader takes the ambient term
   from the lights' ambient colours, black in the light kit; the row
-  "Ambient under a headlight" moves both). "UseLight off, no light"
+  "Ambient under a headlight" moves both), and ScalarOpacityUnitDistance
+  under Isosurface and Slice, which VTK does not correct the opacity
+  for (it does under Composite). "UseLight off, no light"
   switches the light kit off after the first frame, which leaves the
   renderer without a light: VTK then shades every sample black;
 - `dH`, how far it moves ours, is `dV` within 35 % (plus 0.004): the
@@ -111,6 +113,8 @@ ROWS = [
     ("CroppingOrigin", CROP1, dict(CROP1, CroppingOrigin=[bounds[0] + 0.3 * extent[0], bounds[2], bounds[4]]),
      "cropping", 0.03),
     ("ScalarOpacityUnitDistance", {}, {"ScalarOpacityUnitDistance": 0.5}, None, 0.03),
+    ("ScalarOpacityUnitDistance under Isosurface", ISO1, dict(ISO1, ScalarOpacityUnitDistance=5.0), None, 0.03),
+    ("ScalarOpacityUnitDistance under Slice", SLICE1, dict(SLICE1, ScalarOpacityUnitDistance=5.0), None, 0.03),
     ("UseTransfer2D", {}, {"UseTransfer2D": 1, "UseGradientForTransfer2D": 1, "TransferFunction2D": tf2d},
      "transfer-2d", 0.05),
     ("UseSeparateOpacityArray", {}, {"UseSeparateOpacityArray": 1, "OpacityArrayName": ["POINTS", "ball"],
@@ -121,8 +125,10 @@ ROWS = [
 
 # Rows whose change moves neither picture: VTK's volume shader takes the
 # ambient term from the lights' ambient colours, and those of ParaView's
-# light kit are black (the headlight's ambient is the sample's colour).
-STILL = {"Ambient"}
+# light kit are black (the headlight's ambient is the sample's colour);
+# VTK corrects the opacity table for the unit distance under Composite
+# (and Additive) only (vtkOpenGLVolumeOpacityTable).
+STILL = {"Ambient", "ScalarOpacityUnitDistance under Isosurface", "ScalarOpacityUnitDistance under Slice"}
 
 DEFAULTS = {"Shade": 0, "Ambient": 0.0, "Diffuse": 1.0, "Specular": 0.0, "SpecularPower": 100.0,
             "BlendMode": "Composite", "IsosurfaceValues": [], "UseCropping": 0,
