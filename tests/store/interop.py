@@ -172,7 +172,9 @@ def check_foreign(label, store, a, spacing_zyx, origin_zyx, type_name, warned=Fa
     for budget in ["64", "0.004"]:
         png_store, png_raw = path(f"{label}-{budget}-store.png"), path(f"{label}-{budget}-raw.png")
         common = ["--width", "128", "--height", "96", "--budget-mb", budget, "--azimuth", "30", "--elevation", "20", "--json"]
-        s = json.loads(run_ok("render", "--file", store, *common, "--output", png_store)[0])
+        out, err = run_ok("render", "--file", store, *common, "--output", png_store)
+        s = json.loads(out)
+        check(err.count("index 0 of each is read") == int(warned), f"{label}: render warned {err!r}")
         q = json.loads(run_ok("render", *raw, *common, "--output", png_raw)[0])
         with open(png_store, "rb") as f1, open(png_raw, "rb") as f2:
             same = f1.read() == f2.read()
