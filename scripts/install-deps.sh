@@ -11,7 +11,8 @@ set -euo pipefail
 # libqt5opengl5-dev, libxml2-dev, libhdf5-dev, libnetcdf-dev, libboost-dev: the CMake targets of VTK's modules that ParaView's pqComponents links name these packages.
 # clang-format: the test command's first stage checks the C++ against .clang-format.
 # python3-pyqt5: the GUI test (tests/gui/) reads the ParaView window's widgets from its Python.
-PACKAGES=(paraview paraview-dev python3-paraview libopenmpi-dev openmpi-bin libdouble-conversion-dev liblzma-dev libglew-dev xvfb xauth cmake make g++ pkg-config python3 libfontconfig1-dev libfreetype-dev fonts-dejavu-core qtbase5-dev libqt5svg5-dev qttools5-dev libqt5opengl5-dev libxml2-dev libhdf5-dev libnetcdf-dev libboost-dev clang-format python3-pyqt5)
+# python3-venv: the venv (build/venv, scripts/python-venv.sh) that holds zarr and ome-zarr from PyPI for the OME-Zarr interoperability test.
+PACKAGES=(paraview paraview-dev python3-paraview libopenmpi-dev openmpi-bin libdouble-conversion-dev liblzma-dev libglew-dev xvfb xauth cmake make g++ pkg-config python3 libfontconfig1-dev libfreetype-dev fonts-dejavu-core qtbase5-dev libqt5svg5-dev qttools5-dev libqt5opengl5-dev libxml2-dev libhdf5-dev libnetcdf-dev libboost-dev clang-format python3-pyqt5 python3-venv)
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -49,4 +50,6 @@ if ! cargo fmt --version >/dev/null 2>&1 || ! cargo clippy --version >/dev/null 
     exit 1
   fi
 fi
-echo "install-deps: Debian packages and $(cargo --version) ready"
+# zarr and ome-zarr (PyPI) in build/venv, for tests/store/interop.py.
+bash "$(dirname "$0")/python-venv.sh"
+echo "install-deps: Debian packages, $(cargo --version) and the test venv ready"

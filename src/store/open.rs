@@ -29,6 +29,11 @@ use zarrs::group::Group;
 /// Bytes of decoded subchunks a store keeps for the next read.
 pub const DEFAULT_CACHE_BYTES: usize = 256 << 20;
 
+/// Bytes `zarrs` holds per chunk while it reads a region: the chunk's
+/// indices, listed before any is decoded (bounded above by a small vector
+/// of `u64` and its bookkeeping).
+const CHUNK_LIST_BYTES: u128 = 64;
+
 /// An open OME-Zarr image.
 pub struct Store {
     label: String,
@@ -103,6 +108,8 @@ impl Store {
         if dims.iter().any(|&n| n < 2) {
             return Err(err(format!("the image has {dims:?} samples: a volume needs at least 2 per axis")));
         }
+        let shape = GridShape { dims, spacing: multiscale.spacing, origin: multiscale.origin };
+        shape.check(1)?;
         let scalar_type = scalar_type_of(&label, first.data_type())?;
         let levels = match &own {
             Some(meta) => {
@@ -156,7 +163,7 @@ impl Store {
             storage,
             shard_indexes,
             subchunks,
-            shape: GridShape { dims, spacing: multiscale.spacing, origin: multiscale.origin },
+            shape,
             scalar_type,
             name,
             version: multiscale.version,
@@ -250,6 +257,9 @@ impl Store {
 
     /// The box `lo ..= hi` (x, y, z order) of the array of level `p`, the
     /// leading axes at index 0, each shard's index read once.
+    ///
+    /// Reading lists the chunks the box touches, about [`CHUNK_LIST_BYTES`]
+    /// each: a store with tiny chunks is refused before that list is made.
     fn read_box(&self, p: usize, lo: [usize; 3], hi: [usize; 3]) -> Result<SampleBuf> {
         let (array, cache) = (&self.levels[p], &self.shard_indexes[p]);
         if let Some(subchunks) = &self.subchunks {
@@ -272,6 +282,15 @@ impl Store {
         let mut ranges: Vec<std::ops::Range<u64>> = vec![0..1; self.leading];
         ranges.extend((0..3).rev().map(|a| lo[a] as u64..hi[a] as u64 + 1));
         let subset = ArraySubset::new_with_ranges(&ranges);
+        let chunks = array
+            .chunks_in_array_subset(&subset)
+            .map_err(|e| zarr_error(&self.label, "listing chunks", &e))?
+            .map_or(0, |c| c.num_elements());
+        check_memory(
+            u128::from(chunks) * CHUNK_LIST_BYTES,
+            &format!("listing the {chunks} chunks of array '{}' of '{}'", array.path().as_str(), self.label),
+            "its chunks are too small: write the image again with larger chunks (e.g. `hybrid-octree convert`)",
+        )?;
         let options = CodecOptions::default();
         let err = |e: zarrs::array::ArrayError| zarr_error(&self.label, "reading samples", &e);
         macro_rules! read {

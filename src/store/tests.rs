@@ -151,3 +151,30 @@ fn damaged_stores_are_refused_with_the_reason() {
     let e = Store::open(&tmp.0).err().unwrap().to_string();
     assert!(e.contains("does not describe level 0"), "{e}");
 }
+
+/// A foreign NGFF 0.4 / Zarr v2 store of one uint8 array with `shape`
+/// (z, y, x) and `chunks`, no chunk written (every sample the fill value).
+fn declared_store(name: &str, shape: [u64; 3], chunks: [u64; 3]) -> Tmp {
+    let t = Tmp::new(name);
+    std::fs::create_dir_all(t.0.join("0")).unwrap();
+    std::fs::write(t.0.join(".zgroup"), r#"{"zarr_format": 2}"#).unwrap();
+    let attrs = serde_json::json!({"multiscales": [{"version": "0.4", "datasets": [{"path": "0"}],
+        "axes": [{"name": "z", "type": "space"}, {"name": "y", "type": "space"}, {"name": "x", "type": "space"}]}]});
+    std::fs::write(t.0.join(".zattrs"), attrs.to_string()).unwrap();
+    let zarray = serde_json::json!({"zarr_format": 2, "shape": shape, "chunks": chunks, "dtype": "|u1",
+        "compressor": null, "fill_value": 0, "order": "C", "filters": null});
+    std::fs::write(t.0.join("0/.zarray"), zarray.to_string()).unwrap();
+    t
+}
+
+#[test]
+fn declared_shapes_beyond_what_is_addressable_are_refused_before_reading() {
+    // 2^21 x 2^21 x 2^22 samples: a count that wraps to 0 in 64 bits.
+    let t = declared_store("overflow", [1 << 21, 1 << 21, 1 << 22], [64, 64, 64]);
+    let e = Store::open(&t.0).err().expect("an overflowing shape opens").to_string();
+    assert!(e.contains("overflow"), "{e}");
+    // A small store opens and reads its fill value.
+    let t = declared_store("small", [3, 4, 5], [2, 2, 2]);
+    let v = Store::open(&t.0).unwrap().read_volume().unwrap();
+    assert_eq!(v.shape.dims, [5, 4, 3]);
+}

@@ -12,7 +12,6 @@ use crate::scene::{
 };
 use clap::Args;
 use hybrid_octree::grid::Grid;
-use hybrid_octree::octree::VolumeOctree;
 use hybrid_octree::render::metrics::compare;
 use hybrid_octree::select::{select_in_view, Selection, ViewSelection};
 use hybrid_octree::store::Store;
@@ -102,7 +101,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let budget_bytes = crate::bench::render::budget_bytes(args.budget_mb)?;
     let report = with_threads(args.input.threads, || match args.input.store()? {
         Some(store) if store.has_octree() && !args.in_memory => from_store(args, &store, budget_bytes),
-        Some(store) => in_memory(args, budget_bytes, store.octree()?),
+        Some(store) => in_memory(args, budget_bytes, Some(&store)),
         None => in_memory(args, budget_bytes, None),
     })?;
     if let (false, Some(w)) = (args.json, &report.warning) {
@@ -111,9 +110,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     print_report(&report, args.json, print_text)
 }
 
-/// The frame of a volume read into memory, with its `stored` octree if it has one.
-fn in_memory(args: &RenderArgs, budget_bytes: usize, stored: Option<VolumeOctree>) -> Result<RenderReport> {
-    let volume = args.input.load()?;
+/// The frame of a volume read into memory: the input's, or the open
+/// `store`'s read whole (with its stored octree if it has one).
+fn in_memory(args: &RenderArgs, budget_bytes: usize, store: Option<&Store>) -> Result<RenderReport> {
+    let (volume, stored) = match store {
+        Some(store) => (store.read_volume()?, store.octree()?),
+        None => (args.input.load()?, None),
+    };
     let grid = args.input.grid(&volume)?;
     let scene = match stored {
         Some(octree) => dress(&grid, octree, &args.scene)?,
