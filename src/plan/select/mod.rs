@@ -48,6 +48,7 @@ mod mass;
 mod refine;
 mod screen;
 mod selector;
+mod steps;
 mod uniform;
 mod view;
 mod visibility;

@@ -5,75 +5,14 @@ use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
 use super::cache::NodeMap;
 use super::estimate::estimated_error;
 use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
+use super::steps::{Log, Step};
 use super::view::ViewImportance;
 use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
-use greedy::Log;
-use std::cmp::Ordering;
 use std::sync::Arc;
 
 mod greedy;
-
-/// A refinement step in the queue.
-#[derive(Debug, Clone, Copy)]
-struct Step {
-    /// Weighted error removed per byte added.
-    gain: f64,
-    node: NodeId,
-    /// The node's p when the step was queued (stale steps are skipped).
-    p: usize,
-    /// The node's point count when the step was queued (likewise).
-    points: usize,
-}
-
-impl PartialEq for Step {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Step {}
-impl PartialOrd for Step {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Step {
-    /// By gain, ties to the smaller node id (then level, then points: one
-    /// order for any two steps, whatever the queue's history).
-    fn cmp(&self, o: &Self) -> Ordering {
-        self.gain
-            .total_cmp(&o.gain)
-            .then_with(|| o.node.cmp(&self.node))
-            .then_with(|| o.p.cmp(&self.p))
-            .then_with(|| o.points.cmp(&self.points))
-    }
-}
-
-/// A queued step: its kept entry (`Caches::entries`) and its push in the
-/// run's record ([`greedy`]).
-struct Queued {
-    step: Step,
-    index: usize,
-    push: usize,
-}
-
-impl PartialEq for Queued {
-    fn eq(&self, o: &Self) -> bool {
-        self.step == o.step
-    }
-}
-impl Eq for Queued {}
-impl PartialOrd for Queued {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Queued {
-    fn cmp(&self, o: &Self) -> Ordering {
-        self.step.cmp(&o.step)
-    }
-}
 
 /// Selects a cut and levels for `octree` (see the module documentation).
 /// `visible(min, max)` says whether a node with that value range shows under

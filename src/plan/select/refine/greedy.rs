@@ -19,54 +19,9 @@
 //! Steps are totally ordered ([`Step`]'s `Ord`), so a queue rebuilt from
 //! the same steps pops them in the same order: the run equals a fresh one.
 
-use super::{Brick, NodeId, Queued, Refiner, Replacement, Step};
+use super::super::steps::{Log, Pop, Push, Put, Queued, Step, NEVER};
+use super::{Brick, NodeId, Refiner, Replacement};
 use std::collections::BinaryHeap;
-
-/// Not popped, not taken out (yet).
-const NEVER: usize = usize::MAX;
-
-/// One pop of the queue: the bytes and transparent nodes before it, the
-/// bytes after its step if taken (`NEVER`: a stale step, no decision) and
-/// whether it was.
-#[derive(Clone, Copy)]
-struct Pop {
-    bytes: usize,
-    skipped: usize,
-    need: usize,
-    taken: bool,
-}
-
-/// A step pushed before pop `at` (while pop `at - 1` was taken; 0: the
-/// start), popped at pop `popped`.
-#[derive(Clone, Copy)]
-struct Push {
-    step: Step,
-    index: usize,
-    at: usize,
-    popped: usize,
-}
-
-/// A brick (node, p, points) put in the cut before pop `at`, taken out at
-/// pop `taken`.
-#[derive(Clone, Copy)]
-struct Put {
-    node: NodeId,
-    p: usize,
-    points: usize,
-    at: usize,
-    taken: usize,
-}
-
-/// The record of one start's run ([`Refiner::grow`]): its pops, pushes and
-/// puts in order, and its bytes and transparent nodes at the end.
-#[derive(Default)]
-pub(in crate::plan::select) struct Log {
-    pops: Vec<Pop>,
-    pushes: Vec<Push>,
-    puts: Vec<Put>,
-    bytes: usize,
-    skipped: usize,
-}
 
 /// A run in progress: its record, the cut (per node id, its put, or
 /// `NEVER`), the queue, the bytes and the transparent nodes.
