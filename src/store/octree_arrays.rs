@@ -23,45 +23,31 @@ const CHUNK: u64 = 1 << 20;
 pub fn write_octree(store: &Arc<Storage>, label: &str, octree: &VolumeOctree) -> Result<()> {
     let err = |e: &dyn std::fmt::Display| zarr_error(label, "writing the octree", e);
     GroupBuilder::new().build(store.clone(), GROUP).map_err(|e| err(&e))?.store_metadata().map_err(|e| err(&e))?;
-    let f64s = [("min", &octree.min), ("max", &octree.max)];
-    for (name, values) in f64s {
-        let array = ArrayBuilder::new(
-            vec![values.len() as u64],
-            vec![CHUNK.min(values.len().max(1) as u64)],
-            data_type::float64(),
-            0.0f64,
-        )
-        .bytes_to_bytes_codecs(vec![super::zarr::zstd()])
-        .build(store.clone(), &format!("{GROUP}/{name}"))
-        .map_err(|e| err(&e))?;
-        array.store_metadata().map_err(|e| err(&e))?;
-        array
-            .store_array_subset(
-                &ArraySubset::new_with_ranges(std::slice::from_ref(&(0..values.len() as u64))),
-                values.as_slice(),
-            )
-            .map_err(|e| err(&e))?;
+    for (name, values) in [("min", &octree.min), ("max", &octree.max)] {
+        write_1d(store, label, name, (data_type::float64(), 0.0f64.to_ne_bytes().to_vec()), values)?;
     }
-    let f32s = [("errors", &octree.errors), ("squared_errors", &octree.squared_errors)];
-    for (name, values) in f32s {
-        let array = ArrayBuilder::new(
-            vec![values.len() as u64],
-            vec![CHUNK.min(values.len().max(1) as u64)],
-            data_type::float32(),
-            0.0f32,
-        )
-        .bytes_to_bytes_codecs(vec![super::zarr::zstd()])
-        .build(store.clone(), &format!("{GROUP}/{name}"))
-        .map_err(|e| err(&e))?;
-        array.store_metadata().map_err(|e| err(&e))?;
-        array
-            .store_array_subset(
-                &ArraySubset::new_with_ranges(std::slice::from_ref(&(0..values.len() as u64))),
-                values.as_slice(),
-            )
-            .map_err(|e| err(&e))?;
+    for (name, values) in [("errors", &octree.errors), ("squared_errors", &octree.squared_errors)] {
+        write_1d(store, label, name, (data_type::float32(), 0.0f32.to_ne_bytes().to_vec()), values)?;
     }
     Ok(())
+}
+
+/// Writes `values` as the 1D array `name` of [`GROUP`] of `data_type` (with its zero fill value).
+fn write_1d<T: zarrs::array::Element>(
+    store: &Arc<Storage>,
+    label: &str,
+    name: &str,
+    (data_type, fill): (zarrs::array::DataType, Vec<u8>),
+    values: &[T],
+) -> Result<()> {
+    let err = |e: &dyn std::fmt::Display| zarr_error(label, "writing the octree", e);
+    let n = values.len() as u64;
+    let array = ArrayBuilder::new(vec![n], vec![CHUNK.min(n.max(1))], data_type, zarrs::array::FillValue::new(fill))
+        .bytes_to_bytes_codecs(vec![super::zarr::zstd()])
+        .build(store.clone(), &format!("{GROUP}/{name}"))
+        .map_err(|e| err(&e))?;
+    array.store_metadata().map_err(|e| err(&e))?;
+    array.store_array_subset(&ArraySubset::new_with_ranges(std::slice::from_ref(&(0..n))), values).map_err(|e| err(&e))
 }
 
 /// Reads the octree of `layout` from [`GROUP`] and checks it: each array's

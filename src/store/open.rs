@@ -13,7 +13,7 @@ use super::metadata::{Metadata, ATTRIBUTE};
 use super::octree_arrays::read_octree;
 use super::pyramid::{level_count, level_dims, level_position};
 use super::subchunks::{self, SubchunkCache};
-use super::zarr::{open_array, scalar_type_of, zarr_error, Storage};
+use super::zarr::{open_array, scalar_type_of, typed_samples, zarr_error, Storage};
 use crate::base::error::{Error, Result};
 use crate::base::limits::{check_memory, escape_controls};
 use crate::data::grid::{GridShape, ScalarType};
@@ -293,21 +293,10 @@ impl Store {
         )?;
         let options = CodecOptions::default();
         let err = |e: zarrs::array::ArrayError| zarr_error(&self.label, "reading samples", &e);
-        macro_rules! read {
-            ($variant:ident) => {
-                SampleBuf::$variant(array.retrieve_array_subset_sharded_opt(cache, &subset, &options).map_err(err)?)
-            };
-        }
-        Ok(match self.scalar_type {
-            ScalarType::U8 => read!(U8),
-            ScalarType::I8 => read!(I8),
-            ScalarType::U16 => read!(U16),
-            ScalarType::I16 => read!(I16),
-            ScalarType::U32 => read!(U32),
-            ScalarType::I32 => read!(I32),
-            ScalarType::F32 => read!(F32),
-            ScalarType::F64 => read!(F64),
-        })
+        Ok(typed_samples!(
+            self.scalar_type,
+            array.retrieve_array_subset_sharded_opt(cache, &subset, &options).map_err(err)?
+        ))
     }
 
     /// Level `p`'s box of a store without that level: the full-resolution

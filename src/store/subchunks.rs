@@ -4,7 +4,7 @@
 //! subchunks, one of them its own), so each subchunk a frame needs is
 //! decoded about once instead of about eight times.
 
-use super::zarr::{zarr_error, Storage};
+use super::zarr::{typed_samples, zarr_error, Storage};
 use crate::base::error::Result;
 use crate::data::grid::ScalarType;
 use crate::data::volume::SampleBuf;
@@ -45,21 +45,8 @@ impl SubchunkCache {
         }
         let options = CodecOptions::default();
         let err = |e: zarrs::array::ArrayError| zarr_error(label, "reading a subchunk", &e);
-        macro_rules! read {
-            ($variant:ident) => {
-                SampleBuf::$variant(array.retrieve_subchunk_opt(shards, &index, &options).map_err(err)?)
-            };
-        }
-        let decoded = Arc::new(match scalar_type {
-            ScalarType::U8 => read!(U8),
-            ScalarType::I8 => read!(I8),
-            ScalarType::U16 => read!(U16),
-            ScalarType::I16 => read!(I16),
-            ScalarType::U32 => read!(U32),
-            ScalarType::I32 => read!(I32),
-            ScalarType::F32 => read!(F32),
-            ScalarType::F64 => read!(F64),
-        });
+        let decoded =
+            Arc::new(typed_samples!(scalar_type, array.retrieve_subchunk_opt(shards, &index, &options).map_err(err)?));
         if decoded.len() != EDGE * EDGE * EDGE {
             return Err(zarr_error(
                 label,

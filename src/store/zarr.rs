@@ -93,3 +93,22 @@ pub fn bytes_of<T: Sample>(values: &[T]) -> &[u8] {
     // values and borrows them for its lifetime.
     unsafe { std::slice::from_raw_parts(values.as_ptr().cast::<u8>(), std::mem::size_of_val(values)) }
 }
+
+/// `$read` (an expression whose element type is inferred from its use)
+/// evaluated as a `Vec` of the samples of `$ty`, wrapped in its
+/// [`crate::data::volume::SampleBuf`] variant; `?` inside returns early.
+macro_rules! typed_samples {
+    ($ty:expr, $read:expr) => {
+        match $ty {
+            $crate::data::grid::ScalarType::U8 => $crate::data::volume::SampleBuf::U8($read),
+            $crate::data::grid::ScalarType::I8 => $crate::data::volume::SampleBuf::I8($read),
+            $crate::data::grid::ScalarType::U16 => $crate::data::volume::SampleBuf::U16($read),
+            $crate::data::grid::ScalarType::I16 => $crate::data::volume::SampleBuf::I16($read),
+            $crate::data::grid::ScalarType::U32 => $crate::data::volume::SampleBuf::U32($read),
+            $crate::data::grid::ScalarType::I32 => $crate::data::volume::SampleBuf::I32($read),
+            $crate::data::grid::ScalarType::F32 => $crate::data::volume::SampleBuf::F32($read),
+            $crate::data::grid::ScalarType::F64 => $crate::data::volume::SampleBuf::F64($read),
+        }
+    };
+}
+pub(super) use typed_samples;
