@@ -67,15 +67,7 @@ impl Case {
     }
 
     fn picture(&self, grid: &Grid<'_>, s: &Selection) -> Image {
-        let scene = Scene {
-            surface: None,
-            surface_opacity: 1.0,
-            shading: None,
-            gradient_opacity: None,
-            transfer_2d: None,
-            blend: Default::default(),
-            region: None,
-        };
+        let scene = Scene::volume(Default::default());
         let list = draw_list(&self.octree, grid.shape(), s, &self.camera, &scene, None).unwrap();
         composite(grid, &list, &self.tf, PIXELS, PIXELS, None).unwrap()
     }

@@ -17,7 +17,6 @@ use hybrid_octree::render::texture::read::upload_read;
 use hybrid_octree::render::texture::upload;
 use hybrid_octree::render::transfer::TransferFunction;
 use hybrid_octree::select::{select, SelectOptions};
-use hybrid_octree::store::pyramid::level_of_stride;
 use hybrid_octree::store::{write_store, Store, WriteOptions};
 use hybrid_octree::transfer::lighting::{Lighting, Material};
 
@@ -42,11 +41,8 @@ fn a_store_draws_the_in_core_picture() {
             Camera::around(shape.world([0.0; 3]), shape.world(shape.dims.map(|d| (d - 1) as f64)), 30.0, 20.0, false)
                 .unwrap();
         let lighting = Lighting::headlight(Material::default());
-        let read = |b: &hybrid_octree::select::Brick, border: usize| {
-            let p = level_of_stride(b.stride).expect("strides are powers of two");
-            let first = [0, 1, 2].map(|a| (b.lo[a] / b.stride) as i64 - border as i64);
-            store.read_clamped(p, first, b.texels.map(|n| n + 2 * border))
-        };
+        let read =
+            |b: &hybrid_octree::select::Brick, border: usize| store.read_texels(b.stride, b.lo, b.texels, border);
         for shaded in [false, true] {
             let full: usize = 3 * size * size * size * 4;
             let mut strides = std::collections::BTreeSet::new();
@@ -54,15 +50,7 @@ fn a_store_draws_the_in_core_picture() {
                 let options = SelectOptions { gradient_border: shaded, ..SelectOptions::new(budget, 0.0) };
                 let selection = select(&stored, &options, |a, b| !tf.is_transparent_over(a, b)).unwrap();
                 strides.extend(selection.bricks.iter().map(|b| b.stride));
-                let scene = Scene {
-                    surface: None,
-                    surface_opacity: 1.0,
-                    shading: shaded.then_some(&lighting),
-                    gradient_opacity: None,
-                    transfer_2d: None,
-                    blend: Default::default(),
-                    region: None,
-                };
+                let scene = Scene { shading: shaded.then_some(&lighting), ..Scene::volume(Default::default()) };
                 for format in [TexelFormat::Auto, TexelFormat::Unorm8, TexelFormat::Float16] {
                     let mut list = draw_list(&stored, &shape, &selection, &camera, &scene, None).unwrap();
                     list.texel = TexelEncoding::resolve(format, ty, (min, max), 0).unwrap();

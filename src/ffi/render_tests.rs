@@ -184,15 +184,7 @@ fn draw_list_through_the_bridge_is_plan_draw_list() {
         .unwrap();
     for c in cameras() {
         let out = s.draw_list(&h, &c, 0.0).unwrap();
-        let scene = Scene {
-            surface: None,
-            surface_opacity: 1.0,
-            shading: None,
-            gradient_opacity: None,
-            transfer_2d: None,
-            blend: bridge_blend(&h),
-            region: None,
-        };
+        let scene = Scene::volume(bridge_blend(&h));
         let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera(&c).unwrap(), &scene, None).unwrap();
         assert_eq!(direct, s.list(&h, &c, 0.0).unwrap());
         let n = direct.bricks.len();
@@ -382,15 +374,7 @@ fn draw_list_with_a_surface_is_plan_draw_list() {
             }
         }
         // Hidden is the volume alone, as without a surface.
-        let volume = Scene {
-            surface: None,
-            surface_opacity: 1.0,
-            shading: None,
-            gradient_opacity: None,
-            transfer_2d: None,
-            blend: bridge_blend(&h),
-            region: None,
-        };
+        let volume = Scene::volume(bridge_blend(&h));
         let direct = plan::draw_list(h.volume(), &h.shape, &s.selection, &camera, &volume, None).unwrap();
         assert_eq!(s.list(&h, &c, 0.0).unwrap(), direct);
     }

@@ -231,6 +231,22 @@ pub struct Scene<'a> {
     pub region: Option<&'a KeptRegion>,
 }
 
+impl Scene<'_> {
+    /// The volume alone under `blend`: no surface, no shading, gradient
+    /// opacity, 2D transfer function, cropping or clipping.
+    pub fn volume(blend: Blend) -> Scene<'static> {
+        Scene {
+            surface: None,
+            surface_opacity: 1.0,
+            shading: None,
+            gradient_opacity: None,
+            transfer_2d: None,
+            blend,
+            region: None,
+        }
+    }
+}
+
 /// The plan for a scene (see the module documentation). Its [`Plan::effects`]
 /// name the region's only in [`draw_list`], which knows the volume's box.
 pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Plan {

@@ -39,15 +39,7 @@ fn list(
         ..SelectOptions::new(budget, 0.0)
     };
     let selection = select(octree, &options, visible).unwrap();
-    let scene = Scene {
-        surface: None,
-        surface_opacity: 1.0,
-        shading: None,
-        gradient_opacity: None,
-        transfer_2d: None,
-        blend,
-        region: None,
-    };
+    let scene = Scene::volume(blend);
     draw_list(octree, shape, &selection, camera, &scene, None).unwrap()
 }
 

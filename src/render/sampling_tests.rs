@@ -31,15 +31,7 @@ fn list(octree: &VolumeOctree, shape: &crate::data::grid::GridShape, blend: Blen
     let options = SelectOptions { max_brick_log2: 4, ..SelectOptions::new(1 << 30, 0.0) };
     let selection =
         select(octree, &options, |a, b| blend.visible(a, b, &|a, b| !tf.is_transparent_over(a, b))).unwrap();
-    let scene = Scene {
-        surface: None,
-        surface_opacity: 1.0,
-        shading: None,
-        gradient_opacity: None,
-        transfer_2d: None,
-        blend,
-        region: None,
-    };
+    let scene = Scene::volume(blend);
     draw_list(octree, shape, &selection, camera, &scene, None).unwrap()
 }
 

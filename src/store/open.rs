@@ -316,6 +316,22 @@ impl Store {
         Ok(gather(&full, n, [index(0), index(1), index(2)]))
     }
 
+    /// The texels of a brick of stride `stride` (a power of two) whose box
+    /// starts at level-0 index `lo` (a multiple of the stride), `n` texels
+    /// per axis and `border` more on each side: level `log2 stride` from
+    /// index `lo / stride - border`, clamped to the level ([`Self::read_clamped`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] for a stride that is not a power of two,
+    /// and as [`Self::read_clamped`].
+    pub fn read_texels(&self, stride: usize, lo: [usize; 3], n: [usize; 3], border: usize) -> Result<Volume> {
+        let p = super::pyramid::level_of_stride(stride)
+            .ok_or_else(|| Error::InvalidArgument(format!("brick stride {stride} is not a power of two")))?;
+        let first = [0, 1, 2].map(|a| (lo[a] / stride) as i64 - border as i64);
+        self.read_clamped(p, first, n.map(|n| n + 2 * border))
+    }
+
     /// The `n` samples per axis of level `p` starting at index `first`
     /// (which may lie outside the level), each index clamped to the level:
     /// a brick texture with its gradient border repeats the volume's last

@@ -7,7 +7,6 @@ use hybrid_octree::render::scattering::{shadow_for, ShadowVolume};
 use hybrid_octree::render::texture::read::upload_read;
 use hybrid_octree::render::texture::{upload, Textures};
 use hybrid_octree::select::Brick;
-use hybrid_octree::store::pyramid::level_of_stride;
 use hybrid_octree::store::Store;
 use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
@@ -77,11 +76,7 @@ impl Field<'_> {
     }
 }
 
-/// Brick `b`'s texels with `border`, from the store's level of its stride:
-/// level index `lo / stride - border` onwards, clamped to the level.
+/// Brick `b`'s texels with `border`, from the store's level of its stride.
 fn read_brick(store: &Store, b: &Brick, border: usize) -> Result<Volume> {
-    let p = level_of_stride(b.stride)
-        .ok_or_else(|| Error::InvalidArgument(format!("brick stride {} is not a power of two", b.stride)))?;
-    let first = [0, 1, 2].map(|a| (b.lo[a] / b.stride) as i64 - border as i64);
-    store.read_clamped(p, first, b.texels.map(|n| n + 2 * border))
+    store.read_texels(b.stride, b.lo, b.texels, border)
 }
