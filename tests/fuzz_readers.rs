@@ -190,6 +190,11 @@ fn nifti_reader_survives_mutations() {
 }
 
 #[test]
+fn tiff_reader_survives_mutations() {
+    fuzz("tiff", read_file);
+}
+
+#[test]
 fn raw_reader_survives_mutations() {
     fuzz("raw", |name, bytes| {
         seeds::raw_layout(bytes).is_some_and(|(raw, data)| {

@@ -6,6 +6,7 @@
 //! | `.vti`             | VTK XML ImageData (one piece; appended raw or base64, binary, ascii; ZLib, LZ4, LZMA) | [`vti`] |
 //! | `.vtk`             | legacy VTK STRUCTURED_POINTS (ASCII, BINARY) | [`vtk`]  |
 //! | `.nii`, `.nii.gz`  | NIfTI-1 (3D, one volume)                 | [`nii`]  |
+//! | `.tif`, `.tiff`, a folder of them | TIFF stacks: 2D slices or multi-page, grayscale | [`tiff_stack`] |
 //! | `.raw`, `.bin`, or any file with [`RawOptions`] | headerless samples | [`raw`] |
 //!
 //! Extensions are matched in any case. Every failure is an
@@ -23,6 +24,7 @@ pub mod raw;
 pub mod read;
 pub mod sample_sink;
 pub mod source;
+pub mod tiff_stack;
 pub mod vti;
 pub mod vti_data;
 pub mod vti_write;

@@ -12,7 +12,7 @@ use crate::data::volume::Volume;
 use std::path::Path;
 
 /// The extensions [`read_volume`] understands, for messages.
-pub const SUPPORTED: &str = ".vti, .vtk, .nii, .nii.gz, .raw, .bin";
+pub const SUPPORTED: &str = ".vti, .vtk, .nii, .nii.gz, .tif, .tiff (or a folder of TIFF slices), .raw, .bin";
 
 /// The file formats, by extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,6 +25,8 @@ pub enum FileKind {
     Nifti,
     /// `.nii.gz`
     NiftiGz,
+    /// `.tif`, `.tiff`: a multi-page TIFF stack.
+    Tiff,
     /// `.raw`, `.bin`: needs a layout.
     Raw,
 }
@@ -38,6 +40,8 @@ impl FileKind {
             (".vtk", FileKind::LegacyVtk),
             (".nii.gz", FileKind::NiftiGz),
             (".nii", FileKind::Nifti),
+            (".tiff", FileKind::Tiff),
+            (".tif", FileKind::Tiff),
             (".raw", FileKind::Raw),
             (".bin", FileKind::Raw),
         ]
@@ -48,8 +52,9 @@ impl FileKind {
 }
 
 /// Reads the volume in `path`: raw when `options.raw` is given, otherwise by
-/// extension (`.vti`, `.vtk`, `.nii`, `.nii.gz`; `.raw` and `.bin` need
-/// `options.raw`). Only regular files are read, never past their size.
+/// extension (`.vti`, `.vtk`, `.nii`, `.nii.gz`, `.tif`, `.tiff`; `.raw` and
+/// `.bin` need `options.raw`), or a folder of TIFF slices
+/// ([`super::tiff_stack`]). Only regular files are read, never past their size.
 /// Raw, `.vti` (appended raw data) and NIfTI values go from the file
 /// straight into the volume's buffer; a legacy `.vtk` file is read whole
 /// first. The
@@ -57,6 +62,9 @@ impl FileKind {
 /// values (that is [`Volume::grid`]'s job).
 pub fn read_volume(path: &Path, options: &ReadOptions) -> Result<Volume> {
     let label = display_path(path);
+    if path.is_dir() && options.raw.is_none() {
+        return super::tiff_stack::TiffStack::open(path)?.read_volume();
+    }
     let len = regular_file_len(path, &label)?;
     let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     if let Some(raw) = &options.raw {
@@ -66,6 +74,7 @@ pub fn read_volume(path: &Path, options: &ReadOptions) -> Result<Volume> {
     }
     match kind(&label, &file_name, options)? {
         FileKind::Vti => super::vti::read_vti_file(&label, &mut open_regular_file(path, &label)?, len),
+        FileKind::Tiff => super::tiff_stack::TiffStack::open(path)?.read_volume(),
         FileKind::Nifti | FileKind::NiftiGz => {
             let gz = kind(&label, &file_name, options)? == FileKind::NiftiGz;
             super::nii::read_nifti_file(&label, &file_name, open_regular_file(path, &label)?, len, gz)
@@ -92,6 +101,7 @@ fn read_labelled(label: &str, file_name: &str, bytes: &[u8], options: &ReadOptio
         FileKind::LegacyVtk => super::vtk::read_vtk_bytes(label, bytes),
         FileKind::Nifti => super::nii::read_nifti_bytes(label, file_name, bytes, false),
         FileKind::NiftiGz => super::nii::read_nifti_bytes(label, file_name, bytes, true),
+        FileKind::Tiff => super::tiff_stack::read_tiff_bytes(label, bytes),
         FileKind::Raw => unreachable!("kind() refuses raw files without a layout"),
     }
 }

@@ -11,7 +11,7 @@ use hybrid_octree::points::{generate, PointOptions, PointSelect};
 use std::io::Write;
 
 /// The readers, by the fuzz target names.
-pub const TARGETS: [&str; 5] = ["vti", "vtk", "nifti", "raw", "hopoints"];
+pub const TARGETS: [&str; 6] = ["vti", "vtk", "nifti", "tiff", "raw", "hopoints"];
 
 /// A seed: the target it feeds, the file name (its extension picks the
 /// format) and the bytes.
@@ -165,6 +165,18 @@ fn points() -> Vec<u8> {
     bytes
 }
 
+/// A multi-page TIFF of three 5x4 16-bit pages (the test values).
+fn tiff_stack(compression: tiff::encoder::Compression) -> Vec<u8> {
+    let mut out = std::io::Cursor::new(Vec::new());
+    let mut enc = tiff::encoder::TiffEncoder::new(&mut out).unwrap().with_compression(compression);
+    for page in 0..3u16 {
+        let plane: Vec<u16> = (0..20u16).map(|i| i * 7 + page * 300).collect();
+        enc.write_image::<tiff::encoder::colortype::Gray16>(5, 4, &plane).unwrap();
+    }
+    drop(enc);
+    out.into_inner()
+}
+
 /// Every seed.
 pub fn seeds() -> Vec<Seed> {
     let data = le(&values());
@@ -196,6 +208,8 @@ pub fn seeds() -> Vec<Seed> {
         seed("nifti", "i16.nii", nifti(4, 16, &i16_data, 0.0)),
         seed("nifti", "scaled-f32.nii", nifti(16, 32, &data, 2.5)),
         seed("nifti", "i16.nii.gz", gzip(&nifti(4, 16, &i16_data, 0.0))),
+        seed("tiff", "lzw-u16.tif", tiff_stack(tiff::encoder::Compression::Lzw)),
+        seed("tiff", "plain-u16.tif", tiff_stack(tiff::encoder::Compression::Uncompressed)),
         seed("raw", "u16.raw", [RAW_U16_5X4X3.to_vec(), i16_data].concat()),
         seed("hopoints", "points.hop", points()),
     ]

@@ -4,7 +4,7 @@ use clap::Args;
 use hybrid_octree::datasets::generate::check_generate;
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
-use hybrid_octree::io::{read_volume, RawOptions, ReadOptions};
+use hybrid_octree::io::{read_volume, FileKind, RawOptions, ReadOptions};
 use hybrid_octree::store::Store;
 use hybrid_octree::volume::Volume;
 use hybrid_octree::{Error, Result};
@@ -22,15 +22,15 @@ pub struct InputArgs {
     /// Scalar type: of the generated dataset, or of a raw file (u8, i8, u16, i16, u32, i32, f32, f64).
     #[arg(long = "type")]
     pub scalar_type: Option<String>,
-    /// Volume file: .vti, .vtk, .nii, .nii.gz, raw (.raw/.bin, with --dims and --type), or an OME-Zarr
-    /// image folder (.ome.zarr, .zarr).
+    /// Volume file: .vti, .vtk, .nii, .nii.gz, a TIFF stack (.tif/.tiff, or a folder of TIFF slices),
+    /// raw (.raw/.bin, with --dims and --type), or an OME-Zarr image folder (.ome.zarr, .zarr).
     #[arg(long)]
     pub file: Option<PathBuf>,
     /// Raw file dimensions X,Y,Z (makes the file be read as raw).
     #[arg(long, value_parser = triple::<usize>, requires = "file")]
     pub dims: Option<[usize; 3]>,
-    /// Raw file spacing X,Y,Z.
-    #[arg(long, value_parser = triple::<f64>, requires = "dims", allow_hyphen_values = true)]
+    /// Spacing X,Y,Z of a raw file or a TIFF stack (whose own calibration, ImageJ's, it replaces).
+    #[arg(long, value_parser = triple::<f64>, requires = "file", allow_hyphen_values = true)]
     pub spacing: Option<[f64; 3]>,
     /// Raw file origin X,Y,Z.
     #[arg(long, value_parser = triple::<f64>, requires = "dims", allow_hyphen_values = true)]
@@ -115,7 +115,18 @@ impl InputArgs {
                 }
                 None => None,
             };
-            return read_volume(path, &ReadOptions { raw });
+            let mut volume = read_volume(path, &ReadOptions { raw: raw.clone() })?;
+            if let (None, Some(spacing)) = (&raw, self.spacing) {
+                if !(path.is_dir() || FileKind::of(&path.to_string_lossy()) == Some(FileKind::Tiff)) {
+                    return Err(Error::InvalidArgument(
+                        "--spacing sets the spacing of a raw file (with --dims) or a TIFF stack; this file's header \
+                         gives its own"
+                            .into(),
+                    ));
+                }
+                volume.shape.spacing = spacing;
+            }
+            return Ok(volume);
         }
         let name = self
             .dataset
@@ -144,7 +155,10 @@ impl InputArgs {
     }
 }
 
-/// True for an OME-Zarr image: a folder, or a path ending in `.zarr` (any case).
+/// True for an OME-Zarr image: a path ending in `.zarr` (any case), or a
+/// folder with Zarr metadata (`zarr.json`, `.zgroup`, `.zattrs`). Any other
+/// folder is a stack of TIFF slices.
 pub fn is_store(path: &Path) -> bool {
-    path.is_dir() || path.to_string_lossy().to_ascii_lowercase().trim_end_matches('/').ends_with(".zarr")
+    path.to_string_lossy().to_ascii_lowercase().trim_end_matches('/').ends_with(".zarr")
+        || (path.is_dir() && ["zarr.json", ".zgroup", ".zattrs"].iter().any(|m| path.join(m).is_file()))
 }
