@@ -53,6 +53,6 @@ pub mod transfer;
 
 pub use base::error::{Error, Result};
 pub use base::{error, limits};
-pub use data::{grid, spacing, volume};
+pub use data::{grid, planes, spacing, volume};
 pub use geometry::{camera, vec3};
 pub use plan::{order, select, slab};

@@ -1594,5 +1594,19 @@ fn a_foreign_ngff_0_4_store_opens() {
     assert!(text.contains("[0.5, 2.0, 3.0]") && text.contains("[9.0, 8.0, 7.0]"), "{text}");
     assert!(text.contains("value range: 0 .. 119"), "index 0 of t and c: {text}");
     assert!(stderr(&out).contains("index 0 of each is read"), "{}", stderr(&out));
+    // Drawn from disk (its octree built by one streaming pass over level 0),
+    // the picture read whole draws.
+    let (disk, memory) = (temp("foreign-disk.png"), temp("foreign-memory.png"));
+    let common =
+        ["render", "--file", store.to_str().unwrap(), "--view-selection", "screen", "--width", "64", "--height", "48"];
+    let budget = ["--budget-mb", "0.0005", "--leaf-size", "2"];
+    for (extra, png) in [(&[][..], &disk), (&["--in-memory"][..], &memory)] {
+        let out = run(&[&common[..], &budget[..], extra, &["--output", png.to_str().unwrap()]].concat());
+        assert!(out.status.success(), "{}", stderr(&out));
+    }
+    assert!(std::fs::read(&disk).unwrap() == std::fs::read(&memory).unwrap(), "disk and memory pictures differ");
+    for p in [&disk, &memory] {
+        let _ = std::fs::remove_file(p);
+    }
     let _ = std::fs::remove_dir_all(&store);
 }

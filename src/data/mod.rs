@@ -4,6 +4,7 @@
 //! and the sample spacings every renderer shares ([`spacing`]).
 
 pub mod grid;
+pub mod planes;
 pub mod resample;
 pub mod spacing;
 pub mod volume;

@@ -74,8 +74,10 @@ impl Dataset {
     /// `n = out.len()` (`t_x = 0` when `n = 1`), the same values bit for bit;
     /// datasets with a faster way along a row take it.
     pub fn row(self, ty: f64, tz: f64, out: &mut [f64]) {
-        if self == Dataset::SheppLogan {
-            return super::shepp_logan::row(ty, tz, out);
+        match self {
+            Dataset::SheppLogan => return super::shepp_logan::row(ty, tz, out),
+            Dataset::Vessels => return super::vessels::row(ty, tz, out),
+            _ => {}
         }
         let n = out.len();
         for (i, v) in out.iter_mut().enumerate() {

@@ -17,6 +17,7 @@ use super::dataset::Dataset;
 use crate::base::error::{Error, Result};
 use crate::base::limits::check_memory;
 use crate::data::grid::{GridShape, ScalarType};
+use crate::data::planes::PlaneSource;
 use crate::data::volume::{SampleBuf, Volume};
 use rayon::prelude::*;
 
@@ -91,6 +92,39 @@ pub fn generate_slab(
         ScalarType::I32 => SampleBuf::I32(fill(d, dims, k0, n, |v| to_type_range(v, ScalarType::I32).round() as i32)),
         ScalarType::F32 => SampleBuf::F32(fill(d, dims, k0, n, |v| v as f32)),
         ScalarType::F64 => SampleBuf::F64(fill(d, dims, k0, n, |v| v)),
+    }
+}
+
+/// [`generate_dims`]'s volume as a [`PlaneSource`]: any planes, computed
+/// when asked, so a pass over z never holds the volume.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DatasetPlanes {
+    /// The dataset.
+    pub dataset: Dataset,
+    /// Samples per axis (at least 2 each).
+    pub dims: [usize; 3],
+    /// The samples' type.
+    pub scalar_type: ScalarType,
+}
+
+impl PlaneSource for DatasetPlanes {
+    fn shape(&self) -> GridShape {
+        GridShape { dims: self.dims, spacing: [1.0; 3], origin: [0.0; 3] }
+    }
+    fn scalar_type(&self) -> ScalarType {
+        self.scalar_type
+    }
+    fn read_planes(&self, z: std::ops::Range<usize>) -> Result<SampleBuf> {
+        if z.start > z.end || z.end > self.dims[2] {
+            return Err(Error::InvalidArgument(format!("planes {z:?} are outside the dataset's {}", self.dims[2])));
+        }
+        let plane = self.dims[0] as u128 * self.dims[1] as u128;
+        check_memory(
+            plane * z.len() as u128 * self.scalar_type.size() as u128,
+            &format!("{} planes of {}x{}", z.len(), self.dims[0], self.dims[1]),
+            "use a smaller --size",
+        )?;
+        Ok(generate_slab(self.dataset, self.dims, self.scalar_type, z))
     }
 }
 

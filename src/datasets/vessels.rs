@@ -109,6 +109,52 @@ pub fn value(t: [f64; 3]) -> f64 {
     tissue.max(vessel(tree(), 0, p))
 }
 
+/// One x-row of [`value`] (`t_y`, `t_z` fixed, `t_x = i / (n - 1)` for the
+/// row's `n` samples): the same values, bit for bit, at the cost of the
+/// segments near the row. A segment's own box (padded by radius and edge)
+/// bounds where it is not 0; the row keeps the segments whose box holds
+/// its `(p_y, p_z)` and each sample evaluates those whose x-extent (in
+/// samples, widened by one) holds it. `V` is a max, exact in any order,
+/// and a skipped segment's term is 0 (its distance is at least its padded
+/// radius there).
+pub fn row(ty: f64, tz: f64, out: &mut [f64]) {
+    let n = out.len();
+    let (py, pz) = (2.0 * ty - 1.0, 2.0 * tz - 1.0);
+    let segs = tree();
+    // (first, last) sample index of each segment near the row.
+    let mut near: Vec<(usize, usize, &Segment)> = Vec::new();
+    let last = n.saturating_sub(1) as f64;
+    for s in segs {
+        let pad = s.radius + EDGE;
+        let (ylo, yhi) = (s.a[1].min(s.b[1]) - pad, s.a[1].max(s.b[1]) + pad);
+        let (zlo, zhi) = (s.a[2].min(s.b[2]) - pad, s.a[2].max(s.b[2]) + pad);
+        if py < ylo || py > yhi || pz < zlo || pz > zhi {
+            continue;
+        }
+        let (xlo, xhi) = (s.a[0].min(s.b[0]) - pad, s.a[0].max(s.b[0]) + pad);
+        // p_x = 2 i / (n - 1) - 1: the sample indices of [xlo, xhi], one more each side.
+        let first = (((xlo + 1.0) / 2.0 * last).floor() - 1.0).max(0.0);
+        let end = (((xhi + 1.0) / 2.0 * last).ceil() + 1.0).min(last);
+        if first <= end {
+            near.push((first as usize, end as usize, s));
+        }
+    }
+    for (i, v) in out.iter_mut().enumerate() {
+        let tx = if n > 1 { i as f64 / (n - 1) as f64 } else { 0.0 };
+        let p = [2.0 * tx - 1.0, py, pz];
+        let q = (p[0] / 0.9).powi(2) + (p[1] / 0.95).powi(2) + (p[2] / 0.9).powi(2);
+        let tissue = TISSUE * ((1.0 - q) / 0.3).clamp(0.0, 1.0);
+        let mut vessel = 0.0f64;
+        for &(first, end, s) in &near {
+            if (first..=end).contains(&i) && vessel < 1.0 {
+                let own = ((s.radius + EDGE - distance_to_segment(p, s.a, s.b)) / EDGE).clamp(0.0, 1.0);
+                vessel = vessel.max(own);
+            }
+        }
+        *v = tissue.max(vessel);
+    }
+}
+
 /// `V(p)` over the subtree of segment `i`.
 fn vessel(segs: &[Segment], i: usize, p: [f64; 3]) -> f64 {
     let s = &segs[i];
@@ -183,6 +229,36 @@ mod tests {
         assert_eq!(value(t_of(tissue)), TISSUE);
         assert_eq!(value([0.0; 3]), 0.0);
         assert_eq!(value([1.0; 3]), 0.0);
+    }
+
+    #[test]
+    fn a_row_is_the_values_of_its_samples() {
+        for n in [2, 3, 17, 64, 255] {
+            for (j, k) in [(0, 0), (n / 2, n / 3), (n / 3, n / 2), (n - 1, n / 4), (n / 5, n - 1)] {
+                let (ty, tz) = (j as f64 / (n - 1) as f64, k as f64 / (n - 1) as f64);
+                let mut out = vec![0.0; n];
+                row(ty, tz, &mut out);
+                for (i, v) in out.iter().enumerate() {
+                    let want = value([i as f64 / (n - 1) as f64, ty, tz]);
+                    assert_eq!(v.to_bits(), want.to_bits(), "n {n} sample ({i}, {j}, {k})");
+                }
+            }
+        }
+        // Rows through the vessels themselves: every segment's midpoint.
+        let n = 300;
+        for s in tree() {
+            let m = scale(add(s.a, s.b), 0.5);
+            let t = t_of(m);
+            let (ty, tz) = (
+                ((t[1] * (n - 1) as f64).round()) / (n - 1) as f64,
+                ((t[2] * (n - 1) as f64).round()) / (n - 1) as f64,
+            );
+            let mut out = vec![0.0; n];
+            row(ty, tz, &mut out);
+            for (i, v) in out.iter().enumerate() {
+                assert_eq!(v.to_bits(), value([i as f64 / (n - 1) as f64, ty, tz]).to_bits());
+            }
+        }
     }
 
     #[test]

@@ -32,8 +32,8 @@
 // The path is compiled for x86-64 with AVX2; elsewhere the general kernel takes every brick.
 #![cfg_attr(not(target_arch = "x86_64"), allow(dead_code, unused_imports))]
 
+use super::lattice::Lattice;
 use super::trilinear::{coarse_positions, lerp_scaled};
-use crate::data::grid::{Sample, TypedGrid};
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::*;
 
@@ -87,8 +87,8 @@ pub struct Brick<'b> {
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-pub unsafe fn finite_brick_errors<T: Sample>(
-    g: &TypedGrid<'_, T>,
+pub unsafe fn finite_brick_errors<G: Lattice>(
+    g: &G,
     brick: &Brick<'_>,
     scale: f64,
     raw: &mut [f64],
@@ -118,17 +118,11 @@ pub unsafe fn finite_brick_errors<T: Sample>(
 
 /// Fills the coarse positions and `C` of stride `s`; false when a value is not finite.
 #[inline(always)]
-fn gather_coarse<T: Sample>(
-    g: &TypedGrid<'_, T>,
-    brick: &Brick<'_>,
-    s: usize,
-    scale: f64,
-    sc: &mut FiniteScratch,
-) -> bool {
+fn gather_coarse<G: Lattice>(g: &G, brick: &Brick<'_>, s: usize, scale: f64, sc: &mut FiniteScratch) -> bool {
     let (lo, hi) = (brick.lo, brick.hi);
-    coarse_positions(lo[0], hi[0], s, g.dims[0], &mut sc.xs);
-    coarse_positions(lo[1], hi[1], s, g.dims[1], &mut sc.ys);
-    coarse_positions(lo[2], hi[2], s, g.dims[2], &mut sc.zs);
+    coarse_positions(lo[0], hi[0], s, g.dims()[0], &mut sc.xs);
+    coarse_positions(lo[1], hi[1], s, g.dims()[1], &mut sc.ys);
+    coarse_positions(lo[2], hi[2], s, g.dims()[2], &mut sc.zs);
     let wx = hi[0] - lo[0] + 1;
     let wy = hi[1] - lo[1] + 1;
     let inside = |p: usize, a: usize| p >= lo[a] && p <= hi[a];

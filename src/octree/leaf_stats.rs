@@ -47,9 +47,9 @@
 use super::finite_brick::FiniteScratch;
 #[cfg(target_arch = "x86_64")]
 use super::finite_brick::{finite_brick_errors, Brick};
+use super::lattice::Lattice;
 use super::layout::Layout;
 use super::trilinear::{bracket, coarse_positions, lerp_scaled};
-use crate::data::grid::{Sample, TypedGrid};
 
 /// The raw error of a sample that is no data in exactly one of the fine and
 /// the coarse picture: larger than any finite error, and kept by every max.
@@ -243,8 +243,8 @@ fn trilinear_squared_sum(e: [f64; 8], lo: [usize; 3], hi: [usize; 3], dims: [usi
 /// cells the brick's samples interpolate are those its corners do (per axis
 /// the cell of `lo`, and of `hi` when `hi` is on the coarse lattice), but not
 /// every sample touches the NaN one, so the caller takes the general path.
-fn constant_brick<T: Sample>(
-    g: &TypedGrid<'_, T>,
+fn constant_brick<G: Lattice>(
+    g: &G,
     layout: &Layout,
     c: f64,
     scale: f64,
@@ -268,7 +268,7 @@ fn constant_brick<T: Sample>(
             }
             *r = r.max(ec.abs());
         }
-        *q = trilinear_squared_sum(e, lo, hi, g.dims);
+        *q = trilinear_squared_sum(e, lo, hi, g.dims());
     }
     Some((raw, squared))
 }
@@ -293,8 +293,8 @@ pub enum KernelPath {
 /// lanes instead of two). Only additions, subtractions, multiplications
 /// and comparisons are used, never a fused multiply-add, so the results are
 /// the same bit for bit on every CPU.
-pub fn leaf_stats<T: Sample>(
-    g: &TypedGrid<'_, T>,
+pub fn leaf_stats<G: Lattice>(
+    g: &G,
     layout: &Layout,
     lo: [usize; 3],
     hi: [usize; 3],
@@ -316,8 +316,8 @@ pub fn leaf_stats<T: Sample>(
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn leaf_stats_avx2<T: Sample>(
-    g: &TypedGrid<'_, T>,
+unsafe fn leaf_stats_avx2<G: Lattice>(
+    g: &G,
     layout: &Layout,
     lo: [usize; 3],
     hi: [usize; 3],
@@ -330,8 +330,8 @@ unsafe fn leaf_stats_avx2<T: Sample>(
 
 /// The kernel's body, inlined into each instruction-set variant.
 #[inline(always)]
-fn leaf_stats_inline<T: Sample>(
-    g: &TypedGrid<'_, T>,
+fn leaf_stats_inline<G: Lattice>(
+    g: &G,
     layout: &Layout,
     lo: [usize; 3],
     hi: [usize; 3],
@@ -359,7 +359,7 @@ fn leaf_stats_inline<T: Sample>(
     let mut raw = vec![0.0f64; strides];
     let mut squared = vec![0.0f64; strides];
     let mut holes = vec![0.0f64; strides];
-    let summed = [0, 1, 2].map(|a| summed_count(lo[a], hi[a], g.dims[a]));
+    let summed = [0, 1, 2].map(|a| summed_count(lo[a], hi[a], g.dims()[a]));
     if min == max && !has_nan {
         if let Some((raw, squared)) = constant_brick(g, layout, min, scale, lo, hi) {
             let holes = vec![0.0f64; strides];
@@ -380,8 +380,8 @@ fn leaf_stats_inline<T: Sample>(
     t.resize(wx, 0.0);
     for (j, ((r, q), h)) in raw.iter_mut().zip(squared.iter_mut()).zip(holes.iter_mut()).enumerate() {
         let s = 1usize << (j + 1);
-        coarse_positions(lo[0], hi[0], s, g.dims[0], xs);
-        coarse_positions(lo[1], hi[1], s, g.dims[1], ys);
+        coarse_positions(lo[0], hi[0], s, g.dims()[0], xs);
+        coarse_positions(lo[1], hi[1], s, g.dims()[1], ys);
         let (x_first, y_first) = (lo[0] / s * s, lo[1] / s * s);
         let (nxs, nys) = (xs.len(), ys.len());
         // tx = (x - x0) / s = (x mod s) / s for the brick's x = lo .. hi (exact:
@@ -394,7 +394,7 @@ fn leaf_stats_inline<T: Sample>(
         for xi in 0..nxs {
             let x0 = x_first + xi * s;
             let (a, b) = (x0.max(lo[0]), (x0 + s).min(hi[0] + 1));
-            if a < b && x0 < g.dims[0] {
+            if a < b && x0 < g.dims()[0] {
                 cells.push((a - lo[0], b - lo[0], xi, a - lo[0]));
             }
         }
@@ -402,7 +402,7 @@ fn leaf_stats_inline<T: Sample>(
         let mut sq = 0.0f64;
         let mut hole_count = 0.0f64;
         for z in lo[2]..=hi[2] {
-            let (z0, z1, tz) = bracket(z, s, g.dims[2]);
+            let (z0, z1, tz) = bracket(z, s, g.dims()[2]);
             // v(xa, yb) for every coarse (xa, yb) of this slice.
             v.clear();
             for &yb in ys.iter() {
@@ -413,7 +413,7 @@ fn leaf_stats_inline<T: Sample>(
             // NaN in the fine samples or in this slice's coarse values: the rows take the no-data path.
             let nan_rows = has_nan || v.iter().any(|x| x.is_nan());
             for y in lo[1]..=hi[1] {
-                let (y0, _, ty) = bracket(y, s, g.dims[1]);
+                let (y0, _, ty) = bracket(y, s, g.dims()[1]);
                 let yi0 = (y0 - y_first) / s;
                 let yi1 = (yi0 + 1).min(nys - 1);
                 w.clear();

@@ -18,7 +18,7 @@
 //! definition: the fast kernel and the brute-force reference both call the
 //! functions of this file, so their results are equal bit for bit.
 
-use crate::data::grid::{Sample, TypedGrid};
+use super::lattice::Lattice;
 
 /// `a + (b - a) * t`, the one interpolation formula used everywhere; when
 /// `b - a` overflows (samples of opposite sign near `f64::MAX`), the same
@@ -98,7 +98,7 @@ impl RowBracket {
 
     /// `w(xa)`: the bilinear interpolation in y and z at coarse x position `xa`.
     #[inline(always)]
-    pub fn w<T: Sample>(&self, g: &TypedGrid<'_, T>, xa: usize) -> f64 {
+    pub fn w<G: Lattice>(&self, g: &G, xa: usize) -> f64 {
         let v0 = lerp(g.at(xa, self.y0, self.z0), g.at(xa, self.y0, self.z1), self.tz);
         let v1 = lerp(g.at(xa, self.y1, self.z0), g.at(xa, self.y1, self.z1), self.tz);
         lerp(v0, v1, self.ty)
@@ -122,16 +122,16 @@ pub fn coarse_positions(lo: usize, hi: usize, s: usize, n: usize, out: &mut Vec<
 }
 
 /// T_s at sample `(x, y, z)`, straight from the definition (the reference path).
-pub fn eval<T: Sample>(g: &TypedGrid<'_, T>, s: usize, x: usize, y: usize, z: usize) -> f64 {
-    let (x0, x1, tx) = bracket(x, s, g.dims[0]);
-    let row = RowBracket::new(y, z, s, g.dims);
+pub fn eval<G: Lattice>(g: &G, s: usize, x: usize, y: usize, z: usize) -> f64 {
+    let (x0, x1, tx) = bracket(x, s, g.dims()[0]);
+    let row = RowBracket::new(y, z, s, g.dims());
     lerp(row.w(g, x0), row.w(g, x1), tx)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::data::grid::{Grid, GridVisitor, Samples};
+    use crate::data::grid::{Grid, GridVisitor, Sample, Samples, TypedGrid};
 
     struct At(usize, [usize; 3]);
     impl GridVisitor for At {

@@ -17,14 +17,18 @@ pub mod ngff;
 pub mod octree_arrays;
 pub mod open;
 pub mod pyramid;
+pub mod stream_write;
 pub mod subchunks;
 pub mod write;
 mod zarr;
 
 pub use open::Store;
+pub use stream_write::{write_store_streaming, StreamWritten};
 pub use write::{write_store, WriteOptions, WriteSummary};
 
 pub use metadata::{Metadata, ATTRIBUTE};
 
+#[cfg(test)]
+mod stream_tests;
 #[cfg(test)]
 mod tests;

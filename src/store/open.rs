@@ -17,11 +17,12 @@ use super::zarr::{open_array, scalar_type_of, typed_samples, zarr_error, Storage
 use crate::base::error::{Error, Result};
 use crate::base::limits::{check_memory, escape_controls};
 use crate::data::grid::{GridShape, ScalarType};
+use crate::data::planes::PlaneSource;
 use crate::data::volume::{SampleBuf, Volume};
 use crate::octree::layout::Layout;
-use crate::octree::VolumeOctree;
+use crate::octree::{BuildOptions, VolumeOctree};
 use std::path::Path;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 use zarrs::array::CodecOptions;
 use zarrs::array::{Array, ArrayShardedExt, ArrayShardedReadableExt, ArrayShardedReadableExtCache, ArraySubset};
 use zarrs::group::Group;
@@ -55,6 +56,8 @@ pub struct Store {
     subchunks: Option<SubchunkCache>,
     leading: usize,
     own: Option<Metadata>,
+    /// The octree of a store written elsewhere, built once (and its leaf size).
+    built: OnceLock<(usize, VolumeOctree)>,
 }
 
 impl Store {
@@ -171,6 +174,7 @@ impl Store {
             levels,
             leading,
             own,
+            built: OnceLock::new(),
         })
     }
 
@@ -203,6 +207,29 @@ impl Store {
             }
             None => Ok(None),
         }
+    }
+
+    /// The Volume Octree to select bricks with: the stored one of a store
+    /// written here (its own leaf size), else the octree of leaf size
+    /// `leaf_size` built by one streaming pass over the full resolution
+    /// ([`VolumeOctree::build_streaming`], a few planes in memory at a
+    /// time), once: it is kept on the store for the next call.
+    ///
+    /// # Errors
+    ///
+    /// As [`Self::octree`] and [`VolumeOctree::build_streaming`].
+    pub fn volume_octree(&self, leaf_size: usize) -> Result<VolumeOctree> {
+        if let Some(octree) = self.octree()? {
+            return Ok(octree);
+        }
+        if let Some((leaf, octree)) = self.built.get() {
+            if *leaf == leaf_size {
+                return Ok(octree.clone());
+            }
+        }
+        let built = VolumeOctree::build_streaming(self, &BuildOptions { leaf_size }, &mut |_| true)?.octree;
+        let _ = self.built.set((leaf_size, built.clone()));
+        Ok(built)
     }
 
     /// The samples of level `p` (stride `2^p`) in the closed index box
@@ -380,6 +407,23 @@ fn gather(buf: &SampleBuf, n: [usize; 3], index: [Vec<usize>; 3]) -> SampleBuf {
         SampleBuf::I32(v) => SampleBuf::I32(take(v, n, &index)),
         SampleBuf::F32(v) => SampleBuf::F32(take(v, n, &index)),
         SampleBuf::F64(v) => SampleBuf::F64(take(v, n, &index)),
+    }
+}
+
+impl PlaneSource for Store {
+    fn shape(&self) -> GridShape {
+        self.shape
+    }
+    fn scalar_type(&self) -> ScalarType {
+        self.scalar_type
+    }
+    /// The full-resolution planes `z`, read as one box.
+    fn read_planes(&self, z: std::ops::Range<usize>) -> Result<SampleBuf> {
+        let [nx, ny, nz] = self.shape.dims;
+        if z.is_empty() || z.end > nz {
+            return Err(Error::InvalidArgument(format!("planes {z:?} are not inside the {nz} of '{}'", self.label)));
+        }
+        Ok(self.read_level_box(0, [0, 0, z.start], [nx - 1, ny - 1, z.end - 1])?.samples)
     }
 }
 

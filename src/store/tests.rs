@@ -9,10 +9,10 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// A fresh path under the system's temporary folder (removed by [`Tmp`]'s drop).
-struct Tmp(PathBuf);
+pub(super) struct Tmp(pub(super) PathBuf);
 
 impl Tmp {
-    fn new(name: &str) -> Tmp {
+    pub(super) fn new(name: &str) -> Tmp {
         static NEXT: AtomicUsize = AtomicUsize::new(0);
         let n = NEXT.fetch_add(1, Ordering::Relaxed);
         Tmp(std::env::temp_dir().join(format!("ho-store-{}-{n}-{name}.ome.zarr", std::process::id())))

@@ -17,12 +17,13 @@ use super::pyramid::{level_count, level_dims, level_position};
 use super::zarr::{bytes_of, data_type_of, zarr_error, zstd, Storage};
 use crate::base::error::{Error, Result};
 use crate::base::limits::check_memory;
-use crate::data::grid::{Grid, GridVisitor, Sample, TypedGrid};
+use crate::data::grid::{Grid, GridShape, GridVisitor, Sample, ScalarType, TypedGrid};
 use crate::octree::VolumeOctree;
 use rayon::prelude::*;
 use std::path::Path;
 use std::sync::Arc;
-use zarrs::array::{Array, ArrayBuilder, ArrayBytes, ArraySubset};
+use zarrs::array::codec::{ShardingCodecOptions, SubchunkWriteOrder};
+use zarrs::array::{Array, ArrayBuilder, ArrayBytes, ArraySubset, CodecSpecificOptions};
 use zarrs::group::GroupBuilder;
 
 /// Samples per axis of a subchunk.
@@ -114,8 +115,6 @@ pub fn write_store(
     )?;
     let levels = level_count(octree.layout().root_size());
     let store = Arc::new(Storage::new(path).map_err(|e| zarr_error(&label, "creating the store", &e))?);
-    let mut root =
-        GroupBuilder::new().build(store.clone(), "/").map_err(|e| zarr_error(&label, "creating the group", &e))?;
     let metadata = Metadata {
         format: 1,
         dims,
@@ -126,37 +125,15 @@ pub fn write_store(
         levels,
         name: options.name.clone(),
     };
-    let attributes = root.attributes_mut();
-    attributes.insert("ome".into(), ome_attribute(grid.shape(), levels, &options.name));
-    attributes.insert(
-        super::metadata::ATTRIBUTE.into(),
-        serde_json::to_value(&metadata).map_err(|e| zarr_error(&label, "writing the metadata", &e))?,
-    );
-    let total: u64 = (0..levels).map(|p| level_dims(dims, p).iter().map(|&m| m as u64).product::<u64>()).sum();
+    let total = level_samples(dims, levels);
     let mut done = 0u64;
     progress(done, total);
     for p in 0..levels {
         let m = level_dims(dims, p);
-        let shard = [planes, SHARD_XY, SHARD_XY]
-            .iter()
-            .zip([m[2], m[1], m[0]])
-            .map(|(&s, n)| s.min((n as u64).div_ceil(SUBCHUNK) * SUBCHUNK))
-            .collect::<Vec<u64>>();
-        let array = ArrayBuilder::new(
-            vec![m[2] as u64, m[1] as u64, m[0] as u64],
-            shard.clone(),
-            data_type_of(scalar_type),
-            zarrs::array::FillValue::new(vec![0u8; scalar_type.size()]),
-        )
-        .subchunk_shape(vec![SUBCHUNK; 3])
-        .bytes_to_bytes_codecs(vec![zstd()])
-        .dimension_names(["z", "y", "x"].into())
-        .build(store.clone(), &format!("/{p}"))
-        .map_err(|e| zarr_error(&label, &format!("creating level {p}"), &e))?;
-        array.store_metadata().map_err(|e| zarr_error(&label, &format!("writing level {p}'s metadata"), &e))?;
+        let (array, depth) = create_level(&store, &label, dims, p, planes, scalar_type)?;
         let mut z0 = 0usize;
         while z0 < m[2] {
-            let z1 = (z0 + shard[0] as usize).min(m[2]);
+            let z1 = (z0 + depth).min(m[2]);
             let subset = ArraySubset::new_with_ranges(&[z0 as u64..z1 as u64, 0..m[1] as u64, 0..m[0] as u64]);
             grid.visit(Slab { p, m, z: z0..z1, array: &array, subset: &subset })
                 .map_err(|e| zarr_error(&label, &format!("writing level {p}"), &e))?;
@@ -166,8 +143,63 @@ pub fn write_store(
         }
     }
     write_octree(&store, &label, octree)?;
-    root.store_metadata().map_err(|e| zarr_error(&label, "writing the group's metadata", &e))?;
+    store_group(&store, &label, grid.shape(), &metadata)?;
     Ok(WriteSummary { levels, samples: total, slab_planes: planes })
+}
+
+/// Samples of all `levels` levels of a volume of `dims`.
+pub(super) fn level_samples(dims: [usize; 3], levels: usize) -> u64 {
+    (0..levels).map(|p| level_dims(dims, p).iter().map(|&m| m as u64).product::<u64>()).sum()
+}
+
+/// Creates level `p`'s array (its metadata stored) for a volume of `dims`
+/// with slabs of `planes`; returns it and its shard depth along z.
+pub(super) fn create_level(
+    store: &Arc<Storage>,
+    label: &str,
+    dims: [usize; 3],
+    p: usize,
+    planes: u64,
+    scalar_type: ScalarType,
+) -> Result<(Array<Storage>, usize)> {
+    let m = level_dims(dims, p);
+    let shard = [planes, SHARD_XY, SHARD_XY]
+        .iter()
+        .zip([m[2], m[1], m[0]])
+        .map(|(&s, n)| s.min((n as u64).div_ceil(SUBCHUNK) * SUBCHUNK))
+        .collect::<Vec<u64>>();
+    let array = ArrayBuilder::new(
+        vec![m[2] as u64, m[1] as u64, m[0] as u64],
+        shard.clone(),
+        data_type_of(scalar_type),
+        zarrs::array::FillValue::new(vec![0u8; scalar_type.size()]),
+    )
+    .subchunk_shape(vec![SUBCHUNK; 3])
+    // Subchunks laid out in C order, not in the order parallel encoding
+    // finishes them: the same samples give the same shard bytes.
+    .codec_specific_options(
+        CodecSpecificOptions::default()
+            .with_option(ShardingCodecOptions::default().with_subchunk_write_order(SubchunkWriteOrder::C)),
+    )
+    .bytes_to_bytes_codecs(vec![zstd()])
+    .dimension_names(["z", "y", "x"].into())
+    .build(store.clone(), &format!("/{p}"))
+    .map_err(|e| zarr_error(label, &format!("creating level {p}"), &e))?;
+    array.store_metadata().map_err(|e| zarr_error(label, &format!("writing level {p}'s metadata"), &e))?;
+    Ok((array, shard[0] as usize))
+}
+
+/// Stores the root group's metadata: the NGFF attribute and `metadata`.
+pub(super) fn store_group(store: &Arc<Storage>, label: &str, shape: &GridShape, metadata: &Metadata) -> Result<()> {
+    let mut root =
+        GroupBuilder::new().build(store.clone(), "/").map_err(|e| zarr_error(label, "creating the group", &e))?;
+    let attributes = root.attributes_mut();
+    attributes.insert("ome".into(), ome_attribute(shape, metadata.levels, &metadata.name));
+    attributes.insert(
+        super::metadata::ATTRIBUTE.into(),
+        serde_json::to_value(metadata).map_err(|e| zarr_error(label, "writing the metadata", &e))?,
+    );
+    root.store_metadata().map_err(|e| zarr_error(label, "writing the group's metadata", &e))
 }
 
 /// Planes `z` of level `p` (dims `m`) gathered from the grid and stored

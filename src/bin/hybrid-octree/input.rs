@@ -1,7 +1,7 @@
 //! The input arguments every subcommand shares: a built-in dataset or a file.
 
 use clap::Args;
-use hybrid_octree::datasets::generate::check_generate;
+use hybrid_octree::datasets::generate::{check_generate, DatasetPlanes};
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
 use hybrid_octree::io::{read_volume, FileKind, RawOptions, ReadOptions};
@@ -136,6 +136,20 @@ impl InputArgs {
         let scalar_type = self.scalar_type_or(ScalarType::F32)?;
         check_size(self.size, scalar_type)?;
         Ok(generate(dataset, self.size, scalar_type))
+    }
+
+    /// The built-in dataset `--dataset` names as a plane source (generated
+    /// plane by plane when read, never whole); `None` for a file.
+    pub fn dataset_planes(&self) -> Result<Option<DatasetPlanes>> {
+        let (None, Some(name)) = (&self.file, &self.dataset) else {
+            return Ok(None);
+        };
+        let dataset = Dataset::parse(name)?;
+        let scalar_type = self.scalar_type_or(ScalarType::F32)?;
+        if self.size < 2 {
+            return Err(Error::InvalidArgument(format!("--size {} is too small: use at least 2", self.size)));
+        }
+        Ok(Some(DatasetPlanes { dataset, dims: [self.size; 3], scalar_type }))
     }
 
     /// A short name of the input: the file name, or the dataset and size.

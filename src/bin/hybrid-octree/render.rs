@@ -15,7 +15,7 @@ use hybrid_octree::grid::Grid;
 use hybrid_octree::render::metrics::compare;
 use hybrid_octree::select::{select_in_view, Selection, ViewSelection};
 use hybrid_octree::store::Store;
-use hybrid_octree::{Error, Result};
+use hybrid_octree::Result;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -100,7 +100,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     let budget_bytes = crate::bench::render::budget_bytes(args.budget_mb)?;
     let report = with_threads(args.input.threads, || match args.input.store()? {
-        Some(store) if store.has_octree() && !args.in_memory => from_store(args, &store, budget_bytes),
+        Some(store) if !args.in_memory => from_store(args, &store, budget_bytes),
         Some(store) => in_memory(args, budget_bytes, Some(&store)),
         None => in_memory(args, budget_bytes, None),
     })?;
@@ -141,13 +141,14 @@ fn in_memory(args: &RenderArgs, budget_bytes: usize, store: Option<&Store>) -> R
     Ok(report(args, budget_bytes, &scene, &selection, &f, (select_ms, mode), reference, selection.warning.clone()))
 }
 
-/// The frame of an OME-Zarr store holding the Hybrid Octree, drawn from
-/// disk: the stored octree selects, each brick is read from the level of
-/// its stride. The visibility estimate needs every sample, so a store
+/// The frame of an OME-Zarr store drawn from disk: its octree (stored, or
+/// for a store written elsewhere built by one streaming pass over its full
+/// resolution) selects, each brick is read from the level of its stride
+/// (subsampled from the full resolution when the store lacks that level). The visibility estimate needs every sample, so a store
 /// weighs by screen space alone (said in the warning); the reference, if
 /// asked for, reads the whole volume.
 fn from_store(args: &RenderArgs, store: &Store, budget_bytes: usize) -> Result<RenderReport> {
-    let octree = store.octree()?.ok_or_else(|| Error::Internal("a store with an octree has none".into()))?;
+    let octree = store.volume_octree(args.scene.leaf_size)?;
     let field = Field::Store(store);
     let scene = dress_field(field, octree, &args.scene)?;
     let options = select_options(&scene, &args.scene, budget_bytes, args.tolerance);
