@@ -598,13 +598,14 @@ std::unique_ptr<HybridOctree> HybridOctree::BuildFromStore(
   return result;
 }
 
-bool Selection::GetBrickTexelsFromStore(const OmeZarrStore& store, std::size_t brick, bool bordered,
-  float* texels, std::size_t count, unsigned char* encoded, std::size_t encodedBytes,
-  std::string& error) const
+bool Selection::GetBrickTexelsFromStore(const HybridOctree& octree, const OmeZarrStore& store,
+  std::size_t brick, bool bordered, float* texels, std::size_t count, unsigned char* encoded,
+  std::size_t encodedBytes, std::string& error) const
 {
   return Guarded(error, [&] {
     HandleFor(this->Impl)
-      .brick_texels_from_store(HandleFor(store.Impl), brick, bordered, Out(texels, count),
+      .brick_texels_from_store(HandleFor(octree.Impl), HandleFor(store.Impl), brick, bordered,
+        Out(texels, count),
         Out(reinterpret_cast<std::uint8_t*>(encoded), encoded ? encodedBytes : 0));
   });
 }

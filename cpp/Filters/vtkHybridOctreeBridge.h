@@ -777,13 +777,16 @@ public:
    * built from (HybridOctree::BuildFromStore()): with `encoded` nullptr,
    * GetBrickTexelsBordered()'s (`bordered`) or GetBrickTexels()'s floats
    * into `texels`; else GetBrickTexelsEncoded()'s decoded values and GPU
-   * bytes. The same texels as from the image in memory, bit for bit. False
-   * and `error` on failure (dependent or RGBA selections, coarse bricks of
-   * a maximum or minimum intensity, a chunk missing or damaged).
+   * bytes. The same texels as from the image in memory, bit for bit.
+   * `octree` is the one Select() was called on: the brick's samples must lie
+   * in its node's stored range (a chunk missing from the store reads as the
+   * fill value, found so). False and `error` on failure (dependent or RGBA
+   * selections, coarse bricks of a maximum or minimum intensity, a chunk
+   * missing or damaged).
    */
-  bool GetBrickTexelsFromStore(const OmeZarrStore& store, std::size_t brick, bool bordered,
-    float* texels, std::size_t count, unsigned char* encoded, std::size_t encodedBytes,
-    std::string& error) const;
+  bool GetBrickTexelsFromStore(const HybridOctree& octree, const OmeZarrStore& store,
+    std::size_t brick, bool bordered, float* texels, std::size_t count, unsigned char* encoded,
+    std::size_t encodedBytes, std::string& error) const;
 
   /**
    * Brick `brick`'s texels of both fields of a selection made from

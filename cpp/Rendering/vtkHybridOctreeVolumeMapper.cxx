@@ -1486,8 +1486,8 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
       [&](float* texels, unsigned char* encoded, std::size_t count) {
         if (in.Store)
         {
-          return selected.GetBrickTexelsFromStore(*in.Store, brick, bordered, texels, count,
-            encoded, encoded ? count * in.Bricks.GetStagingBytes() : 0, error);
+          return selected.GetBrickTexelsFromStore(*in.Octree, *in.Store, brick, bordered, texels,
+            count, encoded, encoded ? count * in.Bricks.GetStagingBytes() : 0, error);
         }
         if (rgba)
         {

@@ -914,10 +914,14 @@ mod bridge {
         /// `brick_texels_bordered` (`bordered`) or `brick_texels` give in
         /// memory into `texels` when `encoded` is empty, else those of
         /// `brick_texels_encoded` into `texels` (decoded) and `encoded`.
-        /// Errors: dependent or RGBA selections, coarse bricks of a maximum or
-        /// minimum intensity (their peaks are not stored), a read failure.
+        /// `octree`: the one the selection was made from; the brick's own
+        /// samples must lie in its node's stored range (a chunk missing from
+        /// the store reads as the fill value: found so). Errors: dependent or
+        /// RGBA selections, coarse bricks of a maximum or minimum intensity
+        /// (their peaks are not stored), a read failure, samples outside the range.
         fn brick_texels_from_store(
             self: &SelectionHandle,
+            octree: &HybridOctreeHandle,
             store: &StoreHandle,
             brick: usize,
             bordered: bool,

@@ -45,7 +45,7 @@ const GRADIENT_OPACITY_TABLE: usize = 4096;
 #[derive(Debug)]
 pub struct SelectionHandle {
     pub(crate) selection: Selection,
-    octree_id: u64,
+    pub(crate) octree_id: u64,
     pub(crate) shape: GridShape,
     /// The octree's value range (what 32-bit float texels must resolve).
     pub(crate) value_range: (f64, f64),

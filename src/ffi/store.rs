@@ -125,12 +125,62 @@ pub(crate) fn build_octree_from_store(store: &StoreHandle, leaf_size: u32) -> Br
     })
 }
 
+/// The brick's own samples (the read volume's `grid` less its `border`)
+/// against the range the octree holds for its node's closed box: at
+/// stride 1 they are that box's samples, so their range is the node's
+/// exactly; at a coarser stride a subset, inside it. A chunk missing from
+/// the store (Zarr reads it as the fill value) or damaged shows as another
+/// range. NaN is no data and not counted.
+fn check_against_octree(
+    grid: &crate::data::grid::Grid<'_>,
+    octree: &HybridOctreeHandle,
+    b: &Brick,
+    border: usize,
+    store: &Store,
+) -> Result<()> {
+    let node = octree.volume().node(b.node);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in border..border + b.texels[2] {
+        for j in border..border + b.texels[1] {
+            for i in border..border + b.texels[0] {
+                let v = grid.value(i, j, k);
+                if !v.is_nan() {
+                    (lo, hi) = (lo.min(v), hi.max(v));
+                }
+            }
+        }
+    }
+    let exact = b.stride == 1;
+    let empty = lo > hi;
+    let fits = if exact {
+        (lo == node.min && hi == node.max) || (empty && node.min > node.max)
+    } else {
+        empty || (lo >= node.min && hi <= node.max)
+    };
+    if fits {
+        return Ok(());
+    }
+    Err(Error::Format {
+        path: store.label().to_string(),
+        message: format!(
+            "level {} holds the range [{lo}, {hi}] in the box of node {}, whose stored range is [{}, {}]: a chunk of \
+             that level is missing (Zarr reads it as the fill value) or damaged; write the store again with \
+             `hybrid-octree convert`",
+            b.stride.trailing_zeros(),
+            b.node.0,
+            node.min,
+            node.max
+        ),
+    })
+}
+
 impl SelectionHandle {
     /// Brick `brick`'s texels read from `store`: with the gradient border
     /// when `bordered`; into `texels` as f32 when `encoded` is empty, else
     /// in the selection's texel format as `brick_texels_encoded` gives them.
     pub(crate) fn brick_texels_from_store(
         &self,
+        octree: &HybridOctreeHandle,
         store: &StoreHandle,
         brick: usize,
         bordered: bool,
@@ -151,6 +201,11 @@ impl SelectionHandle {
                     "dependent and RGBA components are not read from a store: it holds one component".into(),
                 ));
             }
+            if octree.id != self.octree_id {
+                return Err(Error::InvalidArgument(
+                    "this selection was made from another octree: select again from this one".into(),
+                ));
+            }
             let b = self.selected_brick(brick)?;
             let border = usize::from(bordered);
             if self.blend.mode.is_extremum() && b.stride > 1 && border == 0 {
@@ -163,6 +218,7 @@ impl SelectionHandle {
             }
             let read = s.read_texels(b.stride, b.lo, b.texels, border)?;
             let grid = read.grid(None)?;
+            check_against_octree(&grid, octree, b, border, s)?;
             // The read volume is the brick's texel lattice: the brick is its stride-1 brick.
             let local = Brick { lo: [border; 3], hi: b.texels.map(|n| border + n - 1), stride: 1, ..*b };
             if encoded.is_empty() {

@@ -99,7 +99,7 @@ fn brick_texels_from_the_store_are_the_in_memory_texels() {
             let count = brick.texels.iter().map(|n| n + 2 * usize::from(bordered)).product::<usize>();
             let (mut got, mut want) = (vec![0f32; count], vec![0f32; count]);
             if format == 0 {
-                s.brick_texels_from_store(&store, i, bordered, &mut got, &mut []).unwrap();
+                s.brick_texels_from_store(&from_store, &store, i, bordered, &mut got, &mut []).unwrap();
                 if bordered {
                     m.brick_texels_bordered(as_bytes(&data), &desc, i, &mut want).unwrap();
                 } else {
@@ -108,7 +108,7 @@ fn brick_texels_from_the_store_are_the_in_memory_texels() {
             } else {
                 let width = if format == 4 { 1 } else { 4 };
                 let (mut e_got, mut e_want) = (vec![0u8; count * width], vec![0u8; count * width]);
-                s.brick_texels_from_store(&store, i, bordered, &mut got, &mut e_got).unwrap();
+                s.brick_texels_from_store(&from_store, &store, i, bordered, &mut got, &mut e_got).unwrap();
                 m.brick_texels_encoded(as_bytes(&data), &desc, i, bordered, &mut want, &mut e_want).unwrap();
                 assert_eq!(e_got, e_want, "brick {i} format {format}: GPU bytes");
             }
@@ -116,6 +116,34 @@ fn brick_texels_from_the_store_are_the_in_memory_texels() {
             assert_eq!(bits(&got), bits(&want), "brick {i} format {format} bordered {bordered}");
         }
     }
+}
+
+/// Another octree than the store's.
+fn in_memory_twin() -> Box<HybridOctreeHandle> {
+    let data = vec![1.0f32; 27];
+    build_volume_octree(as_bytes(&data), &super::test_support::f32_desc([3, 3, 3]), 2).unwrap()
+}
+
+#[test]
+fn a_missing_chunk_is_found_by_the_octree_range() {
+    let (_, _, tmp) = field("missing");
+    // Level 0 of the field is one shard: deleted, Zarr reads every sample as the fill value 0.
+    let shard = tmp.0.join("0/c/0/0/0");
+    assert!(shard.exists(), "level 0's shard at {}", shard.display());
+    let store = open(&tmp);
+    let octree = build_octree_from_store(&store, 4).unwrap();
+    std::fs::remove_file(&shard).unwrap();
+    let all = octree.select_bricks(&select_desc(1 << 30)).unwrap();
+    let bricks = &all.selection.bricks;
+    assert!(bricks.iter().all(|b| b.stride == 1));
+    let failures = (0..bricks.len())
+        .filter_map(|i| {
+            let n = bricks[i].texels.iter().product::<usize>();
+            all.brick_texels_from_store(&octree, &store, i, false, &mut vec![0.0; n], &mut []).err()
+        })
+        .collect::<Vec<_>>();
+    assert!(!failures.is_empty(), "a brick whose stored range excludes 0 reads the fill value");
+    assert!(failures[0].contains("missing") && failures[0].contains("node"), "{}", failures[0]);
 }
 
 #[test]
@@ -126,10 +154,12 @@ fn what_a_store_cannot_give_is_refused_clearly() {
     let mip = octree.select_bricks(&super::SelectDesc { blend_mode: 1, ..select_desc(3000) }).unwrap();
     let coarse = mip.selection.bricks.iter().position(|b| b.stride > 1).expect("a coarse brick at this budget");
     let n = mip.selection.bricks[coarse].texels.iter().product::<usize>();
-    let e = mip.brick_texels_from_store(&store, coarse, false, &mut vec![0.0; n], &mut []).unwrap_err();
+    let e = mip.brick_texels_from_store(&octree, &store, coarse, false, &mut vec![0.0; n], &mut []).unwrap_err();
     assert!(e.contains("maximum and minimum intensity") && e.contains("raise the budget"), "{e}");
-    let e = mip.brick_texels_from_store(&store, 1 << 20, false, &mut [], &mut []).unwrap_err();
+    let e = mip.brick_texels_from_store(&octree, &store, 1 << 20, false, &mut [], &mut []).unwrap_err();
     assert!(e.contains("does not exist"), "{e}");
+    let e = mip.brick_texels_from_store(&in_memory_twin(), &store, 0, false, &mut [], &mut []).unwrap_err();
+    assert!(e.contains("another octree"), "{e}");
     let missing = std::env::temp_dir().join("ho-ffi-store-no-such-folder.ome.zarr");
     let e = open_store(missing.to_str().unwrap()).err().unwrap();
     assert!(e.contains("not a folder"), "{e}");

@@ -15,10 +15,12 @@
  *           picture: RGB RMSE <= 1e-6 (they are identical), unshaded and
  *           shaded (the gradient border read from the store); GetBounds()
  *           is the full volume's, not the light image's.
- *   bad:    a missing folder, a folder that is no image, a damaged zarr.json,
- *           a truncated shard and a deleted shard of level 0: the reader
- *           (and the mapper drawing level 0's bricks) report a clear
- *           vtkErrorMacro, the request fails, nothing crashes.
+ *   bad:    a missing folder, a folder that is no image, a damaged zarr.json
+ *           and a truncated shard: the reader reports a clear vtkErrorMacro,
+ *           the request fails; a deleted shard of level 0 (Zarr reads a
+ *           missing chunk as the fill value): the mapper drawing level 0's
+ *           bricks finds samples outside the stored octree's ranges and
+ *           reports it, nothing drawn; nothing crashes.
  */
 #include "HybridOctreeMapperScene.h"
 #include "HybridOctreeTestUtilities.h"
@@ -238,26 +240,29 @@ int Bad(const std::string& store)
   const fs::path empty = fs::temp_directory_path() / "ho-reader-test-empty.ome.zarr";
   fs::remove_all(empty);
   fs::create_directories(empty);
-  ExpectReadError(check, "empty folder", empty.string(), 64.0, "zarr");
+  ExpectReadError(check, "empty folder", empty.string(), 64.0, "metadata is missing");
   {
     const std::string damaged = Copy(store, "damaged-json");
     std::ofstream(fs::path(damaged) / "zarr.json", std::ios::trunc) << "{ \"zarr_format\": 3, ";
-    ExpectReadError(check, "damaged zarr.json", damaged, 64.0, "zarr");
+    ExpectReadError(check, "damaged zarr.json", damaged, 64.0, "error parsing metadata");
     fs::remove_all(damaged);
   }
   {
     const std::string truncated = Copy(store, "truncated-shard");
     const fs::path shard = LargestFile(fs::path(truncated) / "0");
     fs::resize_file(shard, fs::file_size(shard) / 2);
-    ExpectReadError(check, "truncated shard " + shard.string(), truncated, 1000.0, "reading");
+    ExpectReadError(
+      check, "truncated shard " + shard.string(), truncated, 1000.0, "reading a subchunk");
     fs::remove_all(truncated);
   }
   {
-    // A deleted shard of level 0: the light level still reads, drawing its bricks fails.
+    // A deleted shard of level 0 (Zarr reads a missing chunk as the fill
+    // value, so level 0 itself reads as zeros there): the light level reads,
+    // and drawing level 0's bricks finds samples outside the stored octree's
+    // ranges and fails.
     const std::string deleted = Copy(store, "deleted-shard");
     const fs::path shard = LargestFile(fs::path(deleted) / "0");
     fs::remove(shard);
-    ExpectReadError(check, "deleted shard " + shard.string(), deleted, 1000.0, "missing");
     vtkNew<ErrorRecorder> errors;
     vtkNew<vtkHybridOctreeZarrReader> light;
     check.Check(Read(light, deleted, 0.2, errors), "level 1 of a store missing a level-0 shard");
