@@ -481,6 +481,23 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   vtkHybridOctreeStoreFieldData::StoreReference store;
   if (vtkHybridOctreeStoreFieldData::Find(image->GetFieldData(), store))
   {
+    // A piece of the light image (ParaView's ranks each get one) would draw
+    // the whole store on every rank: only the whole level is drawn from it.
+    int dims[3];
+    image->GetDimensions(dims);
+    for (int a = 0; a < 3; ++a)
+    {
+      const double stride = std::round(image->GetSpacing()[a] / store.Spacing[a]);
+      const double level = stride >= 1.0 ? std::ceil((store.Dims[a] - 1.0) / stride) + 1.0 : 0.0;
+      if (static_cast<double>(dims[a]) != level)
+      {
+        vtkErrorMacro("the image names the OME-Zarr store '"
+          << store.Path << "' but holds " << dims[0] << " x " << dims[1] << " x " << dims[2]
+          << " samples, not a whole level of it (a piece, as each of several ranks gets): "
+             "drawing a store in parallel is not supported yet; run on one rank");
+        return false;
+      }
+    }
     return this->UpdateOctreeFromStore(
       store.Path, store.Dims, store.Spacing, store.Origin, scalars);
   }

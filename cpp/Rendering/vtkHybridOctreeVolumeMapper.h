@@ -60,6 +60,9 @@
  * refused with an error naming the fix: points, the isosurface
  * (ShowSurface), volumetric scattering, a 2D transfer function, dependent
  * or RGBA components (also ParaView's separate opacity array), CompositeOnCPU().
+ * The image must be a whole level of the store: a piece of it (each of
+ * several MPI ranks gets one) is an error, parallel drawing from a store
+ * being not supported yet.
  *
  * Drawn: Composite blending of one scalar component through the colour (RGB
  * or grey) and scalar opacity functions, shaded when the property asks,
