@@ -33,6 +33,11 @@ struct HandleOf<Selection>
 {
   using Type = hybrid_octree::SelectionHandle;
 };
+template <>
+struct HandleOf<OmeZarrStore>
+{
+  using Type = hybrid_octree::StoreHandle;
+};
 
 /// Owns the Rust handle of `Object`.
 template <class Object>
@@ -536,6 +541,73 @@ std::vector<double> OpacityPoints(vtkPiecewiseFunction* function)
     points.push_back(0.0);
   }
   return points;
+}
+
+OmeZarrStore::OmeZarrStore(std::unique_ptr<RustHandle<OmeZarrStore>> handle)
+  : Impl(std::move(handle))
+{
+}
+
+OmeZarrStore::~OmeZarrStore() = default;
+
+std::unique_ptr<OmeZarrStore> OmeZarrStore::Open(const std::string& path, std::string& error)
+{
+  std::unique_ptr<OmeZarrStore> result;
+  Guarded(error, [&] { result = Own<OmeZarrStore>(hybrid_octree::open_store(path)); });
+  return result;
+}
+
+bool OmeZarrStore::GetSummary(StoreSummary& summary, std::string& error) const
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::StoreSummary s = HandleFor(this->Impl).summary();
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      summary.Dims[axis] = s.dims[axis];
+      summary.Spacing[axis] = s.spacing[axis];
+      summary.Origin[axis] = s.origin[axis];
+    }
+    summary.Type = s.scalar_type;
+    summary.Levels = s.levels;
+    CopyInto(s.level_dims, summary.LevelDims);
+    summary.HasOctree = s.has_octree;
+    summary.Name = std::string(s.name);
+    summary.Version = std::string(s.version);
+    summary.Warnings = std::string(s.warnings);
+  });
+}
+
+bool OmeZarrStore::ReadLevel(std::size_t level, const std::size_t lo[3], const std::size_t hi[3],
+  void* bytes, std::size_t byteCount, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .read_level(level, rust::Slice<const std::size_t>(lo, 3),
+        rust::Slice<const std::size_t>(hi, 3), Out(static_cast<std::uint8_t*>(bytes), byteCount));
+  });
+}
+
+std::unique_ptr<HybridOctree> HybridOctree::BuildFromStore(
+  const OmeZarrStore& store, unsigned int leafSize, std::string& error)
+{
+  std::unique_ptr<HybridOctree> result;
+  Guarded(error, [&] {
+    result =
+      Own<HybridOctree>(hybrid_octree::build_octree_from_store(HandleFor(store.Impl), leafSize));
+  });
+  return result;
+}
+
+bool Selection::GetBrickTexelsFromStore(const HybridOctree& octree, const OmeZarrStore& store,
+  std::size_t brick, bool bordered, float* texels, std::size_t count, unsigned char* encoded,
+  std::size_t encodedBytes, std::string& error) const
+{
+  return Guarded(error, [&] {
+    HandleFor(this->Impl)
+      .brick_texels_from_store(HandleFor(octree.Impl), HandleFor(store.Impl), brick, bordered,
+        Out(texels, count),
+        Out(reinterpret_cast<std::uint8_t*>(encoded), encoded ? encodedBytes : 0));
+  });
 }
 
 Selection::Selection(std::unique_ptr<RustHandle<Selection>> handle)

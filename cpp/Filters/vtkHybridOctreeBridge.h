@@ -506,6 +506,58 @@ bool ViewChangeDegrees(const CameraDescription& a, const CameraDescription& b,
 class Selection;
 struct PointsOptions;
 
+/// What an open OME-Zarr image holds (see StoreSummary in src/ffi/mod.rs).
+struct StoreSummary
+{
+  std::size_t Dims[3] = { 0, 0, 0 }; ///< samples per axis of the full resolution (x, y, z)
+  double Spacing[3] = { 1.0, 1.0, 1.0 };
+  double Origin[3] = { 0.0, 0.0, 0.0 };
+  ScalarType Type = ScalarType::F32;
+  /// Resolution levels: level p holds the samples min(i 2^p, n - 1) per axis.
+  std::size_t Levels = 0;
+  std::vector<std::size_t> LevelDims; ///< 3 a level (x, y, z)
+  bool HasOctree = false; ///< written by hybrid-octree convert: the Volume Octree is stored
+  std::string Name;
+  std::string Version;  ///< the NGFF version its metadata declares
+  std::string Warnings; ///< what the reader left out or assumed ("" when nothing)
+};
+
+/**
+ * An open OME-Zarr image on disk (it owns the Rust handle; see
+ * src/store/open.rs): its summary, its levels read into the caller's
+ * memory, the Hybrid Octree made from it (HybridOctree::BuildFromStore())
+ * and brick texels read from it (Selection::GetBrickTexelsFromStore()).
+ */
+class OmeZarrStore
+{
+public:
+  explicit OmeZarrStore(std::unique_ptr<RustHandle<OmeZarrStore>> handle);
+  ~OmeZarrStore();
+  OmeZarrStore(const OmeZarrStore&) = delete;
+  OmeZarrStore& operator=(const OmeZarrStore&) = delete;
+
+  /// Opens the OME-Zarr image in the folder `path` (NGFF 0.4 or 0.5).
+  /// nullptr and `error` (the core's message, naming the fix) on failure.
+  static std::unique_ptr<OmeZarrStore> Open(const std::string& path, std::string& error);
+
+  /// Its dims, spacing, origin, type, levels, name. False and `error` on failure.
+  bool GetSummary(StoreSummary& summary, std::string& error) const;
+
+  /**
+   * The closed box `lo ..= hi` (level indices, x, y, z) of level `level`
+   * into the caller's `byteCount` bytes at `bytes` (x fastest, native byte
+   * order, the store's scalar type). False and `error` on failure (a box
+   * outside the level, a missing or damaged chunk, too much memory).
+   */
+  bool ReadLevel(std::size_t level, const std::size_t lo[3], const std::size_t hi[3], void* bytes,
+    std::size_t byteCount, std::string& error) const;
+
+private:
+  friend class HybridOctree;
+  friend class Selection;
+  std::unique_ptr<RustHandle<OmeZarrStore>> Impl;
+};
+
 /**
  * The Hybrid Octree owned on the C++ side (it owns the Rust handle): the
  * Volume Octree, and the isosurface and points integrated into it.
@@ -556,6 +608,16 @@ public:
    */
   static std::unique_ptr<HybridOctree> BuildDependent(const void* bytes, std::size_t byteCount,
     const GridDescription& grid, unsigned int leafSize, std::string& error);
+
+  /**
+   * The Hybrid Octree of `store`: its stored Volume Octree (with its own
+   * leaf size; `leafSize` is not read), or, for an image written by another
+   * tool, the one built from its full resolution read into memory with
+   * leaves of `leafSize` cells. Its grid is the store's full resolution.
+   * nullptr and `error` on failure (damaged octree arrays, too much memory).
+   */
+  static std::unique_ptr<HybridOctree> BuildFromStore(
+    const OmeZarrStore& store, unsigned int leafSize, std::string& error);
 
   /// Node counts, levels, memory and build time. False and `error` on failure.
   bool GetSummary(OctreeSummary& summary, std::string& error) const;
@@ -708,6 +770,22 @@ public:
    */
   bool GetBrickTexelsEncoded(const void* bytes, std::size_t byteCount, const GridDescription& grid,
     std::size_t brick, bool bordered, float* decoded, std::size_t count, unsigned char* encoded,
+    std::size_t encodedBytes, std::string& error) const;
+
+  /**
+   * Brick `brick`'s texels read from `store`, the volume the octree was
+   * built from (HybridOctree::BuildFromStore()): with `encoded` nullptr,
+   * GetBrickTexelsBordered()'s (`bordered`) or GetBrickTexels()'s floats
+   * into `texels`; else GetBrickTexelsEncoded()'s decoded values and GPU
+   * bytes. The same texels as from the image in memory, bit for bit.
+   * `octree` is the one Select() was called on: the brick's samples must lie
+   * in its node's stored range (a chunk missing from the store reads as the
+   * fill value, found so). False and `error` on failure (dependent or RGBA
+   * selections, coarse bricks of a maximum or minimum intensity, a chunk
+   * missing or damaged).
+   */
+  bool GetBrickTexelsFromStore(const HybridOctree& octree, const OmeZarrStore& store,
+    std::size_t brick, bool bordered, float* texels, std::size_t count, unsigned char* encoded,
     std::size_t encodedBytes, std::string& error) const;
 
   /**

@@ -7,6 +7,7 @@
 #include "vtkHybridOctreeInteractiveReduction.h"
 #include "vtkHybridOctreeScattering.h"
 #include "vtkHybridOctreeSlice.h"
+#include "vtkHybridOctreeStoreFieldData.h"
 #include "vtkHybridOctreeTransfer2D.h"
 #include "vtkHybridOctreeUnsupportedEffects.h"
 #include "vtkOpenGLHybridOctreeBrickDrawer.h"
@@ -43,7 +44,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <string>
+#include <system_error>
 #include <vector>
 
 vtkStandardNewMacro(vtkHybridOctreeVolumeMapper);
@@ -54,6 +58,25 @@ using namespace vtkHybridOctreeBridge;
 using vtkHybridOctreeCameraInput::DescribeCamera;
 using vtkHybridOctreeImageInput::ByteCount;
 using vtkHybridOctreeImageInput::Bytes;
+
+/// When the store at `path` last changed: the latest modification time of
+/// its folder and of its root metadata (NGFF 0.5's zarr.json, 0.4's
+/// .zattrs), as a count of the file clock's ticks (0 when none is found).
+std::int64_t StoreModifiedTime(const std::string& path)
+{
+  std::int64_t latest = 0;
+  const std::filesystem::path folder(path);
+  for (const std::filesystem::path& p : { folder, folder / "zarr.json", folder / ".zattrs" })
+  {
+    std::error_code ec;
+    const auto t = std::filesystem::last_write_time(p, ec);
+    if (!ec)
+    {
+      latest = std::max<std::int64_t>(latest, t.time_since_epoch().count());
+    }
+  }
+  return latest;
+}
 
 /// `m` applied to the point `p` (w = 1).
 void TransformPoint(vtkMatrix4x4* m, const double p[3], double out[3])
@@ -245,6 +268,15 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   double ValueRange[2] = { 0.0, 1.0 };
   /// When the octree was built: the caches below are current when made after it.
   vtkTimeStamp OctreeTime;
+  // The OME-Zarr store the input image names (vtkHybridOctreeStoreFieldData.h),
+  // opened once per path and modification time; null for an image in memory.
+  std::unique_ptr<OmeZarrStore> Store;
+  std::string StorePath;
+  std::int64_t StoreTime = 0;
+  /// The visibility view selections were said to weigh by screen space (once per store).
+  bool StoreViewWarned = false;
+  /// The full resolution's bounds of the last store named by the input.
+  double StoreBounds[6] = { 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
   vtkDataArray* Scalars = nullptr;
 
   // The points integrated into the octree, made again when the octree or
@@ -446,6 +478,36 @@ vtkDataArray* vtkHybridOctreeVolumeMapper::CheckInput(vtkImageData*& image)
 bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray* scalars)
 {
   vtkInternals& in = *this->Internals;
+  vtkHybridOctreeStoreFieldData::StoreReference store;
+  if (vtkHybridOctreeStoreFieldData::Find(image->GetFieldData(), store))
+  {
+    // A piece of the light image (ParaView's ranks each get one) would draw
+    // the whole store on every rank: only the whole level is drawn from it.
+    int dims[3];
+    image->GetDimensions(dims);
+    for (int a = 0; a < 3; ++a)
+    {
+      const double stride = std::round(image->GetSpacing()[a] / store.Spacing[a]);
+      const double level = stride >= 1.0 ? std::ceil((store.Dims[a] - 1.0) / stride) + 1.0 : 0.0;
+      if (static_cast<double>(dims[a]) != level)
+      {
+        vtkErrorMacro("the image names the OME-Zarr store '"
+          << store.Path << "' but holds " << dims[0] << " x " << dims[1] << " x " << dims[2]
+          << " samples, not a whole level of it (a piece, as each of several ranks gets): "
+             "drawing a store in parallel is not supported yet; run on one rank");
+        return false;
+      }
+    }
+    return this->UpdateOctreeFromStore(
+      store.Path, store.Dims, store.Spacing, store.Origin, scalars);
+  }
+  if (in.Store)
+  {
+    // Drawn from a store before: the octree is the store's.
+    in.Store.reset();
+    in.StorePath.clear();
+    in.Octree.reset();
+  }
   const int components = scalars->GetNumberOfComponents();
   in.Dependent = in.WantsDependent && (components == 2 || components == 4);
   in.Rgba = in.Dependent && components == 4;
@@ -491,6 +553,175 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
   return true;
 }
 
+bool vtkHybridOctreeVolumeMapper::UpdateOctreeFromStore(const std::string& path,
+  const double dims[3], const double spacing[3], const double origin[3], vtkDataArray* scalars)
+{
+  vtkInternals& in = *this->Internals;
+  in.Scalars = scalars;
+  in.Dependent = in.WantsDependent &&
+    (scalars->GetNumberOfComponents() == 2 || scalars->GetNumberOfComponents() == 4);
+  in.Rgba = false;
+  if (in.Dependent || scalars->GetNumberOfComponents() != 1)
+  {
+    vtkErrorMacro("the image names the OME-Zarr store '"
+      << path
+      << "', which holds one component: dependent or RGBA components (and ParaView's separate "
+         "opacity array) are not drawn from a store; turn them off, or draw an image in memory");
+    return false;
+  }
+  const std::int64_t time = StoreModifiedTime(path);
+  if (in.Octree && in.Store && in.StorePath == path && in.StoreTime == time &&
+    in.LeafSize == this->LeafSize)
+  {
+    this->LastNaNSamples = in.NaNSamples;
+    return true;
+  }
+  in.Still.Selected.reset();
+  in.Moving.Selected.reset();
+  in.Reduction.Reset();
+  in.HasIso = false;
+  in.HasPoints = false;
+  in.Octree.reset();
+  in.Store.reset();
+  in.StorePath.clear();
+  in.Array = nullptr;
+  std::string error;
+  StoreSummary summary;
+  in.Store = OmeZarrStore::Open(path, error);
+  if (!in.Store || !in.Store->GetSummary(summary, error))
+  {
+    in.Store.reset();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    const double tolerance = 1e-9 * std::max(1.0, std::fabs(summary.Spacing[a]));
+    if (static_cast<double>(summary.Dims[a]) != dims[a] ||
+      std::fabs(summary.Spacing[a] - spacing[a]) > tolerance ||
+      std::fabs(summary.Origin[a] - origin[a]) > 1e-9 * std::max(1.0, std::fabs(origin[a])))
+    {
+      in.Store.reset();
+      vtkErrorMacro("the OME-Zarr store '"
+        << path
+        << "' is not the volume the image was read from (its dims, spacing or origin "
+           "changed): update the reader, or read the store again");
+      return false;
+    }
+  }
+  in.Octree =
+    HybridOctree::BuildFromStore(*in.Store, static_cast<unsigned int>(this->LeafSize), error);
+  OctreeSummary built;
+  if (!in.Octree || !in.Octree->GetSummary(built, error))
+  {
+    in.Octree.reset();
+    in.Store.reset();
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  GridDescription grid;
+  grid.Type = summary.Type;
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.Dims[a] = summary.Dims[a];
+    grid.Spacing[a] = summary.Spacing[a];
+    grid.Origin[a] = summary.Origin[a];
+  }
+  grid.Components = 1;
+  grid.Component = -1;
+  in.Grid = grid;
+  in.NaNSamples = static_cast<vtkTypeInt64>(built.NaNSamples);
+  in.ValueRange[0] = built.ValueMin;
+  in.ValueRange[1] = built.ValueMax;
+  this->LastNaNSamples = in.NaNSamples;
+  in.OctreeDependent = false;
+  in.LeafSize = this->LeafSize;
+  in.StorePath = path;
+  in.StoreTime = time;
+  in.StoreViewWarned = false;
+  in.OctreeTime.Modified();
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::CheckStoreSettings(vtkVolumeProperty* property)
+{
+  const vtkInternals& in = *this->Internals;
+  if (!in.Store)
+  {
+    return true;
+  }
+  const char* needs = nullptr;
+  if (this->UsePoints)
+  {
+    needs = "points (UsePoints)";
+  }
+  else if (this->ShowSurface && this->SurfaceOpacity > 0.0)
+  {
+    needs = "the isosurface (ShowSurface)";
+  }
+  else if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D &&
+    this->BlendMode == COMPOSITE_BLEND)
+  {
+    needs = "a 2D transfer function";
+  }
+  if (!needs)
+  {
+    return true;
+  }
+  vtkErrorMacro(<< needs
+                << " needs every sample in memory, and the image names the OME-Zarr "
+                   "store '"
+                << in.StorePath
+                << "', drawn from disk: turn it off, or read the store's full resolution "
+                   "(vtkHybridOctreeZarrReader's MaximumMegabytes large enough for level 0) "
+                   "into an image without the store's field data");
+  return false;
+}
+
+double* vtkHybridOctreeVolumeMapper::GetBounds()
+{
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetDataSetInput());
+  vtkHybridOctreeStoreFieldData::StoreReference store;
+  if (!image || !vtkHybridOctreeStoreFieldData::Find(image->GetFieldData(), store))
+  {
+    return this->Superclass::GetBounds();
+  }
+  // The full resolution's corners placed as the image places its samples:
+  // origin + direction * (index * spacing).
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  double* b = this->Internals->StoreBounds;
+  for (int a = 0; a < 3; ++a)
+  {
+    b[2 * a] = VTK_DOUBLE_MAX;
+    b[2 * a + 1] = -VTK_DOUBLE_MAX;
+  }
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    double local[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      local[a] = ((corner >> a) & 1) ? (store.Dims[a] - 1.0) * store.Spacing[a] : 0.0;
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      double x = store.Origin[r];
+      for (int c = 0; c < 3; ++c)
+      {
+        x += direction->GetElement(r, c) * local[c];
+      }
+      b[2 * r] = std::min(b[2 * r], x);
+      b[2 * r + 1] = std::max(b[2 * r + 1], x);
+    }
+  }
+  std::copy(b, b + 6, this->Bounds);
+  return this->Bounds;
+}
+
+bool vtkHybridOctreeVolumeMapper::GetLastDrawnFromStore() const
+{
+  return this->Internals->Store != nullptr && this->LastRenderOK;
+}
+
 void vtkHybridOctreeVolumeMapper::UpdateModelMatrix(vtkImageData* image, vtkVolume* vol)
 {
   // Samples sit at origin + direction * (index * spacing): the octree's frame
@@ -524,6 +755,12 @@ bool vtkHybridOctreeVolumeMapper::UpdateTransferFunction(vtkVolumeProperty* prop
   double range[2];
   in.Scalars->GetRange(
     range, in.Dependent ? last : (in.Grid.Component < 0 ? 0 : in.Grid.Component));
+  if (in.Store)
+  {
+    // Drawn from a store: the full resolution's range (the light image's may be narrower).
+    range[0] = in.ValueRange[0];
+    range[1] = in.ValueRange[1];
+  }
   if (!(range[1] > range[0]))
   {
     range[1] = range[0] + 1.0;
@@ -761,6 +998,21 @@ bool vtkHybridOctreeVolumeMapper::DescribeView(vtkRenderer* ren, vtkVolumeProper
   }
   ViewDescription& view = in.View;
   view.ViewSelection = this->ViewSelection;
+  if (in.Store &&
+    (view.ViewSelection == VIEW_SELECTION_VISIBILITY || view.ViewSelection == VIEW_SELECTION_BOTH))
+  {
+    // The visibility estimate reads every sample: a store weighs by screen space.
+    view.ViewSelection = VIEW_SELECTION_SCREEN;
+    if (!in.StoreViewWarned)
+    {
+      in.StoreViewWarned = true;
+      vtkWarningMacro("view selection " << this->ViewSelection
+                                        << " weighs nodes by the opacity in front of them, "
+                                           "estimated from every sample: a volume drawn from "
+                                           "the store '"
+                                        << in.StorePath << "' is weighed by screen space alone");
+    }
+  }
   view.Camera = this->ModelCamera(ren);
   const int* size = ren->GetSize();
   view.Viewport[0] = static_cast<std::size_t>(std::max(size[0], 0));
@@ -833,7 +1085,8 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
   }
   std::string error;
   const auto start = std::chrono::steady_clock::now();
-  if (!in.Octree->PrepareView(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, select, error))
+  if (!in.Store &&
+    !in.Octree->PrepareView(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid, select, error))
   {
     slot.Selected.reset();
     vtkErrorMacro(<< error);
@@ -935,7 +1188,7 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("the texture budget is 0 MB: set BudgetMB (and InteractiveBudgetMB) above 0");
     return false;
   }
-  if (!this->UpdateOctree(image, scalars))
+  if (!this->UpdateOctree(image, scalars) || !this->CheckStoreSettings(property))
   {
     return false;
   }
@@ -1206,6 +1459,13 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   ShadingDescription shading = in.Shading;
   shading.Shade = list.Shading || scatters;
   in.Drawer.SetShading(shading);
+  if (scatters && in.Store)
+  {
+    vtkErrorMacro("volumetric scattering's shadow volume needs every sample in memory, and the "
+                  "image names the OME-Zarr store '"
+      << in.StorePath << "', drawn from disk: set VolumetricScatteringBlending to 0");
+    return false;
+  }
   if (scatters &&
     !in.Scattering.Activate(window, selected, Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
       in.OctreeTime.GetMTime(), error))
@@ -1241,6 +1501,11 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
       window, { list.NodeId[i], list.Stride[i] }, dims,
       [&](float* texels, unsigned char* encoded, std::size_t count) {
+        if (in.Store)
+        {
+          return selected.GetBrickTexelsFromStore(*in.Octree, *in.Store, brick, bordered, texels,
+            count, encoded, encoded ? count * in.Bricks.GetStagingBytes() : 0, error);
+        }
         if (rgba)
         {
           return selected.GetBrickTexelsRgba(Bytes(in.Scalars), ByteCount(in.Scalars), in.Grid,
@@ -1604,6 +1869,14 @@ bool vtkHybridOctreeVolumeMapper::CompositeOnCPU(
   }
   if (!this->Prepare(ren, vol))
   {
+    return false;
+  }
+  if (in.Store)
+  {
+    vtkErrorMacro("CompositeOnCPU draws from the image in memory, and the image names the "
+                  "OME-Zarr store '"
+      << in.StorePath
+      << "': read its full resolution into an image without the store's field data");
     return false;
   }
   CompositeScene scene = in.Transfer;

@@ -42,6 +42,28 @@
  * With UsePoints, the points of the hybrid representation share the budget
  * and are drawn in the slabs between the slices (see SetUsePoints()).
  *
+ * A volume on disk: an input image whose field data names an OME-Zarr store
+ * (vtkHybridOctreeZarrReader's light output, vtkHybridOctreeStoreFieldData.h)
+ * is drawn from the store, not from its own samples: the store is opened
+ * once (again when its path or its folder's or metadata's modification time
+ * change), its stored Volume Octree taken (a store written by another tool:
+ * built from its full resolution read into memory, with LeafSize), and the
+ * bricks' texels read from the level of their stride, the same texels as
+ * from the full-resolution image in memory, bit for bit. GetBounds() is the
+ * full resolution's; the transfer function table spans the octree's value
+ * range. Selection, budgets, shading, gradient opacity, cropping, clipping,
+ * the blend modes and the statistics are unchanged, except: the visibility
+ * view selections (VISIBILITY, BOTH) weigh by screen space alone (one
+ * warning: their estimate reads every sample); maximum and minimum intensity
+ * need a budget at which every brick is at full resolution (coarse texels
+ * keep peaks the levels do not store). What needs every sample in memory is
+ * refused with an error naming the fix: points, the isosurface
+ * (ShowSurface), volumetric scattering, a 2D transfer function, dependent
+ * or RGBA components (also ParaView's separate opacity array), CompositeOnCPU().
+ * The image must be a whole level of the store: a piece of it (each of
+ * several MPI ranks gets one) is an error, parallel drawing from a store
+ * being not supported yet.
+ *
  * Drawn: Composite blending of one scalar component through the colour (RGB
  * or grey) and scalar opacity functions, shaded when the property asks,
  * cropped (SetCropping, SetCroppingRegionPlanes in the image's data
@@ -423,6 +445,16 @@ public:
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
+  ///@{
+  /// The input's bounds; for an image naming an OME-Zarr store (see above)
+  /// the store's full-resolution volume's.
+  double* GetBounds() VTK_SIZEHINT(6) override;
+  void GetBounds(double bounds[6]) override { this->Superclass::GetBounds(bounds); }
+  ///@}
+
+  /// Whether the last Render() drew from an OME-Zarr store.
+  bool GetLastDrawnFromStore() const;
+
   /**
    * The CPU compositor's picture of the DrawList the mapper draws for `ren`'s
    * active camera and `vol`'s property (Render() must have succeeded with
@@ -509,6 +541,12 @@ private:
   /// The checked input image and its scalars (nullptr after a vtkErrorMacro).
   vtkDataArray* CheckInput(vtkImageData*& image);
   bool UpdateOctree(vtkImageData* image, vtkDataArray* scalars);
+  /// UpdateOctree() for an image naming the store at `path` with the full
+  /// resolution `dims`, `spacing`, `origin`.
+  bool UpdateOctreeFromStore(const std::string& path, const double dims[3], const double spacing[3],
+    const double origin[3], vtkDataArray* scalars);
+  /// False after a vtkErrorMacro when a setting needs every sample in memory.
+  bool CheckStoreSettings(vtkVolumeProperty* property);
   void UpdateModelMatrix(vtkImageData* image, vtkVolume* vol);
   bool UpdateTransferFunction(vtkVolumeProperty* property);
   bool UpdatePoints();

@@ -6,7 +6,8 @@ with ParaView's VTK on the path).
 All are ordinary VTK algorithms: connect them to VTK sources, readers and
 renderers as in C++ (see the README).
 """
-from .HybridOctreeFilters import vtkHybridOctreeDepthImage, vtkHybridOctreeFilter, vtkHybridOctreePoints
+from .HybridOctreeFilters import (vtkHybridOctreeDepthImage, vtkHybridOctreeFilter, vtkHybridOctreePoints,
+                                  vtkHybridOctreeZarrReader)
 from .HybridOctreeRendering import vtkHybridOctreeVolumeMapper
 
 __all__ = [
@@ -14,4 +15,5 @@ __all__ = [
     "vtkHybridOctreeFilter",
     "vtkHybridOctreePoints",
     "vtkHybridOctreeVolumeMapper",
+    "vtkHybridOctreeZarrReader",
 ]

@@ -20,6 +20,20 @@ pub(crate) fn scalar_type(t: ScalarType) -> Result<GridScalarType> {
     })
 }
 
+/// The bridge's scalar type of the grid's (what C++ maps back to a VTK type code).
+pub(crate) fn bridge_scalar_type(t: GridScalarType) -> ScalarType {
+    match t {
+        GridScalarType::U8 => ScalarType::U8,
+        GridScalarType::I8 => ScalarType::I8,
+        GridScalarType::U16 => ScalarType::U16,
+        GridScalarType::I16 => ScalarType::I16,
+        GridScalarType::U32 => ScalarType::U32,
+        GridScalarType::I32 => ScalarType::I32,
+        GridScalarType::F32 => ScalarType::F32,
+        GridScalarType::F64 => ScalarType::F64,
+    }
+}
+
 /// The samples and shape of `desc` over the borrowed bytes.
 fn parts<'a>(bytes: &'a [u8], desc: &GridDesc) -> Result<(Samples<'a>, GridShape, Option<usize>)> {
     let samples = Samples::from_bytes(bytes, scalar_type(desc.scalar_type)?)?;

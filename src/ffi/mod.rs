@@ -39,6 +39,9 @@ mod scattering_tests;
 #[cfg(test)]
 mod shade_tests;
 mod slice;
+mod store;
+#[cfg(test)]
+mod store_tests;
 mod surface;
 #[cfg(test)]
 mod test_support;
@@ -92,6 +95,30 @@ mod bridge {
         origin: [f64; 3],
         components: usize,
         component: i32,
+    }
+
+    /// What an open OME-Zarr image holds (`ffi::store`).
+    #[derive(Debug)]
+    struct StoreSummary {
+        /// Samples per axis (x, y, z), spacing and origin of the full resolution.
+        dims: [usize; 3],
+        spacing: [f64; 3],
+        origin: [f64; 3],
+        scalar_type: ScalarType,
+        /// Resolution levels `read_level` reads: level `p` holds the samples
+        /// `min(i 2^p, n - 1)` per axis.
+        levels: usize,
+        /// Samples per axis of each level, 3 a level (x, y, z).
+        level_dims: Vec<usize>,
+        /// Written here: the levels are stored and the Volume Octree with them;
+        /// else the octree is built from the full resolution read into memory.
+        has_octree: bool,
+        /// The image's name.
+        name: String,
+        /// The NGFF version its metadata declares.
+        version: String,
+        /// What the reader left out or assumed ("" when nothing), joined by "; ".
+        warnings: String,
     }
 
     /// Summary of a built Volume Octree.
@@ -675,6 +702,24 @@ mod bridge {
             leaf_size: u32,
             progress: &BuildProgress,
         ) -> Result<Box<HybridOctreeHandle>>;
+        /// An open OME-Zarr image (NGFF 0.4 or 0.5; `crate::store::Store`).
+        type StoreHandle;
+        /// Opens the OME-Zarr image in the folder `path` (errors: not a
+        /// folder, no or damaged NGFF metadata, an unsupported type or axes).
+        fn open_store(path: &str) -> Result<Box<StoreHandle>>;
+        /// Its full resolution's dims, spacing, origin and type, its levels, name.
+        fn summary(self: &StoreHandle) -> Result<StoreSummary>;
+        /// The closed box `lo ..= hi` (level indices, x, y, z) of level
+        /// `level` into the caller's `bytes` (the box's samples x fastest,
+        /// native byte order, the store's type; errors: a box outside the
+        /// level, a missing or damaged chunk, more memory than allowed).
+        fn read_level(self: &StoreHandle, level: usize, lo: &[usize], hi: &[usize], bytes: &mut [u8]) -> Result<()>;
+        /// The Hybrid Octree of a store: the stored Volume Octree (its own
+        /// leaf size; `leaf_size` is not read), or for an image written
+        /// elsewhere the one built from its full resolution read into memory
+        /// with leaves of `leaf_size` cells. Its grid is the full resolution.
+        fn build_octree_from_store(store: &StoreHandle, leaf_size: u32) -> Result<Box<HybridOctreeHandle>>;
+
         /// Node counts, levels, memory and build time.
         fn summary(self: &HybridOctreeHandle) -> Result<OctreeSummary>;
         /// The cut at normalised tolerance `tolerance` (the first nodes from the
@@ -848,10 +893,6 @@ mod bridge {
             brick: usize,
             texels: &mut [f32],
         ) -> Result<()>;
-        /// Brick `brick`'s texels of both fields of a selection made from
-        /// `build_dependent_octree`'s octree: (colour, opacity) f32 pairs,
-        /// texels x fastest, `2 x` the texel count (with the gradient border
-        /// of `brick_texels_bordered` when `bordered`).
         /// Brick `brick`'s texels in the selection's texel format
         /// (`DrawListOutput::texel_format`), with the gradient border when
         /// `bordered`: into `decoded` the values they decode to (f32, for
@@ -868,6 +909,29 @@ mod bridge {
             decoded: &mut [f32],
             encoded: &mut [u8],
         ) -> Result<()>;
+        /// Brick `brick`'s texels read from `store` (the volume the octree
+        /// was built from, `build_octree_from_store`): the texels
+        /// `brick_texels_bordered` (`bordered`) or `brick_texels` give in
+        /// memory into `texels` when `encoded` is empty, else those of
+        /// `brick_texels_encoded` into `texels` (decoded) and `encoded`.
+        /// `octree`: the one the selection was made from; the brick's own
+        /// samples must lie in its node's stored range (a chunk missing from
+        /// the store reads as the fill value: found so). Errors: dependent or
+        /// RGBA selections, coarse bricks of a maximum or minimum intensity
+        /// (their peaks are not stored), a read failure, samples outside the range.
+        fn brick_texels_from_store(
+            self: &SelectionHandle,
+            octree: &HybridOctreeHandle,
+            store: &StoreHandle,
+            brick: usize,
+            bordered: bool,
+            texels: &mut [f32],
+            encoded: &mut [u8],
+        ) -> Result<()>;
+        /// Brick `brick`'s texels of both fields of a selection made from
+        /// `build_dependent_octree`'s octree: (colour, opacity) f32 pairs,
+        /// texels x fastest, `2 x` the texel count (with the gradient border
+        /// of `brick_texels_bordered` when `bordered`).
         fn brick_texels_dependent(
             self: &SelectionHandle,
             bytes: &[u8],
@@ -978,7 +1042,7 @@ use bridge::BuildProgress;
 pub use bridge::{
     BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
     OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, ScatteringDesc, ScatteringFrameDesc, SelectDesc,
-    SelectionSummary, ShadingDesc, SurfaceMode, SurfaceSummary, ViewDesc,
+    SelectionSummary, ShadingDesc, StoreSummary, SurfaceMode, SurfaceSummary, ViewDesc,
 };
 use dependent::build_dependent_octree;
 use ftb::ftb_display;
@@ -988,4 +1052,6 @@ pub use octree::HybridOctreeHandle;
 use points::generate_points;
 pub use points::GeneratedPoints;
 pub use render::SelectionHandle;
+pub use store::StoreHandle;
+use store::{build_octree_from_store, open_store};
 use view::view_change_degrees;

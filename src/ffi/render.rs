@@ -45,7 +45,7 @@ const GRADIENT_OPACITY_TABLE: usize = 4096;
 #[derive(Debug)]
 pub struct SelectionHandle {
     pub(crate) selection: Selection,
-    octree_id: u64,
+    pub(crate) octree_id: u64,
     pub(crate) shape: GridShape,
     /// The octree's value range (what 32-bit float texels must resolve).
     pub(crate) value_range: (f64, f64),
@@ -56,7 +56,7 @@ pub struct SelectionHandle {
     /// The shading of its DrawLists ([`SelectionHandle::set_shading`]).
     lighting: Mutex<Option<Lighting>>,
     /// The blend mode it was selected for, over the octree's value range.
-    blend: Blend,
+    pub(crate) blend: Blend,
     /// The gradient opacity of its DrawLists ([`SelectionHandle::set_gradient_opacity`]).
     gradient_opacity: Mutex<Option<GradientOpacity>>,
     /// The cropping and clipping planes it was selected for, world
@@ -67,7 +67,7 @@ pub struct SelectionHandle {
     transfer_2d: Option<TransferFunction2D>,
     /// The brick textures' texel format, resolved for the data (its bytes
     /// are what the selection counted).
-    texel: TexelEncoding,
+    pub(crate) texel: TexelEncoding,
     /// Selected from two dependent fields: its DrawLists plan them (`plan::dependent`).
     pub(crate) dependent: bool,
     /// Selected from an RGBA volume: its DrawLists plan it (`plan::dependent`,
@@ -402,7 +402,7 @@ fn flatten(list: &DrawList, selection: &Selection) -> DrawListOutput {
 /// `1e-3` range on a `1e9` offset), the GPU picture would be noise. Only
 /// `f64`, `i32` and `u32` grids can be inexact; a constant image has no
 /// differences to lose.
-fn check_f32_resolution(scalar_type: ScalarType, (lo, hi): (f64, f64)) -> Result<()> {
+pub(crate) fn check_f32_resolution(scalar_type: ScalarType, (lo, hi): (f64, f64)) -> Result<()> {
     use crate::grid::ScalarType::{F64, I32, U32};
     let m = lo.abs().max(hi.abs());
     let range = hi - lo;
@@ -732,7 +732,7 @@ impl SelectionHandle {
 /// Brick `brick`'s texels (of an image of type `scalar`) hold no infinity:
 /// an f64 beyond a GPU texture's 32-bit float, or an image changed since
 /// the octree was built (its build refused infinities).
-fn finite_texels(brick: usize, scalar: ScalarType, texels: &[f32]) -> Result<()> {
+pub(crate) fn finite_texels(brick: usize, scalar: ScalarType, texels: &[f32]) -> Result<()> {
     let Some(i) = texels.iter().position(|v| v.is_infinite()) else { return Ok(()) };
     let why = if scalar == ScalarType::F64 {
         format!(
