@@ -199,6 +199,19 @@ impl TiffStack {
     }
 }
 
+/// A stack is read plane by plane by the streaming octree build and writer.
+impl crate::data::planes::PlaneSource for TiffStack {
+    fn shape(&self) -> GridShape {
+        self.shape
+    }
+    fn scalar_type(&self) -> ScalarType {
+        self.scalar_type
+    }
+    fn read_planes(&self, z: std::ops::Range<usize>) -> Result<SampleBuf> {
+        TiffStack::read_planes(self, z)
+    }
+}
+
 /// Reads the multi-page TIFF `bytes` (a file named `label`, in memory) as
 /// a volume, as [`TiffStack`] reads a file: the pages are checked first,
 /// then decoded into the volume's buffer.

@@ -103,7 +103,7 @@ impl StreamReduce {
         }
         self.pending[level].push((z, row));
         let parent_z = z / 2;
-        if z % 2 == 0 && 2 * parent_z + 1 < d[2] {
+        if z.is_multiple_of(2) && 2 * parent_z + 1 < d[2] {
             return;
         }
         let rows = std::mem::take(&mut self.pending[level]);

@@ -168,12 +168,13 @@ fn points() -> Vec<u8> {
 /// A multi-page TIFF of three 5x4 16-bit pages (the test values).
 fn tiff_stack(compression: tiff::encoder::Compression) -> Vec<u8> {
     let mut out = std::io::Cursor::new(Vec::new());
-    let mut enc = tiff::encoder::TiffEncoder::new(&mut out).unwrap().with_compression(compression);
-    for page in 0..3u16 {
-        let plane: Vec<u16> = (0..20u16).map(|i| i * 7 + page * 300).collect();
-        enc.write_image::<tiff::encoder::colortype::Gray16>(5, 4, &plane).unwrap();
+    {
+        let mut enc = tiff::encoder::TiffEncoder::new(&mut out).unwrap().with_compression(compression);
+        for page in 0..3u16 {
+            let plane: Vec<u16> = (0..20u16).map(|i| i * 7 + page * 300).collect();
+            enc.write_image::<tiff::encoder::colortype::Gray16>(5, 4, &plane).unwrap();
+        }
     }
-    drop(enc);
     out.into_inner()
 }
 

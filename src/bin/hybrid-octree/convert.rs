@@ -91,6 +91,9 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         if let Some(planes) = args.input.dataset_planes()? {
             return convert(args, &planes, planes.dataset.name(), 0.0);
         }
+        if let Some(stack) = args.input.tiff_stack()? {
+            return convert(args, &stack, &stack.name.clone(), 0.0);
+        }
         match args.input.store()? {
             Some(store) => convert(args, &store, &store.name.clone(), 0.0),
             None => {

@@ -4,6 +4,7 @@ use clap::Args;
 use hybrid_octree::datasets::generate::{check_generate, DatasetPlanes};
 use hybrid_octree::datasets::{generate, Dataset};
 use hybrid_octree::grid::{Grid, ScalarType};
+use hybrid_octree::io::tiff_stack::TiffStack;
 use hybrid_octree::io::{read_volume, FileKind, RawOptions, ReadOptions};
 use hybrid_octree::store::Store;
 use hybrid_octree::volume::Volume;
@@ -87,6 +88,26 @@ impl InputArgs {
                     eprintln!("warning: {w}");
                 }
                 Ok(Some(store))
+            }
+            _ => Ok(None),
+        }
+    }
+
+    /// The TIFF stack `--file` names (a `.tif`/`.tiff` file, or a folder
+    /// that is not an OME-Zarr image), opened with `--spacing` applied;
+    /// `None` for any other input.
+    pub fn tiff_stack(&self) -> Result<Option<TiffStack>> {
+        match &self.file {
+            Some(path)
+                if self.dims.is_none()
+                    && !is_store(path)
+                    && (path.is_dir() || FileKind::of(&path.to_string_lossy()) == Some(FileKind::Tiff)) =>
+            {
+                let mut stack = TiffStack::open(path)?;
+                if let Some(spacing) = self.spacing {
+                    stack.shape.spacing = spacing;
+                }
+                Ok(Some(stack))
             }
             _ => Ok(None),
         }
