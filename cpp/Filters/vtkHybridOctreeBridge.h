@@ -612,9 +612,9 @@ public:
   /**
    * The Hybrid Octree of `store`: its stored Volume Octree (with its own
    * leaf size; `leafSize` is not read), or, for an image written by another
-   * tool, the one built from its full resolution read into memory with
-   * leaves of `leafSize` cells. Its grid is the store's full resolution.
-   * nullptr and `error` on failure (damaged octree arrays, too much memory).
+   * tool, the one built by a streaming pass over its full resolution
+   * (never whole in memory) with leaves of `leafSize` cells. Its grid is the store's full
+   * resolution. nullptr and `error` on failure (damaged octree arrays, too much memory).
    */
   static std::unique_ptr<HybridOctree> BuildFromStore(
     const OmeZarrStore& store, unsigned int leafSize, std::string& error);
