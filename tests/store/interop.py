@@ -23,9 +23,7 @@ import json
 import os
 import re
 import shutil
-import subprocess
 import sys
-import tempfile
 
 import numpy as np
 import ome_zarr
@@ -34,40 +32,7 @@ import ome_zarr_models
 import zarr
 from ome_zarr_models.v05 import Image as ImageV05
 
-CAP_BYTES = 4 << 30  # address space of each run
-TIME_LIMIT = 120  # seconds of each run
-BIN = sys.argv[1]
-WORK = sys.argv[sys.argv.index("--keep") + 1] if "--keep" in sys.argv else tempfile.mkdtemp(prefix="ho-interop-")
-os.makedirs(WORK, exist_ok=True)
-FAILURES = []
-PASSED = 0
-
-
-def path(name):
-    return os.path.join(WORK, name)
-
-
-def check(ok, what):
-    global PASSED
-    if ok:
-        PASSED += 1
-    else:
-        FAILURES.append(what)
-        print("FAIL:", what, flush=True)
-
-
-def run(*args):
-    """The CLI under the address-space cap and time limit: (status, stdout, stderr)."""
-    cmd = ["prlimit", f"--as={CAP_BYTES}", "timeout", str(TIME_LIMIT), BIN, *map(str, args)]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    return p.returncode, p.stdout, p.stderr
-
-
-def run_ok(*args):
-    status, out, err = run(*args)
-    if status != 0:
-        raise SystemExit(f"FAIL: {' '.join(map(str, args))} exited {status}: {err.strip()[:500]}")
-    return out, err
+from cli_harness import WORK, check, finish, path, run, run_ok
 
 
 # ------------------------------------------------------------------ volumes
@@ -350,10 +315,7 @@ def main():
 
     check_hostile(hostile_stores(c16))
 
-    print(f"{PASSED} passed, {len(FAILURES)} failed", flush=True)
-    if "--keep" not in sys.argv and not FAILURES:
-        shutil.rmtree(WORK, ignore_errors=True)
-    return 1 if FAILURES else 0
+    return finish()
 
 
 if __name__ == "__main__":
