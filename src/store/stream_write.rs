@@ -18,7 +18,7 @@ use super::pyramid::{level_count, level_dims, level_position};
 use super::write::{create_level, level_samples, slab_planes, store_group, WriteOptions, WriteSummary};
 use super::zarr::{bytes_of, zarr_error, Storage};
 use crate::base::error::{Error, Result};
-use crate::base::limits::{check_memory, escape_controls};
+use crate::base::limits::escape_controls;
 use crate::data::grid::Sample;
 use crate::data::planes::{for_type, PlaneSource, TypeVisitor};
 use crate::octree::layout::Layout;
@@ -87,11 +87,6 @@ impl TypeVisitor for Run<'_> {
         let scalar_type = source.scalar_type();
         let layout = Layout::new(dims, build.leaf_size)?;
         let planes = slab_planes(dims, scalar_type.size(), options.memory_limit)?;
-        check_memory(
-            u128::from(planes) * 2 * (dims[0] * dims[1] * scalar_type.size()) as u128,
-            "the store writer's slab",
-            "lower --memory-mb",
-        )?;
         let levels = level_count(layout.root_size());
         let store = Arc::new(Storage::new(path).map_err(|e| zarr_error(label, "creating the store", &e))?);
         let mut slabs = Vec::with_capacity(levels);

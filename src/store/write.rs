@@ -62,7 +62,8 @@ pub struct WriteSummary {
 
 /// The slab depth for `dims` of `bytes_per_sample` under `limit`: the
 /// deepest multiple of 16 planes, at most 64, whose slab of level 0 and its
-/// encoded copy (twice the slab) fit.
+/// encoded copy (twice the slab) fit, checked against the memory the
+/// process may use.
 pub fn slab_planes(dims: [usize; 3], bytes_per_sample: usize, limit: usize) -> Result<u64> {
     let plane = (dims[0] * dims[1] * bytes_per_sample) as u64 * 2;
     let planes = (limit as u64 / plane.max(1)) / SUBCHUNK * SUBCHUNK;
@@ -75,7 +76,9 @@ pub fn slab_planes(dims: [usize; 3], bytes_per_sample: usize, limit: usize) -> R
             plane * SUBCHUNK
         )));
     }
-    Ok(planes.min(MAX_SLAB))
+    let planes = planes.min(MAX_SLAB);
+    check_memory(u128::from(planes) * plane as u128, "the store writer's slab", "lower --memory-mb")?;
+    Ok(planes)
 }
 
 /// Writes `grid` (one component) and its `octree` as a new store at `path`,
@@ -108,11 +111,6 @@ pub fn write_store(
     }
     let scalar_type = grid.samples().scalar_type();
     let planes = slab_planes(dims, scalar_type.size(), options.memory_limit)?;
-    check_memory(
-        u128::from(planes) * 2 * (dims[0] * dims[1] * scalar_type.size()) as u128,
-        "the store writer's slab",
-        "lower --memory-mb",
-    )?;
     let levels = level_count(octree.layout().root_size());
     let store = Arc::new(Storage::new(path).map_err(|e| zarr_error(&label, "creating the store", &e))?);
     let metadata = Metadata {
