@@ -2,6 +2,8 @@
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkImageResize.h"
+#include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
 #include "vtkTextureObject.h"
@@ -14,6 +16,19 @@ namespace
 {
 /// The largest side read (src/transfer/transfer2d.rs's MAX_SIDE).
 constexpr int MaxSide = 4096;
+
+/// The side of VTK's texture for a table side of `n` texels
+/// (vtkOpenGLVolumeLookupTable::GetMaximumSupportedTextureWidth): the next
+/// power of two, at least 1024 (at most MaxSide here, below every GL limit).
+int VtkTextureSide(int n)
+{
+  int side = 1;
+  while (side < n)
+  {
+    side *= 2;
+  }
+  return std::max(1024, side);
+}
 }
 
 vtkImageData* vtkHybridOctreeTransfer2D::Usable(vtkVolumeProperty* property)
@@ -79,8 +94,23 @@ bool vtkHybridOctreeTransfer2D::Update(vtkVolumeProperty* property, vtkDataArray
   }
   int imageDims[3];
   image->GetDimensions(imageDims);
-  this->Width = static_cast<std::size_t>(imageDims[0]);
-  this->Height = static_cast<std::size_t>(imageDims[1]);
+  // VTK draws the table resized to its texture's size (vtkOpenGLVolumeTransferFunction2D:
+  // vtkImageResize's defaults, a 5-lobe Lanczos with the corner texels' centres kept), read
+  // as a linear texture: the same texels here, so that a table of ParaView's default 10 x 10
+  // reads the values VTK reads at every scalar and gradient magnitude.
+  const int width = VtkTextureSide(imageDims[0]);
+  const int height = imageDims[1] > 1 ? VtkTextureSide(imageDims[1]) : 1;
+  vtkNew<vtkImageResize> resize;
+  if (width != imageDims[0] || height != imageDims[1])
+  {
+    resize->SetInputData(image);
+    resize->SetResizeMethodToOutputDimensions();
+    resize->SetOutputDimensions(width, height, 1);
+    resize->Update();
+    texels = resize->GetOutput()->GetPointData()->GetScalars();
+  }
+  this->Width = static_cast<std::size_t>(width);
+  this->Height = static_cast<std::size_t>(height);
   this->RGBA.resize(4 * this->Width * this->Height);
   for (vtkIdType t = 0; t < texels->GetNumberOfTuples(); ++t)
   {

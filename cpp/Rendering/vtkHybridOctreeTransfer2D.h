@@ -9,7 +9,9 @@
  * the gradient magnitude over VTK's [0, range / 4] per mean spacing
  * (src/transfer/transfer2d.rs), gives each sample's colour and opacity.
  * Update() reads it each frame (copied again only when the image, its
- * scalars or the data range change: their MTimes) for the selection
+ * scalars or the data range change: their MTimes), resized as
+ * vtkOpenGLVolumeTransferFunction2D resizes it for its texture
+ * (vtkImageResize to the next power of two, at least 1024 a side), for the selection
  * (Describe()); Activate() uploads it as a linear, clamp-to-edge 2D texture,
  * what the brick shader's HO_TRANSFER_2D variant reads; ColumnTable() is the
  * 1D table of its largest alpha per column, for the geometry's empty-space

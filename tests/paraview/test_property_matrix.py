@@ -27,7 +27,7 @@ draw the base and the changed setting. Per row, with RMSE over RGB in
 - `dH`, how far it moves ours, is `dV` within 35 % (plus 0.004): the
   property changes our picture as it changes *Volume*'s;
 - `e`, ours against *Volume*'s with the change, is within the row's bound:
-  0.03, or for the 2D transfer function 0.05 (measured 0.040: the table's
+  0.03, or for the 2D transfer function 0.05 (measured 0.036: the table's
   gradient rows are read at VTK's and at our gradient magnitudes, which
   differ by a few percent, docs/VTK.md);
 - the representation's effects name the effect the row turns on.
