@@ -47,7 +47,9 @@
 //! of opacity `a > 0` has its colour `c` shaded
 //! ([`crate::transfer::lighting`]) at the normal of the brick's gradient,
 //! central differences one texel away on its bordered texture
-//! (`super::shade`), the ray direction as `V`.
+//! (`super::shade`), the ray direction as `V`. The headlight takes the
+//! gradient as it is (`Headlit`: `N . V` and `R . V = 2 (N . V)^2 - 1` from
+//! one dot product, no normal made), each brick its step `1 / (2 h)` once.
 //!
 //! Gradient opacity ([`DrawList::gradient_opacity`], the plan's effect
 //! `gradient-opacity`): the opacity `a` of each sample with `a > 0` is
@@ -111,6 +113,7 @@ use super::geometry::{at_depth, ray_box, screen_rect};
 use super::image::Image;
 use super::scattering::{ScatterFrame, ShadowVolume};
 use super::shade::normal;
+use super::texture::gradient::{Steps, TexelPoint};
 use super::texture::{upload, Texel, Texels, Texture, Textures};
 use super::triangles::{Hit, TriangleGrid};
 use crate::base::error::Result;
@@ -122,7 +125,7 @@ use crate::plan::{BrickDraw, DrawList};
 use crate::points::footprint::{footprint, project, Footprint};
 use crate::points::{PointSet, PointShade};
 use crate::surface::Surface;
-use crate::transfer::lighting::Lighting;
+use crate::transfer::lighting::{Headlit, Lighting};
 use crate::transfer::lut::Lut;
 use crate::transfer::{GradientOpacity, TransferFunction, TransferFunction2D};
 use rayon::prelude::*;
@@ -148,6 +151,8 @@ struct Prepared<'a, S> {
     closed: [(bool, bool); 3],
     /// `d / d0`.
     ratio: f64,
+    /// The world length of one texel step (the gradient's differences).
+    steps: Steps,
     /// Pixels `[x0, x1) x [y0, y1)` that may see the brick.
     rect: [usize; 4],
 }
@@ -407,7 +412,9 @@ fn execute<S: Texel>(
             });
             let ratio = draw.slice_spacing / d0;
             let other = other.map(|o| o.map(|t| &t[index]));
-            Some(Prepared { index, draw, texture: &textures[index], other, closed, ratio, rect })
+            let texture = &textures[index];
+            let steps = Steps::new(scale(shape.spacing, texture.stride()));
+            Some(Prepared { index, draw, texture, other, closed, ratio, steps, rect })
         })
         .collect();
     let (mut opaque, mut translucent) = (None, None);
@@ -446,6 +453,7 @@ fn execute<S: Texel>(
         shape,
         bricks: &bricks,
         lighting,
+        headlit: lighting.and_then(Lighting::headlit),
         region,
         isosurfaces,
         gradient_opacity,
@@ -553,6 +561,8 @@ struct Executor<'a, S> {
     bricks: &'a [Prepared<'a, S>],
     /// The shading, lights in world space (`None`: unshaded).
     lighting: Option<&'a Lighting>,
+    /// The lighting's headlight prepared (`None`: unshaded, or directional lights).
+    headlit: Option<Headlit>,
     /// The samples kept (`None`: all).
     region: Option<&'a KeptRegion>,
     /// The Isosurface blend mode's values (`None` for Composite).
@@ -762,16 +772,16 @@ impl<S: Texel> Executor<'_, S> {
         if !self.keeps(pr, z) {
             return acc;
         }
-        let u = add(ua, scale(ub, dz));
-        let v = brick.texture.at_texel(u);
+        let p = brick.texture.point(add(ua, scale(ub, dz)));
+        let v = brick.texture.value_at(&p);
         match self.isosurfaces {
-            None => acc = self.sample(brick, u, v, brick.ratio, (pr, z), acc, scratch),
+            None => acc = self.sample(brick, &p, v, brick.ratio, (pr, z), acc, scratch),
             Some(blend) => {
                 // The values crossed since the sample one step nearer the eye, uncorrected.
                 let d = brick.draw.slice_spacing;
-                let before = brick.texture.at_texel(sub(u, scale(ub, d)));
+                let before = brick.texture.at_texel(sub(p.u, scale(ub, d)));
                 for c in blend.crossings(before, v) {
-                    acc = self.sample(brick, u, c, 1.0, (pr, z), acc, scratch);
+                    acc = self.sample(brick, &p, c, 1.0, (pr, z), acc, scratch);
                 }
             }
         }
@@ -784,16 +794,16 @@ impl<S: Texel> Executor<'_, S> {
         self.region.is_none_or(|r| r.keeps(at_depth(&pr.ray, pr.z_origin, pr.cos, z)))
     }
 
-    /// `acc` with the sample at texel coordinates `u` of value `value` (the
+    /// `acc` with the sample at texel point `p` of value `value` (the
     /// texel's, or an isovalue crossed) under it: transfer function, the
     /// plan's effects ([`Self::effects`]), opacity corrected by
     /// `ratio = d / d0` (1 for an isovalue); the sample is the ray's point at depth `at.1`.
     #[allow(clippy::too_many_arguments)]
-    #[inline]
+    #[inline(always)]
     fn sample(
         &self,
         brick: &Prepared<'_, S>,
-        u: [f64; 3],
+        p: &TexelPoint,
         value: f64,
         ratio: f64,
         at: (&PixelRay, f64),
@@ -803,7 +813,7 @@ impl<S: Texel> Executor<'_, S> {
         let (grad, [r, gr, bl, mut a]) = match self.transfer_2d {
             None => (None, self.lut.eval(value)),
             Some(t) => {
-                let g = self.gradient(brick.texture, u, scratch);
+                let g = self.gradient(brick, p, scratch);
                 (Some(g), super::transfer2d::classify(t, value, g))
             }
         };
@@ -811,18 +821,18 @@ impl<S: Texel> Executor<'_, S> {
         if let Some(other) = brick.other {
             scratch.counts.direct_colours += usize::from(matches!(other, OtherFields::Rgba(..)));
             // Dependent components (`super::fields`): the opacity field's opacity, or the RGB colour.
-            ([r, gr, bl], a) = classify_other(other, value, [r, gr, bl], |v| self.lut.eval(v)[3], |t| t.at_texel(u));
+            ([r, gr, bl], a) = classify_other(other, value, [r, gr, bl], |v| self.lut.eval(v)[3], |t| t.at_texel(p.u));
         }
         if a <= 0.0 {
             return acc;
         }
         let pr = at.0;
         let (rgb, a) = match &self.scattering {
-            None => self.effects(brick.texture, u, grad, [r, gr, bl], a, pr.ray.direction, scratch),
+            None => self.effects(brick, p, grad, [r, gr, bl], a, pr.ray.direction, scratch),
             Some((frame, shadow)) => {
-                let g = grad.unwrap_or_else(|| self.gradient(brick.texture, u, scratch));
-                let p = at_depth(&pr.ray, pr.z_origin, pr.cos, at.1);
-                let rgb = frame.colour(p, [r, gr, bl], a, g, pr.ray.direction, |t| {
+                let g = grad.unwrap_or_else(|| self.gradient(brick, p, scratch));
+                let x = at_depth(&pr.ray, pr.z_origin, pr.cos, at.1);
+                let rgb = frame.colour(x, [r, gr, bl], a, g, pr.ray.direction, |t| {
                     super::scattering::opacity(&self.lut, shadow.value_at_index(frame.index(t)))
                 });
                 // The opacity after the colour: VTK blends with the transfer function's.
@@ -837,17 +847,17 @@ impl<S: Texel> Executor<'_, S> {
         }
     }
 
-    /// Colour `c` and opacity `a` of the sample at texel coordinates `u` of
-    /// `texture` (its gradient border included) after the plan's effects:
+    /// Colour `c` and opacity `a` of the sample at texel point `p` of
+    /// `brick`'s texture (its gradient border included) after the plan's effects:
     /// the opacity scaled, or times the gradient opacity, the colour shaded
     /// along `view` (module documentation); one gradient for both, `grad`
     /// when already taken.
     #[allow(clippy::too_many_arguments)]
-    #[inline]
+    #[inline(always)]
     fn effects(
         &self,
-        texture: &Texture<S>,
-        u: [f64; 3],
+        brick: &Prepared<'_, S>,
+        p: &TexelPoint,
         grad: Option<[f64; 3]>,
         c: [f64; 3],
         a: f64,
@@ -860,24 +870,24 @@ impl<S: Texel> Executor<'_, S> {
         }
         let g = match grad {
             Some(g) => g,
-            None => self.gradient(texture, u, scratch),
+            None => self.gradient(brick, p, scratch),
         };
         if let Some(f) = self.gradient_opacity {
             a *= f64::from(f.eval(dot(g, g).sqrt()));
         }
-        match self.lighting {
-            Some(lighting) if a > 0.0 => (lighting.shade(c, normal(g), view), a),
+        match (self.lighting, &self.headlit) {
+            (Some(_), Some(headlit)) if a > 0.0 => (headlit.shade(c, g, view), a),
+            (Some(lighting), None) if a > 0.0 => (lighting.shade(c, normal(g), view), a),
             _ => (c, a),
         }
     }
 
-    /// The gradient at texel coordinates `u` of `texture` (`super::shade`'s
-    /// rule, one texel away), counted.
+    /// The gradient at texel point `p` of `brick`'s texture
+    /// (`super::shade`'s rule, one texel away), counted.
     #[inline]
-    fn gradient(&self, texture: &Texture<S>, u: [f64; 3], scratch: &mut Scratch) -> [f64; 3] {
+    fn gradient(&self, brick: &Prepared<'_, S>, p: &TexelPoint, scratch: &mut Scratch) -> [f64; 3] {
         scratch.counts.gradients += 1;
-        let h = scale(self.shape.spacing, texture.stride());
-        texture.gradient_at(u, h)
+        brick.texture.gradient_at(p, &brick.steps)
     }
 
     /// The pixel's hits of brick `b`'s batch triangles in front of the

@@ -32,7 +32,7 @@ use crate::plan::{BlendMode, DrawList};
 use rayon::prelude::*;
 
 pub mod encoded;
-mod gradient;
+pub(crate) mod gradient;
 mod pool;
 pub mod read;
 
@@ -313,6 +313,9 @@ pub(crate) struct Texture<S> {
     /// ([`Self::lattice_differences`]): not texture bytes a GPU holds,
     /// the executor's working memory (empty otherwise).
     lattice: Vec<[f32; 3]>,
+    /// Every lattice difference is finite, so their interpolation needs no
+    /// overflow test (true without differences).
+    lattice_finite: bool,
 }
 
 impl<S: Texel> Texture<S> {
@@ -349,7 +352,7 @@ impl<S: Texel> Texture<S> {
         };
         let n = brick.texels.map(|n| n + 2 * border);
         let (lo, hi, stride, last) = (brick.lo, brick.hi, brick.stride, n.map(|n| (n - 1) as f64));
-        Some(Texture { lo, hi, stride, n, border, last, data, step, bias, lattice: Vec::new() })
+        Some(Texture { lo, hi, stride, n, border, last, data, step, bias, lattice: Vec::new(), lattice_finite: true })
     }
 
     /// [`Self::coded`], with the [`Self::lattice_differences`] when the
@@ -364,6 +367,7 @@ impl<S: Texel> Texture<S> {
         let mut t = Texture::coded(g, brick, border, mode, f, decode)?;
         if gradients {
             t.lattice = t.lattice_differences();
+            t.lattice_finite = t.lattice.iter().flatten().all(|d| d.is_finite());
         }
         Some(t)
     }
@@ -381,6 +385,7 @@ impl<S: Texel> Texture<S> {
             step: self.step,
             bias: self.bias,
             lattice: self.lattice.clone(),
+            lattice_finite: self.lattice_finite,
         }
     }
 
@@ -429,6 +434,13 @@ impl<S: Texel> Texture<S> {
             (i0[a], step[a], t[a]) = (i0a, if i0a + 1 < self.n[a] { pitch[a] } else { 0 }, u - i as f64);
         }
         let base = i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2];
+        self.cell_value(base, step, t)
+    }
+
+    /// The trilinear interpolation with weights `t` of the 8 texels from
+    /// offset `base`, `step` apart per axis, decoded.
+    #[inline(always)]
+    pub(crate) fn cell_value(&self, base: usize, step: [usize; 3], t: [f64; 3]) -> f64 {
         // The 8 texels lie in data[base ..= base + step0 + step1 + step2]: one bounds check.
         let d = &self.data[base..=base + step[0] + step[1] + step[2]];
         let r = lerp(bilinear(d, 0, step, t), bilinear(d, step[0], step, t), t[0]);

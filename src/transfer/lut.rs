@@ -58,7 +58,7 @@ impl<'a> Lut<'a> {
     }
 
     /// Straight `[r, g, b, opacity]` at `value` (see the module documentation).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn eval(&self, value: f64) -> [f64; 4] {
         let u = (value - self.lo) * self.inv_h;
         // Saturating; a u32 cast (of u >= 0) converts in one instruction either way.

@@ -47,13 +47,13 @@ impl<S: Texel> Executor<'_, S> {
             let rect = b.rect;
             (rect[0]..rect[1]).contains(&x) && (rect[2]..rect[3]).contains(&y) && b.contains(p)
         })?;
-        let u = brick.texture.texel_line(to_index(&self.shape, p), [0.0; 3]).0;
-        let v = brick.texture.at_texel(u);
+        let at = brick.texture.point(brick.texture.texel_line(to_index(&self.shape, p), [0.0; 3]).0);
+        let v = brick.texture.value_at(&at);
         let [r, g, b, a] = self.lut.eval(v);
         if a.is_nan() || a <= 0.0 {
             return None;
         }
-        let (rgb, a) = self.effects(brick.texture, u, None, [r, g, b], a, ray.direction, scratch);
+        let (rgb, a) = self.effects(brick, &at, None, [r, g, b], a, ray.direction, scratch);
         (a > 0.0).then_some((rgb, a))
     }
 }

@@ -24,31 +24,103 @@
 //! address instead of six and clamps nothing. A point whose
 //! neighbours reach a clamped face (`i0 - 1 < 0` or `i0 + 2 > n - 1` on an
 //! axis) takes the general rule.
+//!
+//! The compositor finds a sample's cell once ([`TexelPoint`]) for both its
+//! value and its gradient, and each brick's `1 / (2 h)` once ([`Steps`]).
 
 use super::{Texel, Texture};
-use crate::octree::trilinear::lerp;
+use crate::octree::trilinear::{lerp, lerp_scaled};
 use crate::render::shade::gradient;
 
+/// A brick's lattice step: the world length `h` of one texel step per
+/// axis, and the central difference's factor `1 / (2 h)`, made once per
+/// brick rather than divided by at every sample.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Steps {
+    h: [f64; 3],
+    inv_2h: [f64; 3],
+}
+
+impl Steps {
+    /// The steps of world length `h` per axis.
+    pub(crate) fn new(h: [f64; 3]) -> Steps {
+        Steps { h, inv_2h: h.map(|h| 0.5 / h) }
+    }
+}
+
+/// A sample's texel coordinates `u` with its clamp-free cell (see
+/// [`Texture::point`]), found once for the sample's value and gradient.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TexelPoint {
+    /// The texel coordinates.
+    pub(crate) u: [f64; 3],
+    /// The cell's first texel's offset, the pitches and the weights `t`,
+    /// when `u` lies in `[1, n - 3]` on every axis.
+    cell: Option<(usize, [usize; 3], [f64; 3])>,
+}
+
 impl<S: Texel> Texture<S> {
+    /// The point `u` with its clamp-free cell, if any.
+    #[inline(always)]
+    pub(crate) fn point(&self, u: [f64; 3]) -> TexelPoint {
+        TexelPoint { u, cell: self.inner_cell(u) }
+    }
+
+    /// [`Self::at_texel`] at `p`: from its cell when it has one (inside,
+    /// where the clamp changes nothing: the same value).
+    #[inline(always)]
+    pub(crate) fn value_at(&self, p: &TexelPoint) -> f64 {
+        match p.cell {
+            Some((base, pitch, t)) => self.cell_value(base, pitch, t),
+            None => self.at_texel(p.u),
+        }
+    }
+
     /// The gradient `g_a = (F(u + e_a) - F(u - e_a)) / (2 h_a)` at texel
-    /// coordinates `u` ([`crate::render::shade`]), `h` the world length of
-    /// one texel step per axis (module documentation).
-    #[inline]
-    pub(crate) fn gradient_at(&self, u: [f64; 3], h: [f64; 3]) -> [f64; 3] {
+    /// point `p` ([`crate::render::shade`]), `steps` the world length of one
+    /// texel step per axis (module documentation). The usual case, finite
+    /// lattice differences in a clamp-free cell, is inlined into the caller;
+    /// the others ([`Self::gradient_apart`]) are not.
+    #[inline(always)]
+    pub(crate) fn gradient_at(&self, p: &TexelPoint, steps: &Steps) -> [f64; 3] {
+        if let (true, false, Some((base, pitch, t))) = (self.lattice_finite, self.lattice.is_empty(), p.cell) {
+            return self.lattice_gradient::<true>(base, pitch, t, steps);
+        }
+        self.gradient_apart(p.u, steps)
+    }
+
+    /// The cell of `u` (its first texel's offset, the pitches, the weights
+    /// `t`) when `u` lies in `[1, n - 3]` on every axis, where the six
+    /// neighbours `u ± e_a` need no clamp; `None` elsewhere.
+    #[inline(always)]
+    fn inner_cell(&self, u: [f64; 3]) -> Option<(usize, [usize; 3], [f64; 3])> {
         let mut i0 = [0usize; 3];
         let mut t = [0.0; 3];
         for a in 0..3 {
-            if !(u[a] >= 1.0 && u[a] < (self.n[a] as f64) - 2.0) {
-                // Inside [1, n - 3] the six neighbours need no clamp.
-                return gradient(|v| self.at_texel(v), u, h);
+            // last = n - 1.
+            if !(u[a] >= 1.0 && u[a] < self.last[a] - 1.0) {
+                return None;
             }
             let i = u[a] as u32;
             (i0[a], t[a]) = (i as usize, u[a] - i as f64);
         }
         let pitch = [1, self.n[0], self.n[0] * self.n[1]];
-        let base = i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2];
+        Some((i0[0] + pitch[1] * i0[1] + pitch[2] * i0[2], pitch, t))
+    }
+
+    /// [`Self::gradient_at`] near the faces (the general rule), from lattice
+    /// differences that are not all finite, or from the texels' shared reads.
+    #[inline(never)]
+    fn gradient_apart(&self, u: [f64; 3], steps: &Steps) -> [f64; 3] {
+        let Some((base, pitch, t)) = self.inner_cell(u) else {
+            return gradient(|v| self.at_texel(v), u, steps.h);
+        };
         if !self.lattice.is_empty() {
-            return self.lattice_gradient(base, pitch, t, h);
+            return if self.lattice_finite {
+                self.lattice_gradient::<true>(base, pitch, t, steps)
+            } else {
+                self.lattice_gradient::<false>(base, pitch, t, steps)
+            };
         }
         // Texels from C(-1, -1, -1) to C(2, 2, 2): one bounds check.
         let lo = base - pitch[0] - pitch[1] - pitch[2];
@@ -67,7 +139,7 @@ impl<S: Texel> Texture<S> {
             (x(0, 1, 0), x(0, -1, 0)),
         ];
         let step = if S::CODED { self.step } else { 1.0 };
-        [0, 1, 2].map(|a| step * (up_down[a].0 - up_down[a].1) / (2.0 * h[a]))
+        [0, 1, 2].map(|a| step * (up_down[a].0 - up_down[a].1) * steps.inv_2h[a])
     }
 
     /// The lattice differences `D_a(i) = C(i + e_a) - C(i - e_a)` of
@@ -101,15 +173,27 @@ impl<S: Texel> Texture<S> {
 
     /// [`Self::gradient_at`] from the [`Self::lattice_differences`]: their
     /// trilinear interpolation at the cell of texel `base` with weights `t`,
-    /// over `2 h`.
-    #[inline]
-    fn lattice_gradient(&self, base: usize, pitch: [usize; 3], t: [f64; 3], h: [f64; 3]) -> [f64; 3] {
+    /// over `2 h`. `FINITE` when every difference is: `b - a` of two finite
+    /// `f32` cannot overflow an `f64`, so [`lerp`]'s overflow test is left
+    /// out (the same values, branch-free).
+    #[inline(always)]
+    fn lattice_gradient<const FINITE: bool>(
+        &self,
+        base: usize,
+        pitch: [usize; 3],
+        t: [f64; 3],
+        steps: &Steps,
+    ) -> [f64; 3] {
         let d = &self.lattice[base..=base + pitch[0] + pitch[1] + pitch[2]];
         // Written out as always-inlined functions: closures and array maps
         // here are not inlined, and this is the inner loop of shading.
         #[inline(always)]
-        fn mix(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
-            [lerp(a[0], b[0], t), lerp(a[1], b[1], t), lerp(a[2], b[2], t)]
+        fn mix<const FINITE: bool>(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
+            if FINITE {
+                [lerp_scaled(a[0], b[0], t), lerp_scaled(a[1], b[1], t), lerp_scaled(a[2], b[2], t)]
+            } else {
+                [lerp(a[0], b[0], t), lerp(a[1], b[1], t), lerp(a[2], b[2], t)]
+            }
         }
         #[inline(always)]
         fn corner(d: &[[f32; 3]], o: usize) -> [f64; 3] {
@@ -117,19 +201,21 @@ impl<S: Texel> Texture<S> {
             [f64::from(c[0]), f64::from(c[1]), f64::from(c[2])]
         }
         #[inline(always)]
-        fn w(d: &[[f32; 3]], o: usize, pitch: [usize; 3], t: [f64; 3]) -> [f64; 3] {
-            let v0 = mix(corner(d, o), corner(d, o + pitch[2]), t[2]);
-            let v1 = mix(corner(d, o + pitch[1]), corner(d, o + pitch[1] + pitch[2]), t[2]);
-            mix(v0, v1, t[1])
+        fn w<const FINITE: bool>(d: &[[f32; 3]], o: usize, pitch: [usize; 3], t: [f64; 3]) -> [f64; 3] {
+            let v0 = mix::<FINITE>(corner(d, o), corner(d, o + pitch[2]), t[2]);
+            let v1 = mix::<FINITE>(corner(d, o + pitch[1]), corner(d, o + pitch[1] + pitch[2]), t[2]);
+            mix::<FINITE>(v0, v1, t[1])
         }
-        let g = mix(w(d, 0, pitch, t), w(d, pitch[0], pitch, t), t[0]);
-        [g[0] / (2.0 * h[0]), g[1] / (2.0 * h[1]), g[2] / (2.0 * h[2])]
+        let g = mix::<FINITE>(w::<FINITE>(d, 0, pitch, t), w::<FINITE>(d, pitch[0], pitch, t), t[0]);
+        let k = steps.inv_2h;
+        [g[0] * k[0], g[1] * k[1], g[2] * k[2]]
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::super::Texture;
+    use super::Steps;
     use crate::render::shade::gradient;
 
     /// A bordered-size texture of `n` texels per axis holding an uneven field.
@@ -152,21 +238,30 @@ mod tests {
             step: 1.0,
             bias: 0.0,
             lattice: Vec::new(),
+            lattice_finite: true,
         }
     }
 
     /// The lattice differences give the general rule's gradient to the
-    /// rounding of their `f32` storage, inside, at and near every face.
+    /// rounding of their `f32` storage, inside, at and near every face; the
+    /// branch-free interpolation of finite differences gives `lerp`'s values,
+    /// and a point's cell the clamped read's value, bit for bit.
     #[test]
     fn the_lattice_differences_give_the_general_gradient() {
         let mut texture = ramp_texture([7, 6, 8]);
         texture.lattice = texture.lattice_differences();
+        // The same differences, interpolated with lerp's overflow test.
+        let tested = Texture { lattice_finite: false, ..texture.clone() };
         let h = [0.5, 1.0, 2.0];
         for k in 0..=28 {
             for j in 0..=20 {
                 for i in 0..=24 {
                     let u = [i as f64 * 0.25, j as f64 * 0.25 + 0.01, k as f64 * 0.25];
-                    let fast = texture.gradient_at(u, h);
+                    let p = texture.point(u);
+                    let fast = texture.gradient_at(&p, &Steps::new(h));
+                    assert_eq!(fast, tested.gradient_at(&p, &Steps::new(h)), "at {u:?}");
+                    // The value from the point's cell is the clamped read's.
+                    assert_eq!(texture.value_at(&p).to_bits(), texture.at_texel(u).to_bits(), "at {u:?}");
                     let general = gradient(|v| texture.at_texel(v), u, h);
                     for a in 0..3 {
                         assert!(
@@ -190,7 +285,7 @@ mod tests {
             for j in 0..=20 {
                 for i in 0..=24 {
                     let u = [i as f64 * 0.25, j as f64 * 0.25 + 0.01, k as f64 * 0.25];
-                    let fast = texture.gradient_at(u, h);
+                    let fast = texture.gradient_at(&texture.point(u), &Steps::new(h));
                     let general = gradient(|v| texture.at_texel(v), u, h);
                     for a in 0..3 {
                         assert!((fast[a] - general[a]).abs() <= 1e-12, "at {u:?}: {fast:?} against {general:?}");
