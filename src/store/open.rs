@@ -35,6 +35,13 @@ pub const DEFAULT_CACHE_BYTES: usize = 256 << 20;
 /// of `u64` and its bookkeeping).
 const CHUNK_LIST_BYTES: u128 = 64;
 
+/// The most chunks a pass over a whole foreign store (its streaming octree
+/// build, `convert`) visits: one key lookup each, a file-system call for a
+/// chunk written or missing, so a store of 1-sample chunks over 1000^3 would
+/// take hours before the first picture. 2^24 is 256^3 chunks: 16384^3
+/// samples at chunks of 64^3.
+pub const MAX_STREAMED_CHUNKS: u64 = 1 << 24;
+
 /// An open OME-Zarr image.
 pub struct Store {
     label: String,
@@ -227,6 +234,7 @@ impl Store {
                 return Ok(octree.clone());
             }
         }
+        self.check_streamable()?;
         let built = VolumeOctree::build_streaming(self, &BuildOptions { leaf_size }, &mut |_| true)?.octree;
         let _ = self.built.set((leaf_size, built.clone()));
         Ok(built)
@@ -417,13 +425,44 @@ impl PlaneSource for Store {
     fn scalar_type(&self) -> ScalarType {
         self.scalar_type
     }
-    /// The full-resolution planes `z`, read as one box.
+    /// The full-resolution planes `z`, read as one box; refused for a store
+    /// of more than [`MAX_STREAMED_CHUNKS`] chunks (a pass over its planes
+    /// visits every one).
     fn read_planes(&self, z: std::ops::Range<usize>) -> Result<SampleBuf> {
         let [nx, ny, nz] = self.shape.dims;
         if z.is_empty() || z.end > nz {
             return Err(Error::InvalidArgument(format!("planes {z:?} are not inside the {nz} of '{}'", self.label)));
         }
+        self.check_streamable()?;
         Ok(self.read_level_box(0, [0, 0, z.start], [nx - 1, ny - 1, z.end - 1])?.samples)
+    }
+}
+
+impl Store {
+    /// The chunks of the full resolution's spatial axes (the first time
+    /// point and channel): what a pass over every plane visits.
+    pub fn spatial_chunks(&self) -> u64 {
+        let grid = self.levels[0].chunk_grid_shape();
+        grid.iter().skip(grid.len().saturating_sub(3)).fold(1u64, |n, &c| n.saturating_mul(c))
+    }
+
+    /// Ok when a pass over every plane visits at most [`MAX_STREAMED_CHUNKS`]
+    /// chunks (a store written here reads its own subchunks: always Ok).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] naming the count, the limit and the fix.
+    pub fn check_streamable(&self) -> Result<()> {
+        let chunks = self.spatial_chunks();
+        if self.subchunks.is_none() && chunks > MAX_STREAMED_CHUNKS {
+            return Err(Error::InvalidArgument(format!(
+                "'{}' has {chunks} chunks, more than the {MAX_STREAMED_CHUNKS} a pass over its samples may visit: its \
+                 chunks are too small; write the image again with chunks of 64^3 samples or more (zarr-python: \
+                 chunks=(64, 64, 64)), or read it whole with --in-memory if it fits in memory",
+                self.label
+            )));
+        }
+        Ok(())
     }
 }
 

@@ -192,3 +192,24 @@ fn declared_shapes_beyond_what_is_addressable_are_refused_before_reading() {
     let v = Store::open(&t.0).unwrap().read_volume().unwrap();
     assert_eq!(v.shape.dims, [5, 4, 3]);
 }
+
+/// A foreign store of more chunks than a pass over its samples may visit
+/// (1-sample chunks over 400 x 300 x 200: 24,000,000 > 2^24) is refused
+/// before its streaming octree pass and before any plane is read, naming
+/// the count and the fix; one of 64^3 chunks over the same shape passes the
+/// check (its octree is not built here).
+#[test]
+fn stores_of_too_many_chunks_are_refused_before_a_pass() {
+    use crate::data::planes::PlaneSource;
+    let t = declared_store("many-chunks", [200, 300, 400], [1, 1, 1]);
+    let store = Store::open(&t.0).unwrap();
+    assert_eq!(store.spatial_chunks(), 24_000_000);
+    for e in [store.volume_octree(8).unwrap_err(), store.read_planes(0..1).unwrap_err()] {
+        let e = e.to_string();
+        assert!(e.contains("24000000 chunks") && e.contains("too small") && e.contains("64^3"), "{e}");
+    }
+    let t = declared_store("fewer-chunks", [200, 300, 400], [64, 64, 64]);
+    let store = Store::open(&t.0).unwrap();
+    assert_eq!(store.spatial_chunks(), 4 * 5 * 7);
+    store.check_streamable().unwrap();
+}

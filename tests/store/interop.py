@@ -255,11 +255,16 @@ def hostile_stores(converted):
 def check_hostile(cases):
     for what, (store, words) in cases.items():
         render = ["render", "--output", path("hostile.png"), "--width", "32", "--height", "32"]
-        if words in ("memory", "chunks"):
+        commands = [["info"], ["build"], render]
+        if words == "memory":
             # Drawn from disk, such a store is streamed through once to build its octree (a long pass over
             # missing chunks, not an error); read whole, it is refused before anything is read.
             render.append("--in-memory")
-        for command in (["info"], ["build"], render):
+        if words == "chunks":
+            # A pass over every chunk is refused before it starts: drawn from disk, read whole, converted.
+            commands.append(render + ["--in-memory"])
+            commands.append(["convert", "--output", path("tiny-converted.ome.zarr")])
+        for command in commands:
             status, _, err = run(command[0], "--file", store, *command[1:])
             lines = [ln for ln in err.splitlines() if ln.strip() and not ln.startswith("warning:")]
             ok = (status == 2 and len(lines) == 1 and lines[0].startswith("error:") and words in lines[0]

@@ -148,6 +148,16 @@ fn in_memory(args: &RenderArgs, budget_bytes: usize, store: Option<&Store>) -> R
 /// weighs by screen space alone (said in the warning); the reference, if
 /// asked for, reads the whole volume.
 fn from_store(args: &RenderArgs, store: &Store, budget_bytes: usize) -> Result<RenderReport> {
+    if !store.has_octree() {
+        store.check_streamable()?;
+        let [nx, ny, nz] = store.shape.dims;
+        eprintln!(
+            "warning: '{}' holds no Volume Octree: it is built first by one pass over its {nx} x {ny} x {nz} \
+             samples ({} chunks); `hybrid-octree convert` stores it once",
+            store.label(),
+            store.spatial_chunks()
+        );
+    }
     let octree = store.volume_octree(args.scene.leaf_size)?;
     let field = Field::Store(store);
     let scene = dress_field(field, octree, &args.scene)?;
