@@ -142,16 +142,15 @@ bool vtkHybridOctreeTransfer2D::Update(vtkVolumeProperty* property, vtkDataArray
 }
 
 void vtkHybridOctreeTransfer2D::Describe(
-  std::size_t size[2], std::vector<float>& rgba, double range[2]) const
+  std::size_t size[2], std::vector<float>* rgba, double range[2]) const
 {
   size[0] = this->Width;
   size[1] = this->Height;
-  rgba = this->RGBA;
   range[0] = this->Range[0];
   range[1] = this->Range[1];
-  if (this->Empty())
+  if (rgba)
   {
-    rgba.clear();
+    *rgba = this->Empty() ? std::vector<float>() : this->RGBA;
   }
 }
 

@@ -61,8 +61,9 @@ public:
   /// No table (1D mode, or none usable).
   bool Empty() const { return this->Width == 0; }
 
-  /// Its size, texels and the data range its x axis spans, for the selection.
-  void Describe(std::size_t size[2], std::vector<float>& rgba, double range[2]) const;
+  /// Its size, texels (when `rgba` is given) and the data range its x axis
+  /// spans, for the selection.
+  void Describe(std::size_t size[2], std::vector<float>* rgba, double range[2]) const;
 
   /// A key of what the selection depends on (size, range, the time of the texels).
   std::vector<double> Key() const;

@@ -955,10 +955,12 @@ SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
       select.BlendMode == SLICE_BLEND);
   select.GradientOpacityPoints = GradientOpacityPoints(property);
   select.Region = in.Region;
-  // The 2D transfer function classifies under Composite only (VTK's TF_2D mode).
+  // The 2D transfer function classifies under Composite only (VTK's TF_2D
+  // mode); its texels are copied in only when a selection is made
+  // (UpdateSelection): the key names them.
   if (select.BlendMode == COMPOSITE_BLEND)
   {
-    in.Transfer2D.Describe(select.Transfer2DSize, select.Transfer2DRGBA, select.Transfer2DRange);
+    in.Transfer2D.Describe(select.Transfer2DSize, nullptr, select.Transfer2DRange);
   }
   key = { static_cast<double>(select.BudgetBytes), select.Tolerance, select.HasRoi ? 1.0 : 0.0,
     select.RoiCenter[0], select.RoiCenter[1], select.RoiCenter[2], select.RoiRadius,
@@ -1082,6 +1084,10 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
     (interactive || this->IsViewCurrent(slot.View, slot.Summary.ViewSelection)))
   {
     return true;
+  }
+  if (select.Transfer2DSize[0] > 0)
+  {
+    in.Transfer2D.Describe(select.Transfer2DSize, &select.Transfer2DRGBA, select.Transfer2DRange);
   }
   std::string error;
   const auto start = std::chrono::steady_clock::now();
