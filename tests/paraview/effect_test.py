@@ -29,10 +29,10 @@ class EffectTest:
         self.value_range = self.reader.PointData[self.array].GetRange()
         self.bounds = self.reader.GetDataInformation().GetBounds()
 
-    def screenshot(self, view, name):
-        """The view saved as <workdir>/<name>.png, read back as RGB."""
+    def screenshot(self, view, name, size=SIZE):
+        """The view saved as <workdir>/<name>.png at `size` pixels, read back as RGB."""
         path = os.path.join(self.args.workdir, name + ".png")
-        SaveScreenshot(path, view, ImageResolution=list(SIZE))
+        SaveScreenshot(path, view, ImageResolution=list(size))
         return read_png_rgb(path)
 
 

@@ -10,9 +10,9 @@ from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction,
 SIZE = (320, 320)
 
 
-def make_view():
+def make_view(size=SIZE):
     view = CreateView("RenderView")
-    view.ViewSize = list(SIZE)
+    view.ViewSize = list(size)
     view.OrientationAxesVisibility = 0
     view.Background = [0.1, 0.1, 0.15]
     # A plain background colour, not the palette's gradient.
