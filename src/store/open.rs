@@ -458,7 +458,7 @@ impl Store {
             return Err(Error::InvalidArgument(format!(
                 "'{}' has {chunks} chunks, more than the {MAX_STREAMED_CHUNKS} a pass over its samples may visit: its \
                  chunks are too small; write the image again with chunks of 64^3 samples or more (zarr-python: \
-                 chunks=(64, 64, 64)), or read it whole with --in-memory if it fits in memory",
+                 chunks=(64, 64, 64)), or, if it fits in memory, read it whole (the CLI's --in-memory)",
                 self.label
             )));
         }
