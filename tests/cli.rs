@@ -1678,8 +1678,9 @@ fn bench_render_rows_per_frame_time_target() {
         plot.to_str().unwrap(),
     ];
     let r = {
-        let mut all = vec!["bench", "--json"];
+        let mut all = vec!["bench"];
         all.extend_from_slice(&args[..]);
+        all.push("--json");
         let out = run(&all);
         assert!(out.status.success(), "{}", stderr(&out));
         serde_json::from_str::<Value>(&stdout(&out)).expect("one JSON object")

@@ -18,6 +18,7 @@ use crate::base::error::Result;
 use crate::octree::VolumeOctree;
 use crate::plan::select::{SelectOptions, Selection, Selector, ViewImportance};
 use crate::plan::DrawList;
+use std::collections::HashMap;
 
 /// What a frame is drawn on and what it uploads.
 #[derive(Debug, Clone, Copy)]
@@ -58,18 +59,19 @@ pub fn select_for_time(
     frame: FrameShape,
     mut plan: impl FnMut(&Selection) -> Result<DrawList>,
 ) -> Result<Choice<TimedFrame>> {
-    let mut last: Option<(usize, Selection, DrawList)> = None;
+    // Each budget's selection and DrawList, made once whatever the slice factor.
+    let mut made: HashMap<usize, (Selection, DrawList)> = HashMap::new();
     search(target, |budget, factor| {
-        let (selection, list) = match last.take() {
-            Some((b, s, l)) if b == budget => (s, l),
-            _ => {
+        let (selection, list) = match made.get(&budget) {
+            Some((s, l)) => (s.clone(), l.clone()),
+            None => {
                 let o = SelectOptions { budget_bytes: budget, ..*options };
                 let s = selector.select_in_view(octree, &o, &visible, None, view)?;
                 let l = plan(&s)?;
+                made.insert(budget, (s.clone(), l.clone()));
                 (s, l)
             }
         };
-        last = Some((budget, selection.clone(), list.clone()));
         let list = widen_slices(list, factor);
         let upload = if frame.uploads { selection.texture_bytes } else { 0 };
         let terms = CostTerms::of(&list, frame.width, frame.height, upload);
