@@ -1610,3 +1610,98 @@ fn a_foreign_ngff_0_4_store_opens() {
     }
     let _ = std::fs::remove_dir_all(&store);
 }
+
+#[test]
+fn render_meets_a_frame_time_target_and_shows_the_price() {
+    let dir = std::env::temp_dir().join(format!("ho-render-time-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (png, reference) = (dir.join("frame.png"), dir.join("reference.png"));
+    let (png, reference) = (png.to_str().unwrap(), reference.to_str().unwrap());
+    let scene = ["--dataset", "shepp-logan", "--size", "33", "--width", "48", "--height", "48", "--output", png];
+    let mut args = scene.to_vec();
+    args.extend(["--target-ms", "30", "--budget-mb", "0.2", "--reference", reference]);
+    let r = json_of("render", &args);
+    for key in ["target_ms", "ms", "predicted_ms", "rmse", "estimated_error", "budget_bytes", "max_budget_bytes"] {
+        assert!(r[key].is_number(), "{key} in {r}");
+    }
+    assert_eq!(r["target_ms"].as_f64(), Some(30.0));
+    assert!(["met", "full", "below-fastest"].contains(&r["time_outcome"].as_str().unwrap()), "{r}");
+    assert!(r["budget_bytes"].as_u64() <= r["max_budget_bytes"].as_u64(), "the memory limit holds: {r}");
+    assert_eq!(r["max_budget_bytes"].as_u64(), Some(200_000));
+    assert!(r["warmup_frames"].as_u64().unwrap() >= 2);
+    // The text form says the target, the prediction and the measurement.
+    let mut text = vec!["render"];
+    text.extend(&args);
+    let out = run(&text);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let s = stdout(&out);
+    assert!(s.contains("frame time:") && s.contains("target 30.0 ms") && s.contains("predicted"), "{s}");
+    // A target no frame can meet: the coarsest selection, said in the warning.
+    let mut args = scene.to_vec();
+    args.extend(["--target-ms", "0.000001"]);
+    let r = json_of("render", &args);
+    assert_eq!(r["time_outcome"], "below-fastest", "{r}");
+    assert!(r["warning"].as_str().unwrap().contains("below the fastest frame"), "{r}");
+    // Bad targets: one line naming the problem and the fix, status 2.
+    for (bad, says) in [("0", "not above 0"), ("-3", "not above 0"), ("NaN", "not a number"), ("1e12", "above")] {
+        let mut args = vec!["render"];
+        args.extend(scene);
+        args.extend(["--target-ms", bad]);
+        let out = run(&args);
+        assert_clean_failure(&out, says);
+        assert!(stderr(&out).contains("--target-ms") && stderr(&out).contains("give milliseconds"));
+        assert_eq!(stderr(&out).lines().count(), 1, "{}", stderr(&out));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bench_render_rows_per_frame_time_target() {
+    let plot = temp("targets.png");
+    let args = [
+        "render",
+        "--dataset",
+        "shepp-logan",
+        "--size",
+        "33",
+        "--width",
+        "40",
+        "--height",
+        "40",
+        "--budget-mb",
+        "0.2",
+        "--targets-ms",
+        "5,20,80",
+        "--frames",
+        "2",
+        "--plot",
+        plot.to_str().unwrap(),
+    ];
+    let r = {
+        let mut all = vec!["bench"];
+        all.extend_from_slice(&args[..]);
+        all.push("--json");
+        let out = run(&all);
+        assert!(out.status.success(), "{}", stderr(&out));
+        serde_json::from_str::<Value>(&stdout(&out)).expect("one JSON object")
+    };
+    let rows = r["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 3);
+    for (row, target) in rows.iter().zip([5.0, 20.0, 80.0]) {
+        assert_eq!(row["target_ms"].as_f64(), Some(target));
+        for key in ["ms", "p90_ms", "predicted_ms", "rmse", "estimated_error", "budget_bytes"] {
+            assert!(row[key].is_number(), "{key} in {row}");
+        }
+        assert_eq!(row["frames"].as_u64(), Some(2));
+        assert!(row["budget_bytes"].as_u64().unwrap() <= 200_000);
+    }
+    assert!(r["fastest_ms"].is_number() && r["coefficients"].is_array(), "{r}");
+    assert!(r.get("rank_correlation").is_some(), "{r}");
+    assert_eq!(&std::fs::read(&plot).unwrap()[..8], b"\x89PNG\r\n\x1a\n");
+    std::fs::remove_file(&plot).unwrap();
+    // A bad target among them is refused by value before anything runs.
+    let out = run(&["bench", "render", "--dataset", "sphere", "--size", "9", "--targets-ms", "20,-1"]);
+    assert_clean_failure(&out, "--targets-ms");
+    let out = run(&["bench", "render", "--dataset", "sphere", "--size", "9", "--targets-ms", "inf"]);
+    assert_clean_failure(&out, "above");
+}

@@ -118,6 +118,10 @@ pub struct Plan {
     /// ([`crate::plan::sampling`], effect `sample-distance`): every brick's
     /// slice spacing is `(s / d0)` of its stride's. `None`: the stride's.
     pub sample_distance: Option<f64>,
+    /// The least slice spacing, world units, the slices were widened to so
+    /// that a frame meets its time ([`crate::plan::cost::widen_slices`]):
+    /// `m d0`, `m` a power of two. `None`: the strides' spacings.
+    pub min_slice_spacing: Option<f64>,
 }
 
 impl Plan {
@@ -282,6 +286,7 @@ pub fn plan(selection: &crate::plan::select::Selection, scene: &Scene<'_>) -> Pl
         jitter: false,
         scattering: false,
         sample_distance: None,
+        min_slice_spacing: None,
     };
     if volume {
         plan.passes.push(scene.blend.mode.pass());

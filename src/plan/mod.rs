@@ -1,5 +1,6 @@
 //! The planning layer, from the octree to what the renderers execute:
-//! [`select`] chooses the nodes under a texture budget, [`order`] sorts them
+//! [`select`] chooses the nodes under a texture budget, [`cost`] predicts a
+//! DrawList's time and chooses the budget that meets a frame-time target, [`order`] sorts them
 //! back to front, [`slab`] places the surface triangles between the slices
 //! of each brick, [`point_slabs`] buckets the points of the hybrid
 //! representation into them, the draw list (`draw_list`) says which passes
@@ -12,6 +13,7 @@
 //! mapper's vertices of a draw list.
 
 pub mod blend;
+pub mod cost;
 pub mod crop;
 pub mod dependent;
 pub mod draw_geometry;

@@ -64,6 +64,7 @@ fn draw_list(shape: &GridShape, camera: &Camera, bricks: &[Brick], surface: Surf
         jitter: false,
         scattering: false,
         sample_distance: None,
+        min_slice_spacing: None,
     };
     DrawList {
         plan,

@@ -720,6 +720,7 @@ mod tests {
                 jitter: false,
                 scattering: false,
                 sample_distance: None,
+                min_slice_spacing: None,
             },
             camera: Camera::around([0.0; 3], [4.0; 3], 0.0, 0.0, true).unwrap(),
             bricks: vec![BrickDraw {

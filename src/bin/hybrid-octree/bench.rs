@@ -15,6 +15,7 @@ mod scale;
 mod select;
 mod smart;
 mod surface;
+mod targets;
 
 use clap::Subcommand;
 use hybrid_octree::Result;

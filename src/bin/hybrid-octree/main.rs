@@ -5,11 +5,11 @@
 //! hybrid-octree info     (--dataset NAME --size N | --file PATH) [--type T] [--component C]
 //! hybrid-octree build    (--dataset NAME --size N | --file PATH) [--leaf-size B] [--tolerance T] [--json]
 //! hybrid-octree surface  (--dataset NAME --size N | --file PATH) --isovalue V [--mode discretized|interpolated] [--distance] [--output F.vtk] [--json]
-//! hybrid-octree render   (--dataset NAME --size N | --file PATH) --output F.png [--budget-mb M] [--tolerance T] [--isovalue V] [--reference R.png] [--json]
+//! hybrid-octree render   (--dataset NAME --size N | --file PATH) --output F.png [--budget-mb M] [--tolerance T] [--isovalue V] [--reference R.png] [--target-ms T] [--json]
 //! hybrid-octree generate --dataset NAME --size N [--type T] --output FILE.vti
 //! hybrid-octree convert  (--dataset NAME --size N | --file PATH) --output F.ome.zarr [--leaf-size B] [--memory-mb M] [--json]
 //! hybrid-octree bench build [--sizes 64,128] [--types f32,u8] [--threads 1,2] [--leaf-sizes 16] [--kernels fast,general] [--repeats 3] [--json]
-//! hybrid-octree bench render (--dataset NAME --size N | --file PATH) [--strides 2,4,8] [--tolerances ...] [--plot P.png] [--json]
+//! hybrid-octree bench render (--dataset NAME --size N | --file PATH) [--strides 2,4,8] [--tolerances ...] [--targets-ms 20,50,100,200] [--plot P.png] [--json]
 //! hybrid-octree bench effects (--dataset NAME --size N | --file PATH) [--budget-mb M] [--frames 5] [--effects plain,shade,...] [--plot P.png] [--json]
 //! hybrid-octree bench scale [--sizes 256,512,1024] [--type u8,u16] [--dataset NAME] [--budget-mb M] [--json]
 //! hybrid-octree bench select (--dataset NAME --size N | --file PATH) [--budgets-mb 8,64] [--roi X,Y,Z,R] [--repeats 5] [--json]
@@ -38,6 +38,7 @@ mod scene;
 mod shade;
 mod slice;
 mod surface;
+mod timed;
 mod transfer2d;
 mod view;
 

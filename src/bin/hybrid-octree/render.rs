@@ -45,6 +45,15 @@ pub struct RenderArgs {
     /// Read an OME-Zarr store's volume whole into memory instead of drawing it from disk brick by brick.
     #[arg(long)]
     in_memory: bool,
+    /// Frame-time target, ms: the texture budget (at most --budget-mb) and,
+    /// when bytes alone cannot, the slice spacing of the least estimated
+    /// error whose frame (upload and compositing) the cost model, calibrated
+    /// on warm-up frames, predicts within it.
+    #[arg(long, allow_negative_numbers = true)]
+    target_ms: Option<f64>,
+    /// Warm-up frames that calibrate the cost model for --target-ms (at least 2).
+    #[arg(long, default_value_t = 3)]
+    warmup_frames: usize,
 }
 
 /// What `render` reports.
@@ -61,6 +70,26 @@ struct RenderReport {
     /// The texel format (`--texel-format` resolved for the data), its
     /// decoding `bias + scale t` and quantization error (data units).
     texel: hybrid_octree::plan::texel_format::TexelEncoding,
+    /// The hard memory limit (`--budget-mb`); `budget_bytes` is what the
+    /// selection was given (with `--target-ms`, what the search chose).
+    max_budget_bytes: usize,
+    /// `--target-ms`.
+    target_ms: Option<f64>,
+    /// The frame's measured time: upload and compositing, ms.
+    ms: f64,
+    /// The cost model's prediction of `ms` (with `--target-ms`).
+    predicted_ms: Option<f64>,
+    /// How the choice relates to the target: met, full (the whole budget
+    /// fits), below-fastest (even the coarsest selection is predicted over it).
+    time_outcome: Option<&'static str>,
+    /// The slices' least spacing in multiples of the reference spacing d0 (1: the strides').
+    slice_factor: Option<u32>,
+    /// The warm-up frames' coarsest selection, measured, ms.
+    fastest_ms: Option<f64>,
+    /// Warm-up frames that calibrated the cost model.
+    warmup_frames: Option<usize>,
+    /// Candidates the search evaluated.
+    evaluations: Option<usize>,
     bricks: usize,
     /// The selection's estimated error (`select::estimated_error`): the
     /// largest nodal error of the visible bricks, a fraction of the data
@@ -99,6 +128,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         require_extension(path, "--reference", &[".png"], "PNG pictures")?;
     }
     let budget_bytes = crate::bench::render::budget_bytes(args.budget_mb)?;
+    if let Some(t) = args.target_ms {
+        check_target(t)?;
+    }
     let report = with_threads(args.input.threads, || match args.input.store()? {
         Some(store) if !args.in_memory => from_store(args, &store, budget_bytes),
         Some(store) => in_memory(args, budget_bytes, Some(&store)),
@@ -130,15 +162,22 @@ fn in_memory(args: &RenderArgs, budget_bytes: usize, store: Option<&Store>) -> R
         _ => None,
     };
     let view = crate::view::importance(&grid, &args.scene, &scene.camera, mode, medium.as_ref())?;
-    let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
-    let select_ms = started.elapsed().as_secs_f64() * 1e3;
-    let f = frame(&grid, &scene, &selection, &args.scene, None)?;
+    let (selection, f, timed, select_ms) = match args.target_ms {
+        Some(target) => timed(args, Field::Grid(&grid), &scene, options, &view, target)?,
+        None => {
+            let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
+            let select_ms = started.elapsed().as_secs_f64() * 1e3;
+            let f = frame(&grid, &scene, &selection, &args.scene, None)?;
+            (selection, f, None, select_ms)
+        }
+    };
     f.image.to_png(&args.output)?;
     let reference = match &args.reference {
         Some(path) => Some(reference(&grid, &scene, args, &f, path)?),
         None => None,
     };
-    Ok(report(args, budget_bytes, &scene, &selection, &f, (select_ms, mode), reference, selection.warning.clone()))
+    let warning = timed_warning(selection.warning.clone(), timed.as_ref());
+    Ok(report(args, budget_bytes, &scene, &selection, &f, (select_ms, mode), reference, warning, timed.as_ref()))
 }
 
 /// The frame of an OME-Zarr store drawn from disk: its octree (stored, or
@@ -175,9 +214,15 @@ fn from_store(args: &RenderArgs, store: &Store, budget_bytes: usize) -> Result<R
         m => (m, None),
     };
     let view = crate::view::importance_in(&store.shape, &args.scene, &scene.camera, mode, None)?;
-    let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
-    let select_ms = started.elapsed().as_secs_f64() * 1e3;
-    let f = frame_of(field, &scene, &selection, &args.scene, None)?;
+    let (selection, f, timed, select_ms) = match args.target_ms {
+        Some(target) => timed(args, field, &scene, options, &view, target)?,
+        None => {
+            let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
+            let select_ms = started.elapsed().as_secs_f64() * 1e3;
+            let f = frame_of(field, &scene, &selection, &args.scene, None)?;
+            (selection, f, None, select_ms)
+        }
+    };
     f.image.to_png(&args.output)?;
     let reference = match &args.reference {
         Some(path) => {
@@ -187,11 +232,72 @@ fn from_store(args: &RenderArgs, store: &Store, budget_bytes: usize) -> Result<R
         }
         None => None,
     };
-    let warning = match (selection.warning.clone(), note) {
+    let warning = join(timed_warning(selection.warning.clone(), timed.as_ref()), note);
+    Ok(report(args, budget_bytes, &scene, &selection, &f, (select_ms, mode), reference, warning, timed.as_ref()))
+}
+
+/// The selection's warning, or with `--target-ms` the search's note in its
+/// place: the time chose the budget, so the selection's advice to raise it
+/// for the tolerance does not apply.
+fn timed_warning(selection: Option<String>, timed: Option<&TimedReport>) -> Option<String> {
+    match timed {
+        Some(t) => t.note.clone(),
+        None => selection,
+    }
+}
+
+/// Two warnings as one.
+fn join(a: Option<String>, b: Option<String>) -> Option<String> {
+    match (a, b) {
         (Some(a), Some(b)) => Some(format!("{a}; {b}")),
         (a, b) => a.or(b),
+    }
+}
+
+/// `--target-ms`: in range, or the one-line error of the cost model's check, naming the flag.
+fn check_target(ms: f64) -> Result<f64> {
+    hybrid_octree::plan::cost::check_target_ms(ms)
+        .map_err(|e| hybrid_octree::Error::InvalidArgument(format!("--target-ms: {e}")))
+}
+
+/// What the time search chose, for the report.
+struct TimedReport {
+    target_ms: f64,
+    predicted_ms: f64,
+    outcome: &'static str,
+    slice_factor: u32,
+    budget_bytes: usize,
+    fastest_ms: Option<f64>,
+    warmup_frames: usize,
+    evaluations: usize,
+    note: Option<String>,
+}
+
+/// The frame within `target` ms (`crate::timed`): calibrated on the
+/// warm-up frames, searched, drawn. Its select time is the search's.
+fn timed(
+    args: &RenderArgs,
+    field: Field<'_>,
+    scene: &Loaded,
+    options: hybrid_octree::select::SelectOptions,
+    view: &hybrid_octree::select::ViewImportance,
+    target: f64,
+) -> Result<(Selection, Frame, Option<TimedReport>, f64)> {
+    let mut timer = crate::timed::Timer::new(field, scene, &args.scene, options, Some(view));
+    timer.calibrate(args.warmup_frames)?;
+    let t = timer.frame(target)?;
+    let report = TimedReport {
+        target_ms: t.target_ms,
+        predicted_ms: t.predicted_ms,
+        outcome: t.outcome.name(),
+        slice_factor: t.slice_factor,
+        budget_bytes: t.budget_bytes,
+        fastest_ms: timer.fastest_ms,
+        warmup_frames: timer.warmup_frames,
+        evaluations: t.evaluations,
+        note: t.note,
     };
-    Ok(report(args, budget_bytes, &scene, &selection, &f, (select_ms, mode), reference, warning))
+    Ok((t.selection, t.frame, Some(report), t.search_ms))
 }
 
 /// The reference picture written to `path` and the frame's distance to it:
@@ -222,12 +328,22 @@ fn report(
     (select_ms, view_selection): (f64, ViewSelection),
     reference: Option<(f64, f64, f64, f64)>,
     warning: Option<String>,
+    timed: Option<&TimedReport>,
 ) -> RenderReport {
     RenderReport {
         output: args.output.display().to_string(),
         width: args.scene.width,
         height: args.scene.height,
-        budget_bytes,
+        budget_bytes: timed.map_or(budget_bytes, |t| t.budget_bytes),
+        max_budget_bytes: budget_bytes,
+        target_ms: timed.map(|t| t.target_ms),
+        ms: crate::timed::frame_ms(f),
+        predicted_ms: timed.map(|t| t.predicted_ms),
+        time_outcome: timed.map(|t| t.outcome),
+        slice_factor: timed.map(|t| t.slice_factor),
+        fastest_ms: timed.and_then(|t| t.fastest_ms),
+        warmup_frames: timed.map(|t| t.warmup_frames),
+        evaluations: timed.map(|t| t.evaluations),
         texture_bytes: selection.texture_bytes,
         view_selection,
         texel: scene.texel,
@@ -267,6 +383,19 @@ fn print_text(r: &RenderReport) {
         r.estimated_error
     );
     println!("view selection:  {}", r.view_selection.name());
+    if let (Some(target), Some(predicted)) = (r.target_ms, r.predicted_ms) {
+        println!(
+            "frame time:      target {target:.1} ms, predicted {predicted:.1} ms, measured {:.1} ms ({}; budget {:.2} MB of {:.2} MB{})",
+            r.ms,
+            r.time_outcome.unwrap_or("-"),
+            r.budget_bytes as f64 / 1e6,
+            r.max_budget_bytes as f64 / 1e6,
+            match r.slice_factor {
+                Some(m) if m > 1 => format!(", slices {m} times wider"),
+                _ => String::new(),
+            }
+        );
+    }
     println!(
         "times:           select {:.1} ms, SlabPolygons {:.1} ms, DrawList {:.1} ms, upload {:.1} ms, composite {:.1} ms",
         r.select_ms, r.slab_polygons_ms, r.drawlist_ms, r.upload_ms, r.composite_ms

@@ -8,7 +8,7 @@ use crate::build::build_octree;
 use crate::field::Field;
 use clap::Args;
 use hybrid_octree::camera::Camera;
-use hybrid_octree::grid::Grid;
+use hybrid_octree::grid::{Grid, GridShape};
 use hybrid_octree::octree::{BuildOptions, VolumeOctree, DEFAULT_LEAF_SIZE};
 use hybrid_octree::plan::crop::KeptRegion;
 use hybrid_octree::plan::point_slabs::add_points;
@@ -312,17 +312,31 @@ pub fn frame_of(
     args: &SceneArgs,
     points: Option<(&PointSet, Footprint)>,
 ) -> Result<Frame> {
-    let shape = field.shape();
+    let planned = plan_frame(field.shape(), scene, selection, args, points.map(|p| p.0))?;
+    draw_frame(field, scene, planned, args, points)
+}
+
+/// A frame's DrawList and what making it took (SlabPolygons, DrawList ms).
+pub struct Planned {
+    /// The DrawList.
+    pub list: DrawList,
+    /// SlabPolygons time, ms.
+    pub slab_polygons_ms: f64,
+    /// DrawList time, ms.
+    pub drawlist_ms: f64,
+}
+
+/// The SlabPolygons (translucent surface) and the DrawList of `selection`
+/// (with `points` in its slabs) over the grid of `shape`: the plan of [`frame_of`].
+pub fn plan_frame(
+    shape: &GridShape,
+    scene: &Loaded,
+    selection: &Selection,
+    args: &SceneArgs,
+    points: Option<&PointSet>,
+) -> Result<Planned> {
     let lighting = args.shade.lighting();
-    let view = Scene {
-        surface: scene.surface.as_ref(),
-        surface_opacity: args.surface_opacity,
-        shading: lighting.as_ref(),
-        gradient_opacity: args.gradient_opacity.as_ref(),
-        transfer_2d: scene.transfer_2d.as_ref(),
-        blend: scene.blend,
-        region: scene.region.as_ref(),
-    };
+    let view = scene_view(scene, args, lighting.as_ref());
     let started = Instant::now();
     let polygons = match (plan(selection, &view).surface, &scene.surface) {
         (SurfacePass::Translucent, Some(s)) => Some(SlabPolygons::new(&scene.octree, s, shape, selection)),
@@ -332,13 +346,42 @@ pub fn frame_of(
     let started = Instant::now();
     let mut list = draw_list(&scene.octree, shape, selection, &scene.camera, &view, polygons.as_ref())?;
     list.texel = scene.texel;
-    if let Some((set, _)) = points {
+    if let Some(set) = points {
         add_points(&mut list, shape, set)?;
     }
     let scattering = args.scattering.scattering(scene.octree.value_range())?;
     let list = plan_scattering(list, lighting.as_ref(), scattering.as_ref())?;
     let list = hybrid_octree::plan::jitter::plan_jitter(list, args.jitter);
     let drawlist_ms = started.elapsed().as_secs_f64() * 1e3;
+    Ok(Planned { list, slab_polygons_ms, drawlist_ms })
+}
+
+/// What the planner sees of the scene.
+fn scene_view<'a>(
+    scene: &'a Loaded,
+    args: &'a SceneArgs,
+    lighting: Option<&'a hybrid_octree::transfer::lighting::Lighting>,
+) -> Scene<'a> {
+    Scene {
+        surface: scene.surface.as_ref(),
+        surface_opacity: args.surface_opacity,
+        shading: lighting,
+        gradient_opacity: args.gradient_opacity.as_ref(),
+        transfer_2d: scene.transfer_2d.as_ref(),
+        blend: scene.blend,
+        region: scene.region.as_ref(),
+    }
+}
+
+/// Uploads the textures of a planned frame and composites it.
+pub fn draw_frame(
+    field: Field<'_>,
+    scene: &Loaded,
+    planned: Planned,
+    args: &SceneArgs,
+    points: Option<(&PointSet, Footprint)>,
+) -> Result<Frame> {
+    let Planned { list, slab_polygons_ms, drawlist_ms } = planned;
     let started = Instant::now();
     let textures = field.upload(&list)?;
     let shadow = field.shadow(&list)?;

@@ -82,6 +82,21 @@ pub struct BenchRenderArgs {
     /// Footprint of the points: square or gaussian.
     #[arg(long, default_value = "square")]
     footprint: Footprint,
+    /// Frame-time targets, ms: instead of the budget sweep, a row per
+    /// target of frames whose budget (at most --budget-mb) the cost model
+    /// chose to meet it (median and 90th percentile measured, predicted,
+    /// RMSE, estimated error).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    targets_ms: Vec<f64>,
+    /// With --targets-ms: the hard memory limit, megabytes.
+    #[arg(long, default_value_t = 64.0, allow_negative_numbers = true)]
+    budget_mb: f64,
+    /// With --targets-ms: frames per target.
+    #[arg(long, default_value_t = 5)]
+    frames: usize,
+    /// With --targets-ms: warm-up frames that calibrate the cost model (at least 2).
+    #[arg(long, default_value_t = 3)]
+    warmup_frames: usize,
 }
 
 /// One row.
@@ -292,6 +307,9 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
     if let Some(path) = &args.plot {
         require_extension(path, "--plot", &[".png"], "PNG plots")?;
     }
+    if !args.targets_ms.is_empty() {
+        return run_targets(args);
+    }
     if args.strides.is_empty() {
         return Err(Error::InvalidArgument("--strides needs at least one stride".into()));
     }
@@ -442,6 +460,32 @@ pub fn run(args: &BenchRenderArgs) -> Result<()> {
         error_plot(path, &title, &named)?;
     }
     print_report(&rows, args.json, |rows| print_table(rows))
+}
+
+/// `--targets-ms`: the rows of [`super::targets`] under the scene's selection options.
+fn run_targets(args: &BenchRenderArgs) -> Result<()> {
+    super::targets::check_targets(&args.targets_ms)?;
+    let budget = budget_bytes(args.budget_mb)?;
+    let report = with_threads(args.input.threads, || {
+        let volume = args.input.load()?;
+        let grid = args.input.grid(&volume)?;
+        let scene = load(&grid, &args.scene)?;
+        let truth = reference_image(&grid, &scene, &args.scene)?;
+        let mode = args.scene.view.view_selection;
+        let medium = match mode {
+            ViewSelection::Visibility | ViewSelection::Both => crate::view::medium(&grid, &scene, &args.scene)?,
+            _ => None,
+        };
+        let view = crate::view::importance(&grid, &args.scene, &scene.camera, mode, medium.as_ref())?;
+        let options = crate::scene::select_options(&scene, &args.scene, budget, 0.0);
+        let bench = super::targets::Bench { grid: &grid, scene: &scene, args: &args.scene, truth: &truth };
+        super::targets::measure(&bench, options, Some(&view), &args.targets_ms, (args.frames, args.warmup_frames))
+    })?;
+    if let Some(path) = &args.plot {
+        let title = format!("{}: image RMSE at frame-time targets", args.input.describe());
+        super::targets::plot(path, &title, &report)?;
+    }
+    print_report(&report, args.json, super::targets::print_table)
 }
 
 /// The `--points` rows (see the module documentation).
