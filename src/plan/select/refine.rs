@@ -370,7 +370,9 @@ impl Refiner<'_> {
             if let Some(e) = self.caches.forms.borrow().get(b.node, b.p).filter(|e| e.step != NONE) {
                 return (e.step != NO_STEP).then_some(e.step as usize);
             }
-        } else if let Some(&known) = self.caches.steps.borrow().get(&key) {
+        }
+        // Bricks with points, and steps past what an entry can name.
+        if let Some(&known) = self.caches.steps.borrow().get(&key) {
             return known;
         }
         let index = self.best_step(&if weighted { *b } else { self.weigh(b) }).map(|entry| {
@@ -378,17 +380,18 @@ impl Refiner<'_> {
             entries.push(entry);
             entries.len() - 1
         });
-        if b.point_count == 0 {
-            let width = self.root_log2 - b.level + 1;
-            let step = index.map_or(NO_STEP, |i| u32::try_from(i).unwrap_or(NO_STEP).min(NO_STEP - 1));
-            self.caches.forms.borrow_mut().entry(b.node, b.p, width, self.slots).step = step;
-            if index.is_some_and(|i| i as u32 != step) {
-                // More steps than an entry can name: keep this one in the map.
-                self.caches.forms.borrow_mut().entry(b.node, b.p, width, self.slots).step = NONE;
+        let named = match index {
+            None => Some(NO_STEP),
+            Some(i) => u32::try_from(i).ok().filter(|&i| i < NO_STEP),
+        };
+        match named {
+            Some(step) if b.point_count == 0 => {
+                let width = self.root_log2 - b.level + 1;
+                self.caches.forms.borrow_mut().entry(b.node, b.p, width, self.slots).step = step;
+            }
+            _ => {
                 self.caches.steps.borrow_mut().insert(key, index);
             }
-        } else {
-            self.caches.steps.borrow_mut().insert(key, index);
         }
         index
     }
