@@ -131,6 +131,12 @@ impl VolumeOctree {
     /// The node `id`. Panics on an id not from this octree (a caller bug).
     pub fn node(&self, id: NodeId) -> NodeRef<'_> {
         let (level, coords) = self.layout.locate(id);
+        self.node_at(id, level, coords)
+    }
+
+    /// The node `id` at `level` and `coords` (what [`Layout::locate`]
+    /// says of `id`; a caller that walks the tree knows them).
+    pub fn node_at(&self, id: NodeId, level: usize, coords: [usize; 3]) -> NodeRef<'_> {
         let (lo, hi) = self.layout.node_box(level, coords);
         let n = self.layout.error_count(level);
         let local = id.0 as usize - self.layout.level_offset(level);

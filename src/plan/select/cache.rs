@@ -1,7 +1,7 @@
-//! The maps in which one selection keeps what it computes once per node
-//! and level (the [`cheapest`](super::mass::cheapest) forms, the best next
-//! step of a brick), which a [`Selector`](super::Selector) keeps from one
-//! budget to the next.
+//! The map in which one selection keeps what it computes once per brick
+//! with points (its best next step; bricks without points keep theirs in
+//! the dense `forms` table), which a [`Selector`](super::Selector) keeps
+//! from one budget to the next.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -38,5 +38,5 @@ impl Hasher for WordHasher {
     }
 }
 
-/// A map keyed by node and level(s), hashed by [`WordHasher`].
+/// A map keyed by node, level and points, hashed by [`WordHasher`].
 pub(super) type NodeMap<K, V> = RefCell<HashMap<K, V, BuildHasherDefault<WordHasher>>>;

@@ -44,6 +44,7 @@
 mod brick;
 mod cache;
 mod estimate;
+mod forms;
 mod mass;
 mod refine;
 mod screen;

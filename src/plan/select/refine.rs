@@ -4,14 +4,15 @@
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
 use super::cache::NodeMap;
 use super::estimate::estimated_error;
-use super::mass::{cheapest, children_forms, error_mass, gain, Form, Memo};
+use super::forms::{Forms, NONE, NO_STEP};
+use super::mass::{error_mass, gain};
 use super::steps::{Log, Step};
 use super::view::ViewImportance;
 use crate::base::error::{Error, Result};
 use crate::octree::{NodeId, NodeRef, VolumeOctree};
 use crate::points::PointMass;
-use std::sync::Arc;
 
+mod cheapest;
 mod greedy;
 
 /// Selects a cut and levels for `octree` (see the module documentation).
@@ -45,8 +46,9 @@ pub fn select_with_points(
     select_impl(octree, options, &visible, Some(points), None, &Caches::default())
 }
 
-/// What a selection computes once and reuses: the [`cheapest`] forms by
-/// (node, p) and the best next step of a brick by (node, p, points taken).
+/// What a selection computes once and reuses: the cheapest forms
+/// ([`Refiner::cheapest`]) and splits by (node, p) and the best next step
+/// of a brick by (node, p, points taken), in [`Forms`].
 /// The forms are pure functions of the octree, the visibility test, the
 /// options other than the budget, the tolerance and the region of
 /// interest, and of the levels where the view stops refinement
@@ -56,19 +58,18 @@ pub fn select_with_points(
 /// one's inputs leave valid.
 #[derive(Default)]
 pub(super) struct Caches {
-    memo: Memo,
+    /// The forms, the splits and the steps of bricks without points.
+    forms: std::cell::RefCell<Forms>,
     /// Counts the importance functions the forms' weighted masses were
-    /// kept for ([`Form::weighted_mass`]).
+    /// kept for ([`Refiner::form_mass`]).
     epoch: u64,
-    /// By (node, p, points): the brick's next step in `entries`, none
-    /// when it has none.
+    /// By (node, p, points) of a brick with points: its next step in
+    /// `entries`, none when it has none.
     steps: NodeMap<(NodeId, usize, usize), Option<usize>>,
     entries: std::cell::RefCell<Vec<StepEntry>>,
     /// The record of each start's last run (none: the root at `p = 0`;
     /// the level of the root's form otherwise), made with these steps.
     logs: std::cell::RefCell<Vec<(Option<usize>, Log)>>,
-    /// What a brick can become, by (node, p): kept with the forms.
-    shapes: NodeMap<(NodeId, usize), Arc<Shape>>,
     /// Per node id: its importance `Imp(n)`, NaN until computed; empty
     /// until the first is.
     imp: std::cell::RefCell<Vec<f64>>,
@@ -83,6 +84,7 @@ impl Caches {
     /// with them, keeps the forms.
     pub(super) fn forget_steps(&mut self) {
         self.steps.get_mut().clear();
+        self.forms.get_mut().forget_steps();
         self.entries.get_mut().clear();
         self.logs.get_mut().clear();
     }
@@ -143,6 +145,7 @@ pub(super) fn select_impl(
         points,
         view: view.filter(|v| !v.is_empty()),
         root_log2: octree.layout().root_log2 as usize,
+        slots: octree.layout().node_slots(),
         caches,
     };
     let coarsest = refiner.brick_of(root.id, 0);
@@ -219,43 +222,26 @@ struct StepEntry {
 /// transparent nodes they leave out.
 type Candidate = (f64, Replacement, usize);
 
-/// The bricks of a step: the brick taking its points, or the shared
-/// [`cheapest`] forms they come from (a raise's one form, a split's
-/// children), read only when the step is taken.
-#[derive(Clone)]
+/// The bricks of a step: the brick taking its points, or the kept forms
+/// they come from (a raise's one form, a split's children), read only when
+/// the step is taken.
+#[derive(Clone, Copy)]
 enum Replacement {
     /// The brick with its points: their count and bytes.
     Points(usize, usize),
-    Raise(Arc<Form>),
-    Split(Arc<Shape>),
+    /// A form's index in [`Forms::forms`], and its bytes.
+    Raise(u32, usize),
+    /// A split's index in [`Forms::splits`], and its bytes.
+    Split(u32, usize),
 }
 
 impl Replacement {
     /// Bytes the bricks hold (textures and points).
     fn cost(&self) -> usize {
-        match self {
-            Replacement::Points(_, bytes) => *bytes,
-            Replacement::Raise(_) | Replacement::Split(_) => self.forms().iter().map(|f| f.bytes).sum(),
+        match *self {
+            Replacement::Points(_, bytes) | Replacement::Raise(_, bytes) | Replacement::Split(_, bytes) => bytes,
         }
     }
-
-    /// The forms the bricks come from (none for [`Replacement::Points`]).
-    fn forms(&self) -> &[Arc<Form>] {
-        match self {
-            Replacement::Points(..) => &[],
-            Replacement::Raise(form) => std::slice::from_ref(form),
-            Replacement::Split(shape) => shape.split.as_ref().map_or(&[], |s| &s.0),
-        }
-    }
-}
-
-/// What a brick of node `n` at level `p` can become, whatever the
-/// importance (kept with the forms): the node's [`cheapest`] forms at each
-/// level `q` in `(p, max_p(n)]`, and its children's at `p - 1` (with the
-/// transparent nodes they leave out and their bytes) when it can split.
-struct Shape {
-    ups: Vec<Arc<Form>>,
-    split: Option<(Vec<Arc<Form>>, usize, usize)>,
 }
 
 /// One selection: its inputs and the [`Caches`] every step shares.
@@ -270,6 +256,8 @@ struct Refiner<'a> {
     view: Option<&'a ViewImportance>,
     /// `L`: the root's level count, `log2` of the root's size.
     root_log2: usize,
+    /// The octree's node count ([`crate::octree::Layout::node_slots`]).
+    slots: usize,
     caches: &'a Caches,
 }
 
@@ -300,35 +288,6 @@ impl Refiner<'_> {
     /// Brick `b` (of a [`Form`], importance 1) with its node's importance.
     fn weigh(&self, b: &Brick) -> Brick {
         Brick { importance: self.importance_of(b.node), ..*b }
-    }
-
-    /// The weighted error mass of a [`Form`] under this selection's importance.
-    fn form_mass(&self, form: &Form) -> f64 {
-        form.weighted_mass(self.caches.epoch, &|id| self.importance_of(id))
-    }
-
-    /// The [`Shape`] of node `n` at level `p`, made once per (node, p).
-    fn shape(&self, n: &NodeRef<'_>, p: usize) -> Arc<Shape> {
-        if let Some(known) = self.caches.shapes.borrow().get(&(n.id, p)) {
-            return Arc::clone(known);
-        }
-        let ups = (p + 1..=self.max_p(n)).map(|q| self.cheapest(n, q)).collect();
-        let split = (!n.is_terminal() && p > 0).then(|| {
-            children_forms(
-                self.octree,
-                n,
-                p,
-                usize::MAX,
-                &|id, p| self.form_brick(id, p),
-                &|n| self.max_p(n),
-                self.shows,
-                &self.caches.memo,
-                self.pooled(),
-            )
-        });
-        let shape = Arc::new(Shape { ups, split });
-        self.caches.shapes.borrow_mut().insert((n.id, p), Arc::clone(&shape));
-        shape
     }
 
     /// `(Imp_view(n), coarsest levels)` of node `n`, computed once per node
@@ -396,20 +355,6 @@ impl Refiner<'_> {
         b.bytes + b.point_bytes
     }
 
-    /// [`cheapest`] form of node `n` at level `p` in this selection.
-    fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> Arc<Form> {
-        cheapest(
-            self.octree,
-            n,
-            p,
-            &|id, p| self.form_brick(id, p),
-            &|n| self.max_p(n),
-            self.shows,
-            &self.caches.memo,
-            self.pooled(),
-        )
-    }
-
     /// The best next step of a brick in the cut, if it still violates the
     /// tolerance: the best of [`Refiner::raise`], [`Refiner::split`] and
     /// [`Refiner::take_points`], if it removes any error.
@@ -421,6 +366,12 @@ impl Refiner<'_> {
     /// [`Form`] (importance 1) or, with `weighted`, a brick with its importance.
     fn step_index(&self, b: &Brick, weighted: bool) -> Option<usize> {
         let key = (b.node, b.p, b.point_count);
+        if b.point_count == 0 {
+            if let Some(e) = self.caches.forms.borrow().get(b.node, b.p).filter(|e| e.step != NONE) {
+                return (e.step != NO_STEP).then_some(e.step as usize);
+            }
+        }
+        // Bricks with points, and steps past what an entry can name.
         if let Some(&known) = self.caches.steps.borrow().get(&key) {
             return known;
         }
@@ -429,7 +380,19 @@ impl Refiner<'_> {
             entries.push(entry);
             entries.len() - 1
         });
-        self.caches.steps.borrow_mut().insert(key, index);
+        let named = match index {
+            None => Some(NO_STEP),
+            Some(i) => u32::try_from(i).ok().filter(|&i| i < NO_STEP),
+        };
+        match named {
+            Some(step) if b.point_count == 0 => {
+                let width = self.root_log2 - b.level + 1;
+                self.caches.forms.borrow_mut().entry(b.node, b.p, width, self.slots).step = step;
+            }
+            _ => {
+                self.caches.steps.borrow_mut().insert(key, index);
+            }
+        }
         index
     }
 
@@ -438,9 +401,9 @@ impl Refiner<'_> {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
-        let shape = self.shape(&self.octree.node(b.node), b.p);
-        let raise = self.raise(b, &shape);
-        let split = self.split(b, &shape);
+        let n = self.octree.node(b.node);
+        let raise = self.raise(b, &n);
+        let split = self.split(b, &n);
         let take_points = self.take_points(b);
         let better = |x: Option<Candidate>, y: Option<Candidate>| match (x, y) {
             (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
@@ -460,19 +423,21 @@ impl Refiner<'_> {
     /// mass per byte: the same box, `2^(q-p)` times the texels per axis.
     /// (Looking past `p + 1` matters: across a sharp edge `e_p` stays near its
     /// maximum until full resolution, so one level alone may buy nothing.)
-    fn raise(&self, b: &Brick, shape: &Shape) -> Option<Candidate> {
+    fn raise(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
         let mass = self.mass(b);
-        shape
-            .ups
-            .iter()
-            .map(|up| (gain(mass - self.form_mass(up), up.bytes as f64 - Self::cost(b) as f64), up))
+        (b.p + 1..=self.max_p(n))
+            .map(|q| {
+                let up = self.cheapest(n, q);
+                let (bytes, hidden) = self.form_size(up);
+                (gain(mass - self.form_mass(up), bytes as f64 - Self::cost(b) as f64), up, bytes, hidden)
+            })
             .max_by(|x, y| x.0.total_cmp(&y.0))
-            .map(|(gain, up)| (gain, Replacement::Raise(Arc::clone(up)), up.hidden))
+            .map(|(gain, up, bytes, hidden)| (gain, Replacement::Raise(up, bytes), hidden))
     }
 
     /// Split: the children at the same stride (`p - 1`), each in its
-    /// [`cheapest`] form, which pays a little border and lets each child
-    /// refine on its own.
+    /// cheapest form ([`Refiner::cheapest`]), which pays a little border
+    /// and lets each child refine on its own.
     ///
     /// A split at the same stride removes no error by itself unless parts
     /// of the node drop out; it pays off through the raises of single
@@ -480,36 +445,46 @@ impl Refiner<'_> {
     /// is ranked by the better of its own gain and its best one-step
     /// lookahead: the split followed by the best raise of one child,
     /// `(removed by both) / (bytes of both)`.
-    fn split(&self, b: &Brick, shape: &Arc<Shape>) -> Option<Candidate> {
-        shape.split.as_ref().map(|(children, hidden, added)| {
-            let (hidden, added) = (*hidden, *added);
-            let split_bytes = added as f64 - Self::cost(b) as f64;
-            let mass = self.mass(b);
-            let mut after = 0.0;
-            for form in children {
-                after += self.form_mass(form);
+    fn split(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+        if n.is_terminal() || b.p == 0 {
+            return None;
+        }
+        let split = self.split_of(n, b.p);
+        let (children, hidden, added) = {
+            let store = self.caches.forms.borrow();
+            let s = &store.splits[split as usize];
+            (store.kids_of(s.kids).to_vec(), s.hidden, s.bytes)
+        };
+        let split_bytes = added as f64 - Self::cost(b) as f64;
+        let mass = self.mass(b);
+        let mut after = 0.0;
+        for &form in &children {
+            after += self.form_mass(form);
+        }
+        let direct = gain(mass - after, split_bytes);
+        let mut ahead: f64 = 0.0;
+        let mut owns = Vec::new();
+        for &form in &children {
+            self.caches
+                .forms
+                .borrow()
+                .each_own(form, &mut |node, q, own_mass, bytes| owns.push((node, q, own_mass, bytes)));
+        }
+        for (node, q, own_mass, bytes) in owns {
+            let cn = self.octree.node(node);
+            // The own brick's weighted mass, `Imp(c) mass(c, p_c)` (no points), and its bytes.
+            let mass_c = self.importance_of(node) * own_mass;
+            let cost_c = bytes as f64;
+            for up in q + 1..=self.max_p(&cn) {
+                let up = self.cheapest(&cn, up);
+                let (up_mass, up_bytes) = (self.form_mass(up), self.form_size(up).0 as f64 - cost_c);
+                let removed = mass - after + mass_c - up_mass;
+                if removed > 0.0 {
+                    ahead = ahead.max(removed / (split_bytes + up_bytes).max(1.0));
+                }
             }
-            let direct = gain(mass - after, split_bytes);
-            let mut ahead: f64 = 0.0;
-            for form in children {
-                form.each_own(&mut |own, c| {
-                    let raises = own.raises.get_or_init(|| {
-                        let cn = self.octree.node(c.node);
-                        (c.p + 1..=self.max_p(&cn)).map(|q| self.cheapest(&cn, q)).collect()
-                    });
-                    // The own brick's weighted mass, `Imp(c) mass(c, p_c)` (no points).
-                    let mass_c = self.importance_of(c.node) * own.own_mass;
-                    for up in raises {
-                        let (up_mass, up_bytes) = (self.form_mass(up), up.bytes as f64 - Self::cost(c) as f64);
-                        let removed = mass - after + mass_c - up_mass;
-                        if removed > 0.0 {
-                            ahead = ahead.max(removed / (split_bytes + up_bytes).max(1.0));
-                        }
-                    }
-                });
-            }
-            (direct.max(ahead), Replacement::Split(Arc::clone(shape)), hidden)
-        })
+        }
+        Some((direct.max(ahead), Replacement::Split(split, added), hidden))
     }
 
     /// Take the brick's points (a brick at the points' stride that has none
@@ -545,12 +520,19 @@ impl Refiner<'_> {
     /// (by node id) and its transparent nodes.
     fn best_cut(&self, root: &NodeRef<'_>, coarsest: Brick) -> (Vec<Brick>, usize) {
         let from_root = self.grow(None, || (vec![coarsest], 0));
-        let fine = || (1..=self.max_p(root)).rev().find(|&p| self.cheapest(root, p).bytes <= self.options.budget_bytes);
+        let fine = || {
+            (1..=self.max_p(root))
+                .rev()
+                .find(|&p| self.form_size(self.cheapest(root, p)).0 <= self.options.budget_bytes)
+        };
         let form_bricks = |p: usize| {
             let form = self.cheapest(root, p);
             let mut bricks = Vec::new();
-            form.each(&mut |b| bricks.push(self.weigh(b)));
-            (bricks, form.hidden)
+            self.form_bricks(form, &mut bricks);
+            for b in &mut bricks {
+                *b = self.weigh(b);
+            }
+            (bricks, self.form_size(form).1)
         };
         let total_mass = |cut: &[Brick]| cut.iter().map(|b| self.mass(b)).sum::<f64>();
         let meets = from_root.0.iter().all(|b| Self::weighted(b) <= self.options.tolerance);
@@ -752,21 +734,33 @@ mod tests {
     fn cheapest_form_loses_nothing() {
         let o = octree(65);
         let l = o.layout().root_log2 as usize;
-        let max_p = |n: &NodeRef<'_>| l - n.level;
+        let options = SelectOptions::new(1 << 30, 0.0);
         let brick_of = |id: NodeId, p: usize| make_brick(&o, &o.node(id), p, 1.0, 4, false);
         let root = o.node(o.root());
         for p in 1..=l {
             let own = brick_of(root.id, p);
             for shows in [&(|_: &NodeRef<'_>| true) as &dyn Fn(&NodeRef<'_>) -> bool, &|n| n.max > 0.5] {
-                let form = cheapest(&o, &root, p, &brick_of, &max_p, shows, &Memo::default(), None);
+                let caches = Caches::default();
+                let refiner = Refiner {
+                    octree: &o,
+                    options: &options,
+                    visible: &|_, _| true,
+                    shows,
+                    points: None,
+                    view: None,
+                    root_log2: l,
+                    slots: o.layout().node_slots(),
+                    caches: &caches,
+                };
+                let form = refiner.cheapest(&root, p);
                 let mut bricks = Vec::new();
-                form.each(&mut |b| bricks.push(*b));
-                let mass_of_form = form.weighted_mass(0, &|_| 1.0);
+                refiner.form_bricks(form, &mut bricks);
+                let mass_of_form = refiner.form_mass(form);
                 let bytes: usize = bricks.iter().map(|b| b.bytes).sum();
                 let mass: f64 = bricks.iter().map(|b| o.node(b.node).squared_error(b.p) as f64).sum();
                 // The form's own sums are its bricks'.
                 let masses: f64 = bricks.iter().map(|b| error_mass(&o.node(b.node), b.p, 0.0, None)).sum();
-                assert_eq!(form.bytes, bytes);
+                assert_eq!(refiner.form_size(form).0, bytes);
                 assert!((mass_of_form - masses).abs() <= 1e-9 * masses.max(1e-30), "p {p}: {mass_of_form} vs {masses}");
                 assert!(bytes <= own.bytes, "p {p}: {bytes} > {}", own.bytes);
                 assert!(mass <= root.squared_error(p) as f64 * (1.0 + 1e-5) + 1e-9, "p {p}");

@@ -91,6 +91,24 @@ impl Run {
 }
 
 impl Refiner<'_> {
+    /// The bricks of a raise or a split (none for points), appended to
+    /// `out` in order: a raise's form, a split's children in octree order.
+    fn replacement_bricks(&self, replacement: &Replacement, out: &mut Vec<Brick>) {
+        match *replacement {
+            Replacement::Points(..) => {}
+            Replacement::Raise(form, _) => self.form_bricks(form, out),
+            Replacement::Split(split, _) => {
+                let kids = {
+                    let store = self.caches.forms.borrow();
+                    store.kids_of(store.splits[split as usize].kids).to_vec()
+                };
+                for form in kids {
+                    self.form_bricks(form, out);
+                }
+            }
+        }
+    }
+
     /// Greedy refinement from `start` (the start's level `p` of the root's
     /// form; none: the root at `p = 0`), whose bricks and transparent
     /// nodes `bricks` makes, until nothing fits: the cut (by node id), its
@@ -120,6 +138,7 @@ impl Refiner<'_> {
                 run
             }
         };
+        let mut bricks = Vec::new();
         while let Some(Queued { step, index, push }) = run.queue.pop() {
             let t = run.log.pops.len();
             run.log.pushes[push].popped = t;
@@ -128,7 +147,7 @@ impl Refiner<'_> {
                 let (cost, added, hidden, replacement) = {
                     let entries = self.caches.entries.borrow();
                     let e = &entries[index];
-                    (e.cost, e.added, e.hidden, e.replacement.clone())
+                    (e.cost, e.added, e.hidden, e.replacement)
                 };
                 pop.need = run.bytes - cost + added;
                 // Does not fit: cheaper steps of other nodes may.
@@ -144,11 +163,11 @@ impl Refiner<'_> {
                         run.put(b.node, b.p, b.point_count);
                         run.push(self, self.step_index(&b, true));
                     }
-                    for form in replacement.forms() {
-                        form.each(&mut |b| {
-                            run.put(b.node, b.p, 0);
-                            run.push(self, self.step_index(b, false));
-                        });
+                    bricks.clear();
+                    self.replacement_bricks(&replacement, &mut bricks);
+                    for b in &bricks {
+                        run.put(b.node, b.p, 0);
+                        run.push(self, self.step_index(b, false));
                     }
                     continue;
                 }
