@@ -96,6 +96,9 @@ struct RenderReport {
     /// range; 0 when they all draw the full-resolution field. The volume
     /// mapper's `GetLastEstimatedError()` is the same number.
     estimated_error: f64,
+    /// The selection's estimated root-mean-square error of the visible
+    /// samples (`select::estimated_rms_error`), a fraction of the data range.
+    estimated_rms_error: f64,
     passes: Vec<String>,
     /// What each volume sample does besides its classification, then what
     /// removes samples (the plan's effects: `transfer-2d`, `gradient-opacity` or
@@ -349,6 +352,7 @@ fn report(
         texel: scene.texel,
         bricks: selection.bricks.len(),
         estimated_error: selection.estimated_error,
+        estimated_rms_error: selection.estimated_rms_error,
         passes: f.list.plan.passes.clone(),
         effects: f.list.plan.effects.clone(),
         region: f.list.region,
@@ -375,12 +379,13 @@ fn print_text(r: &RenderReport) {
         println!("volume effects:  {}", r.effects.join(", "));
     }
     println!(
-        "bricks:          {} using {:.2} MB of {} texels of a {:.2} MB budget, estimated error {:.4}",
+        "bricks:          {} using {:.2} MB of {} texels of a {:.2} MB budget, estimated error {:.4} (RMS {:.5})",
         r.bricks,
         r.texture_bytes as f64 / 1e6,
         r.texel.format.name(),
         r.budget_bytes as f64 / 1e6,
-        r.estimated_error
+        r.estimated_error,
+        r.estimated_rms_error
     );
     println!("view selection:  {}", r.view_selection.name());
     if let (Some(target), Some(predicted)) = (r.target_ms, r.predicted_ms) {

@@ -1,6 +1,10 @@
 //! The time-budgeted selection: the texture budget (and, when bytes alone
 //! cannot, the slice spacing) of the least estimated error whose frame the
-//! calibrated model predicts within a target.
+//! calibrated model predicts within a target. The error compared is the
+//! selection's estimated root-mean-square error
+//! ([`crate::plan::select::estimated_rms_error`]): it falls with every
+//! visible brick refined, where the largest error ties over wide ranges of
+//! budgets on data with detail everywhere.
 //!
 //! [`select_for_time`] runs [`super::search`] over a kept [`Selector`]:
 //! each candidate budget re-selects through it, which replays its recorded
@@ -76,7 +80,7 @@ pub fn select_for_time(
         let upload = if frame.uploads { selection.texture_bytes } else { 0 };
         let terms = CostTerms::of(&list, frame.width, frame.height, upload);
         let predicted = calibration.predict(&terms);
-        let error = selection.estimated_error;
+        let error = selection.estimated_rms_error;
         Ok((TimedFrame { selection, list, terms }, predicted, error))
     })
 }

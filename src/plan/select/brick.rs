@@ -135,6 +135,11 @@ pub struct Selection {
     /// all draw the full-resolution field. What the CLI, the bridge and the
     /// volume mapper report.
     pub estimated_error: f64,
+    /// The estimated root-mean-square error of the picture's visible samples
+    /// ([`super::estimated_rms_error`]): falls with every visible brick
+    /// refined, where [`Selection::estimated_error`] falls only with the
+    /// worst one; what the time-budgeted selection minimises.
+    pub estimated_rms_error: f64,
     /// Nodes left out as fully transparent, or removed by the kept region
     /// ([`SelectOptions::region`]).
     pub skipped: usize,

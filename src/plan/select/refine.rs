@@ -3,7 +3,7 @@
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
 use super::cache::NodeMap;
-use super::estimate::estimated_error;
+use super::estimate::{estimated_error, estimated_rms_error};
 use super::forms::{Forms, NONE, NO_STEP};
 use super::mass::{error_mass, gain};
 use super::steps::{Log, Step};
@@ -133,6 +133,7 @@ pub(super) fn select_impl(
             budget_bytes: options.budget_bytes,
             max_error: 0.0,
             estimated_error: 0.0,
+            estimated_rms_error: 0.0,
             skipped: 1,
             warning: None,
         });
@@ -559,6 +560,7 @@ impl Refiner<'_> {
         let texture_bytes = bricks.iter().map(|b| b.bytes).sum();
         let point_bytes = bricks.iter().map(|b| b.point_bytes).sum();
         let estimated_error = estimated_error(self.octree, &bricks, self.visible);
+        let estimated_rms_error = estimated_rms_error(self.octree, &bricks, self.visible);
         Selection {
             bricks,
             texture_bytes,
@@ -566,6 +568,7 @@ impl Refiner<'_> {
             budget_bytes: self.options.budget_bytes,
             max_error,
             estimated_error,
+            estimated_rms_error,
             skipped,
             warning,
         }

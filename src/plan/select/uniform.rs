@@ -1,7 +1,7 @@
 //! The uniform selection: the whole grid at one stride.
 
 use super::brick::{make_brick, Selection};
-use super::estimate::estimated_error;
+use super::estimate::{estimated_error, estimated_rms_error};
 use crate::base::error::{Error, Result};
 use crate::octree::VolumeOctree;
 
@@ -37,6 +37,7 @@ pub fn uniform(octree: &VolumeOctree, stride: usize, bytes_per_texel: usize) -> 
         budget_bytes: brick.bytes,
         max_error,
         estimated_error: estimated_error(octree, &[brick], |_, _| true),
+        estimated_rms_error: estimated_rms_error(octree, &[brick], |_, _| true),
         skipped: 0,
         warning: None,
     })

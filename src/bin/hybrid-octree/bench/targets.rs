@@ -55,8 +55,10 @@ pub struct TargetRow {
     pub psnr: f64,
     /// Its SSIM.
     pub ssim: f64,
-    /// Its estimated error (`select::estimated_error`).
+    /// Its estimated error (`select::estimated_error`: the largest of a visible brick).
     pub estimated_error: f64,
+    /// Its estimated root-mean-square error (`select::estimated_rms_error`: what the search minimises).
+    pub estimated_rms_error: f64,
 }
 
 /// The report: the rows and what they say together.
@@ -72,6 +74,10 @@ pub struct TargetReport {
     pub rank_correlation: Option<f64>,
     /// The same over every frame.
     pub rank_correlation_frames: Option<f64>,
+    /// Spearman's rank correlation of the estimated RMS error and RMSE over the rows.
+    pub rank_correlation_rms: Option<f64>,
+    /// The same over every frame.
+    pub rank_correlation_rms_frames: Option<f64>,
     /// One row per target.
     pub rows: Vec<TargetRow>,
 }
@@ -110,6 +116,7 @@ pub fn measure(
     timer.calibrate(warmup)?;
     let mut rows = Vec::new();
     let mut pairs = Vec::new();
+    let mut rms_pairs = Vec::new();
     for &target in targets {
         let (mut ms, mut predicted, mut search) = (Vec::new(), Vec::new(), Vec::new());
         let mut last = None;
@@ -117,6 +124,7 @@ pub fn measure(
             let t = timer.frame(target)?;
             let m = compare(&t.frame.image, b.truth)?;
             pairs.push((t.selection.estimated_error, m.rmse));
+            rms_pairs.push((t.selection.estimated_rms_error, m.rmse));
             ms.push(t.ms);
             predicted.push(t.predicted_ms);
             search.push(t.search_ms);
@@ -141,9 +149,11 @@ pub fn measure(
             psnr: m.psnr,
             ssim: m.ssim,
             estimated_error: t.selection.estimated_error,
+            estimated_rms_error: t.selection.estimated_rms_error,
         });
     }
     let row_pairs: Vec<(f64, f64)> = rows.iter().map(|r| (r.estimated_error, r.rmse)).collect();
+    let row_rms_pairs: Vec<(f64, f64)> = rows.iter().map(|r| (r.estimated_rms_error, r.rmse)).collect();
     let c = timer.calibration.model().coefficients();
     Ok(TargetReport {
         fastest_ms: timer.fastest_ms,
@@ -151,6 +161,8 @@ pub fn measure(
         correction: timer.calibration.ratio(),
         rank_correlation: rank_correlation(&row_pairs),
         rank_correlation_frames: rank_correlation(&pairs),
+        rank_correlation_rms: rank_correlation(&row_rms_pairs),
+        rank_correlation_rms_frames: rank_correlation(&rms_pairs),
         rows,
     })
 }
@@ -182,7 +194,7 @@ pub fn plot(path: &Path, title: &str, report: &TargetReport) -> Result<()> {
 /// Prints the rows and the summary.
 pub fn print_table(r: &TargetReport) {
     println!(
-        "{:>9} {:>6} {:>9} {:>9} {:>9} {:>7} {:>13} {:>11} {:>11} {:>7} {:>5} {:>9} {:>8} {:>7} {:>8}",
+        "{:>9} {:>6} {:>9} {:>9} {:>9} {:>7} {:>13} {:>11} {:>11} {:>7} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8}",
         "target",
         "frames",
         "ms",
@@ -197,11 +209,12 @@ pub fn print_table(r: &TargetReport) {
         "select",
         "RMSE",
         "SSIM",
-        "est err"
+        "est err",
+        "est rms"
     );
     for row in &r.rows {
         println!(
-            "{:>9.1} {:>6} {:>9.1} {:>9.1} {:>9.1} {:>7.2} {:>13} {:>11} {:>11} {:>7} {:>5} {:>9.1} {:>8.5} {:>7.4} {:>8.4}",
+            "{:>9.1} {:>6} {:>9.1} {:>9.1} {:>9.1} {:>7.2} {:>13} {:>11} {:>11} {:>7} {:>5} {:>9.1} {:>8.5} {:>7.4} {:>8.4} {:>8.5}",
             row.target_ms,
             row.frames,
             row.ms,
@@ -216,7 +229,8 @@ pub fn print_table(r: &TargetReport) {
             row.select_ms,
             row.rmse,
             row.ssim,
-            row.estimated_error
+            row.estimated_error,
+            row.estimated_rms_error
         );
     }
     if let Some(f) = r.fastest_ms {
@@ -227,6 +241,11 @@ pub fn print_table(r: &TargetReport) {
         "rank correlation of estimated error and RMSE: {} over the rows, {} over every frame",
         rho(r.rank_correlation),
         rho(r.rank_correlation_frames)
+    );
+    println!(
+        "rank correlation of estimated RMS error and RMSE: {} over the rows, {} over every frame",
+        rho(r.rank_correlation_rms),
+        rho(r.rank_correlation_rms_frames)
     );
     let c: Vec<String> = r.coefficients.iter().map(|(n, c)| format!("{n} {c:.3e}")).collect();
     println!("cost model (ms per unit): {}; online correction {:.3}", c.join(", "), r.correction);
