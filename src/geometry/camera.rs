@@ -149,6 +149,37 @@ impl Camera {
             }
         }
     }
+
+    /// Where the box `[lo, hi]` falls on a `width x height` image: the
+    /// smallest and largest `x` and `y` of its eight corners, `[x0, x1, y0,
+    /// y1]`, in pixel units with pixel `(i, j)` centred at `(i + 1/2, j +
+    /// 1/2)` (the inverse of [`Camera::ray`]'s `u = (2x - width) / height`,
+    /// `v = (height - 2y) / height`, at the corner's depth for a perspective
+    /// camera); `None` when a corner lies at or behind a perspective eye (or
+    /// its depth is not a number), where the box can cover the whole image.
+    pub fn box_on_screen(&self, width: usize, height: usize, lo: [f64; 3], hi: [f64; 3]) -> Option<[f64; 4]> {
+        let (right, up, forward) = self.basis();
+        let (w, h) = (width as f64, height as f64);
+        let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+        for corner in 0..8 {
+            let p = [0, 1, 2].map(|a| if corner >> a & 1 == 0 { lo[a] } else { hi[a] });
+            let r = sub(p, self.position);
+            let scale = match self.projection {
+                Projection::Parallel { scale } => scale,
+                Projection::Perspective { view_angle_deg } => {
+                    let depth = dot(r, forward);
+                    if depth.is_nan() || depth <= 1e-9 * dot(r, r).sqrt() {
+                        return None;
+                    }
+                    depth * (view_angle_deg.to_radians() / 2.0).tan()
+                }
+            };
+            let (u, v) = (dot(r, right) / scale, dot(r, up) / scale);
+            let (px, py) = ((u * h + w) / 2.0, (h - v * h) / 2.0);
+            b = [b[0].min(px), b[1].max(px), b[2].min(py), b[3].max(py)];
+        }
+        Some(b)
+    }
 }
 
 /// A camera from `position` to `focal` with any up vector across the view
@@ -196,5 +227,24 @@ mod tests {
         assert!(Camera::new([0.0; 3], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0], p).is_err());
         assert!(Camera::new([0.0; 3], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], Projection::Parallel { scale: 0.0 }).is_err());
         assert!(Camera::new([f64::NAN, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], p).is_err());
+    }
+
+    #[test]
+    fn boxes_fall_where_the_pixels_rays_meet_them() {
+        for parallel in [Some(4.0), None] {
+            let c = test_camera([0.0, -10.0, 0.0], [0.0; 3], parallel);
+            // A point at the focal point: the image centre.
+            let b = c.box_on_screen(200, 100, [0.0; 3], [0.0; 3]).unwrap();
+            assert!(b.iter().zip([100.0, 100.0, 50.0, 50.0]).all(|(v, e)| (v - e).abs() < 1e-9), "{b:?}");
+            // The ray through pixel (i, j) meets a point at (i + 1/2, j + 1/2).
+            let ray = c.ray(30, 70, 200, 100);
+            let t = 10.0 / ray.direction[1];
+            let p = [0, 1, 2].map(|a| ray.origin[a] + t * ray.direction[a]);
+            let b = c.box_on_screen(200, 100, p, p).unwrap();
+            assert!((b[0] - 30.5).abs() < 1e-9 && (b[2] - 70.5).abs() < 1e-9, "{b:?}");
+        }
+        // A corner at or behind a perspective eye: anywhere on the image.
+        let c = test_camera([0.0, -10.0, 0.0], [0.0; 3], None);
+        assert_eq!(c.box_on_screen(200, 100, [-1.0, -12.0, -1.0], [1.0, 1.0, 1.0]), None);
     }
 }

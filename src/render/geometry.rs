@@ -10,8 +10,7 @@
 //!
 //! (the inverse of [`Camera::ray`]; `s` the parallel scale, `t = tan(angle / 2)`).
 
-use crate::geometry::camera::{Camera, Projection, Ray};
-use crate::geometry::vec3::{dot, sub};
+use crate::geometry::camera::{Camera, Ray};
 
 /// The parameter interval `[t0, t1]`, `t0 >= 0`, of `ray` inside the closed
 /// box `[lo, hi]`, or `None`.
@@ -50,28 +49,11 @@ pub(crate) fn screen_rect(
     lo: [f64; 3],
     hi: [f64; 3],
 ) -> Option<[usize; 4]> {
-    let (right, up, forward) = camera.basis();
-    let (w, h) = (width as f64, height as f64);
-    let mut x = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut y = (f64::INFINITY, f64::NEG_INFINITY);
-    for corner in 0..8 {
-        let p = [0, 1, 2].map(|a| if corner >> a & 1 == 0 { lo[a] } else { hi[a] });
-        let r = sub(p, camera.position);
-        let scale = match camera.projection {
-            Projection::Parallel { scale } => scale,
-            Projection::Perspective { view_angle_deg } => {
-                let depth = dot(r, forward);
-                if depth <= 1e-9 * dot(r, r).sqrt() {
-                    return Some([0, width, 0, height]);
-                }
-                depth * (view_angle_deg.to_radians() / 2.0).tan()
-            }
-        };
-        let (u, v) = (dot(r, right) / scale, dot(r, up) / scale);
-        let (px, py) = ((u * h + w) / 2.0 - 0.5, (h - v * h) / 2.0 - 0.5);
-        x = (x.0.min(px), x.1.max(px));
-        y = (y.0.min(py), y.1.max(py));
-    }
+    let Some([x0, x1, y0, y1]) = camera.box_on_screen(width, height, lo, hi) else {
+        return Some([0, width, 0, height]);
+    };
+    // The corners' pixels (centres at whole numbers), one pixel of margin.
+    let (x, y) = ((x0 - 0.5, x1 - 0.5), (y0 - 0.5, y1 - 0.5));
     let clamp = |v: f64, n: usize| v.clamp(0.0, n as f64) as usize;
     let rect = [clamp(x.0.floor() - 1.0, width), clamp(x.1.ceil() + 2.0, width)];
     let rect = [rect[0], rect[1], clamp(y.0.floor() - 1.0, height), clamp(y.1.ceil() + 2.0, height)];
@@ -81,6 +63,7 @@ pub(crate) fn screen_rect(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::vec3::dot;
 
     #[test]
     fn rays_clip_to_boxes() {

@@ -22,7 +22,6 @@
 //! absorbs that into the coefficients.
 
 use crate::geometry::camera::{Camera, Projection};
-use crate::geometry::vec3::{dot, sub};
 use crate::plan::{BlendMode, DrawList};
 
 /// The number of terms, the constant included.
@@ -150,30 +149,11 @@ fn density(camera: &Camera, height: usize, z: f64) -> Option<f64> {
 /// `[lo, hi]`; the whole image for both when a corner lies at or behind
 /// the eye; `None` when the rectangle misses the image.
 fn rect_areas(camera: &Camera, width: usize, height: usize, lo: [f64; 3], hi: [f64; 3]) -> Option<(f64, f64)> {
-    let (right, up, forward) = camera.basis();
     let (w, h) = (width as f64, height as f64);
     let whole = Some((w * h, w * h));
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for corner in 0..8 {
-        let p = [0, 1, 2].map(|a| if corner >> a & 1 == 0 { lo[a] } else { hi[a] });
-        let r = sub(p, camera.position);
-        let scale = match camera.projection {
-            Projection::Parallel { scale } => scale,
-            Projection::Perspective { view_angle_deg } => {
-                let depth = dot(r, forward);
-                if depth.is_nan() || depth <= 1e-9 * dot(r, r).sqrt() {
-                    return whole;
-                }
-                depth * (view_angle_deg.to_radians() / 2.0).tan()
-            }
-        };
-        let (u, v) = (dot(r, right) / scale, dot(r, up) / scale);
-        let (px, py) = ((u * h + w) / 2.0, (h - v * h) / 2.0);
-        x0 = x0.min(px);
-        x1 = x1.max(px);
-        y0 = y0.min(py);
-        y1 = y1.max(py);
-    }
+    let Some([x0, x1, y0, y1]) = camera.box_on_screen(width, height, lo, hi) else {
+        return whole;
+    };
     if !(x0.is_finite() && x1.is_finite() && y0.is_finite() && y1.is_finite()) {
         return whole;
     }
