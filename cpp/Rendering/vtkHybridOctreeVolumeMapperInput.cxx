@@ -165,12 +165,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctree(vtkImageData* image, vtkDataArray
     this->LastNaNSamples = in.NaNSamples;
     return true;
   }
-  in.Still.Selected.reset();
-  in.Moving.Selected.reset();
-  in.Reduction.Reset();
-  in.HasIso = false;
-  in.HasPoints = false;
-  in.Octree.reset();
+  in.ForgetOctree();
   std::string error;
   in.Octree = in.Dependent ? HybridOctree::BuildDependent(Bytes(scalars), ByteCount(scalars), grid,
                                static_cast<unsigned int>(this->LeafSize), error)
@@ -219,12 +214,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateOctreeFromStore(const std::string& path,
     this->LastNaNSamples = in.NaNSamples;
     return true;
   }
-  in.Still.Selected.reset();
-  in.Moving.Selected.reset();
-  in.Reduction.Reset();
-  in.HasIso = false;
-  in.HasPoints = false;
-  in.Octree.reset();
+  in.ForgetOctree();
   in.Store.reset();
   in.StorePath.clear();
   in.Array = nullptr;

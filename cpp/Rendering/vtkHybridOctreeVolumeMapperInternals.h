@@ -189,6 +189,19 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   bool PooledTextures = false;
   // Interactive frames' sampling, from the times of the frames before.
   vtkHybridOctreeInteractiveReduction Reduction;
+
+  /// Drops the octree and what was made from it (both selections, the
+  /// interactive frames' times, the isosurface and the points): a new
+  /// octree is about to be built.
+  void ForgetOctree()
+  {
+    this->Still.Selected.reset();
+    this->Moving.Selected.reset();
+    this->Reduction.Reset();
+    this->HasIso = false;
+    this->HasPoints = false;
+    this->Octree.reset();
+  }
 };
 
 #endif
