@@ -8,7 +8,7 @@ use crate::input::InputArgs;
 use crate::output::print_report;
 use crate::pool::with_threads;
 use crate::scene::{
-    dress, dress_field, frame, frame_of, load, reference_image, select_options, visible, Frame, Loaded, SceneArgs,
+    dress, dress_field, frame_of, load, reference_image, select_options, visible, Frame, Loaded, SceneArgs,
 };
 use clap::Args;
 use hybrid_octree::grid::Grid;
@@ -165,15 +165,7 @@ fn in_memory(args: &RenderArgs, budget_bytes: usize, store: Option<&Store>) -> R
         _ => None,
     };
     let view = crate::view::importance(&grid, &args.scene, &scene.camera, mode, medium.as_ref())?;
-    let (selection, f, timed, select_ms) = match args.target_ms {
-        Some(target) => timed(args, Field::Grid(&grid), &scene, options, &view, target)?,
-        None => {
-            let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
-            let select_ms = started.elapsed().as_secs_f64() * 1e3;
-            let f = frame(&grid, &scene, &selection, &args.scene, None)?;
-            (selection, f, None, select_ms)
-        }
-    };
+    let (selection, f, timed, select_ms) = select_and_draw(args, Field::Grid(&grid), &scene, options, &view, started)?;
     f.image.to_png(&args.output)?;
     let reference = match &args.reference {
         Some(path) => Some(reference(&grid, &scene, args, &f, path)?),
@@ -217,15 +209,7 @@ fn from_store(args: &RenderArgs, store: &Store, budget_bytes: usize) -> Result<R
         m => (m, None),
     };
     let view = crate::view::importance_in(&store.shape, &args.scene, &scene.camera, mode, None)?;
-    let (selection, f, timed, select_ms) = match args.target_ms {
-        Some(target) => timed(args, field, &scene, options, &view, target)?,
-        None => {
-            let selection = select_in_view(&scene.octree, &options, visible(&scene, args.scene.isovalue), None, &view)?;
-            let select_ms = started.elapsed().as_secs_f64() * 1e3;
-            let f = frame_of(field, &scene, &selection, &args.scene, None)?;
-            (selection, f, None, select_ms)
-        }
-    };
+    let (selection, f, timed, select_ms) = select_and_draw(args, field, &scene, options, &view, started)?;
     f.image.to_png(&args.output)?;
     let reference = match &args.reference {
         Some(path) => {
@@ -237,6 +221,26 @@ fn from_store(args: &RenderArgs, store: &Store, budget_bytes: usize) -> Result<R
     };
     let warning = join(timed_warning(selection.warning.clone(), timed.as_ref()), note);
     Ok(report(args, budget_bytes, &scene, &selection, &f, (select_ms, mode), reference, warning, timed.as_ref()))
+}
+
+/// The frame's selection and picture: within `--target-ms` when given
+/// ([`timed`]), else under the budget of `options`; with what the report
+/// needs of the time search, and the select time counted from `started`.
+fn select_and_draw(
+    args: &RenderArgs,
+    field: Field<'_>,
+    scene: &Loaded,
+    options: hybrid_octree::select::SelectOptions,
+    view: &hybrid_octree::select::ViewImportance,
+    started: Instant,
+) -> Result<(Selection, Frame, Option<TimedReport>, f64)> {
+    if let Some(target) = args.target_ms {
+        return timed(args, field, scene, options, view, target);
+    }
+    let selection = select_in_view(&scene.octree, &options, visible(scene, args.scene.isovalue), None, view)?;
+    let select_ms = started.elapsed().as_secs_f64() * 1e3;
+    let f = frame_of(field, scene, &selection, &args.scene, None)?;
+    Ok((selection, f, None, select_ms))
 }
 
 /// The selection's warning, or with `--target-ms` the search's note in its
