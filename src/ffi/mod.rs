@@ -45,6 +45,7 @@ mod store_tests;
 mod surface;
 #[cfg(test)]
 mod test_support;
+mod timed;
 mod transfer;
 mod transfer2d;
 #[cfg(test)]
@@ -376,6 +377,10 @@ mod bridge {
         /// error e_p of the bricks visible under the opacity points, a fraction
         /// of the data range; 0 when they all draw the full-resolution field.
         estimated_error: f64,
+        /// The estimated RMS error (`select::estimated_rms_error`): the
+        /// visible bricks' squared nodal errors over their samples, a
+        /// fraction of the data range.
+        estimated_rms_error: f64,
         /// Nodes left out as fully transparent.
         skipped: usize,
         /// "" when none (else: the budget is below the coarsest representation,
@@ -581,6 +586,57 @@ mod bridge {
         bucket_point_offsets: Vec<usize>,
         /// Point ids (into the octree's points), in grid order within a bucket.
         bucket_points: Vec<u32>,
+    }
+
+    /// A frame to draw within a time (`ffi::timed`): the target, and what
+    /// its DrawList is planned with, as the mapper plans the frame's own
+    /// (the same camera, viewport, surface opacity and effects).
+    #[derive(Debug)]
+    struct TimedFrameDesc {
+        /// The frame-time target, ms (above 0, at most ten minutes).
+        target_ms: f64,
+        /// The camera, in the octree's frame (the DrawList's).
+        camera: CameraDesc,
+        /// The viewport, pixels.
+        width: usize,
+        height: usize,
+        /// The octree's surface drawn at this opacity (0: hidden).
+        surface_opacity: f64,
+        /// The frame's shading, gradient opacity (VTK's points), jittering,
+        /// ray sample distance and scattering, as set on the selection.
+        shading: ShadingDesc,
+        gradient_opacity_points: Vec<f64>,
+        jittering: bool,
+        sample_distance: f64,
+        scattering: ScatteringDesc,
+    }
+
+    /// What a FrameTimer chose for its last frame and what that frame took.
+    #[derive(Debug)]
+    struct TimedSummary {
+        /// The target, ms.
+        target_ms: f64,
+        /// The chosen frame's predicted drawing time, ms.
+        predicted_ms: f64,
+        /// The last observed frame's drawing time, ms (0 before one).
+        measured_ms: f64,
+        /// The budget the chosen selection was made under, bytes.
+        budget_bytes: usize,
+        /// Its slices' least spacing in multiples of d0 (1: the strides').
+        slice_factor: u32,
+        /// "warm-up" (a calibration frame: budgets spread from the coarsest
+        /// to the limit), "met", "full" or "below-fastest" (`plan::cost::Outcome`).
+        outcome: String,
+        /// Candidates the search evaluated (1 for a warm-up frame).
+        evaluations: usize,
+        /// The chosen selection's estimated RMS error (fraction of the data range).
+        estimated_rms_error: f64,
+        /// Warm-up frames still to measure before the model is fitted.
+        warm_up_left: usize,
+        /// The online correction: measured over modelled time.
+        ratio: f64,
+        /// Said when the target is below the fastest frame ("" otherwise).
+        note: String,
     }
 
     /// What the OpenGL mapper's vertices of a frame are made from (see
@@ -841,6 +897,38 @@ mod bridge {
         /// A selection of the octree's nodes and texture levels, for drawing.
         type SelectionHandle;
 
+        /// The model of what a frame costs on this machine, calibrated on
+        /// warm-up frames and corrected online (`ffi::timed`), owned by the
+        /// mapper across octrees.
+        type FrameTimer;
+        /// A timer with the prior model, its warm-up to come.
+        fn new_frame_timer() -> Box<FrameTimer>;
+        /// The selection of `options` (its budget the hard memory limit)
+        /// of least estimated error whose frame is predicted within
+        /// `frame.target_ms`; during the warm-up, the next calibration
+        /// budget's. Errors: a bad target, and those of `select_bricks`.
+        fn select_for_time(
+            self: &mut FrameTimer,
+            octree: &HybridOctreeHandle,
+            options: &SelectDesc,
+            frame: &TimedFrameDesc,
+        ) -> Result<Box<SelectionHandle>>;
+        /// Feeds a frame drawn from `selection` (made by `select_for_time`,
+        /// its effects set as `frame` says) that uploaded `uploaded_bytes`
+        /// and took `ms` to draw to the model. True when the next frame
+        /// should select again: a warm-up frame, the model just fitted, or
+        /// the correction moved more than a quarter since the last search.
+        fn observe_frame(
+            self: &mut FrameTimer,
+            selection: &SelectionHandle,
+            octree: &HybridOctreeHandle,
+            frame: &TimedFrameDesc,
+            uploaded_bytes: usize,
+            ms: f64,
+        ) -> Result<bool>;
+        /// What the last `select_for_time` chose and the last frame took.
+        fn summary(self: &FrameTimer) -> TimedSummary;
+
         /// Selects bricks within the budget (errors: budget 0, a tolerance
         /// that is not a number >= 0, a bad ROI or opacity points). With
         /// points integrated, the budget goes to textures and points: a brick
@@ -1042,7 +1130,7 @@ use bridge::BuildProgress;
 pub use bridge::{
     BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
     OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, ScatteringDesc, ScatteringFrameDesc, SelectDesc,
-    SelectionSummary, ShadingDesc, StoreSummary, SurfaceMode, SurfaceSummary, ViewDesc,
+    SelectionSummary, ShadingDesc, StoreSummary, SurfaceMode, SurfaceSummary, TimedFrameDesc, TimedSummary, ViewDesc,
 };
 use dependent::build_dependent_octree;
 use ftb::ftb_display;
@@ -1054,4 +1142,6 @@ pub use points::GeneratedPoints;
 pub use render::SelectionHandle;
 pub use store::StoreHandle;
 use store::{build_octree_from_store, open_store};
+use timed::new_frame_timer;
+pub use timed::FrameTimer;
 use view::view_change_degrees;

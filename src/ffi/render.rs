@@ -84,6 +84,9 @@ pub struct SelectionHandle {
     pub(crate) scattering: Mutex<Option<crate::transfer::Scattering>>,
     /// The view importance it was weighed by (`super::view`).
     view_selection: ViewSelection,
+    /// Its slices' least spacing in multiples of `d0` (1: the strides'),
+    /// as a frame-time target chose it (`super::timed`).
+    pub(crate) slice_factor: std::sync::atomic::AtomicU32,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -240,6 +243,34 @@ pub(crate) fn select_with(
     octree: &HybridOctreeHandle,
     desc: &SelectDesc,
 ) -> Result<(Selection, Option<TransferFunction2D>, TexelEncoding, ViewSelection)> {
+    prepared_with(octree, desc, |p| {
+        let selection = p.selector.select_in_view(p.tree, p.options, p.visible, p.points, p.view)?;
+        Ok((selection, p.transfer_2d.clone(), p.texel, p.mode))
+    })
+}
+
+/// What a selection of `desc` is made from, made ready by [`prepared_with`]:
+/// the handle's kept selector, the tree, the options, the visibility test,
+/// the points' mass, the view importance, and what its handle keeps.
+pub(crate) struct Prepared<'a> {
+    pub(crate) selector: &'a mut crate::plan::select::Selector,
+    pub(crate) tree: &'a crate::octree::VolumeOctree,
+    pub(crate) options: &'a SelectOptions,
+    pub(crate) visible: &'a dyn Fn(f64, f64) -> bool,
+    pub(crate) points: Option<&'a crate::points::PointMass>,
+    pub(crate) view: Option<&'a crate::plan::select::ViewImportance>,
+    pub(crate) transfer_2d: &'a Option<TransferFunction2D>,
+    pub(crate) texel: TexelEncoding,
+    pub(crate) mode: ViewSelection,
+}
+
+/// Runs `run` on what a selection of `desc` from `octree` is made from
+/// (the options checked, the visibility test, the kept selector locked).
+pub(crate) fn prepared_with<R>(
+    octree: &HybridOctreeHandle,
+    desc: &SelectDesc,
+    run: impl FnOnce(Prepared<'_>) -> Result<R>,
+) -> Result<R> {
     let gradient_opacity =
         vtk_gradient_opacity(&desc.gradient_opacity_points, &octree.shape, octree.volume().value_range())?;
     // A 2D transfer function classifies one field: not two dependent ones (`plan::dependent`).
@@ -293,8 +324,17 @@ pub(crate) fn select_with(
     let (mode, view) = view_importance(octree, desc, &scene)?;
     let selector = kept.for_desc(desc);
     let points = octree.hybrid.points.as_ref().filter(|_| octree.dependent.is_none()).map(|p| &p.mass);
-    let selection = selector.select_in_view(tree, &options, visible, points, view.as_ref())?;
-    Ok((selection, transfer_2d, texel, mode))
+    run(Prepared {
+        selector,
+        tree,
+        options: &options,
+        visible: &visible,
+        points,
+        view: view.as_ref(),
+        transfer_2d: &transfer_2d,
+        texel,
+        mode,
+    })
 }
 
 /// The checked camera of `desc`.
@@ -440,28 +480,41 @@ impl HybridOctreeHandle {
     pub(crate) fn select_bricks(&self, desc: &SelectDesc) -> Bridged<Box<SelectionHandle>> {
         guarded(|| {
             let (selection, transfer_2d, texel, view_selection) = select_with(self, desc)?;
-            let blend = blend(desc, self.volume().value_range())?;
-            Ok(Box::new(SelectionHandle {
-                blend,
-                selection,
-                octree_id: self.id,
-                shape: self.shape,
-                value_range: self.volume().value_range(),
-                polygons: Mutex::new(None),
-                points: self.hybrid.points.as_ref().filter(|_| self.dependent.is_none()).map(|p| Arc::clone(&p.set)),
-                lighting: Mutex::new(None),
-                gradient_opacity: Mutex::new(None),
-                region: region(&desc.region)?,
-                transfer_2d,
-                texel,
-                dependent: self.dependent.is_some() && self.rgba.is_none(),
-                rgba: self.rgba,
-                scalar_type: self.scalar_type,
-                jittering: Default::default(),
-                sample_distance: Default::default(),
-                scattering: Mutex::new(None),
-                view_selection,
-            }))
+            self.selection_handle(desc, selection, transfer_2d, texel, view_selection).map(Box::new)
+        })
+    }
+
+    /// The handle of `selection`, made of this octree for `desc`.
+    pub(crate) fn selection_handle(
+        &self,
+        desc: &SelectDesc,
+        selection: Selection,
+        transfer_2d: Option<TransferFunction2D>,
+        texel: TexelEncoding,
+        view_selection: ViewSelection,
+    ) -> Result<SelectionHandle> {
+        let blend = blend(desc, self.volume().value_range())?;
+        Ok(SelectionHandle {
+            blend,
+            selection,
+            octree_id: self.id,
+            shape: self.shape,
+            value_range: self.volume().value_range(),
+            polygons: Mutex::new(None),
+            points: self.hybrid.points.as_ref().filter(|_| self.dependent.is_none()).map(|p| Arc::clone(&p.set)),
+            lighting: Mutex::new(None),
+            gradient_opacity: Mutex::new(None),
+            region: region(&desc.region)?,
+            transfer_2d,
+            texel,
+            dependent: self.dependent.is_some() && self.rgba.is_none(),
+            rgba: self.rgba,
+            scalar_type: self.scalar_type,
+            jittering: Default::default(),
+            sample_distance: Default::default(),
+            scattering: Mutex::new(None),
+            view_selection,
+            slice_factor: std::sync::atomic::AtomicU32::new(1),
         })
     }
 }
@@ -475,6 +528,7 @@ impl SelectionHandle {
                 texture_bytes: s.texture_bytes,
                 budget_bytes: s.budget_bytes,
                 estimated_error: s.estimated_error,
+                estimated_rms_error: s.estimated_rms_error,
                 skipped: s.skipped,
                 warning: s.warning.clone().unwrap_or_default(),
                 points: s.bricks.iter().map(|b| b.point_count).sum(),
@@ -512,7 +566,9 @@ impl SelectionHandle {
         let list = recrop(list, self.region.as_ref(), &octree.shape);
         let s = f64::from_bits(self.sample_distance.load(std::sync::atomic::Ordering::Relaxed));
         let list = crate::plan::sampling::plan_sample_distance(list, Some(s).filter(|&s| s > 0.0));
-        Ok(crate::plan::jitter::plan_jitter(list, self.jittering.load(std::sync::atomic::Ordering::Relaxed)))
+        let list = crate::plan::jitter::plan_jitter(list, self.jittering.load(std::sync::atomic::Ordering::Relaxed));
+        let factor = self.slice_factor.load(std::sync::atomic::Ordering::Relaxed);
+        Ok(if factor > 1 { crate::plan::cost::widen_slices(list, factor) } else { list })
     }
 
     /// [`Self::list`] without the points.

@@ -146,6 +146,7 @@ impl<'a> Timer<'a> {
             &scene.octree,
             &self.options,
             &visible,
+            None,
             self.view,
             &self.calibration,
             shape,

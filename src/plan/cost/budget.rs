@@ -22,6 +22,7 @@ use crate::base::error::Result;
 use crate::octree::VolumeOctree;
 use crate::plan::select::{SelectOptions, Selection, Selector, ViewImportance};
 use crate::plan::DrawList;
+use crate::points::PointMass;
 use std::collections::HashMap;
 
 /// What a frame is drawn on and what it uploads.
@@ -50,7 +51,8 @@ pub struct TimedFrame {
 /// The selection of least estimated error within `target` (see the module
 /// documentation): `options` is the selection's with its budget replaced
 /// by each candidate's (`target.max_budget_bytes` the hard limit),
-/// `plan(selection)` the caller's DrawList for it.
+/// `points` the hybrid representation's point mass when the octree holds
+/// points, `plan(selection)` the caller's DrawList for it.
 #[allow(clippy::too_many_arguments)]
 pub fn select_for_time(
     target: &TimeTarget,
@@ -58,6 +60,7 @@ pub fn select_for_time(
     octree: &VolumeOctree,
     options: &SelectOptions,
     visible: impl Fn(f64, f64) -> bool,
+    points: Option<&PointMass>,
     view: Option<&ViewImportance>,
     calibration: &Calibration,
     frame: FrameShape,
@@ -70,7 +73,7 @@ pub fn select_for_time(
             Some((s, l)) => (s.clone(), l.clone()),
             None => {
                 let o = SelectOptions { budget_bytes: budget, ..*options };
-                let s = selector.select_in_view(octree, &o, &visible, None, view)?;
+                let s = selector.select_in_view(octree, &o, &visible, points, view)?;
                 let l = plan(&s)?;
                 made.insert(budget, (s.clone(), l.clone()));
                 (s, l)

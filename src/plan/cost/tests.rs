@@ -324,9 +324,18 @@ fn the_time_budgeted_selection_is_a_fresh_selection_at_its_budget() {
     for k in 1..=4 {
         let target_ms = fast + (full - fast) * f64::from(k) / 5.0;
         let target = TimeTarget::new(target_ms, options.budget_bytes).unwrap();
-        let c = select_for_time(&target, &mut selector, &f.octree, &options, visible, None, &calibration, shape, |s| {
-            plan_of(&f, s)
-        })
+        let c = select_for_time(
+            &target,
+            &mut selector,
+            &f.octree,
+            &options,
+            visible,
+            None,
+            None,
+            &calibration,
+            shape,
+            |s| plan_of(&f, s),
+        )
         .unwrap();
         assert_eq!(c.outcome, Outcome::Met);
         assert!(c.chosen.predicted_ms <= target_ms);
@@ -339,16 +348,18 @@ fn the_time_budgeted_selection_is_a_fresh_selection_at_its_budget() {
     }
     // Above the full frame: the full budget; below the fastest: the coarsest, said.
     let target = TimeTarget::new(full * 2.0, options.budget_bytes).unwrap();
-    let c = select_for_time(&target, &mut selector, &f.octree, &options, visible, None, &calibration, shape, |s| {
-        plan_of(&f, s)
-    })
-    .unwrap();
+    let c =
+        select_for_time(&target, &mut selector, &f.octree, &options, visible, None, None, &calibration, shape, |s| {
+            plan_of(&f, s)
+        })
+        .unwrap();
     assert_eq!((c.outcome, c.chosen.budget_bytes), (Outcome::Full, options.budget_bytes));
     let target = TimeTarget::new(1e-6, options.budget_bytes).unwrap();
-    let c = select_for_time(&target, &mut selector, &f.octree, &options, visible, None, &calibration, shape, |s| {
-        plan_of(&f, s)
-    })
-    .unwrap();
+    let c =
+        select_for_time(&target, &mut selector, &f.octree, &options, visible, None, None, &calibration, shape, |s| {
+            plan_of(&f, s)
+        })
+        .unwrap();
     assert_eq!(c.outcome, Outcome::BelowFastest);
     assert!(c.note.is_some());
     assert_eq!(c.chosen.value.list.plan.min_slice_spacing.is_some(), c.chosen.slice_factor > 1);
