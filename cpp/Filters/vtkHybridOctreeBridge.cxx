@@ -38,6 +38,11 @@ struct HandleOf<OmeZarrStore>
 {
   using Type = hybrid_octree::StoreHandle;
 };
+template <>
+struct HandleOf<FrameTimer>
+{
+  using Type = hybrid_octree::FrameTimer;
+};
 
 /// Owns the Rust handle of `Object`.
 template <class Object>
@@ -144,6 +149,45 @@ hybrid_octree::CameraDesc ToRust(const CameraDescription& camera)
   desc.parallel = camera.Parallel;
   desc.parallel_scale = camera.ParallelScale;
   desc.view_angle = camera.ViewAngle;
+  return desc;
+}
+
+/// The bridge's shading.
+hybrid_octree::ShadingDesc ToRust(const ShadingDescription& shading)
+{
+  hybrid_octree::ShadingDesc desc;
+  desc.shade = shading.Shade;
+  desc.ambient = shading.Ambient;
+  desc.diffuse = shading.Diffuse;
+  desc.specular = shading.Specular;
+  desc.specular_power = shading.SpecularPower;
+  desc.two_sided = shading.TwoSided;
+  desc.headlight = shading.Headlight;
+  auto toRust = [](const std::vector<double>& from, rust::Vec<double>& to) {
+    for (double v : from)
+    {
+      to.push_back(v);
+    }
+  };
+  toRust(shading.LightDirections, desc.light_directions);
+  toRust(shading.LightAmbient, desc.light_ambient);
+  toRust(shading.LightDiffuse, desc.light_diffuse);
+  toRust(shading.LightSpecular, desc.light_specular);
+  return desc;
+}
+
+/// The bridge's scattering.
+hybrid_octree::ScatteringDesc ToRust(const ScatteringDescription& scattering)
+{
+  hybrid_octree::ScatteringDesc desc;
+  desc.blending = scattering.Blending;
+  desc.reach = scattering.Reach;
+  desc.anisotropy = scattering.Anisotropy;
+  for (int k = 0; k < 3; ++k)
+  {
+    desc.headlight_ambient[k] = scattering.HeadlightAmbient[k];
+  }
+  desc.sample_distance = scattering.SampleDistance;
   return desc;
 }
 
@@ -625,6 +669,7 @@ bool Selection::GetSummary(SelectionSummary& summary, std::string& error) const
     summary.TextureBytes = s.texture_bytes;
     summary.BudgetBytes = s.budget_bytes;
     summary.EstimatedError = s.estimated_error;
+    summary.EstimatedRmsError = s.estimated_rms_error;
     summary.Skipped = s.skipped;
     summary.Warning = std::string(s.warning);
     summary.Points = s.points;
@@ -698,27 +743,7 @@ bool Selection::GetBrickTexelsRgba(const void* bytes, std::size_t byteCount,
 
 bool Selection::SetShading(const ShadingDescription& shading, std::string& error) const
 {
-  return Guarded(error, [&] {
-    hybrid_octree::ShadingDesc desc;
-    desc.shade = shading.Shade;
-    desc.ambient = shading.Ambient;
-    desc.diffuse = shading.Diffuse;
-    desc.specular = shading.Specular;
-    desc.specular_power = shading.SpecularPower;
-    desc.two_sided = shading.TwoSided;
-    desc.headlight = shading.Headlight;
-    auto toRust = [](const std::vector<double>& from, rust::Vec<double>& to) {
-      for (double v : from)
-      {
-        to.push_back(v);
-      }
-    };
-    toRust(shading.LightDirections, desc.light_directions);
-    toRust(shading.LightAmbient, desc.light_ambient);
-    toRust(shading.LightDiffuse, desc.light_diffuse);
-    toRust(shading.LightSpecular, desc.light_specular);
-    HandleFor(this->Impl).set_shading(desc);
-  });
+  return Guarded(error, [&] { HandleFor(this->Impl).set_shading(ToRust(shading)); });
 }
 
 bool Selection::SetGradientOpacity(const std::vector<double>& points, std::string& error) const
@@ -741,18 +766,7 @@ bool Selection::SetSampleDistance(double distance, std::string& error) const
 
 bool Selection::SetScattering(const ScatteringDescription& scattering, std::string& error) const
 {
-  return Guarded(error, [&] {
-    hybrid_octree::ScatteringDesc desc;
-    desc.blending = scattering.Blending;
-    desc.reach = scattering.Reach;
-    desc.anisotropy = scattering.Anisotropy;
-    for (int k = 0; k < 3; ++k)
-    {
-      desc.headlight_ambient[k] = scattering.HeadlightAmbient[k];
-    }
-    desc.sample_distance = scattering.SampleDistance;
-    HandleFor(this->Impl).set_scattering(desc);
-  });
+  return Guarded(error, [&] { HandleFor(this->Impl).set_scattering(ToRust(scattering)); });
 }
 
 bool Selection::GetScatteringFrame(ScatteringFrame& frame, std::string& error) const
@@ -946,6 +960,75 @@ bool ViewChangeDegrees(const CameraDescription& a, const CameraDescription& b,
     degrees = hybrid_octree::view_change_degrees(
       ToRust(a), ToRust(b), rust::Slice<const double>(centre, centre ? 3 : 0));
   });
+}
+
+namespace
+{
+/// The bridge's timed frame.
+hybrid_octree::TimedFrameDesc ToRust(const TimedFrameDescription& frame)
+{
+  hybrid_octree::TimedFrameDesc desc;
+  desc.target_ms = frame.TargetMilliseconds;
+  desc.camera = ToRust(frame.Camera);
+  desc.width = frame.Width;
+  desc.height = frame.Height;
+  desc.surface_opacity = frame.SurfaceOpacity;
+  desc.shading = ToRust(frame.Shading);
+  for (double v : frame.GradientOpacityPoints)
+  {
+    desc.gradient_opacity_points.push_back(v);
+  }
+  desc.jittering = frame.Jittering;
+  desc.sample_distance = frame.SampleDistance;
+  desc.scattering = ToRust(frame.Scattering);
+  return desc;
+}
+} // namespace
+
+FrameTimer::FrameTimer()
+  : Impl(new RustHandle<FrameTimer>(hybrid_octree::new_frame_timer()))
+{
+}
+
+FrameTimer::~FrameTimer() = default;
+
+std::unique_ptr<Selection> FrameTimer::Select(const HybridOctree& octree,
+  const SelectDescription& options, const TimedFrameDescription& frame, std::string& error)
+{
+  std::unique_ptr<Selection> result;
+  Guarded(error, [&] {
+    result = Own<Selection>(
+      this->Impl->Box->select_for_time(HandleFor(octree.Impl), ToRust(options), ToRust(frame)));
+  });
+  return result;
+}
+
+bool FrameTimer::Observe(const Selection& selection, const HybridOctree& octree,
+  const TimedFrameDescription& frame, std::size_t uploadedBytes, double milliseconds, bool& again,
+  std::string& error)
+{
+  return Guarded(error, [&] {
+    again = this->Impl->Box->observe_frame(HandleFor(selection.Impl), HandleFor(octree.Impl),
+      ToRust(frame), uploadedBytes, milliseconds);
+  });
+}
+
+TimedSummary FrameTimer::GetSummary() const
+{
+  const hybrid_octree::TimedSummary s = this->Impl->Box->summary();
+  TimedSummary summary;
+  summary.TargetMilliseconds = s.target_ms;
+  summary.PredictedMilliseconds = s.predicted_ms;
+  summary.MeasuredMilliseconds = s.measured_ms;
+  summary.BudgetBytes = s.budget_bytes;
+  summary.SliceFactor = s.slice_factor;
+  summary.Outcome = std::string(s.outcome);
+  summary.Evaluations = s.evaluations;
+  summary.EstimatedRmsError = s.estimated_rms_error;
+  summary.WarmUpLeft = s.warm_up_left;
+  summary.Ratio = s.ratio;
+  summary.Note = std::string(s.note);
+  return summary;
 }
 
 } // namespace vtkHybridOctreeBridge

@@ -280,6 +280,9 @@ struct SelectionSummary
   std::uint64_t TextureBytes = 0;
   std::uint64_t BudgetBytes = 0;
   double EstimatedError = 0.0;  ///< largest e_p of the visible bricks, fraction of the data range
+  /// The visible bricks' squared nodal errors over their samples, a
+  /// fraction of the data range: what a picture's RMS error is estimated from.
+  double EstimatedRmsError = 0.0;
   std::uint64_t Skipped = 0;    ///< nodes left out as fully transparent
   std::string Warning;          ///< empty when none
   std::uint64_t Points = 0;     ///< points of the hybrid representation bought (0 without)
@@ -709,6 +712,7 @@ public:
 
 private:
   friend class Selection;
+  friend class FrameTimer;
   std::unique_ptr<RustHandle<HybridOctree>> Impl;
   std::size_t SurfaceVertices = 0; ///< of the surface held
   std::size_t SurfacePolygons = 0; ///< of the surface held
@@ -881,7 +885,79 @@ public:
     std::size_t width, std::size_t height, float* rgba, std::string& error) const;
 
 private:
+  friend class FrameTimer;
   std::unique_ptr<RustHandle<Selection>> Impl;
+};
+
+/// A frame to draw within a time (see TimedFrameDesc in src/ffi/mod.rs): its
+/// target and what its DrawList is planned with, as the mapper plans it.
+struct TimedFrameDescription
+{
+  double TargetMilliseconds = 0.0; ///< above 0, at most ten minutes
+  CameraDescription Camera;        ///< in the octree's frame
+  std::size_t Width = 1;           ///< the viewport, pixels
+  std::size_t Height = 1;
+  double SurfaceOpacity = 0.0; ///< the octree's surface drawn at (0: hidden)
+  ShadingDescription Shading;
+  std::vector<double> GradientOpacityPoints;
+  bool Jittering = false;
+  double SampleDistance = 0.0;
+  ScatteringDescription Scattering;
+};
+
+/// What a FrameTimer chose for its last frame (see TimedSummary in src/ffi/mod.rs).
+struct TimedSummary
+{
+  double TargetMilliseconds = 0.0;
+  double PredictedMilliseconds = 0.0; ///< the chosen frame's predicted drawing time
+  double MeasuredMilliseconds = 0.0;  ///< the last observed frame's drawing time
+  std::uint64_t BudgetBytes = 0;      ///< the budget the chosen selection was made under
+  std::uint32_t SliceFactor = 1;      ///< its slices' least spacing, multiples of d0
+  /// "warm-up", "met", "full" or "below-fastest".
+  std::string Outcome;
+  std::uint64_t Evaluations = 0;
+  double EstimatedRmsError = 0.0;
+  std::uint64_t WarmUpLeft = 0;
+  double Ratio = 1.0; ///< the online correction, measured over modelled time
+  std::string Note;   ///< said when the target is below the fastest frame
+};
+
+/**
+ * The model of what a frame costs on this machine (it owns the Rust
+ * handle; see src/ffi/timed.rs): calibrated on warm-up frames, corrected
+ * online from each measured one, and the time-budgeted selection under it.
+ */
+class FrameTimer
+{
+public:
+  FrameTimer();
+  ~FrameTimer();
+  FrameTimer(const FrameTimer&) = delete;
+  FrameTimer& operator=(const FrameTimer&) = delete;
+
+  /**
+   * The selection of `options` (its budget the hard memory limit) of least
+   * estimated error whose frame is predicted within `frame`'s target; during
+   * the warm-up, the next calibration budget's. nullptr and `error` on
+   * failure (a bad target or viewport, and Select()'s errors).
+   */
+  std::unique_ptr<Selection> Select(const HybridOctree& octree, const SelectDescription& options,
+    const TimedFrameDescription& frame, std::string& error);
+
+  /**
+   * Feeds a frame drawn from `selection` (made by Select() for `frame`)
+   * that uploaded `uploadedBytes` and took `milliseconds` to draw; `again`
+   * says whether the next frame should select again. False and `error` on failure.
+   */
+  bool Observe(const Selection& selection, const HybridOctree& octree,
+    const TimedFrameDescription& frame, std::size_t uploadedBytes, double milliseconds,
+    bool& again, std::string& error);
+
+  /// What the last Select() chose and the last frame took.
+  TimedSummary GetSummary() const;
+
+private:
+  std::unique_ptr<RustHandle<FrameTimer>> Impl;
 };
 
 /// What FtbDisplay() draws (paper 2's display; see FtbDesc in src/ffi/mod.rs).

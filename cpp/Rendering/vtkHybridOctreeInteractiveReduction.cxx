@@ -29,6 +29,11 @@ vtkHybridOctreeInteractiveReduction::Level vtkHybridOctreeInteractiveReduction::
   return Ladder[std::min(std::max(level, 0), Levels - 1)];
 }
 
+double vtkHybridOctreeInteractiveReduction::GetTargetShare()
+{
+  return TargetShare;
+}
+
 double vtkHybridOctreeInteractiveReduction::GetCost(int level)
 {
   const Level l = GetLevel(level);

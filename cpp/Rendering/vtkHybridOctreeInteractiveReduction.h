@@ -64,6 +64,10 @@ public:
   /// The relative cost of `level` (1 at level 0).
   static double GetCost(int level);
 
+  /// The share of the allocated render time the mapper's drawing keeps to
+  /// (the rest of a frame is not in its time; see Choose()).
+  static double GetTargetShare();
+
   /// The level of the next interactive frame for `allocatedSeconds`: the
   /// finest predicted within it; 0 with nothing recorded or no positive time.
   int Choose(double allocatedSeconds) const;

@@ -496,7 +496,7 @@ bool vtkHybridOctreeVolumeMapper::Prepare(vtkRenderer* ren, vtkVolume* vol)
         : vtkHybridOctreeTransfer2D::SmartSampleDistance(
             this->Internals->Grid.Spacing, this->Internals->Grid.Dims));
   return this->UpdateTransferFunction(property) && this->UpdatePoints() &&
-    this->ChooseSelection(ren, property) && this->UpdateSurface();
+    this->ChooseSelection(ren, vol) && this->UpdateSurface();
 }
 
 double vtkHybridOctreeVolumeMapper::ActualSampleDistance() const
@@ -567,6 +567,12 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastReselected = false;
   this->LastSelectMilliseconds = 0.0;
   this->LastViewSelection.clear();
+  this->LastTargetMilliseconds = 0.0;
+  this->LastPredictedMilliseconds = 0.0;
+  this->LastDrawMilliseconds = 0.0;
+  this->LastTimeOutcome.clear();
+  this->LastEstimatedRMSError = 0.0;
+  this->Internals->FrameTargetMs = 0.0;
   this->Internals->FrameBounds.clear();
   this->Internals->FrameBytes.clear();
   const bool interactive = this->IsInteractive(ren);
@@ -589,7 +595,9 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  if (interactive && in.Frame == &in.Still && !in.Bricks.HoldsAll(list.NodeId, list.Stride))
+  const bool timed = in.FrameTargetMs > 0.0;
+  if (!timed && interactive && in.Frame == &in.Still &&
+    !in.Bricks.HoldsAll(list.NodeId, list.Stride))
   {
     // The still selection is no longer resident: an interactive one, uploaded.
     list = DrawList();
@@ -598,9 +606,12 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       return;
     }
   }
-  const int level = interactive && this->AutoAdjustSampleDistances
+  // A timed frame's slice spacing is its cost model's choice.
+  const int level = interactive && this->AutoAdjustSampleDistances && !timed
     ? in.Reduction.Choose(vol->GetAllocatedRenderTime())
     : 0;
+  // The drawing's own time, what a timed frame's cost model learns from.
+  const auto drawStart = std::chrono::steady_clock::now();
   if (this->DrawFrame(ren, window, camera, list, interactive, level))
   {
     this->LastRenderOK = true;
@@ -621,6 +632,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.FrameBytes.push_back(static_cast<vtkTypeInt64>(texels * in.Bricks.GetTexelBytes()));
   }
   this->LastEstimatedError = in.Frame->Summary.EstimatedError;
+  this->LastEstimatedRMSError = in.Frame->Summary.EstimatedRmsError;
   this->LastPointBytes = static_cast<vtkTypeInt64>(in.Frame->Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
   this->LastUploadedBytes = static_cast<vtkTypeInt64>(in.Bricks.GetUploadedBytes());
@@ -629,9 +641,12 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   glFinish();
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   this->LastFrameMilliseconds = 1.0e3 * elapsed.count();
+  const std::chrono::duration<double> drawn = std::chrono::steady_clock::now() - drawStart;
+  this->LastDrawMilliseconds = 1.0e3 * drawn.count();
   if (this->LastRenderOK)
   {
     in.Reduction.Record(level, elapsed.count(), interactive);
+    this->ObserveTimedFrame(interactive, this->LastDrawMilliseconds);
   }
 }
 
@@ -657,6 +672,9 @@ void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   vtkInternals& in = *this->Internals;
   in.Bricks.Clear(window);
   in.Reduction.Reset();
+  // A new window may draw at another speed: its timed frames warm up again.
+  in.Timers[0].reset();
+  in.Timers[1].reset();
   if (in.TableTexture)
   {
     in.TableTexture->ReleaseGraphicsResources(window);
@@ -725,5 +743,11 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastSampleSpacing: " << this->LastSampleSpacing << "\n";
   os << indent << "LastReselected: " << this->LastReselected << "\n";
   os << indent << "LastSelectMilliseconds: " << this->LastSelectMilliseconds << "\n";
+  os << indent << "TargetFrameMilliseconds: " << this->TargetFrameMilliseconds << "\n";
+  os << indent << "LastTargetMilliseconds: " << this->LastTargetMilliseconds << "\n";
+  os << indent << "LastPredictedMilliseconds: " << this->LastPredictedMilliseconds << "\n";
+  os << indent << "LastDrawMilliseconds: " << this->LastDrawMilliseconds << "\n";
+  os << indent << "LastTimeOutcome: " << this->LastTimeOutcome << "\n";
+  os << indent << "LastEstimatedRMSError: " << this->LastEstimatedRMSError << "\n";
   os << indent << "LastViewSelection: view: " << this->LastViewSelection << "\n";
 }

@@ -119,6 +119,7 @@ namespace vtkHybridOctreeBridge
 struct BrickGeometryInput;
 struct CameraDescription;
 struct DrawList;
+class FrameTimer;
 struct SelectDescription;
 struct ViewDescription;
 }
@@ -174,6 +175,29 @@ public:
   /// interactive one 15; ParaView's 0.002 and 5).
   vtkSetClampMacro(InteractiveUpdateRate, double, 0.0, 1.0e6);
   vtkGetMacro(InteractiveUpdateRate, double);
+  ///@}
+
+  ///@{
+  /**
+   * A frame-time target in milliseconds: the selection and its slice
+   * spacing are chosen for the least estimated error whose drawing is
+   * predicted within it, by a cost model calibrated on this mapper's own
+   * frames (a few warm-up frames, then corrected from each measured one;
+   * see src/ffi/timed.rs). BudgetMB stays the hard memory limit.
+   * - 0 (the default): off; frames are made as described above.
+   * - above 0: every frame, still and interactive, is made within it.
+   * - TARGET_FRAME_WINDOW (-1): interactive frames are made within the
+   *   share of the volume's allocated render time the mapper's drawing
+   *   gets (the window's desired update rate; see
+   *   vtkHybridOctreeInteractiveReduction), still frames draw BudgetMB.
+   * Anything else (below 0, not a number, above ten minutes) is an error
+   * at Render(). Interactive and still frames keep a cost model each (they
+   * draw differently); the timed frames' AutoAdjustSampleDistances ladder
+   * is left at its finest level (the target chooses the spacing).
+   */
+  static constexpr double TARGET_FRAME_WINDOW = -1.0;
+  vtkSetMacro(TargetFrameMilliseconds, double);
+  vtkGetMacro(TargetFrameMilliseconds, double);
   ///@}
 
   ///@{
@@ -433,6 +457,21 @@ public:
   vtkGetMacro(LastReselected, bool);
   vtkGetMacro(LastSelectMilliseconds, double);
   const char* GetLastViewSelection() const { return this->LastViewSelection.c_str(); }
+  /// A frame within a time (TargetFrameMilliseconds): its target (0 for
+  /// an untimed frame), the drawing time the cost model predicted for it,
+  /// the drawing time measured (from its DrawList made to the end of its
+  /// drawing, glFinish; LastFrameMilliseconds adds the selection and
+  /// preparation), and the choice's outcome: "warm-up" (a calibration
+  /// frame), "met", "full" (the whole budget fits), "below-fastest" (the
+  /// coarsest frame is predicted slower than the target); "" untimed.
+  vtkGetMacro(LastTargetMilliseconds, double);
+  vtkGetMacro(LastPredictedMilliseconds, double);
+  vtkGetMacro(LastDrawMilliseconds, double);
+  const char* GetLastTimeOutcome() const { return this->LastTimeOutcome.c_str(); }
+  /// The estimated RMS error of the last frame's selection: the visible
+  /// bricks' squared nodal errors over their samples, a fraction of the
+  /// data range (the price of a target or a budget, timed or not).
+  vtkGetMacro(LastEstimatedRMSError, double);
   /// Texture bytes of the last frame's bricks whose box lies inside
   /// `bounds` (xmin, xmax, ymin, ymax, zmin, zmax in the image's data
   /// coordinates): where the selection spent its budget.
@@ -488,6 +527,7 @@ protected:
   int TexelFormat = TEXELS_AUTO;
   double InteractiveUpdateRate = 1.0;
   bool AutoAdjustSampleDistances = true;
+  double TargetFrameMilliseconds = 0.0;
   vtkTypeBool UseJittering = 0;
   double ErrorTolerance = 0.0;
   int ViewSelection = VIEW_SELECTION_BOTH;
@@ -534,6 +574,11 @@ protected:
   bool LastReselected = false;
   double LastSelectMilliseconds = 0.0;
   std::string LastViewSelection;
+  double LastTargetMilliseconds = 0.0;
+  double LastPredictedMilliseconds = 0.0;
+  double LastDrawMilliseconds = 0.0;
+  std::string LastTimeOutcome;
+  double LastEstimatedRMSError = 0.0;
 
 private:
   vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;
@@ -555,9 +600,21 @@ private:
   /// The selection of a still (BudgetMB) or an interactive frame
   /// (InteractiveBudgetMB) up to date and chosen for this frame.
   bool UpdateSelection(vtkVolumeProperty* property, bool interactive);
+  /// Makes the selection of `select` (with `key`) for the still or the
+  /// interactive slot, under `timer`'s time-budgeted search when one is given.
+  bool Reselect(bool interactive, vtkHybridOctreeBridge::SelectDescription& select,
+    const std::vector<double>& key, vtkHybridOctreeBridge::FrameTimer* timer);
+  /// The frame-time target of a frame of `ren` in ms (0: untimed);
+  /// false after a vtkErrorMacro (a bad TargetFrameMilliseconds).
+  bool FrameTarget(vtkRenderer* ren, vtkVolume* vol, double& targetMs) const;
+  /// The selection of a frame within `targetMs` (interactive or still,
+  /// each with its own cost model) up to date and chosen for this frame.
+  bool UpdateTimedSelection(vtkVolumeProperty* property, bool interactive, double targetMs);
+  /// Feeds the frame just drawn (`drawMs`) to its cost model.
+  void ObserveTimedFrame(bool interactive, double drawMs);
   /// This frame's selection: the still one when it is current and `ren`
   /// is interactive, else UpdateSelection()'s.
-  bool ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property);
+  bool ChooseSelection(vtkRenderer* ren, vtkVolume* vol);
   /// What the selection of `budgetMB` is made from, with its cache key (the
   /// camera is not in it: see IsViewCurrent()).
   vtkHybridOctreeBridge::SelectDescription DescribeSelection(

@@ -189,6 +189,14 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   bool PooledTextures = false;
   // Interactive frames' sampling, from the times of the frames before.
   vtkHybridOctreeInteractiveReduction Reduction;
+  // Frames within a time (TargetFrameMilliseconds): the cost models of
+  // still (0) and interactive (1) frames, made at their first timed frame
+  // and kept across octrees (they model the machine), whether each asked
+  // for a new selection, and this frame's target (0: untimed) and frame.
+  std::unique_ptr<vtkHybridOctreeBridge::FrameTimer> Timers[2];
+  bool TimerAsks[2] = { false, false };
+  double FrameTargetMs = 0.0;
+  vtkHybridOctreeBridge::TimedFrameDescription TimedFrame;
 
   /// Drops the octree and what was made from it (both selections, the
   /// interactive frames' times, the isosurface and the points): a new

@@ -10,10 +10,12 @@
 #include "vtkContourValues.h"
 #include "vtkPlane.h"
 #include "vtkRenderer.h"
+#include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -199,6 +201,14 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
   {
     return true;
   }
+  return this->Reselect(interactive, select, key, nullptr);
+}
+
+bool vtkHybridOctreeVolumeMapper::Reselect(bool interactive, SelectDescription& select,
+  const std::vector<double>& key, vtkHybridOctreeBridge::FrameTimer* timer)
+{
+  vtkInternals& in = *this->Internals;
+  vtkInternals::SelectionSlot& slot = interactive ? in.Moving : in.Still;
   if (select.Transfer2DSize[0] > 0)
   {
     in.Transfer2D.Describe(select.Transfer2DSize, &select.Transfer2DRGBA, select.Transfer2DRange);
@@ -212,7 +222,8 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
     vtkErrorMacro(<< error);
     return false;
   }
-  slot.Selected = in.Octree->Select(select, error);
+  slot.Selected = timer ? timer->Select(*in.Octree, select, in.TimedFrame, error)
+                        : in.Octree->Select(select, error);
   if (!slot.Selected || !slot.Selected->GetSummary(slot.Summary, error))
   {
     slot.Selected.reset();
@@ -229,14 +240,131 @@ bool vtkHybridOctreeVolumeMapper::UpdateSelection(vtkVolumeProperty* property, b
   return true;
 }
 
-bool vtkHybridOctreeVolumeMapper::ChooseSelection(vtkRenderer* ren, vtkVolumeProperty* property)
+bool vtkHybridOctreeVolumeMapper::FrameTarget(
+  vtkRenderer* ren, vtkVolume* vol, double& targetMs) const
 {
+  targetMs = 0.0;
+  const double target = this->TargetFrameMilliseconds;
+  if (target == 0.0)
+  {
+    return true;
+  }
+  if (target == TARGET_FRAME_WINDOW)
+  {
+    // Interactive frames: the mapper's share of the volume's allocated
+    // render time (1 / desired update rate / renderers / props), as the
+    // sampling ladder keeps to; still frames draw the full budget.
+    const double allocated = vol ? vol->GetAllocatedRenderTime() : 0.0;
+    if (this->IsInteractive(ren) && allocated > 0.0 && std::isfinite(allocated))
+    {
+      targetMs = std::min(
+        1.0e3 * vtkHybridOctreeInteractiveReduction::GetTargetShare() * allocated, 600000.0);
+    }
+    return true;
+  }
+  if (!(target > 0.0 && target <= 600000.0))
+  {
+    vtkErrorMacro("TargetFrameMilliseconds "
+      << target
+      << ": give the milliseconds a frame may take to draw (above 0, at most 600000), "
+         "0 for no target, or -1 for interactive frames within the window's desired update rate");
+    return false;
+  }
+  targetMs = target;
+  return true;
+}
+
+bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
+  vtkVolumeProperty* property, bool interactive, double targetMs)
+{
+  vtkInternals& in = *this->Internals;
+  if (!(this->BudgetMB > 0.0))
+  {
+    vtkErrorMacro("the texture budget is 0 MB: set BudgetMB above 0");
+    return false;
+  }
+  const int which = interactive ? 1 : 0;
+  vtkInternals::SelectionSlot& slot = interactive ? in.Moving : in.Still;
+  in.Frame = &slot;
+  std::vector<double> key;
+  SelectDescription select = this->DescribeSelection(property, this->BudgetMB, key);
+  // The frame the cost model predicts: this frame's camera, viewport and
+  // effects, as GetFrameDrawList() plans them.
+  TimedFrameDescription& frame = in.TimedFrame;
+  frame.TargetMilliseconds = targetMs;
+  frame.Camera = in.View.Camera;
+  frame.Width = in.View.Viewport[0];
+  frame.Height = in.View.Viewport[1];
+  frame.SurfaceOpacity = in.View.SurfaceOpacity;
+  frame.Shading = in.Shading;
+  frame.GradientOpacityPoints = in.GradientOpacity;
+  frame.Jittering = this->UseJittering != 0;
+  frame.SampleDistance = this->ActualSampleDistance();
+  frame.Scattering = in.ScatteringParameters;
+  // A timed selection is made again when the target, the viewport or
+  // another input changed, when its cost model asks (a warm-up frame, the
+  // model fitted, its correction moved), and for a still frame when the
+  // view moved past ViewChangeDegrees.
+  key.insert(key.end(),
+    { targetMs, static_cast<double>(frame.Width), static_cast<double>(frame.Height) });
+  if (in.Timers[which] && !in.TimerAsks[which] && slot.Selected && slot.Time > in.OctreeTime &&
+    slot.Key == key && slot.Opacity == select.OpacityPoints &&
+    (interactive || this->IsViewCurrent(slot.View, slot.Summary.ViewSelection)))
+  {
+    return true;
+  }
+  if (!in.Timers[which])
+  {
+    in.Timers[which].reset(new vtkHybridOctreeBridge::FrameTimer());
+  }
+  in.TimerAsks[which] = false;
+  return this->Reselect(interactive, select, key, in.Timers[which].get());
+}
+
+void vtkHybridOctreeVolumeMapper::ObserveTimedFrame(bool interactive, double drawMs)
+{
+  vtkInternals& in = *this->Internals;
+  const int which = interactive ? 1 : 0;
+  if (!(in.FrameTargetMs > 0.0) || !in.Timers[which] || !in.Frame->Selected)
+  {
+    return;
+  }
+  bool again = false;
+  std::string error;
+  if (!in.Timers[which]->Observe(*in.Frame->Selected, *in.Octree, in.TimedFrame,
+        static_cast<std::size_t>(std::max<vtkTypeInt64>(this->LastUploadedBytes, 0)), drawMs,
+        again, error))
+  {
+    // The frame drew; only its time is not learnt from.
+    vtkWarningMacro("the frame's time was not fed to the cost model: " << error);
+    return;
+  }
+  in.TimerAsks[which] = again;
+  const TimedSummary summary = in.Timers[which]->GetSummary();
+  this->LastTargetMilliseconds = summary.TargetMilliseconds;
+  this->LastPredictedMilliseconds = summary.PredictedMilliseconds;
+  this->LastTimeOutcome = summary.Outcome;
+}
+
+bool vtkHybridOctreeVolumeMapper::ChooseSelection(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkVolumeProperty* property = vol->GetProperty();
   const bool interactive = this->IsInteractive(ren);
   // The frame's isosurface values (the Isosurface blend mode), whichever
   // selection it draws: every selection's key holds them.
   std::vector<double> key;
   const SelectDescription still = this->DescribeSelection(property, this->BudgetMB, key);
   this->Internals->Isosurfaces = still.IsosurfaceValues;
+  double targetMs = 0.0;
+  if (!this->FrameTarget(ren, vol, targetMs))
+  {
+    return false;
+  }
+  this->Internals->FrameTargetMs = targetMs;
+  if (targetMs > 0.0)
+  {
+    return this->UpdateTimedSelection(property, interactive, targetMs);
+  }
   if (interactive && this->IsStillSelectionCurrent(still, key))
   {
     this->Internals->Frame = &this->Internals->Still;

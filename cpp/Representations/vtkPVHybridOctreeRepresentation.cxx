@@ -80,6 +80,11 @@ void vtkPVHybridOctreeRepresentation::SetInteractiveBudgetMB(double mb)
   this->Mapper()->SetInteractiveBudgetMB(mb);
 }
 
+void vtkPVHybridOctreeRepresentation::SetTargetFrameMilliseconds(double ms)
+{
+  this->Mapper()->SetTargetFrameMilliseconds(ms);
+}
+
 void vtkPVHybridOctreeRepresentation::SetErrorTolerance(double tolerance)
 {
   this->Mapper()->SetErrorTolerance(tolerance);
@@ -230,6 +235,32 @@ const char* vtkPVHybridOctreeRepresentation::GetLastViewSelection()
 {
   this->LastViewSelection = this->Mapper()->GetLastViewSelection();
   return this->LastViewSelection.c_str();
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastTargetMilliseconds()
+{
+  return this->Mapper()->GetLastTargetMilliseconds();
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastPredictedMilliseconds()
+{
+  return this->Mapper()->GetLastPredictedMilliseconds();
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastDrawMilliseconds()
+{
+  return this->Mapper()->GetLastDrawMilliseconds();
+}
+
+const char* vtkPVHybridOctreeRepresentation::GetLastTimeOutcome()
+{
+  this->LastTimeOutcome = this->Mapper()->GetLastTimeOutcome();
+  return this->LastTimeOutcome.c_str();
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastEstimatedRMSError()
+{
+  return this->Mapper()->GetLastEstimatedRMSError();
 }
 
 double* vtkPVHybridOctreeRepresentation::GetTextureBudgetRangeMB()

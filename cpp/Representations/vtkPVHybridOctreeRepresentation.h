@@ -37,6 +37,7 @@ public:
   /// Forwarded to vtkHybridOctreeVolumeMapper (see its documentation).
   void SetBudgetMB(double mb);
   void SetInteractiveBudgetMB(double mb);
+  void SetTargetFrameMilliseconds(double ms);
   void SetTexelFormat(int format);
   void SetErrorTolerance(double tolerance);
   void SetViewSelection(int mode);
@@ -85,6 +86,15 @@ public:
   double GetLastSelectMilliseconds();
   int GetLastReselected();
   const char* GetLastViewSelection();
+  /// A frame within Target Frame (ms): its target (0 untimed), predicted
+  /// and measured drawing milliseconds, the choice's outcome ("warm-up",
+  /// "met", "full", "below-fastest"; "" untimed), and the estimated RMS
+  /// error of its selection (a fraction of the data range, timed or not).
+  double GetLastTargetMilliseconds();
+  double GetLastPredictedMilliseconds();
+  double GetLastDrawMilliseconds();
+  const char* GetLastTimeOutcome();
+  double GetLastEstimatedRMSError();
   ///@}
 
   /// The budget slider's range, {0.1, full} in MB: `full` is the texture
@@ -117,6 +127,7 @@ private:
   std::string LastPlan;
   std::string LastEffects;
   std::string LastViewSelection;
+  std::string LastTimeOutcome;
   double TextureBudgetRangeMB[2] = { 0.1, 64.0 };
   /// Whether the 2D transfer function's second-array y axis was warned about (while it stays on).
   bool WarnedTransfer2DArray = false;

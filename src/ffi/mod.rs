@@ -46,6 +46,8 @@ mod surface;
 #[cfg(test)]
 mod test_support;
 mod timed;
+#[cfg(test)]
+mod timed_tests;
 mod transfer;
 mod transfer2d;
 #[cfg(test)]

@@ -5,16 +5,18 @@
 //! selector.
 //!
 //! A [`FrameTimer`] warms up first: its first [`WARM_UP_FRAMES`] frames
-//! draw budgets spread geometrically from the coarsest selection's bytes
-//! `B_c` to the memory limit `B_max`,
+//! draw the memory limit `B_max` (the full picture first, with the bytes
+//! `B_f` it takes), then budgets shrinking geometrically from it,
 //!
 //! ```text
-//! B_0 = 1 (the coarsest selection),  B_i = B_c (B_max / B_c)^(i / (n - 1)),  i = 1 .. n - 1
+//! B_0 = B_max,  B_i = max(B_f / 8^i, B_min),  i = 1 .. n - 1,     B_min = B_max / 512
 //! ```
 //!
 //! and the prior is fitted to their measured times ([`fit`]). After that each
 //! search picks the budget (and slice spacing) of least estimated RMS error
-//! predicted within the target, and every measured frame moves the online
+//! predicted within the target, never below `B_min` (the coarsest
+//! selection can be a single brick whose trilinear field the opacity hides
+//! everywhere: an empty picture is no frame to meet a time with), and every measured frame moves the online
 //! correction `r` ([`Calibration::observe`]). A frame's predicted time
 //! counts no upload (the chosen bricks' textures are resident once drawn);
 //! a measured frame's terms count the bytes it did upload, so the fit and
@@ -34,6 +36,18 @@ use std::sync::atomic::Ordering;
 /// Calibration frames before the model is fitted.
 pub const WARM_UP_FRAMES: usize = 4;
 
+/// The least budget a timed frame draws, as a share of the memory limit
+/// (`B_min = B_max / MIN_BUDGET_DIVISOR`: 125 kB of a 64 MB limit).
+pub const MIN_BUDGET_DIVISOR: usize = 512;
+
+/// Each warm-up frame after the first draws this many times fewer bytes than the one before.
+const WARM_UP_STEP: usize = 8;
+
+/// The least budget a timed frame draws under the limit `limit` (see the module documentation).
+pub fn min_budget(limit: usize) -> usize {
+    (limit / MIN_BUDGET_DIVISOR).max(1)
+}
+
 /// How far the online correction may move from its value at the last
 /// search before the next frame searches again: a quarter, either way.
 pub const RESEARCH_RATIO: f64 = 1.25;
@@ -45,8 +59,8 @@ pub struct FrameTimer {
     /// The warm-up frames measured so far (emptied once fitted).
     warm_up: Vec<Measurement>,
     fitted: bool,
-    /// The coarsest selection's bytes, from the first warm-up frame.
-    coarsest_bytes: Option<usize>,
+    /// The full budget's bytes as selected, from the first warm-up frame.
+    full_bytes: Option<usize>,
     /// The correction when the last search ran.
     searched_ratio: f64,
     last: Last,
@@ -84,7 +98,7 @@ impl FrameTimer {
             calibration: Calibration::new(CostModel::prior()),
             warm_up: Vec::with_capacity(WARM_UP_FRAMES),
             fitted: false,
-            coarsest_bytes: None,
+            full_bytes: None,
             searched_ratio: 1.0,
             last: Last { slice_factor: 1, outcome: "warm-up", ..Last::default() },
         }
@@ -97,12 +111,11 @@ impl FrameTimer {
 
     /// The budget of warm-up frame `i` under the limit `limit` (see the module documentation).
     fn warm_up_budget(&self, i: usize, limit: usize) -> usize {
-        match (i, self.coarsest_bytes) {
-            (0, _) | (_, None) => 1,
-            (_, Some(coarsest)) => {
-                let coarsest = coarsest.clamp(1, limit.max(1));
-                let r = i as f64 / (WARM_UP_FRAMES - 1) as f64;
-                ((coarsest as f64) * (limit as f64 / coarsest as f64).powf(r)).round() as usize
+        match (i, self.full_bytes) {
+            (0, _) | (_, None) => limit,
+            (_, Some(full)) => {
+                let step = WARM_UP_STEP.saturating_pow(i as u32);
+                (full.min(limit) / step).max(min_budget(limit))
             }
         }
     }
@@ -122,7 +135,10 @@ impl FrameTimer {
         desc: &SelectDesc,
         frame: &TimedFrameDesc,
     ) -> Result<SelectionHandle> {
-        let target = TimeTarget::new(frame.target_ms, desc.budget_bytes)?;
+        let target = TimeTarget {
+            min_budget_bytes: min_budget(desc.budget_bytes),
+            ..TimeTarget::new(frame.target_ms, desc.budget_bytes)?
+        };
         if frame.width == 0 || frame.height == 0 {
             return Err(Error::InvalidArgument(format!(
                 "a frame within a time of a {} x {} viewport: give a viewport of at least 1 x 1 pixel",
@@ -140,7 +156,7 @@ impl FrameTimer {
                 Ok((handle, list))
             })?;
             if self.warm_up.is_empty() {
-                self.coarsest_bytes = Some(handle.selection.texture_bytes.max(1));
+                self.full_bytes = Some(handle.selection.texture_bytes.max(1));
             }
             let terms = CostTerms::of(&list, shape.width, shape.height, 0);
             self.last = Last {
