@@ -84,7 +84,8 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtk
                                          vtkRenderer, vtkRenderWindow, vtkVolume, vtkVolumeProperty,
                                          vtkWindowToImageFilter)
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction  # noqa: E402
-from vtkmodules.vtkRenderingVolumeOpenGL2 import vtkGPUVolumeRayCastMapper  # noqa: E402
+from vtkmodules.vtkRenderingVolume import vtkGPUVolumeRayCastMapper  # noqa: E402
+import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: E402,F401
 import vtkmodules.vtkRenderingOpenGL2  # noqa: E402,F401
 import hybrid_octree  # noqa: E402
 
