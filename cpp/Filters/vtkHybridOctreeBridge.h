@@ -279,7 +279,7 @@ struct SelectionSummary
   std::uint64_t Bricks = 0;
   std::uint64_t TextureBytes = 0;
   std::uint64_t BudgetBytes = 0;
-  double EstimatedError = 0.0;  ///< largest e_p of the visible bricks, fraction of the data range
+  double EstimatedError = 0.0; ///< largest e_p of the visible bricks, fraction of the data range
   /// The visible bricks' squared nodal errors over their samples, a
   /// fraction of the data range: what a picture's RMS error is estimated from.
   double EstimatedRmsError = 0.0;
@@ -950,8 +950,8 @@ public:
    * says whether the next frame should select again. False and `error` on failure.
    */
   bool Observe(const Selection& selection, const HybridOctree& octree,
-    const TimedFrameDescription& frame, std::size_t uploadedBytes, double milliseconds,
-    bool& again, std::string& error);
+    const TimedFrameDescription& frame, std::size_t uploadedBytes, double milliseconds, bool& again,
+    std::string& error);
 
   /// What the last Select() chose and the last frame took.
   TimedSummary GetSummary() const;

@@ -305,8 +305,8 @@ bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
   // another input changed, when its cost model asks (a warm-up frame, the
   // model fitted, its correction moved), and for a still frame when the
   // view moved past ViewChangeDegrees.
-  key.insert(key.end(),
-    { targetMs, static_cast<double>(frame.Width), static_cast<double>(frame.Height) });
+  key.insert(
+    key.end(), { targetMs, static_cast<double>(frame.Width), static_cast<double>(frame.Height) });
   if (in.Timers[which] && !in.TimerAsks[which] && slot.Selected && slot.Time > in.OctreeTime &&
     slot.Key == key && slot.Opacity == select.OpacityPoints &&
     (interactive || this->IsViewCurrent(slot.View, slot.Summary.ViewSelection)))
@@ -332,8 +332,8 @@ void vtkHybridOctreeVolumeMapper::ObserveTimedFrame(bool interactive, double dra
   bool again = false;
   std::string error;
   if (!in.Timers[which]->Observe(*in.Frame->Selected, *in.Octree, in.TimedFrame,
-        static_cast<std::size_t>(std::max<vtkTypeInt64>(this->LastUploadedBytes, 0)), drawMs,
-        again, error))
+        static_cast<std::size_t>(std::max<vtkTypeInt64>(this->LastUploadedBytes, 0)), drawMs, again,
+        error))
   {
     // The frame drew; only its time is not learnt from.
     vtkWarningMacro("the frame's time was not fed to the cost model: " << error);

@@ -227,7 +227,7 @@ impl FrameTimer {
     }
 
     /// Feeds one measured frame of `terms` to the model (see
-    /// [`FrameTimer::observe_frame`] for what the answer means).
+    /// `FrameTimer::observe_frame` for what the answer means).
     pub fn observe(&mut self, terms: CostTerms, ms: f64) -> bool {
         let measurement = Measurement { terms, ms };
         if !measurement.is_usable() {

@@ -82,8 +82,8 @@ int Generous()
   errors->Watch(mapper);
   scene.Window->Render();
   check.Check(mapper->GetLastRenderOK(), "the untimed frame drew:\n" + errors->AllErrors());
-  check.Check(mapper->GetLastTargetMilliseconds() == 0.0 &&
-      std::string(mapper->GetLastTimeOutcome()).empty(),
+  check.Check(
+    mapper->GetLastTargetMilliseconds() == 0.0 && std::string(mapper->GetLastTimeOutcome()).empty(),
     "an untimed frame has no target and no outcome");
   const std::vector<double> untimed = Grab(scene.Window);
   const vtkTypeInt64 untimedBytes = FrameBytes(mapper);
