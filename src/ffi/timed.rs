@@ -191,7 +191,11 @@ impl FrameTimer {
                 shape,
                 plan,
             )?;
-            let selection = choice.chosen.value.selection.clone();
+            // The estimate as drawn: its slices widened or not.
+            let selection = Selection {
+                estimated_rms_error: choice.chosen.value.estimated_rms_error,
+                ..choice.chosen.value.selection.clone()
+            };
             let handle = planned(octree, desc, frame, selection, transfer_2d.clone(), texel, mode)?;
             Ok((choice, handle))
         })?;

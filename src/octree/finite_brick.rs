@@ -131,7 +131,8 @@ fn gather_coarse<G: Lattice>(g: &G, brick: &Brick<'_>, s: usize, scale: f64, sc:
     for &zc in &sc.zs {
         for &yc in &sc.ys {
             let row_inside = inside(zc, 2) && inside(yc, 1);
-            let base = ((zc.wrapping_sub(lo[2])) * wy + yc.wrapping_sub(lo[1])) * wx;
+            // The row's start in the brick's samples (read only inside it).
+            let base = if row_inside { ((zc - lo[2]) * wy + yc - lo[1]) * wx } else { 0 };
             for &xc in &sc.xs {
                 let c = if row_inside && inside(xc, 0) {
                     brick.samples[base + xc - lo[0]]

@@ -159,7 +159,8 @@ impl<'a> Timer<'a> {
         let ms = frame_ms(&frame);
         self.calibration.observe(&chosen.value.terms, ms);
         Ok(Timed {
-            selection: chosen.value.selection,
+            // The estimate as drawn: its slices widened or not.
+            selection: Selection { estimated_rms_error: chosen.value.estimated_rms_error, ..chosen.value.selection },
             frame,
             target_ms,
             predicted_ms: chosen.predicted_ms,

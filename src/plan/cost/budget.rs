@@ -1,10 +1,11 @@
 //! The time-budgeted selection: the texture budget (and, when bytes alone
 //! cannot, the slice spacing) of the least estimated error whose frame the
 //! calibrated model predicts within a target. The error compared is the
-//! selection's estimated root-mean-square error
-//! ([`crate::plan::select::estimated_rms_error`]): it falls with every
-//! visible brick refined, where the largest error ties over wide ranges of
-//! budgets on data with detail everywhere.
+//! frame's estimated root-mean-square error ([`frame_rms_error`]: the
+//! selection's, its slices as drawn, behind the view's transmittance): it
+//! falls with every visible brick refined, where the largest error ties
+//! over wide ranges of budgets on data with detail everywhere, and rises
+//! when the slices are widened.
 //!
 //! [`select_for_time`] runs [`super::search`] over a kept [`Selector`]:
 //! each candidate budget re-selects through it, which replays its recorded
@@ -20,7 +21,7 @@ use super::terms::CostTerms;
 use super::widen::widen_slices;
 use crate::base::error::Result;
 use crate::octree::VolumeOctree;
-use crate::plan::select::{SelectOptions, Selection, Selector, ViewImportance};
+use crate::plan::select::{seen_rms_error, Seen, SelectOptions, Selection, Selector, ViewImportance};
 use crate::plan::DrawList;
 use crate::points::PointMass;
 use std::collections::HashMap;
@@ -46,6 +47,32 @@ pub struct TimedFrame {
     pub list: DrawList,
     /// Its cost terms.
     pub terms: CostTerms,
+    /// Its estimated root-mean-square error as drawn: [`frame_rms_error`],
+    /// what the search compares.
+    pub estimated_rms_error: f64,
+}
+
+/// The estimated root-mean-square error of the picture `list` draws
+/// ([`seen_rms_error`]): each brick at the spacing of its slices as the
+/// list slices it (widened or not) and behind the transmittance the view
+/// estimates in front of it (none without a visibility estimate).
+pub fn frame_rms_error(
+    octree: &VolumeOctree,
+    list: &DrawList,
+    visible: impl Fn(f64, f64) -> bool,
+    view: Option<&ViewImportance>,
+) -> f64 {
+    let d0 = list.reference_spacing;
+    let visibility = view.and_then(|v| v.visibility.as_ref());
+    let drawn = list.bricks.iter().map(|d| {
+        let t = visibility.map_or(1.0, |t| {
+            let (level, coords) = octree.layout().locate(d.brick.node);
+            t.at(level, coords)
+        });
+        let slice_stride = if d0 > 0.0 { d.slice_spacing / d0 } else { d.brick.stride as f64 };
+        Seen { brick: &d.brick, slice_stride, transmittance: t }
+    });
+    seen_rms_error(octree, drawn, visible)
 }
 
 /// The selection of least estimated error within `target` (see the module
@@ -83,7 +110,7 @@ pub fn select_for_time(
         let upload = if frame.uploads { selection.texture_bytes } else { 0 };
         let terms = CostTerms::of(&list, frame.width, frame.height, upload);
         let predicted = calibration.predict(&terms);
-        let error = selection.estimated_rms_error;
-        Ok((TimedFrame { selection, list, terms }, predicted, error))
+        let error = frame_rms_error(octree, &list, &visible, view);
+        Ok((TimedFrame { selection, list, terms, estimated_rms_error: error }, predicted, error))
     })
 }

@@ -38,7 +38,7 @@ mod widen;
 #[cfg(test)]
 mod tests;
 
-pub use budget::{select_for_time, FrameShape, TimedFrame};
+pub use budget::{frame_rms_error, select_for_time, FrameShape, TimedFrame};
 pub use fit::{fit, Measurement, PULL};
 pub use model::CostModel;
 pub use online::{Calibration, ALPHA, MAX_RATIO};

@@ -363,4 +363,13 @@ fn the_time_budgeted_selection_is_a_fresh_selection_at_its_budget() {
     assert_eq!(c.outcome, Outcome::BelowFastest);
     assert!(c.note.is_some());
     assert_eq!(c.chosen.value.list.plan.min_slice_spacing.is_some(), c.chosen.slice_factor > 1);
+    // The error compared is the frame's as drawn: widened slices cost accuracy.
+    let chosen = &c.chosen.value;
+    assert_eq!(c.chosen.error, chosen.estimated_rms_error);
+    assert_eq!(chosen.estimated_rms_error, super::frame_rms_error(&f.octree, &chosen.list, visible, None));
+    // The full budget's fine bricks sliced 8 samples apart: a larger error than at their strides.
+    let fine = plan_of(&f, &selector.select_in_view(&f.octree, &options, visible, None, None).unwrap()).unwrap();
+    let at_strides = super::frame_rms_error(&f.octree, &fine, visible, None);
+    let widened = super::frame_rms_error(&f.octree, &super::widen_slices(fine, 8), visible, None);
+    assert!(widened > at_strides, "widened {widened} vs at the strides {at_strides}");
 }

@@ -1,7 +1,9 @@
 //! The estimated error of a selection: how far its picture can be from the
 //! full-resolution one, as the picture sees it: the largest error of a
 //! visible brick ([`estimated_error`]), and the root-mean-square error of
-//! the visible samples ([`estimated_rms_error`]).
+//! the visible samples ([`estimated_rms_error`]; as drawn, its slices'
+//! spacing and the transmittance in front of each brick counted:
+//! [`seen_rms_error`]).
 //!
 //! ```text
 //! estimate = max over drawn bricks b with visible(min_b, max_b) of E_(p_b)(b)
@@ -46,11 +48,44 @@ pub fn estimated_error(octree: &VolumeOctree, bricks: &[Brick], visible: impl Fn
 
 /// The estimated root-mean-square error of drawing `bricks` of `octree`:
 /// the visible bricks' squared errors summed over their samples, over the
-/// count of those samples.
+/// count of those samples (each brick at its own stride, nothing in front
+/// of it: [`seen_rms_error`] with `T = 1` and slices at the strides).
+pub fn estimated_rms_error(octree: &VolumeOctree, bricks: &[Brick], visible: impl Fn(f64, f64) -> bool) -> f64 {
+    seen_rms_error(octree, bricks.iter().map(|b| Seen::at_stride(b, 1.0)), visible)
+}
+
+/// A drawn brick as [`seen_rms_error`] reads it.
+#[derive(Debug, Clone, Copy)]
+pub struct Seen<'a> {
+    /// The brick.
+    pub brick: &'a Brick,
+    /// The spacing of its slices in samples of the full-resolution grid
+    /// (`slice spacing / d0`): its stride or less, unless the slices were
+    /// widened to meet a frame time ([`crate::plan::cost::widen_slices`]).
+    pub slice_stride: f64,
+    /// `T_b`: the transmittance in front of it, from 0 (hidden) to 1
+    /// ([`super::Transmittance`]; 1 without a visibility estimate).
+    pub transmittance: f64,
+}
+
+impl<'a> Seen<'a> {
+    /// `brick` sliced at its stride, behind transmittance `t`.
+    pub fn at_stride(brick: &'a Brick, t: f64) -> Seen<'a> {
+        Seen { brick, slice_stride: brick.stride as f64, transmittance: t }
+    }
+}
+
+/// The estimated root-mean-square error of a picture drawing `drawn`
+/// bricks of `octree`: each visible brick's squared error summed over its
+/// samples, weighted by the transmittance in front of it, over the
+/// weighted count of those samples,
 ///
 /// ```text
-/// estimate_rms = sqrt( sum_b (Q_(p_b)(b) + n_b q_b^2 / 3) / sum_b n_b )
+/// estimate_rms = sqrt( sum_b T_b (Q'_b + n_b q_b^2 / 3) / sum_b T_b n_b )
 ///                over drawn bricks b with visible(min_b, max_b)
+/// Q'_b         = Q_(p_b)(b)                               slices at the stride or finer
+///              = max(Q_(p_b)(b), Q_(p'_b)(b) / 3)          slices m_b >= 2 strides apart
+/// p'_b         = p_b - floor(log2 m_b)   (at least 0)
 /// ```
 ///
 /// `Q_p(b)` is the brick's squared error at its level, summed over the
@@ -58,25 +93,45 @@ pub fn estimated_error(octree: &VolumeOctree, bricks: &[Brick], visible: impl Fn
 /// range (the build's, see [`crate::octree::build`]); `q_b` the
 /// quantization error its texel format adds (the brick's error envelope
 /// less `E_p(b)`: the largest rounding error, whose mean square over
-/// uniformly spread rounding is `q^2 / 3`). Where [`estimated_error`] says
-/// how wrong the worst visible sample can be, this says how wrong the
-/// visible samples are on the whole: it falls with every brick refined,
-/// not only when the worst one is, so it ranks selections by the RMSE of
-/// their pictures where the largest error ties (a field with detail
-/// everywhere keeps one coarse brick's maximum over a wide range of
-/// budgets). 0 exactly when every visible brick draws the full-resolution
-/// field losslessly; 0 with no visible brick.
-pub fn estimated_rms_error(octree: &VolumeOctree, bricks: &[Brick], visible: impl Fn(f64, f64) -> bool) -> f64 {
+/// uniformly spread rounding is `q^2 / 3`).
+///
+/// Slices `m_b` strides apart sample the brick's field on a lattice that
+/// coarse along the view alone: of the level whose stride is the slices'
+/// (`p'_b`), one axis of three, so a third of its squared error, and
+/// never less than the brick's own. `T_b` is how much of a sample reaches
+/// its pixel: a brick behind opaque material adds little error to the
+/// picture however coarse it is, and counts as few samples.
+///
+/// Where [`estimated_error`] says how wrong the worst visible sample can
+/// be, this says how wrong the samples are on the whole: it falls with
+/// every brick refined, not only when the worst one is, so it ranks
+/// selections by the RMSE of their pictures where the largest error ties
+/// (a field with detail everywhere keeps one coarse brick's maximum over a
+/// wide range of budgets). 0 exactly when every visible, unhidden brick
+/// draws the full-resolution field losslessly at slices no wider than its
+/// texels; 0 with no such brick.
+pub fn seen_rms_error<'a>(
+    octree: &VolumeOctree,
+    drawn: impl IntoIterator<Item = Seen<'a>>,
+    visible: impl Fn(f64, f64) -> bool,
+) -> f64 {
     let (mut squared, mut samples) = (0.0f64, 0.0f64);
-    for b in bricks {
+    for Seen { brick: b, slice_stride, transmittance } in drawn {
         let n = octree.node(b.node);
-        if !visible(n.min, n.max) {
+        let t = if transmittance.is_finite() { transmittance.clamp(0.0, 1.0) } else { 1.0 };
+        if !visible(n.min, n.max) || t == 0.0 {
             continue;
         }
         let count = (0..3).map(|a| (b.hi[a] - b.lo[a] + 1) as f64).product::<f64>();
         let q = (f64::from(b.error) - f64::from(n.error(b.p))).max(0.0);
-        squared += f64::from(n.squared_error(b.p)).max(0.0) + count * q * q / 3.0;
-        samples += count;
+        let mut field = f64::from(n.squared_error(b.p)).max(0.0);
+        let widened = slice_stride / b.stride.max(1) as f64;
+        if widened >= 2.0 && widened.is_finite() {
+            let coarser = (widened.log2().floor() as usize).min(b.p);
+            field = field.max(f64::from(n.squared_error(b.p - coarser)).max(0.0) / 3.0);
+        }
+        squared += t * (field + count * q * q / 3.0);
+        samples += t * count;
     }
     if samples > 0.0 {
         (squared / samples).sqrt()
@@ -147,5 +202,51 @@ mod tests {
         assert!(quantized.bricks.iter().all(|b| o.node(b.node).squared_error(b.p) == 0.0), "lossless at any budget");
         let r = quantized.estimated_rms_error;
         assert!((r - 0.01 / 3f64.sqrt()).abs() < 1e-6, "{r}");
+    }
+
+    /// Slices wider than a brick's texels count a third of the squared
+    /// error of the level at the slices' stride; a transmittance weighs a
+    /// brick's samples, 0 leaving it out; against sums made here in f64.
+    #[test]
+    fn widened_slices_and_transmittance_enter_the_rms_estimate() {
+        fn seen(brick: &Brick, slice_stride: f64, transmittance: f64) -> Seen<'_> {
+            Seen { brick, slice_stride, transmittance }
+        }
+        let v = generate(Dataset::MarschnerLobb, 33, ScalarType::F32);
+        let o = VolumeOctree::build(&v.grid(None).unwrap(), &BuildOptions { leaf_size: 8 }).unwrap();
+        let root = o.node(o.root());
+        let full = uniform(&o, 1, 4).unwrap().bricks[0];
+        let n = 33f64.powi(3);
+        let one = |s: Seen<'_>| seen_rms_error(&o, [s], |_, _| true);
+        // At its stride, or sliced finer: lossless.
+        assert_eq!(one(seen(&full, 1.0, 1.0)), 0.0);
+        assert_eq!(one(seen(&full, 0.5, 1.0)), 0.0);
+        assert_eq!(one(seen(&full, 1.9, 1.0)), 0.0, "below two strides the lattice is the brick's");
+        // Slices 4 samples apart: the level at stride 4, a third of it.
+        let p = full.p;
+        let expected = (root.squared_error(p - 2) as f64 / 3.0 / n).sqrt();
+        assert!(expected > 0.0);
+        let r = one(seen(&full, 4.0, 1.0));
+        assert!((r - expected).abs() <= 1e-12 * expected, "{r} vs {expected}");
+        // 5 samples: still stride 4 (floor); past the root: the coarsest level.
+        assert_eq!(one(seen(&full, 5.0, 1.0)), r);
+        let coarsest = (root.squared_error(0) as f64 / 3.0 / n).sqrt();
+        assert!((one(seen(&full, 1e9, 1.0)) - coarsest).abs() <= 1e-12 * coarsest);
+        // A coarse brick keeps its own error when a third of the wider level's is less.
+        let coarse = uniform(&o, 4, 4).unwrap().bricks[0];
+        let own = (root.squared_error(coarse.p) as f64 / n).sqrt();
+        let wide = (root.squared_error(coarse.p - 1) as f64 / 3.0 / n).sqrt();
+        assert!((one(seen(&coarse, 8.0, 1.0)) - own.max(wide)).abs() <= 1e-12 * own);
+        // Not a number as a slice stride or a transmittance: read as the stride, and as 1.
+        assert_eq!(one(seen(&coarse, f64::NAN, f64::NAN)), one(seen(&coarse, 4.0, 1.0)));
+        // Hidden: nothing; one transmittance for all: the same as none.
+        assert_eq!(one(seen(&coarse, 4.0, 0.0)), 0.0);
+        assert!((one(seen(&coarse, 4.0, 0.25)) - own).abs() <= 1e-12 * own);
+        // A coarse brick behind T and a lossless one in front: sqrt(T Q / (T n + n)).
+        for t in [1.0, 0.5, 0.01] {
+            let both = seen_rms_error(&o, [seen(&coarse, 4.0, t), seen(&full, 1.0, 1.0)], |_, _| true);
+            let want = (t * root.squared_error(coarse.p) as f64 / (t * n + n)).sqrt();
+            assert!((both - want).abs() <= 1e-12 * want, "T {t}: {both} vs {want}");
+        }
     }
 }

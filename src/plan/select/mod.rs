@@ -57,7 +57,7 @@ mod visibility;
 #[cfg(test)]
 pub(crate) use brick::test_brick;
 pub use brick::{importance, Brick, Roi, SelectOptions, Selection};
-pub use estimate::{estimated_error, estimated_rms_error};
+pub use estimate::{estimated_error, estimated_rms_error, seen_rms_error, Seen};
 pub use refine::{select, select_in_view, select_with_points, take_all_points};
 pub use screen::ScreenSpace;
 pub use selector::Selector;

@@ -3,7 +3,7 @@
 
 use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
 use super::cache::NodeMap;
-use super::estimate::{estimated_error, estimated_rms_error};
+use super::estimate::{estimated_error, seen_rms_error, Seen};
 use super::forms::{Forms, NONE, NO_STEP};
 use super::mass::{error_mass, gain};
 use super::steps::{Log, Step};
@@ -307,6 +307,14 @@ impl Refiner<'_> {
         (f64::from(slot.0), usize::from(slot.1))
     }
 
+    /// `T(n)`: the transmittance in front of node `id` ([`super::Transmittance`]), 1 without a visibility estimate.
+    fn transmittance(&self, id: NodeId) -> f64 {
+        self.view.and_then(|v| v.visibility.as_ref()).map_or(1.0, |t| {
+            let (level, coords) = self.octree.layout().locate(id);
+            t.at(level, coords)
+        })
+    }
+
     /// The weighted error `Imp(n) e_p(n)` the tolerance is compared with.
     fn weighted(b: &Brick) -> f64 {
         b.importance * b.error as f64
@@ -547,7 +555,7 @@ impl Refiner<'_> {
 
     /// The selection of `bricks`: its bytes, its largest weighted error (a
     /// warning when above the tolerance, unless `warning` is set already) and
-    /// its [`estimated_error`].
+    /// its [`estimated_error`] and [`seen_rms_error`] (behind the view's transmittance).
     fn selection(&self, bricks: Vec<Brick>, skipped: usize, mut warning: Option<String>) -> Selection {
         let max_error = bricks.iter().map(Self::weighted).fold(0.0, f64::max);
         if warning.is_none() && max_error > self.options.tolerance {
@@ -560,7 +568,11 @@ impl Refiner<'_> {
         let texture_bytes = bricks.iter().map(|b| b.bytes).sum();
         let point_bytes = bricks.iter().map(|b| b.point_bytes).sum();
         let estimated_error = estimated_error(self.octree, &bricks, self.visible);
-        let estimated_rms_error = estimated_rms_error(self.octree, &bricks, self.visible);
+        let estimated_rms_error = seen_rms_error(
+            self.octree,
+            bricks.iter().map(|b| Seen::at_stride(b, self.transmittance(b.node))),
+            self.visible,
+        );
         Selection {
             bricks,
             texture_bytes,

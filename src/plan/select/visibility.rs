@@ -382,6 +382,42 @@ mod tests {
         assert_eq!(t.at(coarse, [8, 14, 8]), 0.0);
     }
 
+    /// Detail behind the wall counts in the estimated RMS error as much as
+    /// the wall lets through: a coarse selection's estimate behind an
+    /// opaque wall is below its estimate with nothing in front, and the
+    /// selection in view reports the estimate behind its transmittance.
+    #[test]
+    fn the_rms_estimate_sees_what_the_wall_lets_through() {
+        use crate::plan::select::{seen_rms_error, select, select_in_view, Seen, SelectOptions, ViewImportance};
+        let (mut v, shape) = wall(false);
+        let n = 65;
+        for z in 0..n {
+            for y in 16..n {
+                for x in 0..n {
+                    v[x + n * (y + n * z)] = 0.3 * (0.5 + 0.5 * ((x as f32) * 0.9).sin() * ((z as f32) * 0.7).cos());
+                }
+            }
+        }
+        let grid = Grid::new(Samples::F32(&v), shape, 1, None).unwrap();
+        let o = VolumeOctree::build(&grid, &BuildOptions { leaf_size: 4 }).unwrap();
+        let opacity = |v: f64| if v > 0.5 { 1.0 } else { 0.05 * v };
+        let m = Medium::new(&o, &grid, &opacity, 1.0, None).unwrap();
+        let t = Transmittance::estimate(&m, &shape, &front_camera(true));
+        let options = SelectOptions::new(40_000, 0.0);
+        let s = select(&o, &options, |_, _| true).unwrap();
+        let behind = |b: &crate::plan::select::Brick| {
+            let n = o.node(b.node);
+            t.at(n.level, n.coords)
+        };
+        let seen = seen_rms_error(&o, s.bricks.iter().map(|b| Seen::at_stride(b, behind(b))), |_, _| true);
+        assert!(s.estimated_rms_error > 0.0);
+        assert!(seen < 0.5 * s.estimated_rms_error, "behind the wall {seen} vs in the open {}", s.estimated_rms_error);
+        let view = ViewImportance { screen: None, visibility: Some(t.clone()) };
+        let in_view = select_in_view(&o, &options, |_, _| true, None, &view).unwrap();
+        let expected = seen_rms_error(&o, in_view.bricks.iter().map(|b| Seen::at_stride(b, behind(b))), |_, _| true);
+        assert_eq!(in_view.estimated_rms_error, expected);
+    }
+
     #[test]
     fn bad_arguments_are_errors() {
         let (v, shape) = wall(false);
