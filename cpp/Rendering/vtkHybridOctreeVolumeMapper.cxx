@@ -567,7 +567,9 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastReselected = false;
   this->LastSelectMilliseconds = 0.0;
   this->LastViewSelection.clear();
+  this->ObserveFrameOverhead(ren);
   this->LastTargetMilliseconds = 0.0;
+  this->LastDrawTargetMilliseconds = 0.0;
   this->LastPredictedMilliseconds = 0.0;
   this->LastDrawMilliseconds = 0.0;
   this->LastTimeOutcome.clear();
@@ -648,6 +650,9 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.Reduction.Record(level, elapsed.count(), interactive);
     this->ObserveTimedFrame(interactive, this->LastDrawMilliseconds);
   }
+  in.OverheadPending = this->LastRenderOK && timed;
+  in.PendingDrawMs = this->LastDrawMilliseconds;
+  in.PendingSelectMs = this->LastSelectMilliseconds;
 }
 
 vtkTypeInt64 vtkHybridOctreeVolumeMapper::GetLastTextureBytesWithin(const double bounds[6]) const
@@ -675,6 +680,9 @@ void vtkHybridOctreeVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   // A new window may draw at another speed: its timed frames warm up again.
   in.Timers[0].reset();
   in.Timers[1].reset();
+  in.OverheadMs = -1.0;
+  in.OverheadPending = false;
+  in.SearchMs[0] = in.SearchMs[1] = 0.0;
   if (in.TableTexture)
   {
     in.TableTexture->ReleaseGraphicsResources(window);
@@ -745,6 +753,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastSelectMilliseconds: " << this->LastSelectMilliseconds << "\n";
   os << indent << "TargetFrameMilliseconds: " << this->TargetFrameMilliseconds << "\n";
   os << indent << "LastTargetMilliseconds: " << this->LastTargetMilliseconds << "\n";
+  os << indent << "LastDrawTargetMilliseconds: " << this->LastDrawTargetMilliseconds << "\n";
   os << indent << "LastPredictedMilliseconds: " << this->LastPredictedMilliseconds << "\n";
   os << indent << "LastDrawMilliseconds: " << this->LastDrawMilliseconds << "\n";
   os << indent << "LastTimeOutcome: " << this->LastTimeOutcome << "\n";

@@ -185,7 +185,11 @@ public:
    * frames (a few warm-up frames, then corrected from each measured one;
    * see src/ffi/timed.rs). BudgetMB stays the hard memory limit.
    * - 0 (the default): off; frames are made as described above.
-   * - above 0: every frame, still and interactive, is made within it.
+   * - above 0: every frame, still and interactive, is made within it:
+   *   the renderer's whole frame, so the drawing aims at the target less
+   *   what the frames before spent outside it (the other props, the
+   *   renderer's passes, this mapper's preparation, and the search when
+   *   the frame selects again; LastDrawTargetMilliseconds).
    * - TARGET_FRAME_WINDOW (-1): interactive frames are made within the
    *   share of the volume's allocated render time the mapper's drawing
    *   gets (the window's desired update rate; see
@@ -458,13 +462,18 @@ public:
   vtkGetMacro(LastSelectMilliseconds, double);
   const char* GetLastViewSelection() const { return this->LastViewSelection.c_str(); }
   /// A frame within a time (TargetFrameMilliseconds): its target (0 for
-  /// an untimed frame), the drawing time the cost model predicted for it,
-  /// the drawing time measured (from its DrawList made to the end of its
-  /// drawing, glFinish; LastFrameMilliseconds adds the selection and
-  /// preparation), and the choice's outcome: "warm-up" (a calibration
-  /// frame), "met", "full" (the whole budget fits), "below-fastest" (the
-  /// coarsest frame is predicted slower than the target); "" untimed.
+  /// an untimed frame), the share of it the drawing aimed at (the target
+  /// less what the renderer's frame spends outside this mapper's drawing,
+  /// as measured on the frames before, and less the last time-budgeted
+  /// selection's search when this frame searches again), the drawing time
+  /// the cost model predicted for it, the drawing time measured (from its
+  /// DrawList made to the end of its drawing, glFinish;
+  /// LastFrameMilliseconds adds the selection and preparation), and the
+  /// choice's outcome: "warm-up" (a calibration frame), "met", "full" (the
+  /// whole budget fits), "below-fastest" (the coarsest frame is predicted
+  /// slower than the target); "" untimed.
   vtkGetMacro(LastTargetMilliseconds, double);
+  vtkGetMacro(LastDrawTargetMilliseconds, double);
   vtkGetMacro(LastPredictedMilliseconds, double);
   vtkGetMacro(LastDrawMilliseconds, double);
   const char* GetLastTimeOutcome() const { return this->LastTimeOutcome.c_str(); }
@@ -575,6 +584,7 @@ protected:
   double LastSelectMilliseconds = 0.0;
   std::string LastViewSelection;
   double LastTargetMilliseconds = 0.0;
+  double LastDrawTargetMilliseconds = 0.0;
   double LastPredictedMilliseconds = 0.0;
   double LastDrawMilliseconds = 0.0;
   std::string LastTimeOutcome;
@@ -607,6 +617,10 @@ private:
   /// The frame-time target of a frame of `ren` in ms (0: untimed);
   /// false after a vtkErrorMacro (a bad TargetFrameMilliseconds).
   bool FrameTarget(vtkRenderer* ren, vtkVolume* vol, double& targetMs) const;
+  /// Learns what the renderer's last frame spent outside this mapper's
+  /// drawing and selection (vtkRenderer::GetLastRenderTimeInSeconds), when
+  /// that frame was timed here.
+  void ObserveFrameOverhead(vtkRenderer* ren);
   /// The selection of a frame within `targetMs` (interactive or still,
   /// each with its own cost model) up to date and chosen for this frame.
   bool UpdateTimedSelection(vtkVolumeProperty* property, bool interactive, double targetMs);

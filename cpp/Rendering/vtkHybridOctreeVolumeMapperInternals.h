@@ -196,6 +196,16 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   std::unique_ptr<vtkHybridOctreeBridge::FrameTimer> Timers[2];
   bool TimerAsks[2] = { false, false };
   double FrameTargetMs = 0.0;
+  // What a timed frame spends outside its drawing: the renderer's frame
+  // less this mapper's drawing and selection, smoothed over frames (-1:
+  // not measured yet); the last timed frame's drawing and selection, until
+  // the next frame reads the renderer's time of it; and each kind's last
+  // time-budgeted search.
+  double OverheadMs = -1.0;
+  bool OverheadPending = false;
+  double PendingDrawMs = 0.0;
+  double PendingSelectMs = 0.0;
+  double SearchMs[2] = { 0.0, 0.0 };
   vtkHybridOctreeBridge::TimedFrameDescription TimedFrame;
 
   /// Drops the octree and what was made from it (both selections, the

@@ -27,6 +27,10 @@ using vtkHybridOctreeImageInput::Bytes;
 using vtkHybridOctreeVolumeMapperParts::GradientOpacityPoints;
 using vtkHybridOctreeVolumeMapperParts::TransformPoint;
 
+// The least share of a frame-time target the drawing aims at, whatever the
+// rest of the frame spends.
+constexpr double MIN_DRAW_TARGET_SHARE = 0.1;
+
 } // namespace
 
 SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
@@ -274,6 +278,27 @@ bool vtkHybridOctreeVolumeMapper::FrameTarget(
   return true;
 }
 
+void vtkHybridOctreeVolumeMapper::ObserveFrameOverhead(vtkRenderer* ren)
+{
+  vtkInternals& in = *this->Internals;
+  if (!in.OverheadPending || !ren)
+  {
+    return;
+  }
+  in.OverheadPending = false;
+  // The renderer's frame holds this mapper's Render(): what is left of it
+  // is the other props, the renderer's passes and this mapper's own
+  // preparation and DrawList. Each frame's share is smoothed into the
+  // estimate, half the last frame's and half the frames' before.
+  const double frameMs = 1.0e3 * ren->GetLastRenderTimeInSeconds();
+  if (!(std::isfinite(frameMs) && frameMs > 0.0))
+  {
+    return;
+  }
+  const double sample = std::max(frameMs - in.PendingDrawMs - in.PendingSelectMs, 0.0);
+  in.OverheadMs = in.OverheadMs < 0.0 ? sample : 0.5 * (in.OverheadMs + sample);
+}
+
 bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
   vtkVolumeProperty* property, bool interactive, double targetMs)
 {
@@ -291,7 +316,6 @@ bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
   // The frame the cost model predicts: this frame's camera, viewport and
   // effects, as GetFrameDrawList() plans them.
   TimedFrameDescription& frame = in.TimedFrame;
-  frame.TargetMilliseconds = targetMs;
   frame.Camera = in.View.Camera;
   frame.Width = in.View.Viewport[0];
   frame.Height = in.View.Viewport[1];
@@ -301,12 +325,27 @@ bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
   frame.Jittering = this->UseJittering != 0;
   frame.SampleDistance = this->ActualSampleDistance();
   frame.Scattering = in.ScatteringParameters;
+  // The drawing's share of a target given in milliseconds (the window's
+  // share is the drawing's already): less the frame's time outside the
+  // drawing, and less a search like the last one (this frame searches when
+  // it selects). At least a tenth of the target: a target the rest of the
+  // frame already spends is below the fastest frame, and its outcome says so.
+  const bool whole = this->TargetFrameMilliseconds > 0.0;
+  const double overhead = whole ? std::max(in.OverheadMs, 0.0) : 0.0;
+  const double search = whole ? in.SearchMs[which] : 0.0;
+  const double drawTarget =
+    std::max(targetMs - overhead - search, MIN_DRAW_TARGET_SHARE * targetMs);
+  frame.TargetMilliseconds = drawTarget;
   // A timed selection is made again when the target, the viewport or
-  // another input changed, when its cost model asks (a warm-up frame, the
-  // model fitted, its correction moved), and for a still frame when the
-  // view moved past ViewChangeDegrees.
-  key.insert(
-    key.end(), { targetMs, static_cast<double>(frame.Width), static_cast<double>(frame.Height) });
+  // another input changed, when the time outside the drawing moved by a
+  // quarter (its step on a log scale), when its cost model asks (a warm-up
+  // frame, the model fitted, its correction moved), and for a still frame
+  // when the view moved past ViewChangeDegrees.
+  const double overheadStep =
+    overhead > 1.0 ? std::round(std::log(overhead) / std::log(1.25)) : 0.0;
+  key.insert(key.end(),
+    { targetMs, static_cast<double>(frame.Width), static_cast<double>(frame.Height),
+      overheadStep });
   if (in.Timers[which] && !in.TimerAsks[which] && slot.Selected && slot.Time > in.OctreeTime &&
     slot.Key == key && slot.Opacity == select.OpacityPoints &&
     (interactive || this->IsViewCurrent(slot.View, slot.Summary.ViewSelection)))
@@ -318,7 +357,12 @@ bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
     in.Timers[which].reset(new vtkHybridOctreeBridge::FrameTimer());
   }
   in.TimerAsks[which] = false;
-  return this->Reselect(interactive, select, key, in.Timers[which].get());
+  if (!this->Reselect(interactive, select, key, in.Timers[which].get()))
+  {
+    return false;
+  }
+  in.SearchMs[which] = this->LastSelectMilliseconds;
+  return true;
 }
 
 void vtkHybridOctreeVolumeMapper::ObserveTimedFrame(bool interactive, double drawMs)
@@ -341,7 +385,8 @@ void vtkHybridOctreeVolumeMapper::ObserveTimedFrame(bool interactive, double dra
   }
   in.TimerAsks[which] = again;
   const TimedSummary summary = in.Timers[which]->GetSummary();
-  this->LastTargetMilliseconds = summary.TargetMilliseconds;
+  this->LastTargetMilliseconds = in.FrameTargetMs;
+  this->LastDrawTargetMilliseconds = summary.TargetMilliseconds;
   this->LastPredictedMilliseconds = summary.PredictedMilliseconds;
   this->LastTimeOutcome = summary.Outcome;
 }

@@ -242,6 +242,11 @@ double vtkPVHybridOctreeRepresentation::GetLastTargetMilliseconds()
   return this->Mapper()->GetLastTargetMilliseconds();
 }
 
+double vtkPVHybridOctreeRepresentation::GetLastDrawTargetMilliseconds()
+{
+  return this->Mapper()->GetLastDrawTargetMilliseconds();
+}
+
 double vtkPVHybridOctreeRepresentation::GetLastPredictedMilliseconds()
 {
   return this->Mapper()->GetLastPredictedMilliseconds();

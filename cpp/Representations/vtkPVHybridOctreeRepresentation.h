@@ -86,11 +86,12 @@ public:
   double GetLastSelectMilliseconds();
   int GetLastReselected();
   const char* GetLastViewSelection();
-  /// A frame within Target Frame (ms): its target (0 untimed), predicted
-  /// and measured drawing milliseconds, the choice's outcome ("warm-up",
-  /// "met", "full", "below-fastest"; "" untimed), and the estimated RMS
-  /// error of its selection (a fraction of the data range, timed or not).
+  /// A frame within Target Frame (ms): its target (0 untimed), the share
+  /// its drawing aimed at, predicted and measured drawing milliseconds, the choice's outcome
+  /// ("warm-up", "met", "full", "below-fastest"; "" untimed), and the estimated RMS error of its
+  /// selection (a fraction of the data range, timed or not).
   double GetLastTargetMilliseconds();
+  double GetLastDrawTargetMilliseconds();
   double GetLastPredictedMilliseconds();
   double GetLastDrawMilliseconds();
   const char* GetLastTimeOutcome();

@@ -64,14 +64,21 @@ pub fn frame_rms_error(
 ) -> f64 {
     let d0 = list.reference_spacing;
     let visibility = view.and_then(|v| v.visibility.as_ref());
-    let drawn = list.bricks.iter().map(|d| {
-        let t = visibility.map_or(1.0, |t| {
-            let (level, coords) = octree.layout().locate(d.brick.node);
-            t.at(level, coords)
-        });
-        let slice_stride = if d0 > 0.0 { d.slice_spacing / d0 } else { d.brick.stride as f64 };
-        Seen { brick: &d.brick, slice_stride, transmittance: t }
-    });
+    let mut drawn: Vec<Seen<'_>> = list
+        .bricks
+        .iter()
+        .map(|d| {
+            let t = visibility.map_or(1.0, |t| {
+                let (level, coords) = octree.layout().locate(d.brick.node);
+                t.at(level, coords)
+            });
+            let slice_stride = if d0 > 0.0 { d.slice_spacing / d0 } else { d.brick.stride as f64 };
+            Seen { brick: &d.brick, slice_stride, transmittance: t }
+        })
+        .collect();
+    // Summed in the selection's order (by node id), not the drawing's: the
+    // same bricks at their strides give the selection's estimate to the bit.
+    drawn.sort_by_key(|s| s.brick.node);
     seen_rms_error(octree, drawn, visible)
 }
 

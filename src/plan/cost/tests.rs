@@ -354,6 +354,7 @@ fn the_time_budgeted_selection_is_a_fresh_selection_at_its_budget() {
         })
         .unwrap();
     assert_eq!((c.outcome, c.chosen.budget_bytes), (Outcome::Full, options.budget_bytes));
+    assert_eq!(c.chosen.error, c.chosen.value.selection.estimated_rms_error, "at the strides: the selection's");
     let target = TimeTarget::new(1e-6, options.budget_bytes).unwrap();
     let c =
         select_for_time(&target, &mut selector, &f.octree, &options, visible, None, None, &calibration, shape, |s| {
