@@ -194,6 +194,12 @@ public:
    *   share of the volume's allocated render time the mapper's drawing
    *   gets (the window's desired update rate; see
    *   vtkHybridOctreeInteractiveReduction), still frames draw BudgetMB.
+   * A still frame whose exact drawing (translucent surfaces sorted into
+   * the slabs between the slices, points between them) is predicted
+   * slower than the target even at its coarsest is drawn from the next
+   * frame on as an interactive frame is (surfaces per brick, no points;
+   * LastPlan says so), under that drawing's cost model, until the target
+   * changes.
    * Anything else (below 0, not a number, above ten minutes) is an error
    * at Render(). Interactive and still frames keep a cost model each (they
    * draw differently); the timed frames' AutoAdjustSampleDistances ladder
@@ -621,9 +627,12 @@ private:
   /// drawing and selection (vtkRenderer::GetLastRenderTimeInSeconds), when
   /// that frame was timed here.
   void ObserveFrameOverhead(vtkRenderer* ren);
-  /// The selection of a frame within `targetMs` (interactive or still,
-  /// each with its own cost model) up to date and chosen for this frame.
-  bool UpdateTimedSelection(vtkVolumeProperty* property, bool interactive, double targetMs);
+  /// The selection of a frame within `targetMs`, drawn as an interactive
+  /// frame is (`fast`) or exactly, each way with its own cost model, up to
+  /// date and chosen for this frame; `followView`: made again when the view
+  /// moved past ViewChangeDegrees (a still window's frames).
+  bool UpdateTimedSelection(
+    vtkVolumeProperty* property, bool fast, bool followView, double targetMs);
   /// Feeds the frame just drawn (`drawMs`) to its cost model.
   void ObserveTimedFrame(bool interactive, double drawMs);
   /// This frame's selection: the still one when it is current and `ren`

@@ -206,6 +206,11 @@ struct vtkHybridOctreeVolumeMapper::vtkInternals
   double PendingDrawMs = 0.0;
   double PendingSelectMs = 0.0;
   double SearchMs[2] = { 0.0, 0.0 };
+  // Whether this timed frame draws as an interactive frame does, and the
+  // target a still frame's exact drawing was found below the fastest frame
+  // for (0: none): the still frames of that target draw that way.
+  bool FrameFast = false;
+  double FastTargetMs = 0.0;
   vtkHybridOctreeBridge::TimedFrameDescription TimedFrame;
 
   /// Drops the octree and what was made from it (both selections, the

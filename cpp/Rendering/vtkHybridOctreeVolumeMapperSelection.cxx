@@ -300,9 +300,10 @@ void vtkHybridOctreeVolumeMapper::ObserveFrameOverhead(vtkRenderer* ren)
 }
 
 bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
-  vtkVolumeProperty* property, bool interactive, double targetMs)
+  vtkVolumeProperty* property, bool fast, bool followView, double targetMs)
 {
   vtkInternals& in = *this->Internals;
+  const bool interactive = fast;
   if (!(this->BudgetMB > 0.0))
   {
     vtkErrorMacro("the texture budget is 0 MB: set BudgetMB above 0");
@@ -348,7 +349,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
       overheadStep });
   if (in.Timers[which] && !in.TimerAsks[which] && slot.Selected && slot.Time > in.OctreeTime &&
     slot.Key == key && slot.Opacity == select.OpacityPoints &&
-    (interactive || this->IsViewCurrent(slot.View, slot.Summary.ViewSelection)))
+    (!followView || this->IsViewCurrent(slot.View, slot.Summary.ViewSelection)))
   {
     return true;
   }
@@ -408,7 +409,10 @@ bool vtkHybridOctreeVolumeMapper::ChooseSelection(vtkRenderer* ren, vtkVolume* v
   this->Internals->FrameTargetMs = targetMs;
   if (targetMs > 0.0)
   {
-    return this->UpdateTimedSelection(property, interactive, targetMs);
+    // Drawn as an interactive frame is: an interactive frame, or a still
+    // one whose exact drawing cannot meet this target.
+    this->Internals->FrameFast = interactive || this->Internals->FastTargetMs == targetMs;
+    return this->UpdateTimedSelection(property, this->Internals->FrameFast, !interactive, targetMs);
   }
   if (interactive && this->IsStillSelectionCurrent(still, key))
   {
