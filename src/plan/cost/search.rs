@@ -24,7 +24,10 @@
 //! cannot meet the target: the slices are widened, `m = 2, 4, ...` up to
 //! [`TimeTarget::max_slice_factor`] (every brick sliced at least `m d0`
 //! apart, [`super::widen`]), and the scan and bisection run again at the
-//! first `m` where a budget fits.
+//! first `m` where a budget fits. The predictions never rise as the
+//! slices widen, so the widest `m` is scanned right after `m = 1`: when
+//! no budget fits there either, the target is below the fastest frame
+//! without the spacings between.
 
 use crate::base::error::{Error, Result};
 
@@ -156,12 +159,21 @@ pub fn search<T>(target: &TimeTarget, mut eval: impl FnMut(usize, u32) -> Result
         return Ok(Choice { chosen: full, outcome: Outcome::Full, evaluations, note: None });
     }
     let budgets = scan(lo, hi, target.scan_points);
+    let widest = target.max_slice_factor.max(1);
     let mut factor = 1u32;
+    // The widest spacing's scan, when made out of turn.
+    let mut widest_scan: Option<Vec<Candidate<T>>> = None;
     loop {
-        let mut scanned = Vec::with_capacity(budgets.len());
-        for &b in &budgets {
-            scanned.push(run(b, factor)?);
-        }
+        let mut scanned = match widest_scan.take().filter(|_| factor == widest) {
+            Some(kept) => kept,
+            None => {
+                let mut scanned = Vec::with_capacity(budgets.len());
+                for &b in &budgets {
+                    scanned.push(run(b, factor)?);
+                }
+                scanned
+            }
+        };
         let best = (0..scanned.len()).filter(|&i| fits(&scanned[i])).fold(None, |best: Option<usize>, i| match best {
             Some(j) if !(scanned[i].error <= scanned[j].error || scanned[j].error.is_nan()) => Some(j),
             _ => Some(i),
@@ -193,8 +205,23 @@ pub fn search<T>(target: &TimeTarget, mut eval: impl FnMut(usize, u32) -> Result
             }
             return Ok(Choice { chosen: best, outcome: Outcome::Met, evaluations, note: None });
         }
-        let next = factor.saturating_mul(2);
-        if next > target.max_slice_factor.max(1) {
+        let mut next = factor.saturating_mul(2);
+        if factor == 1 && next < widest {
+            // Nothing fits at the strides' spacing. A prediction never rises
+            // as the slices widen (fewer samples, non-negative
+            // coefficients), so when nothing fits at the widest spacing
+            // either, nothing fits between: scan it first.
+            let mut at_widest = Vec::with_capacity(budgets.len());
+            for &b in &budgets {
+                at_widest.push(run(b, widest)?);
+            }
+            if !at_widest.iter().any(fits) {
+                (scanned, factor, next) = (at_widest, widest, widest.saturating_mul(2));
+            } else {
+                widest_scan = Some(at_widest);
+            }
+        }
+        if next > widest {
             let fastest = (0..scanned.len())
                 .reduce(|j, i| if scanned[i].predicted_ms < scanned[j].predicted_ms { i } else { j })
                 .unwrap_or(0);

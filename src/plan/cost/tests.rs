@@ -203,6 +203,8 @@ fn a_target_below_the_fastest_frame_widens_the_slices_then_says_so() {
     let c = search(&t, |b, f| Ok(((b, f), 10.0, 1.0))).unwrap();
     assert_eq!(c.outcome, Outcome::BelowFastest);
     assert_eq!((c.chosen.budget_bytes, c.chosen.slice_factor), (1, t.max_slice_factor));
+    // The full budget, then the strides' spacing and the widest: not the spacings between.
+    assert_eq!(c.evaluations, 1 + 2 * t.scan_points);
     let note = c.note.unwrap();
     assert!(note.contains("below the fastest frame") && note.contains("10.0 ms"), "{note}");
     // Wider slices that do meet it: the first factor that fits, its budget bisected.
@@ -210,6 +212,10 @@ fn a_target_below_the_fastest_frame_widens_the_slices_then_says_so() {
     let c = search(&t, |b, f| Ok(((b, f), 40.0 / f64::from(f) + b as f64 / 1e4, 0.0))).unwrap();
     assert_eq!((c.outcome, c.chosen.slice_factor), (Outcome::Met, 2));
     assert!(c.chosen.predicted_ms <= 30.0);
+    // Only the widest fits: its scan, made out of turn, is the one bisected.
+    let c = search(&t, |b, f| Ok(((b, f), 200.0 / f64::from(f) + b as f64 / 1e4, 0.0))).unwrap();
+    assert_eq!((c.outcome, c.chosen.slice_factor), (Outcome::Met, 8));
+    assert!(c.chosen.predicted_ms <= 30.0 && c.chosen.budget_bytes > 1);
     // A prediction that is not a number never fits.
     let t = TimeTarget::new(30.0, 100).unwrap();
     assert_eq!(search(&t, |b, f| Ok(((b, f), f64::NAN, 0.0))).unwrap().outcome, Outcome::BelowFastest);
