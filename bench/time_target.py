@@ -31,7 +31,9 @@ Python module gives the mapper class):
 
 Timed per frame: the window's Render() to glFinish (WaitForCompletion),
 and for ours also the mapper's own drawing time (LastDrawMilliseconds, the
-time the target is about) and its prediction. RMSE: RGB in [0, 1] against
+time the target is about), its prediction, the drawing's share of the
+target (LastDrawTargetMilliseconds) and the search's time
+(LastSelectMilliseconds, 0 when a frame kept its selection). RMSE: RGB in [0, 1] against
 the reference picture of the same view. Printed per target: median and
 90th percentile of the frame times against the target, median RMSE of
 both, our median estimated RMS error; per dataset and scene, the Spearman
@@ -231,7 +233,7 @@ def ours(image, scene, target, pictures):
     mapper.SetBudgetMB(args.budget_mb)
     mapper.SetTargetFrameMilliseconds(target)
     stage = Stage(image, mapper, scene)
-    times, draws, aims, predicted, estimated, errors, outcomes = [], [], [], [], [], [], []
+    times, draws, aims, searches, predicted, estimated, errors, outcomes = [], [], [], [], [], [], [], []
     for lap in range(2):
         for i in range(args.frames):
             stage.view(i)
@@ -240,12 +242,13 @@ def ours(image, scene, target, pictures):
                 times.append(ms)
                 draws.append(mapper.GetLastDrawMilliseconds())
                 aims.append(mapper.GetLastDrawTargetMilliseconds())
+                searches.append(mapper.GetLastSelectMilliseconds())
                 predicted.append(mapper.GetLastPredictedMilliseconds())
                 estimated.append(mapper.GetLastEstimatedRMSError())
                 outcomes.append(mapper.GetLastTimeOutcome())
                 errors.append(rmse(stage.rgb(), pictures[i]))
     stage.close()
-    return {"frame_ms": times, "draw_ms": draws, "draw_target_ms": aims, "predicted_ms": predicted, "estimated": estimated,
+    return {"frame_ms": times, "draw_ms": draws, "draw_target_ms": aims, "search_ms": searches, "predicted_ms": predicted, "estimated": estimated,
             "rmse": errors, "outcomes": outcomes}
 
 
@@ -277,6 +280,7 @@ for dataset, path in datasets:
                    "ours_median_ms": statistics.median(o["frame_ms"]), "ours_p90_ms": p90(o["frame_ms"]),
                    "ours_draw_median_ms": statistics.median(o["draw_ms"]), "ours_draw_p90_ms": p90(o["draw_ms"]),
                    "ours_draw_target_ms": statistics.median(o["draw_target_ms"]),
+                   "ours_search_ms": statistics.median(o["search_ms"]),
                    "ours_predicted_ms": statistics.median(o["predicted_ms"]),
                    "ours_rmse": statistics.median(o["rmse"]),
                    "ours_estimated": statistics.median(o["estimated"]),
@@ -301,13 +305,15 @@ else:
     report("%d^2 pixels, %d-view orbit (second lap timed), budget %g MB; ms to glFinish; "
            "RMSE against VTK's GPU ray caster unadjusted" % (args.size, args.frames, args.budget_mb))
     report("| dataset | scene | target ms | VTK auto median / p90 ms | VTK RMSE | ours frame median / p90 ms "
-           "| ours draw median / p90 ms | draw target | predicted | ours RMSE | estimated RMS error | outcomes |")
-    report("|---|---|---|---|---|---|---|---|---|---|---|---|")
+           "| ours draw median / p90 ms | draw target | search ms | predicted | ours RMSE | estimated RMS error "
+           "| outcomes |")
+    report("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        report("| %s | %s | %g | %.1f / %.1f | %.4f | %.1f / %.1f | %.1f / %.1f | %.1f | %.1f | %.4f | %.4f | %s |" % (
+        report("| %s | %s | %g | %.1f / %.1f | %.4f | %.1f / %.1f | %.1f / %.1f | %.1f | %.1f | %.1f | %.4f | %.4f "
+               "| %s |" % (
             r["dataset"], r["scene"], r["target_ms"], r["vtk_median_ms"], r["vtk_p90_ms"], r["vtk_rmse"],
             r["ours_median_ms"], r["ours_p90_ms"], r["ours_draw_median_ms"], r["ours_draw_p90_ms"],
-            r["ours_draw_target_ms"], r["ours_predicted_ms"], r["ours_rmse"], r["ours_estimated"], r["outcomes"]))
+            r["ours_draw_target_ms"], r["ours_search_ms"], r["ours_predicted_ms"], r["ours_rmse"], r["ours_estimated"], r["outcomes"]))
     for s in summaries:
         report("  %s %s: Spearman(estimated, RMSE) %.3f; our RMSE at VTK's median time / VTK's: %s"
                % (s["dataset"], s["scene"], s["spearman"],
