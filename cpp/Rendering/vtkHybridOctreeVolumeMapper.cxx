@@ -592,6 +592,10 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // to the end of its drawing.
   glFinish();
   const auto start = std::chrono::steady_clock::now();
+  // What this frame builds once (the octree, its isosurface, its points) is
+  // no part of the time later frames spend outside their drawing.
+  const vtkMTimeType built[3] = { in.OctreeTime.GetMTime(), in.IsoTime.GetMTime(),
+    in.PointsTime.GetMTime() };
   DrawList list;
   if (!this->Prepare(ren, vol) || !this->GetFrameDrawList(ren, list))
   {
@@ -661,7 +665,9 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     in.FastTargetMs = in.FrameTargetMs;
   }
-  in.OverheadPending = this->LastRenderOK && timed;
+  const bool builds = in.OctreeTime.GetMTime() != built[0] || in.IsoTime.GetMTime() != built[1] ||
+    in.PointsTime.GetMTime() != built[2];
+  in.OverheadPending = this->LastRenderOK && timed && !builds;
   in.PendingDrawMs = this->LastDrawMilliseconds;
   in.PendingSelectMs = this->LastSelectMilliseconds;
 }
