@@ -665,6 +665,12 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     in.FastTargetMs = in.FrameTargetMs;
   }
+  else if (timed && fast && !interactive && !slabWork)
+  {
+    // The slab work is gone (the surface hidden, the points off): the
+    // next still frame tries the exact drawing again.
+    in.FastTargetMs = 0.0;
+  }
   const bool builds = in.OctreeTime.GetMTime() != built[0] || in.IsoTime.GetMTime() != built[1] ||
     in.PointsTime.GetMTime() != built[2];
   in.OverheadPending = this->LastRenderOK && timed && !builds;

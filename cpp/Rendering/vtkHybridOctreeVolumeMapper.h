@@ -199,7 +199,7 @@ public:
    * slower than the target even at its coarsest is drawn from the next
    * frame on as an interactive frame is (surfaces per brick, no points;
    * LastPlan says so), under that drawing's cost model, until the target
-   * changes.
+   * changes or a frame has no slab work.
    * Anything else (below 0, not a number, above ten minutes) is an error
    * at Render(). Interactive and still frames keep a cost model each (they
    * draw differently); the timed frames' AutoAdjustSampleDistances ladder

@@ -20,7 +20,8 @@
  *              that target draw it per brick (the interactive drawing,
  *              warmed up under its own cost model), drawn as the CPU
  *              compositor composites the same DrawList (RGB RMSE <= 0.05);
- *              a generous target sorts it into the slabs again.
+ *              a frame without the surface, then with it again, tries the
+ *              slabs again; a generous target sorts it into the slabs.
  *   window:    TARGET_FRAME_WINDOW: a still frame is untimed (target 0,
  *              no outcome); an interactive one (30 frames a second asked)
  *              targets 0.4 of the volume's allocated render time, all of
@@ -189,6 +190,15 @@ int TinySurface()
       "the per-brick drawing warms its own cost model up");
   }
   CompareWithCpu(check, scene, mapper, 0.05, errors);
+  // The surface hidden for a frame: no slab work left, so the surface shown
+  // again is tried in the slabs first.
+  mapper->SetShowSurface(false);
+  scene.Window->Render();
+  mapper->SetShowSurface(true);
+  scene.Window->Render();
+  Print(mapper);
+  check.Check(std::string(mapper->GetLastPlan()) == exact,
+    "without slab work for a frame, the exact drawing is tried again");
   mapper->SetTargetFrameMilliseconds(1.0e5);
   scene.Window->Render();
   Print(mapper);
