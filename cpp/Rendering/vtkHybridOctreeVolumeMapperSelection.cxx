@@ -31,6 +31,10 @@ using vtkHybridOctreeVolumeMapperParts::TransformPoint;
 // rest of the frame spends.
 constexpr double MIN_DRAW_TARGET_SHARE = 0.1;
 
+// The ratio between two steps of the time a timed frame spends outside its
+// drawing that select again (a quarter either way).
+constexpr double OVERHEAD_STEP = 1.25;
+
 } // namespace
 
 SelectDescription vtkHybridOctreeVolumeMapper::DescribeSelection(
@@ -303,14 +307,13 @@ bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
   vtkVolumeProperty* property, bool fast, bool followView, double targetMs)
 {
   vtkInternals& in = *this->Internals;
-  const bool interactive = fast;
   if (!(this->BudgetMB > 0.0))
   {
     vtkErrorMacro("the texture budget is 0 MB: set BudgetMB above 0");
     return false;
   }
-  const int which = interactive ? 1 : 0;
-  vtkInternals::SelectionSlot& slot = interactive ? in.Moving : in.Still;
+  const int which = fast ? 1 : 0;
+  vtkInternals::SelectionSlot& slot = fast ? in.Moving : in.Still;
   in.Frame = &slot;
   std::vector<double> key;
   SelectDescription select = this->DescribeSelection(property, this->BudgetMB, key);
@@ -343,7 +346,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
   // frame, the model fitted, its correction moved), and for a still frame
   // when the view moved past ViewChangeDegrees.
   const double overheadStep =
-    overhead > 1.0 ? std::round(std::log(overhead) / std::log(1.25)) : 0.0;
+    overhead > 1.0 ? std::round(std::log(overhead) / std::log(OVERHEAD_STEP)) : 0.0;
   key.insert(key.end(),
     { targetMs, static_cast<double>(frame.Width), static_cast<double>(frame.Height),
       overheadStep });
@@ -358,7 +361,7 @@ bool vtkHybridOctreeVolumeMapper::UpdateTimedSelection(
     in.Timers[which].reset(new vtkHybridOctreeBridge::FrameTimer());
   }
   in.TimerAsks[which] = false;
-  if (!this->Reselect(interactive, select, key, in.Timers[which].get()))
+  if (!this->Reselect(fast, select, key, in.Timers[which].get()))
   {
     return false;
   }

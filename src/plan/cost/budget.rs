@@ -63,15 +63,11 @@ pub fn frame_rms_error(
     view: Option<&ViewImportance>,
 ) -> f64 {
     let d0 = list.reference_spacing;
-    let visibility = view.and_then(|v| v.visibility.as_ref());
     let mut drawn: Vec<Seen<'_>> = list
         .bricks
         .iter()
         .map(|d| {
-            let t = visibility.map_or(1.0, |t| {
-                let (level, coords) = octree.layout().locate(d.brick.node);
-                t.at(level, coords)
-            });
+            let t = view.map_or(1.0, |v| v.transmittance(octree.layout(), d.brick.node));
             let slice_stride = if d0 > 0.0 { d.slice_spacing / d0 } else { d.brick.stride as f64 };
             Seen { brick: &d.brick, slice_stride, transmittance: t }
         })

@@ -166,13 +166,7 @@ pub fn search<T>(target: &TimeTarget, mut eval: impl FnMut(usize, u32) -> Result
     loop {
         let mut scanned = match widest_scan.take().filter(|_| factor == widest) {
             Some(kept) => kept,
-            None => {
-                let mut scanned = Vec::with_capacity(budgets.len());
-                for &b in &budgets {
-                    scanned.push(run(b, factor)?);
-                }
-                scanned
-            }
+            None => budgets.iter().map(|&b| run(b, factor)).collect::<Result<Vec<_>>>()?,
         };
         let best = (0..scanned.len()).filter(|&i| fits(&scanned[i])).fold(None, |best: Option<usize>, i| match best {
             Some(j) if !(scanned[i].error <= scanned[j].error || scanned[j].error.is_nan()) => Some(j),
@@ -211,10 +205,7 @@ pub fn search<T>(target: &TimeTarget, mut eval: impl FnMut(usize, u32) -> Result
             // as the slices widen (fewer samples, non-negative
             // coefficients), so when nothing fits at the widest spacing
             // either, nothing fits between: scan it first.
-            let mut at_widest = Vec::with_capacity(budgets.len());
-            for &b in &budgets {
-                at_widest.push(run(b, widest)?);
-            }
+            let at_widest = budgets.iter().map(|&b| run(b, widest)).collect::<Result<Vec<_>>>()?;
             if !at_widest.iter().any(fits) {
                 (scanned, factor, next) = (at_widest, widest, widest.saturating_mul(2));
             } else {

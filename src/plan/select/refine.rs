@@ -309,10 +309,7 @@ impl Refiner<'_> {
 
     /// `T(n)`: the transmittance in front of node `id` ([`super::Transmittance`]), 1 without a visibility estimate.
     fn transmittance(&self, id: NodeId) -> f64 {
-        self.view.and_then(|v| v.visibility.as_ref()).map_or(1.0, |t| {
-            let (level, coords) = self.octree.layout().locate(id);
-            t.at(level, coords)
-        })
+        self.view.map_or(1.0, |v| v.transmittance(self.octree.layout(), id))
     }
 
     /// The weighted error `Imp(n) e_p(n)` the tolerance is compared with.

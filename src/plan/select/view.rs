@@ -20,7 +20,7 @@ use super::visibility::{Medium, Transmittance};
 use crate::base::error::{Error, Result};
 use crate::data::grid::GridShape;
 use crate::geometry::camera::{Camera, Projection};
-use crate::octree::NodeRef;
+use crate::octree::{Layout, NodeId, NodeRef};
 
 /// The view importance of one frame (module documentation).
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -37,6 +37,14 @@ impl ViewImportance {
         let w = self.screen.as_ref().map_or(1.0, |s| s.weight(n.lo, n.hi));
         let t = self.visibility.as_ref().map_or(1.0, |v| v.at(n.level, n.coords));
         w * t
+    }
+
+    /// `T(n)` of node `id` of an octree laid out by `layout` (1 without a visibility estimate).
+    pub fn transmittance(&self, layout: &Layout, id: NodeId) -> f64 {
+        self.visibility.as_ref().map_or(1.0, |t| {
+            let (level, coords) = layout.locate(id);
+            t.at(level, coords)
+        })
     }
 
     /// `log2 S_min(n)`: the levels below full resolution where refinement stops.
