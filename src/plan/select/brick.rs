@@ -152,6 +152,11 @@ pub(super) fn texels(lo: [usize; 3], hi: [usize; 3], stride: usize) -> [usize; 3
     [0, 1, 2].map(|a| (hi[a] - lo[a]).div_ceil(stride) + 1)
 }
 
+/// `bytes(n, p)` of a brick of `texels` (see the module documentation).
+pub(super) fn brick_bytes(texels: [usize; 3], bytes_per_texel: usize, gradient_border: bool) -> usize {
+    texels.iter().map(|&n| n + 2 * usize::from(gradient_border)).product::<usize>() * bytes_per_texel
+}
+
 /// Node `n` drawn at level `p`: `stride = 2^(L - k - p)`, `bytes(n, p)`, `e_p(n)`.
 pub(super) fn make_brick(
     octree: &VolumeOctree,
@@ -172,7 +177,7 @@ pub(super) fn make_brick(
         hi: n.hi,
         stride,
         texels,
-        bytes: texels.iter().map(|&n| n + 2 * usize::from(gradient_border)).product::<usize>() * bytes_per_texel,
+        bytes: brick_bytes(texels, bytes_per_texel, gradient_border),
         error: n.error(p),
         importance,
         point_count: 0,

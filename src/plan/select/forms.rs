@@ -81,6 +81,9 @@ pub(super) struct Forms {
     /// Form indices: the children of children forms and of splits.
     pub(super) kids: Vec<u32>,
     pub(super) splits: Vec<Split>,
+    /// Per node id: whether it shows (the selection's visibility test, its
+    /// kept region and slice): 0 until asked, 1 it shows, 2 it does not.
+    shows: Vec<u8>,
 }
 
 impl Forms {
@@ -103,6 +106,23 @@ impl Forms {
             self.entries.resize(self.entries.len() + width, EMPTY);
         }
         &mut self.entries[*slot + p]
+    }
+
+    /// Whether node `id` shows, if asked before.
+    pub(super) fn shows(&self, id: NodeId) -> Option<bool> {
+        match self.shows.get(id.0 as usize) {
+            Some(1) => Some(true),
+            Some(2) => Some(false),
+            _ => None,
+        }
+    }
+
+    /// Keeps whether node `id` shows; `slots` is the octree's node count.
+    pub(super) fn set_shows(&mut self, id: NodeId, shows: bool, slots: usize) {
+        if self.shows.is_empty() {
+            self.shows.resize(slots, 0);
+        }
+        self.shows[id.0 as usize] = if shows { 1 } else { 2 };
     }
 
     /// Stores `kids` and returns their range.

@@ -1,7 +1,7 @@
 //! Greedy refinement under a texture budget (see the module documentation of
 //! [`super`]).
 
-use super::brick::{importance, make_brick, Brick, SelectOptions, Selection};
+use super::brick::{brick_bytes, importance, make_brick, texels, Brick, SelectOptions, Selection};
 use super::cache::NodeMap;
 use super::estimate::{estimated_error, seen_rms_error, Seen};
 use super::forms::{Forms, NONE, NO_STEP};
@@ -266,9 +266,14 @@ impl Refiner<'_> {
     /// The finest level of node `n`: full resolution, the largest brick, or
     /// the finest whose texels the viewer can tell apart ([`ViewImportance::coarsest_levels`]).
     fn max_p(&self, n: &NodeRef<'_>) -> usize {
-        let full = self.root_log2 - n.level;
-        let seen = full.saturating_sub(self.seen(n).1);
-        seen.min(self.options.max_brick_log2 as usize)
+        self.max_p_at(n.level, self.seen(n).1)
+    }
+
+    /// [`Refiner::max_p`] of a node of level `level` whose refinement the
+    /// view stops `coarsest` levels below full resolution.
+    fn max_p_at(&self, level: usize, coarsest: usize) -> usize {
+        let full = self.root_log2 - level;
+        full.saturating_sub(coarsest).min(self.options.max_brick_log2 as usize)
     }
 
     /// `Imp(n) = Imp_roi(n) Imp_view(n)` of node `id`.
@@ -307,6 +312,16 @@ impl Refiner<'_> {
         (f64::from(slot.0), usize::from(slot.1))
     }
 
+    /// The coarsest levels of [`Refiner::seen`] of node `id`, if known
+    /// without its node (0 without a view).
+    fn seen_levels(&self, id: NodeId) -> Option<usize> {
+        if self.view.is_none() {
+            return Some(0);
+        }
+        let seen = self.caches.seen.borrow();
+        seen.get(id.0 as usize).filter(|s| !s.0.is_nan()).map(|s| usize::from(s.1))
+    }
+
     /// `T(n)`: the transmittance in front of node `id` ([`super::Transmittance`]), 1 without a visibility estimate.
     fn transmittance(&self, id: NodeId) -> f64 {
         self.view.map_or(1.0, |v| v.transmittance(self.octree.layout(), id))
@@ -320,6 +335,12 @@ impl Refiner<'_> {
     /// Node `id` drawn at level `p`, with its importance.
     fn brick_of(&self, id: NodeId, p: usize) -> Brick {
         self.weigh(&self.form_brick(id, p))
+    }
+
+    /// `bytes(n, p)`: what [`Refiner::form_brick`] holds, without making it.
+    fn bytes_at(&self, n: &NodeRef<'_>, p: usize) -> usize {
+        let stride = 1usize << (self.root_log2 - n.level - p);
+        brick_bytes(texels(n.lo, n.hi, stride), self.options.bytes_per_texel, self.options.gradient_border)
     }
 
     /// Node `id` drawn at level `p`, with an importance of 1 (a [`Form`]'s brick).

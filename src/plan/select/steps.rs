@@ -4,7 +4,7 @@
 use crate::octree::NodeId;
 use std::cmp::Ordering;
 
-/// A refinement step in the queue.
+/// A refinement step, as its push records it ([`Push`]).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Step {
     /// Weighted error removed per byte added.
@@ -16,40 +16,34 @@ pub(super) struct Step {
     pub(super) points: usize,
 }
 
-impl PartialEq for Step {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Step {}
-impl PartialOrd for Step {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Step {
-    /// By gain, ties to the smaller node id (then level, then points: one
-    /// order for any two steps, whatever the queue's history).
-    fn cmp(&self, o: &Self) -> Ordering {
-        self.gain
-            .total_cmp(&o.gain)
-            .then_with(|| o.node.cmp(&self.node))
-            .then_with(|| o.p.cmp(&self.p))
-            .then_with(|| o.points.cmp(&self.points))
-    }
+/// A queued step, as small as the queue can order it by: its gain, its
+/// node and its push in the run's record ([`Log`], which holds the step
+/// and its kept entry).
+///
+/// Ordered by gain, ties to the smaller node id, then to the earlier push.
+/// Of the queued steps of one node only those queued for the brick the cut
+/// holds when they pop are decided (the others are stale and change
+/// nothing), and steps queued for one brick are one step: so the cut a run
+/// makes does not depend on how ties within a node fall. The push keeps
+/// the order total all the same, and a queue rebuilt from the same pushes
+/// pops them in the same order.
+#[derive(Clone, Copy)]
+pub(super) struct Queued {
+    pub(super) gain: f64,
+    pub(super) node: NodeId,
+    pub(super) push: usize,
 }
 
-/// A queued step: its kept entry (`Caches::entries`) and its push in the
-/// run's record ([`Log`]).
-pub(super) struct Queued {
-    pub(super) step: Step,
-    pub(super) index: usize,
-    pub(super) push: usize,
+impl Queued {
+    /// The queue entry of push `push` of `step`.
+    pub(super) fn of(step: &Step, push: usize) -> Queued {
+        Queued { gain: step.gain, node: step.node, push }
+    }
 }
 
 impl PartialEq for Queued {
     fn eq(&self, o: &Self) -> bool {
-        self.step == o.step
+        self.cmp(o) == Ordering::Equal
     }
 }
 impl Eq for Queued {}
@@ -60,7 +54,7 @@ impl PartialOrd for Queued {
 }
 impl Ord for Queued {
     fn cmp(&self, o: &Self) -> Ordering {
-        self.step.cmp(&o.step)
+        self.gain.total_cmp(&o.gain).then_with(|| o.node.cmp(&self.node)).then_with(|| o.push.cmp(&self.push))
     }
 }
 

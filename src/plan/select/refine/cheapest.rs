@@ -2,7 +2,7 @@
 //! into, and a form's weighted mass (see the module documentation of
 //! [`super::super`]), kept in the selection's [`Forms`].
 
-use super::super::forms::{Form, Forms, Split};
+use super::super::forms::{Form, Forms, Split, NONE};
 use super::super::mass::error_mass;
 use super::{Brick, NodeId, NodeRef, Refiner};
 
@@ -37,13 +37,13 @@ impl Refiner<'_> {
     /// ([`Refiner::form_mass`]), so one form serves every region of
     /// interest and every view that leaves `max_p` alone.
     pub(in super::super) fn cheapest(&self, n: &NodeRef<'_>, p: usize) -> u32 {
-        if let Some(e) = self.caches.forms.borrow().get(n.id, p).filter(|e| e.form != super::super::forms::NONE) {
+        if let Some(e) = self.caches.forms.borrow().get(n.id, p).filter(|e| e.form != NONE) {
             return e.form;
         }
         let pooled = self.pooled();
         let at_p = error_mass(n, p, 0.0, pooled);
         let q = (0..p).find(|&q| error_mass(n, q, 0.0, pooled) <= at_p).unwrap_or(p);
-        let own_bytes = self.form_brick(n.id, q).bytes;
+        let own_bytes = self.bytes_at(n, q);
         let mut kids = None;
         if !(n.is_terminal() || p == 0) {
             let (forms, count, hidden, bytes) = self.children_forms(n, p, own_bytes);
@@ -72,15 +72,12 @@ impl Refiner<'_> {
     /// removed: `shows` is false) and their bytes. Stops early once the
     /// bytes reach `enough`.
     fn children_forms(&self, n: &NodeRef<'_>, p: usize, enough: usize) -> ([u32; 8], usize, usize, usize) {
-        let layout = self.octree.layout();
         let (mut forms, mut count, mut hidden, mut bytes) = ([0u32; 8], 0, 0, 0);
-        for (level, c) in layout.children(n.level, n.coords) {
-            let cn = self.octree.node_at(layout.id(level, c), level, c);
-            if !(self.shows)(&cn) {
+        for (level, c) in self.octree.layout().children(n.level, n.coords) {
+            let Some(form) = self.child_form(level, c, p) else {
                 hidden += 1;
                 continue;
-            }
-            let form = self.cheapest(&cn, (p - 1).min(self.max_p(&cn)));
+            };
             let store = self.caches.forms.borrow();
             let f = &store.forms[form as usize];
             bytes += f.bytes;
@@ -94,12 +91,39 @@ impl Refiner<'_> {
         (forms, count, hidden, bytes)
     }
 
+    /// The child at `level` and `c` of a node at `p >= 1`, in its cheapest
+    /// form at `p - 1`; none when it does not show. A child asked for
+    /// again answers from the kept forms and whether it shows, without
+    /// making its node.
+    fn child_form(&self, level: usize, c: [usize; 3], p: usize) -> Option<u32> {
+        let id = self.octree.layout().id(level, c);
+        let shows = self.caches.forms.borrow().shows(id);
+        if shows == Some(false) {
+            return None;
+        }
+        if let (Some(true), Some(coarsest)) = (shows, self.seen_levels(id)) {
+            let q = (p - 1).min(self.max_p_at(level, coarsest));
+            if let Some(e) = self.caches.forms.borrow().get(id, q).filter(|e| e.form != NONE) {
+                return Some(e.form);
+            }
+        }
+        let cn = self.octree.node_at(id, level, c);
+        if shows.is_none() {
+            let shows = (self.shows)(&cn);
+            self.caches.forms.borrow_mut().set_shows(id, shows, self.slots);
+            if !shows {
+                return None;
+            }
+        }
+        Some(self.cheapest(&cn, (p - 1).min(self.max_p(&cn))))
+    }
+
     /// The split of a brick of node `n` at level `p` (`n` not terminal,
     /// `p >= 1`): all its children that show, each in its cheapest form at
     /// `p - 1`. Returns its index in [`Forms::splits`], computed once per
     /// (node, p).
     pub(in super::super) fn split_of(&self, n: &NodeRef<'_>, p: usize) -> u32 {
-        if let Some(e) = self.caches.forms.borrow().get(n.id, p).filter(|e| e.split != super::super::forms::NONE) {
+        if let Some(e) = self.caches.forms.borrow().get(n.id, p).filter(|e| e.split != NONE) {
             return e.split;
         }
         let (forms, count, hidden, bytes) = self.children_forms(n, p, usize::MAX);

@@ -16,8 +16,9 @@
 //! cut before pop t   = bricks put before pop t, not taken out before it
 //! ```
 //!
-//! Steps are totally ordered ([`Step`]'s `Ord`), so a queue rebuilt from
-//! the same steps pops them in the same order: the run equals a fresh one.
+//! Queued steps are totally ordered ([`Queued`]'s `Ord`), so a queue
+//! rebuilt from the same pushes pops them in the same order: the run
+//! equals a fresh one.
 
 use super::super::steps::{Log, Pop, Push, Put, Queued, Step, NEVER};
 use super::{Brick, NodeId, Refiner, Replacement};
@@ -49,7 +50,7 @@ impl Run {
                 push.popped = NEVER;
             }
             if push.popped == NEVER {
-                waiting.push(Queued { step: push.step, index: push.index, push: k });
+                waiting.push(Queued::of(&push.step, k));
             }
         }
         let mut cut = vec![NEVER; slots];
@@ -77,7 +78,7 @@ impl Run {
             let step = refiner.caches.entries.borrow()[index].step;
             let k = self.log.pushes.len();
             self.log.pushes.push(Push { step, index, at: self.log.pops.len(), popped: NEVER });
-            self.queue.push(Queued { step, index, push: k });
+            self.queue.push(Queued::of(&step, k));
         }
     }
 
@@ -139,8 +140,9 @@ impl Refiner<'_> {
             }
         };
         let mut bricks = Vec::new();
-        while let Some(Queued { step, index, push }) = run.queue.pop() {
+        while let Some(Queued { push, .. }) = run.queue.pop() {
             let t = run.log.pops.len();
+            let Push { step, index, .. } = run.log.pushes[push];
             run.log.pushes[push].popped = t;
             let mut pop = Pop { bytes: run.bytes, skipped: run.skipped, need: NEVER, taken: false };
             if run.holds(&step) {
