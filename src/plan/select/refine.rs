@@ -367,7 +367,12 @@ impl Refiner<'_> {
     /// The error mass of a brick: `Imp(n) mass(n, p)` ([`error_mass`]), its
     /// squared error summed over its samples, less what its points correct.
     fn mass(&self, b: &Brick) -> f64 {
-        b.importance * error_mass(&self.octree.node(b.node), b.p, self.removed(b), self.pooled())
+        self.mass_in(b, &self.octree.node(b.node))
+    }
+
+    /// [`Refiner::mass`] of brick `b` of node `n`.
+    fn mass_in(&self, b: &Brick, n: &NodeRef<'_>) -> f64 {
+        b.importance * error_mass(n, b.p, self.removed(b), self.pooled())
     }
 
     /// `Some(1 / data range)` when coarse bricks hold peak-keeping texels
@@ -394,8 +399,8 @@ impl Refiner<'_> {
     fn step_index(&self, b: &Brick, weighted: bool) -> Option<usize> {
         let key = (b.node, b.p, b.point_count);
         if b.point_count == 0 {
-            if let Some(e) = self.caches.forms.borrow().get(b.node, b.p).filter(|e| e.step != NONE) {
-                return (e.step != NO_STEP).then_some(e.step as usize);
+            if let Some(kept) = self.kept_step(b.node, b.p) {
+                return kept;
             }
         }
         // Bricks with points, and steps past what an entry can name.
@@ -423,15 +428,29 @@ impl Refiner<'_> {
         index
     }
 
+    /// [`Refiner::step_index`] of node `id`'s own brick at level `q` (of a
+    /// [`Form`]), made only when its step is not kept.
+    fn own_step_index(&self, id: NodeId, q: usize) -> Option<usize> {
+        self.kept_step(id, q).unwrap_or_else(|| self.step_index(&self.form_brick(id, q), false))
+    }
+
+    /// The kept step of node `id`'s brick at level `p` without points, if
+    /// computed (none inside: it has none).
+    fn kept_step(&self, id: NodeId, p: usize) -> Option<Option<usize>> {
+        let e = self.caches.forms.borrow().get(id, p).filter(|e| e.step != NONE)?;
+        Some((e.step != NO_STEP).then_some(e.step as usize))
+    }
+
     /// [`Refiner::step_index`]'s step, computed.
     fn best_step(&self, b: &Brick) -> Option<StepEntry> {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
         let n = self.octree.node(b.node);
-        let raise = self.raise(b, &n);
-        let split = self.split(b, &n);
-        let take_points = self.take_points(b);
+        let mass = self.mass_in(b, &n);
+        let raise = self.raise(b, &n, mass);
+        let split = self.split(b, &n, mass);
+        let take_points = self.take_points(b, &n, mass);
         let better = |x: Option<Candidate>, y: Option<Candidate>| match (x, y) {
             (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
             (r, s) => r.or(s),
@@ -450,8 +469,8 @@ impl Refiner<'_> {
     /// mass per byte: the same box, `2^(q-p)` times the texels per axis.
     /// (Looking past `p + 1` matters: across a sharp edge `e_p` stays near its
     /// maximum until full resolution, so one level alone may buy nothing.)
-    fn raise(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
-        let mass = self.mass(b);
+    /// `mass` is the brick's [`Refiner::mass`], as in the split and the points.
+    fn raise(&self, b: &Brick, n: &NodeRef<'_>, mass: f64) -> Option<Candidate> {
         (b.p + 1..=self.max_p(n))
             .map(|q| {
                 let up = self.cheapest(n, q);
@@ -472,7 +491,7 @@ impl Refiner<'_> {
     /// is ranked by the better of its own gain and its best one-step
     /// lookahead: the split followed by the best raise of one child,
     /// `(removed by both) / (bytes of both)`.
-    fn split(&self, b: &Brick, n: &NodeRef<'_>) -> Option<Candidate> {
+    fn split(&self, b: &Brick, n: &NodeRef<'_>, mass: f64) -> Option<Candidate> {
         if n.is_terminal() || b.p == 0 {
             return None;
         }
@@ -483,7 +502,6 @@ impl Refiner<'_> {
             (store.kids_of(s.kids).to_vec(), s.hidden, s.bytes)
         };
         let split_bytes = added as f64 - Self::cost(b) as f64;
-        let mass = self.mass(b);
         let mut after = 0.0;
         for &form in &children {
             after += self.form_mass(form);
@@ -516,13 +534,13 @@ impl Refiner<'_> {
 
     /// Take the brick's points (a brick at the points' stride that has none
     /// yet): their removable squared error for their bytes.
-    fn take_points(&self, b: &Brick) -> Option<Candidate> {
+    fn take_points(&self, b: &Brick, n: &NodeRef<'_>, mass: f64) -> Option<Candidate> {
         self.points.filter(|pm| b.stride == pm.factor && b.point_count == 0).and_then(|pm| {
             let (count, _, removable) = pm.in_box(b.lo, b.hi);
             let bytes = count * pm.point_bytes;
             (count > 0 && removable > 0.0).then(|| {
                 let with = Brick { point_count: count, point_bytes: bytes, ..*b };
-                (gain(self.mass(b) - self.mass(&with), bytes as f64), Replacement::Points(count, Self::cost(&with)), 0)
+                (gain(mass - self.mass_in(&with, n), bytes as f64), Replacement::Points(count, Self::cost(&with)), 0)
             })
         })
     }

@@ -92,19 +92,18 @@ impl Run {
 }
 
 impl Refiner<'_> {
-    /// The bricks of a raise or a split (none for points), appended to
-    /// `out` in order: a raise's form, a split's children in octree order.
-    fn replacement_bricks(&self, replacement: &Replacement, out: &mut Vec<Brick>) {
+    /// The own bricks of a raise or a split (none for points), as (node,
+    /// level), appended to `out` in order: a raise's form, a split's
+    /// children in octree order.
+    fn replacement_bricks(&self, replacement: &Replacement, out: &mut Vec<(NodeId, usize)>) {
+        let store = self.caches.forms.borrow();
+        let mut own = |node, q, _, _| out.push((node, q));
         match *replacement {
             Replacement::Points(..) => {}
-            Replacement::Raise(form, _) => self.form_bricks(form, out),
+            Replacement::Raise(form, _) => store.each_own(form, &mut own),
             Replacement::Split(split, _) => {
-                let kids = {
-                    let store = self.caches.forms.borrow();
-                    store.kids_of(store.splits[split as usize].kids).to_vec()
-                };
-                for form in kids {
-                    self.form_bricks(form, out);
+                for &form in store.kids_of(store.splits[split as usize].kids) {
+                    store.each_own(form, &mut own);
                 }
             }
         }
@@ -167,9 +166,9 @@ impl Refiner<'_> {
                     }
                     bricks.clear();
                     self.replacement_bricks(&replacement, &mut bricks);
-                    for b in &bricks {
-                        run.put(b.node, b.p, 0);
-                        run.push(self, self.step_index(b, false));
+                    for &(node, q) in &bricks {
+                        run.put(node, q, 0);
+                        run.push(self, self.own_step_index(node, q));
                     }
                     continue;
                 }
