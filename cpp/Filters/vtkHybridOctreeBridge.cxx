@@ -631,6 +631,11 @@ bool OmeZarrStore::ReadLevel(std::size_t level, const std::size_t lo[3], const s
   });
 }
 
+std::uint64_t OmeZarrStore::GetBytesRead() const
+{
+  return HandleFor(this->Impl).bytes_read();
+}
+
 std::unique_ptr<HybridOctree> HybridOctree::BuildFromStore(
   const OmeZarrStore& store, unsigned int leafSize, std::string& error)
 {
@@ -652,6 +657,30 @@ bool Selection::GetBrickTexelsFromStore(const HybridOctree& octree, const OmeZar
         Out(texels, count),
         Out(reinterpret_cast<std::uint8_t*>(encoded), encoded ? encodedBytes : 0));
   });
+}
+
+bool Selection::PlanLoading(const HybridOctree& octree, const OmeZarrStore& store,
+  const std::vector<std::uint32_t>& residentNodes, const std::vector<std::size_t>& residentStrides,
+  std::size_t memoryBytes, LoadingSummary& summary, std::string& error) const
+{
+  return Guarded(error, [&] {
+    const hybrid_octree::LoadingSummary s =
+      HandleFor(this->Impl)
+        .plan_loading(HandleFor(octree.Impl), HandleFor(store.Impl),
+          rust::Slice<const std::uint32_t>(residentNodes.data(), residentNodes.size()),
+          rust::Slice<const std::size_t>(residentStrides.data(), residentStrides.size()),
+          memoryBytes);
+    summary.StandIns = s.stand_ins;
+    summary.Loaded = s.loaded;
+    summary.Queued = s.queued;
+    summary.WaitingBytes = s.waiting_bytes;
+    summary.BytesRead = s.bytes_read;
+  });
+}
+
+void Selection::DrawSelected() const
+{
+  HandleFor(this->Impl).draw_selected();
 }
 
 Selection::Selection(std::unique_ptr<RustHandle<Selection>> handle)

@@ -525,6 +525,17 @@ struct StoreSummary
   std::string Warnings; ///< what the reader left out or assumed ("" when nothing)
 };
 
+/// A frame's loading from a store in the background (Selection::PlanLoading(); see
+/// LoadingSummary in src/ffi/mod.rs).
+struct LoadingSummary
+{
+  std::size_t StandIns = 0;     ///< bricks drawn by a stand-in: still loading
+  std::size_t Loaded = 0;       ///< bricks read in the background, waiting for upload
+  std::size_t Queued = 0;       ///< bricks the background reader has still to read
+  std::size_t WaitingBytes = 0; ///< bytes of the read bricks waiting for upload
+  std::uint64_t BytesRead = 0;  ///< bytes of samples read from the store so far
+};
+
 /**
  * An open OME-Zarr image on disk (it owns the Rust handle; see
  * src/store/open.rs): its summary, its levels read into the caller's
@@ -554,6 +565,10 @@ public:
    */
   bool ReadLevel(std::size_t level, const std::size_t lo[3], const std::size_t hi[3], void* bytes,
     std::size_t byteCount, std::string& error) const;
+
+  /// Bytes of samples read from the store so far: brick texels, by the frames and by the
+  /// background reader of Selection::PlanLoading().
+  std::uint64_t GetBytesRead() const;
 
 private:
   friend class HybridOctree;
@@ -791,6 +806,25 @@ public:
   bool GetBrickTexelsFromStore(const HybridOctree& octree, const OmeZarrStore& store,
     std::size_t brick, bool bordered, float* texels, std::size_t count, unsigned char* encoded,
     std::size_t encodedBytes, std::string& error) const;
+
+  /**
+   * Plans a frame's loading from `store` in the background (src/ffi/loading.rs): the
+   * selected bricks above two texels a side whose textures are not resident
+   * (`residentNodes[i]`, `residentStrides[i]`) are read by the store's thread, most important
+   * first, holding at most `memoryBytes` of read bricks waiting for upload. Until a brick is
+   * read, the draw lists and brick texels got after this call draw it by its stand-in: the
+   * same node two levels coarser (1/64 of the texels), read at once, so the picture has no
+   * hole. False and `error`
+   * on failure (another octree or store, a background read that failed).
+   */
+  bool PlanLoading(const HybridOctree& octree, const OmeZarrStore& store,
+    const std::vector<std::uint32_t>& residentNodes,
+    const std::vector<std::size_t>& residentStrides, std::size_t memoryBytes,
+    LoadingSummary& summary, std::string& error) const;
+
+  /// The draw lists and brick texels got after this call draw the selected bricks themselves
+  /// (no stand-ins).
+  void DrawSelected() const;
 
   /**
    * Brick `brick`'s texels of both fields of a selection made from

@@ -25,6 +25,9 @@ namespace
 /// A property only our extension adds to ParaView's image representation.
 const char* const OwnProperty = "TextureBudgetMB";
 
+/// How long after a frame with bricks still loading the view draws again.
+const int RefineMilliseconds = 100;
+
 bool IsHybridOctree(vtkSMProxy* repr)
 {
   return repr && repr->GetProperty("Representation") &&
@@ -178,6 +181,7 @@ void pqHybridOctreeBehavior::onEndRender()
   {
     return;
   }
+  bool loading = false;
   for (pqRepresentation* repr : view->getRepresentations())
   {
     vtkSMProxy* proxy = repr->getProxy();
@@ -185,6 +189,21 @@ void pqHybridOctreeBehavior::onEndRender()
     {
       // The information-only properties: the statistics among them.
       proxy->UpdatePropertyInformation();
+      loading = loading ||
+        (proxy->GetProperty("LastBricksLoading") &&
+          vtkSMPropertyHelper(proxy, "LastBricksLoading").GetAsInt() > 0);
     }
+  }
+  if (loading)
+  {
+    // Asynchronous Loading: bricks are still arriving, so the view draws
+    // again shortly (each frame shows what has arrived since).
+    QPointer<pqView> still(view);
+    QTimer::singleShot(RefineMilliseconds, this, [still]() {
+      if (still)
+      {
+        still->render();
+      }
+    });
   }
 }

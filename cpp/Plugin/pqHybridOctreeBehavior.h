@@ -15,7 +15,10 @@
  *
  * And after every render of a view it pulls the last-frame statistics of the
  * Hybrid Octree representations drawn in it (Bricks, Texture MB, Plan, Frame
- * ms, Estimated Error, Points), so the panel shows the frame on screen.
+ * ms, Estimated Error, Points), so the panel shows the frame on screen; when
+ * one of them drew bricks by stand-ins while they load from an OME-Zarr
+ * store (Asynchronous Loading, Bricks Loading above 0), the view renders
+ * again 100 ms later, until every brick has arrived.
  *
  * Loaded with the plugin (an auto-start interface); state files and undo
  * are left alone (nothing is changed while ParaView loads a state).

@@ -536,6 +536,10 @@ bool vtkHybridOctreeVolumeMapper::GetFrameDrawList(vtkRenderer* ren, DrawList& l
   std::string error;
   const CameraDescription cam = this->ModelCamera(ren);
   const bool surface = in.HasIso && this->ShowSurface && this->SurfaceOpacity > 0.0;
+  if (!this->PlanLoading())
+  {
+    return false;
+  }
   const bool ok = in.Frame->Selected->SetShading(in.Shading, error) &&
     in.Frame->Selected->SetGradientOpacity(in.GradientOpacity, error) &&
     in.Frame->Selected->SetJittering(this->UseJittering != 0, error) &&
@@ -574,6 +578,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastDrawMilliseconds = 0.0;
   this->LastTimeOutcome.clear();
   this->LastEstimatedRMSError = 0.0;
+  this->LastBricksLoading = 0;
   this->Internals->FrameTargetMs = 0.0;
   this->Internals->FrameBounds.clear();
   this->Internals->FrameBytes.clear();
@@ -644,6 +649,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastPointBytes = static_cast<vtkTypeInt64>(in.Frame->Summary.PointBytes);
   this->LastTextureBytes = static_cast<vtkTypeInt64>(in.Bricks.GetResidentBytes());
   this->LastUploadedBytes = static_cast<vtkTypeInt64>(in.Bricks.GetUploadedBytes());
+  this->LastStoreBytesRead = in.Store ? static_cast<vtkTypeInt64>(in.Store->GetBytesRead()) : 0;
   // The frame's time to the end of its drawing: what the next interactive
   // frame's sampling is chosen from.
   glFinish();
@@ -747,6 +753,8 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ViewSelection: " << this->ViewSelection << "\n";
   os << indent << "MinTexelPixels: " << this->MinTexelPixels << "\n";
   os << indent << "ViewChangeDegrees: " << this->ViewChangeDegrees << "\n";
+  os << indent << "AsynchronousLoading: " << this->AsynchronousLoading << "\n";
+  os << indent << "LoadingMemoryMB: " << this->LoadingMemoryMB << "\n";
   os << indent << "Transfer2DSampleDistance: " << this->Transfer2DSampleDistance << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "UsePoints: " << this->UsePoints << "\n";

@@ -62,7 +62,10 @@
  * or RGBA components (also ParaView's separate opacity array), CompositeOnCPU().
  * The image must be a whole level of the store: a piece of it (each of
  * several MPI ranks gets one) is an error, parallel drawing from a store
- * being not supported yet.
+ * being not supported yet. With AsynchronousLoading on, a store's bricks
+ * are read by a thread in the background and a frame draws each brick not
+ * read yet by a stand-in, the same node coarser (see
+ * SetAsynchronousLoading()): the picture refines over the frames that follow.
  *
  * Drawn: Composite blending of one scalar component through the colour (RGB
  * or grey) and scalar opacity functions, shaded when the property asks,
@@ -285,6 +288,31 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Drawing from an OME-Zarr store (see above): with AsynchronousLoading on,
+   * a frame does not wait for the bricks of its selection that are not
+   * resident. A thread of the store's reads them in the background, the
+   * most important first, and until a brick is read the frame draws its
+   * stand-in: the same node two levels coarser (texels four times as far
+   * apart, 1/64 of them; at most its coarsest, two a side), read at once
+   * from the store's level of that stride. So the
+   * picture has no hole, each frame shows what has arrived, and the frames
+   * that follow refine it until LastBricksLoading is 0; render again until
+   * then (a still picture for a file: loop Render() while
+   * GetLastBricksLoading() > 0). Off (the default): each frame reads every
+   * brick it draws and is the selection's whole picture. LoadingMemoryMB
+   * bounds the host memory of bricks read and waiting for upload (the
+   * texture budget's counterpart in RAM; the reader waits when it is full);
+   * default 256. An image in memory is not affected.
+   */
+  vtkSetMacro(AsynchronousLoading, vtkTypeBool);
+  vtkGetMacro(AsynchronousLoading, vtkTypeBool);
+  vtkBooleanMacro(AsynchronousLoading, vtkTypeBool);
+  vtkSetClampMacro(LoadingMemoryMB, double, 0.0, 1.0e9);
+  vtkGetMacro(LoadingMemoryMB, double);
+  ///@}
+
+  ///@{
   /// Error tolerance, a fraction of the data range (0..1); default 0.
   vtkSetClampMacro(ErrorTolerance, double, 0.0, 1.0);
   vtkGetMacro(ErrorTolerance, double);
@@ -487,6 +515,12 @@ public:
   /// bricks' squared nodal errors over their samples, a fraction of the
   /// data range (the price of a target or a budget, timed or not).
   vtkGetMacro(LastEstimatedRMSError, double);
+  /// Drawing from a store (AsynchronousLoading): the last frame's bricks
+  /// drawn by a stand-in because they were still loading (0: the selection's
+  /// whole picture), and the bytes of samples read from the store since it
+  /// was opened, by the frames and in the background, at the frame's end.
+  vtkGetMacro(LastBricksLoading, int);
+  vtkGetMacro(LastStoreBytesRead, vtkTypeInt64);
   /// Texture bytes of the last frame's bricks whose box lies inside
   /// `bounds` (xmin, xmax, ymin, ymax, zmin, zmax in the image's data
   /// coordinates): where the selection spent its budget.
@@ -548,6 +582,8 @@ protected:
   int ViewSelection = VIEW_SELECTION_BOTH;
   double MinTexelPixels = 0.0;
   double ViewChangeDegrees = 5.0;
+  vtkTypeBool AsynchronousLoading = 0;
+  double LoadingMemoryMB = 256.0;
   bool UseRoi = false;
   double RoiCenter[3] = { 0.0, 0.0, 0.0 };
   double RoiRadius = 1.0;
@@ -595,6 +631,8 @@ protected:
   double LastDrawMilliseconds = 0.0;
   std::string LastTimeOutcome;
   double LastEstimatedRMSError = 0.0;
+  int LastBricksLoading = 0;
+  vtkTypeInt64 LastStoreBytesRead = 0;
 
 private:
   vtkHybridOctreeVolumeMapper(const vtkHybridOctreeVolumeMapper&) = delete;
@@ -655,6 +693,10 @@ private:
   /// The active camera in the octree's frame (through the inverse model matrix).
   vtkHybridOctreeBridge::CameraDescription ModelCamera(vtkRenderer* ren) const;
   bool GetFrameDrawList(vtkRenderer* ren, vtkHybridOctreeBridge::DrawList& list);
+  /// Drawing from a store with AsynchronousLoading: asks the store's reader
+  /// for the frame's bricks not resident and has those not read yet drawn by
+  /// stand-ins; otherwise the frame draws its selection's own bricks.
+  bool PlanLoading();
   /// Executes `list`: textures, table, opaque surface, slices and batches;
   /// interactive: resident textures, bricks ray-marched at `level` of
   /// vtkHybridOctreeInteractiveReduction, a translucent surface per brick.

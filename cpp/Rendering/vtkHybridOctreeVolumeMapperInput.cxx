@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace
 {
@@ -348,4 +349,28 @@ double* vtkHybridOctreeVolumeMapper::GetBounds()
   }
   std::copy(b, b + 6, this->Bounds);
   return this->Bounds;
+}
+
+bool vtkHybridOctreeVolumeMapper::PlanLoading()
+{
+  vtkInternals& in = *this->Internals;
+  const Selection& selected = *in.Frame->Selected;
+  if (!in.Store || !this->AsynchronousLoading)
+  {
+    selected.DrawSelected();
+    return true;
+  }
+  std::vector<std::uint32_t> nodes;
+  std::vector<std::size_t> strides;
+  in.Bricks.GetResident(nodes, strides);
+  LoadingSummary loading;
+  std::string error;
+  if (!selected.PlanLoading(*in.Octree, *in.Store, nodes, strides,
+        static_cast<std::size_t>(this->LoadingMemoryMB * 1.0e6), loading, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  this->LastBricksLoading = static_cast<int>(loading.StandIns);
+  return true;
 }

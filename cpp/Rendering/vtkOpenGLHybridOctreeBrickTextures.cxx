@@ -172,6 +172,20 @@ bool vtkOpenGLHybridOctreeBrickTextures::HoldsAll(
   return true;
 }
 
+void vtkOpenGLHybridOctreeBrickTextures::GetResident(
+  std::vector<std::uint32_t>& nodes, std::vector<std::size_t>& strides) const
+{
+  nodes.clear();
+  strides.clear();
+  nodes.reserve(this->Entries.size());
+  strides.reserve(this->Entries.size());
+  for (const auto& entry : this->Entries)
+  {
+    nodes.push_back(entry.first.first);
+    strides.push_back(entry.first.second);
+  }
+}
+
 void vtkOpenGLHybridOctreeBrickTextures::SetChannels(vtkWindow* window, int channels)
 {
   if (channels != this->Channels)

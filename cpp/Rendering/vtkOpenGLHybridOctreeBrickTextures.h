@@ -85,6 +85,9 @@ public:
   bool HoldsAll(
     const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides) const;
 
+  /// The keys of all resident textures: `nodes[i]`, `strides[i]`.
+  void GetResident(std::vector<std::uint32_t>& nodes, std::vector<std::size_t>& strides) const;
+
   /// Bytes of all resident textures.
   std::size_t GetResidentBytes() const { return this->ResidentBytes; }
   /// Bytes uploaded since BeginFrame().

@@ -105,6 +105,16 @@ void vtkPVHybridOctreeRepresentation::SetViewChangeDegrees(double degrees)
   this->Mapper()->SetViewChangeDegrees(degrees);
 }
 
+void vtkPVHybridOctreeRepresentation::SetAsynchronousLoading(bool on)
+{
+  this->Mapper()->SetAsynchronousLoading(on);
+}
+
+void vtkPVHybridOctreeRepresentation::SetLoadingMemoryMB(double mb)
+{
+  this->Mapper()->SetLoadingMemoryMB(mb);
+}
+
 void vtkPVHybridOctreeRepresentation::SetUseRoi(bool use)
 {
   this->Mapper()->SetUseRoi(use);
@@ -219,6 +229,16 @@ int vtkPVHybridOctreeRepresentation::GetLastPoints()
 double vtkPVHybridOctreeRepresentation::GetLastUploadedMB()
 {
   return static_cast<double>(this->Mapper()->GetLastUploadedBytes()) / 1.0e6;
+}
+
+int vtkPVHybridOctreeRepresentation::GetLastBricksLoading()
+{
+  return this->Mapper()->GetLastBricksLoading();
+}
+
+double vtkPVHybridOctreeRepresentation::GetLastStoreMBRead()
+{
+  return static_cast<double>(this->Mapper()->GetLastStoreBytesRead()) / 1.0e6;
 }
 
 double vtkPVHybridOctreeRepresentation::GetLastSelectMilliseconds()

@@ -43,6 +43,8 @@ public:
   void SetViewSelection(int mode);
   void SetMinTexelPixels(double pixels);
   void SetViewChangeDegrees(double degrees);
+  void SetAsynchronousLoading(bool on);
+  void SetLoadingMemoryMB(double mb);
   void SetUseRoi(bool use);
   void SetRoiCenter(double x, double y, double z);
   void SetRoiRadius(double radius);
@@ -96,6 +98,11 @@ public:
   double GetLastDrawMilliseconds();
   const char* GetLastTimeOutcome();
   double GetLastEstimatedRMSError();
+  /// Drawn from an OME-Zarr store with Asynchronous Loading: the bricks the
+  /// last frame drew by a stand-in (still loading), and the MB of samples
+  /// read from the store since it was opened.
+  int GetLastBricksLoading();
+  double GetLastStoreMBRead();
   ///@}
 
   /// The budget slider's range, {0.1, full} in MB: `full` is the texture

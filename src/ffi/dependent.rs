@@ -110,7 +110,7 @@ impl SelectionHandle {
             }
             let (colour, opacity) = fields(bytes, desc, false)?;
             same_image(&self.shape, &colour)?;
-            let b = self.selected_brick(brick)?;
+            let b = &self.selected_brick(brick)?;
             brick_texels_dependent_f32_into(&colour, &opacity, b, bordered, texels)?;
             if let Some(i) = texels.iter().position(|v| v.is_infinite()) {
                 return Err(Error::InvalidArgument(format!(

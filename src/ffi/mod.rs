@@ -26,6 +26,9 @@ mod geometry;
 mod gradient_opacity_tests;
 mod grid;
 mod guard;
+mod loading;
+#[cfg(test)]
+mod loading_tests;
 mod octree;
 mod points;
 mod render;
@@ -122,6 +125,21 @@ mod bridge {
         version: String,
         /// What the reader left out or assumed ("" when nothing), joined by "; ".
         warnings: String,
+    }
+
+    /// A frame's loading from a store in the background (`ffi::loading`).
+    #[derive(Debug)]
+    struct LoadingSummary {
+        /// Bricks of the selection drawn by a stand-in: still loading.
+        stand_ins: usize,
+        /// Bricks of the selection read in the background, waiting for upload.
+        loaded: usize,
+        /// Bricks the background reader has still to read.
+        queued: usize,
+        /// Bytes of the read bricks waiting for upload (at most the memory budget and one brick).
+        waiting_bytes: usize,
+        /// Bytes of samples read from the store so far, by the frames and in the background.
+        bytes_read: u64,
     }
 
     /// Summary of a built Volume Octree.
@@ -772,6 +790,9 @@ mod bridge {
         /// native byte order, the store's type; errors: a box outside the
         /// level, a missing or damaged chunk, more memory than allowed).
         fn read_level(self: &StoreHandle, level: usize, lo: &[usize], hi: &[usize], bytes: &mut [u8]) -> Result<()>;
+        /// Bytes of samples read from the store so far (brick texels, by
+        /// the frames and by the background reader).
+        fn bytes_read(self: &StoreHandle) -> u64;
         /// The Hybrid Octree of a store: the stored Volume Octree (its own
         /// leaf size; `leaf_size` is not read), or for an image written
         /// elsewhere the one built from its full resolution read into memory
@@ -1018,6 +1039,26 @@ mod bridge {
             texels: &mut [f32],
             encoded: &mut [u8],
         ) -> Result<()>;
+        /// Plans a frame's loading from `store` in the background: the
+        /// selected bricks above two texels a side whose textures are not
+        /// resident (`resident_nodes[i]`, `resident_strides[i]`) are read
+        /// by a thread of the store's, most important first, holding at
+        /// most `memory_bytes` of read bricks waiting for upload; until one
+        /// is read, the DrawLists and brick texels made after this call
+        /// draw it by its stand-in (the same node two levels coarser, 1/64
+        /// of the texels, read at once). Errors: another octree or store, a read of the
+        /// background thread that failed (a missing or damaged chunk).
+        fn plan_loading(
+            self: &SelectionHandle,
+            octree: &HybridOctreeHandle,
+            store: &StoreHandle,
+            resident_nodes: &[u32],
+            resident_strides: &[usize],
+            memory_bytes: usize,
+        ) -> Result<LoadingSummary>;
+        /// The DrawLists and brick texels made after this call draw the
+        /// selection's own bricks (no stand-ins).
+        fn draw_selected(self: &SelectionHandle);
         /// Brick `brick`'s texels of both fields of a selection made from
         /// `build_dependent_octree`'s octree: (colour, opacity) f32 pairs,
         /// texels x fastest, `2 x` the texel count (with the gradient border
@@ -1131,8 +1172,9 @@ mod bridge {
 use bridge::BuildProgress;
 pub use bridge::{
     BrickGeometryDesc, BrickGeometryOutput, CameraDesc, CutBoxes, DrawListOutput, FtbDesc, FtbSummary, GridDesc,
-    OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, ScatteringDesc, ScatteringFrameDesc, SelectDesc,
-    SelectionSummary, ShadingDesc, StoreSummary, SurfaceMode, SurfaceSummary, TimedFrameDesc, TimedSummary, ViewDesc,
+    LoadingSummary, OctreeSummary, PointsDesc, PointsSummary, RegionDesc, ScalarType, ScatteringDesc,
+    ScatteringFrameDesc, SelectDesc, SelectionSummary, ShadingDesc, StoreSummary, SurfaceMode, SurfaceSummary,
+    TimedFrameDesc, TimedSummary, ViewDesc,
 };
 use dependent::build_dependent_octree;
 use ftb::ftb_display;

@@ -87,6 +87,10 @@ pub struct SelectionHandle {
     /// Its slices' least spacing in multiples of `d0` (1: the strides'),
     /// as a frame-time target chose it (`super::timed`).
     pub(crate) slice_factor: std::sync::atomic::AtomicU32,
+    /// The bricks drawn while some of a store's are still loading: the
+    /// selection with stand-ins for those (`super::loading`); `None`: the
+    /// selection itself.
+    pub(crate) stand_ins: Mutex<Option<Arc<Selection>>>,
 }
 
 /// The cropping and clipping planes of `desc` (`None` when neither is on), checked.
@@ -515,6 +519,7 @@ impl HybridOctreeHandle {
             scattering: Mutex::new(None),
             view_selection,
             slice_factor: std::sync::atomic::AtomicU32::new(1),
+            stand_ins: Mutex::new(None),
         })
     }
 }
@@ -589,8 +594,15 @@ impl SelectionHandle {
         }
         let hybrid = &octree.hybrid;
         let scene = Scene { blend: self.blend, ..hybrid.scene(surface_opacity) };
-        if plan(&self.selection, &scene).surface != SurfacePass::Translucent {
-            return hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, self.blend, None);
+        let stand_ins = self.drawn();
+        let drawn = stand_ins.as_deref().unwrap_or(&self.selection);
+        if plan(drawn, &scene).surface != SurfacePass::Translucent {
+            return hybrid.draw_list(&octree.shape, drawn, &camera, surface_opacity, self.blend, None);
+        }
+        if stand_ins.is_some() {
+            // The slab polygons kept are those of the selection's own strides.
+            let polygons = hybrid.slab_polygons(&octree.shape, drawn);
+            return hybrid.draw_list(&octree.shape, drawn, &camera, surface_opacity, self.blend, polygons.as_ref());
         }
         let mut cache = self.polygons.lock().unwrap_or_else(|e| e.into_inner());
         if cache.as_ref().is_none_or(|(id, _)| *id != octree.surface_id) {
@@ -598,6 +610,11 @@ impl SelectionHandle {
         }
         let polygons = cache.as_ref().map(|(_, p)| p);
         hybrid.draw_list(&octree.shape, &self.selection, &camera, surface_opacity, self.blend, polygons)
+    }
+
+    /// The selection with its stand-ins, when some of its bricks are drawn by one.
+    pub(crate) fn drawn(&self) -> Option<Arc<Selection>> {
+        self.stand_ins.lock().unwrap_or_else(|e| e.into_inner()).clone()
     }
 
     pub(crate) fn draw_list(
@@ -608,7 +625,8 @@ impl SelectionHandle {
     ) -> Bridged<DrawListOutput> {
         guarded(|| {
             let list = self.list(octree, camera_desc, surface_opacity)?;
-            let mut out = flatten(&list, &self.selection);
+            let stand_ins = self.drawn();
+            let mut out = flatten(&list, stand_ins.as_deref().unwrap_or(&self.selection));
             if let (true, Some(scale)) = (list.plan.rgba, &self.rgba) {
                 // Uploaded as RGBA8 (u8: alpha decoded as 255 t) or RGBA32F.
                 let u8s = self.scalar_type == ScalarType::U8;
@@ -731,12 +749,15 @@ impl SelectionHandle {
         self.texels(bytes, desc, brick, true, texels)
     }
 
-    /// Brick `brick` of the selection, or an error naming how many there are.
-    pub(crate) fn selected_brick(&self, brick: usize) -> Result<&crate::plan::select::Brick> {
-        self.selection.bricks.get(brick).ok_or_else(|| {
+    /// Brick `brick` as drawn (its stand-in while it loads), or an error
+    /// naming how many there are.
+    pub(crate) fn selected_brick(&self, brick: usize) -> Result<crate::plan::select::Brick> {
+        let stand_ins = self.drawn();
+        let drawn = stand_ins.as_deref().unwrap_or(&self.selection);
+        drawn.bricks.get(brick).copied().ok_or_else(|| {
             Error::InvalidArgument(format!(
                 "brick {brick} does not exist: the selection has {} bricks",
-                self.selection.bricks.len()
+                drawn.bricks.len()
             ))
         })
     }
@@ -755,7 +776,7 @@ impl SelectionHandle {
         guarded(|| {
             let grid = grid_unscanned(bytes, desc)?;
             same_image(&self.shape, &grid)?;
-            let b = self.selected_brick(brick)?;
+            let b = &self.selected_brick(brick)?;
             let how = (usize::from(bordered), self.blend.mode);
             brick_texels_encoded_into(&grid, b, how, &self.texel, decoded, encoded)?;
             // The shader decodes in f32: the values must be f32-resolvable, as f32 texels must.
@@ -773,7 +794,7 @@ impl SelectionHandle {
             // it goes to the texture, where the shader skips it.
             let grid = grid_unscanned(bytes, desc)?;
             same_image(&self.shape, &grid)?;
-            let b = self.selected_brick(brick)?;
+            let b = &self.selected_brick(brick)?;
             if bordered {
                 brick_texels_f32_bordered_into(&grid, b, texels)?;
             } else {

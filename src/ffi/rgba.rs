@@ -107,7 +107,7 @@ impl SelectionHandle {
             let f = fields(bytes, desc, false)?;
             same_image(&self.shape, &f[3])?;
             let four = [&f[0], &f[1], &f[2], &f[3]];
-            let b = self.selected_brick(brick)?;
+            let b = &self.selected_brick(brick)?;
             brick_texels_rgba_f32_into(four, b, bordered, decoded)?;
             if let Some(i) = decoded.iter().position(|v| v.is_infinite()) {
                 return Err(Error::InvalidArgument(format!(

@@ -17,18 +17,37 @@ use crate::plan::select::Brick;
 use crate::render::texture::{
     brick_texels_f32_bordered_into, brick_texels_f32_into, encoded::brick_texels_encoded_into,
 };
+use crate::store::brick_loader::{BrickLoader, BrickRead};
 use crate::store::pyramid::level_dims;
 use crate::store::Store;
 use std::path::Path;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, OnceLock};
 
-/// An open OME-Zarr image (see [`Store`]).
+/// An open OME-Zarr image (see [`Store`]), with its background brick
+/// reader once a frame has asked for one (`super::loading`).
 pub struct StoreHandle {
-    pub(crate) store: Store,
+    pub(crate) store: Arc<Store>,
+    loader: OnceLock<std::result::Result<BrickLoader, String>>,
+    /// Bytes of samples the frames' own reads took from the store.
+    bytes_read: AtomicU64,
 }
 
 /// Opens the OME-Zarr image in the folder `path`.
 pub(crate) fn open_store(path: &str) -> Bridged<Box<StoreHandle>> {
-    guarded(|| Ok(Box::new(StoreHandle { store: Store::open(Path::new(path))? })))
+    guarded(|| {
+        Ok(Box::new(StoreHandle {
+            store: Arc::new(Store::open(Path::new(path))?),
+            loader: OnceLock::new(),
+            bytes_read: AtomicU64::new(0),
+        }))
+    })
+}
+
+/// The lattice a loaded brick is read as: always with its gradient border,
+/// so that one read serves the frames with and without it.
+pub(crate) fn loaded_read(b: &Brick) -> BrickRead {
+    BrickRead { stride: b.stride, lo: b.lo, texels: b.texels, border: 1 }
 }
 
 /// The levels a store offers: its own for a store written here; for one
@@ -54,6 +73,27 @@ fn octree_of(store: &Store, leaf_size: usize) -> Result<(VolumeOctree, usize)> {
 }
 
 impl StoreHandle {
+    /// The background reader, started at the first call.
+    ///
+    /// # Errors
+    ///
+    /// The thread could not be started.
+    pub(crate) fn loader(&self) -> Result<&BrickLoader> {
+        let started = self.loader.get_or_init(|| BrickLoader::start(Arc::clone(&self.store)));
+        started.as_ref().map_err(|e| Error::InvalidArgument(e.clone()))
+    }
+
+    /// Bytes of samples read from the store: by the frames and by the background reader.
+    pub(crate) fn bytes_read(&self) -> u64 {
+        let loaded = self.loader.get().and_then(|l| l.as_ref().ok()).map_or(0, |l| l.status().bytes_read);
+        self.bytes_read.load(Ordering::Relaxed) + loaded
+    }
+
+    /// The read volume of `read` if the background reader holds it (it gives it up).
+    fn take_loaded(&self, read: &BrickRead) -> Option<crate::data::volume::Volume> {
+        self.loader.get().and_then(|l| l.as_ref().ok()).and_then(|l| l.take(read))
+    }
+
     pub(crate) fn summary(&self) -> Bridged<StoreSummary> {
         guarded(|| {
             let s = &self.store;
@@ -104,7 +144,7 @@ impl StoreHandle {
 /// full resolution.
 pub(crate) fn build_octree_from_store(store: &StoreHandle, leaf_size: u32) -> Bridged<Box<HybridOctreeHandle>> {
     guarded(|| {
-        let s = &store.store;
+        let s: &Store = &store.store;
         let (volume, nan_samples) = octree_of(s, leaf_size as usize)?;
         let count = s.shape.dims.iter().product::<usize>();
         Ok(Box::new(HybridOctreeHandle {
@@ -173,9 +213,34 @@ fn check_against_octree(
 }
 
 impl SelectionHandle {
+    /// That the selection was made from `octree`, built from `store`, with one component.
+    pub(crate) fn check_store(&self, octree: &HybridOctreeHandle, store: &StoreHandle) -> Result<()> {
+        let s = &store.store;
+        if s.shape != self.shape {
+            return Err(Error::InvalidArgument(format!(
+                "the store '{}' is not the volume this selection was made from (dims, spacing or origin differ): \
+                 build the octree from it again",
+                s.label()
+            )));
+        }
+        if self.dependent || self.rgba.is_some() {
+            return Err(Error::InvalidArgument(
+                "dependent and RGBA components are not read from a store: it holds one component".into(),
+            ));
+        }
+        if octree.id != self.octree_id {
+            return Err(Error::InvalidArgument(
+                "this selection was made from another octree: select again from this one".into(),
+            ));
+        }
+        Ok(())
+    }
+
     /// Brick `brick`'s texels read from `store`: with the gradient border
     /// when `bordered`; into `texels` as f32 when `encoded` is empty, else
     /// in the selection's texel format as `brick_texels_encoded` gives them.
+    /// A brick the background reader has read (`super::loading`) is taken
+    /// from it; any other is read here.
     pub(crate) fn brick_texels_from_store(
         &self,
         octree: &HybridOctreeHandle,
@@ -186,25 +251,9 @@ impl SelectionHandle {
         encoded: &mut [u8],
     ) -> Bridged<()> {
         guarded(|| {
-            let s = &store.store;
-            if s.shape != self.shape {
-                return Err(Error::InvalidArgument(format!(
-                    "the store '{}' is not the volume this selection was made from (dims, spacing or origin differ): \
-                     build the octree from it again",
-                    s.label()
-                )));
-            }
-            if self.dependent || self.rgba.is_some() {
-                return Err(Error::InvalidArgument(
-                    "dependent and RGBA components are not read from a store: it holds one component".into(),
-                ));
-            }
-            if octree.id != self.octree_id {
-                return Err(Error::InvalidArgument(
-                    "this selection was made from another octree: select again from this one".into(),
-                ));
-            }
-            let b = self.selected_brick(brick)?;
+            self.check_store(octree, store)?;
+            let s: &Store = &store.store;
+            let b = &self.selected_brick(brick)?;
             let border = usize::from(bordered);
             if self.blend.mode.is_extremum() && b.stride > 1 && border == 0 {
                 return Err(Error::InvalidArgument(
@@ -214,11 +263,19 @@ impl SelectionHandle {
                         .into(),
                 ));
             }
-            let read = s.read_texels(b.stride, b.lo, b.texels, border)?;
+            let (read, read_border) = match store.take_loaded(&loaded_read(b)) {
+                Some(loaded) => (loaded, 1),
+                None => {
+                    let read = s.read_texels(b.stride, b.lo, b.texels, border)?;
+                    store.bytes_read.fetch_add(read.samples.as_bytes().len() as u64, Ordering::Relaxed);
+                    (read, border)
+                }
+            };
             let grid = read.grid(None)?;
-            check_against_octree(&grid, octree, b, border, s)?;
-            // The read volume is the brick's texel lattice: the brick is its stride-1 brick.
-            let local = Brick { lo: [border; 3], hi: b.texels.map(|n| border + n - 1), stride: 1, ..*b };
+            check_against_octree(&grid, octree, b, read_border, s)?;
+            // The read volume is the brick's texel lattice (and `read_border`
+            // more on each side): the brick is its stride-1 brick.
+            let local = Brick { lo: [read_border; 3], hi: b.texels.map(|n| read_border + n - 1), stride: 1, ..*b };
             if encoded.is_empty() {
                 if bordered {
                     brick_texels_f32_bordered_into(&grid, &local, texels)?;

@@ -10,10 +10,10 @@ use crate::store::{write_store, WriteOptions};
 use std::path::PathBuf;
 
 /// A fresh store path under the temporary folder, removed on drop.
-struct Tmp(PathBuf);
+pub(super) struct Tmp(pub(super) PathBuf);
 
 impl Tmp {
-    fn new(name: &str) -> Tmp {
+    pub(super) fn new(name: &str) -> Tmp {
         Tmp(std::env::temp_dir().join(format!("ho-ffi-store-{}-{name}.ome.zarr", std::process::id())))
     }
 }
@@ -27,7 +27,7 @@ impl Drop for Tmp {
 /// A 21 x 18 x 13 f32 field with structure at every scale (odd sizes: every
 /// coarse level's last plane is clamped), its description and a store of it
 /// with leaves of 4.
-fn field(name: &str) -> (Vec<f32>, GridDesc, Tmp) {
+pub(super) fn field(name: &str) -> (Vec<f32>, GridDesc, Tmp) {
     let dims = [21, 18, 13];
     let data: Vec<f32> = (0..dims[0] * dims[1] * dims[2])
         .map(|i| {
@@ -123,7 +123,7 @@ fn brick_texels_from_the_store_are_the_in_memory_texels() {
 }
 
 /// Another octree than the store's.
-fn in_memory_twin() -> Box<HybridOctreeHandle> {
+pub(super) fn in_memory_twin() -> Box<HybridOctreeHandle> {
     let data = vec![1.0f32; 27];
     build_volume_octree(as_bytes(&data), &super::test_support::f32_desc([3, 3, 3]), 2).unwrap()
 }

@@ -12,6 +12,7 @@
 //!   hybrid_octree/     min, max (float64 per node), errors, squared_errors (float32)
 //! ```
 
+pub mod brick_loader;
 pub mod metadata;
 pub mod ngff;
 pub mod octree_arrays;
@@ -28,6 +29,8 @@ pub use write::{write_store, WriteOptions, WriteSummary};
 
 pub use metadata::{Metadata, ATTRIBUTE};
 
+#[cfg(test)]
+mod brick_loader_tests;
 #[cfg(test)]
 mod stream_tests;
 #[cfg(test)]

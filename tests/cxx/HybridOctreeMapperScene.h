@@ -41,11 +41,14 @@ namespace MapperScene
 constexpr int Size = 256;
 const double Background[3] = { 0.32, 0.34, 0.43 };
 
-/// RGB of a window (rows from the bottom), 0..1.
-inline std::vector<double> Grab(vtkRenderWindow* window)
+/// RGB of a window (rows from the bottom), 0..1, drawn again (`rerender`)
+/// or, for a window that does not swap its buffers (SwapBuffersOff), as its
+/// last Render() left it.
+inline std::vector<double> Grab(vtkRenderWindow* window, bool rerender = true)
 {
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
+  grab->SetShouldRerender(rerender);
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
   grab->Update();
@@ -178,6 +181,26 @@ struct Scene : Stage
     this->Build(mapper, color, opacity, position);
   }
 };
+
+/// The OME-Zarr tests' scene on `stage`: `mapper` (input set) drawing the
+/// phantom of a store of the CLI's (values 0..1) in blue-yellow-red, the
+/// low values transparent, seen from (120, 80, 160) off the volume's `centre`.
+inline void BuildStoreStage(Stage& stage, vtkVolumeMapper* mapper, const double centre[3])
+{
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0.0, 0.1, 0.2, 0.9);
+  color->AddRGBPoint(0.5, 0.9, 0.9, 0.2);
+  color->AddRGBPoint(1.0, 0.9, 0.1, 0.1);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.0);
+  opacity->AddPoint(0.15, 0.0);
+  opacity->AddPoint(0.3, 0.08);
+  opacity->AddPoint(1.0, 0.5);
+  const double position[3] = { centre[0] + 120.0, centre[1] + 80.0, centre[2] + 160.0 };
+  stage.Build(mapper, color, opacity, position);
+  stage.Renderer->GetActiveCamera()->SetFocalPoint(centre[0], centre[1], centre[2]);
+  stage.Renderer->ResetCameraClippingRange();
+}
 
 /// True when OpenGL has no error pending (and clears it).
 inline bool NoGLError(vtkRenderWindow* window)

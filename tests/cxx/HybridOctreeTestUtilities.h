@@ -12,6 +12,8 @@
 #include "vtkPolyData.h"
 
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -102,6 +104,24 @@ inline double FieldValue(vtkPolyData* output, const char* name)
     return std::nan("");
   }
   return array->GetTuple1(0);
+}
+
+/// The largest file under `folder` other than zarr.json: a store level's
+/// shard holding data (for the tests that damage one).
+inline std::filesystem::path LargestFile(const std::filesystem::path& folder)
+{
+  std::filesystem::path best;
+  std::uintmax_t size = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder))
+  {
+    if (entry.is_regular_file() && entry.path().filename() != "zarr.json" &&
+      entry.file_size() > size)
+    {
+      size = entry.file_size();
+      best = entry.path();
+    }
+  }
+  return best;
 }
 
 #endif

@@ -134,19 +134,7 @@ Drawn Draw(
   mapper->SetBudgetMB(0.25);
   mapper->SetViewSelectionToScreen();
   Stage stage;
-  vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, 0.1, 0.2, 0.9);
-  color->AddRGBPoint(0.5, 0.9, 0.9, 0.2);
-  color->AddRGBPoint(1.0, 0.9, 0.1, 0.1);
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  opacity->AddPoint(0.15, 0.0);
-  opacity->AddPoint(0.3, 0.08);
-  opacity->AddPoint(1.0, 0.5);
-  const double position[3] = { centre[0] + 120.0, centre[1] + 80.0, centre[2] + 160.0 };
-  stage.Build(mapper, color, opacity, position);
-  stage.Renderer->GetActiveCamera()->SetFocalPoint(centre[0], centre[1], centre[2]);
-  stage.Renderer->ResetCameraClippingRange();
+  BuildStoreStage(stage, mapper, centre);
   stage.Property->SetShade(shade ? 1 : 0);
   stage.Window->Render();
   Drawn d;
@@ -201,23 +189,6 @@ std::string Copy(const std::string& store, const std::string& name)
   fs::remove_all(to);
   fs::copy(store, to, fs::copy_options::recursive);
   return to.string();
-}
-
-/// The largest file under `folder` (a level's shard holding data).
-fs::path LargestFile(const fs::path& folder)
-{
-  fs::path best;
-  std::uintmax_t size = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(folder))
-  {
-    if (entry.is_regular_file() && entry.path().filename() != "zarr.json" &&
-      entry.file_size() > size)
-    {
-      size = entry.file_size();
-      best = entry.path();
-    }
-  }
-  return best;
 }
 
 /// The reader of `path` fails with an error holding `fragment`.

@@ -1,0 +1,95 @@
+//! A store's bricks loaded in the background while frames are drawn
+//! ([`crate::store::brick_loader`]): each frame asks for the bricks of its
+//! selection it does not hold, most important first, and draws the ones
+//! still loading by stand-ins ([`crate::plan::select::with_stand_ins`]),
+//! the same nodes at a coarser stride read at once, so the picture never
+//! has a hole and refines over the next frames.
+
+use super::guard::{check_len, guarded, Bridged};
+use super::octree::HybridOctreeHandle;
+use super::render::SelectionHandle;
+use super::store::{loaded_read, StoreHandle};
+use super::LoadingSummary;
+use crate::base::error::Error;
+use crate::plan::select::with_stand_ins;
+use std::collections::HashSet;
+use std::sync::Arc;
+
+/// How many levels coarser a stand-in is, `c`: 1/64 of its brick's
+/// texels, so the stand-ins of a whole frame cost about 1/64 of its reads
+/// (and neighbouring stand-ins share the subchunks they decode), and the
+/// frame reads them at once. A brick at `p = 0` has no coarser form: the
+/// frame reads it itself.
+pub const STAND_IN_LEVELS: usize = 2;
+
+impl SelectionHandle {
+    /// Plans this frame's loading from `store`: the bricks whose textures
+    /// are not resident (`resident_nodes[i]`, `resident_strides[i]`: the
+    /// frame's resident textures) and not read yet are asked of the
+    /// background reader, whose read bricks waiting for upload may hold
+    /// `memory_bytes`; until read, each is drawn by its stand-in (the
+    /// DrawLists and brick texels made after this call).
+    pub(crate) fn plan_loading(
+        &self,
+        octree: &HybridOctreeHandle,
+        store: &StoreHandle,
+        resident_nodes: &[u32],
+        resident_strides: &[usize],
+        memory_bytes: usize,
+    ) -> Bridged<LoadingSummary> {
+        guarded(|| {
+            self.check_store(octree, store)?;
+            check_len("the resident textures' strides", resident_strides, resident_nodes.len())?;
+            let loader = store.loader()?;
+            if let Some(failure) = loader.failure() {
+                // The reader's own message, which names the store.
+                return Err(Error::InvalidArgument(failure));
+            }
+            let resident: HashSet<(u32, usize)> =
+                resident_nodes.iter().copied().zip(resident_strides.iter().copied()).collect();
+            let bricks = &self.selection.bricks;
+            // Most important first; ties in the selection's order.
+            let mut order: Vec<usize> = (0..bricks.len()).collect();
+            order.sort_by(|&a, &b| bricks[b].importance.total_cmp(&bricks[a].importance).then(a.cmp(&b)));
+            let mut wanted = Vec::new();
+            let mut standing = Vec::new();
+            for i in order {
+                let b = &bricks[i];
+                if b.p == 0 || resident.contains(&(b.node.0, b.stride)) {
+                    continue;
+                }
+                let read = loaded_read(b);
+                if !loader.is_ready(&read) {
+                    standing.push(i);
+                }
+                wanted.push(read);
+            }
+            loader.request(&wanted, memory_bytes);
+            standing.sort_unstable();
+            let drawn = (!standing.is_empty()).then(|| {
+                Arc::new(with_stand_ins(
+                    octree.volume(),
+                    &self.selection,
+                    &standing,
+                    STAND_IN_LEVELS,
+                    self.texel.bytes(),
+                ))
+            });
+            *self.stand_ins.lock().unwrap_or_else(|e| e.into_inner()) = drawn;
+            let status = loader.status();
+            Ok(LoadingSummary {
+                stand_ins: standing.len(),
+                loaded: wanted.len() - standing.len(),
+                queued: status.pending,
+                waiting_bytes: status.ready_bytes,
+                bytes_read: store.bytes_read(),
+            })
+        })
+    }
+
+    /// Draws the selection's own bricks again (no stand-ins): loading done
+    /// by the frames themselves.
+    pub(crate) fn draw_selected(&self) {
+        *self.stand_ins.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    }
+}
