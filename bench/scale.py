@@ -7,7 +7,8 @@ own "Volume" as the volume grows, each case in a pvbatch process of its own
         --plugin build/lib/paraview-5.11/plugins/HybridOctree/HybridOctree.so \
         --cli build/cargo/release/hybrid-octree \
         [--sizes 256,512,1024,2048x2048x1024] [--types u8,u16] [--dataset vessels] \
-        [--frames 5] [--width 512 --height 512] [--budget-mb 64] [--workdir DIR] [--json]
+        [--frames 5] [--width 512 --height 512] [--budget-mb 64] [--workdir DIR] [--json] \
+        [--view-selections Both,Data]
 
 Per size (N: a cube; XxYxZ: a box) and scalar type the CLI writes the
 built-in dataset to a .vti file (`hybrid-octree generate`, slab by slab),
@@ -21,7 +22,12 @@ one pvbatch process (this script with --case):
 - orbit: --frames still frames, the camera turned 360 / frames degrees
   about the view up between them (for the Hybrid Octree each a new view,
   the selection kept), the median and the largest frame ms;
-- the process's peak RSS, also as a multiple of the volume's bytes.
+- the process's peak RSS, also as a multiple of the volume's bytes, and
+  its RSS after each orbit frame (whether it still grows).
+
+The Hybrid Octree has one row per --view-selections entry (the
+representation's View Selection: Data, Screen Space, Visibility, Both; by
+default its default alone), each in a process of its own.
 
 A step's peak RSS is VmHWM after resetting it (`/proc/self/clear_refs`).
 Frames are StillRender + glFinish. The last orbit picture of each
@@ -61,6 +67,9 @@ def parse():
     p.add_argument("--budget-mb", type=float, default=64.0)
     p.add_argument("--workdir", default=None)
     p.add_argument("--json", action="store_true")
+    p.add_argument("--view-selections", default="", help="View Selection per Hybrid Octree row, comma-separated "
+                   "(Data, Screen Space, Visibility, Both); empty: the representation's default")
+    p.add_argument("--view-selection", default="", help=argparse.SUPPRESS)
     # One case (internal): the file, the representation, the picture's path.
     p.add_argument("--case", default=None)
     p.add_argument("--representation", default=VOLUME)
@@ -77,12 +86,21 @@ def reset_peak():
         pass
 
 
-def peak_bytes():
+def status_bytes(field):
+    """A size field of /proc/self/status (VmHWM: peak RSS, VmRSS: RSS), in bytes."""
     with open("/proc/self/status") as f:
         for line in f:
-            if line.startswith("VmHWM:"):
+            if line.startswith(field + ":"):
                 return int(line.split()[1]) * 1024
     return 0
+
+
+def peak_bytes():
+    return status_bytes("VmHWM")
+
+
+def rss_bytes():
+    return status_bytes("VmRSS")
 
 
 def run_case(args):
@@ -110,12 +128,15 @@ def run_case(args):
     display = show_volume(reader, view, array, args.representation, value_range)
     if args.representation == HYBRID:
         display.TextureBudgetMB = args.budget_mb
+        if args.view_selection:
+            display.ViewSelection = args.view_selection
     look_at(view, bounds)  # renders: the first frame
     view.GetRenderWindow().WaitForCompletion()
     out["first_frame_ms"] = (time.perf_counter() - t) * 1e3
     out["first_frame_peak_bytes"] = peak_bytes()
     reset_peak()
     frames = []
+    out["orbit_rss_bytes"] = []
     camera = view.GetActiveCamera()
     for _ in range(args.frames):
         camera.Azimuth(360.0 / max(args.frames, 1))
@@ -123,6 +144,7 @@ def run_case(args):
         view.SMProxy.StillRender()
         view.GetRenderWindow().WaitForCompletion()
         frames.append((time.perf_counter() - t) * 1e3)
+        out["orbit_rss_bytes"].append(rss_bytes())
     out["frame_median_ms"] = statistics.median(frames)
     out["frame_max_ms"] = max(frames)
     out["orbit_peak_bytes"] = peak_bytes()
@@ -132,23 +154,25 @@ def run_case(args):
         out["bricks"] = display.GetPropertyValue("LastBricks")
         out["texture_mb"] = display.GetPropertyValue("LastTextureMB")
         out["estimated_error"] = display.GetPropertyValue("LastEstimatedError")
+        out["view_selection_ran"] = display.GetPropertyValue("LastViewSelection")
     import resource
     out["process_peak_bytes"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
     print("CASE " + json.dumps(out), flush=True)
 
 
-def spawn(args, path, representation, png):
+def spawn(args, path, representation, png, view_selection=""):
     """Runs one case in a new pvbatch; its row, or a failure row."""
     command = [sys.executable if os.path.basename(sys.executable).startswith("pv") else "pvbatch",
                os.path.abspath(__file__), "--plugin", args.plugin, "--cli", args.cli, "--case", path,
                "--representation", representation, "--png", png, "--frames", str(args.frames),
-               "--width", str(args.width), "--height", str(args.height), "--budget-mb", str(args.budget_mb)]
+               "--width", str(args.width), "--height", str(args.height), "--budget-mb", str(args.budget_mb),
+               "--view-selection", view_selection]
     done = subprocess.run(command, capture_output=True, text=True)
     for line in done.stdout.splitlines():
         if line.startswith("CASE "):
             return json.loads(line[len("CASE "):])
     errors = [x for x in (done.stderr + done.stdout).splitlines() if x.strip()]
-    return {"representation": representation, "failed": "exit status %d: %s"
+    return {"representation": representation, "view_selection": view_selection, "failed": "exit status %d: %s"
             % (done.returncode, errors[-1][:200] if errors else "no output")}
 
 
@@ -174,10 +198,14 @@ def main():
             voxels = dims[0] * dims[1] * dims[2]
             volume_bytes = voxels * BYTES[ty]
             pictures = {}
-            for representation in (VOLUME, HYBRID):
-                png = os.path.join(workdir, "%s-%s-%s-%s.png" % (args.dataset, size, ty,
-                                                                 representation.replace(" ", "-")))
-                row = spawn(args, path, representation, png)
+            volume_row = None
+            cases = [(VOLUME, "")] + [(HYBRID, v.strip()) for v in (args.view_selections or "").split(",")]
+            for representation, view_selection in cases:
+                png = os.path.join(workdir, "%s-%s-%s-%s%s.png" % (args.dataset, size, ty,
+                                                                   representation.replace(" ", "-"),
+                                                                   view_selection.replace(" ", "-")))
+                row = spawn(args, path, representation, png, view_selection)
+                row.setdefault("view_selection", view_selection)
                 row.update(size=size, scalar_type=ty, volume_bytes=volume_bytes, generate_ms=generate_ms)
                 for step in ("read", "first_frame", "frame_median"):
                     if step + "_ms" in row:
@@ -185,31 +213,35 @@ def main():
                 if "process_peak_bytes" in row:
                     row["peak_ratio"] = row["process_peak_bytes"] / volume_bytes
                 if "failed" not in row and os.path.exists(png):
-                    pictures[representation] = read_png_rgb(png)
+                    picture = read_png_rgb(png)
                     # A picture of one colour drew nothing (the background): a failure too.
-                    row["blank"] = bool(pictures[representation].std(axis=0).max() < 1e-3)
+                    row["blank"] = bool(picture.std(axis=0).max() < 1e-3)
+                    if representation == VOLUME:
+                        pictures[VOLUME], volume_row = picture, row
+                    elif VOLUME in pictures and not volume_row["blank"]:
+                        row["rmse_vs_volume"] = rmse(picture, pictures[VOLUME])
                 rows.append(row)
-            if len(pictures) == 2 and not rows[-2]["blank"]:
-                rows[-1]["rmse_vs_volume"] = rmse(pictures[HYBRID], pictures[VOLUME])
             os.remove(path)
     if args.json:
         print(json.dumps(rows, indent=1))
         return
     print("%s, %dx%d, %d orbit frames, budget %.0f MB; ms, peak RSS MB (x the volume's bytes)"
           % (args.dataset, args.width, args.height, args.frames, args.budget_mb))
-    print("| size | type | representation | read ms | first frame ms | median frame ms | max frame ms "
+    print("| size | type | representation | view selection | read ms | first frame ms | median frame ms | max frame ms "
           "| read peak MB | first-frame peak MB | orbit peak MB | process peak MB (x volume) "
-          "| first frame ns/voxel | RMSE vs Volume |")
-    print("| ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+          "| RSS after each orbit frame MB | first frame ns/voxel | RMSE vs Volume |")
+    print("| ---: | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | ---: |")
     for r in rows:
         if "failed" in r:
-            print("| %s | %s | %s | failed: %s |" % (r["size"], r["scalar_type"], r["representation"], r["failed"]))
+            print("| %s | %s | %s | %s | failed: %s |" % (r["size"], r["scalar_type"], r["representation"],
+                                                     r["view_selection"], r["failed"]))
             continue
-        print("| %s | %s | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f (%.2fx) | %.2f | %s |" % (
-            r["size"], r["scalar_type"], r["representation"], r["read_ms"], r["first_frame_ms"],
+        ran = r.get("view_selection_ran", "")
+        print("| %s | %s | %s | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f (%.2fx) | %s | %.2f | %s |" % (
+            r["size"], r["scalar_type"], r["representation"], ran, r["read_ms"], r["first_frame_ms"],
             r["frame_median_ms"], r["frame_max_ms"], r["read_peak_bytes"] / 1e6,
             r["first_frame_peak_bytes"] / 1e6, r["orbit_peak_bytes"] / 1e6, r["process_peak_bytes"] / 1e6,
-            r["peak_ratio"], r["first_frame_ns_per_voxel"],
+            r["peak_ratio"], " ".join("%.0f" % (b / 1e6) for b in r["orbit_rss_bytes"]), r["first_frame_ns_per_voxel"],
             "%.4f" % r["rmse_vs_volume"] if "rmse_vs_volume" in r else ("drew nothing" if r["blank"] else "")))
 
 
