@@ -20,33 +20,42 @@ void vtkOpenGLHybridOctreeBrickTextures::BeginFrame(std::size_t limitBytes,
     auto found = this->Entries.find({ nodes[i], strides[i] });
     if (found != this->Entries.end())
     {
-      found->second.LastFrame = this->Frame;
+      this->Touch(found->first, found->second);
     }
   }
   // A lower limit (a smaller budget) takes effect at once.
   this->MakeRoom(0);
 }
 
+void vtkOpenGLHybridOctreeBrickTextures::Touch(const Key& key, Resident& entry)
+{
+  if (entry.LastFrame != this->Frame)
+  {
+    this->ByAge.erase({ entry.LastFrame, key });
+    entry.LastFrame = this->Frame;
+    this->ByAge.insert({ entry.LastFrame, key });
+  }
+}
+
 bool vtkOpenGLHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
 {
   while (this->ResidentBytes + incoming > this->LimitBytes)
   {
-    auto oldest = this->Entries.end();
-    for (auto it = this->Entries.begin(); it != this->Entries.end(); ++it)
-    {
-      if (it->second.LastFrame < this->Frame &&
-        (oldest == this->Entries.end() || it->second.LastFrame < oldest->second.LastFrame))
-      {
-        oldest = it;
-      }
-    }
-    if (oldest == this->Entries.end())
+    // The least recently drawn texture (ties: the least key), if not this frame's.
+    auto oldest = this->ByAge.begin();
+    if (oldest == this->ByAge.end() || oldest->first >= this->Frame)
     {
       return false;
     }
-    oldest->second.Texture->ReleaseGraphicsResources(this->Window);
-    this->ResidentBytes -= oldest->second.Bytes;
-    this->Entries.erase(oldest);
+    auto entry = this->Entries.find(oldest->second);
+    this->ByAge.erase(oldest);
+    if (entry == this->Entries.end())
+    {
+      continue;
+    }
+    entry->second.Texture->ReleaseGraphicsResources(this->Window);
+    this->ResidentBytes -= entry->second.Bytes;
+    this->Entries.erase(entry);
   }
   return true;
 }
@@ -63,7 +72,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   auto found = this->Entries.find(key);
   if (found != this->Entries.end())
   {
-    found->second.LastFrame = this->Frame;
+    this->Touch(found->first, found->second);
     return &found->second;
   }
   const std::size_t channels = static_cast<std::size_t>(this->Channels);
@@ -154,6 +163,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   entry.BlockRanges.swap(ranges);
   entry.Bytes = bytes;
   entry.LastFrame = this->Frame;
+  this->ByAge.insert({ entry.LastFrame, key });
   this->ResidentBytes += bytes;
   this->UploadedBytes += bytes;
   return &entry;
@@ -232,6 +242,7 @@ void vtkOpenGLHybridOctreeBrickTextures::Clear(vtkWindow* window)
     e.second.Texture->ReleaseGraphicsResources(window);
   }
   this->Entries.clear();
+  this->ByAge.clear();
   this->ResidentBytes = 0;
   this->Window = nullptr;
 }

@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -127,9 +128,16 @@ public:
 private:
   /// Releases textures not drawn in this frame, least recently drawn first,
   /// until `incoming` more bytes fit the limit; false when they cannot.
+  /// Each release is O(log n) (ByAge), so a frame replacing every resident
+  /// texture costs O(n log n), not a scan of the cache per upload.
   bool MakeRoom(std::size_t incoming);
+  /// Marks `entry` (of `key`) drawn in this frame.
+  void Touch(const Key& key, Resident& entry);
 
   std::map<Key, Resident> Entries;
+  /// The resident textures by the frame that last drew them, then key: the
+  /// release order.
+  std::set<std::pair<std::uint64_t, Key>> ByAge;
   std::size_t ResidentBytes = 0;
   std::size_t UploadedBytes = 0;
   std::size_t LimitBytes = 0;
