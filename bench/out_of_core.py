@@ -29,6 +29,10 @@ Per size (N: a cube; XxYxZ: a box; u8):
   each with its peak RSS (`ru_maxrss`) and its last picture;
 - RMSE of the async case's refined picture against the sync case's
   (they should be equal), and of the first async picture against it.
+
+Every case draws with the same scalar opacity unit distance (--unit-distance,
+the full resolution's spacing): ParaView's default is the input's cell
+size, which for the reader's light output is the coarse level's.
 """
 import argparse
 import json
@@ -57,6 +61,9 @@ def parse():
     p.add_argument("--width", type=int, default=512)
     p.add_argument("--height", type=int, default=512)
     p.add_argument("--max-frames", type=int, default=2000)
+    p.add_argument("--unit-distance", type=float, default=1.0,
+                   help="the scalar opacity unit distance of every case: the full resolution's spacing (the "
+                   "generated datasets': 1); ParaView's default would be the light image's, coarser")
     p.add_argument("--workdir", default=None)
     p.add_argument("--keep", action="store_true", help="reuse stores already written, keep them after")
     p.add_argument("--no-volume", action="store_true", help="leave out ParaView's Volume on the data read whole")
@@ -100,6 +107,7 @@ def run_case(args):
     view = make_view((args.width, args.height))
     representation = VOLUME if args.case == "volume" else HYBRID
     display = show_volume(reader, view, array, representation, value_range)
+    display.ScalarOpacityUnitDistance = args.unit_distance
     if representation == HYBRID:
         display.TextureBudgetMB = args.budget_mb
         display.LoadingMemoryMB = args.loading_mb
@@ -142,7 +150,7 @@ def spawn(args, case, store, png, first_png):
                os.path.abspath(__file__), "--plugin", args.plugin, "--cli", args.cli, "--case", case,
                "--store", store, "--png", png, "--first-png", first_png, "--budget-mb", str(args.budget_mb),
                "--loading-mb", str(args.loading_mb), "--width", str(args.width), "--height", str(args.height),
-               "--max-frames", str(args.max_frames)]
+               "--max-frames", str(args.max_frames), "--unit-distance", str(args.unit_distance)]
     done = subprocess.run(command, capture_output=True, text=True)
     for line in done.stdout.splitlines():
         if line.startswith("CASE "):
