@@ -28,7 +28,10 @@ impl SelectionHandle {
     /// frame's resident textures) and not read yet are asked of the
     /// background reader, whose read bricks waiting for upload may hold
     /// `memory_bytes`; until read, each is drawn by its stand-in (the
-    /// DrawLists and brick texels made after this call).
+    /// DrawLists and brick texels made after this call). Maximum and
+    /// minimum intensity have none: a coarse stand-in would need each
+    /// texel's peak over its stride, which the store's levels do not hold,
+    /// so their frames read their bricks themselves.
     pub(crate) fn plan_loading(
         &self,
         octree: &HybridOctreeHandle,
@@ -40,6 +43,16 @@ impl SelectionHandle {
         guarded(|| {
             self.check_store(octree, store)?;
             check_len("the resident textures' strides", resident_strides, resident_nodes.len())?;
+            if self.blend.mode.is_extremum() {
+                self.draw_selected();
+                return Ok(LoadingSummary {
+                    stand_ins: 0,
+                    loaded: 0,
+                    queued: 0,
+                    waiting_bytes: 0,
+                    bytes_read: store.bytes_read(),
+                });
+            }
             let loader = store.loader()?;
             if let Some(failure) = loader.failure() {
                 // The reader's own message, which names the store.

@@ -129,6 +129,30 @@ fn stand_ins_are_drawn_until_the_bricks_are_read() {
 }
 
 #[test]
+fn maximum_intensity_reads_its_bricks_itself() {
+    let (data, desc, tmp) = phantom("loading-mip");
+    let store = open_store(tmp.0.to_str().unwrap()).unwrap();
+    let octree = build_octree_from_store(&store, 16).unwrap();
+    let in_memory = build_volume_octree(&data, &desc, 16).unwrap();
+    // At a budget where every brick is at full resolution, as a store's MIP needs.
+    let options = super::SelectDesc { blend_mode: 1, ..select_desc(1 << 30) };
+    let (s, m) = (octree.select_bricks(&options).unwrap(), in_memory.select_bricks(&options).unwrap());
+    let summary = s.plan_loading(&octree, &store, &[], &[], usize::MAX).unwrap();
+    assert_eq!((summary.stand_ins, summary.queued), (0, 0), "no stand-in: it would need peaks");
+    for (i, b) in s.selection.bricks.iter().enumerate() {
+        assert_eq!(&s.selected_brick(i).unwrap(), b);
+        let count = b.texels.iter().product::<usize>();
+        let (mut got, mut want) = (vec![0f32; count], vec![0f32; count]);
+        s.brick_texels_from_store(&octree, &store, i, false, &mut got, &mut []).unwrap();
+        m.brick_texels(&data, &desc, i, &mut want).unwrap();
+        assert_eq!(
+            got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            want.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+        );
+    }
+}
+
+#[test]
 fn loading_is_refused_for_another_octree_or_mismatched_textures() {
     let (_data, _desc, tmp) = field("loading-refused");
     let store = open_store(tmp.0.to_str().unwrap()).unwrap();

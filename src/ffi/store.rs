@@ -212,6 +212,14 @@ fn check_against_octree(
     })
 }
 
+/// Whether every texel of brick `b` in the read volume's `grid` (its
+/// texels `border` in from each side) is `value` (NaN is not).
+fn all_equal(grid: &crate::data::grid::Grid<'_>, b: &Brick, border: usize, value: f64) -> bool {
+    (border..border + b.texels[2]).all(|k| {
+        (border..border + b.texels[1]).all(|j| (border..border + b.texels[0]).all(|i| grid.value(i, j, k) == value))
+    })
+}
+
 impl SelectionHandle {
     /// That the selection was made from `octree`, built from `store`, with one component.
     pub(crate) fn check_store(&self, octree: &HybridOctreeHandle, store: &StoreHandle) -> Result<()> {
@@ -255,7 +263,14 @@ impl SelectionHandle {
             let s: &Store = &store.store;
             let b = &self.selected_brick(brick)?;
             let border = usize::from(bordered);
-            if self.blend.mode.is_extremum() && b.stride > 1 && border == 0 {
+            // A coarse brick of maximum or minimum intensity keeps each texel's
+            // peak over its stride, which the levels do not hold, except for a
+            // constant node (the selection's only exact coarse form): its
+            // subsampled texels are its peaks, checked below.
+            let node = octree.volume().node(b.node);
+            let constant = node.min == node.max;
+            let peaks_needed = self.blend.mode.is_extremum() && b.stride > 1 && border == 0;
+            if peaks_needed && !constant {
                 return Err(Error::InvalidArgument(
                     "maximum and minimum intensity need each coarse texel's peak over its stride, which a store's \
                      subsampled levels do not hold: raise the budget so that every brick is at full resolution, or \
@@ -273,6 +288,17 @@ impl SelectionHandle {
             };
             let grid = read.grid(None)?;
             check_against_octree(&grid, octree, b, read_border, s)?;
+            if peaks_needed && !all_equal(&grid, b, read_border, node.min) {
+                return Err(Error::InvalidArgument(format!(
+                    "maximum and minimum intensity: node {} of '{}' holds {} but samples of no data (NaN) at \
+                     stride {}, whose peaks its levels do not hold: raise the budget so that every brick is at full \
+                     resolution, or read the volume into memory",
+                    b.node.0,
+                    s.label(),
+                    node.min,
+                    b.stride
+                )));
+            }
             // The read volume is the brick's texel lattice (and `read_border`
             // more on each side): the brick is its stride-1 brick.
             let local = Brick { lo: [read_border; 3], hi: b.texels.map(|n| read_border + n - 1), stride: 1, ..*b };
