@@ -56,7 +56,9 @@
  * view selections (VISIBILITY, BOTH) weigh by screen space alone (one
  * warning: their estimate reads every sample); maximum and minimum intensity
  * need a budget at which every brick is at full resolution (coarse texels
- * keep peaks the levels do not store). What needs every sample in memory is
+ * keep peaks the levels do not store; a constant region's coarse brick is
+ * drawn, its samples being its peaks), and draw no stand-ins while loading
+ * asynchronously. What needs every sample in memory is
  * refused with an error naming the fix: points, the isosurface
  * (ShowSurface), volumetric scattering, a 2D transfer function, dependent
  * or RGBA components (also ParaView's separate opacity array), CompositeOnCPU().
