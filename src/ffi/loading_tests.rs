@@ -35,6 +35,11 @@ fn phantom(name: &str) -> (Vec<u8>, GridDesc, Tmp) {
     (v.samples.as_bytes().to_vec(), desc, tmp)
 }
 
+/// The values' bits: texels compared exactly, NaN included.
+fn bits(values: &[f32]) -> Vec<u32> {
+    values.iter().map(|v| v.to_bits()).collect()
+}
+
 #[test]
 fn stand_ins_are_drawn_until_the_bricks_are_read() {
     let (data, desc, tmp) = phantom("loading");
@@ -79,10 +84,7 @@ fn stand_ins_are_drawn_until_the_bricks_are_read() {
             } else {
                 brick_texels_f32_into(&grid, &drawn, &mut want).unwrap();
             }
-            assert_eq!(
-                got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
-                want.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
-            );
+            assert_eq!(bits(&got), bits(&want), "brick {i}");
         }
         assert!(drawn_bytes < s.selection.texture_bytes, "stand-ins take fewer bytes");
 
@@ -108,10 +110,7 @@ fn stand_ins_are_drawn_until_the_bricks_are_read() {
             } else {
                 m.brick_texels(&data, &desc, i, &mut want).unwrap();
             }
-            assert_eq!(
-                got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
-                want.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
-            );
+            assert_eq!(bits(&got), bits(&want), "brick {i}");
         }
 
         // Resident textures are not loaded again; draw_selected drops the stand-ins.
@@ -145,10 +144,7 @@ fn maximum_intensity_reads_its_bricks_itself() {
         let (mut got, mut want) = (vec![0f32; count], vec![0f32; count]);
         s.brick_texels_from_store(&octree, &store, i, false, &mut got, &mut []).unwrap();
         m.brick_texels(&data, &desc, i, &mut want).unwrap();
-        assert_eq!(
-            got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
-            want.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
-        );
+        assert_eq!(bits(&got), bits(&want), "brick {i}");
     }
 }
 

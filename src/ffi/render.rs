@@ -617,6 +617,11 @@ impl SelectionHandle {
         self.stand_ins.lock().unwrap_or_else(|e| e.into_inner()).clone()
     }
 
+    /// `f` of the bricks as drawn: the selection with its stand-ins, or the selection.
+    fn with_drawn<R>(&self, f: impl FnOnce(&Selection) -> R) -> R {
+        f(self.drawn().as_deref().unwrap_or(&self.selection))
+    }
+
     pub(crate) fn draw_list(
         &self,
         octree: &HybridOctreeHandle,
@@ -625,8 +630,7 @@ impl SelectionHandle {
     ) -> Bridged<DrawListOutput> {
         guarded(|| {
             let list = self.list(octree, camera_desc, surface_opacity)?;
-            let stand_ins = self.drawn();
-            let mut out = flatten(&list, stand_ins.as_deref().unwrap_or(&self.selection));
+            let mut out = self.with_drawn(|drawn| flatten(&list, drawn));
             if let (true, Some(scale)) = (list.plan.rgba, &self.rgba) {
                 // Uploaded as RGBA8 (u8: alpha decoded as 255 t) or RGBA32F.
                 let u8s = self.scalar_type == ScalarType::U8;
@@ -752,13 +756,13 @@ impl SelectionHandle {
     /// Brick `brick` as drawn (its stand-in while it loads), or an error
     /// naming how many there are.
     pub(crate) fn selected_brick(&self, brick: usize) -> Result<crate::plan::select::Brick> {
-        let stand_ins = self.drawn();
-        let drawn = stand_ins.as_deref().unwrap_or(&self.selection);
-        drawn.bricks.get(brick).copied().ok_or_else(|| {
-            Error::InvalidArgument(format!(
-                "brick {brick} does not exist: the selection has {} bricks",
-                drawn.bricks.len()
-            ))
+        self.with_drawn(|drawn| {
+            drawn.bricks.get(brick).copied().ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "brick {brick} does not exist: the selection has {} bricks",
+                    drawn.bricks.len()
+                ))
+            })
         })
     }
 

@@ -12,7 +12,7 @@ use super::render::{check_f32_resolution, finite_texels, SelectionHandle};
 use super::StoreSummary;
 use crate::base::error::{Error, Result};
 use crate::hybrid::HybridOctree;
-use crate::octree::{BuildOptions, VolumeOctree};
+use crate::octree::{BuildOptions, NodeRef, VolumeOctree};
 use crate::plan::select::Brick;
 use crate::render::texture::{
     brick_texels_f32_bordered_into, brick_texels_f32_into, encoded::brick_texels_encoded_into,
@@ -168,21 +168,23 @@ pub(crate) fn build_octree_from_store(store: &StoreHandle, leaf_size: u32) -> Br
 /// stride 1 they are that box's samples, so their range is the node's
 /// exactly; at a coarser stride a subset, inside it. A chunk missing from
 /// the store (Zarr reads it as the fill value) or damaged shows as another
-/// range. NaN is no data and not counted.
+/// range. NaN is no data and not counted; the result says whether the
+/// brick holds any.
 fn check_against_octree(
     grid: &crate::data::grid::Grid<'_>,
-    octree: &HybridOctreeHandle,
+    node: &NodeRef<'_>,
     b: &Brick,
     border: usize,
     store: &Store,
-) -> Result<()> {
-    let node = octree.volume().node(b.node);
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+) -> Result<bool> {
+    let (mut lo, mut hi, mut holes) = (f64::INFINITY, f64::NEG_INFINITY, false);
     for k in border..border + b.texels[2] {
         for j in border..border + b.texels[1] {
             for i in border..border + b.texels[0] {
                 let v = grid.value(i, j, k);
-                if !v.is_nan() {
+                if v.is_nan() {
+                    holes = true;
+                } else {
                     (lo, hi) = (lo.min(v), hi.max(v));
                 }
             }
@@ -196,7 +198,7 @@ fn check_against_octree(
         empty || (lo >= node.min && hi <= node.max)
     };
     if fits {
-        return Ok(());
+        return Ok(holes);
     }
     Err(Error::Format {
         path: store.label().to_string(),
@@ -209,14 +211,6 @@ fn check_against_octree(
             node.min,
             node.max
         ),
-    })
-}
-
-/// Whether every texel of brick `b` in the read volume's `grid` (its
-/// texels `border` in from each side) is `value` (NaN is not).
-fn all_equal(grid: &crate::data::grid::Grid<'_>, b: &Brick, border: usize, value: f64) -> bool {
-    (border..border + b.texels[2]).all(|k| {
-        (border..border + b.texels[1]).all(|j| (border..border + b.texels[0]).all(|i| grid.value(i, j, k) == value))
     })
 }
 
@@ -287,8 +281,9 @@ impl SelectionHandle {
                 }
             };
             let grid = read.grid(None)?;
-            check_against_octree(&grid, octree, b, read_border, s)?;
-            if peaks_needed && !all_equal(&grid, b, read_border, node.min) {
+            // Within a constant node's range, its samples are all its value unless some are NaN.
+            let holes = check_against_octree(&grid, &node, b, read_border, s)?;
+            if peaks_needed && holes {
                 return Err(Error::InvalidArgument(format!(
                     "maximum and minimum intensity: node {} of '{}' holds {} but samples of no data (NaN) at \
                      stride {}, whose peaks its levels do not hold: raise the budget so that every brick is at full \
