@@ -217,6 +217,10 @@ struct StepEntry {
     hidden: usize,
     cost: usize,
     added: usize,
+    /// The brick's best step of fewer bytes than this one
+    /// ([`Refiner::fallback_index`]): none until computed, then its index
+    /// in `Caches::entries` if it has one.
+    fallback: std::cell::Cell<Option<Option<usize>>>,
 }
 
 /// A candidate step: its gain, the bricks that replace the brick, and the
@@ -443,14 +447,48 @@ impl Refiner<'_> {
 
     /// [`Refiner::step_index`]'s step, computed.
     fn best_step(&self, b: &Brick) -> Option<StepEntry> {
+        self.best_step_below(b, usize::MAX)
+    }
+
+    /// The step the greedy tries when step `index` of a brick does not
+    /// fit: the brick's best step whose bricks hold fewer bytes than that
+    /// step's (a raise to a lower level, a split or its points), if any.
+    /// So a brick whose best step is too large for what is left of the
+    /// budget still refines by a smaller one. Computed once per entry; its
+    /// index in `Caches::entries`.
+    fn fallback_index(&self, index: usize) -> Option<usize> {
+        let (known, step, added) = {
+            let entries = self.caches.entries.borrow();
+            let e = &entries[index];
+            (e.fallback.get(), e.step, e.added)
+        };
+        if let Some(known) = known {
+            return known;
+        }
+        let b = self.brick_with_points(step.node, step.p, step.points);
+        let found = self.best_step_below(&b, added).map(|entry| {
+            let mut entries = self.caches.entries.borrow_mut();
+            entries.push(entry);
+            entries.len() - 1
+        });
+        self.caches.entries.borrow()[index].fallback.set(Some(found));
+        found
+    }
+
+    /// The best step of brick `b` (with its importance) whose bricks hold
+    /// fewer than `below` bytes: the best of [`Refiner::raise`],
+    /// [`Refiner::split`] and [`Refiner::take_points`], if it removes any
+    /// error and `b` still violates the tolerance.
+    fn best_step_below(&self, b: &Brick, below: usize) -> Option<StepEntry> {
         if Self::weighted(b) <= self.options.tolerance || b.error == 0.0 {
             return None;
         }
         let n = self.octree.node(b.node);
         let mass = self.mass_in(b, &n);
-        let raise = self.raise(b, &n, mass);
-        let split = self.split(b, &n, mass);
-        let take_points = self.take_points(b, &n, mass);
+        let fits = |c: &Candidate| c.1.cost() < below;
+        let raise = self.raise(b, &n, mass, below);
+        let split = self.split(b, &n, mass).filter(fits);
+        let take_points = self.take_points(b, &n, mass).filter(fits);
         let better = |x: Option<Candidate>, y: Option<Candidate>| match (x, y) {
             (Some(r), Some(s)) => Some(if s.0 > r.0 { s } else { r }),
             (r, s) => r.or(s),
@@ -462,6 +500,7 @@ impl Refiner<'_> {
             replacement,
             hidden,
             cost: Self::cost(b),
+            fallback: std::cell::Cell::new(None),
         })
     }
 
@@ -469,13 +508,15 @@ impl Refiner<'_> {
     /// mass per byte: the same box, `2^(q-p)` times the texels per axis.
     /// (Looking past `p + 1` matters: across a sharp edge `e_p` stays near its
     /// maximum until full resolution, so one level alone may buy nothing.)
-    /// `mass` is the brick's [`Refiner::mass`], as in the split and the points.
-    fn raise(&self, b: &Brick, n: &NodeRef<'_>, mass: f64) -> Option<Candidate> {
+    /// `mass` is the brick's [`Refiner::mass`], as in the split and the
+    /// points; only levels whose form holds fewer than `below` bytes count.
+    fn raise(&self, b: &Brick, n: &NodeRef<'_>, mass: f64, below: usize) -> Option<Candidate> {
         (b.p + 1..=self.max_p(n))
-            .map(|q| {
+            .filter_map(|q| {
                 let up = self.cheapest(n, q);
                 let (bytes, hidden) = self.form_size(up);
-                (gain(mass - self.form_mass(up), bytes as f64 - Self::cost(b) as f64), up, bytes, hidden)
+                (bytes < below)
+                    .then(|| (gain(mass - self.form_mass(up), bytes as f64 - Self::cost(b) as f64), up, bytes, hidden))
             })
             .max_by(|x, y| x.0.total_cmp(&y.0))
             .map(|(gain, up, bytes, hidden)| (gain, Replacement::Raise(up, bytes), hidden))
@@ -744,6 +785,36 @@ mod tests {
         let s = select(&o, &SelectOptions::new(10_000_000, 0.0), |_, _| true).unwrap();
         assert_eq!((s.max_error, s.estimated_error), (0.0, 0.0), "{:?}", s.bricks);
         assert!(s.bricks.iter().all(|b| b.error == 0.0));
+    }
+
+    /// When the bytes left are too few for a brick's best step, a smaller
+    /// one is taken: no brick of the cut could still be raised one level
+    /// within the budget (gradient borders make the finest start's raise
+    /// too large for what is left, where its split would fit).
+    #[test]
+    fn a_step_too_large_leaves_room_for_a_smaller_one() {
+        let v = generate(Dataset::SheppLogan, 64, ScalarType::F32);
+        let o = VolumeOctree::build(&v.grid(None).unwrap(), &BuildOptions { leaf_size: 16 }).unwrap();
+        let l = o.layout().root_log2 as usize;
+        for budget in [150_000, 300_000, 600_000, 1_000_000] {
+            let options = SelectOptions { gradient_border: true, ..SelectOptions::new(budget, 0.0) };
+            let s = select(&o, &options, |_, _| true).unwrap();
+            assert!(s.texture_bytes <= budget);
+            let left = budget - s.texture_bytes;
+            for b in &s.bricks {
+                let n = o.node(b.node);
+                if b.p + 1 > (l - n.level).min(options.max_brick_log2 as usize)
+                    || error_mass(&n, b.p + 1, 0.0, None) >= error_mass(&n, b.p, 0.0, None)
+                {
+                    continue;
+                }
+                let up = make_brick(&o, &n, b.p + 1, 1.0, 4, true).bytes;
+                assert!(up - b.bytes > left, "budget {budget}: {b:?} could be raised ({} bytes, {left} left)", up);
+            }
+            if budget >= 600_000 {
+                assert!(s.bricks.len() > 1, "budget {budget}: {} bytes in one brick", s.texture_bytes);
+            }
+        }
     }
 
     #[test]

@@ -3,7 +3,8 @@
 //! replays what that budget leaves unchanged.
 //!
 //! The budget enters the greedy in one place: a popped step is taken when
-//! the bytes after it fit, `need = bytes - cost + added <= budget`.
+//! the bytes after it fit, `need = bytes - cost + added <= budget`; one that
+//! does not fit queues its brick's best smaller step in its place.
 //! Everything else (which steps are queued, the order they pop in, the
 //! cut they change) follows from the steps taken before. So a run under
 //! budget `B'` takes the same steps as the recorded run under `B` up to
@@ -174,6 +175,11 @@ impl Refiner<'_> {
                 }
             }
             run.log.pops.push(pop);
+            // A step that did not fit leaves its brick a smaller one (pushed
+            // after the pop: the pop's decision made it).
+            if pop.need != NEVER {
+                run.push(self, self.fallback_index(index));
+            }
         }
         let (bytes, skipped) = (run.bytes, run.skipped);
         run.log.bytes = bytes;
