@@ -411,11 +411,7 @@ impl Refiner<'_> {
         if let Some(&known) = self.caches.steps.borrow().get(&key) {
             return known;
         }
-        let index = self.best_step(&if weighted { *b } else { self.weigh(b) }).map(|entry| {
-            let mut entries = self.caches.entries.borrow_mut();
-            entries.push(entry);
-            entries.len() - 1
-        });
+        let index = self.best_step(&if weighted { *b } else { self.weigh(b) }).map(|entry| self.keep_entry(entry));
         let named = match index {
             None => Some(NO_STEP),
             Some(i) => u32::try_from(i).ok().filter(|&i| i < NO_STEP),
@@ -445,6 +441,13 @@ impl Refiner<'_> {
         Some((e.step != NO_STEP).then_some(e.step as usize))
     }
 
+    /// Keeps `entry` in `Caches::entries`; its index.
+    fn keep_entry(&self, entry: StepEntry) -> usize {
+        let mut entries = self.caches.entries.borrow_mut();
+        entries.push(entry);
+        entries.len() - 1
+    }
+
     /// [`Refiner::step_index`]'s step, computed.
     fn best_step(&self, b: &Brick) -> Option<StepEntry> {
         self.best_step_below(b, usize::MAX)
@@ -466,11 +469,7 @@ impl Refiner<'_> {
             return known;
         }
         let b = self.brick_with_points(step.node, step.p, step.points);
-        let found = self.best_step_below(&b, added).map(|entry| {
-            let mut entries = self.caches.entries.borrow_mut();
-            entries.push(entry);
-            entries.len() - 1
-        });
+        let found = self.best_step_below(&b, added).map(|entry| self.keep_entry(entry));
         self.caches.entries.borrow()[index].fallback.set(Some(found));
         found
     }
