@@ -1,9 +1,10 @@
 //! A store's bricks loaded in the background while frames are drawn
 //! ([`crate::store::brick_loader`]): each frame asks for the bricks of its
 //! selection it does not hold, most important first, and draws the ones
-//! still loading by stand-ins ([`crate::plan::select::with_stand_ins`]),
-//! the same nodes at a coarser stride read at once, so the picture never
-//! has a hole and refines over the next frames.
+//! still loading by stand-ins ([`crate::plan::select::merged_stand_ins`]),
+//! the same nodes at a coarser stride read at once, merged up the octree
+//! where they tile a node, so the picture never has a hole and refines
+//! over the next frames.
 
 use super::guard::{check_len, guarded, Bridged};
 use super::octree::HybridOctreeHandle;
@@ -11,7 +12,7 @@ use super::render::SelectionHandle;
 use super::store::{loaded_read, StoreHandle};
 use super::LoadingSummary;
 use crate::base::error::Error;
-use crate::plan::select::with_stand_ins;
+use crate::plan::select::merged_stand_ins;
 use std::collections::HashSet;
 use std::sync::Arc;
 
@@ -21,6 +22,12 @@ use std::sync::Arc;
 /// frame reads them at once. A brick at `p = 0` has no coarser form: the
 /// frame reads it itself.
 pub const STAND_IN_LEVELS: usize = 2;
+
+/// The largest merged stand-in, `p_max`: `2^5 + 1 = 33` texels a side, so
+/// that a first frame's stand-ins merge by up to three levels of the
+/// octree (each merge takes up to eight) into a few hundred draws instead
+/// of tens of thousands ([`crate::plan::select::merged_stand_ins`]).
+pub const MERGED_STAND_IN_LOG2: usize = 5;
 
 impl SelectionHandle {
     /// Plans this frame's loading from `store`: the bricks whose textures
@@ -80,12 +87,13 @@ impl SelectionHandle {
             loader.request(&wanted, memory_bytes);
             standing.sort_unstable();
             let drawn = (!standing.is_empty()).then(|| {
-                Arc::new(with_stand_ins(
+                Arc::new(merged_stand_ins(
                     octree.volume(),
                     &self.selection,
                     &standing,
                     STAND_IN_LEVELS,
                     self.texel.bytes(),
+                    MERGED_STAND_IN_LOG2,
                 ))
             });
             *self.stand_ins.lock().unwrap_or_else(|e| e.into_inner()) = drawn;

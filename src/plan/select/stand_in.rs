@@ -13,9 +13,27 @@
 //! about `2^-3c` of its texels (1/64 at `c = 2`). Its error is `e_p'(n)`,
 //! its bytes those of its texels at the selection's bytes per texel and
 //! border. A brick at `p = 0` (two texels a side) has no coarser form.
+//!
+//! Stand-ins merge up the octree ([`merged_stand_ins`]): where every brick
+//! of the cut inside a node `A` is loading (or at `p = 0`, read at once),
+//! one brick of `A` at the coarsest of their strides takes their place,
+//!
+//! ```text
+//! s_A = max s'(b),   p_A = log2(2^(L - k_A) / s_A)   (kept only while p_A <= p_max)
+//! ```
+//!
+//! and so on up. Parts of `A` the cut leaves out are transparent under the
+//! transfer function (their samples show nothing) or removed by cropping
+//! and clipping (which the DrawList applies to every brick), so drawing
+//! them costs fragments, not a change in the picture beyond the coarser
+//! interpolation at their faces. The picture is the same lattice
+//! where the strides agree, in far fewer draws and textures: a first frame
+//! of a store has every brick loading, and drawing each of tens of
+//! thousands of stand-ins costs more than reading them.
 
-use super::brick::{brick_bytes, texels, Brick, Selection};
-use crate::octree::VolumeOctree;
+use super::brick::{brick_bytes, make_brick, texels, Brick, Selection};
+use crate::octree::{NodeId, VolumeOctree};
+use std::collections::{BTreeMap, HashSet};
 
 /// `brick` drawn `coarser` levels coarser (see the module documentation);
 /// the brick itself at `p = 0`. `bytes_per_texel`: the selection's.
@@ -57,6 +75,107 @@ pub fn with_stand_ins(
     out
 }
 
+/// `selection` with the bricks at `standing` replaced by their
+/// [`stand_in`]s, merged up the octree into bricks of at most `2^max_p + 1`
+/// texels a side (see the module documentation); the bricks in node order,
+/// its texture bytes summed again.
+pub fn merged_stand_ins(
+    octree: &VolumeOctree,
+    selection: &Selection,
+    standing: &[usize],
+    coarser: usize,
+    bytes_per_texel: usize,
+    max_p: usize,
+) -> Selection {
+    let layout = octree.layout();
+    let mut is_standing = vec![false; selection.bricks.len()];
+    for &i in standing {
+        if let Some(s) = is_standing.get_mut(i) {
+            *s = true;
+        }
+    }
+    if standing.is_empty() {
+        return selection.clone();
+    }
+    // Bricks at p = 0 (their own stand-ins: two texels a side, read at once)
+    // merge too: a parent at their stride samples their lattice.
+    let merges = |(b, s): &(&Brick, &bool)| **s || b.p == 0;
+    let mut drawn: Vec<Brick> =
+        selection.bricks.iter().zip(&is_standing).filter(|x| !merges(x)).map(|(b, _)| *b).collect();
+    // A node with a drawn brick inside never merges: the ancestors of
+    // every brick drawn as it is.
+    let mut blocked = HashSet::new();
+    let block = |blocked: &mut HashSet<NodeId>, id: NodeId| {
+        let (mut level, mut c) = layout.locate(id);
+        while level > 0 {
+            (level, c) = (level - 1, c.map(|v| v / 2));
+            if !blocked.insert(layout.id(level, c)) {
+                break;
+            }
+        }
+    };
+    for b in &drawn {
+        block(&mut blocked, b.node);
+    }
+    // The stand-ins by level, each level's by parent: merged into the
+    // parent (one level up) where nothing else is drawn inside it, drawn as
+    // they are otherwise.
+    let mut by_level: BTreeMap<usize, Vec<Brick>> = BTreeMap::new();
+    for (b, _) in selection.bricks.iter().zip(&is_standing).filter(merges) {
+        by_level.entry(b.level).or_default().push(stand_in(octree, b, coarser, bytes_per_texel));
+    }
+    while let Some((level, mut bricks)) = by_level.pop_last() {
+        if level == 0 {
+            drawn.append(&mut bricks);
+            continue;
+        }
+        let parent_of = |b: &Brick| {
+            let (_, c) = layout.locate(b.node);
+            layout.id(level - 1, c.map(|v| v / 2))
+        };
+        bricks.sort_by_key(|b| (parent_of(b), b.node));
+        for group in bricks.chunk_by(|a, b| parent_of(a) == parent_of(b)) {
+            let parent = parent_of(&group[0]);
+            let m = (!blocked.contains(&parent))
+                .then(|| merged(octree, parent, level - 1, group, bytes_per_texel, max_p))
+                .flatten();
+            match m {
+                Some(m) => by_level.entry(level - 1).or_default().push(m),
+                None => {
+                    drawn.extend_from_slice(group);
+                    block(&mut blocked, group[0].node);
+                }
+            }
+        }
+    }
+    drawn.sort_by_key(|b| b.node);
+    let mut out = Selection { bricks: drawn, ..selection.clone() };
+    out.texture_bytes = out.bricks.iter().map(|b| b.bytes).sum();
+    out
+}
+
+/// Node `parent` (of `level`) at the coarsest stride of `group`, its
+/// children's stand-ins, if it has at most `2^max_p + 1` texels a side.
+fn merged(
+    octree: &VolumeOctree,
+    parent: NodeId,
+    level: usize,
+    group: &[Brick],
+    bytes_per_texel: usize,
+    max_p: usize,
+) -> Option<Brick> {
+    let stride = group.iter().map(|b| b.stride).max()?;
+    let size = octree.layout().node_size(level);
+    if stride > size {
+        return None;
+    }
+    let p = (size / stride).trailing_zeros() as usize;
+    let first = &group[0];
+    let border = first.bytes == brick_bytes(first.texels, bytes_per_texel, true);
+    let importance = group.iter().map(|b| b.importance).fold(0.0, f64::max);
+    (p <= max_p).then(|| make_brick(octree, &octree.node(parent), p, importance, bytes_per_texel, border))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -94,6 +213,64 @@ mod tests {
             assert_eq!((one.bricks[i].p, one.bricks[i].texels), (0, [2, 2, 2]), "two texels a side");
             assert!((0..one.bricks.len()).all(|j| j == i || one.bricks[j] == selection.bricks[j]));
             assert_eq!(stand_in(&octree, &one.bricks[i], 2, bytes_per_texel), one.bricks[i]);
+        }
+    }
+
+    /// Merged stand-ins tile what the loading bricks tile, each at least
+    /// as coarse as the stand-ins it replaces and at most `2^max_p + 1`
+    /// texels a side, in fewer bricks; a brick not loading keeps every
+    /// ancestor from merging over it.
+    #[test]
+    fn merged_stand_ins_tile_the_loading_bricks_in_fewer_draws() {
+        let v = generate(Dataset::SheppLogan, 64, ScalarType::U8);
+        let octree = VolumeOctree::build(&v.grid(None).unwrap(), &BuildOptions { leaf_size: 8 }).unwrap();
+        let d = octree.layout().dims;
+        let cover = |bricks: &[Brick]| {
+            let mut count = vec![0u8; (d[0] - 1) * (d[1] - 1) * (d[2] - 1)];
+            for b in bricks {
+                for z in b.lo[2]..b.hi[2] {
+                    for y in b.lo[1]..b.hi[1] {
+                        for x in b.lo[0]..b.hi[0] {
+                            count[x + (d[0] - 1) * (y + (d[1] - 1) * z)] += 1;
+                        }
+                    }
+                }
+            }
+            count
+        };
+        for gradient_border in [false, true] {
+            let options = SelectOptions { bytes_per_texel: 1, gradient_border, ..SelectOptions::new(200_000, 0.0) };
+            let selection = select(&octree, &options, |_, _| true).unwrap();
+            let loading: Vec<usize> = (0..selection.bricks.len()).filter(|&i| selection.bricks[i].p > 0).collect();
+            assert!(loading.len() > 20, "{} bricks loading", loading.len());
+            let single = with_stand_ins(&octree, &selection, &loading, 2, 1);
+            let merged = merged_stand_ins(&octree, &selection, &loading, 2, 1, 5);
+            assert_eq!(cover(&merged.bricks), cover(&selection.bricks), "the same cells, once each");
+            assert!(
+                merged.bricks.len() * 4 < single.bricks.len(),
+                "{} of {}",
+                merged.bricks.len(),
+                single.bricks.len()
+            );
+            assert!(merged.bricks.windows(2).all(|w| w[0].node < w[1].node), "node order");
+            assert_eq!(merged.texture_bytes, merged.bricks.iter().map(|b| b.bytes).sum::<usize>());
+            for m in &merged.bricks {
+                assert!(m.texels.iter().all(|&t| t <= 33) || single.bricks.contains(m), "{m:?}");
+                assert_eq!(m.bytes, brick_bytes(m.texels, 1, gradient_border));
+                // No finer than any stand-in it covers.
+                for s in single.bricks.iter().filter(|s| (0..3).all(|a| m.lo[a] <= s.lo[a] && s.hi[a] <= m.hi[a])) {
+                    assert!(m.stride >= s.stride, "{m:?} over {s:?}");
+                }
+            }
+            // One brick read: it is drawn itself, and no stand-in covers it.
+            let kept = loading[loading.len() / 2];
+            let fewer: Vec<usize> = loading.iter().copied().filter(|&i| i != kept).collect();
+            let partly = merged_stand_ins(&octree, &selection, &fewer, 2, 1, 5);
+            let own = selection.bricks[kept];
+            assert!(partly.bricks.contains(&own));
+            assert_eq!(cover(&partly.bricks), cover(&selection.bricks));
+            // Nothing loading: the selection itself.
+            assert_eq!(merged_stand_ins(&octree, &selection, &[], 2, 1, 5).bricks, selection.bricks);
         }
     }
 }
