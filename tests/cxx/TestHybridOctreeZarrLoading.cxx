@@ -4,8 +4,8 @@
  *
  *   async:   (unshaded, then shaded: the gradient border read too) the first frame does not wait:
  * it draws the bricks still loading by stand-ins (LastBricksLoading > 0) and is already nearer the
- *            whole picture than the empty background is (every brick of the
- *            selection drawn, RGB RMSE below the background's); the frames that follow refine it
+ *            whole picture than the empty background is (the selection drawn, stand-ins
+ *            merged into at most as many bricks, RGB RMSE below the background's); the frames that follow refine it
  * until no brick is loading, and that picture is the one a mapper without AsynchronousLoading draws
  * in its first frame (both read as drawn, without drawing again): RGB RMSE <= 1e-6, the same
  * bricks, resident textures within the budget; the bytes read from the store grow. Switched off
@@ -114,15 +114,15 @@ int Async(const std::string& store, bool shade)
   const double rmseLast = Rmse(last, want);
   std::cout << (shade ? "shaded" : "unshaded") << ": first frame " << 1e3 * firstTime.count()
             << " ms: " << loading << " of " << mapper->GetLastBricks()
-            << " bricks by stand-ins, RGB RMSE to the whole picture " << rmseFirst
+            << " bricks by stand-ins in " << firstBricks << " draws, RGB RMSE to the whole picture " << rmseFirst
             << " (the empty background's " << rmseEmpty << "); " << frames
             << " frames to load all; then RMSE " << rmseLast << " (bound 1e-6); store bytes read "
             << bytesFirst << " -> " << mapper->GetLastStoreBytesRead() << " (synchronous "
             << whole->GetLastStoreBytesRead() << "); bricks " << mapper->GetLastBricks() << " / "
             << whole->GetLastBricks() << ", texture bytes " << mapper->GetLastTextureBytes()
             << " / " << whole->GetLastTextureBytes() << "\n";
-  check.Check(loading > 0 && firstBricks == bricks,
-    "the first frame drew every brick of the selection, some by stand-ins");
+  check.Check(loading > 0 && firstBricks > 0 && firstBricks <= bricks,
+    "the first frame drew the selection, some bricks by stand-ins merged into fewer draws");
   check.Check(Signal(want) > 0.005, "the scene shows something");
   check.Check(rmseFirst < rmseEmpty, "the stand-ins draw the volume: nearer it than nothing");
   check.Check(mapper->GetLastRenderOK() && mapper->GetLastBricksLoading() == 0,
