@@ -16,16 +16,16 @@ use crate::plan::select::merged_stand_ins;
 use std::collections::HashSet;
 use std::sync::Arc;
 
-/// How many levels coarser a stand-in is, `c`: 1/64 of its brick's
-/// texels, so the stand-ins of a whole frame cost about 1/64 of its reads
-/// (and neighbouring stand-ins share the subchunks they decode), and the
-/// frame reads them at once. A brick at `p = 0` has no coarser form: the
+/// How many levels coarser a stand-in is, `c`: 1/8 of its brick's
+/// texels, so the stand-ins of a whole frame cost about 1/8 of its reads
+/// (at most 1/4 merged; neighbouring stand-ins share the subchunks they
+/// decode), and the frame reads them at once. A brick at `p = 0` has no coarser form: the
 /// frame reads it itself.
 pub const STAND_IN_LEVELS: usize = 2;
 
 /// The largest merged stand-in, `p_max`: `2^5 + 1 = 33` texels a side, so
 /// that a first frame's stand-ins merge by up to three levels of the
-/// octree (each merge takes up to eight) into a few hundred draws instead
+/// octree (each merge takes up to eight) into hundreds of draws instead
 /// of tens of thousands ([`crate::plan::select::merged_stand_ins`]).
 pub const MERGED_STAND_IN_LOG2: usize = 5;
 

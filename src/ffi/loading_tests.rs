@@ -68,15 +68,18 @@ fn stand_ins_are_drawn_until_the_bricks_are_read() {
         let inside = |b: &crate::plan::select::Brick, d: &crate::plan::select::Brick| {
             (0..3).all(|a| d.lo[a] <= b.lo[a] && b.hi[a] <= d.hi[a])
         };
-        // Each selected brick lies in one drawn brick: itself, or a stand-in
-        // (merged up the octree) at least as coarse as its own, coarser
-        // exactly while it loads.
+        // Each selected brick lies in one drawn brick: itself while it
+        // neither loads nor is at p = 0, else a stand-in (merged up the
+        // octree) no coarser than its own.
         for (i, b) in selected.iter().enumerate() {
             let holders: Vec<_> = drawn.iter().filter(|d| inside(b, d)).collect();
             assert_eq!(holders.len(), 1, "brick {i} in {} drawn bricks", holders.len());
             let d = holders[0];
-            let coarser = if loads(b) { b.p.min(STAND_IN_LEVELS) } else { 0 };
-            assert!(d.stride >= b.stride << coarser, "brick {i}: {d:?}");
+            if loads(b) || b.p == 0 {
+                assert!(d.stride <= b.stride << b.p.min(STAND_IN_LEVELS), "brick {i}: {d:?}");
+            } else {
+                assert_eq!(d, b, "brick {i}");
+            }
         }
         assert!(drawn.len() < expected, "{} drawn for {expected} loading: the stand-ins merge", drawn.len());
         for (i, d) in drawn.iter().enumerate() {

@@ -16,20 +16,24 @@
 //!
 //! Stand-ins merge up the octree ([`merged_stand_ins`]): where every brick
 //! of the cut inside a node `A` is loading (or at `p = 0`, read at once),
-//! one brick of `A` at the coarsest of their strides takes their place,
+//! one brick of `A` at the finest of their strides takes their place,
 //!
 //! ```text
-//! s_A = max s'(b),   p_A = log2(2^(L - k_A) / s_A)   (kept only while p_A <= p_max)
+//! s_A = min s'(b),   p_A = log2(2^(L - k_A) / s_A)
+//! kept only while  p_A <= p_max  and  bytes(A, p_A) <= 2 sum bytes(s'(b))
 //! ```
 //!
-//! and so on up. Parts of `A` the cut leaves out are transparent under the
-//! transfer function (their samples show nothing) or removed by cropping
-//! and clipping (which the DrawList applies to every brick), so drawing
-//! them costs fragments, not a change in the picture beyond the coarser
-//! interpolation at their faces. The picture is the same lattice
-//! where the strides agree, in far fewer draws and textures: a first frame
-//! of a store has every brick loading, and drawing each of tens of
-//! thousands of stand-ins costs more than reading them.
+//! (the sum over the stand-ins first replaced, so the stand-ins' bytes at
+//! most double however far they merge), and so on up. Since the strides
+//! are exact powers of two from node corners, a coarser stand-in's lattice
+//! is a subset of `A`'s: no part is drawn coarser than its own stand-in.
+//! Parts of `A` the cut leaves out are transparent under the transfer
+//! function (their samples show nothing) or removed by cropping and
+//! clipping (which the DrawList applies to every brick), so drawing them
+//! costs fragments, not a change in the picture beyond interpolation at
+//! their faces. A first frame of a store has every brick loading, and
+//! drawing each of tens of thousands of stand-ins costs more than reading
+//! them: merged, they are a few hundred draws and textures.
 
 use super::brick::{brick_bytes, make_brick, texels, Brick, Selection};
 use crate::octree::{NodeId, VolumeOctree};
@@ -117,33 +121,35 @@ pub fn merged_stand_ins(
     for b in &drawn {
         block(&mut blocked, b.node);
     }
-    // The stand-ins by level, each level's by parent: merged into the
-    // parent (one level up) where nothing else is drawn inside it, drawn as
-    // they are otherwise.
-    let mut by_level: BTreeMap<usize, Vec<Brick>> = BTreeMap::new();
+    // The stand-ins by level, each with the bytes of the stand-ins it
+    // replaces, each level's by parent: merged into the parent (one level
+    // up) where nothing else is drawn inside it, drawn as they are
+    // otherwise.
+    let mut by_level: BTreeMap<usize, Vec<(Brick, usize)>> = BTreeMap::new();
     for (b, _) in selection.bricks.iter().zip(&is_standing).filter(merges) {
-        by_level.entry(b.level).or_default().push(stand_in(octree, b, coarser, bytes_per_texel));
+        let s = stand_in(octree, b, coarser, bytes_per_texel);
+        by_level.entry(b.level).or_default().push((s, s.bytes));
     }
     while let Some((level, mut bricks)) = by_level.pop_last() {
         if level == 0 {
-            drawn.append(&mut bricks);
+            drawn.extend(bricks.iter().map(|(b, _)| *b));
             continue;
         }
         let parent_of = |b: &Brick| {
             let (_, c) = layout.locate(b.node);
             layout.id(level - 1, c.map(|v| v / 2))
         };
-        bricks.sort_by_key(|b| (parent_of(b), b.node));
-        for group in bricks.chunk_by(|a, b| parent_of(a) == parent_of(b)) {
-            let parent = parent_of(&group[0]);
+        bricks.sort_by_key(|(b, _)| (parent_of(b), b.node));
+        for group in bricks.chunk_by(|(a, _), (b, _)| parent_of(a) == parent_of(b)) {
+            let parent = parent_of(&group[0].0);
             let m = (!blocked.contains(&parent))
                 .then(|| merged(octree, parent, level - 1, group, bytes_per_texel, max_p))
                 .flatten();
             match m {
                 Some(m) => by_level.entry(level - 1).or_default().push(m),
                 None => {
-                    drawn.extend_from_slice(group);
-                    block(&mut blocked, group[0].node);
+                    drawn.extend(group.iter().map(|(b, _)| *b));
+                    block(&mut blocked, group[0].0.node);
                 }
             }
         }
@@ -154,26 +160,33 @@ pub fn merged_stand_ins(
     out
 }
 
-/// Node `parent` (of `level`) at the coarsest stride of `group`, its
-/// children's stand-ins, if it has at most `2^max_p + 1` texels a side.
+/// Node `parent` (of `level`) at the finest stride of `group`, its
+/// children's stand-ins (each with the bytes of the stand-ins it
+/// replaces), if it has at most `2^max_p + 1` texels a side and at most
+/// twice their bytes; with the bytes it replaces.
 fn merged(
     octree: &VolumeOctree,
     parent: NodeId,
     level: usize,
-    group: &[Brick],
+    group: &[(Brick, usize)],
     bytes_per_texel: usize,
     max_p: usize,
-) -> Option<Brick> {
-    let stride = group.iter().map(|b| b.stride).max()?;
+) -> Option<(Brick, usize)> {
+    let stride = group.iter().map(|(b, _)| b.stride).min()?;
     let size = octree.layout().node_size(level);
     if stride > size {
         return None;
     }
     let p = (size / stride).trailing_zeros() as usize;
-    let first = &group[0];
+    if p > max_p {
+        return None;
+    }
+    let first = &group[0].0;
     let border = first.bytes == brick_bytes(first.texels, bytes_per_texel, true);
-    let importance = group.iter().map(|b| b.importance).fold(0.0, f64::max);
-    (p <= max_p).then(|| make_brick(octree, &octree.node(parent), p, importance, bytes_per_texel, border))
+    let importance = group.iter().map(|(b, _)| b.importance).fold(0.0, f64::max);
+    let replaced: usize = group.iter().map(|(_, r)| r).sum();
+    let m = make_brick(octree, &octree.node(parent), p, importance, bytes_per_texel, border);
+    (m.bytes <= 2 * replaced).then_some((m, replaced))
 }
 
 #[cfg(test)]
@@ -254,12 +267,13 @@ mod tests {
             );
             assert!(merged.bricks.windows(2).all(|w| w[0].node < w[1].node), "node order");
             assert_eq!(merged.texture_bytes, merged.bricks.iter().map(|b| b.bytes).sum::<usize>());
+            assert!(merged.texture_bytes <= 2 * single.texture_bytes, "{} of {}", merged.texture_bytes, single.texture_bytes);
             for m in &merged.bricks {
                 assert!(m.texels.iter().all(|&t| t <= 33) || single.bricks.contains(m), "{m:?}");
                 assert_eq!(m.bytes, brick_bytes(m.texels, 1, gradient_border));
-                // No finer than any stand-in it covers.
+                // No coarser than any stand-in it covers.
                 for s in single.bricks.iter().filter(|s| (0..3).all(|a| m.lo[a] <= s.lo[a] && s.hi[a] <= m.hi[a])) {
-                    assert!(m.stride >= s.stride, "{m:?} over {s:?}");
+                    assert!(m.stride <= s.stride, "{m:?} over {s:?}");
                 }
             }
             // One brick read: it is drawn itself, and no stand-in covers it.
