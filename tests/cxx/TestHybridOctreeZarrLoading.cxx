@@ -2,17 +2,20 @@
  * vtkHybridOctreeVolumeMapper drawing an OME-Zarr store with
  * AsynchronousLoading (the CTest fixture's store, argv[2]), under Xvfb.
  *
- *   async:   (unshaded, then shaded: the gradient border read too) the first frame does not wait:
- * it draws the bricks still loading by stand-ins (LastBricksLoading > 0) and is already nearer the
- *            whole picture than the empty background is (the selection drawn, stand-ins
- *            merged into at most as many bricks, RGB RMSE below the background's); the frames that follow refine it
- * until no brick is loading, and that picture is the one a mapper without AsynchronousLoading draws
- * in its first frame (both read as drawn, without drawing again): RGB RMSE <= 1e-6, the same
- * bricks, resident textures within the budget; the bytes read from the store grow. Switched off
- * again, a moved camera's first frame has no stand-in. failure: a store whose level-0 shard is
- * truncated: the background reads of the full-resolution bricks fail, a later frame reports the
- *            read's error (vtkErrorMacro, nothing drawn), nothing crashes or
- *            hangs.
+ * async (unshaded, then shaded: the gradient border read too): the first
+ * frame does not wait. It draws the bricks still loading by stand-ins
+ * (LastBricksLoading > 0), merged into at most as many bricks as the
+ * selection has, and is already nearer the whole picture than the empty
+ * background is (RGB RMSE below the background's). The frames that follow
+ * refine it until no brick is loading, and that picture is the one a mapper
+ * without AsynchronousLoading draws in its first frame (both read as drawn,
+ * without drawing again): RGB RMSE <= 1e-6, the same bricks, resident
+ * textures within the budget; the bytes read from the store grow. Switched
+ * off again, a moved camera's first frame has no stand-in.
+ *
+ * failure: a store whose level-0 shard is truncated: the background reads
+ * of the full-resolution bricks fail, a later frame reports the read's
+ * error (vtkErrorMacro, nothing drawn), nothing crashes or hangs.
  */
 #include "HybridOctreeMapperScene.h"
 #include "HybridOctreeTestUtilities.h"
@@ -113,8 +116,8 @@ int Async(const std::string& store, bool shade)
   const double rmseEmpty = Rmse(empty, want);
   const double rmseLast = Rmse(last, want);
   std::cout << (shade ? "shaded" : "unshaded") << ": first frame " << 1e3 * firstTime.count()
-            << " ms: " << loading << " of " << mapper->GetLastBricks()
-            << " bricks by stand-ins in " << firstBricks << " draws, RGB RMSE to the whole picture " << rmseFirst
+            << " ms: " << loading << " of " << mapper->GetLastBricks() << " bricks by stand-ins in "
+            << firstBricks << " draws, RGB RMSE to the whole picture " << rmseFirst
             << " (the empty background's " << rmseEmpty << "); " << frames
             << " frames to load all; then RMSE " << rmseLast << " (bound 1e-6); store bytes read "
             << bytesFirst << " -> " << mapper->GetLastStoreBytesRead() << " (synchronous "

@@ -267,7 +267,12 @@ mod tests {
             );
             assert!(merged.bricks.windows(2).all(|w| w[0].node < w[1].node), "node order");
             assert_eq!(merged.texture_bytes, merged.bricks.iter().map(|b| b.bytes).sum::<usize>());
-            assert!(merged.texture_bytes <= 2 * single.texture_bytes, "{} of {}", merged.texture_bytes, single.texture_bytes);
+            assert!(
+                merged.texture_bytes <= 2 * single.texture_bytes,
+                "{} of {}",
+                merged.texture_bytes,
+                single.texture_bytes
+            );
             for m in &merged.bricks {
                 assert!(m.texels.iter().all(|&t| t <= 33) || single.bricks.contains(m), "{m:?}");
                 assert_eq!(m.bytes, brick_bytes(m.texels, 1, gradient_border));
