@@ -18,6 +18,10 @@
 //!   when it is set: a user's (or a test's) own cap.
 //!
 //! A request above it is refused with the size it would need, never attempted.
+//! A request of at most [`SMALL_REQUEST_BYTES`] is checked against the user's
+//! cap alone: the system's bounds are five small file reads, which cost more
+//! than reading a brick of a store, and so many bytes cannot be what exhausts
+//! a machine that runs ParaView.
 
 use crate::base::error::{Error, Result};
 
@@ -71,15 +75,25 @@ fn read_small(path: &str) -> Option<String> {
     Some(text)
 }
 
+/// Requests up to this many bytes (16 MiB) are checked against
+/// `HYBRID_OCTREE_MAX_MEMORY` only (see the module documentation).
+pub const SMALL_REQUEST_BYTES: u128 = 16 << 20;
+
 /// The bytes this process may still allocate, by the rules of the module
 /// documentation; `None` when nothing bounds it (no `/proc`, no limit set).
 pub fn available_memory() -> Option<u128> {
+    [user_cap(), system_available()].into_iter().flatten().min()
+}
+
+/// `HYBRID_OCTREE_MAX_MEMORY`, when it is set and parses.
+fn user_cap() -> Option<u128> {
+    std::env::var(MAX_MEMORY_VAR).ok().and_then(|cap| parse_bytes(&cap))
+}
+
+/// The least of the system's bounds: `MemAvailable`, the cgroup's room and
+/// the address-space limit's.
+fn system_available() -> Option<u128> {
     let mut bounds: Vec<u128> = Vec::new();
-    if let Ok(cap) = std::env::var(MAX_MEMORY_VAR) {
-        if let Some(b) = parse_bytes(&cap) {
-            bounds.push(b);
-        }
-    }
     if let Some(text) = read_small("/proc/meminfo") {
         if let Some(b) = meminfo_field(&text, "MemAvailable:") {
             bounds.push(b);
@@ -107,7 +121,7 @@ pub fn available_memory() -> Option<u128> {
 /// allocate. `what` names the request in the error ("the 3000^3 f32
 /// shepp-logan volume"); `advice` says what to do instead.
 pub fn check_memory(bytes: u128, what: &str, advice: &str) -> Result<()> {
-    match available_memory() {
+    match bound_for(bytes, user_cap(), system_available) {
         Some(available) if bytes > available => Err(Error::InvalidArgument(format!(
             "{what} needs {} of memory but only {} is available{}; {advice}",
             human_bytes(bytes),
@@ -120,6 +134,13 @@ pub fn check_memory(bytes: u128, what: &str, advice: &str) -> Result<()> {
         ))),
         _ => Ok(()),
     }
+}
+
+/// The bound a request of `bytes` is checked against: the least of `cap` and,
+/// above [`SMALL_REQUEST_BYTES`] only, `system()`.
+fn bound_for(bytes: u128, cap: Option<u128>, system: impl FnOnce() -> Option<u128>) -> Option<u128> {
+    let system = if bytes > SMALL_REQUEST_BYTES { system() } else { None };
+    [cap, system].into_iter().flatten().min()
 }
 
 /// At most this many characters of user text appear in a message.
@@ -183,6 +204,16 @@ mod tests {
         let text = e.to_string();
         assert!(text.contains("the test buffer needs") && text.contains("ask for less"), "{text}");
         check_memory(1024, "a small buffer", "-").unwrap();
+    }
+
+    #[test]
+    fn a_small_request_reads_no_system_bound_but_meets_the_cap() {
+        let never = || -> Option<u128> { panic!("the system's bounds read for a small request") };
+        assert_eq!(bound_for(SMALL_REQUEST_BYTES, None, never), None);
+        assert_eq!(bound_for(1024, Some(512), never), Some(512), "the user's cap holds at any size");
+        assert_eq!(bound_for(SMALL_REQUEST_BYTES + 1, Some(1 << 40), || Some(1 << 30)), Some(1 << 30));
+        assert_eq!(bound_for(SMALL_REQUEST_BYTES + 1, Some(1 << 20), || Some(1 << 30)), Some(1 << 20));
+        assert_eq!(bound_for(SMALL_REQUEST_BYTES + 1, None, || None), None);
     }
 
     #[test]
