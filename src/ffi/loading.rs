@@ -16,11 +16,11 @@ use crate::plan::select::merged_stand_ins;
 use std::collections::HashSet;
 use std::sync::Arc;
 
-/// How many levels coarser a stand-in is, `c`: 1/8 of its brick's
-/// texels, so the stand-ins of a whole frame cost about 1/8 of its reads
-/// (at most 1/4 merged; neighbouring stand-ins share the subchunks they
-/// decode), and the frame reads them at once. A brick at `p = 0` has no coarser form: the
-/// frame reads it itself.
+/// How many levels coarser a stand-in is, `c`: 1/64 of its brick's
+/// texels, so the stand-ins of a whole frame cost about 1/64 of its reads
+/// (at most 1/32 merged; neighbouring stand-ins share the subchunks they
+/// decode), and the frame reads them at once. A brick at `p = 0` has no
+/// coarser form: the frame reads it itself.
 pub const STAND_IN_LEVELS: usize = 2;
 
 /// The largest merged stand-in, `p_max`: `2^5 + 1 = 33` texels a side, so
@@ -28,6 +28,14 @@ pub const STAND_IN_LEVELS: usize = 2;
 /// octree (each merge takes up to eight) into hundreds of draws instead
 /// of tens of thousands ([`crate::plan::select::merged_stand_ins`]).
 pub const MERGED_STAND_IN_LOG2: usize = 5;
+
+/// A frame uploads at most `1/UPLOAD_SHARE` of its selection's texture
+/// bytes of read bricks, most important first; the other read bricks stand
+/// in one more frame (the reader keeps them), so a frame's time stays
+/// bounded however many bricks arrived since the last one, and the picture
+/// refines over at least this many frames. The first read brick of a frame
+/// uploads whatever its size, so that every frame refines.
+pub const UPLOAD_SHARE: usize = 4;
 
 impl SelectionHandle {
     /// Plans this frame's loading from `store`: the bricks whose textures
@@ -73,13 +81,19 @@ impl SelectionHandle {
             order.sort_by(|&a, &b| bricks[b].importance.total_cmp(&bricks[a].importance).then(a.cmp(&b)));
             let mut wanted = Vec::new();
             let mut standing = Vec::new();
+            let mut uploads = self.selection.texture_bytes / UPLOAD_SHARE;
+            let mut uploading = false;
             for i in order {
                 let b = &bricks[i];
                 if b.p == 0 || resident.contains(&(b.node.0, b.stride)) {
                     continue;
                 }
                 let read = loaded_read(b);
-                if !loader.is_ready(&read) {
+                // The first read brick uploads whatever its size: every frame refines.
+                if loader.is_ready(&read) && (b.bytes <= uploads || !uploading) {
+                    uploads = uploads.saturating_sub(b.bytes);
+                    uploading = true;
+                } else {
                     standing.push(i);
                 }
                 wanted.push(read);

@@ -3,7 +3,7 @@
 //! in-memory texels of that stride; once read, every brick is the
 //! in-memory brick bit for bit.
 
-use super::loading::STAND_IN_LEVELS;
+use super::loading::{STAND_IN_LEVELS, UPLOAD_SHARE};
 use super::store::{build_octree_from_store, open_store};
 use super::store_tests::{field, in_memory_twin, Tmp};
 use super::test_support::{ball_camera, build_volume_octree, select_desc};
@@ -107,18 +107,47 @@ fn stand_ins_are_drawn_until_the_bricks_are_read() {
         }
         assert!(drawn_bytes < s.selection.texture_bytes, "stand-ins take fewer bytes");
 
-        // Later frames: once read, the bricks are the selection's own, bit for bit.
+        // Later frames: each uploads at most 1/UPLOAD_SHARE of the
+        // selection's bytes of read bricks (drawn as themselves, resident
+        // from then on), the others stand in one more frame.
         let start = Instant::now();
+        let cap = s.selection.texture_bytes / UPLOAD_SHARE;
+        let mut resident: Vec<(u32, usize)> = Vec::new();
+        let mut frames = 0;
+        loop {
+            let (nodes, strides): (Vec<u32>, Vec<usize>) = resident.iter().copied().unzip();
+            let summary = s.plan_loading(&octree, &store, &nodes, &strides, usize::MAX).unwrap();
+            frames += 1;
+            let drawn: Vec<_> = (0..).map_while(|i| s.selected_brick(i).ok()).collect();
+            let uploads: Vec<_> = drawn
+                .iter()
+                .filter(|d| d.p > 0 && selected.contains(d) && !resident.contains(&(d.node.0, d.stride)))
+                .collect();
+            let bytes = uploads.iter().map(|d| d.bytes).sum::<usize>();
+            assert!(bytes <= cap || uploads.len() == 1, "frame {frames} uploads {bytes} bytes, over {cap}");
+            assert_eq!(summary.loaded, uploads.len(), "frame {frames}: the bricks it uploads");
+            resident.extend(uploads.iter().map(|d| (d.node.0, d.stride)));
+            if summary.stand_ins == 0 {
+                break;
+            }
+            assert!(start.elapsed() < Duration::from_secs(20), "still loading after 20 s: {summary:?}");
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        let loading_bytes: usize = selected.iter().filter(|b| loads(b)).map(|b| b.bytes).sum();
+        assert!(frames * cap >= loading_bytes && frames > 1, "{frames} frames for {loading_bytes} bytes");
+        assert_eq!(resident.len(), expected, "every brick to load uploaded once");
+        // Read again without resident textures, every brick is ready.
         let later = loop {
             let summary = s.plan_loading(&octree, &store, &[], &[], usize::MAX).unwrap();
-            if summary.stand_ins == 0 {
+            if summary.queued == 0 {
                 break summary;
             }
             assert!(start.elapsed() < Duration::from_secs(20), "still loading after 20 s: {summary:?}");
             std::thread::sleep(Duration::from_millis(2));
         };
-        assert_eq!((later.loaded, later.queued), (expected, 0));
+        assert_eq!(later.stand_ins + later.loaded, expected);
         assert!(later.waiting_bytes > 0 && later.bytes_read > 0);
+        s.draw_selected();
         for (i, b) in selected.iter().enumerate() {
             assert_eq!(&s.selected_brick(i).unwrap(), b);
             let count = b.texels.iter().map(|n| n + 2 * usize::from(bordered)).product::<usize>();
