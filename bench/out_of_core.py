@@ -41,6 +41,7 @@ import resource
 import shutil
 import subprocess
 import sys
+import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -164,17 +165,21 @@ def convert(args, size, store):
     if args.keep and os.path.isdir(store):
         return {"reused": True}
     shutil.rmtree(store, ignore_errors=True)
-    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     t = time.perf_counter()
-    done = subprocess.run([args.cli, "convert", "--dataset", args.dataset, "--size", size, "--type", "u8",
-                           "--output", store, "--json"], capture_output=True, text=True)
-    wall = time.perf_counter() - t
-    if done.returncode != 0:
-        return {"failed": done.stderr.strip().splitlines()[-1:] or ["exit %d" % done.returncode]}
-    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    with tempfile.TemporaryFile("w+") as errors:
+        child = subprocess.Popen([args.cli, "convert", "--dataset", args.dataset, "--size", size, "--type", "u8",
+                                  "--output", store, "--json"], stdout=subprocess.DEVNULL, stderr=errors, text=True)
+        # This child's own rusage: RUSAGE_CHILDREN's ru_maxrss is the largest child so far (an
+        # earlier size's pvbatch case).
+        _, status, usage = os.wait4(child.pid, 0)
+        child.returncode = os.waitstatus_to_exitcode(status)
+        wall = time.perf_counter() - t
+        errors.seek(0)
+        stderr = errors.read()
+    if child.returncode != 0:
+        return {"failed": stderr.strip().splitlines()[-1:] or ["exit %d" % child.returncode]}
     disk = sum(os.path.getsize(os.path.join(d, f)) for d, _, fs in os.walk(store) for f in fs)
-    # ru_maxrss of children is the largest child so far: exact for the first, a bound after.
-    return {"wall_s": wall, "peak_bytes": max(peak, before) * 1024, "disk_bytes": disk}
+    return {"wall_s": wall, "peak_bytes": usage.ru_maxrss * 1024, "disk_bytes": disk}
 
 
 def check(rows):
