@@ -25,8 +25,8 @@ pub const STAND_IN_LEVELS: usize = 2;
 
 /// The largest merged stand-in, `p_max`: `2^5 + 1 = 33` texels a side, so
 /// that a first frame's stand-ins merge by up to three levels of the
-/// octree (each merge takes up to eight) into hundreds of draws instead
-/// of tens of thousands ([`crate::plan::select::merged_stand_ins`]).
+/// octree (each merge takes up to eight) into far fewer draws than one
+/// per brick ([`crate::plan::select::merged_stand_ins`]).
 pub const MERGED_STAND_IN_LOG2: usize = 5;
 
 /// A frame uploads at most `1/UPLOAD_SHARE` of its selection's texture

@@ -115,6 +115,12 @@ impl Layout {
         NodeId((self.level_offset[level] + c[0] + d[0] * (c[1] + d[1] * c[2])) as u32)
     }
 
+    /// The node one level up that holds `id`; `None` for the root.
+    pub fn parent(&self, id: NodeId) -> Option<NodeId> {
+        let (level, c) = self.locate(id);
+        (level > 0).then(|| self.id(level - 1, c.map(|v| v / 2)))
+    }
+
     /// Level and coordinates of `id`.
     pub fn locate(&self, id: NodeId) -> (usize, [usize; 3]) {
         let id = id.0 as usize;

@@ -62,7 +62,7 @@ pub use estimate::{estimated_error, estimated_rms_error, seen_rms_error, Seen};
 pub use refine::{select, select_in_view, select_with_points, take_all_points};
 pub use screen::ScreenSpace;
 pub use selector::Selector;
-pub use stand_in::{merged_stand_ins, stand_in, with_stand_ins};
+pub use stand_in::{merged_stand_ins, stand_in};
 pub use uniform::uniform;
 pub use view::{view_change_degrees, ViewImportance, ViewInputs, ViewSelection};
 pub use visibility::{Medium, Occluder, Transmittance};

@@ -33,7 +33,7 @@
 //! costs fragments, not a change in the picture beyond interpolation at
 //! their faces. A first frame of a store has every brick loading, and
 //! drawing each of tens of thousands of stand-ins costs more than reading
-//! them: merged, they are a few hundred draws and textures.
+//! them: merged, they are far fewer draws and textures.
 
 use super::brick::{brick_bytes, make_brick, texels, Brick, Selection};
 use crate::octree::{NodeId, VolumeOctree};
@@ -48,8 +48,7 @@ pub fn stand_in(octree: &VolumeOctree, brick: &Brick, coarser: usize, bytes_per_
     }
     let stride = brick.stride << (brick.p - p);
     let coarse = texels(brick.lo, brick.hi, stride);
-    // The selection counted the texels with their gradient border, or without.
-    let border = brick.bytes == brick_bytes(brick.texels, bytes_per_texel, true);
+    let border = has_gradient_border(brick, bytes_per_texel);
     Brick {
         p,
         stride,
@@ -60,23 +59,10 @@ pub fn stand_in(octree: &VolumeOctree, brick: &Brick, coarser: usize, bytes_per_
     }
 }
 
-/// `selection` with the bricks at `standing` (indices into its bricks)
-/// replaced by their [`stand_in`]s; its texture bytes summed again.
-pub fn with_stand_ins(
-    octree: &VolumeOctree,
-    selection: &Selection,
-    standing: &[usize],
-    coarser: usize,
-    bytes_per_texel: usize,
-) -> Selection {
-    let mut out = selection.clone();
-    for &i in standing {
-        if let Some(b) = out.bricks.get_mut(i) {
-            *b = stand_in(octree, b, coarser, bytes_per_texel);
-        }
-    }
-    out.texture_bytes = out.bricks.iter().map(|b| b.bytes).sum();
-    out
+/// Whether the selection counted `brick`'s texels with their gradient
+/// border (or without).
+fn has_gradient_border(brick: &Brick, bytes_per_texel: usize) -> bool {
+    brick.bytes == brick_bytes(brick.texels, bytes_per_texel, true)
 }
 
 /// `selection` with the bricks at `standing` replaced by their
@@ -91,15 +77,15 @@ pub fn merged_stand_ins(
     bytes_per_texel: usize,
     max_p: usize,
 ) -> Selection {
+    if standing.is_empty() {
+        return selection.clone();
+    }
     let layout = octree.layout();
     let mut is_standing = vec![false; selection.bricks.len()];
     for &i in standing {
         if let Some(s) = is_standing.get_mut(i) {
             *s = true;
         }
-    }
-    if standing.is_empty() {
-        return selection.clone();
     }
     // Bricks at p = 0 (their own stand-ins: two texels a side, read at once)
     // merge too: a parent at their stride samples their lattice.
@@ -110,12 +96,9 @@ pub fn merged_stand_ins(
     // every brick drawn as it is.
     let mut blocked = HashSet::new();
     let block = |blocked: &mut HashSet<NodeId>, id: NodeId| {
-        let (mut level, mut c) = layout.locate(id);
-        while level > 0 {
-            (level, c) = (level - 1, c.map(|v| v / 2));
-            if !blocked.insert(layout.id(level, c)) {
-                break;
-            }
+        let mut up = layout.parent(id);
+        while let Some(a) = up.filter(|&a| blocked.insert(a)) {
+            up = layout.parent(a);
         }
     };
     for b in &drawn {
@@ -135,10 +118,8 @@ pub fn merged_stand_ins(
             drawn.extend(bricks.iter().map(|(b, _)| *b));
             continue;
         }
-        let parent_of = |b: &Brick| {
-            let (_, c) = layout.locate(b.node);
-            layout.id(level - 1, c.map(|v| v / 2))
-        };
+        // Bricks below the root (level > 0) have a parent.
+        let parent_of = |b: &Brick| layout.parent(b.node).unwrap_or(b.node);
         bricks.sort_by_key(|(b, _)| (parent_of(b), b.node));
         for group in bricks.chunk_by(|(a, _), (b, _)| parent_of(a) == parent_of(b)) {
             let parent = parent_of(&group[0].0);
@@ -181,8 +162,7 @@ fn merged(
     if p > max_p {
         return None;
     }
-    let first = &group[0].0;
-    let border = first.bytes == brick_bytes(first.texels, bytes_per_texel, true);
+    let border = has_gradient_border(&group[0].0, bytes_per_texel);
     let importance = group.iter().map(|(b, _)| b.importance).fold(0.0, f64::max);
     let replaced: usize = group.iter().map(|(_, r)| r).sum();
     let m = make_brick(octree, &octree.node(parent), p, importance, bytes_per_texel, border);
@@ -196,6 +176,26 @@ mod tests {
     use crate::datasets::{generate, Dataset};
     use crate::octree::BuildOptions;
     use crate::plan::select::{select, SelectOptions};
+
+    /// `selection` with the bricks at `standing` (indices into its bricks)
+    /// replaced by their own [`stand_in`]s, unmerged: the reference the
+    /// merged ones are compared with.
+    fn with_stand_ins(
+        octree: &VolumeOctree,
+        selection: &Selection,
+        standing: &[usize],
+        coarser: usize,
+        bytes_per_texel: usize,
+    ) -> Selection {
+        let mut out = selection.clone();
+        for &i in standing {
+            if let Some(b) = out.bricks.get_mut(i) {
+                *b = stand_in(octree, b, coarser, bytes_per_texel);
+            }
+        }
+        out.texture_bytes = out.bricks.iter().map(|b| b.bytes).sum();
+        out
+    }
 
     #[test]
     fn a_stand_in_is_its_node_coarser_at_the_selections_bytes() {
@@ -229,10 +229,10 @@ mod tests {
         }
     }
 
-    /// Merged stand-ins tile what the loading bricks tile, each at least
-    /// as coarse as the stand-ins it replaces and at most `2^max_p + 1`
-    /// texels a side, in fewer bricks; a brick not loading keeps every
-    /// ancestor from merging over it.
+    /// Merged stand-ins tile what the loading bricks tile, each no coarser
+    /// than the stand-ins it replaces, at most `2^max_p + 1` texels a side
+    /// and twice their bytes, in fewer bricks; a brick not loading keeps
+    /// every ancestor from merging over it.
     #[test]
     fn merged_stand_ins_tile_the_loading_bricks_in_fewer_draws() {
         let v = generate(Dataset::SheppLogan, 64, ScalarType::U8);
