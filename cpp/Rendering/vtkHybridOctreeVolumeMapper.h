@@ -118,6 +118,7 @@ class vtkOpenGLCamera;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkVolumeProperty;
+struct vtkOpenGLHybridOctreeBrickResident;
 #ifndef __VTK_WRAP__
 namespace vtkHybridOctreeBridge
 {
@@ -708,7 +709,8 @@ private:
   /// within the budget the points bought leave; each brick's block ranges
   /// into `geometry`.
   bool AcquireBrickTextures(vtkOpenGLRenderWindow* window,
-    const vtkHybridOctreeBridge::DrawList& list, std::vector<vtkTextureObject*>& textures,
+    const vtkHybridOctreeBridge::DrawList& list,
+    std::vector<const vtkOpenGLHybridOctreeBrickResident*>& textures,
     vtkHybridOctreeBridge::BrickGeometryInput& geometry);
   /// The transfer function table's texture, uploaded when it changed.
   bool UploadTable(vtkOpenGLRenderWindow* window);
@@ -725,8 +727,9 @@ private:
   /// window; interactive frames draw a translucent surface brick by brick.
   bool DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
     const vtkHybridOctreeBridge::CameraDescription& cam,
-    const vtkHybridOctreeBridge::DrawList& list, const std::vector<vtkTextureObject*>& textures,
-    bool interactive, double imageSampleDistance, double sampleSpacing, const double rgba[4]);
+    const vtkHybridOctreeBridge::DrawList& list,
+    const std::vector<const vtkOpenGLHybridOctreeBrickResident*>& textures, bool interactive,
+    double imageSampleDistance, double sampleSpacing, const double rgba[4]);
   /// Draws the translucent triangles between brick i - 1's volume and brick
   /// i's into the bound float target (vtkOpenGLHybridOctreeSurfaceDrawer::
   /// GetTrianglesBefore()); returns how many.

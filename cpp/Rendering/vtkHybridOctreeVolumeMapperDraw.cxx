@@ -50,7 +50,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
   vtkOpenGLCamera* camera, const DrawList& list, bool interactive, int level)
 {
   vtkInternals& in = *this->Internals;
-  std::vector<vtkTextureObject*> textures;
+  std::vector<const vtkOpenGLHybridOctreeBrickTextures::Resident*> textures;
   vtkHybridOctreeBridge::BrickGeometryInput geometryInput;
   if (!this->AcquireBrickTextures(window, list, textures, geometryInput) ||
     !this->UploadTable(window))
@@ -96,7 +96,7 @@ bool vtkHybridOctreeVolumeMapper::DrawFrame(vtkRenderer* ren, vtkOpenGLRenderWin
 }
 
 bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* window,
-  const DrawList& list, std::vector<vtkTextureObject*>& textures,
+  const DrawList& list, std::vector<const vtkOpenGLHybridOctreeBrickTextures::Resident*>& textures,
   vtkHybridOctreeBridge::BrickGeometryInput& geometryInput)
 {
   vtkInternals& in = *this->Internals;
@@ -210,7 +210,7 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
       vtkErrorMacro(<< error);
       return false;
     }
-    textures[i] = resident->Texture;
+    textures[i] = resident;
     geometryInput.BlockRanges[i] = &resident->BlockRanges;
   }
   return true;
@@ -326,8 +326,8 @@ bool vtkHybridOctreeVolumeMapper::DrawOpaqueSurface(vtkOpenGLRenderWindow* windo
 
 bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWindow* window,
   vtkMatrix4x4* mcdc, const CameraDescription& cam, const DrawList& list,
-  const std::vector<vtkTextureObject*>& textures, bool interactive, double imageSampleDistance,
-  double sampleSpacing, const double rgba[4])
+  const std::vector<const vtkOpenGLHybridOctreeBrickTextures::Resident*>& textures,
+  bool interactive, double imageSampleDistance, double sampleSpacing, const double rgba[4])
 {
   vtkInternals& in = *this->Internals;
   const std::size_t bricks = list.GetNumberOfBricks();
@@ -429,9 +429,10 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
         this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(before);
         state->vtkglEnable(GL_CULL_FACE); // every brick of an interactive frame is ray-marched
       }
-      textures[i]->Activate();
-      in.Drawer.DrawBrick(list, i, in.Grid.Spacing, textures[i]);
-      textures[i]->Deactivate();
+      vtkTextureObject* page = vtkOpenGLHybridOctreeBrickPages::GetTexture(textures[i]->Slot);
+      page->Activate();
+      in.Drawer.DrawBrick(list, i, in.Grid.Spacing, textures[i]->Slot);
+      page->Deactivate();
     }
     if (surfacePerBrick)
     {

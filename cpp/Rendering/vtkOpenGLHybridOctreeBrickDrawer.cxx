@@ -91,6 +91,10 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
       return false;
     }
     this->Uploaded = true;
+    // The buffer holds them now: the frame's copy in memory goes (a frame
+    // of 100,000 bricks makes ~250 MB of vertices).
+    this->Geometry.Storage.reset();
+    this->Geometry.Vertices = nullptr;
   }
   const int stride = static_cast<int>(Stride * sizeof(float));
   // The attributes a program reads (the reducing one reads no normal).
@@ -434,7 +438,7 @@ bool vtkOpenGLHybridOctreeBrickDrawer::SetShadingUniforms(std::string& error)
 }
 
 void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList& list,
-  std::size_t i, const double spacing[3], vtkTextureObject* texture)
+  std::size_t i, const double spacing[3], const vtkOpenGLHybridOctreeBrickPages::Slot& slot)
 {
   const std::vector<std::size_t>& brickFirst = this->Geometry.BrickFirst;
   if (i + 1 >= brickFirst.size() || !this->Program)
@@ -469,7 +473,15 @@ void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::Dr
   {
     this->Program->SetUniform3f("gradientStep", gradientStep);
   }
-  this->Program->SetUniformi("brickTexture", texture->GetTextureUnit());
+  vtkTextureObject* page = vtkOpenGLHybridOctreeBrickPages::GetTexture(slot);
+  const unsigned int* pageTexels = vtkOpenGLHybridOctreeBrickPages::GetPageTexels(slot);
+  const float slotOffset[3] = { static_cast<float>(slot.Offset[0]),
+    static_cast<float>(slot.Offset[1]), static_cast<float>(slot.Offset[2]) };
+  const float pageSize[3] = { static_cast<float>(pageTexels[0]), static_cast<float>(pageTexels[1]),
+    static_cast<float>(pageTexels[2]) };
+  this->Program->SetUniformi("brickTexture", page->GetTextureUnit());
+  this->Program->SetUniform3f("slotOffset", slotOffset);
+  this->Program->SetUniform3f("pageTexels", pageSize);
   this->Program->SetUniform3f("brickLo", lo);
   this->Program->SetUniform3f("inverseStep", inverseStep);
   this->Program->SetUniform3f("texels", n);
@@ -556,6 +568,8 @@ void vtkOpenGLHybridOctreeBrickDrawer::ReleaseGraphicsResources()
   this->Vao = nullptr;
   this->Program = nullptr;
   this->Uploaded = false;
+  // Their vertices went with the buffer: nothing is drawn before SetGeometry().
+  this->Geometry = vtkHybridOctreeBridge::BrickGeometry();
   if (this->GradientOpacityTexture && this->GradientOpacityTexture->GetContext())
   {
     this->GradientOpacityTexture->ReleaseGraphicsResources(

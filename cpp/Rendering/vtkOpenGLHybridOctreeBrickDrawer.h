@@ -8,6 +8,9 @@
  *
  *     u_a = clamp((x_a - lo_a) / (stride * spacing_a), 0, texels_a - 1)   (texels)
  *
+ * (within 1/64 texel of the faces, in the brick's slot of a texture page:
+ * vtkOpenGLHybridOctreeBrickPages)
+ *
  * the value looked up in the transfer-function table and the opacity
  * corrected for the slice spacing, `a' = 1 - (1 - a)^(d / d0)`, blended
  * premultiplied back to front: `C = (c a', a') + (1 - a') C`. Exactly the CPU
@@ -75,6 +78,7 @@
 #define vtkOpenGLHybridOctreeBrickDrawer_h
 
 #include "vtkHybridOctreeBridge.h"
+#include "vtkOpenGLHybridOctreeBrickPages.h"
 #include "vtkSmartPointer.h"
 
 #include <cstddef>
@@ -257,9 +261,9 @@ public:
   /// (after another program drew).
   void Rebind(vtkOpenGLRenderWindow* window);
 
-  /// Draws brick i of the list, sampling `texture`.
+  /// Draws brick i of the list, sampling its `slot` of a texture page (activated).
   void DrawBrick(const vtkHybridOctreeBridge::DrawList& list, std::size_t i,
-    const double spacing[3], vtkTextureObject* texture);
+    const double spacing[3], const vtkOpenGLHybridOctreeBrickPages::Slot& slot);
 
   /// Whether brick i is drawn as its ray-marched box (else as slices).
   bool IsRayMarched(std::size_t i) const

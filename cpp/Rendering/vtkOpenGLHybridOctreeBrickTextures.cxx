@@ -2,7 +2,6 @@
 
 #include "vtkHybridOctreeBridge.h"
 
-#include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtk_glew.h"
 
@@ -53,7 +52,7 @@ bool vtkOpenGLHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
     {
       continue;
     }
-    entry->second.Texture->ReleaseGraphicsResources(this->Window);
+    this->Pages.Free(this->Window, entry->second.Slot);
     this->ResidentBytes -= entry->second.Bytes;
     this->Entries.erase(entry);
   }
@@ -93,36 +92,29 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   {
     return nullptr;
   }
-  vtkNew<vtkTextureObject> texture;
-  texture->SetContext(window);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  texture->SetWrapR(vtkTextureObject::ClampToEdge);
-  texture->SetMinificationFilter(vtkTextureObject::Linear);
-  texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  // The GL format of the texel format; R16F is filled from floats that are
-  // half floats' exact values, so the conversion rounds nothing.
-  static const unsigned int internalFormats[] = { GL_R32F, GL_R32F, GL_R16F, GL_R16, GL_R8 };
-  static const int stagedTypes[] = { VTK_FLOAT, VTK_FLOAT, VTK_FLOAT, VTK_UNSIGNED_SHORT,
-    VTK_UNSIGNED_CHAR };
-  const int format = coded ? this->TexelFormat : 1;
-  if (channels == 1)
+  const vtkOpenGLHybridOctreeBrickPages::Format format = this->PageFormat();
+  if (this->Pages.GetFormat().InternalFormat != format.InternalFormat ||
+    this->Pages.GetFormat().StagedType != format.StagedType ||
+    this->Pages.GetFormat().Channels != format.Channels)
   {
-    texture->SetInternalFormat(internalFormats[format]);
+    // Pages of another layout hold no brick of this frame's (SetChannels(), SetTexelFormat()).
+    this->Clear(window);
+    this->Window = window;
+    this->Pages.SetFormat(window, format);
   }
-  else if (channels == 4)
+  // A page holds about a sixteenth of the limit, from 64 KiB to 4 MiB.
+  const std::size_t pageBytes =
+    std::clamp<std::size_t>(this->LimitBytes / 16, std::size_t{ 64 } << 10, std::size_t{ 4 } << 20);
+  vtkOpenGLHybridOctreeBrickPages::Slot slot;
+  if (!this->Pages.Allocate(window, texels, pageBytes, slot, error))
   {
-    texture->SetInternalFormat(coded ? GL_RGBA8 : GL_RGBA32F);
+    return nullptr;
   }
-  void* staged = coded ? static_cast<void*>(this->Encoded.data()) : this->Scratch.data();
-  if (!texture->Create3DFromRaw(static_cast<unsigned int>(texels[0]),
-        static_cast<unsigned int>(texels[1]), static_cast<unsigned int>(texels[2]), this->Channels,
-        stagedTypes[format], staged))
+  const void* staged =
+    coded ? static_cast<const void*>(this->Encoded.data()) : this->Scratch.data();
+  if (!this->Pages.Upload(slot, staged, error))
   {
-    static const char* names[] = { "float", "float", "half float", "16-bit", "8-bit" };
-    error = "OpenGL could not create a " + std::to_string(texels[0]) + "x" +
-      std::to_string(texels[1]) + "x" + std::to_string(texels[2]) + " " + names[format] +
-      " 3D texture";
+    this->Pages.Free(window, slot);
     return nullptr;
   }
   std::vector<float> ranges;
@@ -155,11 +147,11 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   if (!vtkHybridOctreeBridge::MeasureBlockRanges(
         own, ownTexels[0] * ownTexels[1] * ownTexels[2], ownTexels, ranges, error))
   {
-    texture->ReleaseGraphicsResources(window);
+    this->Pages.Free(window, slot);
     return nullptr;
   }
   Resident& entry = this->Entries[key];
-  entry.Texture = texture;
+  entry.Slot = slot;
   entry.BlockRanges.swap(ranges);
   entry.Bytes = bytes;
   entry.LastFrame = this->Frame;
@@ -229,6 +221,34 @@ std::size_t vtkOpenGLHybridOctreeBrickTextures::GetTexelBytes() const
     : 4 * static_cast<std::size_t>(this->Channels);
 }
 
+vtkOpenGLHybridOctreeBrickPages::Format vtkOpenGLHybridOctreeBrickTextures::PageFormat() const
+{
+  // The GL format of the texel format; R16F is filled from floats that are
+  // half floats' exact values, so the conversion rounds nothing.
+  static const unsigned int internalFormats[] = { GL_R32F, GL_R32F, GL_R16F, GL_R16, GL_R8 };
+  static const int stagedTypes[] = { VTK_FLOAT, VTK_FLOAT, VTK_FLOAT, VTK_UNSIGNED_SHORT,
+    VTK_UNSIGNED_CHAR };
+  const bool coded = this->Coded();
+  const int format = coded ? this->TexelFormat : 1;
+  vtkOpenGLHybridOctreeBrickPages::Format out;
+  out.Channels = this->Channels;
+  out.StagedType = stagedTypes[format];
+  out.TexelBytes = this->GetTexelBytes();
+  if (this->Channels == 1)
+  {
+    out.InternalFormat = internalFormats[format];
+  }
+  else if (this->Channels == 4)
+  {
+    out.InternalFormat = coded ? GL_RGBA8 : GL_RGBA32F;
+  }
+  else
+  {
+    out.InternalFormat = GL_RG32F;
+  }
+  return out;
+}
+
 bool vtkOpenGLHybridOctreeBrickTextures::Coded() const
 {
   return this->TexelFormat != 1 &&
@@ -237,10 +257,7 @@ bool vtkOpenGLHybridOctreeBrickTextures::Coded() const
 
 void vtkOpenGLHybridOctreeBrickTextures::Clear(vtkWindow* window)
 {
-  for (auto& e : this->Entries)
-  {
-    e.second.Texture->ReleaseGraphicsResources(window);
-  }
+  this->Pages.Clear(window);
   this->Entries.clear();
   this->ByAge.clear();
   this->ResidentBytes = 0;

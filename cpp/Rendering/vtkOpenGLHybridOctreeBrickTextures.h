@@ -1,15 +1,18 @@
 /**
  * @file   vtkOpenGLHybridOctreeBrickTextures.h
- * @brief  The resident 3D textures of the selected bricks (private to the module).
+ * @brief  The resident textures of the selected bricks (private to the module).
  *
  * The Hybrid Octree, section 3.2: the texture memory holds the bricks of the
  * current selection, and a new selection (a moved region of interest, another
- * budget) loads only the bricks it does not find there. A brick's texture is
- * identified by its node and texel stride (level p); it stays resident across
- * frames while the byte limit allows, and the least recently drawn textures
+ * budget) loads only the bricks it does not find there. A brick's texels are
+ * identified by its node and texel stride (level p); they stay resident across
+ * frames while the byte limit allows, and the least recently drawn bricks
  * not needed by the current frame are released first, before an upload would
  * pass the limit. So resident bytes never exceed the limit, as long as one
  * frame's bricks fit it (which the selection guarantees: they fit its budget).
+ * The limit counts the bricks' own texels; they live in slots of shared
+ * texture pages (vtkOpenGLHybridOctreeBrickPages), whose bytes, free slots
+ * included, GetPageBytes() reports.
  *
  * Texels are single-channel in the frame's texel format (SetTexelFormat():
  * R8, R16, R16F or R32F, 1 to 4 bytes each), two-channel 32-bit floats
@@ -23,8 +26,7 @@
 #ifndef vtkOpenGLHybridOctreeBrickTextures_h
 #define vtkOpenGLHybridOctreeBrickTextures_h
 
-#include "vtkSmartPointer.h"
-#include "vtkTextureObject.h"
+#include "vtkOpenGLHybridOctreeBrickPages.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -37,6 +39,15 @@
 
 class vtkOpenGLRenderWindow;
 class vtkWindow;
+
+/// A resident brick: its slot in a texture page and its block value ranges.
+struct vtkOpenGLHybridOctreeBrickResident
+{
+  vtkOpenGLHybridOctreeBrickPages::Slot Slot;
+  std::vector<float> BlockRanges; ///< opaque to C++: for GetBrickGeometry()
+  std::size_t Bytes = 0;
+  std::uint64_t LastFrame = 0;
+};
 
 class vtkOpenGLHybridOctreeBrickTextures
 {
@@ -51,14 +62,8 @@ public:
   /// string on failure.
   using Fetch = std::function<bool(float* decoded, unsigned char* encoded, std::size_t count)>;
 
-  /// A resident brick: its texture and block value ranges.
-  struct Resident
-  {
-    vtkSmartPointer<vtkTextureObject> Texture;
-    std::vector<float> BlockRanges; ///< opaque to C++: for GetBrickGeometry()
-    std::size_t Bytes = 0;
-    std::uint64_t LastFrame = 0;
-  };
+  /// A resident brick.
+  using Resident = vtkOpenGLHybridOctreeBrickResident;
 
   /**
    * Starts a frame whose textures may occupy at most `limitBytes` and that
@@ -93,8 +98,12 @@ public:
   std::size_t GetResidentBytes() const { return this->ResidentBytes; }
   /// Bytes uploaded since BeginFrame().
   std::size_t GetUploadedBytes() const { return this->UploadedBytes; }
-  /// Resident textures.
+  /// Resident bricks.
   std::size_t GetNumberOfTextures() const { return this->Entries.size(); }
+  /// Bytes of the texture pages holding them (their free slots included).
+  std::size_t GetPageBytes() const { return this->Pages.GetAllocatedBytes(); }
+  /// Texture pages holding them.
+  std::size_t GetNumberOfPages() const { return this->Pages.GetNumberOfPages(); }
 
   /**
    * Texels of 1 channel (one field), 2 (colour, opacity: dependent
@@ -134,6 +143,10 @@ private:
   /// Marks `entry` (of `key`) drawn in this frame.
   void Touch(const Key& key, Resident& entry);
 
+  /// The page layout of the channels and texel format.
+  vtkOpenGLHybridOctreeBrickPages::Format PageFormat() const;
+
+  vtkOpenGLHybridOctreeBrickPages Pages;
   std::map<Key, Resident> Entries;
   /// The resident textures by the frame that last drew them, then key: the
   /// release order.

