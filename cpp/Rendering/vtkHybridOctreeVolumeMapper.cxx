@@ -731,6 +731,16 @@ vtkTypeInt64 vtkHybridOctreeVolumeMapper::GetResidentTextureCount() const
   return static_cast<vtkTypeInt64>(this->Internals->Bricks.GetNumberOfTextures());
 }
 
+vtkTypeInt64 vtkHybridOctreeVolumeMapper::GetResidentTexturePageCount() const
+{
+  return static_cast<vtkTypeInt64>(this->Internals->Bricks.GetNumberOfPages());
+}
+
+vtkTypeInt64 vtkHybridOctreeVolumeMapper::GetResidentTexturePageBytes() const
+{
+  return static_cast<vtkTypeInt64>(this->Internals->Bricks.GetPageBytes());
+}
+
 void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

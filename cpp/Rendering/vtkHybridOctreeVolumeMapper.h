@@ -532,6 +532,10 @@ public:
 
   /// Textures resident after the last frame (bricks kept for later frames included).
   vtkTypeInt64 GetResidentTextureCount() const;
+  /// The 3D texture pages holding them (a brick pool: each brick in a slot
+  /// of a page of its shape) and their bytes, free slots included.
+  vtkTypeInt64 GetResidentTexturePageCount() const;
+  vtkTypeInt64 GetResidentTexturePageBytes() const;
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;

@@ -3,7 +3,8 @@
  *
  *   orbit:       two laps of 36 frames (10 degrees apart) with the region of
  *                interest moving and the budget changing: resident texture
- *                bytes never above the budget, the second lap uploads no more
+ *                bytes never above the budget, the texture pages holding
+ *                them within 2x their bytes + 256 KiB, the second lap uploads no more
  *                than the first (bricks stay resident), the resident texture
  *                count does not grow from lap to lap, and releasing the
  *                graphics resources frees them all.
@@ -71,6 +72,10 @@ int Orbit()
   vtkTypeInt64 count[2] = { 0, 0 };
   bool bounded = true;
   bool drew = true;
+  // The texture pages hold every resident brick, and their free slots stay
+  // within the resident bytes plus the pages first made for each shape.
+  bool paged = true;
+  double pageRatio = 0.0;
   for (int lap = 0; lap < 2; ++lap)
   {
     for (int frame = 0; frame < 36; ++frame)
@@ -87,16 +92,27 @@ int Orbit()
       bounded = bounded && mapper->GetLastTextureBytes() <= budget * 1.0e6;
       uploaded[lap] += mapper->GetLastUploadedBytes();
       count[lap] = std::max(count[lap], mapper->GetResidentTextureCount());
+      const vtkTypeInt64 pageBytes = mapper->GetResidentTexturePageBytes();
+      const vtkTypeInt64 resident = mapper->GetLastTextureBytes();
+      paged = paged && pageBytes >= resident && pageBytes <= 2 * resident + (256 << 10) &&
+        mapper->GetResidentTexturePageCount() > 0;
+      pageRatio =
+        std::max(pageRatio, static_cast<double>(pageBytes) / std::max<vtkTypeInt64>(resident, 1));
     }
   }
   std::cout << "uploaded bytes lap 1 " << uploaded[0] << ", lap 2 " << uploaded[1]
-            << "; most resident textures lap 1 " << count[0] << ", lap 2 " << count[1] << "\n";
+            << "; most resident textures lap 1 " << count[0] << ", lap 2 " << count[1]
+            << "; texture pages at most " << pageRatio << "x the resident bytes, "
+            << mapper->GetResidentTexturePageCount() << " pages at the end\n";
   check.Check(drew, "every frame drew:\n" + errors->AllErrors());
   check.Check(bounded, "resident texture bytes never above the budget");
   check.Check(uploaded[0] > 0 && uploaded[1] <= uploaded[0], "the second lap uploads no more");
   check.Check(count[1] <= count[0], "resident textures do not grow");
+  check.Check(paged, "texture pages hold the resident bricks within 2x their bytes + 256 KiB");
   mapper->ReleaseGraphicsResources(scene.Window);
-  check.Check(mapper->GetResidentTextureCount() == 0, "released textures are gone");
+  check.Check(mapper->GetResidentTextureCount() == 0 &&
+      mapper->GetResidentTexturePageCount() == 0 && mapper->GetResidentTexturePageBytes() == 0,
+    "released textures and their pages are gone");
   scene.Window->Render();
   check.Check(mapper->GetLastRenderOK() && mapper->GetLastUploadedBytes() > 0,
     "a frame after the release uploads again");
