@@ -80,7 +80,8 @@ bool vtkOpenGLHybridOctreeBrickPages::Allocate(vtkOpenGLRenderWindow* window,
     {
       error = "a brick of " + std::to_string(texels[0]) + "x" + std::to_string(texels[1]) + "x" +
         std::to_string(texels[2]) + " texels is larger than this OpenGL's largest 3D texture (" +
-        std::to_string(maxAxis) + " a side): lower MaximumBrickLevel";
+        std::to_string(maxAxis) +
+        " a side, or 1024): draw with an OpenGL that allows larger 3D textures";
       return false;
     }
     page->Texture = vtkSmartPointer<vtkTextureObject>::New();
