@@ -30,10 +30,10 @@ bool vtkOpenGLHybridOctreeBrickPages::Allocate(vtkOpenGLRenderWindow* window,
   const std::size_t texels[3], std::size_t pageBytes, Slot& slot, std::string& error)
 {
   const Shape shape = { texels[0], texels[1], texels[2] };
-  ShapePages& pages = this->Shapes[shape];
+  std::vector<std::unique_ptr<Page>>& pages = this->Shapes[shape];
   // The page of this shape using the most slots that has a free one (ties: the oldest).
   Page* best = nullptr;
-  for (const auto& page : pages.Pages)
+  for (const auto& page : pages)
   {
     if (!page->FreeSlots.empty() && (!best || page->Used > best->Used))
     {
@@ -43,7 +43,7 @@ bool vtkOpenGLHybridOctreeBrickPages::Allocate(vtkOpenGLRenderWindow* window,
   if (!best)
   {
     const std::size_t slotBytes = this->TexelFormat.TexelBytes * texels[0] * texels[1] * texels[2];
-    const std::size_t held = pages.Pages.size();
+    const std::size_t held = pages.size();
     // The k-th page of a shape holds 8 * 2^k slots, up to about pageBytes.
     std::size_t wanted = held < 40 ? std::size_t{ 8 } << held : ~std::size_t{ 0 };
     wanted =
@@ -111,7 +111,7 @@ bool vtkOpenGLHybridOctreeBrickPages::Allocate(vtkOpenGLRenderWindow* window,
     }
     this->AllocatedBytes += page->Bytes;
     best = page.get();
-    pages.Pages.push_back(std::move(page));
+    pages.push_back(std::move(page));
   }
   slot.Owner = best;
   slot.Index = best->FreeSlots.back();
@@ -175,7 +175,7 @@ void vtkOpenGLHybridOctreeBrickPages::Free(vtkWindow* window, const Slot& slot)
   {
     return;
   }
-  auto& pages = found->second.Pages;
+  auto& pages = found->second;
   for (auto it = pages.begin(); it != pages.end(); ++it)
   {
     if (it->get() == page)
@@ -194,9 +194,7 @@ void vtkOpenGLHybridOctreeBrickPages::Free(vtkWindow* window, const Slot& slot)
 
 void vtkOpenGLHybridOctreeBrickPages::SetFormat(vtkWindow* window, const Format& format)
 {
-  const Format& now = this->TexelFormat;
-  if (format.InternalFormat != now.InternalFormat || format.Channels != now.Channels ||
-    format.StagedType != now.StagedType || format.TexelBytes != now.TexelBytes)
+  if (!(format == this->TexelFormat))
   {
     this->Clear(window);
     this->TexelFormat = format;
@@ -208,7 +206,7 @@ std::size_t vtkOpenGLHybridOctreeBrickPages::GetNumberOfPages() const
   std::size_t count = 0;
   for (const auto& shape : this->Shapes)
   {
-    count += shape.second.Pages.size();
+    count += shape.second.size();
   }
   return count;
 }
@@ -217,7 +215,7 @@ void vtkOpenGLHybridOctreeBrickPages::Clear(vtkWindow* window)
 {
   for (auto& shape : this->Shapes)
   {
-    for (auto& page : shape.second.Pages)
+    for (auto& page : shape.second)
     {
       page->Texture->ReleaseGraphicsResources(window);
     }

@@ -13,8 +13,9 @@
  * A page is one 3D texture holding a grid of a_x * a_y * a_z slots of one
  * shape, the brick's texels per axis n (slot (i, j, k) at texel offset
  * (i n_x, j n_y, k n_z)); an axis with n = 1 has one slot along it. A shape's
- * k-th page holds 8 * 2^k slots, up to the target page bytes, so the free
- * slots of a shape never hold more than its used ones plus one small page.
+ * k-th page (of those it holds now) has 8 * 2^k slots, up to the target
+ * page bytes, so a shape's pages grow with its bricks and its first pages
+ * stay small.
  * A brick takes a free slot of the page of its shape that uses the most
  * slots (so sparse pages drain), and a page whose last slot is freed is
  * released at once.
@@ -55,6 +56,12 @@ public:
     int Channels = 1;
     int StagedType = 0;
     std::size_t TexelBytes = 4; ///< on the GPU, all channels
+
+    bool operator==(const Format& other) const
+    {
+      return this->InternalFormat == other.InternalFormat && this->Channels == other.Channels &&
+        this->StagedType == other.StagedType && this->TexelBytes == other.TexelBytes;
+    }
   };
 
   /// One 3D texture of slots of one shape.
@@ -113,14 +120,8 @@ public:
 
 private:
   using Shape = std::array<std::size_t, 3>;
-  /// The pages of one shape, in creation order.
-  struct ShapePages
-  {
-    std::vector<std::unique_ptr<Page>> Pages;
-    std::size_t Created = 0; ///< pages this shape ever made: sets the next one's size
-  };
-
-  std::map<Shape, ShapePages> Shapes;
+  /// The pages of each shape, in creation order.
+  std::map<Shape, std::vector<std::unique_ptr<Page>>> Shapes;
   Format TexelFormat;
   std::size_t AllocatedBytes = 0;
 };

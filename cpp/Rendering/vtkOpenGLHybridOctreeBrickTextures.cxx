@@ -93,9 +93,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
     return nullptr;
   }
   const vtkOpenGLHybridOctreeBrickPages::Format format = this->PageFormat();
-  if (this->Pages.GetFormat().InternalFormat != format.InternalFormat ||
-    this->Pages.GetFormat().StagedType != format.StagedType ||
-    this->Pages.GetFormat().Channels != format.Channels)
+  if (!(this->Pages.GetFormat() == format))
   {
     // Pages of another layout hold no brick of this frame's (SetChannels(), SetTexelFormat()).
     this->Clear(window);
