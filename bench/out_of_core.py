@@ -123,6 +123,7 @@ def run_case(args):
         display.SMProxy.UpdatePropertyInformation()
         loading.append(display.GetPropertyValue("LastBricksLoading"))
         out["bricks"] = display.GetPropertyValue("LastBricks")
+        out["draws"] = display.GetPropertyValue("LastBrickDraws")
         if args.case == "async" and args.first_png:
             window_rgb(view, args.first_png)  # as drawn, not drawn again
         while loading[-1] > 0 and frames < args.max_frames:
@@ -132,6 +133,8 @@ def run_case(args):
             frames += 1
             display.SMProxy.UpdatePropertyInformation()
             loading.append(display.GetPropertyValue("LastBricksLoading"))
+        out["refined_bricks"] = display.GetPropertyValue("LastBricks")
+        out["refined_draws"] = display.GetPropertyValue("LastBrickDraws")
         out["store_mb_read"] = display.GetPropertyValue("LastStoreMBRead")
         out["texture_mb"] = display.GetPropertyValue("LastTextureMB")
         out["estimated_error"] = display.GetPropertyValue("LastEstimatedError")
@@ -267,8 +270,8 @@ def main():
             print("| %s | %s |" % (r["size"], c))
     print()
     print("| size | case | open ms | first picture ms | bricks loading in it | frames | refined ms | store MB read "
-          "| peak RSS MB | RMSE vs sync |")
-    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
+          "| peak RSS MB | bricks / draw calls (first, refined) | RMSE vs sync |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |")
     for r in rows:
         errors = r.get("rmse_vs_sync", {})
         for case in ("sync", "async", "volume"):
@@ -281,10 +284,12 @@ def main():
             e = ", ".join("%s %.4f" % (k, v) for k, v in errors.items() if k.startswith(case))
             if x.get("blank"):
                 e = "drew nothing"
-            print("| %s | %s | %.0f | %.0f | %s | %d | %.0f | %s | %.0f | %s |" % (
+            draws = "%s / %s, %s / %s" % (x["bricks"], x["draws"], x["refined_bricks"], x["refined_draws"]) \
+                if "draws" in x else ""
+            print("| %s | %s | %.0f | %.0f | %s | %d | %.0f | %s | %.0f | %s | %s |" % (
                 r["size"], case, x["open_ms"], x["first_ms"], x.get("loading_first", ""), x["frames"],
                 x["refined_ms"], "%.1f" % x["store_mb_read"] if "store_mb_read" in x else "",
-                x["peak_bytes"] / 1e6, e))
+                x["peak_bytes"] / 1e6, draws, e))
 
 
 if __name__ == "__main__":

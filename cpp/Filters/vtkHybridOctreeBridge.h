@@ -447,10 +447,10 @@ struct BrickGeometryInput
 
 /**
  * The vertices of every brick of a DrawList (see BrickGeometryOutput in
- * src/ffi/mod.rs): `VertexFloats` floats at `Vertices`, 10 a vertex
+ * src/ffi/mod.rs): `VertexFloats` floats at `Vertices`, 11 a vertex
  * (position, normal, clip interval near and far, primitive kind: 0 slice, 1
  * surface triangle, 2 ray-marched box, 3 square point, 4 Gaussian point;
- * point opacity), kept by `Storage` (the Rust core's own buffer, not
+ * point opacity; the index of its brick in the list), kept by `Storage` (the Rust core's own buffer, not
  * copied); brick i's vertices `BrickFirst[i] .. BrickFirst[i + 1]`,
  * `RayMarched[i]` (drawn as its box), `Drawn[i]` (some block visible),
  * `Boxes[6i .. 6i+6]` (the box its slices are clipped to, VTK order),

@@ -560,6 +560,7 @@ void vtkHybridOctreeVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastBricks = 0;
   this->LastSlices = 0;
   this->LastSurfaceTriangles = 0;
+  this->LastBrickDraws = 0;
   this->LastPoints = 0;
   this->LastPointBytes = 0;
   this->LastUploadedBytes = 0;
@@ -780,6 +781,7 @@ void vtkHybridOctreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastUploadedBytes: " << this->LastUploadedBytes << "\n";
   os << indent << "LastSlices: " << this->LastSlices << "\n";
   os << indent << "LastSurfaceTriangles: " << this->LastSurfaceTriangles << "\n";
+  os << indent << "LastBrickDraws: " << this->LastBrickDraws << "\n";
   os << indent << "LastPoints: " << this->LastPoints << "\n";
   os << indent << "LastPointBytes: " << this->LastPointBytes << "\n";
   os << indent << "LastPlan: " << this->LastPlan << "\n";

@@ -470,6 +470,9 @@ public:
   vtkGetMacro(LastUploadedBytes, vtkTypeInt64);
   vtkGetMacro(LastSlices, vtkTypeInt64);
   vtkGetMacro(LastSurfaceTriangles, vtkTypeInt64);
+  /// OpenGL draw calls of the last frame's bricks: a run of bricks in
+  /// compositing order that share a texture page is one call.
+  vtkGetMacro(LastBrickDraws, vtkTypeInt64);
   /// Points drawn in the last frame, and the bytes of the points the selection bought.
   vtkGetMacro(LastPoints, vtkTypeInt64);
   vtkGetMacro(LastPointBytes, vtkTypeInt64);
@@ -618,6 +621,7 @@ protected:
   vtkTypeInt64 LastUploadedBytes = 0;
   vtkTypeInt64 LastSlices = 0;
   vtkTypeInt64 LastSurfaceTriangles = 0;
+  vtkTypeInt64 LastBrickDraws = 0;
   vtkTypeInt64 LastPoints = 0;
   vtkTypeInt64 LastPointBytes = 0;
   std::string LastPlan;
@@ -738,6 +742,8 @@ private:
   /// i's into the bound float target (vtkOpenGLHybridOctreeSurfaceDrawer::
   /// GetTrianglesBefore()); returns how many.
   std::size_t DrawSurfaceBefore(vtkOpenGLRenderWindow* window, std::size_t i);
+  /// Whether translucent triangles lie between brick i - 1's volume and brick i's.
+  bool HasSurfaceBefore(std::size_t i) const;
   /// The normalized device box (xmin, xmax, ymin, ymax) of the boxes
   /// `bounds[6i .. 6i+6]` (model coordinates) for the model-to-clip matrix
   /// `mcdc`; all of it when one reaches behind the eye.

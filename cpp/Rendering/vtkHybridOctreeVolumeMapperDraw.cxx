@@ -23,7 +23,9 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -168,6 +170,18 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   const std::size_t border = bordered ? 1 : 0;
   in.Bricks.BeginFrame(
     static_cast<std::size_t>(std::max(textureBudget, 0.0)), list.NodeId, list.Stride);
+  // The pages' slots for the bricks of a stride hold the frame's largest
+  // brick of that stride (a whole node's texels), so the smaller bricks at
+  // the volume's far faces share their pages and runs.
+  std::map<std::size_t, std::array<std::size_t, 3>> slotTexels;
+  for (std::size_t i = 0; i < bricks; ++i)
+  {
+    std::array<std::size_t, 3>& slot = slotTexels[list.Stride[i]];
+    for (int a = 0; a < 3; ++a)
+    {
+      slot[a] = std::max(slot[a], list.Texels[3 * i + a] + 2 * border);
+    }
+  }
   textures.assign(bricks, nullptr);
   // The frame's geometry is made from each brick's block ranges (kept with its texture).
   geometryInput.BlockRanges.assign(bricks, nullptr);
@@ -177,7 +191,7 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const std::size_t dims[3] = { list.Texels[3 * i] + 2 * border,
       list.Texels[3 * i + 1] + 2 * border, list.Texels[3 * i + 2] + 2 * border };
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
-      window, { list.NodeId[i], list.Stride[i] }, dims,
+      window, { list.NodeId[i], list.Stride[i] }, dims, slotTexels[list.Stride[i]].data(),
       [&](float* texels, unsigned char* encoded, std::size_t count) {
         if (in.Store)
         {
@@ -413,9 +427,18 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
     vtkOpenGLState::ScopedglEnableDisable brickCulling(state, GL_CULL_FACE);
     state->vtkglCullFace(GL_BACK);
     glFrontFace(in.Model->Determinant() < 0.0 ? GL_CW : GL_CCW);
+    std::vector<const vtkOpenGLHybridOctreeBrickPages::Slot*> slots(bricks);
     for (std::size_t i = 0; i < bricks; ++i)
     {
-      if (in.Drawer.IsRayMarched(i))
+      slots[i] = &textures[i]->Slot;
+    }
+    ok = in.Drawer.SetBricks(window, list, in.Grid.Spacing, slots, error);
+    // Runs of bricks in list order that share a page, a culling state and
+    // no interactive surface between them: one draw call each.
+    for (std::size_t i = 0, next = 0; ok && i < bricks; i = next)
+    {
+      const bool rayMarched = in.Drawer.IsRayMarched(i);
+      if (rayMarched)
       {
         state->vtkglEnable(GL_CULL_FACE);
       }
@@ -429,11 +452,20 @@ bool vtkHybridOctreeVolumeMapper::DrawBricks(vtkRenderer* ren, vtkOpenGLRenderWi
         this->LastSurfaceTriangles += static_cast<vtkTypeInt64>(before);
         state->vtkglEnable(GL_CULL_FACE); // every brick of an interactive frame is ray-marched
       }
-      vtkTextureObject* page = vtkOpenGLHybridOctreeBrickPages::GetTexture(textures[i]->Slot);
+      const vtkOpenGLHybridOctreeBrickPages::Slot& slot = textures[i]->Slot;
+      next = i + 1;
+      while (next < bricks && textures[next]->Slot.Owner == slot.Owner &&
+        in.Drawer.IsRayMarched(next) == rayMarched &&
+        !(surfacePerBrick && this->HasSurfaceBefore(next)))
+      {
+        ++next;
+      }
+      vtkTextureObject* page = vtkOpenGLHybridOctreeBrickPages::GetTexture(slot);
       page->Activate();
-      in.Drawer.DrawBrick(list, i, in.Grid.Spacing, textures[i]->Slot);
+      ok = in.Drawer.DrawBricks(i, next, slot, error);
       page->Deactivate();
     }
+    this->LastBrickDraws = static_cast<vtkTypeInt64>(in.Drawer.GetNumberOfDraws());
     if (surfacePerBrick)
     {
       this->LastSurfaceTriangles +=
@@ -502,6 +534,13 @@ void vtkHybridOctreeVolumeMapper::ScreenRegion(
     }
   }
   std::copy(box, box + 4, region);
+}
+
+bool vtkHybridOctreeVolumeMapper::HasSurfaceBefore(std::size_t i) const
+{
+  const std::pair<std::size_t, std::size_t> range =
+    this->Internals->SurfaceDrawer.GetTrianglesBefore(i);
+  return range.second > range.first;
 }
 
 std::size_t vtkHybridOctreeVolumeMapper::DrawSurfaceBefore(

@@ -26,8 +26,12 @@
 namespace
 {
 /// Floats per vertex (BrickGeometry::Vertices): position, normal, clip
-/// interval (near, far), kind, point opacity.
-constexpr std::size_t Stride = 10;
+/// interval (near, far), kind, point opacity, brick index.
+constexpr std::size_t Stride = 11;
+/// RGBA texels a brick in the frame's brick table (the vertex shader's
+/// t0 .. t6): brickLo, opacity ratio; inverseStep, sample spacing; texels,
+/// jitter; slotOffset, jitterScale; boxLo; boxHi; gradientStep.
+constexpr std::size_t TexelsPerBrick = 7;
 }
 
 vtkOpenGLHybridOctreeBrickDrawer::vtkOpenGLHybridOctreeBrickDrawer() = default;
@@ -105,7 +109,7 @@ bool vtkOpenGLHybridOctreeBrickDrawer::Bind(vtkOpenGLRenderWindow* window, vtkMa
     int Components;
   };
   const Attribute attributes[] = { { "vertexMC", 0, 3 }, { "normalMC", 3, 3 }, { "clipMC", 6, 2 },
-    { "kindMC", 8, 1 }, { "alphaMC", 9, 1 } };
+    { "kindMC", 8, 1 }, { "alphaMC", 9, 1 }, { "brickMC", 10, 1 } };
   bool bound = true;
   for (const Attribute& a : attributes)
   {
@@ -437,75 +441,125 @@ bool vtkOpenGLHybridOctreeBrickDrawer::SetShadingUniforms(std::string& error)
   return true;
 }
 
-void vtkOpenGLHybridOctreeBrickDrawer::DrawBrick(const vtkHybridOctreeBridge::DrawList& list,
-  std::size_t i, const double spacing[3], const vtkOpenGLHybridOctreeBrickPages::Slot& slot)
+bool vtkOpenGLHybridOctreeBrickDrawer::SetBricks(vtkOpenGLRenderWindow* window,
+  const vtkHybridOctreeBridge::DrawList& list, const double spacing[3],
+  const std::vector<const vtkOpenGLHybridOctreeBrickPages::Slot*>& slots, std::string& error)
 {
-  const std::vector<std::size_t>& brickFirst = this->Geometry.BrickFirst;
-  if (i + 1 >= brickFirst.size() || !this->Program)
+  const std::size_t bricks = list.GetNumberOfBricks();
+  if (slots.size() != bricks || this->Geometry.Boxes.size() < 6 * bricks)
   {
-    return;
+    error = "the brick table needs a slot and a box for each of the " + std::to_string(bricks) +
+      " bricks";
+    return false;
   }
-  const std::size_t first = brickFirst[i];
-  const std::size_t count = brickFirst[i + 1] - first;
-  if (count == 0)
-  {
-    return;
-  }
-  const double* b = &list.Bounds[6 * i];
-  const float lo[3] = { static_cast<float>(b[0]), static_cast<float>(b[2]),
-    static_cast<float>(b[4]) };
-  float inverseStep[3];
-  float n[3];
-  float gradientStep[3];
   // Gradients (shading, gradient opacity) or Isosurface: the texture carries one border texel per
   // side.
   const std::size_t border = (this->Gradients || this->Shading.Shade ||
                                !this->GradientOpacityTable.empty() || !this->Isosurfaces.empty())
     ? 2
     : 0;
-  for (int a = 0; a < 3; ++a)
+  this->BrickParameters.assign(TexelsPerBrick * 4 * bricks, 0.0f);
+  for (std::size_t i = 0; i < bricks; ++i)
   {
-    inverseStep[a] = static_cast<float>(1.0 / (list.Stride[i] * spacing[a]));
-    gradientStep[a] = static_cast<float>(list.Stride[i] * spacing[a]);
-    n[a] = static_cast<float>(list.Texels[3 * i + a] + border);
+    float* t = &this->BrickParameters[TexelsPerBrick * 4 * i];
+    const double* b = &list.Bounds[6 * i];
+    const double* box = &this->Geometry.Boxes[6 * i];
+    // A ray-marched brick of a frame that widens its spacing (SampleSpacing
+    // m > 1) samples every max(d, m d0) along the view (both powers of two
+    // times d0, or of the list's refined spacing: still a shared lattice), its
+    // opacity corrected for that spacing; d otherwise.
+    const double d = list.SliceSpacing[i];
+    const double along = this->SampleSpacingOf(list, i);
+    for (int a = 0; a < 3; ++a)
+    {
+      const double step = list.Stride[i] * spacing[a];
+      t[a] = static_cast<float>(b[2 * a]);                                // brickLo
+      t[4 + a] = static_cast<float>(1.0 / step);                          // inverseStep
+      t[8 + a] = static_cast<float>(list.Texels[3 * i + a] + border);     // texels
+      t[12 + a] = static_cast<float>(slots[i] ? slots[i]->Offset[a] : 0); // slotOffset
+      t[16 + a] = static_cast<float>(box[2 * a]);                         // boxLo
+      t[20 + a] = static_cast<float>(box[2 * a + 1]);                     // boxHi
+      t[24 + a] = static_cast<float>(step);                               // gradientStep
+    }
+    t[3] = static_cast<float>(list.OpacityRatio[i] * (d > 0.0 ? along / d : 1.0));
+    t[7] = static_cast<float>(along);
+    // Jittered: the list asks, or an interactive frame widens the spacing.
+    t[11] = this->Jitter || along > d ? 1.0f : 0.0f;
+    t[15] = static_cast<float>(along > 0.0 ? this->JitterPeriod / along : 1.0);
   }
-  if (this->Gradients || this->Shading.Shade || !this->GradientOpacityTable.empty())
+  // The table holds as many bricks as the driver's texture buffers take
+  // (at least 65536 texels); a longer frame loads it in windows.
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  this->TableCapacity =
+    std::max<std::size_t>(static_cast<std::size_t>(maxTexels) / TexelsPerBrick, 1);
+  this->TableFirst = 0;
+  this->TableCount = 0;
+  this->Draws = 0;
+  if (!this->BrickTable)
   {
-    this->Program->SetUniform3f("gradientStep", gradientStep);
+    this->BrickTableBuffer = vtkSmartPointer<vtkOpenGLBufferObject>::New();
+    this->BrickTable = vtkSmartPointer<vtkTextureObject>::New();
+  }
+  this->BrickTable->SetContext(window);
+  return true;
+}
+
+bool vtkOpenGLHybridOctreeBrickDrawer::LoadBrickTable(std::size_t first, std::string& error)
+{
+  const std::size_t bricks = this->BrickParameters.size() / (4 * TexelsPerBrick);
+  const std::size_t count = std::min(this->TableCapacity, bricks - first);
+  const float* data = this->BrickParameters.data() + 4 * TexelsPerBrick * first;
+  if (!this->BrickTableBuffer->Upload(
+        data, 4 * TexelsPerBrick * count, vtkOpenGLBufferObject::TextureBuffer) ||
+    !this->BrickTable->CreateTextureBuffer(
+      static_cast<unsigned int>(TexelsPerBrick * count), 4, VTK_FLOAT, this->BrickTableBuffer))
+  {
+    error = "OpenGL could not load the table of " + std::to_string(count) + " bricks";
+    return false;
+  }
+  this->TableFirst = first;
+  this->TableCount = count;
+  return true;
+}
+
+bool vtkOpenGLHybridOctreeBrickDrawer::DrawBricks(std::size_t first, std::size_t last,
+  const vtkOpenGLHybridOctreeBrickPages::Slot& slot, std::string& error)
+{
+  const std::vector<std::size_t>& brickFirst = this->Geometry.BrickFirst;
+  if (!this->Program || !this->BrickTable || last + 1 > brickFirst.size() || first >= last)
+  {
+    return true;
   }
   vtkTextureObject* page = vtkOpenGLHybridOctreeBrickPages::GetTexture(slot);
   const unsigned int* pageTexels = vtkOpenGLHybridOctreeBrickPages::GetPageTexels(slot);
-  const float slotOffset[3] = { static_cast<float>(slot.Offset[0]),
-    static_cast<float>(slot.Offset[1]), static_cast<float>(slot.Offset[2]) };
   const float pageSize[3] = { static_cast<float>(pageTexels[0]), static_cast<float>(pageTexels[1]),
     static_cast<float>(pageTexels[2]) };
   this->Program->SetUniformi("brickTexture", page->GetTextureUnit());
-  this->Program->SetUniform3f("slotOffset", slotOffset);
   this->Program->SetUniform3f("pageTexels", pageSize);
-  this->Program->SetUniform3f("brickLo", lo);
-  this->Program->SetUniform3f("inverseStep", inverseStep);
-  this->Program->SetUniform3f("texels", n);
-  // A ray-marched brick of a frame that widens its spacing (SampleSpacing
-  // m > 1) samples every max(d, m d0) along the view (both powers of two
-  // times d0, or of the list's refined spacing: still a shared lattice), its
-  // opacity corrected for that spacing; d otherwise.
-  const double d = list.SliceSpacing[i];
-  const double along = this->SampleSpacingOf(list, i);
-  this->Program->SetUniformf(
-    "opacityRatio", static_cast<float>(list.OpacityRatio[i] * (d > 0.0 ? along / d : 1.0)));
-  const double* box = &this->Geometry.Boxes[6 * i];
-  const float boxLo[3] = { static_cast<float>(box[0]), static_cast<float>(box[2]),
-    static_cast<float>(box[4]) };
-  const float boxHi[3] = { static_cast<float>(box[1]), static_cast<float>(box[3]),
-    static_cast<float>(box[5]) };
-  this->Program->SetUniform3f("boxLo", boxLo);
-  this->Program->SetUniform3f("boxHi", boxHi);
-  this->Program->SetUniformf("sliceSpacing", static_cast<float>(along));
-  // Jittered: the list asks, or an interactive frame widens the spacing.
-  this->Program->SetUniformi("jitter", this->Jitter || along > d ? 1 : 0);
-  this->Program->SetUniformf(
-    "jitterScale", static_cast<float>(along > 0.0 ? this->JitterPeriod / along : 1.0));
-  glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
+  while (first < last)
+  {
+    if (first < this->TableFirst || first >= this->TableFirst + this->TableCount)
+    {
+      if (!this->LoadBrickTable(first, error))
+      {
+        return false;
+      }
+    }
+    const std::size_t end = std::min(last, this->TableFirst + this->TableCount);
+    const std::size_t from = brickFirst[first];
+    const std::size_t count = brickFirst[end] - from;
+    if (count > 0)
+    {
+      this->BrickTable->Activate();
+      this->Program->SetUniformi("brickTable", this->BrickTable->GetTextureUnit());
+      this->Program->SetUniformi("brickBase", static_cast<int>(this->TableFirst));
+      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(from), static_cast<GLsizei>(count));
+      ++this->Draws;
+    }
+    first = end;
+  }
+  return true;
 }
 
 double vtkOpenGLHybridOctreeBrickDrawer::SampleSpacingOf(
@@ -543,6 +597,10 @@ void vtkOpenGLHybridOctreeBrickDrawer::Unbind()
   {
     this->Vao->Release();
   }
+  if (this->BrickTable && this->BrickTable->GetContext())
+  {
+    this->BrickTable->Deactivate();
+  }
   if (this->GradientOpacityTexture && this->GradientOpacityTexture->GetContext())
   {
     this->GradientOpacityTexture->Deactivate();
@@ -567,6 +625,18 @@ void vtkOpenGLHybridOctreeBrickDrawer::ReleaseGraphicsResources()
   this->Vertices = nullptr;
   this->Vao = nullptr;
   this->Program = nullptr;
+  if (this->BrickTable && this->BrickTable->GetContext())
+  {
+    this->BrickTable->ReleaseGraphicsResources(this->BrickTable->GetContext());
+  }
+  if (this->BrickTableBuffer)
+  {
+    this->BrickTableBuffer->ReleaseGraphicsResources();
+  }
+  this->BrickTable = nullptr;
+  this->BrickTableBuffer = nullptr;
+  this->TableFirst = 0;
+  this->TableCount = 0;
   this->Uploaded = false;
   // Their vertices went with the buffer: nothing is drawn before SetGeometry().
   this->Geometry = vtkHybridOctreeBridge::BrickGeometry();

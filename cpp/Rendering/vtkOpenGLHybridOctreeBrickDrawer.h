@@ -30,11 +30,13 @@
  *     gl_ClipDistance[0] = z - near,  gl_ClipDistance[1] = far - z.
  *
  * Per triangle rather than per batch: a batch (a terminal surface node) spans
- * as many slabs as its brick is deep, a triangle one or two. Each brick is
- * one draw call of one program, in the order slab 0's triangles, slice 0,
- * slab 1's triangles, slice 1, ..., slab n's triangles (OpenGL keeps primitive
- * order within a draw). Surface fragments are shaded as in the CPU
- * compositor: headlight Lambert `rgb = colour |n . d|`, blended `(rgb a, a)`.
+ * as many slabs as its brick is deep, a triangle one or two. A brick's
+ * vertices come in the order slab 0's triangles, slice 0, slab 1's
+ * triangles, slice 1, ..., slab n's triangles, and the bricks of a run that
+ * share a texture page are one draw call of one program (OpenGL keeps
+ * primitive order within a draw); each vertex names its brick, whose
+ * parameters the vertex shader reads from the frame's brick table. Surface fragments are shaded as
+ * in the CPU compositor: headlight Lambert `rgb = colour |n . d|`, blended `(rgb a, a)`.
  *
  * Points of the hybrid representation (paper 3 section 4, "slices of points
  * are drawn interleaved with each pair of volumetric planes") are drawn in
@@ -261,9 +263,28 @@ public:
   /// (after another program drew).
   void Rebind(vtkOpenGLRenderWindow* window);
 
-  /// Draws brick i of the list, sampling its `slot` of a texture page (activated).
-  void DrawBrick(const vtkHybridOctreeBridge::DrawList& list, std::size_t i,
-    const double spacing[3], const vtkOpenGLHybridOctreeBrickPages::Slot& slot);
+  /**
+   * The frame's brick table: each brick's parameters (its box and texel
+   * step, its texels and `slots[i]` in a texture page, its opacity ratio,
+   * sample spacing and jitter), which the vertex shader reads by the brick
+   * index of each vertex. Call after Bind(), SetSampleSpacing() and
+   * SetJitter(), before DrawBricks(). False and `error` on bad sizes.
+   */
+  bool SetBricks(vtkOpenGLRenderWindow* window, const vtkHybridOctreeBridge::DrawList& list,
+    const double spacing[3], const std::vector<const vtkOpenGLHybridOctreeBrickPages::Slot*>& slots,
+    std::string& error);
+
+  /**
+   * Draws bricks [first, last) of the list in one call (OpenGL keeps the
+   * primitives' order, so they composite in list order), all in the page of
+   * `slot` (activated). A driver whose texture buffers hold fewer bricks
+   * takes more calls. False and `error` when the brick table cannot load.
+   */
+  bool DrawBricks(std::size_t first, std::size_t last,
+    const vtkOpenGLHybridOctreeBrickPages::Slot& slot, std::string& error);
+
+  /// Draw calls since SetBricks().
+  std::size_t GetNumberOfDraws() const { return this->Draws; }
 
   /// Whether brick i is drawn as its ray-marched box (else as slices).
   bool IsRayMarched(std::size_t i) const
@@ -286,11 +307,13 @@ private:
   bool SetGradientOpacityUniforms(vtkOpenGLRenderWindow* window, std::string& error);
   /// The program's variant defines for this frame's effects.
   std::string VariantDefines() const;
+  /// Loads the brick table's window from brick `first` (as many as fit).
+  bool LoadBrickTable(std::size_t first, std::string& error);
 
   vtkOpenGLHybridOctreeBrickDrawer(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
   vtkOpenGLHybridOctreeBrickDrawer& operator=(const vtkOpenGLHybridOctreeBrickDrawer&) = delete;
 
-  /// The vertices (10 floats each), per-brick ranges, flags and boxes.
+  /// The vertices (11 floats each), per-brick ranges, flags and boxes.
   vtkHybridOctreeBridge::BrickGeometry Geometry;
   /// d0: a point's size.
   float PointSpacing = 1.0f;
@@ -322,6 +345,15 @@ private:
   vtkTextureObject* Transfer2DTable = nullptr;
   const vtkHybridOctreeScattering* Scattering = nullptr;
   double Transfer2DAxes[3] = { 0.0, 1.0, 1.0 };
+  /// The frame's brick table (SetBricks()), RGBA floats; the window of it
+  /// loaded, bricks [TableFirst, TableFirst + TableCount), at most TableCapacity.
+  std::vector<float> BrickParameters;
+  vtkSmartPointer<vtkOpenGLBufferObject> BrickTableBuffer;
+  vtkSmartPointer<vtkTextureObject> BrickTable;
+  std::size_t TableFirst = 0;
+  std::size_t TableCount = 0;
+  std::size_t TableCapacity = 0;
+  std::size_t Draws = 0;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Vao;
   vtkShaderProgram* Program = nullptr;

@@ -27,15 +27,32 @@ const unsigned int* vtkOpenGLHybridOctreeBrickPages::GetPageTexels(const Slot& s
 }
 
 bool vtkOpenGLHybridOctreeBrickPages::Allocate(vtkOpenGLRenderWindow* window,
-  const std::size_t texels[3], std::size_t pageBytes, Slot& slot, std::string& error)
+  const std::size_t brickTexels[3], const std::size_t slotTexels[3], std::size_t pageBytes,
+  Slot& slot, std::string& error, const Page* near)
 {
+  // The slot's shape: slotTexels, or larger where the brick is.
+  std::size_t texels[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    texels[a] = std::max(brickTexels[a], slotTexels[a]);
+  }
   const Shape shape = { texels[0], texels[1], texels[2] };
   std::vector<std::unique_ptr<Page>>& pages = this->Shapes[shape];
-  // The page of this shape using the most slots that has a free one (ties: the oldest).
+  // `near` when it is a page of this shape with a free slot, else the page
+  // of this shape using the most slots that has a free one (ties: the oldest).
   Page* best = nullptr;
   for (const auto& page : pages)
   {
-    if (!page->FreeSlots.empty() && (!best || page->Used > best->Used))
+    if (page->FreeSlots.empty())
+    {
+      continue;
+    }
+    if (page.get() == near)
+    {
+      best = page.get();
+      break;
+    }
+    if (!best || page->Used > best->Used)
     {
       best = page.get();
     }
@@ -114,6 +131,10 @@ bool vtkOpenGLHybridOctreeBrickPages::Allocate(vtkOpenGLRenderWindow* window,
     pages.push_back(std::move(page));
   }
   slot.Owner = best;
+  for (int a = 0; a < 3; ++a)
+  {
+    slot.Texels[a] = brickTexels[a];
+  }
   slot.Index = best->FreeSlots.back();
   best->FreeSlots.pop_back();
   ++best->Used;
@@ -141,15 +162,15 @@ bool vtkOpenGLHybridOctreeBrickPages::Upload(
   const int type = this->TexelFormat.StagedType;
   glTexSubImage3D(GL_TEXTURE_3D, 0, static_cast<GLint>(slot.Offset[0]),
     static_cast<GLint>(slot.Offset[1]), static_cast<GLint>(slot.Offset[2]),
-    static_cast<GLsizei>(page->Shape[0]), static_cast<GLsizei>(page->Shape[1]),
-    static_cast<GLsizei>(page->Shape[2]),
+    static_cast<GLsizei>(slot.Texels[0]), static_cast<GLsizei>(slot.Texels[1]),
+    static_cast<GLsizei>(slot.Texels[2]),
     texture->GetFormat(type, this->TexelFormat.Channels, false), texture->GetDataType(type),
     staged);
   texture->Deactivate();
   if (glGetError() != GL_NO_ERROR)
   {
-    error = "OpenGL could not write a brick of " + std::to_string(page->Shape[0]) + "x" +
-      std::to_string(page->Shape[1]) + "x" + std::to_string(page->Shape[2]) +
+    error = "OpenGL could not write a brick of " + std::to_string(slot.Texels[0]) + "x" +
+      std::to_string(slot.Texels[1]) + "x" + std::to_string(slot.Texels[2]) +
       " texels into its texture page";
     return false;
   }

@@ -11,21 +11,28 @@
  * pool instead: a few large textures, each brick in a slot of one. So here.
  *
  * A page is one 3D texture holding a grid of a_x * a_y * a_z slots of one
- * shape, the brick's texels per axis n (slot (i, j, k) at texel offset
- * (i n_x, j n_y, k n_z)); an axis with n = 1 has one slot along it. A shape's
+ * shape, n texels per axis (slot (i, j, k) at texel offset (i n_x, j n_y,
+ * k n_z)); an axis with n = 1 has one slot along it. The slot shape is the
+ * frame's full brick (the leaf plus its shared sample and border), so the
+ * smaller bricks at the volume's far faces share the pages, and the runs,
+ * of the others: a brick fills the corner of its slot from the offset. A shape's
  * k-th page (of those it holds now) has 8 * 2^k slots, up to the target
  * page bytes, so a shape's pages grow with its bricks and its first pages
  * stay small.
- * A brick takes a free slot of the page of its shape that uses the most
- * slots (so sparse pages drain), and a page whose last slot is freed is
- * released at once.
+ * A brick takes a free slot of the page the brick before it in the frame's
+ * compositing order lies in, when that page is of its shape and has one, so
+ * that runs of bricks share a page and draw in one call (an octree
+ * traversal keeps a subtree's bricks together in every view's order); else
+ * of the page of its shape that uses the most slots (so sparse pages
+ * drain). A page whose last slot is freed is released at once.
  *
  * The shader clamps a brick's texel coordinate u_a into
  *
  *     [g, n_a - 1 - g],   g = 1/64   (min(g, (n_a - 1) / 2) when n_a < 2 + 2g)
  *
- * so the linear filter never reads a neighbouring slot (whose texels may be
- * NaN, or not written): a sample within 1/64 texel of a brick's face reads
+ * (n_a the brick's own texels) so the linear filter never reads past the
+ * brick (a neighbouring slot, or its own slot's texels beyond a smaller
+ * brick, may be NaN or not written): a sample within 1/64 texel of a brick's face reads
  * its face texel within 1/64 of one texel step, where a texture of its own
  * clamped to the edge would read the face texel exactly.
  */
@@ -78,12 +85,14 @@ public:
     std::size_t Capacity() const { return this->Slots[0] * this->Slots[1] * this->Slots[2]; }
   };
 
-  /// A brick's place: its page and its texel offset in it.
+  /// A brick's place: its page, its texel offset in it and the brick's own
+  /// texels per axis (at most the page's slot shape, from the offset).
   struct Slot
   {
     Page* Owner = nullptr;
     std::size_t Index = 0;
     unsigned int Offset[3] = { 0, 0, 0 };
+    std::size_t Texels[3] = { 0, 0, 0 };
   };
 
   /// The texture of `slot`'s page and its texels per axis.
@@ -91,16 +100,19 @@ public:
   static const unsigned int* GetPageTexels(const Slot& slot);
 
   /**
-   * A free slot of `texels` per axis, in a page of `Format` (SetFormat()):
+   * A free slot for a brick of `brickTexels` per axis, in a page of slots of
+   * `slotTexels` per axis (larger where the brick is) and `Format` (SetFormat()):
    * of an existing page of the shape, or of a new one of at most about
-   * `pageBytes` (at least one slot). False and `error` when OpenGL cannot
-   * create the page.
+   * `pageBytes` (at least one slot); of `near` when it is a page of the
+   * shape with a free slot (only compared, never read: it may be gone).
+   * False and `error` when OpenGL cannot create the page.
    */
-  bool Allocate(vtkOpenGLRenderWindow* window, const std::size_t texels[3], std::size_t pageBytes,
-    Slot& slot, std::string& error);
+  bool Allocate(vtkOpenGLRenderWindow* window, const std::size_t brickTexels[3],
+    const std::size_t slotTexels[3], std::size_t pageBytes, Slot& slot, std::string& error,
+    const Page* near = nullptr);
 
-  /// Writes `count` texels staged in the format's type (x fastest, the
-  /// slot's shape) into `slot`. False and `error` on an OpenGL error.
+  /// Writes the brick's texels staged in the format's type (x fastest, the
+  /// slot's Texels) into `slot`. False and `error` on an OpenGL error.
   bool Upload(const Slot& slot, const void* staged, std::string& error);
 
   /// Frees `slot`; its page is released when it was the last one used.

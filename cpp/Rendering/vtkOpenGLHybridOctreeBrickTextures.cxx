@@ -11,6 +11,7 @@ void vtkOpenGLHybridOctreeBrickTextures::BeginFrame(std::size_t limitBytes,
   const std::vector<std::uint32_t>& nodes, const std::vector<std::size_t>& strides)
 {
   ++this->Frame;
+  this->Previous = nullptr;
   this->LimitBytes = limitBytes;
   this->UploadedBytes = 0;
   // The frame's resident bricks count as used by it: MakeRoom() passes them by.
@@ -60,8 +61,8 @@ bool vtkOpenGLHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
 }
 
 const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTextures::Acquire(
-  vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3], const Fetch& fetch,
-  std::string& error, std::size_t border)
+  vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3],
+  const std::size_t slotTexels[3], const Fetch& fetch, std::string& error, std::size_t border)
 {
   if (this->Window && this->Window != window)
   {
@@ -72,6 +73,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   if (found != this->Entries.end())
   {
     this->Touch(found->first, found->second);
+    this->Previous = found->second.Slot.Owner;
     return &found->second;
   }
   const std::size_t channels = static_cast<std::size_t>(this->Channels);
@@ -104,7 +106,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   const std::size_t pageBytes =
     std::clamp<std::size_t>(this->LimitBytes / 16, std::size_t{ 64 } << 10, std::size_t{ 4 } << 20);
   vtkOpenGLHybridOctreeBrickPages::Slot slot;
-  if (!this->Pages.Allocate(window, texels, pageBytes, slot, error))
+  if (!this->Pages.Allocate(window, texels, slotTexels, pageBytes, slot, error, this->Previous))
   {
     return nullptr;
   }
@@ -156,6 +158,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   this->ByAge.insert({ entry.LastFrame, key });
   this->ResidentBytes += bytes;
   this->UploadedBytes += bytes;
+  this->Previous = slot.Owner;
   return &entry;
 }
 

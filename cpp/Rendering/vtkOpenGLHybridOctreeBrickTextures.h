@@ -82,10 +82,14 @@ public:
    * limit. nullptr and `error` when the upload fails or this frame's textures
    * alone would pass the limit. With a gradient `border` (shading: 1) the
    * texels carry that many border texels per side; the block ranges are
-   * measured on the brick's own texels inside it.
+   * measured on the brick's own texels inside it. A new brick takes a slot
+   * of `slotTexels` per axis (larger where the brick is). Bricks acquired in
+   * compositing order: a new one goes into the page of the one acquired
+   * before it when it can (vtkOpenGLHybridOctreeBrickPages::Allocate()).
    */
   const Resident* Acquire(vtkOpenGLRenderWindow* window, const Key& key,
-    const std::size_t texels[3], const Fetch& fetch, std::string& error, std::size_t border = 0);
+    const std::size_t texels[3], const std::size_t slotTexels[3], const Fetch& fetch,
+    std::string& error, std::size_t border = 0);
 
   /// Whether the bricks (`nodes[i]`, `strides[i]`) are all resident.
   bool HoldsAll(
@@ -155,6 +159,8 @@ private:
   std::size_t UploadedBytes = 0;
   std::size_t LimitBytes = 0;
   std::uint64_t Frame = 0;
+  /// The page of the brick acquired last in this frame (compared, never read).
+  const vtkOpenGLHybridOctreeBrickPages::Page* Previous = nullptr;
   vtkWindow* Window = nullptr;
   std::vector<float> Scratch;
   std::vector<unsigned char> Encoded; ///< the codes of a format other than float32

@@ -199,6 +199,11 @@ int vtkPVHybridOctreeRepresentation::GetLastBricks()
   return this->Mapper()->GetLastBricks();
 }
 
+int vtkPVHybridOctreeRepresentation::GetLastBrickDraws()
+{
+  return static_cast<int>(this->Mapper()->GetLastBrickDraws());
+}
+
 double vtkPVHybridOctreeRepresentation::GetLastTextureMB()
 {
   return static_cast<double>(this->Mapper()->GetLastTextureBytes()) / 1.0e6;

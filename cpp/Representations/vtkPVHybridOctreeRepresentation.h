@@ -74,6 +74,7 @@ public:
   ///@{
   /// Statistics of the last frame this process drew (0 or empty before one).
   int GetLastBricks();
+  int GetLastBrickDraws();
   double GetLastTextureMB();
   const char* GetLastPlan();
   /// What removed volume samples: "cropping", "clipping", both, or "".

@@ -14,7 +14,7 @@ use super::{BrickGeometryDesc, BrickGeometryOutput};
 use crate::base::error::{Error, Result};
 use crate::plan::draw_geometry::occupancy::{measure, ranges_len, visible_bounds, visible_box, OpacityTable};
 use crate::plan::draw_geometry::{
-    brick_geometry, slice_plane_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices,
+    brick_geometry, slice_plane_geometry, BrickSlabs, GeometryView, PointVertices, SurfaceVertices, MAX_BRICKS,
 };
 use std::ops::Range;
 
@@ -62,6 +62,11 @@ fn runs(name: &str, offsets: &[usize], bricks: usize, items: usize) -> Result<Ve
 pub(crate) fn frame_brick_geometry(desc: &BrickGeometryDesc<'_>) -> Bridged<BrickGeometryOutput> {
     guarded(|| {
         let bricks = desc.stride.len();
+        if bricks > MAX_BRICKS {
+            return Err(Error::InvalidArgument(format!(
+                "{bricks} bricks to draw, at most {MAX_BRICKS} a frame: give a smaller texture budget"
+            )));
+        }
         check_len("brick bounds", desc.bounds, 6 * bricks)?;
         check_len("brick texel counts", desc.texels, 3 * bricks)?;
         check_len("brick block ranges", desc.block_ranges, bricks)?;
@@ -150,6 +155,7 @@ pub(crate) fn frame_brick_geometry(desc: &BrickGeometryDesc<'_>) -> Bridged<Bric
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plan::draw_geometry::FLOATS_PER_VERTEX;
 
     /// A one-brick list: a 1 x 1 x 8 box seen along +z from z = -10, slices
     /// 17 .. 10 (depth = z + 10), 2 x 2 x 9 texels of stride 1.
@@ -225,7 +231,7 @@ mod tests {
         assert_eq!(out.triangles_placed, 1);
         // Slices of depth 14 .. 17 cut the visible box (z 4 .. 7): 4 squares and the triangle.
         assert_eq!(out.brick_first, vec![0, 3 + 4 * 6]);
-        assert_eq!(out.vertices.len(), 10 * (3 + 4 * 6));
+        assert_eq!(out.vertices.len(), FLOATS_PER_VERTEX * (3 + 4 * 6));
         // Nothing visible: no slices, the triangle still drawn.
         let f = frame(0.0);
         let ranges = [&f.ranges[..]];

@@ -706,9 +706,9 @@ mod bridge {
     /// The vertices of every brick of a frame (`plan::draw_geometry::brick_geometry`).
     #[derive(Debug)]
     struct BrickGeometryOutput {
-        /// 10 floats a vertex: position, normal, clip interval (near, far),
+        /// 11 floats a vertex: position, normal, clip interval (near, far),
         /// primitive kind (0 slice, 1 surface triangle, 2 ray-marched box, 3
-        /// square point, 4 Gaussian point), point opacity.
+        /// square point, 4 Gaussian point), point opacity, the brick's index.
         vertices: Vec<f32>,
         /// Brick i's vertices are brick_first[i] .. brick_first[i + 1].
         brick_first: Vec<usize>,

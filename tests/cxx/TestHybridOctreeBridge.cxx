@@ -896,8 +896,17 @@ int Geometry()
         std::count(geometry.RayMarched.begin(), geometry.RayMarched.end(), 1) ==
           static_cast<std::ptrdiff_t>(n),
       "every brick drawn, ray-marched");
-    check.Check(geometry.VertexFloats == 10 * 36 * n && geometry.BrickFirst.back() == 36 * n,
-      "one box (12 triangles) a brick, 10 floats a vertex");
+    check.Check(geometry.VertexFloats == 11 * 36 * n && geometry.BrickFirst.back() == 36 * n,
+      "one box (12 triangles) a brick, 11 floats a vertex");
+    bool named = true;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      for (std::size_t v = geometry.BrickFirst[i]; v < geometry.BrickFirst[i + 1]; ++v)
+      {
+        named = named && geometry.Vertices[11 * v + 10] == static_cast<float>(i);
+      }
+    }
+    check.Check(named, "every vertex names its brick");
   }
   // Transparent everywhere: nothing drawn.
   const std::vector<float> clear(4 * 16, 0.0f);

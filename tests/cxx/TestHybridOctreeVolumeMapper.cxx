@@ -391,7 +391,10 @@ int CpuMatch(const std::string& scenario)
     const double none = Rmse(Grab(scene.Window), uncropped);
     std::cout << "a region removing nothing: effects '" << mapper->GetLastEffects()
               << "', RGB RMSE against uncropped " << none << "\n";
-    check.Check(std::string(mapper->GetLastEffects()).empty() && none < 1e-6,
+    // Not bit for bit: bricks the cropped frame did not draw come back in
+    // other slots of the texture pages, where the linear filter's weights
+    // round otherwise (measured 1.3e-5; a cropping shows above 0.01).
+    check.Check(std::string(mapper->GetLastEffects()).empty() && none < 1e-4,
       "a region removing nothing is not drawn");
     // The region again, in the other sampling paths: after the per-sample
     // effects (gradient opacity, shading), and in the reducing and

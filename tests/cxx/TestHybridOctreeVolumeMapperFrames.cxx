@@ -76,6 +76,10 @@ int Orbit()
   // within the resident bytes plus the pages first made for each shape.
   bool paged = true;
   double pageRatio = 0.0;
+  // The bricks that share a page draw in runs, one call each.
+  vtkTypeInt64 draws = 0;
+  vtkTypeInt64 drawn = 0;
+  bool runs = true;
   for (int lap = 0; lap < 2; ++lap)
   {
     for (int frame = 0; frame < 36; ++frame)
@@ -98,17 +102,23 @@ int Orbit()
         mapper->GetResidentTexturePageCount() > 0;
       pageRatio =
         std::max(pageRatio, static_cast<double>(pageBytes) / std::max<vtkTypeInt64>(resident, 1));
+      draws += mapper->GetLastBrickDraws();
+      drawn += mapper->GetLastBricks();
+      runs = runs && mapper->GetLastBrickDraws() >= 1 &&
+        mapper->GetLastBrickDraws() <= mapper->GetLastBricks();
     }
   }
   std::cout << "uploaded bytes lap 1 " << uploaded[0] << ", lap 2 " << uploaded[1]
             << "; most resident textures lap 1 " << count[0] << ", lap 2 " << count[1]
             << "; texture pages at most " << pageRatio << "x the resident bytes, "
-            << mapper->GetResidentTexturePageCount() << " pages at the end\n";
+            << mapper->GetResidentTexturePageCount() << " pages at the end; " << draws
+            << " draw calls for " << drawn << " bricks\n";
   check.Check(drew, "every frame drew:\n" + errors->AllErrors());
   check.Check(bounded, "resident texture bytes never above the budget");
   check.Check(uploaded[0] > 0 && uploaded[1] <= uploaded[0], "the second lap uploads no more");
   check.Check(count[1] <= count[0], "resident textures do not grow");
   check.Check(paged, "texture pages hold the resident bricks within 2x their bytes + 256 KiB");
+  check.Check(runs && 2 * draws <= drawn, "bricks drawn in runs: at most one call for 2 bricks");
   mapper->ReleaseGraphicsResources(scene.Window);
   check.Check(mapper->GetResidentTextureCount() == 0 &&
       mapper->GetResidentTexturePageCount() == 0 && mapper->GetResidentTexturePageBytes() == 0,

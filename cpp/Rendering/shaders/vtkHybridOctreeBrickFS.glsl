@@ -5,26 +5,29 @@ flat in int kind;
 flat in vec4 pointFrame;
 flat in vec4 pointColor;
 flat in float pointWeight;
+// The brick's parameters (the vertex shader reads them from the frame's
+// brick table, by the brick index of the vertex).
+flat in vec3 brickLo;
+flat in vec3 inverseStep;
+flat in vec3 texels;
+flat in vec3 slotOffset; // the brick's slot in its texture page (texels)
+flat in float opacityRatio;
+flat in vec3 boxLo;
+flat in vec3 boxHi;
+flat in float sliceSpacing;
+flat in int jitter;
+flat in float jitterScale; // P / s: the list's largest sample spacing over this brick's
+flat in vec3 gradientStep; // stride * spacing (model units)
 uniform sampler3D brickTexture;
 uniform sampler2D transferTable;
 uniform sampler2D opaqueDepth;
-uniform vec3 brickLo;
-uniform vec3 inverseStep;
-uniform vec3 texels;
-uniform vec3 slotOffset; // the brick's slot in its texture page (texels)
 uniform vec3 pageTexels; // the page's texels per axis
 uniform vec2 tableScaleShift;
-uniform float opacityRatio;
 uniform float opacityScale; // every opacity's constant factor (1: none)
 uniform vec3 eye;
 uniform vec3 forward;
 uniform int parallel;
 uniform vec4 surfaceColor;
-uniform vec3 boxLo;
-uniform vec3 boxHi;
-uniform float sliceSpacing;
-uniform int jitter;
-uniform float jitterScale; // P / s: the list's largest sample spacing over this brick's
 uniform mat4 DCMC;
 uniform vec2 viewportSize;
 uniform vec2 depthScale;
@@ -53,7 +56,6 @@ uniform vec2 alphaDecode;
 // Gradients (shading, gradient opacity; src/render/shade.rs): the brick
 // texture carries one border texel per side; the gradient is the central
 // difference one texel away, over gradientStep (stride * spacing, model units).
-uniform vec3 gradientStep;
 #endif
 #ifdef HO_GRADIENT_OPACITY
 // Gradient opacity (src/transfer/gradient_opacity.rs): the function of the

@@ -4,7 +4,12 @@ in vec3 normalMC;
 in vec2 clipMC;
 in float kindMC;
 in float alphaMC;
+in float brickMC; // the vertex's brick: its index in the list
 uniform mat4 MCDC;
+// The frame's brick table: seven RGBA texels a brick, from brick brickBase
+// (vtkOpenGLHybridOctreeBrickDrawer::BrickTexels).
+uniform samplerBuffer brickTable;
+uniform int brickBase;
 uniform vec3 eye;
 uniform vec3 forward;
 uniform vec2 viewportSize;
@@ -16,6 +21,17 @@ flat out int kind;
 flat out vec4 pointFrame;
 flat out vec4 pointColor;
 flat out float pointWeight;
+flat out vec3 brickLo;
+flat out vec3 inverseStep;
+flat out vec3 texels;
+flat out vec3 slotOffset;
+flat out float opacityRatio;
+flat out vec3 boxLo;
+flat out vec3 boxHi;
+flat out float sliceSpacing;
+flat out int jitter;
+flat out float jitterScale;
+flat out vec3 gradientStep;
 // The primitive kinds (the vertex attribute kindMC, a whole number).
 const int SLICE = 0;
 const int SURFACE_TRIANGLE = 1;
@@ -25,6 +41,25 @@ const int GAUSSIAN_POINT = 4;
 
 void main()
 {
+  int b = 7 * (int(brickMC + 0.5) - brickBase);
+  vec4 t0 = texelFetch(brickTable, b);
+  vec4 t1 = texelFetch(brickTable, b + 1);
+  vec4 t2 = texelFetch(brickTable, b + 2);
+  vec4 t3 = texelFetch(brickTable, b + 3);
+  vec4 t4 = texelFetch(brickTable, b + 4);
+  vec4 t5 = texelFetch(brickTable, b + 5);
+  vec4 t6 = texelFetch(brickTable, b + 6);
+  brickLo = t0.xyz;
+  opacityRatio = t0.w;
+  inverseStep = t1.xyz;
+  sliceSpacing = t1.w;
+  texels = t2.xyz;
+  jitter = int(t2.w + 0.5);
+  slotOffset = t3.xyz;
+  jitterScale = t3.w;
+  boxLo = t4.xyz;
+  boxHi = t5.xyz;
+  gradientStep = t6.xyz;
   positionMC = vertexMC;
   normal = normalMC;
   kind = int(kindMC + 0.5);

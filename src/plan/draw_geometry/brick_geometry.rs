@@ -1,7 +1,7 @@
 //! The OpenGL mapper's vertices of a DrawList: each brick's slices with the
 //! translucent surface's triangles and the hybrid points in the slabs between
-//! them (paper 1, sections 3 and 4.1; paper 3, section 4), one draw call a
-//! brick.
+//! them (paper 1, sections 3 and 4.1; paper 3, section 4), every vertex
+//! naming its brick, so that the bricks of one texture page draw in one call.
 //!
 //! With a brick's slices at view depths `S[0] > S[1] > ... > S[n-1]` (back
 //! to front, `z = (x - eye) . forward`), slab `s = {z : S[s] <= z < S[s-1]}`
@@ -30,7 +30,8 @@
 //! faces rays leave by: one fragment a pixel).
 //!
 //! Each vertex is [`FLOATS_PER_VERTEX`] floats: position, normal, clip
-//! interval `(near, far)`, [`PrimitiveKind`], point opacity. A point is a quad
+//! interval `(near, far)`, [`PrimitiveKind`], point opacity, and its brick's
+//! index in the list (exact in `f32` below [`MAX_BRICKS`]). A point is a quad
 //! (two triangles) whose six vertices all hold its centre, its straight
 //! colour in the normal, their corner `(±1, ±1)` in the clip interval and
 //! its opacity. Depths are computed as the mapper computed them: a triangle's
@@ -45,8 +46,11 @@ use crate::plan::DrawList;
 use std::cmp::Ordering;
 use std::ops::Range;
 
-/// Floats per vertex: position (3), normal (3), clip interval (2), kind, point opacity.
-pub const FLOATS_PER_VERTEX: usize = 10;
+/// Floats per vertex: position (3), normal (3), clip interval (2), kind, point opacity, brick index.
+pub const FLOATS_PER_VERTEX: usize = 11;
+
+/// The most bricks a geometry names: every index below it is an exact `f32` (2^24).
+pub const MAX_BRICKS: usize = 1 << 24;
 
 /// An unbounded side of a clip interval (the shader's clip distances stay finite).
 pub const UNBOUNDED: f32 = 1.0e30;
@@ -181,13 +185,15 @@ fn clip_bound(v: f64) -> f32 {
 /// The vertex stream under construction.
 struct Stream {
     data: Vec<f32>,
+    /// The index of the brick being emitted (every vertex carries it).
+    brick: f32,
 }
 
 impl Stream {
     fn emit(&mut self, position: &[f32], normal: &[f32], near: f32, far: f32, kind: PrimitiveKind, alpha: f32) {
         self.data.extend_from_slice(&position[..3]);
         self.data.extend_from_slice(&normal[..3]);
-        self.data.extend([near, far, kind as i32 as f32, alpha]);
+        self.data.extend([near, far, kind as i32 as f32, alpha, self.brick]);
     }
 
     /// The 12 triangles of a box, wound counter-clockwise seen from inside.
@@ -245,7 +251,8 @@ fn triangle<'a>(surface: &SurfaceVertices<'a>, t: u32) -> Result<[&'a [f32]; 3]>
 /// # Errors
 ///
 /// [`Error::InvalidArgument`] when a batch names a triangle the surface does
-/// not have, or a triangle a vertex it does not have.
+/// not have, or a triangle a vertex it does not have, or for more than
+/// [`MAX_BRICKS`] bricks.
 pub fn brick_geometry(
     view: &GeometryView,
     bricks: &[BrickSlabs<'_>],
@@ -262,9 +269,16 @@ pub fn brick_geometry(
         ..BrickGeometry::default()
     };
     out.brick_first.push(0);
-    let mut stream = Stream { data: Vec::new() };
+    if bricks.len() > MAX_BRICKS {
+        return Err(Error::InvalidArgument(format!(
+            "{} bricks to draw, at most {MAX_BRICKS} a frame: give a smaller texture budget",
+            bricks.len()
+        )));
+    }
+    let mut stream = Stream { data: Vec::new(), brick: 0.0 };
     let (mut placed, mut items, mut ranges) = (Vec::<Placed>::new(), Vec::<SlabItem>::new(), Vec::new());
-    for brick in bricks {
+    for (index, brick) in bricks.iter().enumerate() {
+        stream.brick = index as f32;
         let slices = brick.slices;
         placed.clear();
         if let Some(surface) = surface {

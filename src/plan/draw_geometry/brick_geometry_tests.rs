@@ -27,9 +27,11 @@ struct Vertex {
     alpha: f32,
 }
 
+/// Brick `brick`'s vertices, each checked to name that brick.
 fn vertices(g: &BrickGeometry, brick: usize) -> Vec<Vertex> {
     g.vertices[FLOATS_PER_VERTEX * g.brick_first[brick]..FLOATS_PER_VERTEX * g.brick_first[brick + 1]]
         .chunks_exact(FLOATS_PER_VERTEX)
+        .inspect(|v| assert_eq!(v[10], brick as f32, "a vertex of brick {brick} names brick {}", v[10]))
         .map(|v| Vertex {
             position: [v[0], v[1], v[2]],
             normal: [v[3], v[4], v[5]],

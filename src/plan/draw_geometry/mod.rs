@@ -20,7 +20,7 @@ pub mod slice_polygon;
 
 pub use brick_geometry::{
     brick_geometry, list_bricks, BrickGeometry, BrickSlabs, GeometryView, PointVertices, PrimitiveKind,
-    SurfaceVertices, FLOATS_PER_VERTEX, UNBOUNDED,
+    SurfaceVertices, FLOATS_PER_VERTEX, MAX_BRICKS, UNBOUNDED,
 };
 pub use occupancy::{OpacityTable, TexelBox};
 pub use slice_plane::slice_plane_geometry;

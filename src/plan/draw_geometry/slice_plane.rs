@@ -28,14 +28,14 @@ pub fn slice_plane_geometry(plane: &SlicePlane, bricks: &[BrickSlabs<'_>]) -> Br
     };
     out.brick_first.push(0);
     let mut polygon = Vec::new();
-    for brick in bricks {
+    for (index, brick) in bricks.iter().enumerate() {
         polygon.clear();
         if brick.drawn {
             append_slice_polygon(&brick.bounds, plane.origin, n, basis, 0.0, &mut polygon);
         }
         for v in polygon.chunks_exact(3) {
             out.vertices.extend_from_slice(v);
-            out.vertices.extend([0.0, 0.0, 0.0, -UNBOUNDED, UNBOUNDED, 0.0, 0.0]);
+            out.vertices.extend([0.0, 0.0, 0.0, -UNBOUNDED, UNBOUNDED, 0.0, 0.0, index as f32]);
         }
         out.brick_first.push(out.vertices.len() / FLOATS_PER_VERTEX);
     }
