@@ -450,11 +450,10 @@ struct BrickGeometryInput
  * src/ffi/mod.rs): `VertexFloats` floats at `Vertices`, 11 a vertex
  * (position, normal, clip interval near and far, primitive kind: 0 slice, 1
  * surface triangle, 2 ray-marched box, 3 square point, 4 Gaussian point;
- * point opacity; the index of its brick in the list), kept by `Storage` (the Rust core's own buffer, not
- * copied); brick i's vertices `BrickFirst[i] .. BrickFirst[i + 1]`,
- * `RayMarched[i]` (drawn as its box), `Drawn[i]` (some block visible),
- * `Boxes[6i .. 6i+6]` (the box its slices are clipped to, VTK order),
- * `PointUp` (a point quad's up).
+ * point opacity; the index of its brick in the list), kept by `Storage` (the Rust core's own
+ * buffer, not copied); brick i's vertices `BrickFirst[i] .. BrickFirst[i + 1]`, `RayMarched[i]`
+ * (drawn as its box), `Drawn[i]` (some block visible), `Boxes[6i .. 6i+6]` (the box its slices are
+ * clipped to, VTK order), `PointUp` (a point quad's up).
  */
 struct BrickGeometry
 {
