@@ -520,6 +520,10 @@ bool vtkOpenGLHybridOctreeBrickDrawer::LoadBrickTable(std::size_t first, std::st
   }
   this->TableFirst = first;
   this->TableCount = count;
+  // Bound until Unbind(): the runs drawn from this window read it.
+  this->BrickTable->Activate();
+  this->Program->SetUniformi("brickTable", this->BrickTable->GetTextureUnit());
+  this->Program->SetUniformi("brickBase", static_cast<int>(first));
   return true;
 }
 
@@ -551,9 +555,6 @@ bool vtkOpenGLHybridOctreeBrickDrawer::DrawBricks(std::size_t first, std::size_t
     const std::size_t count = brickFirst[end] - from;
     if (count > 0)
     {
-      this->BrickTable->Activate();
-      this->Program->SetUniformi("brickTable", this->BrickTable->GetTextureUnit());
-      this->Program->SetUniformi("brickBase", static_cast<int>(this->TableFirst));
       glDrawArrays(GL_TRIANGLES, static_cast<GLint>(from), static_cast<GLsizei>(count));
       ++this->Draws;
     }

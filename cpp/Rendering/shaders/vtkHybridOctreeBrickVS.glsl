@@ -7,7 +7,7 @@ in float alphaMC;
 in float brickMC; // the vertex's brick: its index in the list
 uniform mat4 MCDC;
 // The frame's brick table: seven RGBA texels a brick, from brick brickBase
-// (vtkOpenGLHybridOctreeBrickDrawer::BrickTexels).
+// (vtkOpenGLHybridOctreeBrickDrawer::SetBricks(), TexelsPerBrick).
 uniform samplerBuffer brickTable;
 uniform int brickBase;
 uniform vec3 eye;
