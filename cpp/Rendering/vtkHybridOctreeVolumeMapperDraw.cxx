@@ -23,9 +23,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -170,18 +168,6 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
   const std::size_t border = bordered ? 1 : 0;
   in.Bricks.BeginFrame(
     static_cast<std::size_t>(std::max(textureBudget, 0.0)), list.NodeId, list.Stride);
-  // The pages' slots for the bricks of a stride hold the frame's largest
-  // brick of that stride (a whole node's texels), so the smaller bricks at
-  // the volume's far faces share their pages and runs.
-  std::map<std::size_t, std::array<std::size_t, 3>> slotTexels;
-  for (std::size_t i = 0; i < bricks; ++i)
-  {
-    std::array<std::size_t, 3>& slot = slotTexels[list.Stride[i]];
-    for (int a = 0; a < 3; ++a)
-    {
-      slot[a] = std::max(slot[a], list.Texels[3 * i + a] + 2 * border);
-    }
-  }
   textures.assign(bricks, nullptr);
   // The frame's geometry is made from each brick's block ranges (kept with its texture).
   geometryInput.BlockRanges.assign(bricks, nullptr);
@@ -191,7 +177,7 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const std::size_t dims[3] = { list.Texels[3 * i] + 2 * border,
       list.Texels[3 * i + 1] + 2 * border, list.Texels[3 * i + 2] + 2 * border };
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
-      window, { list.NodeId[i], list.Stride[i] }, dims, slotTexels[list.Stride[i]].data(),
+      window, { list.NodeId[i], list.Stride[i] }, dims, dims,
       [&](float* texels, unsigned char* encoded, std::size_t count) {
         if (in.Store)
         {

@@ -12,10 +12,10 @@
  *
  * A page is one 3D texture holding a grid of a_x * a_y * a_z slots of one
  * shape, n texels per axis (slot (i, j, k) at texel offset (i n_x, j n_y,
- * k n_z)); an axis with n = 1 has one slot along it. The slot shape is the
- * frame's largest brick of a stride (a whole node's texels and border), so the
- * smaller bricks at the volume's far faces share the pages, and the runs,
- * of the others: a brick fills the corner of its slot from the offset. A shape's
+ * k n_z)); an axis with n = 1 has one slot along it. A slot may be larger
+ * than its brick (the brick fills its corner from the offset), but the
+ * mapper gives every brick a slot of its own shape (a stride mixes 9^3 and
+ * 129^3 bricks, so slots of a stride's largest would hold mostly nothing). A shape's
  * k-th page (of those it holds now) has 8 * 2^k slots, up to the target
  * page bytes, so a shape's pages grow with its bricks and its first pages
  * stay small.
