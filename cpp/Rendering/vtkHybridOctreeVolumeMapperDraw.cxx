@@ -177,7 +177,7 @@ bool vtkHybridOctreeVolumeMapper::AcquireBrickTextures(vtkOpenGLRenderWindow* wi
     const std::size_t dims[3] = { list.Texels[3 * i] + 2 * border,
       list.Texels[3 * i + 1] + 2 * border, list.Texels[3 * i + 2] + 2 * border };
     const vtkOpenGLHybridOctreeBrickTextures::Resident* resident = in.Bricks.Acquire(
-      window, { list.NodeId[i], list.Stride[i] }, dims, dims,
+      window, { list.NodeId[i], list.Stride[i] }, dims,
       [&](float* texels, unsigned char* encoded, std::size_t count) {
         if (in.Store)
         {

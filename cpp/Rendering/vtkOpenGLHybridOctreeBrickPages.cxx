@@ -27,15 +27,9 @@ const unsigned int* vtkOpenGLHybridOctreeBrickPages::GetPageTexels(const Slot& s
 }
 
 bool vtkOpenGLHybridOctreeBrickPages::Allocate(vtkOpenGLRenderWindow* window,
-  const std::size_t brickTexels[3], const std::size_t slotTexels[3], std::size_t pageBytes,
-  Slot& slot, std::string& error, const Page* near)
+  const std::size_t texels[3], std::size_t pageBytes, Slot& slot, std::string& error,
+  const Page* near)
 {
-  // The slot's shape: slotTexels, or larger where the brick is.
-  std::size_t texels[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    texels[a] = std::max(brickTexels[a], slotTexels[a]);
-  }
   const Shape shape = { texels[0], texels[1], texels[2] };
   std::vector<std::unique_ptr<Page>>& pages = this->Shapes[shape];
   // `near` when it is a page of this shape with a free slot, else the page
@@ -133,7 +127,7 @@ bool vtkOpenGLHybridOctreeBrickPages::Allocate(vtkOpenGLRenderWindow* window,
   slot.Owner = best;
   for (int a = 0; a < 3; ++a)
   {
-    slot.Texels[a] = brickTexels[a];
+    slot.Texels[a] = texels[a];
   }
   slot.Index = best->FreeSlots.back();
   best->FreeSlots.pop_back();

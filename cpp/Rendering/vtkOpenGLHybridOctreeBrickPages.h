@@ -12,10 +12,9 @@
  *
  * A page is one 3D texture holding a grid of a_x * a_y * a_z slots of one
  * shape, n texels per axis (slot (i, j, k) at texel offset (i n_x, j n_y,
- * k n_z)); an axis with n = 1 has one slot along it. A slot may be larger
- * than its brick (the brick fills its corner from the offset), but the
- * mapper gives every brick a slot of its own shape (a stride mixes 9^3 and
- * 129^3 bricks, so slots of a stride's largest would hold mostly nothing). A shape's
+ * k n_z)); an axis with n = 1 has one slot along it. A brick takes a slot
+ * of its own shape (a stride mixes 9^3 and 129^3 bricks, so slots of a
+ * stride's largest brick would hold mostly nothing). A shape's
  * k-th page (of those it holds now) has 8 * 2^k slots, up to the target
  * page bytes, so a shape's pages grow with its bricks and its first pages
  * stay small.
@@ -31,8 +30,8 @@
  *     [g, n_a - 1 - g],   g = 1/64   (min(g, (n_a - 1) / 2) when n_a < 2 + 2g)
  *
  * (n_a the brick's own texels) so the linear filter never reads past the
- * brick (a neighbouring slot, or its own slot's texels beyond a smaller
- * brick, may be NaN or not written): a sample within 1/64 texel of a brick's face reads
+ * brick (a neighbouring slot may hold another brick, or be NaN or not
+ * written): a sample within 1/64 texel of a brick's face reads
  * its face texel within 1/64 of one texel step, where a texture of its own
  * clamped to the edge would read the face texel exactly.
  */
@@ -85,8 +84,8 @@ public:
     std::size_t Capacity() const { return this->Slots[0] * this->Slots[1] * this->Slots[2]; }
   };
 
-  /// A brick's place: its page, its texel offset in it and the brick's own
-  /// texels per axis (at most the page's slot shape, from the offset).
+  /// A brick's place: its page, its texel offset in it and the brick's
+  /// texels per axis (the page's slot shape).
   struct Slot
   {
     Page* Owner = nullptr;
@@ -100,16 +99,15 @@ public:
   static const unsigned int* GetPageTexels(const Slot& slot);
 
   /**
-   * A free slot for a brick of `brickTexels` per axis, in a page of slots of
-   * `slotTexels` per axis (larger where the brick is) and `Format` (SetFormat()):
+   * A free slot for a brick of `texels` per axis, in a page of slots of
+   * that shape and `Format` (SetFormat()):
    * of an existing page of the shape, or of a new one of at most about
    * `pageBytes` (at least one slot); of `near` when it is a page of the
    * shape with a free slot (only compared, never read: it may be gone).
    * False and `error` when OpenGL cannot create the page.
    */
-  bool Allocate(vtkOpenGLRenderWindow* window, const std::size_t brickTexels[3],
-    const std::size_t slotTexels[3], std::size_t pageBytes, Slot& slot, std::string& error,
-    const Page* near = nullptr);
+  bool Allocate(vtkOpenGLRenderWindow* window, const std::size_t texels[3], std::size_t pageBytes,
+    Slot& slot, std::string& error, const Page* near = nullptr);
 
   /// Writes the brick's texels staged in the format's type (x fastest, the
   /// slot's Texels) into `slot`. False and `error` on an OpenGL error.

@@ -61,8 +61,8 @@ bool vtkOpenGLHybridOctreeBrickTextures::MakeRoom(std::size_t incoming)
 }
 
 const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTextures::Acquire(
-  vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3],
-  const std::size_t slotTexels[3], const Fetch& fetch, std::string& error, std::size_t border)
+  vtkOpenGLRenderWindow* window, const Key& key, const std::size_t texels[3], const Fetch& fetch,
+  std::string& error, std::size_t border)
 {
   if (this->Window && this->Window != window)
   {
@@ -106,7 +106,7 @@ const vtkOpenGLHybridOctreeBrickTextures::Resident* vtkOpenGLHybridOctreeBrickTe
   const std::size_t pageBytes =
     std::clamp<std::size_t>(this->LimitBytes / 16, std::size_t{ 64 } << 10, std::size_t{ 4 } << 20);
   vtkOpenGLHybridOctreeBrickPages::Slot slot;
-  if (!this->Pages.Allocate(window, texels, slotTexels, pageBytes, slot, error, this->Previous))
+  if (!this->Pages.Allocate(window, texels, pageBytes, slot, error, this->Previous))
   {
     return nullptr;
   }

@@ -83,13 +83,12 @@ public:
    * alone would pass the limit. With a gradient `border` (shading: 1) the
    * texels carry that many border texels per side; the block ranges are
    * measured on the brick's own texels inside it. A new brick takes a slot
-   * of `slotTexels` per axis (larger where the brick is). Bricks acquired in
+   * of its shape. Bricks acquired in
    * compositing order: a new one goes into the page of the one acquired
    * before it when it can (vtkOpenGLHybridOctreeBrickPages::Allocate()).
    */
   const Resident* Acquire(vtkOpenGLRenderWindow* window, const Key& key,
-    const std::size_t texels[3], const std::size_t slotTexels[3], const Fetch& fetch,
-    std::string& error, std::size_t border = 0);
+    const std::size_t texels[3], const Fetch& fetch, std::string& error, std::size_t border = 0);
 
   /// Whether the bricks (`nodes[i]`, `strides[i]`) are all resident.
   bool HoldsAll(
